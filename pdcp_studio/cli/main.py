@@ -1,0 +1,88 @@
+"""The ``pdcp-studio`` command line: one small module per subcommand.
+
+Each module in ``COMMAND_MODULES`` has ``add_subparser(subparsers)``, which registers
+its command and sets ``func`` to a ``run(args) -> int``. Modules import heavy
+libraries (python-can, networkx, Qt) inside ``run`` only, so a headless command
+starts fast and never loads Qt.
+
+Exit status: 0 success, 2 bad input (``BadInput``: a file that does not parse or
+validate, named with where and why), 1 any other failure.
+"""
+
+from __future__ import annotations
+
+import argparse
+import importlib
+import sys
+from collections.abc import Sequence
+
+from pdcp_studio import __version__
+from pdcp_studio.errors import ConfigFormatError, PdcpError, SystemFileError
+
+# Order = order in --help.
+COMMAND_MODULES = (
+    "gui",
+    "config_cmd",
+    "listing",
+    "plan",
+    "check",
+    "scan",
+    "sim",
+    "arbitrator",
+    "monitor",
+)
+
+EXIT_OK = 0
+EXIT_FAILURE = 1
+EXIT_BAD_INPUT = 2
+
+
+class BadInput(PdcpError):
+    """Raised by a command for input the user must fix (exit status 2)."""
+
+
+def build_parser() -> argparse.ArgumentParser:
+    parser = argparse.ArgumentParser(
+        prog="pdcp-studio",
+        description="See, configure and repair the PDCP bus inside a powered prosthesis.",
+    )
+    parser.add_argument("--version", action="version", version=f"pdcp-studio {__version__}")
+    subparsers = parser.add_subparsers(dest="command", metavar="COMMAND")
+    for name in COMMAND_MODULES:
+        try:
+            module = importlib.import_module(f"pdcp_studio.cli.{name}")
+        except ModuleNotFoundError as err:
+            if err.name == f"pdcp_studio.cli.{name}":
+                continue  # command not built into this version
+            raise
+        module.add_subparser(subparsers)
+    return parser
+
+
+def main(argv: Sequence[str] | None = None) -> int:
+    parser = build_parser()
+    args = parser.parse_args(argv)
+    if args.command is None:
+        # Bare `pdcp-studio` opens the desktop app on the simulated prosthesis.
+        args = parser.parse_args(["gui", *([] if argv is None else list(argv))])
+        if getattr(args, "func", None) is None:
+            parser.print_help()
+            return EXIT_OK
+    try:
+        return int(args.func(args) or 0)
+    except (BadInput, ConfigFormatError, SystemFileError) as err:
+        print(f"pdcp-studio: {err}", file=sys.stderr)
+        return EXIT_BAD_INPUT
+    except PdcpError as err:
+        print(f"pdcp-studio: error: {err}", file=sys.stderr)
+        return EXIT_FAILURE
+    except KeyboardInterrupt:
+        print("pdcp-studio: interrupted", file=sys.stderr)
+        return 130
+    except OSError as err:
+        print(f"pdcp-studio: error: {err}", file=sys.stderr)
+        return EXIT_FAILURE
+
+
+if __name__ == "__main__":  # pragma: no cover
+    sys.exit(main())
