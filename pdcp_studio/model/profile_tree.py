@@ -1,0 +1,208 @@
+"""The named profile tree: human names for profile paths (thesis figure 4.6).
+
+Trees are JSON resources (``pdcp-profile-tree/1``) that users edit and extend with
+vendor trees; several trees merge into one lookup. Pure: file I/O is in
+:mod:`pdcp_studio.storage.profile_tree_file`.
+"""
+
+from __future__ import annotations
+
+from dataclasses import dataclass, field
+
+from pdcp_studio.errors import ProfileError
+from pdcp_studio.model import profile as prof
+
+TREE_FORMAT = "pdcp-profile-tree/1"
+
+
+@dataclass
+class ProfileNode:
+    """One named component; its profile is the path of components from the root."""
+
+    name: str
+    component: int
+    children: list[ProfileNode] = field(default_factory=list)
+    description: str = ""
+
+    def child(self, component: int) -> ProfileNode | None:
+        for c in self.children:
+            if c.component == component:
+                return c
+        return None
+
+    @property
+    def vendor_reserved(self) -> bool:
+        return prof.is_vendor_component(self.component)
+
+
+@dataclass
+class ProfileTree:
+    """A forest of named profile nodes, looked up by profile value."""
+
+    name: str = "profiles"
+    roots: list[ProfileNode] = field(default_factory=list)
+
+    # -- lookup -----------------------------------------------------------------
+    def node_path(self, profile: int) -> list[ProfileNode]:
+        """The named nodes along ``profile``'s path, as far as the tree knows it."""
+        nodes: list[ProfileNode] = []
+        level = self.roots
+        for comp in prof.components(profile):
+            match = next((n for n in level if n.component == comp), None)
+            if match is None:
+                break
+            nodes.append(match)
+            level = match.children
+        return nodes
+
+    def node(self, profile: int) -> ProfileNode | None:
+        """The node for exactly this profile, or None."""
+        path = self.node_path(profile)
+        return path[-1] if path and len(path) == prof.depth(profile) else None
+
+    def name_of(self, profile: int, sep: str = " › ") -> str:
+        """``Sensor › Accelerometer › Wrist``; unknown tails are shown as hex components."""
+        if profile == prof.NULL_PROFILE:
+            return "(null profile)"
+        comps = prof.components(profile)
+        path = self.node_path(profile)
+        names = [n.name for n in path] + [f"0x{c:X}" for c in comps[len(path) :]]
+        return sep.join(names)
+
+    def short_name(self, profile: int) -> str:
+        """The deepest known name, e.g. ``Power Grip``; hex when unknown."""
+        path = self.node_path(profile)
+        if path and len(path) == prof.depth(profile):
+            return path[-1].name
+        return prof.fmt(profile)
+
+    def walk(self) -> list[tuple[int, ProfileNode]]:
+        """Every (profile value, node), depth first in component order."""
+        out: list[tuple[int, ProfileNode]] = []
+
+        def visit(nodes: list[ProfileNode], prefix: tuple[int, ...]) -> None:
+            for n in sorted(nodes, key=lambda n: n.component):
+                path = (*prefix, n.component)
+                out.append((prof.from_components(path), n))
+                visit(n.children, path)
+
+        visit(self.roots, ())
+        return out
+
+    # -- editing ----------------------------------------------------------------
+    def children_of(self, profile: int) -> list[ProfileNode]:
+        if profile == prof.NULL_PROFILE:
+            return self.roots
+        node = self.node(profile)
+        if node is None:
+            raise ProfileError(f"no node at profile {prof.fmt(profile)}")
+        return node.children
+
+    def add(self, parent_profile: int, name: str, component: int) -> int:
+        """Add a named node under ``parent_profile`` (null = a root); returns its profile."""
+        if prof.depth(parent_profile) >= prof.MAX_DEPTH:
+            raise ProfileError(f"{prof.fmt(parent_profile)} is 4 levels deep: no room below it")
+        if not 1 <= component <= 0xF:
+            raise ProfileError(f"component {component} is not 1…15")
+        if not name.strip():
+            raise ProfileError("a profile node needs a name")
+        siblings = self.children_of(parent_profile)
+        if any(s.component == component for s in siblings):
+            raise ProfileError(
+                f"component 0x{component:X} is already used under {self.name_of(parent_profile)}"
+            )
+        siblings.append(ProfileNode(name.strip(), component))
+        siblings.sort(key=lambda n: n.component)
+        return prof.from_components((*prof.components(parent_profile), component))
+
+    def remove(self, profile: int) -> ProfileNode:
+        siblings = self.children_of(prof.parent(profile))
+        node = self.node(profile)
+        if node is None:
+            raise ProfileError(f"no node at profile {prof.fmt(profile)}")
+        siblings.remove(node)
+        return node
+
+    def rename(self, profile: int, name: str) -> None:
+        node = self.node(profile)
+        if node is None:
+            raise ProfileError(f"no node at profile {prof.fmt(profile)}")
+        if not name.strip():
+            raise ProfileError("a profile node needs a name")
+        node.name = name.strip()
+
+    def renumber(self, profile: int, component: int) -> int:
+        """Give a node a new component; its subtree moves with it. Returns the new profile."""
+        node = self.node(profile)
+        if node is None:
+            raise ProfileError(f"no node at profile {prof.fmt(profile)}")
+        if not 1 <= component <= 0xF:
+            raise ProfileError(f"component {component} is not 1…15")
+        siblings = self.children_of(prof.parent(profile))
+        if any(s is not node and s.component == component for s in siblings):
+            raise ProfileError(f"component 0x{component:X} is already used by a sibling")
+        node.component = component
+        siblings.sort(key=lambda n: n.component)
+        return prof.from_components((*prof.components(prof.parent(profile)), component))
+
+    def merged(self, other: ProfileTree) -> ProfileTree:
+        """A new tree with ``other``'s nodes added where this one has none."""
+
+        def copy(n: ProfileNode) -> ProfileNode:
+            return ProfileNode(n.name, n.component, [copy(c) for c in n.children], n.description)
+
+        def merge_into(dst: list[ProfileNode], src: list[ProfileNode]) -> None:
+            for s in src:
+                d = next((n for n in dst if n.component == s.component), None)
+                if d is None:
+                    dst.append(copy(s))
+                else:
+                    merge_into(d.children, s.children)
+            dst.sort(key=lambda n: n.component)
+
+        result = ProfileTree(self.name, [copy(r) for r in self.roots])
+        merge_into(result.roots, other.roots)
+        return result
+
+    # -- JSON -------------------------------------------------------------------
+    def to_json(self) -> dict:
+        def node_json(n: ProfileNode) -> dict:
+            d: dict = {"name": n.name, "component": f"0x{n.component:X}"}
+            if n.description:
+                d["description"] = n.description
+            if n.children:
+                d["children"] = [node_json(c) for c in n.children]
+            return d
+
+        return {"format": TREE_FORMAT, "name": self.name, "nodes": [node_json(r) for r in self.roots]}
+
+    @classmethod
+    def from_json(cls, doc: object, where: str = "") -> ProfileTree:
+        """Build a tree, raising ProfileError that names the JSON path of a bad node."""
+        if not isinstance(doc, dict) or doc.get("format") != TREE_FORMAT:
+            raise ProfileError(f"{where}: not a {TREE_FORMAT} document")
+
+        def parse(items: object, path: str, depth: int) -> list[ProfileNode]:
+            if not isinstance(items, list):
+                raise ProfileError(f"{where}{path}: expected a list")
+            if items and depth > prof.MAX_DEPTH:
+                raise ProfileError(f"{where}{path}: deeper than {prof.MAX_DEPTH} levels")
+            nodes: list[ProfileNode] = []
+            for i, item in enumerate(items):
+                p = f"{path}[{i}]"
+                if not isinstance(item, dict) or not isinstance(item.get("name"), str):
+                    raise ProfileError(f"{where}{p}: a node needs a name")
+                comp = item.get("component")
+                try:
+                    comp = int(comp, 0) if isinstance(comp, str) else comp
+                except ValueError:
+                    comp = None
+                if not isinstance(comp, int) or not 1 <= comp <= 0xF:
+                    raise ProfileError(f"{where}{p}.component: must be 1…15")
+                if any(n.component == comp for n in nodes):
+                    raise ProfileError(f"{where}{p}.component: 0x{comp:X} used twice")
+                children = parse(item.get("children", []), f"{p}.children", depth + 1)
+                nodes.append(ProfileNode(item["name"], comp, children, item.get("description", "")))
+            return nodes
+
+        return cls(str(doc.get("name", "profiles")), parse(doc.get("nodes", []), "nodes", 1))

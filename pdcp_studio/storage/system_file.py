@@ -1,0 +1,278 @@
+"""System files (``pdcp-system/1``, contracts §1): a whole bus as JSON.
+
+The loader validates everything and names the JSON path of the first problem
+(``devices[2].channels[0].profile``). The writer writes type, profile and terminal
+profile as ``"0x%04X"`` strings and everything else as integers, atomically.
+"""
+
+from __future__ import annotations
+
+import json
+from pathlib import Path
+from typing import Any
+
+from pdcp_studio.errors import ModelError, SystemFileError
+from pdcp_studio.model.refs import ChannelRef, Direction
+from pdcp_studio.model.system import NO_SOURCE, Channel, Device, Link, SourceInfo, System
+
+FORMAT = "pdcp-system/1"
+MAX_FILE_BYTES = 16 * 1024 * 1024
+
+
+# -- reading ---------------------------------------------------------------------
+def _int(value: Any, path: str, lo: int, hi: int) -> int:
+    """An integer or ``"0x…"`` string within lo…hi, else SystemFileError at ``path``."""
+    if isinstance(value, bool):
+        raise SystemFileError(f"expected a number, got {value!r}", path)
+    if isinstance(value, str):
+        try:
+            value = int(value, 0)
+        except ValueError:
+            raise SystemFileError(f"{value!r} is not a number", path) from None
+    if not isinstance(value, int):
+        raise SystemFileError(f"expected a number, got {value!r}", path)
+    if not lo <= value <= hi:
+        raise SystemFileError(f"{value} is out of range {lo}…{hi}", path)
+    return value
+
+
+def _obj(value: Any, path: str) -> dict:
+    if not isinstance(value, dict):
+        raise SystemFileError("expected an object", path)
+    return value
+
+
+def _list(value: Any, path: str) -> list:
+    if not isinstance(value, list):
+        raise SystemFileError("expected a list", path)
+    return value
+
+
+def _ref(doc: Any, path: str) -> ChannelRef:
+    d = _obj(doc, path)
+    for key in ("vid", "pid", "serial", "index"):
+        if key not in d:
+            raise SystemFileError(f"missing {key!r}", path)
+    return ChannelRef(
+        _int(d["vid"], f"{path}.vid", 0, 0xFFFF),
+        _int(d["pid"], f"{path}.pid", 0, 0xFFFF),
+        _int(d["serial"], f"{path}.serial", 0, 0xFFFF),
+        _int(d["index"], f"{path}.index", 1, 255),
+    )
+
+
+def _indices(value: Any, path: str) -> tuple[int, ...]:
+    items = _list(value, path)
+    out = tuple(_int(v, f"{path}[{i}]", 0, 255) for i, v in enumerate(items))
+    if len(set(out)) != len(out):
+        raise SystemFileError("an index is listed twice", path)
+    return tuple(sorted(out))
+
+
+def _source(doc: Any, path: str) -> SourceInfo:
+    d = _obj(doc, path)
+    return SourceInfo(
+        vid=_int(d.get("vid", 0xFFFF), f"{path}.vid", 0, 0xFFFF),
+        pid=_int(d.get("pid", 0xFFFF), f"{path}.pid", 0, 0xFFFF),
+        serial=_int(d.get("serial", 0xFFFF), f"{path}.serial", 0, 0xFFFF),
+        index=_int(d.get("index", 0xFF), f"{path}.index", 0, 0xFF),
+        type=_int(d.get("type", 0), f"{path}.type", 0, 0xFFFF),
+        profile=_int(d.get("profile", 0), f"{path}.profile", 0, 0xFFFF),
+    )
+
+
+def _channel(doc: Any, path: str) -> Channel:
+    d = _obj(doc, path)
+    if "index" not in d:
+        raise SystemFileError("missing 'index'", path)
+    direction = d.get("direction")
+    if direction not in ("input", "output"):
+        raise SystemFileError(f"must be 'input' or 'output', not {direction!r}", f"{path}.direction")
+    ch = Channel(
+        index=_int(d["index"], f"{path}.index", 1, 255),
+        direction=Direction(direction),
+        type=_int(d.get("type", 0x5000), f"{path}.type", 0, 0xFFFF),
+        profile=_int(d.get("profile", 0), f"{path}.profile", 0, 0xFFFF),
+        terminal_profile=_int(d.get("terminal_profile", 0), f"{path}.terminal_profile", 0, 0xFFFF),
+        required_inputs=_indices(d.get("required_inputs", []), f"{path}.required_inputs"),
+        desired_inputs=_indices(d.get("desired_inputs", []), f"{path}.desired_inputs"),
+        descriptor=str(d.get("descriptor", "")),
+        source=_source(d["source"], f"{path}.source") if "source" in d else NO_SOURCE,
+        node_id=_int(d["node_id"], f"{path}.node_id", 1, 254) if "node_id" in d else None,
+        data_enabled=bool(d.get("data_enabled", False)),
+    )
+    if not isinstance(d.get("descriptor", ""), str):
+        raise SystemFileError("expected a string", f"{path}.descriptor")
+    return ch
+
+
+_DEVICE_INTS = {
+    "fw_version": 0xFFFF,
+    "hw_version": 0xFFFF,
+    "device_type": 0xFFFF,
+    "device_profile": 0xFFFF,
+    "beacon_interval": 0xFFFF,
+    "ack_timeout": 0xFFFF,
+    "bind_timeout": 0xFFFF,
+    "ean_low": 0xFFFFFFFF,
+    "ean_high": 0xFFFFFFFF,
+}
+
+
+def _device(doc: Any, path: str) -> Device:
+    d = _obj(doc, path)
+    for key in ("vid", "pid", "serial"):
+        if key not in d:
+            raise SystemFileError(f"missing {key!r}", path)
+    present = d.get("present", True)
+    if not isinstance(present, bool):
+        raise SystemFileError("expected true or false", f"{path}.present")
+    device = Device(
+        vid=_int(d["vid"], f"{path}.vid", 0, 0xFFFF),
+        pid=_int(d["pid"], f"{path}.pid", 0, 0xFFFF),
+        serial=_int(d["serial"], f"{path}.serial", 0, 0xFFFF),
+        name=str(d.get("name", "")),
+        present=present,
+        node_id=_int(d["node_id"], f"{path}.node_id", 1, 254) if "node_id" in d else None,
+        descriptor=str(d.get("descriptor", "")),
+        **{k: _int(d[k], f"{path}.{k}", 0, hi) for k, hi in _DEVICE_INTS.items() if k in d},
+    )
+    for i, ch_doc in enumerate(_list(d.get("channels", []), f"{path}.channels")):
+        cpath = f"{path}.channels[{i}]"
+        ch = _channel(ch_doc, cpath)
+        if ch.index in device.channels:
+            raise SystemFileError(f"duplicate channel index {ch.index}", f"{cpath}.index")
+        device.channels[ch.index] = ch
+    for i, ch in enumerate(device.channels.values()):
+        for field in ("required_inputs", "desired_inputs"):
+            for j, idx in enumerate(getattr(ch, field)):
+                target = device.channels.get(idx)
+                if target is None or not target.is_input:
+                    raise SystemFileError(
+                        f"{idx} is not an input channel of this device",
+                        f"{path}.channels[{i}].{field}[{j}]",
+                    )
+    return device
+
+
+def from_json(doc: Any) -> System:
+    """Build a System from a parsed ``pdcp-system/1`` document."""
+    d = _obj(doc, "$")
+    if d.get("format") != FORMAT:
+        raise SystemFileError(f"unknown format {d.get('format')!r} (expected {FORMAT!r})", "format")
+    system = System()
+    for i, dev_doc in enumerate(_list(d.get("devices", []), "devices")):
+        device = _device(dev_doc, f"devices[{i}]")
+        if device.key in system.devices:
+            raise SystemFileError(f"duplicate device {device.key}", f"devices[{i}]")
+        system.add_device(device)
+    seen: set[Link] = set()
+    for i, link_doc in enumerate(_list(d.get("links", []), "links")):
+        path = f"links[{i}]"
+        ld = _obj(link_doc, path)
+        if "output" not in ld or "input" not in ld:
+            raise SystemFileError("a link needs 'output' and 'input'", path)
+        link = Link(_ref(ld["output"], f"{path}.output"), _ref(ld["input"], f"{path}.input"))
+        if link in seen:
+            raise SystemFileError(f"duplicate link {link}", path)
+        seen.add(link)
+        for end, ref, want in (("output", link.output, "an output"), ("input", link.input, "an input")):
+            ch = system.channel(ref)
+            if ch is None:
+                raise SystemFileError(f"no channel {ref} in this system", f"{path}.{end}")
+            if ch.direction.value != end:
+                raise SystemFileError(f"{ref} is not {want} channel", f"{path}.{end}")
+        try:
+            system.add_link(link, check=False)
+        except ModelError as err:  # pragma: no cover - guarded above
+            raise SystemFileError(str(err), path) from err
+    return system
+
+
+def loads(text: str | bytes, name: str = "<string>") -> System:
+    try:
+        doc = json.loads(text)
+    except (json.JSONDecodeError, UnicodeDecodeError) as err:
+        raise SystemFileError(f"{name}: not valid JSON: {err}") from err
+    try:
+        return from_json(doc)
+    except SystemFileError as err:
+        raise SystemFileError(f"{name}: {err.reason}", err.path) from err
+
+
+def load_path(path: str | Path) -> System:
+    path = Path(path)
+    try:
+        size = path.stat().st_size
+        if size > MAX_FILE_BYTES:
+            raise SystemFileError(f"{path}: {size} bytes is larger than {MAX_FILE_BYTES}")
+        data = path.read_bytes()
+    except OSError as err:
+        raise SystemFileError(f"{path}: cannot read: {err.strerror or err}") from err
+    try:
+        doc = json.loads(data)
+    except (json.JSONDecodeError, UnicodeDecodeError) as err:
+        raise SystemFileError(f"{path}: not valid JSON: {err}") from err
+    try:
+        return from_json(doc)
+    except SystemFileError as err:
+        raise SystemFileError(f"{path}: {err.path}: {err.reason}") from err
+
+
+# -- writing ---------------------------------------------------------------------
+def _hex(v: int) -> str:
+    return f"0x{v:04X}"
+
+
+def channel_to_json(ch: Channel, *, node_ids: bool = True) -> dict:
+    d: dict[str, Any] = {"index": ch.index, "direction": ch.direction.value,
+                         "type": _hex(ch.type), "profile": _hex(ch.profile)}
+    if ch.is_input:
+        d["terminal_profile"] = _hex(ch.terminal_profile)
+    d["required_inputs"] = list(ch.required_inputs)
+    d["desired_inputs"] = list(ch.desired_inputs)
+    if ch.descriptor:
+        d["descriptor"] = ch.descriptor
+    if ch.is_input:
+        s = ch.source
+        d["source"] = {"vid": s.vid, "pid": s.pid, "serial": s.serial, "index": s.index}
+        if s.connected:
+            d["source"].update(type=_hex(s.type), profile=_hex(s.profile))
+    if node_ids and ch.node_id is not None:
+        d["node_id"] = ch.node_id
+    if ch.data_enabled:
+        d["data_enabled"] = True
+    return d
+
+
+def to_json(system: System, *, node_ids: bool = True) -> dict:
+    """The ``pdcp-system/1`` document; ``node_ids`` adds the node IDs a bus gave."""
+    devices = []
+    for dev in system.devices.values():
+        d: dict[str, Any] = {"vid": dev.vid, "pid": dev.pid, "serial": dev.serial}
+        if dev.name:
+            d["name"] = dev.name
+        d["present"] = dev.present
+        if dev.descriptor:
+            d["descriptor"] = dev.descriptor
+        if node_ids and dev.node_id is not None:
+            d["node_id"] = dev.node_id
+        for key in _DEVICE_INTS:
+            value = getattr(dev, key)
+            if value != getattr(Device, key, None) and value:
+                d[key] = value
+        d["channels"] = [channel_to_json(c, node_ids=node_ids)
+                         for c in sorted(dev.channels.values(), key=lambda c: c.index)]
+        devices.append(d)
+    return {"format": FORMAT, "devices": devices,
+            "links": [lk.as_json() for lk in system.links]}
+
+
+def dumps(system: System, *, node_ids: bool = True) -> str:
+    return json.dumps(to_json(system, node_ids=node_ids), indent=2) + "\n"
+
+
+def save_path(system: System, path: str | Path, *, node_ids: bool = True) -> None:
+    from pdcp_studio.storage.atomic import atomic_write_text
+
+    atomic_write_text(path, dumps(system, node_ids=node_ids))
