@@ -191,7 +191,9 @@ def channel_parameter(param_id: int, direction: Direction | str) -> ParameterSpe
     try:
         return _CATALOG[scope][param_id]
     except KeyError:
-        raise ParameterError(f"{scope} channel parameter {param_id} is not in the catalog") from None
+        raise ParameterError(
+            f"{scope} channel parameter {param_id} is not in the catalog"
+        ) from None
 
 
 def find_parameter(param_id: int, channel_index: int,

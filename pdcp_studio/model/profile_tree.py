@@ -174,7 +174,8 @@ class ProfileTree:
                 d["children"] = [node_json(c) for c in n.children]
             return d
 
-        return {"format": TREE_FORMAT, "name": self.name, "nodes": [node_json(r) for r in self.roots]}
+        nodes = [node_json(r) for r in self.roots]
+        return {"format": TREE_FORMAT, "name": self.name, "nodes": nodes}
 
     @classmethod
     def from_json(cls, doc: object, where: str = "") -> ProfileTree:

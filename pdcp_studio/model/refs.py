@@ -2,7 +2,7 @@
 
 from __future__ import annotations
 
-from enum import Enum
+from enum import StrEnum
 from typing import NamedTuple
 
 
@@ -36,7 +36,7 @@ class ChannelRef(NamedTuple):
         return f"{self.vid}/{self.pid}/{self.serial}#{self.index}"
 
 
-class Direction(str, Enum):
+class Direction(StrEnum):
     """Transfer Type of a channel: 1 = input, 2 = output (parameter 3)."""
 
     INPUT = "input"

@@ -87,7 +87,9 @@ def _channel(doc: Any, path: str) -> Channel:
         raise SystemFileError("missing 'index'", path)
     direction = d.get("direction")
     if direction not in ("input", "output"):
-        raise SystemFileError(f"must be 'input' or 'output', not {direction!r}", f"{path}.direction")
+        raise SystemFileError(
+            f"must be 'input' or 'output', not {direction!r}", f"{path}.direction"
+        )
     ch = Channel(
         index=_int(d["index"], f"{path}.index", 1, 255),
         direction=Direction(direction),
@@ -176,7 +178,8 @@ def from_json(doc: Any) -> System:
         if link in seen:
             raise SystemFileError(f"duplicate link {link}", path)
         seen.add(link)
-        for end, ref, want in (("output", link.output, "an output"), ("input", link.input, "an input")):
+        ends = (("output", link.output, "an output"), ("input", link.input, "an input"))
+        for end, ref, want in ends:
             ch = system.channel(ref)
             if ch is None:
                 raise SystemFileError(f"no channel {ref} in this system", f"{path}.{end}")
