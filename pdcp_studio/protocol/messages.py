@@ -9,7 +9,7 @@ authoritative table of 001 figure 3.1); multi-byte fields are little-endian.
 from __future__ import annotations
 
 import struct
-from dataclasses import dataclass, fields
+from dataclasses import dataclass, field, fields
 from typing import ClassVar, Self
 
 from pdcp_studio.errors import FrameError
@@ -65,8 +65,12 @@ def _dlc_text(lo: int, hi: int) -> str:
     return f"{lo} expected" if lo == hi else f"{lo}–{hi} expected"
 
 
+@dataclass(frozen=True)
 class _FunctionMessage:
-    """Shared encode / decode / validation driven by the class's layout constants."""
+    """Shared encode / decode / validation, driven by each class's layout constants.
+
+    ``priority`` (and ``mode``, where either side may send) are keyword-only fields.
+    """
 
     CODE: ClassVar[FunctionCode]
     MODE: ClassVar[Mode | None]  # the sender's mode; None if either side sends it
@@ -75,8 +79,7 @@ class _FunctionMessage:
     _TAIL: ClassVar[str | None] = None  # a trailing bytes field (its length from the DLC)
 
     node_id: int
-    priority: Priority
-    mode: Mode
+    priority: Priority = field(default=Priority.NORMAL, kw_only=True)
 
     @property
     def function_code(self) -> FunctionCode:
@@ -119,7 +122,7 @@ class _FunctionMessage:
         """``(arbitration_id, data)`` ready for a CAN frame."""
         head = self._HEAD.pack(self.CODE, *(getattr(self, name) for name, _ in self._FIELDS))
         tail = getattr(self, self._TAIL) if self._TAIL is not None else b""
-        return make_id(self.priority, self.mode, self.node_id), head + tail
+        return make_id(self.priority, self.mode, self.node_id), head + tail  # type: ignore[attr-defined]
 
     @classmethod
     def decode(cls, arbitration_id: int, data: bytes) -> Self:
@@ -152,26 +155,26 @@ class _FunctionMessage:
 class _OneSided(_FunctionMessage):
     """A message only one side sends: ``mode`` comes from the class, not a field."""
 
-    @property  # type: ignore[override]
+    @property
     def mode(self) -> Mode:
         return self.MODE  # type: ignore[return-value]
 
 
 _DEV, _BA = Mode.DEVICE, Mode.ARBITRATOR
 _PARAM_FIELDS = (("param", "u8"), ("channel", "u8"))
+_CODE_FIELD = (("code", "response"),)
 
 
 @dataclass(frozen=True)
 class BindRequest(_OneSided):
-    """0x01: a device asks for ``node_id`` (the identifier's node ID), priority 3."""
+    """0x01: a device asks for ``node_id`` (the identifier's node ID), at priority 3."""
 
     CODE, MODE, _HEAD = FunctionCode.BIND_REQUEST, _DEV, _BIND_REQUEST
     _FIELDS = (("vid", "u16"), ("pid", "u16"), ("serial", "u16"))
-    node_id: int
     vid: int
     pid: int
     serial: int
-    priority: Priority = Priority.BINDING
+    priority: Priority = field(default=Priority.BINDING, kw_only=True)
 
 
 @dataclass(frozen=True)
@@ -183,12 +186,10 @@ class BindResponse(_OneSided):
 
     CODE, MODE, _HEAD = FunctionCode.BIND_RESPONSE, _BA, _BIND_RESPONSE
     _FIELDS = (("granted_node_id", "granted"), ("vid", "u16"), ("pid", "u16"), ("serial", "u16"))
-    node_id: int
     granted_node_id: int
     vid: int
     pid: int
     serial: int
-    priority: Priority = Priority.NORMAL
 
     @property
     def accepted(self) -> bool:
@@ -198,10 +199,8 @@ class BindResponse(_OneSided):
 @dataclass(frozen=True)
 class GetParameter(_OneSided):
     CODE, MODE, _HEAD, _FIELDS = FunctionCode.GET_PARAMETER, _BA, _PARAM, _PARAM_FIELDS
-    node_id: int
     param: int
     channel: int
-    priority: Priority = Priority.NORMAL
 
 
 @dataclass(frozen=True)
@@ -210,23 +209,21 @@ class GetParameterResponse(_OneSided):
 
     CODE, MODE, _HEAD = FunctionCode.GET_PARAMETER_RESPONSE, _DEV, _PARAM_RESPONSE
     _FIELDS, _TAIL = (("code", "response_bulk"), *_PARAM_FIELDS), "value"
-    node_id: int
-    code: ResponseCode  # type: ignore[assignment]
+    code: ResponseCode
     param: int
     channel: int
     value: bytes = b""
-    priority: Priority = Priority.NORMAL
 
 
 @dataclass(frozen=True)
 class SetParameter(_OneSided):
+    """0x04: ``value`` is 1–4 bytes; longer values go by Configure Set Bulk."""
+
     CODE, MODE, _HEAD = FunctionCode.SET_PARAMETER, _BA, _PARAM
     _FIELDS, _TAIL = _PARAM_FIELDS, "value"
-    node_id: int
     param: int
     channel: int
     value: bytes
-    priority: Priority = Priority.NORMAL
 
 
 @dataclass(frozen=True)
@@ -235,12 +232,10 @@ class SetParameterResponse(_OneSided):
 
     CODE, MODE, _HEAD = FunctionCode.SET_PARAMETER_RESPONSE, _DEV, _PARAM_RESPONSE
     _FIELDS, _TAIL = (("code", "response_bulk"), *_PARAM_FIELDS), "value"
-    node_id: int
-    code: ResponseCode  # type: ignore[assignment]
+    code: ResponseCode
     param: int
     channel: int
     value: bytes
-    priority: Priority = Priority.NORMAL
 
 
 @dataclass(frozen=True)
@@ -248,35 +243,26 @@ class Suspend(_OneSided):
     """0x08: stop transmitting for ``ms`` milliseconds (0 = until released)."""
 
     CODE, MODE, _HEAD, _FIELDS = FunctionCode.SUSPEND, _BA, _SUSPEND, (("ms", "u16"),)
-    node_id: int
     ms: int
-    priority: Priority = Priority.NORMAL
 
 
 @dataclass(frozen=True)
 class SuspendResponse(_OneSided):
     CODE, MODE, _HEAD = FunctionCode.SUSPEND_RESPONSE, _DEV, _SUSPEND_RESPONSE
-    _FIELDS = (("code", "response"), ("ms", "u16"))
-    node_id: int
-    code: ResponseCode  # type: ignore[assignment]
+    _FIELDS = (*_CODE_FIELD, ("ms", "u16"))
+    code: ResponseCode
     ms: int
-    priority: Priority = Priority.NORMAL
 
 
 @dataclass(frozen=True)
 class Release(_OneSided):
     CODE, MODE, _HEAD = FunctionCode.RELEASE, _BA, _CODE_ONLY
-    node_id: int
-    priority: Priority = Priority.NORMAL
 
 
 @dataclass(frozen=True)
 class ReleaseResponse(_OneSided):
-    CODE, MODE, _HEAD = FunctionCode.RELEASE_RESPONSE, _DEV, _RESPONSE
-    _FIELDS = (("code", "response"),)
-    node_id: int
-    code: ResponseCode  # type: ignore[assignment]
-    priority: Priority = Priority.NORMAL
+    CODE, MODE, _HEAD, _FIELDS = FunctionCode.RELEASE_RESPONSE, _DEV, _RESPONSE, _CODE_FIELD
+    code: ResponseCode
 
 
 @dataclass(frozen=True)
@@ -287,34 +273,26 @@ class Beacon(_FunctionMessage):
     """
 
     CODE, MODE, _HEAD = FunctionCode.BEACON, None, _CODE_ONLY
-    node_id: int
-    mode: Mode = Mode.DEVICE
-    priority: Priority = Priority.HIGH
+    mode: Mode = field(default=Mode.DEVICE, kw_only=True)
+    priority: Priority = field(default=Priority.HIGH, kw_only=True)
 
 
 @dataclass(frozen=True)
 class Reset(_OneSided):
     CODE, MODE, _HEAD = FunctionCode.RESET, _BA, _CODE_ONLY
-    node_id: int
-    priority: Priority = Priority.NORMAL
 
 
 @dataclass(frozen=True)
 class ResetResponse(_OneSided):
-    CODE, MODE, _HEAD = FunctionCode.RESET_RESPONSE, _DEV, _RESPONSE
-    _FIELDS = (("code", "response"),)
-    node_id: int
-    code: ResponseCode  # type: ignore[assignment]
-    priority: Priority = Priority.NORMAL
+    CODE, MODE, _HEAD, _FIELDS = FunctionCode.RESET_RESPONSE, _DEV, _RESPONSE, _CODE_FIELD
+    code: ResponseCode
 
 
 @dataclass(frozen=True)
 class ConfigureGetBulk(_OneSided):
     CODE, MODE, _HEAD, _FIELDS = FunctionCode.CONFIGURE_GET_BULK, _BA, _PARAM, _PARAM_FIELDS
-    node_id: int
     param: int
     channel: int
-    priority: Priority = Priority.NORMAL
 
 
 @dataclass(frozen=True)
@@ -322,61 +300,52 @@ class ConfigureGetBulkResponse(_OneSided):
     """0x8C: the device will send ``size`` bytes in 0x0E packets."""
 
     CODE, MODE, _HEAD = FunctionCode.CONFIGURE_GET_BULK_RESPONSE, _DEV, _BULK_RESPONSE
-    _FIELDS = (("code", "response"), *_PARAM_FIELDS, ("size", "u16"))
-    node_id: int
-    code: ResponseCode  # type: ignore[assignment]
+    _FIELDS = (*_CODE_FIELD, *_PARAM_FIELDS, ("size", "u16"))
+    code: ResponseCode
     param: int
     channel: int
     size: int
-    priority: Priority = Priority.NORMAL
 
 
 @dataclass(frozen=True)
 class ConfigureSetBulk(_OneSided):
+    """0x0D: the arbitrator will send ``size`` bytes in 0x0E packets."""
+
     CODE, MODE, _HEAD = FunctionCode.CONFIGURE_SET_BULK, _BA, _SET_BULK
     _FIELDS = (*_PARAM_FIELDS, ("size", "u16"))
-    node_id: int
     param: int
     channel: int
     size: int
-    priority: Priority = Priority.NORMAL
 
 
 @dataclass(frozen=True)
 class ConfigureSetBulkResponse(_OneSided):
     CODE, MODE, _HEAD = FunctionCode.CONFIGURE_SET_BULK_RESPONSE, _DEV, _BULK_RESPONSE
-    _FIELDS = (("code", "response"), *_PARAM_FIELDS, ("size", "u16"))
-    node_id: int
-    code: ResponseCode  # type: ignore[assignment]
+    _FIELDS = (*_CODE_FIELD, *_PARAM_FIELDS, ("size", "u16"))
+    code: ResponseCode
     param: int
     channel: int
     size: int
-    priority: Priority = Priority.NORMAL
 
 
 @dataclass(frozen=True)
 class BulkData(_FunctionMessage):
-    """0x0E: one packet of 1–6 bytes; ``mode`` says which side sends the data."""
+    """0x0E: one packet of 1–6 bytes; ``mode`` (keyword) says which side sends the data."""
 
     CODE, MODE, _HEAD = FunctionCode.BULK_DATA, None, _BULK_DATA
     _FIELDS, _TAIL = (("packet_id", "packet"),), "data"
-    node_id: int
     packet_id: int
     data: bytes
-    mode: Mode
-    priority: Priority = Priority.NORMAL
+    mode: Mode = field(kw_only=True)
 
 
 @dataclass(frozen=True)
 class BulkDataResponse(_FunctionMessage):
     """0x8E: sent by the receiver of the data after the last packet."""
 
-    CODE, MODE, _HEAD = FunctionCode.BULK_DATA_RESPONSE, None, _RESPONSE
-    _FIELDS = (("code", "response"),)
-    node_id: int
-    code: ResponseCode  # type: ignore[assignment]
-    mode: Mode
-    priority: Priority = Priority.NORMAL
+    CODE, MODE, _HEAD, _FIELDS = FunctionCode.BULK_DATA_RESPONSE, None, _RESPONSE, _CODE_FIELD
+    code: ResponseCode
+    mode: Mode = field(kw_only=True)
 
 
 @dataclass(frozen=True)
@@ -385,30 +354,26 @@ class UpdateDataChannel(_OneSided):
 
     CODE, MODE, _HEAD = FunctionCode.UPDATE_DATA_CHANNEL, _DEV, _CHANNEL
     _FIELDS = (("channel", "u8"),)
-    node_id: int
     channel: int
-    priority: Priority = Priority.NORMAL
 
 
 @dataclass(frozen=True)
 class UpdateDataChannelResponse(_OneSided):
     CODE, MODE, _HEAD = FunctionCode.UPDATE_DATA_CHANNEL_RESPONSE, _BA, _CHANNEL_RESPONSE
-    _FIELDS = (("code", "response"), ("channel", "u8"))
-    node_id: int
-    code: ResponseCode  # type: ignore[assignment]
+    _FIELDS = (*_CODE_FIELD, ("channel", "u8"))
+    code: ResponseCode
     channel: int
-    priority: Priority = Priority.NORMAL
 
 
 @dataclass(frozen=True)
 class ChannelData:
     """A data-channel frame: mode 0, an output channel's node ID, 0–8 bytes, no function code."""
 
+    MODE: ClassVar[Mode] = Mode.DEVICE
+
     node_id: int
     data: bytes
-    priority: Priority = Priority.NORMAL
-
-    MODE: ClassVar[Mode] = Mode.DEVICE
+    priority: Priority = field(default=Priority.NORMAL, kw_only=True)
 
     @property
     def mode(self) -> Mode:
@@ -436,7 +401,7 @@ class ChannelData:
             raise FrameError(
                 f"Channel data: sent in mode {ident.mode}, but only outputs (mode 0) send it"
             )
-        return cls(ident.node_id, bytes(data), ident.priority)
+        return cls(ident.node_id, bytes(data), priority=ident.priority)
 
 
 Message = (
