@@ -10,11 +10,14 @@ from __future__ import annotations
 
 import struct
 from dataclasses import dataclass, field, fields
-from typing import ClassVar, Self
+from typing import TYPE_CHECKING, ClassVar, Self
 
 from pdcp_studio.errors import FrameError
 from pdcp_studio.protocol.codes import DLC_RANGE, FunctionCode, ResponseCode, describe_code
 from pdcp_studio.protocol.identifier import NODE_ID_MAX, Mode, Priority, make_id, split_id
+
+if TYPE_CHECKING:
+    from pdcp_studio.model.refs import Direction
 
 #: A CAN 2.0A frame carries at most 8 data bytes.
 MAX_DLC = 8
@@ -57,7 +60,8 @@ def _int_field(where: str, name: str, value: object, kind: str) -> int:
 def _enum_field(where: str, name: str, value: object, enum: type, allowed: range) -> object:
     if isinstance(value, bool) or not isinstance(value, int) or value not in allowed:
         choices = ", ".join(f"{v} {enum(v).name}" for v in allowed)
-        raise FrameError(f"{where}: {name} {value!r} is not one of {choices}")
+        shown = int(value) if isinstance(value, int) and not isinstance(value, bool) else value
+        raise FrameError(f"{where}: {name} {shown!r} is not one of {choices}")
     return enum(value)
 
 
@@ -105,7 +109,7 @@ class _FunctionMessage:
                 allowed = range(3) if kind == "response_bulk" else range(2)
                 put(self, name, _enum_field(where, "response code", value, ResponseCode, allowed))
             else:
-                _int_field(where, name.replace("_", " "), value, kind)
+                _int_field(where, name.replace("_", " ").replace(" id", " ID"), value, kind)
         if self._TAIL is not None:
             tail = getattr(self, self._TAIL)
             if not isinstance(tail, bytes | bytearray | memoryview):
@@ -414,14 +418,7 @@ Message = (
 
 #: Function code → message class.
 MESSAGE_TYPES: dict[FunctionCode, type[_FunctionMessage]] = {
-    cls.CODE: cls
-    for cls in (
-        BindRequest, BindResponse, GetParameter, GetParameterResponse, SetParameter,
-        SetParameterResponse, Suspend, SuspendResponse, Release, ReleaseResponse, Beacon,
-        Reset, ResetResponse, ConfigureGetBulk, ConfigureGetBulkResponse, ConfigureSetBulk,
-        ConfigureSetBulkResponse, BulkData, BulkDataResponse, UpdateDataChannel,
-        UpdateDataChannelResponse,
-    )
+    cls.CODE: cls for cls in Message.__args__ if issubclass(cls, _FunctionMessage)
 }
 
 
@@ -450,7 +447,7 @@ def decode(arbitration_id: int, data: bytes, *,
     return MESSAGE_TYPES[code].decode(arbitration_id, data)  # type: ignore[return-value]
 
 
-def describe(message: Message, direction: object = None) -> str:
+def describe(message: Message, direction: Direction | str | None = None) -> str:
     """One line for a bus monitor, e.g. "0x03 Get Device Parameter → node 5: …".
 
     ``direction`` (a model Direction) names channel parameters exactly when known.
@@ -474,12 +471,12 @@ def describe(message: Message, direction: object = None) -> str:
             parts.append(f"node ID {message.granted_node_id} {verdict}")
         parts.append(f"VID 0x{message.vid:04X}, PID 0x{message.pid:04X}, SN {message.serial}")
     if "param" in values:
-        name = parameter_name(values["param"], values["channel"], direction)  # type: ignore[arg-type]
+        name = parameter_name(values["param"], values["channel"], direction)
         parts.append(f"{name} (param {values['param']}, channel {values['channel']})")
     elif "channel" in values:
         parts.append(f"channel {values['channel']}")
     if values.get("value"):
-        spec = find_parameter(values["param"], values["channel"], direction)  # type: ignore[arg-type]
+        spec = find_parameter(values["param"], values["channel"], direction)
         parts[-1] += f" = {render_value(spec, values['value'])}"
     if "ms" in values:
         parts.append(f"{values['ms']} ms" if values["ms"] else "indefinitely")

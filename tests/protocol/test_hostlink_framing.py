@@ -30,7 +30,7 @@ def test_garbage_and_bad_crc_are_skipped():
     reader = hl.FrameReader()
     got = reader.feed(b"\x00\x01junk" + a + bytes(b) + c)
     assert [m.payload for m in got] == [b"one", b"three"]
-    assert reader.errors >= 2 and "CRC" in reader.last_error or reader.errors >= 2
+    assert reader.errors >= 2
 
 
 def test_reply_ids_come_in_threes():
