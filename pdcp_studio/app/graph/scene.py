@@ -1,0 +1,408 @@
+"""The bus scene: device cards and links that follow a :class:`Document`.
+
+The scene subscribes to the document and updates only what changed (links added or
+removed, one card's rows, a position). User gestures become undo commands — a link
+dragged from port to port, a card drag (one command per drag), Delete on links — and
+the document's signals bring the items up to date; items never change the model.
+"""
+
+from __future__ import annotations
+
+import time
+
+from PySide6.QtCore import QPointF, QRectF, Qt, QTimer, Signal
+from PySide6.QtWidgets import QGraphicsScene
+
+from pdcp_studio.app import commands
+from pdcp_studio.app.document import Document
+from pdcp_studio.app.graph import layout, style
+from pdcp_studio.app.graph.analysis import SystemStates, compute_states, link_refusal
+from pdcp_studio.app.graph.items import DeviceItem, PortItem
+from pdcp_studio.app.graph.links import DragLinkItem, LinkItem
+from pdcp_studio.model import profile as prof
+from pdcp_studio.model.refs import ChannelRef, DeviceKey
+from pdcp_studio.model.system import Channel, Link
+
+#: A link counts as "live" this long after its output's last data frame.
+LIVE_HOLD_S = 1.5
+FLOW_TICK_MS = 80
+
+
+class BusScene(QGraphicsScene):
+    """Cards, ports and links for one document."""
+
+    statusMessage = Signal(str)
+
+    def __init__(self, doc: Document, parent: object | None = None) -> None:
+        super().__init__(parent)
+        self.doc = doc
+        self.cards: dict[DeviceKey, DeviceItem] = {}
+        self.link_items: dict[Link, LinkItem] = {}
+        self.preview_items: list[LinkItem] = []
+        self.states = SystemStates()
+        self.flow_phase = 0.0
+        self._live: dict[ChannelRef, float] = {}
+        self._flow_timer = QTimer(self)
+        self._flow_timer.setInterval(FLOW_TICK_MS)
+        self._flow_timer.timeout.connect(self._flow_tick)
+        self._drag: DragLinkItem | None = None
+        self._drag_target: PortItem | None = None
+        self._press: dict[DeviceKey, QPointF] = {}
+        self._syncing = False
+        #: The outcome of the last link drag: (link or None, refusal reason or "").
+        self.last_link_result: tuple[Link | None, str] = (None, "")
+        self.setBackgroundBrush(style.SCENE_BACKGROUND)
+        doc.systemReset.connect(self.rebuild)
+        doc.linksChanged.connect(self._on_links_changed)
+        doc.channelChanged.connect(lambda ref: self._on_device_changed(ref.device))
+        doc.deviceChanged.connect(self._on_device_changed)
+        doc.positionChanged.connect(self._on_position_changed)
+        doc.selectionChanged.connect(self._on_doc_selection)
+        doc.previewChanged.connect(self._on_preview)
+        self.selectionChanged.connect(self._on_qt_selection)
+        self.rebuild()
+
+    # -- building -------------------------------------------------------------------
+    def rebuild(self) -> None:
+        """Recreate every item (a new system); remembered positions are kept."""
+        self._syncing = True
+        try:
+            self._cancel_drag()
+            self.clear()
+            self.cards.clear()
+            self.link_items.clear()
+            self.preview_items.clear()
+            system = self.doc.system
+            self.states = compute_states(system)
+            placed = layout.place(system, self.doc.positions)
+            self.doc.positions.update(placed)
+            for key, device in system.devices.items():
+                card = DeviceItem(self, device, self.states.roles[key])
+                card.setPos(*placed[key])
+                self.addItem(card)
+                self.cards[key] = card
+            for link in system.links:
+                self._add_link_item(link)
+            self._apply_states()
+            self._show_preview(self.doc.preview_plan)
+            self._select_items(self.doc.selection)
+        finally:
+            self._syncing = False
+
+    def relayout(self) -> dict[DeviceKey, tuple[float, float]]:
+        """A fresh layered layout (View ▸ Arrange); returns the new positions."""
+        return layout.layered_layout(self.doc.system)
+
+    def _add_link_item(self, link: Link) -> LinkItem:
+        item = LinkItem(self, link)
+        self.addItem(item)
+        self.link_items[link] = item
+        return item
+
+    def port(self, ref: ChannelRef) -> PortItem | None:
+        card = self.cards.get(ref.device)
+        return card.ports.get(ref.index) if card else None
+
+    def profile_name(self, profile: int) -> str:
+        return self.doc.profile_name(profile)
+
+    # -- document → items -----------------------------------------------------------
+    def _on_links_changed(self) -> None:
+        current = set(self.doc.system.links)
+        for link in [lk for lk in self.link_items if lk not in current]:
+            item = self.link_items.pop(link)
+            item.detach()
+            self.removeItem(item)
+        for link in current - self.link_items.keys():
+            self._add_link_item(link)
+        self.states = compute_states(self.doc.system)
+        self._apply_states()
+
+    def _on_device_changed(self, key: DeviceKey) -> None:
+        device = self.doc.system.device(key)
+        card = self.cards.get(key)
+        if device is None or card is None:
+            self.rebuild()
+            return
+        self.states = compute_states(self.doc.system)
+        card.set_device(device, self.states.roles[key])
+        self._apply_states()
+
+    def _on_position_changed(self, key: DeviceKey) -> None:
+        card = self.cards.get(key)
+        pos = self.doc.positions.get(key)
+        if card is not None and pos is not None and (card.pos().x(), card.pos().y()) != pos:
+            card.setPos(*pos)
+
+    def _apply_states(self) -> None:
+        system, st = self.doc.system, self.states
+        live = set(self._live)
+        for key, card in self.cards.items():
+            card.role = st.roles.get(key, card.role)
+            card.problems = st.device_problems(key)
+            for index, port in card.ports.items():
+                ref = port.ref
+                if port.is_output:
+                    port.connected = bool(system.inputs_fed_by(ref))
+                    port.live = ref in live
+                else:
+                    source = system.source_of(ref)
+                    port.connected = source is not None
+                    port.live = source in live
+                port.unmet = ref in st.unmet_required
+                del index
+            card.refresh()
+        dim = bool(self.preview_items)
+        for link, item in self.link_items.items():
+            item.conflict = link in st.conflict_links
+            item.missing = link in st.missing_links
+            item.live = link.output in live
+            item.setOpacity(0.35 if dim else 1.0)
+            item.refresh()
+
+    def _on_doc_selection(self, obj: object) -> None:
+        if self._syncing:
+            return
+        self._syncing = True
+        try:
+            self._select_items(obj)
+        finally:
+            self._syncing = False
+
+    def _select_items(self, obj: object) -> None:
+        self.clearSelection()
+        for card in self.cards.values():
+            if card.selected_ref is not None:
+                card.selected_ref = None
+                card.update()
+        if isinstance(obj, Link):
+            item = self.link_items.get(obj)
+            if item is not None:
+                item.setSelected(True)
+        elif isinstance(obj, ChannelRef):
+            card = self.cards.get(obj.device)
+            if card is not None:
+                card.setSelected(True)
+                card.selected_ref = obj
+                card.update()
+        elif isinstance(obj, DeviceKey):
+            card = self.cards.get(obj)
+            if card is not None:
+                card.setSelected(True)
+
+    def item_for(self, obj: object) -> DeviceItem | LinkItem | None:
+        """The graphics item showing a device, channel or link (for centring the view)."""
+        if isinstance(obj, Link):
+            return self.link_items.get(obj)
+        if isinstance(obj, ChannelRef):
+            return self.cards.get(obj.device)
+        if isinstance(obj, DeviceKey):
+            return self.cards.get(obj)
+        return None
+
+    # -- preview --------------------------------------------------------------------
+    def _on_preview(self, plan: object) -> None:
+        self._show_preview(plan)
+        self._apply_states()
+
+    def _show_preview(self, plan: object) -> None:
+        for item in self.preview_items:
+            item.detach()
+            self.removeItem(item)
+        self.preview_items.clear()
+        if plan is None:
+            return
+        for action in getattr(plan, "actions", ()):
+            link = action.link
+            if self.port(link.output) is None or self.port(link.input) is None:
+                continue
+            item = LinkItem(self, link, "add" if action.op == "add" else "remove")
+            item.setToolTip(f"{action.op}: {link}\n{getattr(action, 'reason', '')}")
+            self.addItem(item)
+            self.preview_items.append(item)
+
+    # -- live data ------------------------------------------------------------------
+    def note_data(self, output: ChannelRef) -> None:
+        """An output sent data just now (from the live session): animate its links."""
+        fresh = output not in self._live
+        self._live[output] = time.monotonic()
+        if fresh:
+            self._apply_states()
+        if not self._flow_timer.isActive():
+            self._flow_timer.start()
+
+    def live_outputs(self) -> set[ChannelRef]:
+        return set(self._live)
+
+    def _flow_tick(self) -> None:
+        now = time.monotonic()
+        stale = [r for r, t in self._live.items() if now - t > LIVE_HOLD_S]
+        for ref in stale:
+            del self._live[ref]
+        self.flow_phase = (self.flow_phase + 1.5) % 70.0
+        if stale:
+            self._apply_states()
+        else:
+            for link, item in self.link_items.items():
+                if link.output in self._live:
+                    item.refresh()
+        if not self._live:
+            self._flow_timer.stop()
+
+    # -- gestures: selection and moves ----------------------------------------------
+    def card_clicked(self, card: DeviceItem, ref: ChannelRef | None,
+                     modifiers: Qt.KeyboardModifier) -> None:
+        self._press = {c.key: c.pos() for c in self.selected_cards()}
+        self._press.setdefault(card.key, card.pos())
+        if not modifiers & Qt.KeyboardModifier.ControlModifier:
+            self.doc.select(ref if ref is not None else card.key)
+
+    def selected_cards(self) -> list[DeviceItem]:
+        return [i for i in self.selectedItems() if isinstance(i, DeviceItem)]
+
+    def drag_finished(self) -> None:
+        """A mouse release on a card: the whole drag becomes one undo step."""
+        moves = {}
+        for key, old in self._press.items():
+            card = self.cards.get(key)
+            if card is not None and card.pos() != old:
+                moves[key] = ((old.x(), old.y()), (card.pos().x(), card.pos().y()))
+        self._press = {}
+        if moves:
+            self.doc.undo_stack.push(commands.MoveDevicesCommand(self.doc, moves))
+
+    def _on_qt_selection(self) -> None:
+        if self._syncing:
+            return
+        items = self.selectedItems()
+        if not items:
+            self.doc.select(None)
+            return
+        if len(items) > 1:
+            return  # a multi-selection (rubber band): the document keeps its primary
+        item = items[0]
+        if isinstance(item, LinkItem):
+            self.doc.select(item.link)
+        elif isinstance(item, DeviceItem):
+            sel = self.doc.selection
+            if not (isinstance(sel, ChannelRef) and sel.device == item.key):
+                self.doc.select(item.key)
+
+    def delete_selected(self) -> int:
+        """Remove the selected links (one undo step); returns how many were removed."""
+        links = [i.link for i in self.selectedItems() if isinstance(i, LinkItem)]
+        if isinstance(self.doc.selection, Link) and self.doc.selection not in links:
+            links.append(self.doc.selection)
+        n = commands.push_remove_links(self.doc, links)
+        if n:
+            self.statusMessage.emit(f"Removed {n} link{'s' * (n != 1)}")
+        return n
+
+    # -- gestures: drawing a link ---------------------------------------------------
+    def begin_link_drag(self, port: PortItem, pos: QPointF) -> None:
+        self._cancel_drag()
+        self._drag = DragLinkItem(port)
+        self.addItem(self._drag)
+        self._drag.follow(pos)
+        what = "an input" if port.is_output else "an output"
+        self.statusMessage.emit(f"Drag from {port.ref} to {what} to link them")
+
+    def port_at(self, pos: QPointF) -> PortItem | None:
+        r = style.PORT_RADIUS + 4
+        for item in self.items(QRectF(pos.x() - r, pos.y() - r, 2 * r, 2 * r)):
+            if isinstance(item, PortItem):
+                return item
+        return None
+
+    def _ends(self, start: PortItem, target: PortItem) -> tuple[ChannelRef, ChannelRef]:
+        """Output first: a drag may go either way between an output and an input."""
+        if not start.is_output and target.is_output:
+            return target.ref, start.ref
+        return start.ref, target.ref
+
+    def update_link_drag(self, pos: QPointF) -> None:
+        if self._drag is None:
+            return
+        target = self.port_at(pos)
+        if target is self._drag.start:
+            target = None
+        if self._drag_target is not None and self._drag_target is not target:
+            self._drag_target.set_hover(False)
+        self._drag_target = target
+        if target is None:
+            self._drag.set_ok(True)
+            self._drag.follow(pos)
+            return
+        a, b = self._ends(self._drag.start, target)
+        reason = link_refusal(self.doc.system, a, b)
+        self._drag.set_ok(reason is None)
+        target.set_hover(reason is None)
+        self._drag.follow(target.scenePos())
+        message = f"Cannot link: {reason}" if reason else f"Release to link {a} → {b}"
+        self.statusMessage.emit(message)
+
+    def end_link_drag(self, pos: QPointF) -> Link | None:
+        if self._drag is None:
+            return None
+        start = self._drag.start
+        self._cancel_drag()
+        target = self.port_at(pos)
+        if target is None or target is start:
+            self.last_link_result = (None, "no target port")
+            self.statusMessage.emit("Link cancelled: release over a port to link")
+            return None
+        a, b = self._ends(start, target)
+        reason = link_refusal(self.doc.system, a, b)
+        if reason:
+            self.last_link_result = (None, reason)
+            self.statusMessage.emit(f"Cannot link {a} → {b}: {reason}")
+            return None
+        link = Link(a, b)
+        commands.push_add_link(self.doc, link)
+        self.last_link_result = (link, "")
+        self.statusMessage.emit(f"Linked {self._describe(a)} → {self._describe(b)}")
+        return link
+
+    def _cancel_drag(self) -> None:
+        if self._drag_target is not None:
+            self._drag_target.set_hover(False)
+            self._drag_target = None
+        if self._drag is not None:
+            if self._drag.scene() is self:
+                self.removeItem(self._drag)
+            self._drag = None
+
+    # -- text -------------------------------------------------------------------------
+    def _describe(self, ref: ChannelRef) -> str:
+        ch = self.doc.system.channel(ref)
+        name = self.profile_name(ch.profile) if ch else "?"
+        dev = self.doc.system.device(ref.device)
+        return f"{dev.label if dev else ref.device} #{ref.index} ({name})"
+
+    def tooltip_for(self, card: DeviceItem, row: Channel | None) -> str:
+        d = card.device
+        if row is None:
+            lines = [f"<b>{d.label}</b>", f"VID {d.vid} · PID {d.pid} · serial {d.serial}"]
+            if d.node_id is not None:
+                lines.append(f"node ID {d.node_id}")
+            if not d.present:
+                lines.append("<i>missing from the bus</i>")
+            lines += [f"<span style='color:#b45309'>⚠ {p}</span>" for p in card.problems]
+            return "<br>".join(lines)
+        ref = d.ref(row.index)
+        lines = [f"<b>#{row.index} {row.direction.value}</b> — "
+                 f"{self.doc.tree.name_of(row.profile)} ({prof.fmt(row.profile)})",
+                 f"type {prof.fmt(row.type)}: {row.ctype.describe()}"]
+        if row.descriptor:
+            lines.append(f"“{row.descriptor}”")
+        if row.is_input:
+            src = self.doc.system.source_of(ref)
+            lines.append(f"source: {self._describe(src)}" if src else "source: none")
+            if row.terminal:
+                lines.append(f"terminal profile {prof.fmt(row.terminal_profile)}")
+        else:
+            fed = self.doc.system.inputs_fed_by(ref)
+            lines.append("feeds: " + (", ".join(self._describe(r) for r in fed) or "nothing"))
+        if ref in self.states.unmet_required:
+            lines.append("<span style='color:#b91c1c'>required input not connected</span>")
+        return "<br>".join(lines)

@@ -1,0 +1,391 @@
+"""Edit a named profile tree (``pdcp-profile-tree/1``) with undo, and save it atomically.
+
+Each node shows its name, its 4-bit component, the 16-bit profile value of its path in hex
+and, for odd components, "vendor-reserved". Names and components are edited in place;
+add, remove, undo and redo sit on a toolbar. Every edit is one command on the editor's own
+``QUndoStack`` and is tried on a copy of the tree first, so a refused edit (a duplicate
+component, a fifth level) pushes nothing and is reported through ``error`` instead.
+"""
+
+from __future__ import annotations
+
+import copy
+import json
+from collections.abc import Callable
+from pathlib import Path
+
+from PySide6.QtCore import Qt, Signal
+from PySide6.QtGui import QBrush, QColor, QFont, QUndoCommand, QUndoStack
+from PySide6.QtWidgets import (
+    QDialog,
+    QDialogButtonBox,
+    QFileDialog,
+    QLabel,
+    QMessageBox,
+    QToolBar,
+    QTreeWidget,
+    QTreeWidgetItem,
+    QVBoxLayout,
+    QWidget,
+)
+
+from pdcp_studio.errors import ProfileError
+from pdcp_studio.model import profile as prof
+from pdcp_studio.model.profile_tree import ProfileNode, ProfileTree
+from pdcp_studio.storage.atomic import atomic_write_text
+
+COL_NAME, COL_COMPONENT, COL_PROFILE, COL_NOTE = range(4)
+VENDOR = "vendor-reserved"
+PROFILE_ROLE = Qt.ItemDataRole.UserRole
+
+
+def load_tree(path: str | Path) -> ProfileTree:
+    """Read a ``pdcp-profile-tree/1`` file; ProfileError names the file and the bad node."""
+    try:
+        doc = json.loads(Path(path).read_text("utf-8"))
+    except (OSError, ValueError) as err:
+        raise ProfileError(f"{path}: cannot read a profile tree: {err}") from err
+    return ProfileTree.from_json(doc, str(path))
+
+
+def save_tree(tree: ProfileTree, path: str | Path) -> None:
+    """Write the tree as JSON atomically: a crash leaves the old file or the new one."""
+    atomic_write_text(path, json.dumps(tree.to_json(), indent=2, ensure_ascii=False) + "\n")
+
+
+def free_component(siblings: list[ProfileNode]) -> int | None:
+    """The first unused component, standard (even) ones before vendor-reserved (odd) ones."""
+    used = {n.component for n in siblings}
+    for comp in (*range(2, 16, 2), *range(1, 16, 2)):
+        if comp not in used:
+            return comp
+    return None
+
+
+class _Edit(QUndoCommand):
+    """One edit: ``apply(tree)`` / ``revert(tree)`` return the profile to select afterwards."""
+
+    def __init__(self, editor: ProfileTreeEditor, text: str,
+                 apply: Callable[[ProfileTree], int | None],
+                 revert: Callable[[ProfileTree], int | None]) -> None:
+        super().__init__(text)
+        self._editor, self._apply, self._revert = editor, apply, revert
+
+    def redo(self) -> None:
+        self._editor._changed(self._apply(self._editor.tree))
+
+    def undo(self) -> None:
+        self._editor._changed(self._revert(self._editor.tree))
+
+
+class ProfileTreeEditor(QWidget):
+    """A profile-tree editor widget with its own undo stack.
+
+    ``ProfileTreeEditor(tree=None, path=None, parent=None)``: edits ``tree`` in place (a copy
+    of the caller's is wise); ``path`` is where Save writes. Signals: ``treeChanged(tree)``
+    after every edit, undo or load; ``saved(path)``; ``error(message)`` for refused edits
+    and failed file operations. Programmatic edits: ``add_child``, ``rename``, ``renumber``,
+    ``remove`` (each one undo step); ``save``/``load``.
+    """
+
+    treeChanged = Signal(object)
+    saved = Signal(str)
+    error = Signal(str)
+
+    def __init__(self, tree: ProfileTree | None = None, path: str | Path | None = None,
+                 parent: QWidget | None = None) -> None:
+        super().__init__(parent)
+        self.tree = tree if tree is not None else ProfileTree("profiles")
+        self.path = Path(path) if path else None
+        self.undo_stack = QUndoStack(self)
+        self.view = QTreeWidget()
+        self.view.setHeaderLabels(["Name", "Component", "Profile", ""])
+        self.view.setColumnWidth(COL_NAME, 220)
+        self.view.setEditTriggers(QTreeWidget.EditTrigger.DoubleClicked
+                                  | QTreeWidget.EditTrigger.EditKeyPressed)
+        self.view.itemChanged.connect(self._item_edited)
+        self.status = QLabel()
+        self.toolbar = QToolBar()
+        self._actions()
+        layout = QVBoxLayout(self)
+        layout.setContentsMargins(0, 0, 0, 0)
+        layout.addWidget(self.toolbar)
+        layout.addWidget(self.view)
+        layout.addWidget(self.status)
+        self.error.connect(self.status.setText)
+        self._refresh()
+
+    def _actions(self) -> None:
+        tb = self.toolbar
+        tb.addAction("Add root", lambda: self._start_edit(self.add_child(prof.NULL_PROFILE)))
+        tb.addAction("Add child", lambda: self._start_edit(self.add_child(
+            self.selected_profile() or prof.NULL_PROFILE)))
+        tb.addAction("Remove", lambda: self.selected_profile() and self.remove(
+            self.selected_profile() or 0))
+        tb.addSeparator()
+        undo = self.undo_stack.createUndoAction(self, "Undo")
+        undo.setShortcut("Ctrl+Z")
+        redo = self.undo_stack.createRedoAction(self, "Redo")
+        redo.setShortcut("Ctrl+Shift+Z")
+        tb.addAction(undo)
+        tb.addAction(redo)
+        tb.addSeparator()
+        tb.addAction("Open…", self._ask_open)
+        tb.addAction("Save", lambda: self._ask_save(self.path))
+        tb.addAction("Save as…", lambda: self._ask_save(None))
+
+    # -- state ----------------------------------------------------------------------
+    @property
+    def dirty(self) -> bool:
+        return not self.undo_stack.isClean()
+
+    def set_tree(self, tree: ProfileTree, path: str | Path | None = None) -> None:
+        """Edit another tree; the undo history starts afresh."""
+        self.tree = tree
+        self.path = Path(path) if path else None
+        self.undo_stack.clear()
+        self._changed(None)
+
+    def selected_profile(self) -> int | None:
+        item = self.view.currentItem()
+        return None if item is None else int(item.data(COL_NAME, PROFILE_ROLE))
+
+    def select(self, profile: int | None) -> None:
+        item = self._item(profile) if profile else None
+        self.view.setCurrentItem(item)
+
+    def _item(self, profile: int) -> QTreeWidgetItem | None:
+        for item in self._items():
+            if item.data(COL_NAME, PROFILE_ROLE) == profile:
+                return item
+        return None
+
+    def _items(self) -> list[QTreeWidgetItem]:
+        out: list[QTreeWidgetItem] = []
+        stack = [self.view.topLevelItem(i) for i in range(self.view.topLevelItemCount())]
+        while stack:
+            item = stack.pop()
+            out.append(item)
+            stack.extend(item.child(i) for i in range(item.childCount()))
+        return out
+
+    # -- edits ----------------------------------------------------------------------
+    def _push(self, text: str, apply: Callable[[ProfileTree], int | None],
+              revert: Callable[[ProfileTree], int | None]) -> bool:
+        try:
+            apply(copy.deepcopy(self.tree))  # refuse before anything changes
+        except (ProfileError, ValueError) as err:
+            self.error.emit(f"{text}: {err}")
+            return False
+        self.undo_stack.push(_Edit(self, text, apply, revert))
+        return True
+
+    def add_child(self, parent_profile: int = prof.NULL_PROFILE, name: str = "New profile",
+                  component: int | None = None) -> int | None:
+        """Add a node under ``parent_profile`` (null: a root); returns its profile or None."""
+        try:
+            siblings = self.tree.children_of(parent_profile)
+        except ProfileError as err:
+            self.error.emit(f"Add: {err}")
+            return None
+        comp = component if component is not None else free_component(siblings)
+        if comp is None:
+            self.error.emit(f"Add: {self.tree.name_of(parent_profile)} has no free component")
+            return None
+        new: list[int] = []
+
+        def apply(t: ProfileTree) -> int:
+            new[:] = [t.add(parent_profile, name, comp)]
+            return new[0]
+
+        def revert(t: ProfileTree) -> int:
+            t.remove(new[0])
+            return parent_profile
+
+        return new[0] if self._push(f"Add {name!r}", apply, revert) else None
+
+    def rename(self, profile: int, name: str) -> bool:
+        node = self.tree.node(profile)
+        if node is None or node.name == name.strip():
+            return False  # a no-op edit pushes nothing
+        old = node.name
+
+        def apply(t: ProfileTree) -> int:
+            t.rename(profile, name)
+            return profile
+
+        def revert(t: ProfileTree) -> int:
+            t.rename(profile, old)
+            return profile
+
+        return self._push(f"Rename {old!r} to {name.strip()!r}", apply, revert)
+
+    def renumber(self, profile: int, component: int) -> int | None:
+        """Give a node another component (its subtree follows); returns the new profile."""
+        node = self.tree.node(profile)
+        if node is None or node.component == component:
+            return None
+        old = node.component
+        moved: list[int] = []
+
+        def apply(t: ProfileTree) -> int:
+            moved[:] = [t.renumber(profile, component)]
+            return moved[0]
+
+        def revert(t: ProfileTree) -> int:
+            return t.renumber(moved[0], old)
+
+        text = f"Renumber {node.name!r} 0x{old:X} → 0x{component:X}"
+        return moved[0] if self._push(text, apply, revert) else None
+
+    def remove(self, profile: int) -> bool:
+        node = self.tree.node(profile)
+        if node is None:
+            return False
+        parent = prof.parent(profile)
+        removed: list[ProfileNode] = []
+
+        def apply(t: ProfileTree) -> int:
+            removed[:] = [t.remove(profile)]
+            return parent
+
+        def revert(t: ProfileTree) -> int:
+            siblings = t.children_of(parent)
+            siblings.append(removed[0])
+            siblings.sort(key=lambda n: n.component)
+            return profile
+
+        return self._push(f"Remove {node.name!r}", apply, revert)
+
+    # -- view -----------------------------------------------------------------------
+    def _changed(self, select: int | None) -> None:
+        self._refresh(select)
+        self.treeChanged.emit(self.tree)
+
+    def _refresh(self, select: int | None = None) -> None:
+        expanded = {int(i.data(COL_NAME, PROFILE_ROLE)) for i in self._items() if i.isExpanded()}
+        self.view.blockSignals(True)
+        try:
+            self.view.clear()
+            items: dict[int, QTreeWidgetItem] = {}
+            for value, node in self.tree.walk():
+                parent = items.get(prof.parent(value))
+                item = QTreeWidgetItem(parent) if parent else QTreeWidgetItem(self.view)
+                self._fill(item, value, node)
+                items[value] = item
+            for value, item in items.items():
+                item.setExpanded(value in expanded or not expanded)
+        finally:
+            self.view.blockSignals(False)
+        if select:
+            self.select(select)
+        title = self.tree.name + (" •" if self.dirty else "")
+        self.status.setText(f"{title} — {len(items)} node(s)"
+                            + (f" — {self.path}" if self.path else ""))
+
+    def _fill(self, item: QTreeWidgetItem, value: int, node: ProfileNode) -> None:
+        item.setData(COL_NAME, PROFILE_ROLE, value)
+        item.setText(COL_NAME, node.name)
+        item.setText(COL_COMPONENT, f"0x{node.component:X}")
+        item.setText(COL_PROFILE, prof.fmt(value))
+        item.setToolTip(COL_NAME, node.description or self.tree.name_of(value))
+        item.setFlags(item.flags() | Qt.ItemFlag.ItemIsEditable)
+        mono = QFont("monospace")
+        item.setFont(COL_PROFILE, mono)
+        if node.vendor_reserved:
+            item.setText(COL_NOTE, VENDOR)
+            item.setForeground(COL_NOTE, QBrush(QColor("#a05a00")))
+            item.setForeground(COL_COMPONENT, QBrush(QColor("#a05a00")))
+
+    def _item_edited(self, item: QTreeWidgetItem, column: int) -> None:
+        profile = int(item.data(COL_NAME, PROFILE_ROLE))
+        text = item.text(column).strip()
+        ok = True
+        if column == COL_NAME:
+            ok = self.rename(profile, text) if text else False
+            if not text:
+                self.error.emit("Rename: a profile node needs a name")
+        elif column == COL_COMPONENT:
+            try:
+                comp = int(text, 0) if text.lower().startswith("0x") else int(text, 16)
+            except ValueError:
+                self.error.emit(f"Renumber: {text!r} is not a hex digit 1…F")
+                comp = None
+            ok = comp is not None and self.renumber(profile, comp) is not None
+        if not ok:
+            self._refresh(profile)  # show the model's value again
+
+    def _start_edit(self, profile: int | None) -> None:
+        item = self._item(profile) if profile else None
+        if item is not None:
+            self.view.setCurrentItem(item)
+            self.view.editItem(item, COL_NAME)
+
+    # -- files ----------------------------------------------------------------------
+    def save(self, path: str | Path | None = None) -> Path | None:
+        """Save to ``path`` (or the current path) atomically; marks the stack clean."""
+        target = Path(path) if path else self.path
+        if target is None:
+            self.error.emit("Save: no file name given")
+            return None
+        try:
+            save_tree(self.tree, target)
+        except OSError as err:
+            self.error.emit(f"Save {target}: {err.strerror or err}")
+            return None
+        self.path = target
+        self.undo_stack.setClean()
+        self._refresh(self.selected_profile())
+        self.saved.emit(str(target))
+        return target
+
+    def load(self, path: str | Path) -> bool:
+        try:
+            tree = load_tree(path)
+        except ProfileError as err:
+            self.error.emit(str(err))
+            return False
+        self.set_tree(tree, path)
+        return True
+
+    def _ask_open(self) -> None:
+        path, _ = QFileDialog.getOpenFileName(self, "Open profile tree",
+                                              str(self.path or ""), "Profile trees (*.json)")
+        if path:
+            self.load(path)
+
+    def _ask_save(self, path: Path | None) -> None:
+        if path is None:
+            name, _ = QFileDialog.getSaveFileName(self, "Save profile tree",
+                                                  str(self.path or "profiles.json"),
+                                                  "Profile trees (*.json)")
+            path = Path(name) if name else None
+        if path is not None:
+            self.save(path)
+
+
+class ProfileTreeDialog(QDialog):
+    """The editor in a non-modal window; ``editor`` exposes the widget and its signals."""
+
+    def __init__(self, tree: ProfileTree | None = None, path: str | Path | None = None,
+                 parent: QWidget | None = None) -> None:
+        super().__init__(parent)
+        self.setWindowTitle("Profile tree")
+        self.resize(560, 480)
+        self.editor = ProfileTreeEditor(tree, path, self)
+        buttons = QDialogButtonBox(QDialogButtonBox.StandardButton.Close)
+        buttons.rejected.connect(self.reject)
+        layout = QVBoxLayout(self)
+        layout.addWidget(self.editor)
+        layout.addWidget(buttons)
+
+    def reject(self) -> None:
+        if self.editor.dirty and not self.confirm_discard():
+            return
+        super().reject()
+
+    def confirm_discard(self) -> bool:
+        """Ask before unsaved edits are dropped (patch in tests: it is modal)."""
+        answer = QMessageBox.question(self, "Unsaved profile tree",
+                                      "Discard the unsaved changes to the profile tree?")
+        return answer == QMessageBox.StandardButton.Yes

@@ -1,0 +1,224 @@
+"""A one-page fitting report as PDF: what was fitted, how it is linked, its checksum.
+
+The prosthetist files it with the patient's records, so it names every device by
+VID/PID/serial, every link with its profile names, and the CRC-16 checksum the stored
+configuration carries (the value ``pdcp-studio config decode`` verifies), so a later
+reading of the arbitrator can be matched against the paper. Patient and prosthesis fields
+are blank lines to fill in by hand.
+
+The page is an HTML ``QTextDocument`` laid out at 96 dpi and drawn on a ``QPdfWriter``
+through a scaled painter; if the content is taller than the page it is scaled down to fit,
+so the report is always exactly one page.
+"""
+
+from __future__ import annotations
+
+import datetime as _dt
+import html
+from pathlib import Path
+from typing import Any
+
+from PySide6.QtCore import QMarginsF, QSizeF, Qt, QUrl
+from PySide6.QtGui import (
+    QGuiApplication,
+    QImage,
+    QPageLayout,
+    QPageSize,
+    QPainter,
+    QPdfWriter,
+    QTextDocument,
+)
+
+from pdcp_studio.model import profile as prof
+from pdcp_studio.model.configuration import (
+    ConfigCollection,
+    StoredChannel,
+    StoredConfiguration,
+    StoredLink,
+)
+from pdcp_studio.model.profile_tree import ProfileTree
+from pdcp_studio.model.system import Link, System
+
+DEFAULT_TITLE = "PDCP fitting report"
+LAYOUT_DPI = 96.0
+PDF_DPI = 300
+GRAPH_MAX_HEIGHT_FRACTION = 0.38  # of the page: leaves room for the tables
+_GRAPH_URL = QUrl("pdcp-report:graph")
+_app: QGuiApplication | None = None
+
+
+def _configuration(system: System) -> StoredConfiguration:
+    """The stored configuration of the system's links (the engine's, once it has one)."""
+    try:
+        from pdcp_studio.engine import configuration_from_system  # type: ignore[attr-defined]
+    except ImportError:
+        pass
+    else:
+        return configuration_from_system(system)
+
+    def end(link: Link, ref: Any) -> StoredChannel:
+        ch = system.channel(ref)
+        return StoredChannel(ref.index, ref.vid, ref.pid, ref.serial,
+                             ch.type if ch else 0, ch.profile if ch else 0)
+
+    return StoredConfiguration(1, [StoredLink(end(lk, lk.input), end(lk, lk.output), i)
+                                   for i, lk in enumerate(system.links, 1)])
+
+
+def configuration_checksum(system: System) -> int:
+    """The CRC-16/CCITT-FALSE checksum record of the system's encoded stored configuration."""
+    from pdcp_studio.storage import config_codec
+
+    data = config_codec.dumps(ConfigCollection([_configuration(system)]))
+    checksum = config_codec.decode(data).checksum
+    return checksum if checksum is not None else config_codec.crc16_ccitt_false(data)
+
+
+def _e(text: object) -> str:
+    return html.escape(str(text))
+
+
+def _profile(tree: ProfileTree, value: int) -> str:
+    return f"{_e(tree.name_of(value))} <span class=hex>({prof.fmt(value)})</span>"
+
+
+def _end(system: System, tree: ProfileTree, ref: Any, compact: bool = False) -> str:
+    device = system.device(ref.device)
+    ch = system.channel(ref)
+    name = device.label if device else f"Device {ref.device}"
+    if compact:
+        profile = prof.fmt(ch.profile) if ch else ""
+        return f"{_e(name)} #{ref.index} <span class=hex>{profile}</span>"
+    desc = f" {ch.descriptor}" if ch and ch.descriptor else ""
+    profile = _profile(tree, ch.profile) if ch else "?"
+    return f"<b>{_e(name)}</b> #{ref.index}{_e(desc)}<br>{profile}"
+
+
+def _device_rows(system: System, per_row: int) -> str:
+    cells = []
+    for d in system.devices.values():
+        state = " <i>(missing)</i>" if not d.present else ""
+        cells.append(f"<td>{_e(d.label)}{state}</td><td>0x{d.vid:04X}</td>"
+                     f"<td>0x{d.pid:04X}</td><td>{d.serial}</td>")
+    if not cells:
+        return "<tr><td colspan=4><i>no devices</i></td></tr>"
+    cells += ["<td></td>" * 4] * (-len(cells) % per_row)
+    return "".join("<tr>" + "".join(cells[i:i + per_row]) + "</tr>"
+                   for i in range(0, len(cells), per_row))
+
+
+def report_html(system: System, tree: ProfileTree, *, title: str = DEFAULT_TITLE,
+                date: _dt.date | None = None, graph_size: QSizeF | None = None,
+                checksum: int | None = None, compact: bool = False) -> str:
+    """The report's HTML (for tests and previews); ``graph_size`` adds the graph image.
+
+    ``compact`` (for big systems) puts three devices on a row and one line per link.
+    """
+    date = date or _dt.date.today()
+    blank = "_" * 38
+    per_row = 3 if compact else 1
+    heads = "<th>Name</th><th>VID</th><th>PID</th><th>Serial</th>"
+    if not compact:
+        heads = ("<th width=52%>Name</th><th width=16%>VID</th><th width=16%>PID</th>"
+                 "<th width=16%>Serial</th>")
+    devices = f"<tr>{heads * per_row}</tr>{_device_rows(system, per_row)}"
+    links = "".join(
+        f"<tr><td>{i}</td><td>{_end(system, tree, lk.output, compact)}</td><td>→</td>"
+        f"<td>{_end(system, tree, lk.input, compact)}</td></tr>"
+        for i, lk in enumerate(system.links, 1)
+    ) or "<tr><td colspan=4><i>no links</i></td></tr>"
+    crc = "—" if checksum is None else f"0x{checksum:04X}"
+    graph = ""
+    if graph_size is not None:
+        graph = (f"<p align=center><img src='{_GRAPH_URL.toString()}' "
+                 f"width={graph_size.width():.0f} height={graph_size.height():.0f}></p>")
+    return f"""
+<style>
+ body {{ font-family: 'DejaVu Sans', sans-serif; font-size: 9pt; }}
+ h1 {{ font-size: 16pt; margin-bottom: 2px; }}
+ h2 {{ font-size: 11pt; margin-top: 10px; margin-bottom: 3px; }}
+ table.grid {{ border-collapse: collapse; }}
+ table.grid td, table.grid th {{ border: 1px solid #999; padding: 2px 5px; }}
+ th {{ background: #e8e8e8; text-align: left; }}
+ .hex {{ color: #555; font-family: 'DejaVu Sans Mono', monospace; }}
+</style>
+<h1>{_e(title)}</h1>
+<p>Date: {date.isoformat()}</p>
+<table cellpadding=3>
+ <tr><td>Patient:</td><td>{blank}</td><td>Prosthesis:</td><td>{blank}</td></tr>
+ <tr><td>Prosthetist:</td><td>{blank}</td><td>Signature:</td><td>{blank}</td></tr>
+</table>
+<h2>Devices ({len(system.devices)})</h2>
+<table class=grid width=100%>{devices}</table>
+<h2>Links ({len(system.links)})</h2>
+<table class=grid width=100%>
+ <tr><th width=4%>#</th><th width=46%>Output</th><th width=3%></th>
+ <th width=47%>Input</th></tr>{links}
+</table>
+<h2>Stored configuration</h2>
+<p>Checksum (CRC-16/CCITT-FALSE): <b class=hex>{crc}</b> ·
+ {len(system.links)} link(s) in configuration 1</p>
+{graph}
+<p style='color:#777; font-size:7pt'>Generated by PDCP Studio.</p>
+"""
+
+
+def _ensure_gui_app() -> None:
+    """Text layout needs a QGuiApplication; a command-line caller may not have made one."""
+    global _app
+    if QGuiApplication.instance() is None:
+        _app = QGuiApplication([])
+
+
+def write_report(path: str | Path, system: System, tree: ProfileTree,
+                 graph_image: QImage | None = None, title: str = DEFAULT_TITLE, *,
+                 date: _dt.date | None = None) -> Path:
+    """Write the one-page A4 PDF report to ``path``; returns the path."""
+    _ensure_gui_app()
+    path = Path(path)
+    try:
+        checksum: int | None = configuration_checksum(system)
+    except Exception:
+        checksum = None
+    writer = QPdfWriter(str(path))
+    writer.setResolution(PDF_DPI)
+    writer.setTitle(title)
+    writer.setCreator("PDCP Studio")
+    writer.setPageLayout(QPageLayout(QPageSize(QPageSize.PageSizeId.A4),
+                                     QPageLayout.Orientation.Portrait,
+                                     QMarginsF(15, 15, 15, 15), QPageLayout.Unit.Millimeter))
+    px_per_layout = writer.resolution() / LAYOUT_DPI
+    page_w = writer.width() / px_per_layout  # page in 96-dpi layout pixels
+    page_h = writer.height() / px_per_layout
+
+    graph_size = None
+    doc = QTextDocument()
+    if graph_image is not None and not graph_image.isNull():
+        size = QSizeF(graph_image.size())
+        size.scale(QSizeF(page_w - 20, page_h * GRAPH_MAX_HEIGHT_FRACTION),
+                   Qt.AspectRatioMode.KeepAspectRatio)
+        graph_size = size
+        doc.addResource(QTextDocument.ResourceType.ImageResource, _GRAPH_URL, graph_image)
+    doc.setDocumentMargin(0)
+    doc.setTextWidth(page_w)
+    for compact in (False, True):
+        doc.setHtml(report_html(system, tree, title=title, date=date, graph_size=graph_size,
+                                checksum=checksum, compact=compact))
+        if doc.size().height() <= page_h:
+            break
+    height = doc.size().height()
+    scale = min(1.0, page_h / height) if height > 0 else 1.0
+    if scale < 1.0:  # too tall: lay out wider so it scales down evenly, then fit
+        doc.setTextWidth(page_w / scale)
+        scale = min(page_w / doc.textWidth(), page_h / doc.size().height())
+
+    painter = QPainter()
+    if not painter.begin(writer):
+        raise OSError(f"{path}: cannot write the PDF")
+    try:
+        painter.scale(px_per_layout * scale, px_per_layout * scale)
+        doc.drawContents(painter)
+    finally:
+        painter.end()
+    return path
+

@@ -1,0 +1,85 @@
+"""Events a live bus session reports to its subscribers (the desktop app, the CLI, tests).
+
+Plain frozen dataclasses so a subscriber on any thread can keep them; they carry model values
+(keys, links, plans), never python-can objects, so the app needs no python-can import.
+"""
+
+from __future__ import annotations
+
+from dataclasses import dataclass
+from typing import Any
+
+from pdcp_studio.model.refs import ChannelRef, DeviceKey
+from pdcp_studio.model.system import Link
+
+
+@dataclass(frozen=True)
+class DeviceJoined:
+    """A device bound and was set up (its channels are known)."""
+
+    key: DeviceKey
+
+
+@dataclass(frozen=True)
+class DeviceLeft:
+    """A device stopped beaconing (3 missed intervals) or was unplugged."""
+
+    key: DeviceKey
+
+
+@dataclass(frozen=True)
+class LinkMade:
+    link: Link
+
+
+@dataclass(frozen=True)
+class LinkRemoved:
+    link: Link
+
+
+@dataclass(frozen=True)
+class FrameSeen:
+    """One CAN frame, sent or received, decoded to a readable ``text``."""
+
+    timestamp: float
+    arbitration_id: int
+    data: bytes
+    text: str
+
+
+@dataclass(frozen=True)
+class BusError:
+    """Something went wrong that did not stop the session (a bad frame, a timeout, …)."""
+
+    message: str
+
+
+@dataclass(frozen=True)
+class PlanApplied:
+    """The arbitrator applied a profile-layer plan (start-up, duty cycle or by request)."""
+
+    plan: Any
+
+
+@dataclass(frozen=True)
+class ChannelValue:
+    """A data frame on a link: the output ``ref`` sent ``value`` (decoded by its type)."""
+
+    ref: ChannelRef
+    value: float
+    timestamp: float
+
+
+@dataclass(frozen=True)
+class Progress:
+    """``done`` of ``total`` steps of a long job (a scan, a plan) finished."""
+
+    done: int
+    total: int
+    what: str
+
+
+Event = (
+    DeviceJoined | DeviceLeft | LinkMade | LinkRemoved | FrameSeen | BusError | PlanApplied
+    | ChannelValue | Progress
+)

@@ -1,0 +1,446 @@
+"""The bus monitor: every CAN frame as one readable line, captures in python-can's log formats.
+
+``FrameDecoder`` keeps what a listener can learn from the traffic — which node IDs are devices
+(bind responses, VID/PID/serial reads), which are output channels (Channel Node Id writes and
+reads) and which inputs listen to them (Source's Node Ids) — so that parameter names fit the
+channel's direction and a data frame names its link. A frame that does not decode becomes an
+"undecodable: <reason>" line and is counted; the decoder never raises on bus input. It is not
+thread-safe: one consumer (a session thread or a GUI timer) feeds it.
+
+python-can is imported inside the capture functions only, so importing this module is cheap.
+"""
+
+from __future__ import annotations
+
+from collections import Counter
+from collections.abc import Iterator, Mapping, Sequence
+from dataclasses import dataclass, field
+from pathlib import Path
+from typing import Any
+
+from pdcp_studio.bus.bustime import BusTimeMeter
+from pdcp_studio.errors import FrameError, PdcpError
+from pdcp_studio.model import parameters as P
+from pdcp_studio.model.refs import ChannelRef, DeviceKey, Direction
+from pdcp_studio.protocol import messages as M
+from pdcp_studio.protocol.bulk import BulkReassembler, packet_count
+from pdcp_studio.protocol.codes import ResponseCode
+from pdcp_studio.protocol.identifier import Mode, split_id
+
+TO_BA, FROM_BA, CHANNEL_DATA = "device→BA", "BA→device", "channel data"
+UNDECODABLE = "undecodable"
+#: node ID → (output channel, the inputs linked to it); the caller may keep updating it.
+LinkMap = Mapping[int, tuple[ChannelRef, Sequence[ChannelRef]]]
+#: Capture formats python-can 4.6 both writes and reads without extra packages (``.gz`` too).
+CAPTURE_SUFFIXES = (".asc", ".blf", ".csv", ".log", ".trc", ".db")
+_NO_SOURCE = (0, 0xFF)  # a Source's Node Ids byte that means "not connected"
+
+
+class CaptureError(PdcpError):
+    """A capture file cannot be read or written; names the file and why."""
+
+    def __init__(self, path: str | Path, reason: str) -> None:
+        self.path, self.reason = str(path), reason
+        super().__init__(f"{path}: {reason}")
+
+
+@dataclass(frozen=True)
+class DecodedFrame:
+    """One frame as the monitor shows it; ``line`` is the text, ``as_json()`` the record."""
+
+    timestamp: float
+    time: float  # seconds since the decoder's first frame
+    arbitration_id: int
+    data: bytes
+    direction: str  # TO_BA, FROM_BA, CHANNEL_DATA or "" when the identifier is not PDCP's
+    priority: int | None
+    node_id: int | None
+    function: str  # a function title, "Channel data" or UNDECODABLE
+    fields: str
+    error: str | None = None  # why it is undecodable, or a bulk-transfer fault
+    response: str | None = None  # the response code's name
+    link: tuple[ChannelRef | str, tuple[ChannelRef | str, ...]] | None = None
+    message: Any = field(default=None, compare=False, repr=False)
+
+    @property
+    def who(self) -> str:
+        if self.node_id is None:
+            return f"0x{self.arbitration_id:03X}"
+        if self.direction == FROM_BA:
+            return "BA→all" if self.node_id == 0 else f"BA→#{self.node_id}"
+        return f"#{self.node_id} data" if self.direction == CHANNEL_DATA else f"#{self.node_id}→BA"
+
+    @property
+    def line(self) -> str:
+        prio = "P?" if self.priority is None else f"P{self.priority}"
+        text = f"{self.time:11.6f}  {prio}  {self.who} {self.function}"
+        return f"{text}  {self.fields}" if self.fields else text
+
+    def __str__(self) -> str:
+        return self.line
+
+    def as_json(self) -> dict[str, Any]:
+        def ref(r: ChannelRef | str) -> Any:
+            return r.as_json() if isinstance(r, ChannelRef) else r
+
+        link = None if self.link is None else {
+            "output": ref(self.link[0]), "inputs": [ref(r) for r in self.link[1]]}
+        return {"timestamp": self.timestamp, "time": round(self.time, 6),
+                "arbitration_id": self.arbitration_id, "data": self.data.hex(),
+                "direction": self.direction, "priority": self.priority,
+                "node_id": self.node_id, "function": self.function, "fields": self.fields,
+                "response": self.response, "error": self.error, "link": link,
+                "text": self.line}
+
+
+@dataclass
+class MonitorStats:
+    """Frames by function, errors and the bus time they took (for a bus-load estimate)."""
+
+    frames: int = 0
+    by_function: Counter[str] = field(default_factory=Counter)
+    undecodable: int = 0
+    failures: int = 0  # responses with code 0 (failure)
+    bulk_errors: int = 0
+    meter: BusTimeMeter = field(default_factory=BusTimeMeter)
+
+    @property
+    def errors(self) -> int:
+        return self.undecodable + self.failures + self.bulk_errors
+
+    def as_json(self, elapsed_s: float | None = None) -> dict[str, Any]:
+        return {"frames": self.frames, "by_function": dict(self.by_function.most_common()),
+                "undecodable": self.undecodable, "failures": self.failures,
+                "bulk_errors": self.bulk_errors, "bus_time_us": round(self.meter.bus_time_us, 1),
+                "bus_load": self.meter.load(elapsed_s)}
+
+    def summary(self, elapsed_s: float | None = None) -> str:
+        load = self.meter.load(elapsed_s)
+        span = self.meter.span_s if elapsed_s is None else elapsed_s
+        lines = [f"{self.frames} frames, {self.errors} errors ({self.undecodable} undecodable, "
+                 f"{self.failures} failure responses, {self.bulk_errors} bulk faults)",
+                 f"bus time {self.meter.bus_time_us / 1000:.3f} ms over {span:.3f} s"
+                 + ("" if load is None else f" (bus load {100 * load:.2f} %)")]
+        lines += [f"  {n:7d}  {name}" for name, n in self.by_function.most_common()]
+        return "\n".join(lines)
+
+
+class FrameDecoder:
+    """Turns frames into ``DecodedFrame`` lines, learning the bus as it goes.
+
+    ``links`` is an optional caller-owned mapping node ID → (output, [inputs]); it wins over
+    what the decoder learned, and the caller may update it at any time.
+    """
+
+    def __init__(self, links: LinkMap | None = None) -> None:
+        self.links: LinkMap = links if links is not None else {}
+        self.stats = MonitorStats()
+        self.devices: dict[int, DeviceKey] = {}  # device node ID → identity
+        self.outputs: dict[int, tuple[int, int]] = {}  # channel node → (device node, index)
+        self.inputs: dict[int, set[tuple[int, int]]] = {}  # channel node → {(device node, index)}
+        self.directions: dict[tuple[int, int], Direction] = {}
+        self.bulk_values: dict[tuple[int, int, int], bytes] = {}  # (node, chan, param) → value
+        self._partial: dict[int, dict[str, int]] = {}
+        self._bulk: dict[tuple[int, Mode], tuple[int, int, BulkReassembler]] = {}  # param, chan
+        self._t0: float | None = None
+
+    @property
+    def channel_node_ids(self) -> frozenset[int]:
+        return frozenset(self.links) | frozenset(self.outputs)
+
+    # -- entry points -----------------------------------------------------------------------
+
+    def decode_message(self, msg: Any) -> DecodedFrame:
+        """Decode a ``can.Message`` (or anything with its attributes)."""
+        return self.decode(msg.arbitration_id, bytes(msg.data), msg.timestamp or 0.0,
+                           is_extended_id=bool(getattr(msg, "is_extended_id", False)),
+                           is_remote_frame=bool(getattr(msg, "is_remote_frame", False)),
+                           is_error_frame=bool(getattr(msg, "is_error_frame", False)))
+
+    def decode(self, arbitration_id: int, data: bytes, timestamp: float = 0.0, *,
+               is_extended_id: bool = False, is_remote_frame: bool = False,
+               is_error_frame: bool = False) -> DecodedFrame:
+        """One frame → one line; never raises on what a bus can deliver."""
+        data = bytes(data)
+        if self._t0 is None:
+            self._t0 = timestamp
+        base = {"timestamp": timestamp, "time": timestamp - self._t0,
+                "arbitration_id": arbitration_id, "data": data}
+        self.stats.frames += 1
+        if not (is_extended_id or is_error_frame):
+            try:
+                self.stats.meter.add(arbitration_id, data, timestamp)
+            except ValueError:
+                pass  # not a classical base frame: no bus time to add
+        reason = ("error frame" if is_error_frame else
+                  "extended 29-bit identifier (PDCP uses 11-bit base frames)" if is_extended_id
+                  else "remote frame (PDCP sends none)" if is_remote_frame else None)
+        try:
+            if reason:
+                raise FrameError(reason)
+            ident = split_id(arbitration_id)
+            base.update(priority=int(ident.priority), node_id=ident.node_id)
+            msg = M.decode(arbitration_id, data, channel_node_ids=self.channel_node_ids)
+        except FrameError as err:
+            return self._undecodable(base, str(err))
+        try:
+            frame = self._describe(msg, base)
+        except Exception as err:  # a bug here must not stop a monitor: show the frame raw
+            return self._undecodable(base, f"{type(err).__name__}: {err}")
+        self.stats.by_function[frame.function] += 1
+        if frame.response == ResponseCode.FAILURE.title:
+            self.stats.failures += 1
+        if frame.error:
+            self.stats.bulk_errors += 1
+        return frame
+
+    # -- describing -------------------------------------------------------------------------
+
+    def _undecodable(self, base: dict[str, Any], reason: str) -> DecodedFrame:
+        self.stats.undecodable += 1
+        self.stats.by_function[UNDECODABLE] += 1
+        if "node_id" in base:
+            base["direction"] = TO_BA if base["arbitration_id"] >> 8 & 1 == 0 else FROM_BA
+        raw = f"[{base['arbitration_id']:03X}] {base['data'].hex(' ').upper() or '(empty)'}"
+        return DecodedFrame(**{"direction": "", "priority": None, "node_id": None, **base},
+                            function=f"{UNDECODABLE}: {reason}", fields=raw, error=reason)
+
+    def _describe(self, msg: M.Message, base: dict[str, Any]) -> DecodedFrame:
+        if isinstance(msg, M.ChannelData):
+            link = self._link(msg.node_id)
+            ins = ", ".join(map(str, link[1])) or "no input known"
+            text = f"{link[0]} → {ins}  {msg.data.hex(' ').upper() or '(empty)'}"
+            return DecodedFrame(**base, direction=CHANNEL_DATA, function="Channel data",
+                                fields=text, link=link, message=msg)
+        node, parts, error = msg.node_id, [], None
+        code = getattr(msg, "code", None)
+        if code is not None:
+            parts.append(code.title)
+        if isinstance(msg, M.BindRequest | M.BindResponse):
+            if isinstance(msg, M.BindResponse):
+                parts.append(f"node {msg.granted_node_id} "
+                             + ("granted" if msg.accepted else "suggested"))
+                if msg.accepted:
+                    self._bound(msg.granted_node_id, DeviceKey(msg.vid, msg.pid, msg.serial))
+            else:
+                parts.append(f"asks for node {node}")
+            parts.append(f"VID 0x{msg.vid:04X} PID 0x{msg.pid:04X} SN {msg.serial}")
+        elif isinstance(msg, M.BulkData):
+            error = self._bulk_packet(msg, parts)
+        elif hasattr(msg, "param"):
+            value = getattr(msg, "value", b"")
+            direction = self._direction(node, msg.channel, msg.param, value)
+            parts.append(f"param {msg.param} "
+                         f"{P.parameter_name(msg.param, msg.channel, direction)}  "
+                         f"chan {msg.channel}")
+            if value:
+                spec = P.find_parameter(msg.param, msg.channel, direction)
+                parts.append(f"= {P.render_value(spec, value)}")
+            if hasattr(msg, "size"):
+                parts.append(f"size {msg.size} bytes")
+            self._track(msg, direction)
+        elif hasattr(msg, "channel"):
+            parts.append(f"chan {msg.channel}")
+        if hasattr(msg, "ms"):
+            parts.append(f"{msg.ms} ms" if msg.ms else "indefinitely")
+        return DecodedFrame(**base, direction=TO_BA if msg.mode is Mode.DEVICE else FROM_BA,
+                            function=msg.CODE.title, fields="  ".join(parts), error=error,
+                            response=None if code is None else code.title, message=msg)
+
+    def _link(self, node: int) -> tuple[ChannelRef | str, tuple[ChannelRef | str, ...]]:
+        if node in self.links:
+            out, ins = self.links[node]
+            return out, tuple(ins)
+        dev, index = self.outputs[node]
+        inputs = sorted(self.inputs.get(node, ()))
+        return self._ref(dev, index), tuple(self._ref(d, i) for d, i in inputs)
+
+    def _ref(self, device_node: int, index: int) -> ChannelRef | str:
+        key = self.devices.get(device_node)
+        return ChannelRef(*key, index) if key else f"node {device_node}#{index}"
+
+    # -- learning ---------------------------------------------------------------------------
+
+    def _bound(self, node: int, key: DeviceKey) -> None:
+        """A device holds ``node`` now: forget its old node and any channel that used ``node``."""
+        for old in [n for n, k in self.devices.items() if k == key and n != node]:
+            self._forget_device(old)
+        self._forget_device(node)
+        self.outputs.pop(node, None)
+        self.devices[node] = key
+
+    def _forget_device(self, node: int) -> None:
+        self.devices.pop(node, None)
+        for chan_node in [c for c, (d, _) in self.outputs.items() if d == node]:
+            del self.outputs[chan_node]
+        for listeners in self.inputs.values():
+            listeners.difference_update({x for x in listeners if x[0] == node})
+        self.directions = {k: v for k, v in self.directions.items() if k[0] != node}
+
+    def _moved(self, old: int, new: int) -> None:
+        """The device at ``old`` was given node ID ``new``: its channels keep their node IDs."""
+        if new == old or new in _NO_SOURCE:
+            return
+        self._bound(new, self.devices.pop(old))
+        self.outputs = {c: (new if d == old else d, i) for c, (d, i) in self.outputs.items()}
+        self.inputs = {c: {(new if d == old else d, i) for d, i in ins}
+                       for c, ins in self.inputs.items()}
+        self.directions = {(new if d == old else d, i): v for (d, i), v in self.directions.items()}
+
+    def _direction(self, node: int, chan: int, param: int, value: bytes) -> Direction | None:
+        """The channel's direction: learned, else implied by the parameter and value size."""
+        if chan == 0:
+            return None
+        known = self.directions.get((node, chan))
+        if known is not None:
+            return known
+        if param in (P.IN_SOURCE_SN_INDEX, P.IN_SOURCE_NODE_IDS, P.IN_SOURCE_TYPE_PROFILE,
+                     P.IN_TERMINAL_PROFILE):
+            return Direction.INPUT
+        if param == P.OUT_NODE_ID and value:  # 1 byte: Channel Node Id; 4: Source's VID and PID
+            return Direction.OUTPUT if len(value) == 1 else Direction.INPUT
+        return None
+
+    def _track(self, msg: M.Message, direction: Direction | None) -> None:
+        """Learn from parameter traffic and follow bulk transfers."""
+        node = msg.node_id
+        if isinstance(msg, M.ConfigureGetBulkResponse | M.ConfigureSetBulk):
+            ok = isinstance(msg, M.ConfigureSetBulk) or msg.code is ResponseCode.SUCCESS
+            if ok:
+                try:
+                    self._bulk[node, msg.mode] = (msg.param, msg.channel,
+                                                  BulkReassembler(msg.size))
+                except FrameError:
+                    pass  # an impossible size: its packets will show as unannounced
+        elif isinstance(msg, M.ConfigureSetBulkResponse) and msg.code is ResponseCode.FAILURE:
+            self._bulk.pop((node, Mode.ARBITRATOR), None)
+        elif isinstance(msg, M.SetParameter):
+            self._learn(node, msg.channel, msg.param, msg.value, direction)
+        elif isinstance(msg, M.GetParameterResponse | M.SetParameterResponse):
+            if msg.code is ResponseCode.SUCCESS and msg.value:
+                self._learn(node, msg.channel, msg.param, msg.value, direction)
+
+    def _learn(self, node: int, chan: int, param: int, value: bytes,
+               direction: Direction | None) -> None:
+        if direction is not None:
+            self.directions[node, chan] = direction
+        if chan == 0:
+            if param == P.DEVICE_NODE_ID and len(value) == 1 and node in self.devices:
+                self._moved(node, value[0])
+            elif param in (P.DEVICE_VID_PID, P.DEVICE_SERIAL):
+                self._learn_identity(node, param, value)
+        elif param == P.CH_TRANSFER_TYPE and len(value) == 1 and value[0] in (1, 2):
+            self.directions[node, chan] = Direction.from_transfer_type(value[0])
+        elif param == P.OUT_NODE_ID and direction is Direction.OUTPUT and len(value) == 1:
+            for chan_node in [c for c, owner in self.outputs.items() if owner == (node, chan)]:
+                del self.outputs[chan_node]
+            if value[0] not in _NO_SOURCE and value[0] not in self.devices:
+                self.outputs[value[0]] = (node, chan)
+        elif param == P.IN_SOURCE_NODE_IDS and len(value) == 2:
+            for listeners in self.inputs.values():
+                listeners.discard((node, chan))
+            if value[1] not in _NO_SOURCE:
+                self.inputs.setdefault(value[1], set()).add((node, chan))
+
+    def _learn_identity(self, node: int, param: int, value: bytes) -> None:
+        partial = self._partial.setdefault(node, {})
+        if param == P.DEVICE_VID_PID and len(value) == 4:
+            partial["vid"] = int.from_bytes(value[:2], "little")
+            partial["pid"] = int.from_bytes(value[2:], "little")
+        elif param == P.DEVICE_SERIAL and len(value) == 2:
+            partial["serial"] = int.from_bytes(value, "little")
+        if len(partial) == 3 and node not in self.devices:
+            self._bound(node, DeviceKey(**partial))
+
+    def _bulk_packet(self, msg: M.BulkData, parts: list[str]) -> str | None:
+        transfer = self._bulk.get((msg.node_id, msg.mode))
+        hex_data = msg.data.hex(" ").upper()
+        if transfer is None:
+            parts.append(f"packet {msg.packet_id}  {hex_data}  (no transfer announced)")
+            return None
+        param, chan, r = transfer
+        parts.append(f"packet {msg.packet_id}/{packet_count(r.expected_size)}  {hex_data}")
+        try:
+            complete = r.add(msg.packet_id, msg.data)
+        except FrameError as err:
+            del self._bulk[msg.node_id, msg.mode]
+            parts.append(f"bulk transfer aborted: {err}")
+            return str(err)
+        if complete:
+            del self._bulk[msg.node_id, msg.mode]
+            value = r.result()
+            self.bulk_values[msg.node_id, chan, param] = value
+            direction = self.directions.get((msg.node_id, chan))
+            spec = P.find_parameter(param, chan, direction)
+            name = P.parameter_name(param, chan, direction)
+            parts.append(f"complete: {name} chan {chan} = {P.render_value(spec, value)}")
+        return None
+
+
+# -- captures --------------------------------------------------------------------------------
+
+
+class Recorder:
+    """Writes frames to a capture; ``can.Logger`` picks the format from the suffix.
+
+    Use as a context manager, or call ``close()``: binary formats are complete only then.
+    """
+
+    def __init__(self, path: str | Path, channel: str | int | None = None) -> None:
+        import can
+
+        self.path, self.channel, self.frames = Path(path), channel, 0
+        try:
+            self._writer = can.Logger(str(self.path))
+        except (ValueError, ImportError, NotImplementedError, OSError) as err:
+            raise CaptureError(self.path, f"cannot write this capture: {err}") from err
+
+    def write_message(self, msg: Any) -> None:
+        self._writer.on_message_received(msg)
+        self.frames += 1
+
+    def write(self, arbitration_id: int, data: bytes, timestamp: float | None = None) -> None:
+        import time
+
+        import can
+
+        self.write_message(can.Message(
+            timestamp=time.time() if timestamp is None else timestamp,
+            arbitration_id=arbitration_id, data=bytes(data), is_extended_id=False,
+            channel=self.channel))
+
+    def close(self) -> None:
+        self._writer.stop()
+
+    def __enter__(self) -> Recorder:
+        return self
+
+    def __exit__(self, *exc: object) -> None:
+        self.close()
+
+
+def read_capture(path: str | Path) -> Iterator[Any]:
+    """The ``can.Message`` frames of a capture; CaptureError (naming the file) if unreadable."""
+    import can
+
+    path = Path(path)
+    if not path.is_file():
+        raise CaptureError(path, "no such file")
+    # ASC stores times relative to its header; ask for absolute ones like the other formats.
+    kwargs = {"relative_timestamp": False} if ".asc" in path.suffixes[-2:] else {}
+    try:
+        reader = can.LogReader(str(path), **kwargs)
+        with reader:
+            yield from reader
+    except CaptureError:
+        raise
+    except Exception as err:  # readers raise anything from struct.error to sqlite3 errors
+        reason = str(err) or type(err).__name__
+        raise CaptureError(path, f"not a readable capture ({reason})") from err
+
+
+def replay(path: str | Path, decoder: FrameDecoder | None = None) -> Iterator[DecodedFrame]:
+    """Decode a capture frame by frame (pass a decoder to read its statistics afterwards)."""
+    decoder = decoder if decoder is not None else FrameDecoder()
+    for msg in read_capture(path):
+        yield decoder.decode_message(msg)

@@ -1,0 +1,151 @@
+"""``pdcp-studio config``: stored-configuration files (reference §3, contracts §2).
+
+``decode FILE [--json]`` lists a ``.pdcfg`` file (``--json``: the contract JSON, one
+document on stdout); ``encode JSON -o FILE`` writes one from that JSON, atomically.
+``-`` reads standard input. The bus actions (``config read`` / ``config write``) live in
+``pdcp_studio.cli.config_bus``, which registers them through
+``add_bus_commands(config_subparsers)`` when that module exists; it is imported while the
+parser is built, so it too must keep heavy imports (python-can) inside its ``run``.
+
+Errors: a file that does not decode or validate, and an input file that cannot be read,
+are bad input (exit 2) with one stderr line naming the file, ``offset N`` and the reason.
+A failure to write the output is exit 1 (an ``OSError``, handled by the dispatcher).
+"""
+
+from __future__ import annotations
+
+import argparse
+import importlib
+import sys
+from pathlib import Path
+from typing import Any
+
+BUS_MODULE = "pdcp_studio.cli.config_bus"
+
+
+def add_subparser(subparsers: Any) -> None:
+    """Register ``config`` and its actions (``decode``, ``encode``, and the bus ones)."""
+    parser = subparsers.add_parser(
+        "config", help="stored configurations (.pdcfg): decode, encode, read, write",
+        description="Read and write the byte format an arbitrator stores its links in.",
+    )
+    actions = parser.add_subparsers(dest="config_command", metavar="ACTION", required=True)
+
+    decode = actions.add_parser("decode", help="list a stored-configuration file")
+    decode.add_argument("file", metavar="FILE", help="a .pdcfg file, or - for stdin")
+    decode.add_argument("--json", action="store_true", help="print the contract JSON")
+    decode.set_defaults(func=run_decode)
+
+    encode = actions.add_parser("encode", help="write a stored-configuration file from JSON")
+    encode.add_argument("json_file", metavar="JSON", help="JSON as `decode --json` prints it")
+    encode.add_argument("-o", "--output", required=True, metavar="FILE", help="the .pdcfg")
+    encode.set_defaults(func=run_encode)
+
+    add_bus_commands(actions)
+
+
+def add_bus_commands(actions: Any) -> None:
+    """Let ``config_bus`` add ``read`` and ``write`` if this build has it."""
+    try:
+        module = importlib.import_module(BUS_MODULE)
+    except ModuleNotFoundError as err:
+        if err.name == BUS_MODULE:
+            return  # not built into this version
+        raise
+    module.add_bus_commands(actions)
+
+
+def _read_input(path: str, binary: bool, limit: int = -1) -> Any:
+    """The input file (or stdin), at most ``limit`` bytes; an unreadable file is bad input."""
+    from pdcp_studio.cli.main import BadInput
+
+    try:
+        if path == "-":
+            return sys.stdin.buffer.read(limit) if binary else sys.stdin.read()
+        if binary:
+            with open(path, "rb") as handle:
+                return handle.read(limit)
+        return Path(path).read_text(encoding="utf-8")
+    except (OSError, UnicodeDecodeError) as err:
+        reason = err.strerror if isinstance(err, OSError) and err.strerror else str(err)
+        raise BadInput(f"{path}: cannot read: {reason}") from err
+
+
+def run_decode(args: argparse.Namespace) -> int:
+    """Decode a file and print it as text or as the contract JSON."""
+    import json
+
+    from pdcp_studio.cli.main import BadInput
+    from pdcp_studio.errors import ConfigFormatError
+    from pdcp_studio.storage import config_codec
+
+    # One byte over the limit is enough for the codec to refuse a huge file.
+    data = _read_input(args.file, binary=True, limit=config_codec.MAX_INPUT_BYTES + 1)
+    try:
+        decoded = config_codec.decode(data)
+    except ConfigFormatError as err:
+        raise BadInput(f"{args.file}: offset {err.offset}: {err.reason}") from err
+    if args.json:
+        print(json.dumps(config_codec.to_json(decoded.collection), indent=2))
+    else:
+        print("\n".join(format_listing(args.file, decoded)))
+    return 0
+
+
+def format_listing(name: str, decoded: Any) -> list[str]:
+    """A readable listing: a summary line, then each configuration's links, output → input."""
+    configs = decoded.collection.configurations
+    links = sum(len(cfg.links) for cfg in configs)
+    checksum = (f"checksum 0x{decoded.checksum:04X} verified" if decoded.checksum is not None
+                else "no checksum (thesis-era file)")
+    lines = [f"{name}: {len(configs)} configuration(s), {links} link(s), {decoded.size} bytes, "
+             f"{checksum}"]
+    if decoded.unknown_records:
+        lines.append(f"  {decoded.unknown_records} record(s) with unknown codes skipped")
+    if decoded.trailing_bytes:
+        lines.append(f"  {decoded.trailing_bytes} byte(s) after End ignored")
+    for cfg in configs:
+        lines.append(f"configuration {cfg.index}: {len(cfg.links)} link(s)")
+        for link in cfg.links:
+            lines.append(f"  link {link.index}: output {_channel_text(link.output)}")
+            pad = " " * len(f"link {link.index}")
+            lines.append(f"  {pad}→ input  {_channel_text(link.input)}")
+    return lines
+
+
+def _channel_text(ch: Any) -> str:
+    text = f"{ch.ref}  type 0x{ch.type:04X}  profile 0x{ch.profile:04X}"
+    if ch.owner_type is not None:
+        text += f"  owner type {ch.owner_type}"
+    if ch.owner_profile is not None:
+        text += f"  owner profile {ch.owner_profile}"
+    return text
+
+
+def run_encode(args: argparse.Namespace) -> int:
+    """Validate the JSON and write the byte file atomically."""
+    import json
+
+    from pdcp_studio.cli.main import BadInput
+    from pdcp_studio.errors import ConfigFormatError
+    from pdcp_studio.storage import config_codec
+    from pdcp_studio.storage.atomic import atomic_write_bytes
+
+    text = _read_input(args.json_file, binary=False)
+    try:
+        doc = json.loads(text)
+    except json.JSONDecodeError as err:
+        raise BadInput(
+            f"{args.json_file}: line {err.lineno} column {err.colno}: {err.msg}"
+        ) from err
+    try:
+        collection = config_codec.from_json(doc)
+        data = config_codec.dumps(collection)
+    except ConfigFormatError as err:
+        raise BadInput(f"{args.json_file}: {err.reason}") from err
+    atomic_write_bytes(args.output, data)
+    links = sum(len(cfg.links) for cfg in collection.configurations)
+    print(f"{args.output}: {len(collection.configurations)} configuration(s), "
+          f"{links} link(s), {len(data)} bytes written")
+    return 0
+

@@ -1,0 +1,103 @@
+"""One function per operation, each returning a ``Plan`` and never changing the system."""
+
+from __future__ import annotations
+
+from pdcp_studio.engine import procedures as proc
+from pdcp_studio.engine.layer import ProfileLayer
+from pdcp_studio.engine.plan import Plan, Rule
+from pdcp_studio.errors import EngineError
+from pdcp_studio.model.configuration import ConfigCollection, StoredConfiguration
+from pdcp_studio.model.refs import ChannelRef
+from pdcp_studio.model.system import System
+
+AnyConfig = ConfigCollection | StoredConfiguration | None
+
+#: The modes of ``pdcp-studio plan`` (contracts §2), plus ``duty-cycle``.
+MODES = ("autoconfigure", "replacements", "implement", "startup", "enforce", "clear")
+EXTRA_MODES = ("duty-cycle",)
+
+
+def plan_autoconfigure(system: System) -> Plan:
+    """Listing 4.7 on the current links."""
+    layer = ProfileLayer(system, "autoconfigure")
+    proc.autoconfigure(layer)
+    return layer.finish()
+
+
+def _configured(layer: ProfileLayer, config: AnyConfig, *, source: str) -> StoredConfiguration:
+    cfg, why = proc.resolve_configuration(layer.system, config)
+    if cfg is None:
+        raise EngineError(f"plan {layer.plan.mode} needs a stored configuration"
+                          + (f" ({why})" if why else ""))
+    plan = layer.plan
+    plan.configuration, plan.configuration_source, plan.configuration_reason = cfg, source, why
+    return cfg
+
+
+def plan_implement(system: System, configuration: AnyConfig) -> Plan:
+    """Listing 4.3: make the stored links (links with a missing end are refused)."""
+    layer = ProfileLayer(system, "implement")
+    cfg = _configured(layer, configuration, source="given")
+    proc.implement_configuration(layer, cfg, Rule.STORED)
+    return layer.finish()
+
+
+def plan_replacements(system: System, configuration: AnyConfig) -> Plan:
+    """Implement the stored links whose ends are all present, then repair the others
+    (listing 4.6). Without a configuration, the system's own links are repaired."""
+    layer = ProfileLayer(system, "replacements")
+    if configuration is None:
+        cfg = proc.configuration_from_system(system)
+        plan = layer.plan
+        plan.configuration, plan.configuration_source = cfg, "system"
+        plan.configuration_reason = "no configuration given: the system's current links"
+    else:
+        cfg = _configured(layer, configuration, source="given")
+    proc.implement_configuration(layer, cfg, Rule.STORED)
+    proc.find_replacements(layer, cfg)
+    return layer.finish()
+
+
+def plan_startup(system: System, stored: AnyConfig) -> Plan:
+    """Listings 4.1 / 5.1 (see ``procedures.startup``)."""
+    layer = ProfileLayer(system, "startup")
+    proc.startup(layer, stored)
+    return layer.finish()
+
+
+def plan_duty_cycle(system: System, previously_present: set[ChannelRef] | None = None) -> Plan:
+    """Listing 4.2, the hot-swap duty cycle."""
+    layer = ProfileLayer(system, "duty-cycle")
+    proc.duty_cycle(layer, previously_present)
+    return layer.finish()
+
+
+def plan_enforce(system: System) -> Plan:
+    layer = ProfileLayer(system, "enforce")
+    proc.enforce(layer)
+    return layer.finish()
+
+
+def plan_clear(system: System) -> Plan:
+    layer = ProfileLayer(system, "clear")
+    proc.clear(layer)
+    return layer.finish()
+
+
+def plan_for(mode: str, system: System, config: AnyConfig = None) -> Plan:
+    """Dispatch by mode name; ``config`` is ignored by autoconfigure, enforce and clear."""
+    if mode == "autoconfigure":
+        return plan_autoconfigure(system)
+    if mode == "replacements":
+        return plan_replacements(system, config)
+    if mode == "implement":
+        return plan_implement(system, config)
+    if mode == "startup":
+        return plan_startup(system, config)
+    if mode == "enforce":
+        return plan_enforce(system)
+    if mode == "clear":
+        return plan_clear(system)
+    if mode == "duty-cycle":
+        return plan_duty_cycle(system, None)
+    raise EngineError(f"unknown mode {mode!r} (one of {', '.join(MODES + EXTRA_MODES)})")

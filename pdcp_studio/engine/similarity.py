@@ -1,0 +1,110 @@
+"""How alike two channels are (thesis listing 4.9, reference §2 ``determine_similarity``).
+
+The profile dominates: each equal, non-zero leading component is worth 8, more than the
+type can ever add (control mode 4 + data type 2 + byte size 1 = 7), so the type only
+breaks ties between equally deep profile matches. Keeping the breakdown lets a plan say
+*why* a candidate won, which is what makes a prosthetist trust it.
+"""
+
+from __future__ import annotations
+
+from dataclasses import dataclass
+
+from pdcp_studio.model.channel_type import (
+    BYTE_SIZE_MASK,
+    CONTROL_MODE_MASK,
+    DATA_TYPE_MASK,
+)
+
+PROFILE_STEP = 8
+CONTROL_MODE_SCORE = 4
+DATA_TYPE_SCORE = 2
+BYTE_SIZE_SCORE = 1
+#: The most the type part can add; a deeper profile match always beats it.
+MAX_TYPE_SCORE = CONTROL_MODE_SCORE + DATA_TYPE_SCORE + BYTE_SIZE_SCORE
+#: "Shares at least the root profile component" (reference §2 Decision).
+MIN_CANDIDATE_SCORE = PROFILE_STEP
+
+
+@dataclass(frozen=True)
+class Similarity:
+    """A similarity score and the parts it is made of."""
+
+    total: int
+    profile_depth: int
+    control_mode: bool
+    data_type: bool
+    byte_size: bool
+
+    @property
+    def shares_root(self) -> bool:
+        return self.profile_depth >= 1
+
+    def describe(self) -> str:
+        """``23 = profile 2 levels (16) + control mode (4) + data type (2) + byte size (1)``."""
+        parts = []
+        if self.profile_depth:
+            levels = "level" if self.profile_depth == 1 else "levels"
+            parts.append(
+                f"profile {self.profile_depth} {levels} ({self.profile_depth * PROFILE_STEP})"
+            )
+        else:
+            parts.append("no profile component in common (0)")
+        for flag, name, score in (
+            (self.control_mode, "control mode", CONTROL_MODE_SCORE),
+            (self.data_type, "data type", DATA_TYPE_SCORE),
+            (self.byte_size, "byte size", BYTE_SIZE_SCORE),
+        ):
+            if flag:
+                parts.append(f"{name} ({score})")
+        return f"{self.total} = " + " + ".join(parts)
+
+    def as_json(self) -> dict:
+        return {
+            "total": self.total,
+            "profile_depth": self.profile_depth,
+            "control_mode": self.control_mode,
+            "data_type": self.data_type,
+            "byte_size": self.byte_size,
+        }
+
+
+def profile_match_depth(a_profile: int, b_profile: int) -> int:
+    """Leading 4-bit components equal in both and not 0, from the most significant."""
+    depth = 0
+    for shift in (12, 8, 4, 0):
+        ca = (a_profile >> shift) & 0xF
+        if ca == 0 or ca != (b_profile >> shift) & 0xF:
+            break
+        depth += 1
+    return depth
+
+
+def type_score(a_type: int, b_type: int) -> int:
+    """The type part of the score (0…7): control mode 4, data type 2, byte size 1."""
+    diff = a_type ^ b_type
+    return (
+        (0 if diff & CONTROL_MODE_MASK else CONTROL_MODE_SCORE)
+        + (0 if diff & DATA_TYPE_MASK else DATA_TYPE_SCORE)
+        + (0 if diff & BYTE_SIZE_MASK else BYTE_SIZE_SCORE)
+    )
+
+
+def determine_similarity(a_type: int, a_profile: int, b_type: int, b_profile: int) -> Similarity:
+    """Listing 4.9: 8 per equal leading non-zero component, then 4/2/1 for the type fields.
+
+    >>> determine_similarity(0x5000, 0x1110, 0x5000, 0x1100).total
+    23
+    """
+    depth = profile_match_depth(a_profile, b_profile)
+    diff = a_type ^ b_type
+    cm = not diff & CONTROL_MODE_MASK
+    dt = not diff & DATA_TYPE_MASK
+    bs = not diff & BYTE_SIZE_MASK
+    total = (
+        depth * PROFILE_STEP
+        + (CONTROL_MODE_SCORE if cm else 0)
+        + (DATA_TYPE_SCORE if dt else 0)
+        + (BYTE_SIZE_SCORE if bs else 0)
+    )
+    return Similarity(total, depth, cm, dt, bs)

@@ -1,0 +1,441 @@
+"""The stored-configuration byte format (reference §3, thesis §4.5, table 4.1, figure 4.10).
+
+This is what a bus arbitrator keeps in its memory so that it can rebuild the links after a
+restart, so the reader is strict (a wrong link drives a motor) and bounded (the bytes may
+come from erased flash or a hostile file). Loading comes in three tiers: ``loads(bytes)``,
+``load(fileobj)``, ``load_path(path)``; writing mirrors them, and ``save_path`` is atomic.
+
+Format: 3-byte records, a code (u8) and a value (u16, little-endian). Declarations follow
+the thesis: a configuration runs from code 2 to the next 2 or End (15); a link from 4 to
+the next 4, 2 or 15; an input channel from 5 to 6, 4, 2 or 15; an output channel from 6 to
+5, 4, 2 or 15. Unknown codes (0 and 17…255) are skipped anywhere.
+
+Decisions (reference §3 plus the ones it leaves open):
+- Extension code 16 = checksum: CRC-16/CCITT-FALSE of every byte before it, immediately
+  before End. The writer always emits it; the reader verifies it when present and insists
+  that End follows it directly (later records would be unprotected).
+- Bytes after End are ignored (erased flash reads 0xFF), so only the part up to and
+  including End must be whole records: 1–2 stray bytes are an error only when no End came
+  before them ("truncated record"); otherwise a missing End is reported.
+- Codes 1 and 3 are required: 1 is the first known record, 3 the first known record after
+  its 2. A count that disagrees with what follows is reported at the count record.
+- Configuration and link indices count from 1 and are unique (links per configuration);
+  the channel index is 1…255. Channel index, owner VID, PID and serial are required; type
+  and profile default to 0. A value record twice in one channel, or a second input
+  (output) channel in one link, is refused. Values of 5, 6 and 15 are ignored ("use 0").
+- Limits against hostile input: ``MAX_INPUT_BYTES`` (1 MiB; ``load`` reads at most one
+  byte more), ``MAX_CONFIGURATIONS`` (255), ``MAX_LINKS`` (16,384 in the collection).
+  Any collection within the limits encodes below 1 MiB; the writer enforces them too.
+- Writer indices: kept if they are a permutation of 1…n (labels survive), else renumbered
+  1…n in list order. A file the program wrote decodes and re-encodes to identical bytes.
+- Decoding errors are ``ConfigFormatError(reason, offset)``, offset ≥ 0 = the offending
+  record. Writer and JSON errors have offset -1 and name the JSON path
+  (``configurations[0].links[1].input.index: 0 is out of range 1…255``).
+"""
+
+from __future__ import annotations
+
+import binascii
+import struct
+from dataclasses import dataclass
+from pathlib import Path
+from typing import Any, BinaryIO
+
+from pdcp_studio.errors import ConfigFormatError
+from pdcp_studio.model.configuration import (
+    ConfigCollection,
+    StoredChannel,
+    StoredConfiguration,
+    StoredLink,
+)
+
+# Codes of table 4.1, plus the checksum extension (16).
+COUNT_CONFIGURATIONS, CONFIGURATION, COUNT_LINKS, LINK = 1, 2, 3, 4
+INPUT_CHANNEL, OUTPUT_CHANNEL = 5, 6
+CHANNEL_TYPE, CHANNEL_PROFILE, CHANNEL_INDEX = 7, 8, 9
+OWNER_VID, OWNER_PID, OWNER_SERIAL, OWNER_TYPE, OWNER_PROFILE = 10, 11, 12, 13, 14
+END, CHECKSUM = 15, 16
+
+CODE_NAMES = {
+    1: "# of configurations", 2: "Configuration", 3: "# of links", 4: "Channel link",
+    5: "Input channel", 6: "Output channel", 7: "Channel type", 8: "Channel profile",
+    9: "Channel index", 10: "Owner VID", 11: "Owner PID", 12: "Owner serial number",
+    13: "Owner type", 14: "Owner profile", 15: "End", 16: "Checksum",
+}
+
+RECORD_SIZE = 3
+MAX_INPUT_BYTES = 1 << 20
+MAX_CONFIGURATIONS = 255
+MAX_LINKS = 16384
+CRC_INIT = 0xFFFF
+
+# One record: code (u8), value (u16 little-endian).
+_RECORD = struct.Struct("<BH")
+# Two records: (1, count) or (2, index) + (3, link count).
+_TWO_RECORDS = struct.Struct("<BHBH")
+# A channel's fixed block: (5|6, 0), (7, type), (8, profile), (9, index), (10, VID),
+# (11, PID), (12, serial); owner type/profile (13, 14) follow as single records when set.
+_CHANNEL = struct.Struct("<" + "BH" * 7)
+
+_REQUIRED = (CHANNEL_INDEX, OWNER_VID, OWNER_PID, OWNER_SERIAL)
+_Err = ConfigFormatError  # short alias: messages stay on one line
+
+
+def crc16_ccitt_false(data: bytes, crc: int = CRC_INIT) -> int:
+    """CRC-16/CCITT-FALSE (poly 0x1021, init 0xFFFF, no reflection): the checksum record."""
+    return binascii.crc_hqx(data, crc)
+
+
+@dataclass(frozen=True)
+class Decoded:
+    """What ``decode`` found besides the links: for listings and diagnostics."""
+
+    collection: ConfigCollection
+    checksum: int | None  # the verified stored checksum, None in a thesis-era file
+    end_offset: int  # byte offset of the End record
+    size: int  # length of the input
+    unknown_records: int  # records skipped because their code is unknown
+
+    @property
+    def trailing_bytes(self) -> int:
+        return self.size - self.end_offset - RECORD_SIZE
+
+
+# -- reading ----------------------------------------------------------------------------
+class _Reader:
+    """The declaration state machine; methods run once per structural record."""
+
+    def __init__(self) -> None:
+        self.count: int | None = None  # code 1 value, and its record's offset
+        self.configs: list[StoredConfiguration] = []
+        self.config_indices: set[int] = set()
+        self.cfg: StoredConfiguration | None = None  # the open configuration
+        self.link_count: int | None = None  # its code 3 value
+        self.link_indices: set[int] = set()
+        self.total_links = 0
+        self.link_index: int | None = None  # the open link
+        self.ends: dict[int, StoredChannel] = {}  # its finished channels by code 5/6
+        self.channel: list[int | None] | None = None  # the open channel's values by code
+        self.channel_code = 0
+        self.count_off = self.cfg_off = self.link_count_off = self.link_off = -1
+        self.channel_off = -1
+
+    def where(self) -> str:
+        kind = "input" if self.channel_code == INPUT_CHANNEL else "output"
+        assert self.cfg is not None
+        return f"{kind} channel of link {self.link_index} in configuration {self.cfg.index}"
+
+    def close_channel(self) -> None:
+        ch = self.channel
+        if ch is None:
+            return
+        for code in _REQUIRED:
+            if ch[code] is None:
+                missing = f"{CODE_NAMES[code]} (code {code})"
+                raise _Err(f"{self.where()} has no {missing}", self.channel_off)
+        self.ends[self.channel_code] = StoredChannel(
+            index=ch[9], vid=ch[10], pid=ch[11], serial=ch[12],  # type: ignore[arg-type]
+            type=ch[7] or 0, profile=ch[8] or 0, owner_type=ch[13], owner_profile=ch[14])
+        self.channel = None
+
+    def close_link(self) -> None:
+        self.close_channel()
+        if self.link_index is None:
+            return
+        assert self.cfg is not None
+        where = f"link {self.link_index} in configuration {self.cfg.index}"
+        for code, kind in ((INPUT_CHANNEL, "input"), (OUTPUT_CHANNEL, "output")):
+            if code not in self.ends:
+                raise _Err(f"{where} has no {kind} channel (code {code})", self.link_off)
+        link = StoredLink(self.ends[INPUT_CHANNEL], self.ends[OUTPUT_CHANNEL], self.link_index)
+        self.cfg.links.append(link)
+        self.link_index = None
+
+    def close_configuration(self) -> None:
+        self.close_link()
+        cfg = self.cfg
+        if cfg is None:
+            return
+        if self.link_count is None:
+            raise _Err(f"configuration {cfg.index} has no # of links (code 3)", self.cfg_off)
+        if self.link_count != len(cfg.links):
+            raise _Err(f"# of links of configuration {cfg.index} says {self.link_count}, "
+                      f"but {len(cfg.links)} follow", self.link_count_off)
+        self.configs.append(cfg)
+        self.cfg = None
+
+    def structural(self, code: int, value: int, offset: int) -> None:
+        """Handle codes 1–6: open and close declarations, check counts and indices."""
+        if code == CONFIGURATION:
+            if self.count is None:
+                raise _Err("Configuration before the # of configurations (code 1)", offset)
+            self.close_configuration()
+            if value < 1 or value in self.config_indices:
+                problem = "counts from 1" if value < 1 else "is a duplicate"
+                raise _Err(f"configuration index {value} {problem}", offset)
+            if len(self.configs) >= MAX_CONFIGURATIONS:
+                raise _Err(f"more than {MAX_CONFIGURATIONS} configurations (the limit)", offset)
+            self.config_indices.add(value)
+            self.cfg, self.cfg_off = StoredConfiguration(index=value, links=[]), offset
+            self.link_count, self.link_indices = None, set()
+        elif code == LINK:
+            if self.cfg is None:
+                raise _Err("Channel link outside a configuration", offset)
+            where = f"configuration {self.cfg.index}"
+            if self.link_count is None:
+                raise _Err(f"Channel link before the # of links (code 3) of {where}", offset)
+            self.close_link()
+            if value < 1 or value in self.link_indices:
+                problem = "counts from 1" if value < 1 else "is a duplicate"
+                raise _Err(f"link index {value} in {where} {problem}", offset)
+            self.total_links += 1
+            if self.total_links > MAX_LINKS:
+                raise _Err(f"more than {MAX_LINKS} links (the limit)", offset)
+            self.link_indices.add(value)
+            self.link_index, self.link_off, self.ends = value, offset, {}
+        elif code in (INPUT_CHANNEL, OUTPUT_CHANNEL):
+            kind = "input" if code == INPUT_CHANNEL else "output"
+            if self.link_index is None:
+                raise _Err(f"{kind} channel declaration outside a channel link", offset)
+            self.close_channel()
+            if code in self.ends:
+                raise _Err(f"second {kind} channel in link {self.link_index}", offset)
+            self.channel, self.channel_code, self.channel_off = [None] * 15, code, offset
+        elif code == COUNT_LINKS:
+            if self.cfg is None or self.link_count is not None or self.link_index is not None:
+                raise _Err("# of links must directly follow its Configuration record", offset)
+            if value > MAX_LINKS:
+                raise _Err(f"{value} links exceed the limit {MAX_LINKS}", offset)
+            self.link_count, self.link_count_off = value, offset
+        else:  # COUNT_CONFIGURATIONS
+            if self.count is not None:
+                raise _Err("# of configurations must be the first record, and only once", offset)
+            if value > MAX_CONFIGURATIONS:
+                raise _Err(f"{value} configurations exceed the limit {MAX_CONFIGURATIONS}", offset)
+            self.count, self.count_off = value, offset
+
+    def end(self, offset: int) -> ConfigCollection:
+        if self.count is None:
+            raise _Err("End before the # of configurations (code 1)", offset)
+        self.close_configuration()
+        if self.count != len(self.configs):
+            raise _Err(f"# of configurations says {self.count}, but {len(self.configs)} follow",
+                      self.count_off)
+        return ConfigCollection(configurations=self.configs)
+
+
+def decode(data: bytes | bytearray | memoryview) -> Decoded:
+    """Decode and report what else was found (checksum, unknown records, trailing bytes)."""
+    size = len(data)
+    if size > MAX_INPUT_BYTES:
+        raise _Err(f"input is larger than the limit of {MAX_INPUT_BYTES} bytes", MAX_INPUT_BYTES)
+    view = memoryview(data).cast("B")
+    whole = size - size % RECORD_SIZE
+    reader = _Reader()
+    channel: list[int | None] | None = None
+    checksum: int | None = None
+    unknown = 0
+    offset = -RECORD_SIZE
+    for code, value in _RECORD.iter_unpack(view[:whole]):
+        offset += RECORD_SIZE
+        if CHANNEL_TYPE <= code <= OWNER_PROFILE:  # the hot path: value records
+            if channel is None:
+                raise _Err(f"{CODE_NAMES[code]} record outside a channel declaration", offset)
+            if channel[code] is not None:
+                raise _Err(f"second {CODE_NAMES[code]} record in the {reader.where()}", offset)
+            if code == CHANNEL_INDEX and not 1 <= value <= 255:
+                raise _Err(f"channel index {value} is out of range 1…255", offset)
+            channel[code] = value
+        elif code <= OUTPUT_CHANNEL and code:
+            reader.structural(code, value, offset)
+            channel = reader.channel
+        elif code == END:
+            return Decoded(reader.end(offset), checksum, offset, size, unknown)
+        elif code == CHECKSUM:
+            computed = binascii.crc_hqx(view[:offset], CRC_INIT)
+            if value != computed:
+                raise _Err(f"checksum mismatch: stored 0x{value:04X}, "
+                           f"computed 0x{computed:04X}", offset)
+            following = offset + RECORD_SIZE
+            if following + RECORD_SIZE <= whole and view[following] != END:
+                raise _Err("only End may follow the Checksum record", following)
+            checksum = value
+        else:
+            unknown += 1
+    if size % RECORD_SIZE:
+        raise _Err(f"truncated record: {size % RECORD_SIZE} byte(s) left and no End", whole)
+    raise _Err("missing End record (code 15)", whole)
+
+
+def loads(data: bytes | bytearray | memoryview) -> ConfigCollection:
+    """Decode a stored-configuration byte string; ConfigFormatError says where and why."""
+    return decode(data).collection
+
+
+def load(fileobj: BinaryIO) -> ConfigCollection:
+    """Decode from a binary file object, reading at most ``MAX_INPUT_BYTES`` + 1 bytes."""
+    return loads(fileobj.read(MAX_INPUT_BYTES + 1))
+
+
+def load_path(path: str | Path) -> ConfigCollection:
+    """Decode a ``.pdcfg`` file."""
+    with open(path, "rb") as handle:
+        return load(handle)
+
+
+# -- writing ----------------------------------------------------------------------------
+def _indices(given: list[int]) -> list[int]:
+    """Keep indices that are a permutation of 1…n; otherwise number 1…n in list order."""
+    n = len(given)
+    if sorted(given) == list(range(1, n + 1)):
+        return given
+    return list(range(1, n + 1))
+
+
+def _check_channel(ch: StoredChannel, path: str) -> None:
+    """Name the first bad field of a channel the writer cannot encode."""
+    for name in ("index", "vid", "pid", "serial", "type", "profile", "owner_type",
+                 "owner_profile"):
+        value, lo, hi = getattr(ch, name), int(name == "index"), 255 if name == "index" else 0xFFFF
+        if value is None and name.startswith("owner_"):
+            continue
+        if isinstance(value, bool) or not isinstance(value, int) or not lo <= value <= hi:
+            raise ConfigFormatError(f"{path}.{name}: {value!r} is out of range {lo}…{hi}")
+
+
+def _put_channel(out: bytearray, code: int, ch: StoredChannel, path: str) -> None:
+    owner_type, owner_profile = ch.owner_type, ch.owner_profile
+    if not 1 <= ch.index <= 255 or owner_type is not None or owner_profile is not None:
+        _check_channel(ch, path)  # slow path: full validation
+    try:
+        out += _CHANNEL.pack(
+            code, 0, CHANNEL_TYPE, ch.type, CHANNEL_PROFILE, ch.profile, CHANNEL_INDEX,
+            ch.index, OWNER_VID, ch.vid, OWNER_PID, ch.pid, OWNER_SERIAL, ch.serial,
+        )
+    except (struct.error, TypeError):
+        _check_channel(ch, path)
+        raise
+    if owner_type is not None:
+        out += _RECORD.pack(OWNER_TYPE, owner_type)
+    if owner_profile is not None:
+        out += _RECORD.pack(OWNER_PROFILE, owner_profile)
+
+
+def dumps(collection: ConfigCollection) -> bytes:
+    """Encode in figure 4.10 order, then the checksum, then End (see module decisions)."""
+    configs = collection.configurations
+    if len(configs) > MAX_CONFIGURATIONS:
+        raise ConfigFormatError(f"configurations: more than {MAX_CONFIGURATIONS} (the limit)")
+    total = sum(len(cfg.links) for cfg in configs)
+    if total > MAX_LINKS:
+        raise ConfigFormatError(f"configurations: {total} links exceed the limit of {MAX_LINKS}")
+    out = bytearray(_RECORD.pack(COUNT_CONFIGURATIONS, len(configs)))
+    config_indices = _indices([cfg.index for cfg in configs])
+    for cpos, (cfg, cidx) in enumerate(zip(configs, config_indices, strict=True)):
+        out += _TWO_RECORDS.pack(CONFIGURATION, cidx, COUNT_LINKS, len(cfg.links))
+        link_indices = _indices([link.index for link in cfg.links])
+        for lpos, (link, lidx) in enumerate(zip(cfg.links, link_indices, strict=True)):
+            out += _RECORD.pack(LINK, lidx)
+            path = f"configurations[{cpos}].links[{lpos}]"
+            _put_channel(out, INPUT_CHANNEL, link.input, f"{path}.input")
+            _put_channel(out, OUTPUT_CHANNEL, link.output, f"{path}.output")
+    out += _RECORD.pack(CHECKSUM, binascii.crc_hqx(out, CRC_INIT))
+    out += _RECORD.pack(END, 0)
+    return bytes(out)
+
+
+def dump(collection: ConfigCollection, fileobj: BinaryIO) -> None:
+    """Encode into a binary file object."""
+    fileobj.write(dumps(collection))
+
+
+def save_path(collection: ConfigCollection, path: str | Path) -> None:
+    """Encode into ``path`` atomically (the old file survives a failed save)."""
+    from pdcp_studio.storage.atomic import atomic_write_bytes
+
+    atomic_write_bytes(path, dumps(collection))
+
+
+# -- JSON (contracts §2, ``config decode --json``) -------------------------------------
+def channel_to_json(ch: StoredChannel) -> dict[str, Any]:
+    """Type and profile as ``"0x%04X"``, the rest as integers; absent owner fields omitted."""
+    doc: dict[str, Any] = {
+        "type": f"0x{ch.type:04X}", "profile": f"0x{ch.profile:04X}", "index": ch.index,
+        "vid": ch.vid, "pid": ch.pid, "serial": ch.serial}
+    if ch.owner_type is not None:
+        doc["owner_type"] = ch.owner_type
+    if ch.owner_profile is not None:
+        doc["owner_profile"] = ch.owner_profile
+    return doc
+
+
+def to_json(collection: ConfigCollection) -> dict[str, Any]:
+    """The contract JSON of ``config decode --json`` (indices as stored)."""
+    return {"configurations": [
+        {"index": cfg.index, "links": [
+            {"index": link.index, "input": channel_to_json(link.input),
+             "output": channel_to_json(link.output)} for link in cfg.links]}
+        for cfg in collection.configurations]}
+
+
+def _json_int(doc: dict, key: str, path: str, hi: int = 0xFFFF, lo: int = 0,
+              default: int | None = None, required: bool = True) -> Any:
+    """An integer or number string (``"0x…"``) within lo…hi; ``default`` when absent."""
+    value, where = doc.get(key), f"{path}.{key}"
+    if value is None:
+        if default is None and required:
+            raise _Err(f"{where}: missing")
+        return default
+    if isinstance(value, str):
+        try:
+            value = int(value.strip(), 0)
+        except ValueError:
+            raise _Err(f"{where}: {value!r} is not a number") from None
+    if isinstance(value, bool) or not isinstance(value, int):
+        raise _Err(f"{where}: expected an integer, got {value!r}")
+    if not lo <= value <= hi:
+        raise _Err(f"{where}: {value} is out of range {lo}…{hi}")
+    return value
+
+
+def _json_list(doc: Any, key: str, path: str) -> list:
+    if not isinstance(doc, dict):
+        raise _Err(f"{path or 'document'}: expected an object")
+    if not isinstance(doc.get(key), list):
+        raise _Err(f"{path + '.' if path else ''}{key}: expected a list")
+    return doc[key]
+
+
+def channel_from_json(doc: Any, path: str) -> StoredChannel:
+    """One channel object; type and profile default to 0, as when their records are absent."""
+    if not isinstance(doc, dict):
+        raise _Err(f"{path}: expected an object")
+    return StoredChannel(
+        index=_json_int(doc, "index", path, 255, 1), vid=_json_int(doc, "vid", path),
+        pid=_json_int(doc, "pid", path), serial=_json_int(doc, "serial", path),
+        type=_json_int(doc, "type", path, default=0),
+        profile=_json_int(doc, "profile", path, default=0),
+        owner_type=_json_int(doc, "owner_type", path, required=False),
+        owner_profile=_json_int(doc, "owner_profile", path, required=False))
+
+
+def from_json(doc: Any) -> ConfigCollection:
+    """Parse the contract JSON; ConfigFormatError (offset -1) names the JSON path.
+
+    Indices may be omitted (they then follow list order); extra keys are ignored.
+    """
+    configs = []
+    for cpos, cdoc in enumerate(_json_list(doc, "configurations", "")):
+        cpath = f"configurations[{cpos}]"
+        links = []
+        for lpos, ldoc in enumerate(_json_list(cdoc, "links", cpath)):
+            lpath = f"{cpath}.links[{lpos}]"
+            if not isinstance(ldoc, dict):
+                raise _Err(f"{lpath}: expected an object")
+            links.append(StoredLink(
+                input=channel_from_json(ldoc.get("input"), f"{lpath}.input"),
+                output=channel_from_json(ldoc.get("output"), f"{lpath}.output"),
+                index=_json_int(ldoc, "index", lpath, lo=1, default=lpos + 1)))
+        index = _json_int(cdoc, "index", cpath, lo=1, default=cpos + 1)
+        configs.append(StoredConfiguration(index=index, links=links))
+    return ConfigCollection(configurations=configs)
