@@ -25,6 +25,7 @@ COMMAND_MODULES = (
     "config_cmd",
     "listing",
     "plan",
+    "apply",
     "check",
     "scan",
     "sim",
