@@ -19,22 +19,13 @@ from dataclasses import dataclass
 from enum import IntEnum
 
 from pdcp_studio.errors import FrameError
+from pdcp_studio.protocol.crc import crc16_ccitt_false
 
 SYNC = 0xA5
 MAX_PAYLOAD = 60_000
 # header after SYNC: message id, payload length
 _HEADER = struct.Struct("<BH")
 _CRC = struct.Struct("<H")
-
-
-def crc16_ccitt_false(data: bytes, crc: int = 0xFFFF) -> int:
-    """CRC-16/CCITT-FALSE (poly 0x1021, init 0xFFFF), as the stored configuration uses."""
-    for byte in data:
-        crc ^= byte << 8
-        for _ in range(8):
-            crc = ((crc << 1) ^ 0x1021) if crc & 0x8000 else crc << 1
-            crc &= 0xFFFF
-    return crc
 
 
 class HostCommand(IntEnum):

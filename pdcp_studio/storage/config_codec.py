@@ -35,7 +35,6 @@ Decisions (reference §3 plus the ones it leaves open):
 
 from __future__ import annotations
 
-import binascii
 import struct
 from dataclasses import dataclass
 from pathlib import Path
@@ -48,6 +47,7 @@ from pdcp_studio.model.configuration import (
     StoredConfiguration,
     StoredLink,
 )
+from pdcp_studio.protocol.crc import crc16_ccitt_false
 
 # Codes of table 4.1, plus the checksum extension (16).
 COUNT_CONFIGURATIONS, CONFIGURATION, COUNT_LINKS, LINK = 1, 2, 3, 4
@@ -67,7 +67,6 @@ RECORD_SIZE = 3
 MAX_INPUT_BYTES = 1 << 20
 MAX_CONFIGURATIONS = 255
 MAX_LINKS = 16384
-CRC_INIT = 0xFFFF
 
 # One record: code (u8), value (u16 little-endian).
 _RECORD = struct.Struct("<BH")
@@ -79,11 +78,6 @@ _CHANNEL = struct.Struct("<" + "BH" * 7)
 
 _REQUIRED = (CHANNEL_INDEX, OWNER_VID, OWNER_PID, OWNER_SERIAL)
 _Err = ConfigFormatError  # short alias: messages stay on one line
-
-
-def crc16_ccitt_false(data: bytes, crc: int = CRC_INIT) -> int:
-    """CRC-16/CCITT-FALSE (poly 0x1021, init 0xFFFF, no reflection): the checksum record."""
-    return binascii.crc_hqx(data, crc)
 
 
 @dataclass(frozen=True)
@@ -252,7 +246,7 @@ def decode(data: bytes | bytearray | memoryview) -> Decoded:
         elif code == END:
             return Decoded(reader.end(offset), checksum, offset, size, unknown)
         elif code == CHECKSUM:
-            computed = binascii.crc_hqx(view[:offset], CRC_INIT)
+            computed = crc16_ccitt_false(view[:offset])
             if value != computed:
                 raise _Err(f"checksum mismatch: stored 0x{value:04X}, "
                            f"computed 0x{computed:04X}", offset)
@@ -339,7 +333,7 @@ def dumps(collection: ConfigCollection) -> bytes:
             path = f"configurations[{cpos}].links[{lpos}]"
             _put_channel(out, INPUT_CHANNEL, link.input, f"{path}.input")
             _put_channel(out, OUTPUT_CHANNEL, link.output, f"{path}.output")
-    out += _RECORD.pack(CHECKSUM, binascii.crc_hqx(out, CRC_INIT))
+    out += _RECORD.pack(CHECKSUM, crc16_ccitt_false(out))
     out += _RECORD.pack(END, 0)
     return bytes(out)
 
