@@ -3,19 +3,31 @@
 Because one more equal profile component (8) outweighs any type match (at most 7), the most
 similar candidate is always among those sharing the *longest* prefix with the query. So the
 search looks at the bucket of the query's full prefix first and walks up one level only when
-that bucket holds no free candidate. Buckets are pre-sorted by the tie-break order (lower
-profile, then lower VID, PID, serial, index), so the first best score found wins ties.
+that bucket holds no usable candidate.
+
+Inside a bucket, candidates are grouped by the type fields that score (control mode, data
+type, byte size), each group sorted by the tie-break order (lower profile, then lower VID,
+PID, serial, index). The best candidate of a bucket is then the best of the groups' first
+usable members, which costs a handful of comparisons instead of a walk over the bucket.
+
+Outputs that already feed a sole-access input are not free for another one. The index keeps
+a second set of groups holding only the outputs still free for sole access; the profile
+layer moves an output out of it (``take``) and back (``release``) as links come and go, so
+a crowded prosthesis — most outputs taken — is searched as fast as an empty one.
 """
 
 from __future__ import annotations
 
-from collections.abc import Callable, Iterable
+from bisect import bisect_left, insort
+from collections.abc import Callable, Iterable, Iterator
 from typing import NamedTuple
 
-from pdcp_studio.engine.similarity import MAX_TYPE_SCORE, Similarity, type_score
+from pdcp_studio.engine.similarity import Similarity, type_score
+from pdcp_studio.model.channel_type import BYTE_SIZE_MASK, CONTROL_MODE_MASK, DATA_TYPE_MASK
 from pdcp_studio.model.refs import ChannelRef, DeviceKey
 
 _SHIFTS = (12, 8, 4, 0)
+_SCORED = CONTROL_MODE_MASK | DATA_TYPE_MASK | BYTE_SIZE_MASK
 
 
 class Candidate(NamedTuple):
@@ -24,6 +36,11 @@ class Candidate(NamedTuple):
     ref: ChannelRef
     type: int
     profile: int
+
+
+# A group member: (profile, ref, candidate) sorts in the tie-break order.
+_Entry = tuple[int, ChannelRef, Candidate]
+_Groups = dict[int, list[_Entry]]  # scored type bits → members, sorted
 
 
 def _prefix_depth(profile: int) -> int:
@@ -40,17 +57,47 @@ def _key(depth: int, profile: int) -> tuple[int, int]:
     return depth, profile >> (16 - 4 * depth)
 
 
+def _keys(profile: int) -> Iterator[tuple[int, int]]:
+    for depth in range(1, _prefix_depth(profile) + 1):
+        yield _key(depth, profile)
+
+
 class CandidateIndex:
     """Present channels of one direction, bucketed by every prefix of their profile."""
 
     def __init__(self, candidates: Iterable[Candidate]) -> None:
-        self._buckets: dict[tuple[int, int], list[Candidate]] = {}
+        self._all: dict[tuple[int, int], _Groups] = {}
+        self._sole_free: dict[tuple[int, int], _Groups] = {}
         for c in candidates:
-            for depth in range(1, _prefix_depth(c.profile) + 1):
-                self._buckets.setdefault(_key(depth, c.profile), []).append(c)
-        for bucket in self._buckets.values():
-            bucket.sort(key=lambda c: (c.profile, c.ref))
+            entry = (c.profile, c.ref, c)
+            for key in _keys(c.profile):
+                for table in (self._all, self._sole_free):
+                    table.setdefault(key, {}).setdefault(c.type & _SCORED, []).append(entry)
+        for table in (self._all, self._sole_free):
+            for groups in table.values():
+                for members in groups.values():
+                    members.sort(key=lambda e: (e[0], e[1]))
 
+    # -- sole-access bookkeeping ------------------------------------------------------
+    def take(self, c: Candidate) -> None:
+        """``c`` now feeds a sole-access input: not free for another one."""
+        entry = (c.profile, c.ref, c)
+        for key in _keys(c.profile):
+            members = self._sole_free[key][c.type & _SCORED]
+            i = bisect_left(members, entry[:2], key=lambda e: (e[0], e[1]))
+            if i < len(members) and members[i][1] == c.ref:
+                del members[i]
+
+    def release(self, c: Candidate) -> None:
+        """``c`` feeds no sole-access input any more: free again."""
+        entry = (c.profile, c.ref, c)
+        for key in _keys(c.profile):
+            members = self._sole_free[key][c.type & _SCORED]
+            i = bisect_left(members, entry[:2], key=lambda e: (e[0], e[1]))
+            if i == len(members) or members[i][1] != c.ref:
+                insort(members, entry, key=lambda e: (e[0], e[1]))
+
+    # -- listing 4.8 ----------------------------------------------------------------------
     def best(
         self,
         q_type: int,
@@ -58,49 +105,43 @@ class CandidateIndex:
         *,
         exclude: DeviceKey | None = None,
         free: Callable[[ChannelRef], bool] | None = None,
+        sole_free: bool = False,
     ) -> tuple[Candidate, Similarity] | None:
-        """The most similar free candidate sharing at least the root component, or None.
+        """The most similar usable candidate sharing at least the root component, or None.
 
         ``exclude`` is a device whose channels are not candidates (no same-device links);
-        ``free`` says whether a candidate may still be connected.
+        ``free`` says whether a candidate may still be connected; ``sole_free`` searches
+        only the candidates not ``take``-n (outputs still free for a sole-access input).
         """
-        q_depth = _prefix_depth(q_profile)
-        for depth in range(q_depth, 0, -1):
-            bucket = self._buckets.get(_key(depth, q_profile))
-            if not bucket:
+        table = self._sole_free if sole_free else self._all
+        for depth in range(_prefix_depth(q_profile), 0, -1):
+            groups = table.get(_key(depth, q_profile))
+            if not groups:
                 continue
-            # Candidates that also match the next component were seen one level deeper
-            # and found unusable; a query that ends here has no next component to match.
-            shift = 12 - 4 * depth
-            next_q = (q_profile >> shift) & 0xF if depth < q_depth else -1
-            best: Candidate | None = None
-            best_score = -1
-            for c in bucket:
-                if next_q >= 0 and (c.profile >> shift) & 0xF == next_q:
-                    continue
-                if exclude is not None and c.ref[:3] == exclude:
-                    continue
-                if free is not None and not free(c.ref):
-                    continue
-                score = type_score(q_type, c.type)
-                if score > best_score:
-                    best, best_score = c, score
-                    if score == MAX_TYPE_SCORE:
-                        break
+            best: tuple[int, int, ChannelRef, Candidate] | None = None
+            for bits, members in groups.items():
+                score = type_score(q_type, bits)
+                for profile, ref, c in members:
+                    if exclude is not None and ref[:3] == exclude:
+                        continue
+                    if free is not None and not free(ref):
+                        continue
+                    if best is None or (-score, profile, ref) < (-best[0], best[1], best[2]):
+                        best = (score, profile, ref, c)
+                    break  # later members of this group only lose the tie-break
             if best is not None:
-                diff = q_type ^ best.type
-                sim = Similarity(
-                    depth * 8 + best_score,
-                    depth,
-                    not diff & 0x0C00,
-                    not diff & 0x3000,
-                    not diff & 0xC000,
-                )
-                return best, sim
+                score, _, _, c = best
+                diff = q_type ^ c.type
+                return c, Similarity(depth * 8 + score, depth, not diff & CONTROL_MODE_MASK,
+                                     not diff & DATA_TYPE_MASK, not diff & BYTE_SIZE_MASK)
         return None
 
-    def sharing_root(self, q_profile: int) -> list[Candidate]:
-        """Every candidate with the query's root component (for explanations)."""
+    def sharing_root(self, q_profile: int) -> Iterator[Candidate]:
+        """Every candidate with the query's root component (for explanations), lazily and
+        in a fixed order (by scored type bits, then profile, then reference)."""
         if _prefix_depth(q_profile) == 0:
-            return []
-        return list(self._buckets.get(_key(1, q_profile), ()))
+            return
+        groups = self._all.get(_key(1, q_profile), {})
+        for bits in sorted(groups):
+            for entry in groups[bits]:
+                yield entry[2]

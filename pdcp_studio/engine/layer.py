@@ -59,8 +59,10 @@ class ProfileLayer:
                 if device.present:
                     self.present.add(ref)
                     (outs if ch.is_output else ins).append(Candidate(ref, ch.type, ch.profile))
+        self.output_candidates = {c.ref: c for c in outs}
         self.outputs = CandidateIndex(outs)
-        self.inputs = CandidateIndex(ins)
+        self._input_candidates = ins
+        self._inputs: CandidateIndex | None = None  # built on first use (replacements only)
         self.links: set[Link] = set()
         self.by_input: dict[ChannelRef, set[Link]] = {}
         self.by_output: dict[ChannelRef, set[Link]] = {}
@@ -69,6 +71,13 @@ class ProfileLayer:
             self._add(link)
         self._journal: list[tuple[Op, Link, int]] = []  # (op done, link, index in actions)
         self.plan = Plan(mode=mode, links_before=system.links)
+
+    @property
+    def inputs(self) -> CandidateIndex:
+        """Present input channels as candidates (for replacing a missing input)."""
+        if self._inputs is None:
+            self._inputs = CandidateIndex(self._input_candidates)
+        return self._inputs
 
     # -- facts -----------------------------------------------------------------------
     def channel(self, ref: ChannelRef) -> Channel | None:
@@ -115,7 +124,9 @@ class ProfileLayer:
         self.by_input.setdefault(link.input, set()).add(link)
         self.by_output.setdefault(link.output, set()).add(link)
         if self.live(link) and self.channels[link.input].sole_access:
-            self.sole_fed[link.output] = self.sole_fed.get(link.output, 0) + 1
+            n = self.sole_fed[link.output] = self.sole_fed.get(link.output, 0) + 1
+            if n == 1:
+                self.outputs.take(self.output_candidates[link.output])
 
     def _discard(self, link: Link) -> None:
         self.links.discard(link)
@@ -123,6 +134,8 @@ class ProfileLayer:
         self.by_output[link.output].discard(link)
         if self.live(link) and self.channels[link.input].sole_access:
             self.sole_fed[link.output] -= 1
+            if not self.sole_fed[link.output]:
+                self.outputs.release(self.output_candidates[link.output])
 
     # -- journalled changes -------------------------------------------------------------
     def add(self, link: Link, rule: Rule, reason: str, *, similarity: Similarity | None = None,
@@ -179,25 +192,38 @@ class ProfileLayer:
         an input candidate must have no source yet.
         """
         if direction is Direction.OUTPUT:
-            free = (lambda r: not self.sole_fed.get(r)) if sole_access else None
-            found = self.outputs.best(q_type, q_profile, exclude=exclude, free=free)
+            found = self.outputs.best(q_type, q_profile, exclude=exclude, sole_free=sole_access)
         else:
             found = self.inputs.best(q_type, q_profile, exclude=exclude,
                                      free=lambda r: not self.has_source(r))
         return (found[0].ref, found[1]) if found else None
 
     def why_no_output(self, input_ref: ChannelRef) -> str:
-        """Explain why ``find_output_for`` found nothing (for rejections and checks)."""
+        """Explain why ``find_output_for`` found nothing (for rejections and checks).
+
+        Stops as soon as it can say why: autoconfigure on a large, crowded system explains
+        hundreds of refusals, so this must not walk every output each time.
+        """
         ch = self.channels[input_ref]
         if ch.profile == 0:
             return "its profile is the null profile 0x0000"
-        root = [c for c in self.outputs.sharing_root(ch.profile)]
-        if not root:
+        own = input_ref.device
+        any_root = off_device = False
+        taken: list[ChannelRef] = []
+        for c in self.outputs.sharing_root(ch.profile):
+            any_root = True
+            if c.ref[:3] == own:
+                continue
+            off_device = True
+            for r in self.sole_inputs_fed_by(c.ref):
+                if r not in taken:
+                    taken.append(r)
+            if len(taken) > 3:
+                break
+        if not any_root:
             return f"no present output shares its root component 0x{ch.profile >> 12:X}"
-        others = [c for c in root if c.ref.device != input_ref.device]
-        if not others:
+        if not off_device:
             return "the only outputs sharing its root component are on its own device"
-        taken = sorted({i for c in others for i in self.sole_inputs_fed_by(c.ref)})
         shown = ", ".join(str(r) for r in taken[:3]) + (" …" if len(taken) > 3 else "")
         return (f"every output sharing its root component already feeds a sole-access input"
                 f" ({shown})")

@@ -7,7 +7,7 @@ from pdcp_studio.engine.layer import ProfileLayer
 from pdcp_studio.engine.plan import Plan, Rule
 from pdcp_studio.errors import EngineError
 from pdcp_studio.model.configuration import ConfigCollection, StoredConfiguration
-from pdcp_studio.model.refs import ChannelRef
+from pdcp_studio.model.refs import ChannelRef, Direction
 from pdcp_studio.model.system import System
 
 AnyConfig = ConfigCollection | StoredConfiguration | None
@@ -53,7 +53,10 @@ def plan_replacements(system: System, configuration: AnyConfig) -> Plan:
         plan.configuration_reason = "no configuration given: the system's current links"
     else:
         cfg = _configured(layer, configuration, source="given")
-    proc.implement_configuration(layer, cfg, Rule.STORED)
+    whole = [sl for sl in cfg.links
+             if layer.is_present(sl.output.ref, Direction.OUTPUT)
+             and layer.is_present(sl.input.ref, Direction.INPUT)]
+    proc.implement_configuration(layer, StoredConfiguration(cfg.index, whole), Rule.STORED)
     proc.find_replacements(layer, cfg)
     return layer.finish()
 

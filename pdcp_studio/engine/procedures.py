@@ -178,8 +178,8 @@ def find_replacements(layer: ProfileLayer, cfg: StoredConfiguration) -> None:
             continue
         new_ref, sim = found
         link = Link(new_ref, sl.input.ref) if not out_ok else Link(sl.output.ref, new_ref)
-        reason = (f"replaces missing {kind} {missing.ref} ({fmt(missing.profile)}): most "
-                  f"similar present {kind} ({sim.describe()})")
+        reason = (f"replaces missing {kind} {missing.ref} ({fmt(missing.profile)}): the most "
+                  f"similar free present {kind} (similarity {sim.total} to the missing one)")
         repaired.append((link, original, missing.ref, reason))
     # Decision: highest input–output similarity first; ties by output, then input.
     repaired.sort(key=lambda r: (-layer.similarity(r[0]).total, r[0].output, r[0].input))

@@ -9,6 +9,7 @@ breaks ties between equally deep profile matches. Keeping the breakdown lets a p
 from __future__ import annotations
 
 from dataclasses import dataclass
+from typing import Protocol
 
 from pdcp_studio.model.channel_type import (
     BYTE_SIZE_MASK,
@@ -90,12 +91,41 @@ def type_score(a_type: int, b_type: int) -> int:
     )
 
 
-def determine_similarity(a_type: int, a_profile: int, b_type: int, b_profile: int) -> Similarity:
+class Typed(Protocol):
+    """Anything with a channel type and profile: a Channel, a StoredChannel, a Candidate."""
+
+    type: int
+    profile: int
+
+
+def _type_profile(x: int | Typed | tuple[int, int], name: str) -> tuple[int, int]:
+    if isinstance(x, tuple) and len(x) == 2:
+        return int(x[0]), int(x[1])
+    if hasattr(x, "type") and hasattr(x, "profile"):
+        return int(x.type), int(x.profile)  # type: ignore[union-attr]
+    raise TypeError(f"determine_similarity: {name} must be a channel or a (type, profile) pair")
+
+
+def determine_similarity(a: int | Typed | tuple[int, int], b: int | Typed | tuple[int, int],
+                         b_type: int | None = None, b_profile: int | None = None) -> Similarity:
     """Listing 4.9: 8 per equal leading non-zero component, then 4/2/1 for the type fields.
+
+    Takes two channels as the listing does (anything with ``type`` and ``profile``, or
+    ``(type, profile)`` pairs), or four numbers ``(a_type, a_profile, b_type, b_profile)``.
 
     >>> determine_similarity(0x5000, 0x1110, 0x5000, 0x1100).total
     23
+    >>> determine_similarity((0x5000, 0x1110), (0x5000, 0x1100)).total
+    23
     """
+    if b_type is None and b_profile is None:
+        (a_type, a_profile), (b_type, b_profile) = (_type_profile(a, "a"),
+                                                    _type_profile(b, "b"))
+    elif isinstance(a, int) and isinstance(b, int) and b_type is not None \
+            and b_profile is not None:
+        a_type, a_profile = a, b
+    else:
+        raise TypeError("determine_similarity takes two channels or four numbers")
     depth = profile_match_depth(a_profile, b_profile)
     diff = a_type ^ b_type
     cm = not diff & CONTROL_MODE_MASK
