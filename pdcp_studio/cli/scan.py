@@ -1,0 +1,114 @@
+"""``pdcp-studio scan --bus URL [--json]``: everything on a live bus, as a system.
+
+On a ``can:`` bus PDCP Studio is the arbitrator: it binds the devices it hears, runs start-up
+with its own memory (``--memory FILE``, else an empty one), then scans (contracts §2). On a
+``sim:`` bus the built-in prosthesis starts up first. ``--json`` prints a ``pdcp-system/1``
+document with ``node_id`` on devices and output channels; otherwise a short listing.
+Progress goes to stderr when it is a terminal.
+"""
+
+from __future__ import annotations
+
+import argparse
+import sys
+from typing import Any
+
+#: Seconds a can: bus gets to bind its devices and run start-up before the scan.
+DEFAULT_SETTLE_S = 3.0
+
+
+def add_subparser(subparsers: argparse._SubParsersAction) -> None:
+    p = subparsers.add_parser("scan", help="read the whole bus: devices, channels, links",
+                              description="Read every device's parameters and the links.")
+    p.add_argument("--bus", required=True, metavar="URL",
+                   help="sim:NAME, can:INTERFACE:CHANNEL[@BITRATE] or serial:PORT[@BAUD]")
+    p.add_argument("--json", action="store_true", help="print a pdcp-system/1 document")
+    p.add_argument("--memory", metavar="FILE",
+                   help="the arbitrator's stored-configuration file (can: and sim: buses)")
+    p.add_argument("--window", type=int, default=8, metavar="N",
+                   help="devices read at the same time (default 8)")
+    p.add_argument("--settle", type=float, default=DEFAULT_SETTLE_S, metavar="SECONDS",
+                   help="time a can: bus gets to bind and start up (default 3)")
+    p.set_defaults(func=run)
+
+
+def open_bus_session(url: str, *, memory: str | None = None, settle: float | None = None,
+                     **options: Any) -> Any:
+    """``open_session`` with user errors (bad URL, unknown prosthesis) as BadInput."""
+    from pdcp_studio.bus.session import open_session
+    from pdcp_studio.bus.simulator import UnknownProsthesisError
+    from pdcp_studio.bus.urls import BusUrlError, parse_bus_url
+    from pdcp_studio.cli.main import BadInput
+
+    try:
+        spec = parse_bus_url(url)
+    except BusUrlError as err:
+        raise BadInput(f"--bus: {err}") from err
+    if memory is not None:
+        if spec.kind == "serial":
+            raise BadInput(f"--memory: the arbitrator behind {url} keeps its own memory")
+        options["memory"] = memory
+    if settle is not None and spec.kind == "can":
+        options["settle_timeout"] = settle
+    if spec.kind != "serial":
+        options.setdefault("frame_events", False)  # nobody here shows frames: skip decoding
+    try:
+        return open_session(url, **options)
+    except UnknownProsthesisError as err:
+        raise BadInput(f"--bus {url}: {err}") from err
+
+
+def stderr_progress(enabled: bool) -> Any:
+    """A progress callback writing one updating line to stderr, or None."""
+    if not enabled:
+        return None
+
+    def report(done: int, total: int, text: str) -> None:
+        end = "\n" if done >= total else ""
+        print(f"\r\033[K{done}/{total} {text}"[:200], end=end, file=sys.stderr, flush=True)
+
+    return report
+
+
+def sorted_system(system: Any) -> Any:
+    """The same system with its devices in key order (a bus reports them as they joined)."""
+    from pdcp_studio.model.system import System
+
+    return System(sorted(system.devices.values(), key=lambda d: d.key), system.links)
+
+
+def format_system(system: Any) -> str:
+    """A short listing of a scanned system, with node IDs and links."""
+    system = sorted_system(system)
+    lines = [f"{len(system.devices)} device(s), {len(system.links)} link(s)"]
+    for dev in system.devices.values():
+        state = "" if dev.present else "  [missing]"
+        node = f"node {dev.node_id}" if dev.node_id else "no node ID"
+        lines.append(f"{dev.key}  {node}  {dev.label}{state}")
+        for ch in sorted(dev.channels.values(), key=lambda c: c.index):
+            extra = f"  node {ch.node_id}" if ch.is_output and ch.node_id else ""
+            desc = f"  “{ch.descriptor}”" if ch.descriptor else ""
+            lines.append(f"  #{ch.index} {ch.direction.value:<6} type 0x{ch.type:04X} "
+                         f"profile 0x{ch.profile:04X}{extra}{desc}")
+    for link in system.links:
+        lines.append(f"link {link}")
+    return "\n".join(lines)
+
+
+def run(args: argparse.Namespace) -> int:
+    from pdcp_studio.cli.main import BadInput
+    from pdcp_studio.storage import system_file
+
+    if args.window < 1:
+        raise BadInput(f"--window {args.window}: must be at least 1")
+    session = open_bus_session(args.bus, memory=args.memory, settle=args.settle,
+                               scan_window=args.window)
+    try:
+        system = session.scan(stderr_progress(sys.stderr.isatty()))
+    finally:
+        session.close()
+    if args.json:
+        sys.stdout.write(system_file.dumps(system, node_ids=True))
+    else:
+        print(format_system(system))
+    return 0

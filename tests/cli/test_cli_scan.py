@@ -1,0 +1,135 @@
+"""``pdcp-studio scan --bus URL [--json]`` (contracts §2)."""
+
+from __future__ import annotations
+
+import json
+
+import pytest
+
+from pdcp_studio.bus.connection import open_connections
+from pdcp_studio.bus.device_host import DeviceHost
+from pdcp_studio.bus.device_sim import SimulatedDevice
+from pdcp_studio.bus.simulator import load_prosthesis
+from pdcp_studio.bus.urls import open_can_bus, unique_virtual_channel
+from pdcp_studio.cli.main import main
+from pdcp_studio.storage import system_file
+
+TEST2_LINKS = [
+    {"output": {"vid": 2, "pid": 2, "serial": 4, "index": 1},
+     "input": {"vid": 2, "pid": 2, "serial": 5, "index": 2}},
+    {"output": {"vid": 2, "pid": 2, "serial": 5, "index": 3},
+     "input": {"vid": 2, "pid": 2, "serial": 6, "index": 1}},
+    {"output": {"vid": 2, "pid": 2, "serial": 5, "index": 5},
+     "input": {"vid": 2, "pid": 2, "serial": 6, "index": 2}},
+]
+
+
+@pytest.fixture(autouse=True)
+def _no_bus_left_open():
+    yield
+    assert not open_connections(), "a test left a bus open"
+
+
+def _check_contract(doc: dict) -> None:
+    assert doc["format"] == "pdcp-system/1"
+    assert doc["links"] == TEST2_LINKS
+    for dev in doc["devices"]:
+        assert isinstance(dev["node_id"], int) and 1 <= dev["node_id"] <= 254
+        for ch in dev["channels"]:
+            assert ("node_id" in ch) == (ch["direction"] == "output")
+            assert ch["type"].startswith("0x") and len(ch["type"]) == 6
+    system_file.from_json(doc)  # a loader accepts what scan prints
+
+
+def test_scan_sim_json(capsys):
+    assert main(["scan", "--bus", "sim:thesis-test2", "--json"]) == 0
+    out, _ = capsys.readouterr()
+    doc = json.loads(out)
+    _check_contract(doc)
+    cu = next(d for d in doc["devices"] if d["serial"] == 5)
+    assert cu["descriptor"] == "Control unit board"
+    out3 = next(c for c in cu["channels"] if c["index"] == 3)
+    assert out3["profile"] == "0x1100" and out3["required_inputs"] == [2]
+
+
+def test_scan_can_bus_binds_starts_up_and_scans(capsys, tmp_path):
+    channel = unique_virtual_channel("pdcp-test-cli-scan")
+    system = load_prosthesis("thesis-test2")
+    host = DeviceHost(open_can_bus("virtual", channel),
+                      [SimulatedDevice(d) for d in system.devices.values()], name="rig")
+    try:
+        code = main(["scan", "--bus", f"can:virtual:{channel}", "--json",
+                     "--memory", str(tmp_path / "arb.mem"), "--settle", "5"])
+    finally:
+        host.close()
+    assert code == 0
+    _check_contract(json.loads(capsys.readouterr().out))
+
+
+def test_scan_text_listing(capsys):
+    assert main(["scan", "--bus", "sim:thesis-test1"]) == 0
+    out = capsys.readouterr().out
+    assert out.startswith("2 device(s), 1 link(s)")
+    assert "link 2/2/4#1 → 2/2/5#1" in out
+
+
+@pytest.mark.parametrize("argv, says", [
+    (["scan", "--bus", "bogus"], "bus URL"),
+    (["scan", "--bus", "sim:nope"], "no built-in prosthesis"),
+    (["scan", "--bus", "sim:thesis-test2", "--window", "0"], "--window"),
+    (["scan", "--bus", "serial:/dev/null", "--memory", "x"], "--memory"),
+])
+def test_scan_bad_input_is_exit_2(capsys, argv, says):
+    assert main(argv) == 2
+    assert says in capsys.readouterr().err
+
+
+def test_scan_missing_adapter_is_exit_1(capsys):
+    assert main(["scan", "--bus", "can:no_such_interface:can0"]) == 1
+    assert "can:no_such_interface:can0" in capsys.readouterr().err
+
+
+def _multicast_fails(url: str) -> str | None:
+    """Why two buses on ``url`` do not hear each other (None when they do)."""
+    import time
+
+    import can
+
+    from pdcp_studio.bus.urls import open_spec, parse_bus_url
+
+    try:
+        a, b = open_spec(parse_bus_url(url)), open_spec(parse_bus_url(url))
+    except Exception as err:
+        return f"cannot open udp_multicast: {err}"
+    try:
+        a.send(can.Message(arbitration_id=0x7AB, data=b"ping", is_extended_id=False))
+        deadline = time.monotonic() + 1.0
+        while time.monotonic() < deadline:
+            msg = b.recv(0.2)
+            if msg is not None and msg.arbitration_id == 0x7AB:
+                return None
+        return "multicast frames do not arrive on loopback"
+    finally:
+        a.shutdown()
+        b.shutdown()
+
+
+def test_scan_of_devices_in_another_process_over_udp_multicast(capsys):
+    import os
+    import subprocess
+    import sys
+
+    url = f"can:udp_multicast:239.74.163.3?port={42000 + os.getpid() % 20000}"
+    why = _multicast_fails(url)
+    if why:
+        pytest.skip(why)
+    devices = subprocess.Popen(
+        [sys.executable, "-m", "pdcp_studio", "sim", "devices", "thesis-test2", "--bus", url,
+         "--seconds", "20"], stderr=subprocess.PIPE, text=True)
+    try:
+        assert "simulating 3 device(s)" in devices.stderr.readline()
+        assert main(["scan", "--bus", url, "--json", "--settle", "5"]) == 0
+    finally:
+        devices.terminate()
+        devices.wait(5)
+    _check_contract(json.loads(capsys.readouterr().out))
