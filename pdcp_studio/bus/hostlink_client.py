@@ -35,6 +35,8 @@ REPLY_TIMEOUT_S = 1.0
 READ_RETRIES = 2
 #: Seconds between two POLL_EVENTS requests.
 POLL_INTERVAL_S = 0.2
+#: How long the arbitrator's system must stay the same to count as settled.
+SETTLE_QUIET_S = 0.6
 _READ_ONLY = {HostCommand.PING, HostCommand.GET_SYSTEM, HostCommand.GET_PARAMETER,
               HostCommand.READ_CONFIGURATION, HostCommand.PREVIEW_PLAN}
 
@@ -202,6 +204,27 @@ class HostLinkSession:
         system = self._refresh() if self._stale or self._system is None else self._system
         return system.copy()
 
+    def wait_settled(self, timeout: float, quiet: float = SETTLE_QUIET_S) -> bool:
+        """Wait until the arbitrator's devices and links stop changing for ``quiet`` seconds.
+
+        The arbitrator binds and starts up on its own; from here the only sign that it is done
+        is a system that has devices and stays the same. False when ``timeout`` passes first.
+        """
+        deadline = time.monotonic() + timeout
+        last, since = None, time.monotonic()
+        while True:
+            system = self._refresh()
+            shape = (frozenset((k, d.present) for k, d in system.devices.items()),
+                     frozenset(system.links))
+            now = time.monotonic()
+            if shape != last:
+                last, since = shape, now
+            elif system.devices and now - since >= quiet:
+                return True
+            if now >= deadline:
+                return False
+            time.sleep(min(0.1, max(0.0, deadline - now)))
+
     def scan(self, progress: Callable[[int, int, str], None] | None = None,
              cancel: threading.Event | None = None) -> System:
         """The arbitrator already knows its bus: one GET_SYSTEM answers a scan."""
@@ -294,16 +317,33 @@ class HostLinkSession:
             self.port.close()
 
 
+#: Options of other session kinds (memory, scan window, …) that mean nothing over a host link.
+_SESSION_OPTIONS = ("reply_timeout", "poll_interval", "settle_timeout")
+
+
 def open_hostlink_session(spec: Any, **options: Any) -> HostLinkSession:
-    """Open ``spec`` (a parsed ``serial:`` BusSpec) and greet the arbitrator with PING."""
+    """Open ``spec`` (a parsed ``serial:`` BusSpec) and greet the arbitrator with PING.
+
+    Options meant for an in-process arbitrator (``memory``, ``scan_window``, …) are ignored:
+    the arbitrator at the other end of the line owns its memory and its bus.
+    """
     import serial
+
+    ignored = sorted(k for k in options if k not in _SESSION_OPTIONS)
+    if ignored:
+        log.debug("host link: ignoring options %s", ", ".join(ignored))
+    options = {k: v for k, v in options.items() if k in _SESSION_OPTIONS}
+    settle = options.pop("settle_timeout", None)
 
     try:
         port = serial.serial_for_url(spec.port, baudrate=spec.baud, timeout=0.05)
     except (serial.SerialException, ValueError) as err:
         raise TransportError(f"{spec.url}: cannot open serial port {spec.port!r}: {err}") from err
     try:
-        return HostLinkSession(port, url=spec.url, **options)
+        session = HostLinkSession(port, url=spec.url, **options)
     except BaseException:
         port.close()
         raise
+    if settle is not None:
+        session.wait_settled(settle)
+    return session

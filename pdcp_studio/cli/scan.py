@@ -48,7 +48,7 @@ def open_bus_session(url: str, *, memory: str | None = None, settle: float | Non
         if spec.kind == "serial":
             raise BadInput(f"--memory: the arbitrator behind {url} keeps its own memory")
         options["memory"] = memory
-    if settle is not None and spec.kind == "can":
+    if settle is not None and spec.kind in ("can", "serial"):
         options["settle_timeout"] = settle
     if spec.kind != "serial":
         options.setdefault("frame_events", False)  # nobody here shows frames: skip decoding
