@@ -2,9 +2,20 @@
 
 One tab per kind of bus — simulated prosthesis, CAN interface, serial host link — each a
 :class:`BusPage` that turns its fields into a URL and back. A new kind is one more
-``BusPage`` subclass in :data:`PAGE_TYPES`. The last choice is remembered in QSettings.
-Detection (python-can's ``detect_available_configs``, pyserial's port list) runs on a
-worker, never on the GUI thread; python-can and pyserial are imported only there.
+``BusPage`` subclass in :data:`PAGE_TYPES`. The last choice (and the last URL of each kind)
+is remembered in QSettings. Detection (python-can's ``detect_available_configs``, pyserial's
+port list) runs on a worker, never on the GUI thread; python-can and pyserial are imported
+only there. A URL is offered only once ``bus.urls.parse_bus_url`` accepts it.
+
+Public API
+    ``ConnectDialog(parent=None, settings=None, initial_url=None)`` — ``settings`` defaults
+    to ``QSettings()``. ``url() -> str | None`` (None while the fields are incomplete or
+    invalid), ``set_url(url)``, ``pages`` (kind → ``BusPage``), ``accept()`` stores the URL.
+    Signal: ``urlChanged(str)`` ("" when incomplete). ``ConnectDialog.get_url(parent,
+    settings=None) -> str | None`` runs it modally (not in tests).
+    Pages: ``SimPage`` (``list``), ``CanPage`` (``interface``, ``channel``, ``bitrate``,
+    ``detect() -> Worker``, ``detected`` signal), ``SerialPage`` (``port``, ``baud``,
+    ``detect()``).
 """
 
 from __future__ import annotations
@@ -33,7 +44,9 @@ from pdcp_studio.app.workers import Worker
 log = logging.getLogger(__name__)
 
 SETTINGS_KEY = "connect/last_url"
+KIND_KEY = "connect/last_{}"  # the last URL of each kind, so every tab reopens as left
 DEFAULT_SIM = "transradial"
+DEFAULT_BITRATE = 1_000_000
 CAN_BITRATES = (10_000, 20_000, 50_000, 100_000, 125_000, 250_000, 500_000, 800_000, 1_000_000)
 SERIAL_BAUDS = (9600, 57_600, 115_200, 128_000, 230_400, 460_800, 921_600)
 DEFAULT_BAUD = 128_000
@@ -50,6 +63,16 @@ def list_prostheses() -> list[str]:
 
         return sorted(p.stem for p in systems_dir().glob("*.json"))
     return list(registry())
+
+
+def prosthesis_description(name: str) -> str:
+    """The simulator's one-line description of a built-in prosthesis ('' if unknown)."""
+    try:
+        from pdcp_studio.bus.simulator import prosthesis
+
+        return str(prosthesis(name).description)
+    except Exception:  # an older simulator, or a name it does not know
+        return ""
 
 
 def can_interface_names() -> list[str]:
@@ -102,11 +125,19 @@ class SimPage(BusPage):
         super().__init__(parent)
         self.list = QListWidget()
         self.list.addItems(list_prostheses())
-        self.list.currentRowChanged.connect(lambda _r: self.changed.emit())
+        self.description = QLabel()
+        self.description.setWordWrap(True)
+        self.list.currentRowChanged.connect(self._selected)
         layout = QVBoxLayout(self)
         layout.addWidget(QLabel("A built-in prosthesis on an in-process virtual bus:"))
         layout.addWidget(self.list)
+        layout.addWidget(self.description)
         self.set_url(f"sim:{DEFAULT_SIM}")
+
+    def _selected(self, _row: int) -> None:
+        item = self.list.currentItem()
+        self.description.setText(prosthesis_description(item.text()) if item else "")
+        self.changed.emit()
 
     def url(self) -> str | None:
         item = self.list.currentItem()
@@ -147,9 +178,12 @@ class _DetectingPage(BusPage):
         self.status.setText("Detecting…")
         self._worker = worker = Worker(self._probe(), f"Detect {self.kind}")
         worker.finished.connect(self._show)
-        worker.failed.connect(lambda msg: self.status.setText(f"Detection failed: {msg}"))
+        worker.failed.connect(self._failed)  # bound slots: dropped if the page is gone
         worker.done.connect(self._detect_done)
         return worker.start()
+
+    def _failed(self, message: str) -> None:
+        self.status.setText(f"Detection failed: {message}")
 
     def _detect_done(self) -> None:
         self.detect_button.setEnabled(True)
@@ -176,10 +210,11 @@ class CanPage(_DetectingPage):
         self.bitrate.addItem("(interface default)", None)
         for rate in CAN_BITRATES:
             self.bitrate.addItem(f"{rate}", rate)
-        self.bitrate.setCurrentText("500000")
+        self.bitrate.setCurrentText(str(DEFAULT_BITRATE))  # PDCP runs at 1 Mbit/s
         for w in (self.interface, self.channel, self.bitrate):
             w.currentTextChanged.connect(lambda _t: self.changed.emit())
         self._configs: list[dict] = []
+        self.interface.currentTextChanged.connect(lambda _t: self._suggest_channels())
         form = QFormLayout(self)
         form.addRow("Interface", self.interface)
         form.addRow("Channel", self.channel)
@@ -191,14 +226,27 @@ class CanPage(_DetectingPage):
         return detect_can_configs
 
     def _show(self, configs: list[dict]) -> None:
-        self._configs = configs
-        self.status.setText(f"{len(configs)} configuration(s) found"
-                            if configs else "No CAN interface found")
-        if configs:
-            self.interface.setCurrentText(str(configs[0].get("interface", "")))
-            self.channel.clear()
-            self.channel.addItems(sorted({str(c.get("channel", "")) for c in configs
-                                          if c.get("interface") == configs[0].get("interface")}))
+        self._configs = [c for c in configs if c.get("interface") and c.get("channel")]
+        kinds = sorted({str(c["interface"]) for c in self._configs})
+        self.status.setText(f"Found: {', '.join(kinds)}" if kinds else "No CAN interface found")
+        if self._configs and self.interface.currentText() not in kinds:
+            self.interface.setCurrentText(kinds[0])
+        self._suggest_channels()
+
+    def _suggest_channels(self) -> None:
+        """Offer the detected channels of the chosen interface (the text stays editable)."""
+        interface = self.interface.currentText()
+        channels = sorted({str(c["channel"]) for c in self._configs
+                           if c["interface"] == interface})
+        if not channels:
+            return
+        current = self.channel.currentText()
+        self.channel.blockSignals(True)
+        self.channel.clear()
+        self.channel.addItems(channels)
+        self.channel.blockSignals(False)
+        self.channel.setCurrentText(current if current in channels else channels[0])
+        self.changed.emit()
 
     def url(self) -> str | None:
         interface = self.interface.currentText().strip()
@@ -284,6 +332,7 @@ class ConnectDialog(QDialog):
                  initial_url: str | None = None) -> None:
         super().__init__(parent)
         self.setWindowTitle("Connect to a bus")
+        self.setMinimumWidth(520)
         self._settings = settings if settings is not None else QSettings()
         self.tabs = QTabWidget()
         self.pages: dict[str, BusPage] = {}
@@ -304,12 +353,29 @@ class ConnectDialog(QDialog):
         layout.addWidget(self.tabs)
         layout.addWidget(self.url_label)
         layout.addWidget(self.buttons)
+        for kind, page in self.pages.items():
+            remembered = str(self._settings.value(KIND_KEY.format(kind), "") or "")
+            if remembered.startswith(f"{kind}:"):
+                page.set_url(remembered)
         last = initial_url or str(self._settings.value(SETTINGS_KEY, "") or "")
         self.set_url(last or f"sim:{DEFAULT_SIM}")
 
     def url(self) -> str | None:
+        """The chosen URL, or None while it is incomplete or does not parse."""
+        return self._checked()[0]
+
+    def _checked(self) -> tuple[str | None, str]:
         page = self.tabs.currentWidget()
-        return page.url() if isinstance(page, BusPage) else None
+        url = page.url() if isinstance(page, BusPage) else None
+        if url is None:
+            return None, "(incomplete)"
+        from pdcp_studio.bus.urls import BusUrlError, parse_bus_url
+
+        try:
+            parse_bus_url(url)
+        except BusUrlError as err:
+            return None, str(err)
+        return url, url
 
     def set_url(self, url: str) -> None:
         """Open the tab for ``url``'s kind and fill it in (unknown kinds are ignored)."""
@@ -323,8 +389,8 @@ class ConnectDialog(QDialog):
         self._changed()
 
     def _changed(self) -> None:
-        url = self.url()
-        self.url_label.setText(f"URL: {url}" if url else "URL: (incomplete)")
+        url, shown = self._checked()
+        self.url_label.setText(f"URL: {shown}")
         self.buttons.button(QDialogButtonBox.StandardButton.Ok).setEnabled(url is not None)
         self.urlChanged.emit(url or "")
 
@@ -333,6 +399,7 @@ class ConnectDialog(QDialog):
         if url is None:
             return
         self._settings.setValue(SETTINGS_KEY, url)
+        self._settings.setValue(KIND_KEY.format(url.partition(":")[0]), url)
         self._settings.sync()
         self._shutdown()
         super().accept()

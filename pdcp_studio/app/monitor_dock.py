@@ -1,10 +1,28 @@
 """The bus monitor dock: decoded frames in a table that stays fast under a flood.
 
-Frames arrive in batches (``SessionBridge.frameSeen(list)``). The dock keeps every frame
-in a capped ring buffer (``capacity`` rows, oldest dropped first) and the table model
-shows the ones that pass the filter, appending a whole batch with one
-``beginInsertRows`` and dropping overflow with one ``beginRemoveRows``. Text for the
-cells is made lazily in ``data()``, only for the rows on screen.
+Public API
+    ``MonitorDock(parent=None, capacity=DEFAULT_CAPACITY)`` — a QDockWidget.
+    Slots: ``add_frames(list[FrameSeen])`` (connect ``SessionBridge.frameSeen``),
+    ``set_system(system)`` (node IDs of output channels, so data frames are named as such
+    even when the session sent no decoded text). Methods: ``set_paused(bool)``,
+    ``set_filter(text="", function="", node=None)``, ``clear()``,
+    ``save(path) -> Worker`` (a python-can capture by extension — .asc .blf .csv .log .trc
+    .db — through ``bus.monitor.Recorder``, or decoded text for .txt; written on a worker),
+    ``load_capture(path) -> Worker`` (a capture read and decoded on a worker, then shown),
+    ``shown_rows()``. Properties: ``paused``, ``all_rows`` (every frame kept, newest last,
+    at most ``capacity``). Signals: ``saved(str path)``, ``loaded(str path)``, ``error(str)``,
+    ``countChanged(int shown, int total)``.
+
+Frames arrive in batches (``SessionBridge.frameSeen(list)``). The session's arbitrator has
+already decoded them off the GUI thread (``FrameSeen.text``, from ``bus.monitor.FrameDecoder``),
+so the dock only classifies each frame in O(1) (node, direction, function) for the filter.
+It keeps every frame in a capped ring buffer (``capacity`` rows, oldest dropped first) and the
+table model shows the ones that pass the filter, appending a whole batch with one
+``beginInsertRows`` and dropping overflow with one ``beginRemoveRows``. Cell text is made
+lazily in ``data()``, only for the rows on screen.
+
+Note: a session reports ``FrameSeen`` only when its arbitrator was opened with frame events
+on; without them the dock stays empty (the rest of the app is unaffected).
 """
 
 from __future__ import annotations
@@ -15,7 +33,14 @@ from collections.abc import Iterable, Sequence
 from pathlib import Path
 from typing import Any, NamedTuple
 
-from PySide6.QtCore import QAbstractTableModel, QModelIndex, QPersistentModelIndex, Qt, Signal
+from PySide6.QtCore import (
+    QAbstractTableModel,
+    QModelIndex,
+    QPersistentModelIndex,
+    Qt,
+    QTimer,
+    Signal,
+)
 from PySide6.QtGui import QFontDatabase
 from PySide6.QtWidgets import (
     QCheckBox,
@@ -42,10 +67,11 @@ ANY = "(any)"
 _ROOT = QModelIndex()  # the invisible root, shared as a default argument
 
 COLUMNS = ("Time", "ID", "Node", "Function", "Data", "Decoded")
+_MODE_BIT = 0x100
 
 
 class Row(NamedTuple):
-    """One frame as shown: the raw fields plus the node and function derived once."""
+    """One frame as shown: the raw fields plus the node, direction and function derived once."""
 
     timestamp: float
     arbitration_id: int
@@ -53,24 +79,44 @@ class Row(NamedTuple):
     text: str
     node: int
     function: str
+    who: str
 
 
-def make_row(frame: Any) -> Row:
-    """A table row from a ``FrameSeen`` (or anything with its four fields)."""
+def make_row(frame: Any, channel_nodes: frozenset[int] | set[int] = frozenset()) -> Row:
+    """A table row from a ``FrameSeen`` (or anything with its four fields), in O(1)."""
     data = bytes(frame.data)
-    text = str(frame.text)
+    text = str(getattr(frame, "text", "") or "")
     arbitration_id = int(frame.arbitration_id)
-    if text.startswith(CHANNEL_DATA):
-        function = CHANNEL_DATA
-    elif data:
-        try:
-            function = FunctionCode(data[0]).title
-        except ValueError:
-            function = f"0x{data[0]:02X}"
+    node = arbitration_id & 0xFF
+    from_ba = bool(arbitration_id & _MODE_BIT)
+    if not from_ba and (node in channel_nodes or CHANNEL_DATA in text):
+        function, who = CHANNEL_DATA, f"#{node} data"
     else:
-        function = ""
-    return Row(float(frame.timestamp), arbitration_id, data, text,
-               arbitration_id & 0xFF, function)
+        who = (f"BA→#{node}" if node else "BA→all") if from_ba else f"#{node}→BA"
+        if data:
+            try:
+                function = FunctionCode(data[0]).title
+            except ValueError:
+                function = f"0x{data[0]:02X}"
+        else:
+            function = ""
+    return Row(float(frame.timestamp), arbitration_id, data, text, node, function, who)
+
+
+def _decoded(text: str) -> str:
+    """The fields of a ``DecodedFrame.line`` (``time  prio  who function  fields``): the table
+    shows time, node and function in columns of their own. Other text is shown as is."""
+    head, _, rest = text.lstrip().partition(" ")
+    try:
+        float(head)
+    except ValueError:
+        return text
+    rest = rest.lstrip()
+    parts = rest.split("  ", 2)  # priority, "who function", fields
+    usual = len(parts) >= 2 and parts[0][:1] == "P" and "undecodable" not in parts[1]
+    if not usual:
+        return rest  # another shape, or why the frame does not decode: show all of it
+    return parts[2] if len(parts) == 3 else ""
 
 
 class FrameFilter(NamedTuple):
@@ -84,13 +130,15 @@ class FrameFilter(NamedTuple):
         return bool(self.text or self.function or self.node is not None)
 
     def matches(self, row: Row) -> bool:
+        """Whether ``row`` passes this filter."""
         if self.node is not None and row.node != self.node:
             return False
         if self.function and row.function != self.function:
             return False
         if self.text:
             needle = self.text.lower()
-            return needle in row.text.lower() or needle in row.data.hex(" ")
+            return (needle in row.text.lower() or needle in row.data.hex(" ")
+                    or needle in row.function.lower())
         return True
 
 
@@ -126,12 +174,12 @@ class FrameTableModel(QAbstractTableModel):
         if col == 1:
             return f"0x{row.arbitration_id:03X}"
         if col == 2:
-            return str(row.node)
+            return row.who
         if col == 3:
             return row.function
         if col == 4:
             return row.data.hex(" ").upper()
-        return row.text
+        return _decoded(row.text)
 
     def append(self, rows: Sequence[Row]) -> None:
         """Add rows at the end in one insert, dropping the oldest beyond the capacity."""
@@ -153,6 +201,7 @@ class FrameTableModel(QAbstractTableModel):
         self.endInsertRows()
 
     def replace(self, rows: Iterable[Row]) -> None:
+        """Show exactly ``rows`` (a refilter), capped at the capacity."""
         self.beginResetModel()
         self.rows = deque(rows, maxlen=None)
         while len(self.rows) > self.capacity:
@@ -174,8 +223,9 @@ def save_frames(path: str | Path, rows: Sequence[Row]) -> int:
         t0 = rows[0].timestamp if rows else 0.0
         with open(path, "w", encoding="utf-8") as out:
             for r in rows:
-                out.write(f"{r.timestamp - t0:12.6f}  0x{r.arbitration_id:03X}  "
-                          f"{r.data.hex(' ').upper():23}  {r.text}\n")
+                out.write(f"{r.timestamp - t0:12.6f}  0x{r.arbitration_id:03X}  {r.who:9}  "
+                          f"{r.data.hex(' ').upper():23}  {r.function}  "
+                          f"{_decoded(r.text)}".rstrip() + "\n")
         return len(rows)
     from pdcp_studio.bus.monitor import Recorder  # python-can loads only here
 
@@ -186,13 +236,10 @@ def save_frames(path: str | Path, rows: Sequence[Row]) -> int:
 
 
 class MonitorDock(QDockWidget):
-    """Decoded frames with filter, pause, clear, save and autoscroll.
-
-    Feed it with ``add_frames(list[FrameSeen])`` (connect ``SessionBridge.frameSeen``).
-    Signals: ``saved(path)``, ``error(message)``, ``countChanged(shown, total)``.
-    """
+    """Decoded frames with filter, pause, clear, save and autoscroll (see the module doc)."""
 
     saved = Signal(str)
+    loaded = Signal(str)
     error = Signal(str)
     countChanged = Signal(int, int)
 
@@ -204,7 +251,16 @@ class MonitorDock(QDockWidget):
         self._held: list[Row] = []  # rows that arrived while paused
         self._filter = FrameFilter()
         self._save_worker: Worker | None = None
+        self._save_path = ""
+        self._load_path = ""
+        self._load_worker: Worker | None = None
+        self.channel_nodes: set[int] = set()
+        self._link_map: dict[int, tuple[Any, tuple[Any, ...]]] = {}  # for opened captures
         self.model = FrameTableModel(capacity, self)
+        self._refilter = QTimer(self)  # typing in the filter: refilter once it pauses
+        self._refilter.setSingleShot(True)
+        self._refilter.setInterval(150)
+        self._refilter.timeout.connect(self._filter_changed)
 
         self.view = QTableView()
         self.view.setModel(self.model)
@@ -215,7 +271,7 @@ class MonitorDock(QDockWidget):
         self.view.setWordWrap(False)
         header = self.view.horizontalHeader()
         header.setStretchLastSection(True)
-        for col, width in enumerate((90, 60, 45, 190, 170)):
+        for col, width in enumerate((80, 50, 80, 170, 170)):
             header.resizeSection(col, width)
         header.setSectionResizeMode(QHeaderView.ResizeMode.Interactive)
 
@@ -234,18 +290,22 @@ class MonitorDock(QDockWidget):
         self.autoscroll_box.setChecked(True)
         self.clear_button = QPushButton("Clear")
         self.save_button = QPushButton("Save…")
+        self.open_button = QPushButton("Open…")
+        self.open_button.setToolTip("Show a capture file (python-can log formats)")
         self.count_label = QLabel("0 frames")
 
-        self.text_filter.textChanged.connect(self._filter_changed)
+        self.text_filter.textChanged.connect(lambda _t: self._refilter.start())
         self.function_filter.currentTextChanged.connect(self._filter_changed)
         self.node_filter.valueChanged.connect(self._filter_changed)
         self.pause_box.toggled.connect(self.set_paused)
         self.clear_button.clicked.connect(self.clear)
         self.save_button.clicked.connect(self._ask_save)
+        self.open_button.clicked.connect(self._ask_open)
 
         bar = QHBoxLayout()
         for w in (self.text_filter, self.function_filter, self.node_filter, self.pause_box,
-                  self.autoscroll_box, self.clear_button, self.save_button, self.count_label):
+                  self.autoscroll_box, self.clear_button, self.open_button, self.save_button,
+                  self.count_label):
             bar.addWidget(w)
         bar.setStretch(0, 1)
         body = QWidget()
@@ -258,13 +318,19 @@ class MonitorDock(QDockWidget):
     # -- feeding -------------------------------------------------------------------------
     @property
     def paused(self) -> bool:
+        """True while the table is frozen (frames are still recorded)."""
         return self.pause_box.isChecked()
 
     def add_frames(self, frames: Iterable[Any]) -> None:
         """Slot for ``SessionBridge.frameSeen``: record and show a batch of frames."""
-        rows = [make_row(f) for f in frames]
+        nodes = self.channel_nodes
+        rows = [make_row(f, nodes) for f in frames]
         if not rows:
             return
+        for r in rows:  # learn output channels named by the session's decoder
+            if r.function == CHANNEL_DATA and r.node not in nodes:
+                nodes.add(r.node)
+                self._link_map.setdefault(r.node, (f"node {r.node}", ()))
         self.all_rows.extend(rows)
         if self.paused:
             self._held.extend(rows)
@@ -295,20 +361,42 @@ class MonitorDock(QDockWidget):
         self.model.clear()
         self._count()
 
+    def set_system(self, system: Any) -> None:
+        """Learn the output channels' node IDs (frames from them are channel data) and what
+        they feed, so a capture opened later names its links."""
+        for ref, ch in system.channels():
+            if ch.is_output and ch.node_id is not None:
+                self.channel_nodes.add(ch.node_id)
+                self._link_map[ch.node_id] = (ref, tuple(system.inputs_fed_by(ref)))
+
+    def shown_rows(self) -> list[Row]:
+        """The rows the table shows now (filtered; frozen while paused)."""
+        return list(self.model.rows)
+
     def set_filter(self, text: str = "", function: str = "", node: int | None = None) -> None:
-        """Filter programmatically (the widgets follow)."""
-        self.text_filter.setText(text)
-        self.function_filter.setCurrentText(function or ANY)
-        self.node_filter.setValue(-1 if node is None else node)
+        """Filter programmatically (the widgets follow; the table is filtered once)."""
+        widgets = (self.text_filter, self.function_filter, self.node_filter)
+        for w in widgets:
+            w.blockSignals(True)
+        try:
+            self.text_filter.setText(text)
+            self.function_filter.setCurrentText(function or ANY)
+            self.node_filter.setValue(-1 if node is None else node)
+        finally:
+            for w in widgets:
+                w.blockSignals(False)
+        self._filter_changed()
 
     def _filter_changed(self, *_args: Any) -> None:
+        self._refilter.stop()
         function = self.function_filter.currentText()
         node = self.node_filter.value()
         self._filter = FrameFilter(self.text_filter.text().strip(),
                                    "" if function == ANY else function,
                                    None if node < 0 else node)
-        rows = self.all_rows if not self.paused else list(self.all_rows)[:len(self.all_rows)
-                                                                           - len(self._held)]
+        rows: Iterable[Row] = self.all_rows
+        if self.paused and self._held:  # held rows appear on resume, not now
+            rows = list(self.all_rows)[:max(0, len(self.all_rows) - len(self._held))]
         self.model.replace(r for r in rows if self._filter.matches(r))
         if self.autoscroll_box.isChecked():
             self.view.scrollToBottom()
@@ -328,6 +416,13 @@ class MonitorDock(QDockWidget):
         if path:
             self.save(path)
 
+    def _ask_open(self) -> None:
+        path, _ = QFileDialog.getOpenFileName(
+            self, "Open capture", "",
+            "python-can logs (*.asc *.blf *.log *.csv *.trc *.db *.gz);;All files (*)")
+        if path:
+            self.load_capture(path)
+
     def save(self, path: str | Path) -> Worker:
         """Save every recorded frame on a worker; ``saved(path)`` or ``error`` follows."""
         rows = list(self.all_rows)
@@ -337,8 +432,52 @@ class MonitorDock(QDockWidget):
             return save_frames(path, rows)
 
         worker = Worker(work, "Save frames")
-        worker.finished.connect(lambda _n: self.saved.emit(str(path)))
-        worker.failed.connect(lambda msg: self.error.emit(f"Saving {path}: {msg}"))
-        worker.done.connect(lambda: self.save_button.setEnabled(True))
+        self._save_path = str(path)
+        worker.finished.connect(self._save_finished)  # bound slots: dropped with the dock
+        worker.failed.connect(self._save_failed)
+        worker.done.connect(self._save_done)
         self._save_worker = worker
         return worker.start()
+
+    def load_capture(self, path: str | Path) -> Worker:
+        """Show a capture (any python-can log format) instead of the live frames: read and
+        decoded on a worker (``bus.monitor.replay``), then shown; ``loaded(path)`` or
+        ``error`` follows. Live frames keep arriving unless the dock is paused."""
+        from pdcp_studio.bus.events import FrameSeen
+
+        links = dict(self._link_map)  # a capture may start after the set-up that names them
+
+        def work(_progress: Any, cancel: threading.Event) -> list[FrameSeen]:
+            from pdcp_studio.bus.monitor import FrameDecoder, replay
+
+            frames = []
+            for decoded in replay(path, FrameDecoder(links)):
+                if cancel.is_set():
+                    break
+                frames.append(FrameSeen(decoded.timestamp, decoded.arbitration_id,
+                                        decoded.data, decoded.line))
+            return frames
+
+        worker = Worker(work, "Load capture")
+        self._load_path = str(path)
+        worker.finished.connect(self._capture_loaded)
+        worker.failed.connect(self._load_failed)
+        self._load_worker = worker
+        return worker.start()
+
+    def _capture_loaded(self, frames: list[Any]) -> None:
+        self.clear()
+        self.add_frames(frames)
+        self.loaded.emit(self._load_path)
+
+    def _load_failed(self, message: str) -> None:
+        self.error.emit(f"Reading {self._load_path}: {message}")
+
+    def _save_finished(self, _count: int) -> None:
+        self.saved.emit(self._save_path)
+
+    def _save_failed(self, message: str) -> None:
+        self.error.emit(f"Saving {self._save_path}: {message}")
+
+    def _save_done(self) -> None:
+        self.save_button.setEnabled(True)

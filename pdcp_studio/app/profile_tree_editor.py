@@ -1,5 +1,20 @@
 """Edit a named profile tree (``pdcp-profile-tree/1``) with undo, and save it atomically.
 
+Public API
+    ``ProfileTreeEditor(tree=None, path=None, parent=None)`` — a QWidget; edits ``tree`` in
+    place (pass a copy). Methods, each one undo step and refused with ``error`` when the tree
+    forbids it: ``add_child(parent_profile, name, component=None) -> int | None`` (the new
+    node's profile; the first free even component when none is given),
+    ``rename(profile, name) -> bool``, ``renumber(profile, component) -> int | None`` (the
+    new profile; its subtree moves along), ``remove(profile) -> bool``. Files:
+    ``save(path=None) -> Path | None`` (atomic), ``load(path) -> bool``,
+    ``set_tree(tree, path)``. State: ``tree``, ``path``, ``dirty``, ``undo_stack``,
+    ``selected_profile()``, ``select(profile)``. Signals: ``treeChanged(ProfileTree)``,
+    ``saved(str)``, ``error(str)``.
+    ``ProfileTreeDialog(tree=None, path=None, parent=None)`` — the editor in a window
+    (``.editor``); closing with unsaved edits asks ``confirm_discard()``.
+    ``load_tree(path)`` / ``save_tree(tree, path)`` — the file format alone.
+
 Each node shows its name, its 4-bit component, the 16-bit profile value of its path in hex
 and, for odd components, "vendor-reserved". Names and components are edited in place;
 add, remove, undo and redo sit on a toolbar. Every edit is one command on the editor's own
@@ -14,7 +29,7 @@ import json
 from collections.abc import Callable
 from pathlib import Path
 
-from PySide6.QtCore import Qt, Signal
+from PySide6.QtCore import Qt, QTimer, Signal
 from PySide6.QtGui import QBrush, QColor, QFont, QUndoCommand, QUndoStack
 from PySide6.QtWidgets import (
     QDialog,
@@ -51,6 +66,19 @@ def load_tree(path: str | Path) -> ProfileTree:
 def save_tree(tree: ProfileTree, path: str | Path) -> None:
     """Write the tree as JSON atomically: a crash leaves the old file or the new one."""
     atomic_write_text(path, json.dumps(tree.to_json(), indent=2, ensure_ascii=False) + "\n")
+
+
+def default_save_path(tree: ProfileTree) -> Path:
+    """Where a new tree is offered to be saved: the user profile folder, which the app merges
+    into its profile names at start-up (``document.load_profile_tree``)."""
+    from pdcp_studio.app.document import user_profiles_dir
+
+    stem = "".join(c if c.isalnum() or c in "-_" else "-" for c in tree.name).strip("-")
+    folder = user_profiles_dir()
+    if folder is None:
+        return Path(f"{stem or 'profiles'}.json")
+    folder.mkdir(parents=True, exist_ok=True)
+    return folder / f"{stem or 'profiles'}.json"
 
 
 def free_component(siblings: list[ProfileNode]) -> int | None:
@@ -137,6 +165,7 @@ class ProfileTreeEditor(QWidget):
     # -- state ----------------------------------------------------------------------
     @property
     def dirty(self) -> bool:
+        """True when there are edits since the last save or load."""
         return not self.undo_stack.isClean()
 
     def set_tree(self, tree: ProfileTree, path: str | Path | None = None) -> None:
@@ -147,10 +176,12 @@ class ProfileTreeEditor(QWidget):
         self._changed(None)
 
     def selected_profile(self) -> int | None:
+        """The profile value of the selected node, or None."""
         item = self.view.currentItem()
         return None if item is None else int(item.data(COL_NAME, PROFILE_ROLE))
 
     def select(self, profile: int | None) -> None:
+        """Select the node of ``profile`` (None or unknown: clear the selection)."""
         item = self._item(profile) if profile else None
         self.view.setCurrentItem(item)
 
@@ -205,6 +236,7 @@ class ProfileTreeEditor(QWidget):
         return new[0] if self._push(f"Add {name!r}", apply, revert) else None
 
     def rename(self, profile: int, name: str) -> bool:
+        """Rename the node of ``profile``; False if refused or unchanged."""
         node = self.tree.node(profile)
         if node is None or node.name == name.strip():
             return False  # a no-op edit pushes nothing
@@ -239,6 +271,7 @@ class ProfileTreeEditor(QWidget):
         return moved[0] if self._push(text, apply, revert) else None
 
     def remove(self, profile: int) -> bool:
+        """Remove the node of ``profile`` and its subtree (one undo step)."""
         node = self.tree.node(profile)
         if node is None:
             return False
@@ -298,20 +331,26 @@ class ProfileTreeEditor(QWidget):
             item.setForeground(COL_COMPONENT, QBrush(QColor("#a05a00")))
 
     def _item_edited(self, item: QTreeWidgetItem, column: int) -> None:
+        """An in-place edit: applied on the next event-loop turn, because applying it
+        rebuilds the tree and must not delete the item while it is still emitting."""
         profile = int(item.data(COL_NAME, PROFILE_ROLE))
         text = item.text(column).strip()
-        ok = True
+        QTimer.singleShot(0, self, lambda: self._apply_edit(profile, column, text))
+
+    def _apply_edit(self, profile: int, column: int, text: str) -> None:
+        ok = False
         if column == COL_NAME:
-            ok = self.rename(profile, text) if text else False
-            if not text:
+            if text:
+                ok = self.rename(profile, text)
+            else:
                 self.error.emit("Rename: a profile node needs a name")
         elif column == COL_COMPONENT:
             try:
-                comp = int(text, 0) if text.lower().startswith("0x") else int(text, 16)
+                comp = int(text, 16)  # "5", "0x5", "A"
             except ValueError:
                 self.error.emit(f"Renumber: {text!r} is not a hex digit 1…F")
-                comp = None
-            ok = comp is not None and self.renumber(profile, comp) is not None
+            else:
+                ok = self.renumber(profile, comp) is not None
         if not ok:
             self._refresh(profile)  # show the model's value again
 
@@ -340,6 +379,7 @@ class ProfileTreeEditor(QWidget):
         return target
 
     def load(self, path: str | Path) -> bool:
+        """Edit the tree in ``path``; False (and ``error``) if it cannot be read."""
         try:
             tree = load_tree(path)
         except ProfileError as err:
@@ -357,7 +397,7 @@ class ProfileTreeEditor(QWidget):
     def _ask_save(self, path: Path | None) -> None:
         if path is None:
             name, _ = QFileDialog.getSaveFileName(self, "Save profile tree",
-                                                  str(self.path or "profiles.json"),
+                                                  str(self.path or default_save_path(self.tree)),
                                                   "Profile trees (*.json)")
             path = Path(name) if name else None
         if path is not None:

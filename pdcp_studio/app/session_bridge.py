@@ -26,6 +26,7 @@ log = logging.getLogger(__name__)
 
 #: Events handled per timer tick; the rest wait for the next tick so the GUI stays responsive.
 MAX_BATCH = 20_000
+SIGNAL_CHANNEL_VALUE = "2channelValue(PyObject)"
 
 
 class SessionBridge(QObject):
@@ -36,10 +37,21 @@ class SessionBridge(QObject):
     ``linkRemoved(link)``, ``frameSeen(list[FrameSeen])`` (one list per tick),
     ``channelValue(ChannelValue)`` and ``channelValues(list[ChannelValue])`` (per tick),
     ``planApplied(plan)``, ``error(str)`` (bus errors and failed calls),
-    ``progress(done, total, text)``, ``busEvent(event)`` (every event, for logging).
+    ``progress(done, total, text)`` (coalesced: the newest per tick),
+    ``busEvent(event)`` (every event except frames, values and progress, for logging).
     Call results: ``scanned(System)``, ``configurationRead(ConfigCollection)``,
-    ``configurationWritten(object)``, ``simChanged(str)`` (after a simulator control, with a
-    description), ``simDevices(list)``, ``busyChanged(bool)``, ``closed()``.
+    ``configurationWritten(ConfigCollection)`` (the session's verified read-back),
+    ``simChanged(str)`` (after a simulator control, with a description), ``simDevices(list)``
+    (``(DeviceKey, label, plugged)`` tuples), ``scriptFinished(ScriptResult)``,
+    ``busyChanged(bool)``, ``closed()``.
+
+    Calls (each returns the ``Worker``, or None once closed; failures go to ``error``):
+    ``scan()``, ``read_configuration()``, ``write_configuration(collection)``,
+    ``save_configuration()``, ``apply_plan(plan)``, ``run(fn, description, on_result)``;
+    simulator controls ``refresh_sim_devices()``, ``plug(key)``, ``unplug(key)``,
+    ``replace(old, new)``, ``reset_arbitrator(keep_memory)``, ``run_script(name)``;
+    ``script_names()`` (no bus traffic), ``system()`` (a snapshot), ``cancel_all()``,
+    ``close(wait_ms)``. Properties: ``is_sim``, ``busy``.
     """
 
     deviceJoined = Signal(object)
@@ -59,6 +71,7 @@ class SessionBridge(QObject):
     configurationWritten = Signal(object)
     simChanged = Signal(str)
     simDevices = Signal(list)
+    scriptFinished = Signal(object)
     busyChanged = Signal(bool)
     closed = Signal()
 
@@ -90,31 +103,42 @@ class SessionBridge(QObject):
 
     @property
     def busy(self) -> bool:
+        """True while any call of this bridge is queued or running."""
         return bool(self._pending)
 
     def drain(self) -> int:
-        """Deliver up to MAX_BATCH queued events as signals; returns how many."""
+        """Deliver up to MAX_BATCH queued events as signals; returns how many.
+
+        Frames and channel values go out as one list each per call; progress reports are
+        coalesced to the newest one (a scan reports thousands); every other event is
+        dispatched in the order it happened.
+        """
         frames: list[Any] = []
         values: list[Any] = []
+        progress: Any = None
         n = 0
         queue = self._queue
         while queue and n < MAX_BATCH:
             event = queue.popleft()
             n += 1
             kind = type(event).__name__
-            if kind == "FrameSeen":
-                frames.append(event)
-                continue
             if kind == "ChannelValue":
                 values.append(event)
-                continue
-            self._dispatch(kind, event)
+            elif kind == "FrameSeen":
+                frames.append(event)
+            elif kind == "Progress":
+                progress = event
+            else:
+                self._dispatch(kind, event)
+        if progress is not None:
+            self.progress.emit(int(progress.done), int(progress.total), str(progress.what))
         if frames:
             self.frameSeen.emit(frames)
         if values:
             self.channelValues.emit(values)
-            for v in values:
-                self.channelValue.emit(v)
+            if self.receivers(SIGNAL_CHANNEL_VALUE) > 0:  # per-value only when someone listens
+                for v in values:
+                    self.channelValue.emit(v)
         return n
 
     def _dispatch(self, kind: str, event: Any) -> None:
@@ -130,8 +154,6 @@ class SessionBridge(QObject):
             self.error.emit(str(event.message))
         elif kind == "PlanApplied":
             self.planApplied.emit(event.plan)
-        elif kind == "Progress":
-            self.progress.emit(int(event.done), int(event.total), str(event.what))
         else:
             log.debug("unhandled bus event %r", event)
         self.busEvent.emit(event)
@@ -165,6 +187,7 @@ class SessionBridge(QObject):
             self.busyChanged.emit(False)
 
     def cancel_all(self) -> None:
+        """Ask every queued or running call to stop."""
         for w in list(self._pending):
             w.cancel()
 
@@ -205,15 +228,19 @@ class SessionBridge(QObject):
                         self.simDevices.emit)
 
     def plug(self, key: Any) -> Worker | None:
+        """Power a simulated device on (``simChanged`` when done)."""
         return self._sim(f"Plug {key}", lambda: self.session.plug(key))
 
     def unplug(self, key: Any) -> Worker | None:
+        """Cut a simulated device off the bus; ``deviceLeft`` follows once noticed."""
         return self._sim(f"Unplug {key}", lambda: self.session.unplug(key))
 
     def replace(self, old: Any, new: Any) -> Worker | None:
+        """Unplug ``old`` and plug ``new`` in (a simulated device's key or a Device)."""
         return self._sim(f"Replace {old} by {new}", lambda: self.session.replace(old, new))
 
     def reset_arbitrator(self, keep_memory: bool) -> Worker | None:
+        """Restart the arbitrator, keeping or erasing its stored configuration."""
         what = "Reset arbitrator" + (" (memory kept)" if keep_memory else " (memory erased)")
         return self._sim(what, lambda: self.session.reset_arbitrator(keep_memory))
 
@@ -222,7 +249,23 @@ class SessionBridge(QObject):
         return list(self.session.script_names()) if self.is_sim else []
 
     def run_script(self, name: str) -> Worker | None:
-        return self._sim(f"Script {name}", lambda: self.session.run_script(name))
+        """Run a simulator script with progress and cancel; ``scriptFinished(result)``."""
+        if not self.is_sim:
+            self.error.emit(f"Script {name}: only a simulated bus has simulator controls")
+            return None
+
+        def done(result: Any) -> None:
+            self.scriptFinished.emit(result)
+            self.simChanged.emit(f"Script {name}")
+
+        return self.run(lambda p, c: self.session.run_script(name, p, c), f"Script {name}",
+                        done)
+
+    def save_configuration(self) -> Worker | None:
+        """Store the bus's current links as the arbitrator's configuration (verified);
+        the read-back arrives as ``configurationWritten``."""
+        return self.run(lambda p, c: self.session.save_configuration(),
+                        "Store the current links", self.configurationWritten.emit)
 
     # -- shutdown ------------------------------------------------------------------------
     def close(self, wait_ms: int = 3000) -> None:

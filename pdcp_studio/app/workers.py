@@ -2,9 +2,16 @@
 
 A :class:`Worker` wraps a callable ``fn(progress, cancel)``: ``progress(done, total, text)``
 reports how far it got and ``cancel`` is a :class:`threading.Event` it should poll. The
-worker runs on a :class:`QThreadPool` and reports through Qt signals, which Qt delivers
-to slots of objects living on the GUI thread (queued), so no widget is ever touched from
-a pool thread. An exception becomes a ``failed(message)`` signal, never a crash.
+worker runs on a :class:`QThreadPool`; its public signals are emitted on the thread that
+created it (the GUI thread), so no widget is ever touched from a pool thread and a slot
+connected after ``start()`` is never missed. An exception becomes ``failed(message)``.
+
+Public API: ``Worker(fn, description="")`` with ``start(pool=None)``, ``cancel()``,
+``wait(timeout)``, ``is_running``, ``result``, ``error``; signals ``progress``,
+``finished(object)``, ``failed(str)``, ``cancelled()``, ``done()``. ``Worker.call(f, *args)``
+wraps a plain callable; ``run_in_thread(fn, on_finished=, on_failed=)``;
+``run_with_progress(parent, title, fn) -> (worker, QProgressDialog)``;
+``error_message(exc)``; raise ``Cancelled`` from ``fn`` to stop early.
 
 ``run_with_progress`` adds a non-blocking :class:`QProgressDialog` with a Cancel button.
 """
@@ -61,10 +68,15 @@ class _Runnable(QRunnable):
 
 
 class Worker(QObject):
-    """One piece of work on a thread pool; signals arrive on the thread that created it.
+    """One piece of work on a thread pool; its signals are emitted on the thread that made it.
 
     Signals: ``progress(done, total, text)``; then exactly one of ``finished(result)``,
     ``failed(message)`` or ``cancelled()``; then always ``done()`` (for clean-up).
+
+    The pool thread never emits these public signals itself: it hands the outcome to the
+    worker's own thread (a queued private signal), which emits them there. So a caller may
+    connect right after ``start()`` — even to a worker that has already finished — and its
+    slots still run, on the GUI thread.
     """
 
     progress = Signal(int, int, str)
@@ -72,6 +84,8 @@ class Worker(QObject):
     failed = Signal(str)
     cancelled = Signal()
     done = Signal()
+    _progress = Signal(int, int, str)  # pool thread → own thread, re-emitted as ``progress``
+    _outcome = Signal(str, object)  # pool thread → own thread: (kind, payload)
 
     def __init__(self, fn: WorkFn, description: str = "", parent: QObject | None = None) -> None:
         super().__init__(parent)
@@ -83,7 +97,8 @@ class Worker(QObject):
         self._finished_event = threading.Event()
         self.result: Any = None
         self.error: str | None = None
-        self.done.connect(self._release)
+        self._progress.connect(self.progress)
+        self._outcome.connect(self._deliver)
 
     @classmethod
     def call(cls, fn: Callable[..., Any], *args: Any, description: str = "",
@@ -108,11 +123,25 @@ class Worker(QObject):
 
     @property
     def is_running(self) -> bool:
+        """True from ``start()`` until the work function has returned."""
         return self._started and not self._finished_event.is_set()
 
     def wait(self, timeout: float | None = None) -> bool:
         """Block until the work function returned (for shutdown and tests, not the GUI)."""
         return self._finished_event.wait(timeout)
+
+    def _deliver(self, kind: str, payload: Any) -> None:
+        """On the worker's own thread: emit the outcome, then ``done``, then let go."""
+        try:
+            if kind == "finished":
+                self.finished.emit(payload)
+            elif kind == "failed":
+                self.failed.emit(payload)
+            else:
+                self.cancelled.emit()
+            self.done.emit()
+        finally:
+            _ACTIVE.discard(self)
 
     # -- pool thread ----------------------------------------------------------------
     def _report(self, done: int, total: int, text: str = "") -> None:
@@ -120,34 +149,30 @@ class Worker(QObject):
         if done < total and now - self._last_progress < PROGRESS_INTERVAL_S:
             return
         self._last_progress = now
-        self.progress.emit(int(done), int(total), str(text))
+        self._progress.emit(int(done), int(total), str(text))
 
     def _execute(self) -> None:
         try:
             result = self._fn(self._report, self.cancel_event)
         except Cancelled:
-            self._end(self.cancelled.emit)
+            self._end("cancelled", None)
         except BaseException as err:
             if self.cancel_event.is_set():
-                self._end(self.cancelled.emit)
+                self._end("cancelled", None)
                 return
             log.warning("%s failed", self.description, exc_info=True)
             self.error = error_message(err)
-            self._end(lambda: self.failed.emit(self.error))
+            self._end("failed", self.error)
         else:
             if self.cancel_event.is_set():
-                self._end(self.cancelled.emit)
+                self._end("cancelled", None)
             else:
                 self.result = result
-                self._end(lambda: self.finished.emit(result))
+                self._end("finished", result)
 
-    def _end(self, emit: Callable[[], None]) -> None:
+    def _end(self, kind: str, payload: Any) -> None:
         self._finished_event.set()
-        emit()
-        self.done.emit()
-
-    def _release(self) -> None:
-        _ACTIVE.discard(self)
+        self._outcome.emit(kind, payload)
 
 
 def run_in_thread(fn: WorkFn, *, description: str = "", pool: QThreadPool | None = None,

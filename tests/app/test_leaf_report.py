@@ -1,0 +1,87 @@
+"""The fitting report: one PDF page with the devices' serials, the links, the checksum, the date.
+
+Read back with QtPdf (the PDF as a viewer sees it), not with an external tool.
+"""
+
+from __future__ import annotations
+
+import datetime as dt
+
+import pytest
+from PySide6.QtGui import QColor, QImage
+from PySide6.QtPdf import QPdfDocument
+
+from pdcp_studio.app.document import load_profile_tree
+from pdcp_studio.app.report import configuration_checksum, write_report
+from pdcp_studio.engine import configuration_from_system
+from pdcp_studio.model.configuration import ConfigCollection
+from pdcp_studio.protocol.crc import crc16_ccitt_false
+from pdcp_studio.storage import config_codec, system_file
+
+pytestmark = pytest.mark.gui
+
+
+def _pdf_text(qtbot, path) -> tuple[int, str]:
+    doc = QPdfDocument()
+    assert doc.load(str(path)) == QPdfDocument.Error.None_
+    text = "\n".join(doc.getAllText(p).text() for p in range(doc.pageCount()))
+    return doc.pageCount(), text
+
+
+def _crc_of_encoding(collection: ConfigCollection) -> int:
+    """Independently of the decoder: the CRC of the bytes before the checksum record."""
+    data = config_codec.dumps(collection)
+    assert data[-6] == config_codec.CHECKSUM and data[-3] == config_codec.END
+    assert int.from_bytes(data[-5:-3], "little") == crc16_ccitt_false(data[:-6])
+    return crc16_ccitt_false(data[:-6])
+
+
+def test_report_is_one_page_with_serials_links_checksum_and_date(qtbot, tmp_path, systems_dir):
+    system = system_file.load_path(systems_dir / "appendix-d.json")
+    tree = load_profile_tree(user_dir=False)
+    expected = _crc_of_encoding(ConfigCollection([configuration_from_system(system)]))
+    assert configuration_checksum(system) == expected
+    graph = QImage(800, 400, QImage.Format.Format_RGB32)
+    graph.fill(QColor("white"))
+    out = write_report(tmp_path / "fitting.pdf", system, tree, graph,
+                       date=dt.date(2026, 11, 21))
+    pages, text = _pdf_text(qtbot, out)
+    assert pages == 1
+    assert f"0x{expected:04X}" in text
+    assert "2026-11-21" in text
+    for device in system.devices.values():
+        assert device.label in text
+    assert "Control unit" in text and "Joystick" in text
+    assert "Links (3)" in text
+    assert not [p for p in tmp_path.iterdir() if p.name.endswith(".tmp")]
+
+
+def test_report_prints_a_given_stored_configuration_checksum(qtbot, tmp_path, resources,
+                                                             systems_dir):
+    system = system_file.load_path(systems_dir / "transradial.json")
+    stored = config_codec.load_path(resources / "configs" / "fig410.pdcfg")
+    out = write_report(tmp_path / "r.pdf", system, load_profile_tree(user_dir=False),
+                       collection=stored)
+    pages, text = _pdf_text(qtbot, out)
+    assert pages == 1
+    assert f"0x{_crc_of_encoding(stored):04X}" in text
+    assert "3 link(s) in 2 configuration(s)" in text
+
+
+def test_a_32_device_rig_still_fits_on_one_page(qtbot, tmp_path):
+    from pdcp_studio.bus.simulator import large_system
+
+    system = large_system()
+    out = write_report(tmp_path / "large.pdf", system, load_profile_tree(user_dir=False))
+    pages, text = _pdf_text(qtbot, out)
+    assert pages == 1
+    compact = text.replace(" ", "").replace("\n", "")
+    for device in system.devices.values():  # every serial is printed
+        assert str(device.serial) in compact
+
+
+def test_unwritable_path_raises(tmp_path, systems_dir):
+    system = system_file.load_path(systems_dir / "appendix-d.json")
+    with pytest.raises(OSError):
+        write_report(tmp_path / "no-such-dir" / "r.pdf", system,
+                     load_profile_tree(user_dir=False))
