@@ -4,10 +4,16 @@ Style §5–6: the Notifier's callback only enqueues (it must never raise, or py
 Notifier), a role's own thread drains the queue; one Notifier per connection, stopped before
 ``bus.shutdown()``. Sends are serialized and optionally paced so an adapter's transmit queue
 never overflows.
+
+python-can's ``udp_multicast`` interface hands every process its own frames back (multicast
+loopback; its ``receive_own_messages=False`` is not implemented). A connection on such a bus
+remembers what it sent and drops the first identical frame that comes back within
+``ECHO_WINDOW_S``, so every role sees only the others' frames, as on a real CAN bus.
 """
 
 from __future__ import annotations
 
+import collections
 import logging
 import queue
 import threading
@@ -27,6 +33,11 @@ NOTIFIER_POLL_S = 0.05
 NOTIFIER_STOP_S = 1.0
 #: A send that cannot be queued by the driver within this time raises TransportError.
 SEND_TIMEOUT_S = 0.2
+
+#: How long a sent frame waits for its multicast echo before it is forgotten.
+ECHO_WINDOW_S = 2.0
+#: Interfaces that return a process's own frames to it.
+_ECHOING = ("UdpMulticastBus",)
 
 #: Connections not closed yet (a test fixture fails a test that leaves one open).
 _open: set[Connection] = set()
@@ -64,7 +75,8 @@ class Connection:
     consumer reports it. ``pace_s`` is the least time between two sends.
     """
 
-    def __init__(self, bus: can.BusABC, *, name: str = "bus", pace_s: float = 0.0) -> None:
+    def __init__(self, bus: can.BusABC, *, name: str = "bus", pace_s: float = 0.0,
+                 drop_own: bool | None = None) -> None:
         import can
 
         self.bus = bus
@@ -76,6 +88,9 @@ class Connection:
         self._send_lock = threading.Lock()
         self._last_send = 0.0
         self._closed = False
+        self.drop_own = (type(bus).__name__ in _ECHOING) if drop_own is None else drop_own
+        self._own: dict[tuple[int, bytes], collections.deque[float]] = {}
+        self._own_lock = threading.Lock()
         self._listener = _Enqueue(self.inbound)
         self._notifier = can.Notifier(bus, [self._listener], timeout=NOTIFIER_POLL_S)
         with _open_lock:
@@ -92,6 +107,8 @@ class Connection:
         if self._closed:
             raise TransportError(f"{self.name}: the bus is closed")
         msg = can.Message(arbitration_id=arbitration_id, data=data, is_extended_id=False)
+        if self.drop_own:
+            self._remember(arbitration_id, bytes(data))
         with self._send_lock:
             if self.pace_s:
                 wait = self._last_send + self.pace_s - time.perf_counter()
@@ -106,16 +123,43 @@ class Connection:
             self.sent += 1
         return time.time()
 
+    def _remember(self, arbitration_id: int, data: bytes) -> None:
+        now = time.monotonic()
+        with self._own_lock:
+            self._own.setdefault((arbitration_id, data), collections.deque()).append(now)
+            if len(self._own) > 4096:  # echoes that never came: forget the stale ones
+                for key in [k for k, q in self._own.items() if now - q[-1] > ECHO_WINDOW_S]:
+                    del self._own[key]
+
+    def _is_own(self, msg: can.Message) -> bool:
+        key = (msg.arbitration_id, bytes(msg.data))
+        now = time.monotonic()
+        with self._own_lock:
+            sent = self._own.get(key)
+            while sent and now - sent[0] > ECHO_WINDOW_S:
+                sent.popleft()
+            if not sent:
+                self._own.pop(key, None)
+                return False
+            sent.popleft()
+            return True
+
     def get(self, timeout: float | None) -> object:
         """The next inbound item (a can.Message, an Exception, a posted callable), or None."""
-        try:
-            item = self.inbound.get(timeout=timeout) if timeout is None or timeout > 0 \
-                else self.inbound.get_nowait()
-        except queue.Empty:
-            return None
-        if item is not None and not isinstance(item, Exception) and not callable(item):
+        deadline = None if timeout is None else time.monotonic() + timeout
+        while True:
+            left = None if deadline is None else deadline - time.monotonic()
+            try:
+                item = self.inbound.get(timeout=left) if left is None or left > 0 \
+                    else self.inbound.get_nowait()
+            except queue.Empty:
+                return None
+            if item is None or isinstance(item, Exception) or callable(item):
+                return item
+            if self.drop_own and self._is_own(item):
+                continue
             self.received += 1
-        return item
+            return item
 
     def post(self, fn: object) -> None:
         """Queue a callable for the consumer thread (how other threads ask it to act)."""

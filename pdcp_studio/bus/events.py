@@ -49,9 +49,15 @@ class FrameSeen:
 
 @dataclass(frozen=True)
 class BusError:
-    """Something went wrong that did not stop the session (a bad frame, a timeout, …)."""
+    """Something went wrong that did not stop the session (a bad frame, a timeout, …).
+
+    ``kind`` names the fault for programs: ``bad_frame``, ``error_frame``,
+    ``duplicate_device``, ``node_ids_exhausted``, ``setup``, ``plan``, ``transport``,
+    ``other_arbitrator`` (empty when unclassified).
+    """
 
     message: str
+    kind: str = ""
 
 
 @dataclass(frozen=True)

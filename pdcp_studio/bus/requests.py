@@ -77,12 +77,23 @@ class _Abort:
         self.reason = reason
 
 
+#: Every frame a device may send within a transaction. A waiter accepts all of them from the
+#: start, so a frame that comes before the caller gets round to waiting for it (the bulk
+#: packets right behind 0x8C, the 0x8E right behind the last packet sent) is never lost;
+#: ``_wait`` then picks the one it needs.
+_TRANSACTION_CODES = frozenset({
+    F.GET_PARAMETER_RESPONSE, F.SET_PARAMETER_RESPONSE, F.SUSPEND_RESPONSE,
+    F.RELEASE_RESPONSE, F.RESET_RESPONSE, F.CONFIGURE_GET_BULK_RESPONSE,
+    F.CONFIGURE_SET_BULK_RESPONSE, F.BULK_DATA, F.BULK_DATA_RESPONSE,
+})
+
+
 class _Waiter:
-    """The one transaction in progress with a node: which codes it waits for, and a queue."""
+    """The one transaction in progress with a node, and the queue its frames arrive on."""
 
     def __init__(self, node_id: int) -> None:
         self.node_id = node_id
-        self.codes: frozenset[FunctionCode] = frozenset()
+        self.codes: frozenset[FunctionCode] = _TRANSACTION_CODES
         self.inbox: queue.SimpleQueue = queue.SimpleQueue()
 
 
@@ -156,9 +167,10 @@ class RequestEngine:
 
     def _wait(self, waiter: _Waiter, codes: set[FunctionCode], deadline: float,
               match: Callable[[Message], bool] = lambda m: True) -> Message | None:
-        """The next frame with one of ``codes`` that ``match``es, or None at the timeout."""
-        with self._lock:
-            waiter.codes = frozenset(codes)
+        """The next frame with one of ``codes`` that ``match``es, or None at the timeout.
+
+        Frames before it that do not fit (late answers to an earlier attempt) are dropped.
+        """
         end = min(deadline, time.monotonic() + self.response_timeout)
         while True:
             left = end - time.monotonic()

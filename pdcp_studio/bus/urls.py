@@ -1,6 +1,9 @@
 """Bus URLs (contracts §3) and opening the python-can bus a URL names.
 
-``sim:NAME`` · ``can:INTERFACE:CHANNEL[@BITRATE]`` · ``serial:PORT[@BAUD]``. python-can is
+``sim:NAME`` · ``can:INTERFACE:CHANNEL[@BITRATE][?OPTION=VALUE&…]`` · ``serial:PORT[@BAUD]``.
+The ``?…`` suffix (an extension of contracts §3) passes keyword options to the python-can
+interface, e.g. ``can:udp_multicast:239.74.163.2?port=43200`` so that separate test runs on
+one host do not hear each other; numbers become ints, ``true``/``false`` booleans. python-can is
 imported only inside :func:`open_can_bus`, so parsing a URL (the CLI validating ``--bus``) stays
 cheap, and a missing vendor driver fails with a TransportError naming the URL, not a traceback.
 """
@@ -42,6 +45,7 @@ class BusSpec:
     bitrate: int | None = None  # can: only when given
     port: str = ""  # serial: the pyserial port or URL
     baud: int = DEFAULT_BAUD
+    options: tuple[tuple[str, Any], ...] = ()  # can: interface keyword options from "?…"
 
 
 def _rate(text: str, url: str, what: str) -> int:
@@ -52,6 +56,23 @@ def _rate(text: str, url: str, what: str) -> int:
     if value <= 0:
         raise BusUrlError(f"bus URL {url!r}: {what} {value} must be positive")
     return value
+
+
+def _options(query: str, url: str) -> tuple[tuple[str, Any], ...]:
+    if not query:
+        return ()
+    out: list[tuple[str, Any]] = []
+    for part in query.split("&"):
+        key, sep, text = part.partition("=")
+        if not sep or not re.match(r"^[A-Za-z_][A-Za-z0-9_]*$", key):
+            raise BusUrlError(f"bus URL {url!r}: option {part!r} is not NAME=VALUE")
+        value: Any = text
+        if re.match(r"^-?\d+$", text):
+            value = int(text)
+        elif text.lower() in ("true", "false"):
+            value = text.lower() == "true"
+        out.append((key, value))
+    return tuple(out)
 
 
 def parse_bus_url(url: str) -> BusSpec:
@@ -65,6 +86,8 @@ def parse_bus_url(url: str) -> BusSpec:
             raise BusUrlError(f"bus URL {url!r}: sim needs a prosthesis name (sim:thesis-test1)")
         return BusSpec(url, "sim", name=rest)
     if scheme == "can":
+        rest, _, query = rest.partition("?")
+        options = _options(query, url)
         interface, sep, channel = rest.partition(":")
         if not sep or not interface or not channel:
             raise BusUrlError(f"bus URL {url!r}: expected can:INTERFACE:CHANNEL[@BITRATE]")
@@ -74,7 +97,8 @@ def parse_bus_url(url: str) -> BusSpec:
             bitrate = _rate(text, url, "bitrate")
         if not channel:
             raise BusUrlError(f"bus URL {url!r}: the channel is empty")
-        return BusSpec(url, "can", interface=interface, channel=channel, bitrate=bitrate)
+        return BusSpec(url, "can", interface=interface, channel=channel, bitrate=bitrate,
+                       options=options)
     if scheme == "serial":
         port, baud = rest, DEFAULT_BAUD
         match = re.match(r"^(.*)@(\d+)$", rest)
@@ -118,5 +142,6 @@ def open_spec(spec: BusSpec, **options: Any) -> can.BusABC:
     """Open the python-can bus of a ``can:`` spec."""
     if spec.kind != "can":
         raise TransportError(f"{spec.url}: not a can: bus")
+    merged = {**dict(spec.options), **options}
     return open_can_bus(spec.interface, spec.channel, bitrate=spec.bitrate or DEFAULT_BITRATE,
-                        url=spec.url, **options)
+                        url=spec.url, **merged)

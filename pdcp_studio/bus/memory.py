@@ -1,0 +1,275 @@
+"""The arbitrator's non-volatile memory: its stored configuration, safe against power cuts.
+
+A real arbitrator keeps the stored configuration (reference §3) in EEPROM or flash; a cut in
+the middle of a write must leave the previous configuration readable. This store keeps two
+slots in one file it owns and writes them in turn, like a double-buffered EEPROM:
+
+``[slot A][slot B]``, each slot ``header + payload`` at a fixed offset. The header holds a
+magic, a generation counter, the payload length and a CRC-32 over generation, length and
+payload; the payload is the codec's byte string (``config_codec.dumps``), which carries its
+own CRC-16 record. A write goes to the slot *not* holding the newest valid generation:
+payload first, fsync, header last, fsync. Until the new header is whole, that slot fails its
+CRC and the reader takes the other slot — the previous configuration, never a mix.
+
+Reading takes the valid slot with the highest generation; a damaged slot (magic present but
+a bad length or checksum) is reported with a warning, and the other one is used. A file that
+is a plain ``.pdcfg`` (no slots) is read as generation 0 and converted on the first write by
+an atomic replace, so even that first write cannot lose it.
+"""
+
+from __future__ import annotations
+
+import logging
+import os
+import struct
+import threading
+import zlib
+from collections.abc import Callable
+from pathlib import Path
+
+from pdcp_studio.errors import ConfigFormatError, PdcpError
+from pdcp_studio.model.configuration import ConfigCollection
+from pdcp_studio.storage import config_codec
+from pdcp_studio.storage.atomic import atomic_write_bytes
+
+log = logging.getLogger(__name__)
+
+MAGIC = b"PDCM"
+FORMAT_VERSION = 1
+# magic, format version, reserved, generation, payload length, CRC-32 (generation..payload)
+_HEADER = struct.Struct("<4sHHQII")
+HEADER_SIZE = _HEADER.size
+#: Room for the largest collection the codec accepts.
+SLOT_CAPACITY = config_codec.MAX_INPUT_BYTES
+#: Payload bytes per write call (the step hook runs between them).
+CHUNK = 512
+
+#: ``step_hook(step)`` is called between the writes of one save (tests cut the power there).
+StepHook = Callable[[str], None]
+
+
+class MemoryStoreError(PdcpError):
+    """The memory cannot hold or store a configuration."""
+
+
+class _FileBackend:
+    def __init__(self, path: Path) -> None:
+        self.path = path
+        if not path.exists():
+            atomic_write_bytes(path, b"")  # a new, empty memory: both slots blank
+
+    def read(self, offset: int, size: int) -> bytes:
+        with open(self.path, "rb") as handle:
+            handle.seek(offset)
+            return handle.read(size)
+
+    def size(self) -> int:
+        return self.path.stat().st_size
+
+    def write(self, offset: int, data: bytes) -> None:
+        fd = os.open(self.path, os.O_WRONLY | getattr(os, "O_BINARY", 0))
+        try:
+            os.lseek(fd, offset, os.SEEK_SET)
+            view = memoryview(data)
+            while view:
+                view = view[os.write(fd, view):]
+        finally:
+            os.close(fd)
+
+    def sync(self) -> None:
+        fd = os.open(self.path, os.O_RDONLY | getattr(os, "O_BINARY", 0))
+        try:
+            os.fsync(fd)
+        finally:
+            os.close(fd)
+
+    def replace(self, image: bytes) -> None:
+        atomic_write_bytes(self.path, image)
+
+
+class _RamBackend:
+    """The same layout in a bytearray (an arbitrator started without ``--memory``)."""
+
+    def __init__(self) -> None:
+        self.image = bytearray()
+
+    def read(self, offset: int, size: int) -> bytes:
+        return bytes(self.image[offset:offset + size])
+
+    def size(self) -> int:
+        return len(self.image)
+
+    def write(self, offset: int, data: bytes) -> None:
+        if len(self.image) < offset + len(data):
+            self.image.extend(bytes(offset + len(data) - len(self.image)))
+        self.image[offset:offset + len(data)] = data
+
+    def sync(self) -> None:
+        pass
+
+    def replace(self, image: bytes) -> None:
+        self.image = bytearray(image)
+
+
+def _crc(generation: int, payload: bytes) -> int:
+    return zlib.crc32(struct.pack("<QI", generation, len(payload)) + payload)
+
+
+class MemoryStore:
+    """Two-slot non-volatile store of one ``ConfigCollection``; thread-safe.
+
+    ``path`` None keeps the slots in RAM (same code path, nothing survives the process).
+    """
+
+    def __init__(self, path: str | Path | None = None, *, capacity: int = SLOT_CAPACITY,
+                 step_hook: StepHook | None = None) -> None:
+        self.path = Path(path) if path is not None else None
+        self.capacity = capacity
+        self.step_hook = step_hook
+        self.warnings: list[str] = []
+        self._lock = threading.Lock()
+        self._backend = _FileBackend(self.path) if self.path is not None else _RamBackend()
+
+    # -- layout ---------------------------------------------------------------------------
+    def _offset(self, slot: int) -> int:
+        return slot * (HEADER_SIZE + self.capacity)
+
+    def _step(self, name: str) -> None:
+        if self.step_hook is not None:
+            self.step_hook(name)
+
+    def _slot(self, slot: int) -> tuple[int, bytes] | str | None:
+        """(generation, payload) if valid; None if blank; a reason string if damaged."""
+        head = self._backend.read(self._offset(slot), HEADER_SIZE)
+        if len(head) < HEADER_SIZE or head[:4] != MAGIC:
+            blank = not head.strip(b"\0") or not head.strip(b"\xff")
+            return None if blank else "no slot header"
+        _, version, _, generation, length, crc = _HEADER.unpack(head)
+        if version != FORMAT_VERSION:
+            return f"unknown format version {version}"
+        if length > self.capacity:
+            return f"length {length} exceeds the slot capacity {self.capacity}"
+        payload = self._backend.read(self._offset(slot) + HEADER_SIZE, length)
+        if len(payload) != length or _crc(generation, payload) != crc:
+            return f"checksum mismatch (generation {generation})"
+        try:
+            config_codec.loads(payload)
+        except ConfigFormatError as err:
+            return f"configuration does not decode: {err}"
+        return generation, payload
+
+    def _scan(self) -> tuple[int | None, int, bytes | None, list[str]]:
+        """(slot of the newest valid copy, its generation, its payload, damage notes)."""
+        best: tuple[int | None, int, bytes | None] = (None, -1, None)
+        notes: list[str] = []
+        for slot in (0, 1):
+            got = self._slot(slot)
+            if isinstance(got, str):
+                notes.append(f"slot {'AB'[slot]} is damaged ({got})")
+            elif got is not None and got[0] > best[1]:
+                best = (slot, got[0], got[1])
+        return best[0], best[1], best[2], notes
+
+    def _legacy(self) -> bytes | None:
+        """A plain stored-configuration file in place of the slots, if that is what we have."""
+        size = self._backend.size()
+        if not size or size > config_codec.MAX_INPUT_BYTES:
+            return None
+        data = self._backend.read(0, size)
+        try:
+            config_codec.loads(data)
+        except ConfigFormatError:
+            return None
+        return data
+
+    def _warn(self, notes: list[str], used: str) -> None:
+        for note in notes:
+            text = f"memory {self.path or '(RAM)'}: {note}; {used}"
+            self.warnings.append(text)
+            log.warning("%s", text)
+
+    # -- API ------------------------------------------------------------------------------
+    @property
+    def generation(self) -> int:
+        """Generation of the configuration a read returns (0: none or a plain file)."""
+        with self._lock:
+            return max(self._scan()[1], 0)
+
+    def read_bytes(self) -> bytes | None:
+        """The stored codec bytes (None when nothing is stored)."""
+        with self._lock:
+            slot, generation, payload, notes = self._scan()
+            if payload is not None:
+                if notes:
+                    self._warn(notes, f"using slot {'AB'[slot or 0]} (generation {generation})")
+                return payload
+            legacy = self._legacy()
+            if legacy is not None:
+                return legacy
+            if notes:
+                self._warn(notes, "no valid configuration is stored")
+            return None
+
+    def read(self) -> ConfigCollection:
+        """The stored configuration collection (empty when nothing is stored)."""
+        payload = self.read_bytes()
+        return config_codec.loads(payload) if payload is not None else ConfigCollection()
+
+    def write(self, configs: ConfigCollection) -> int:
+        """Store ``configs`` in the older slot; returns the new generation.
+
+        The written slot is read back and checked before this returns.
+        """
+        payload = config_codec.dumps(configs)
+        if len(payload) > self.capacity:
+            raise MemoryStoreError(f"the configuration takes {len(payload)} bytes; the memory "
+                               f"holds {self.capacity} per slot")
+        with self._lock:
+            slot, generation, _, _ = self._scan()
+            new_generation = generation + 1 if generation >= 0 else 1
+            if slot is None:
+                legacy = self._legacy()
+                if legacy is not None:  # convert atomically: the plain file becomes slot A
+                    image = self._image(1, legacy) + self._image_pad(legacy)
+                    image += self._image(2, payload)
+                    self._backend.replace(image)
+                    self._check(1, 2, payload)
+                    return 2
+                if self._slot(0) == "no slot header":  # not ours: never write over it
+                    raise MemoryStoreError(f"{self.path} is neither an arbitrator memory nor a "
+                                           "stored configuration; refusing to overwrite it")
+            target = 1 if slot == 0 else 0
+            base = self._offset(target)
+            for start in range(0, len(payload), CHUNK):
+                self._backend.write(base + HEADER_SIZE + start, payload[start:start + CHUNK])
+                self._step("payload")
+            self._backend.sync()
+            self._step("payload synced")
+            head = _HEADER.pack(MAGIC, FORMAT_VERSION, 0, new_generation, len(payload),
+                                _crc(new_generation, payload))
+            half = HEADER_SIZE // 2
+            self._backend.write(base, head[:half])
+            self._step("header half")
+            self._backend.write(base + half, head[half:])
+            self._backend.sync()
+            self._step("header synced")
+            self._check(target, new_generation, payload)
+            return new_generation
+
+    def erase(self) -> int:
+        """Store an empty collection (itself a safe, two-slot write); returns its generation."""
+        return self.write(ConfigCollection())
+
+    # -- helpers --------------------------------------------------------------------------
+    def _image(self, generation: int, payload: bytes) -> bytes:
+        return _HEADER.pack(MAGIC, FORMAT_VERSION, 0, generation, len(payload),
+                            _crc(generation, payload)) + payload
+
+    def _image_pad(self, payload: bytes) -> bytes:
+        return bytes(self.capacity - len(payload))
+
+    def _check(self, slot: int, generation: int, payload: bytes) -> None:
+        got = self._slot(slot)
+        if not isinstance(got, tuple) or got != (generation, payload):
+            raise MemoryStoreError(f"memory {self.path or '(RAM)'}: slot {'AB'[slot]} did not read "
+                               f"back as written ({got if isinstance(got, str) else 'mismatch'})")

@@ -1,0 +1,139 @@
+"""``pdcp-studio arbitrator --bus can:IFACE:CHANNEL [--memory FILE] [--host-serial PORT]``.
+
+A headless bus arbitrator for a real (or a multicast) bus: it binds and sets up the devices,
+runs start-up with its memory and the hot-swap duty cycle, and logs joins, leaves, links and
+plans to stdout, one line each, until Ctrl-C (or ``--seconds``). With ``--host-serial`` it
+also serves the host link on that serial port, so a PC can reach it as ``serial:PORT``.
+"""
+
+from __future__ import annotations
+
+import argparse
+import queue
+import signal
+import sys
+import threading
+import time
+from typing import Any
+
+
+def add_subparser(subparsers: Any) -> None:
+    parser = subparsers.add_parser(
+        "arbitrator",
+        help="run a headless PDCP bus arbitrator on a CAN bus",
+        description="Bind, set up and link the devices on a CAN bus; log what happens.",
+    )
+    parser.add_argument("--bus", required=True, metavar="URL",
+                        help="can:INTERFACE:CHANNEL[@BITRATE], e.g. can:socketcan:can0")
+    parser.add_argument("--memory", metavar="FILE",
+                        help="the arbitrator's non-volatile memory (created if missing)")
+    parser.add_argument("--host-serial", metavar="PORT",
+                        help="also serve the host link on this serial port ('pty' for a new "
+                             "pseudo-terminal)")
+    parser.add_argument("--no-profile-layer", action="store_true",
+                        help="bind and set up only; no start-up or duty cycle")
+    parser.add_argument("--seconds", type=float, metavar="N",
+                        help="stop after N seconds instead of waiting for Ctrl-C")
+    parser.add_argument("--startup-quiet", type=float, metavar="S",
+                        help="seconds without bind requests before start-up runs")
+    parser.set_defaults(func=run)
+
+
+def describe(event: Any) -> str | None:
+    """One log line for an event (None for per-frame traffic)."""
+    from pdcp_studio.bus import events as ev
+
+    if isinstance(event, ev.DeviceJoined):
+        return f"joined {event.key}"
+    if isinstance(event, ev.DeviceLeft):
+        return f"left {event.key}"
+    if isinstance(event, ev.LinkMade):
+        return f"link made {event.link}"
+    if isinstance(event, ev.LinkRemoved):
+        return f"link removed {event.link}"
+    if isinstance(event, ev.BusError):
+        return f"error {event.message}"
+    if isinstance(event, ev.PlanApplied):
+        plan = event.plan
+        lines = [f"plan {plan.mode}: {len(plan.added)} added, {len(plan.removed)} removed, "
+                 f"{len(plan.final_links)} links"]
+        lines += [f"  {a.op.value} {a.link} ({a.reason})" for a in plan.actions]
+        return "\n".join(lines)
+    return None
+
+
+def run(args: argparse.Namespace) -> int:
+    from pdcp_studio.bus.urls import BusUrlError, open_spec, parse_bus_url
+    from pdcp_studio.cli.main import EXIT_BAD_INPUT, BadInput
+
+    try:
+        spec = parse_bus_url(args.bus)
+    except BusUrlError as err:
+        raise BadInput(str(err)) from err
+    if spec.kind != "can":
+        raise BadInput(f"--bus {args.bus}: the arbitrator runs on a can: bus "
+                       "(can:INTERFACE:CHANNEL[@BITRATE])")
+    server_cls = None
+    if args.host_serial:
+        try:
+            from pdcp_studio.bus.hostlink_server import HostLinkServer
+        except ImportError as err:
+            print(f"pdcp-studio: --host-serial needs the host-link server, which this "
+                  f"installation lacks ({err})", file=sys.stderr)
+            return EXIT_BAD_INPUT
+        server_cls = HostLinkServer
+
+    from pdcp_studio.bus.arbitrator import Arbitrator
+
+    lines: queue.SimpleQueue[str] = queue.SimpleQueue()
+
+    def on_event(event: Any) -> None:  # arbitrator threads: only enqueue
+        text = describe(event)
+        if text is not None:
+            lines.put(text)
+
+    options: dict[str, Any] = {"memory": args.memory, "name": "arbitrator",
+                               "profile_layer": not args.no_profile_layer}
+    if args.startup_quiet is not None:
+        options["startup_quiet_s"] = args.startup_quiet
+    stop = threading.Event()
+    main_thread = threading.current_thread() is threading.main_thread()
+    previous = signal.signal(signal.SIGTERM, lambda *_: stop.set()) if main_thread else None
+    bus = open_spec(spec)
+    try:
+        arbitrator = Arbitrator(bus, **options)
+    except BaseException:
+        bus.shutdown()
+        raise
+    server = None
+    try:
+        arbitrator.subscribe(on_event)
+        if server_cls is not None:
+            server = server_cls(arbitrator, args.host_serial)
+            where = server.slave_path or args.host_serial
+            print(f"host link on {where}", flush=True)
+        print(f"arbitrator on {spec.url}" + (f", memory {args.memory}" if args.memory else ""),
+              flush=True)
+        deadline = None if args.seconds is None else time.monotonic() + args.seconds
+        while not stop.is_set():
+            if deadline is not None and time.monotonic() >= deadline:
+                break
+            try:
+                print(lines.get(timeout=0.1), flush=True)
+            except queue.Empty:
+                continue
+    except KeyboardInterrupt:
+        pass
+    finally:
+        if server is not None:
+            server.close()
+        arbitrator.close()
+        if main_thread:
+            signal.signal(signal.SIGTERM, previous)
+        while True:
+            try:
+                print(lines.get_nowait(), flush=True)
+            except queue.Empty:
+                break
+    print("arbitrator stopped", flush=True)
+    return 0
