@@ -213,11 +213,15 @@ class RequestEngine:
 
     # -- requests -----------------------------------------------------------------------
     def get(self, node_id: int, param: int, channel: int, *, timeout: float | None = None,
-            retries: int | None = None) -> bytes:
-        """Get Device Parameter, following the device into a bulk transfer when it asks."""
+            retries: int | None = None, bulk_first: bool = False) -> bytes:
+        """Get Device Parameter, following the device into a bulk transfer when it asks.
+
+        ``bulk_first`` starts with Configure Get Bulk for a value known to be long (a
+        descriptor string), saving the Get and its "use bulk" reply: two frames a string.
+        """
         what = f"get parameter {param} of channel {channel}"
         same = lambda m: m.param == param and m.channel == channel  # noqa: E731
-        bulk = False
+        bulk = bulk_first
         for _, deadline in self._attempts(node_id, what, timeout, retries):
             with self._exchange(node_id, deadline) as w:
                 if not bulk:

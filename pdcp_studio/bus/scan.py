@@ -221,7 +221,11 @@ def scan(arbitrator: Any, progress: ProgressFn | None = None,
             raise _Stop
         pacer.wait()
         try:
-            value = requests.get(job.node_id, pid, channel, timeout=read_timeout)
+            # A device descriptor is long (the thesis's is 33 bytes): ask for bulk at once.
+            # Channel descriptors are often short or empty, so they go inline first.
+            long_value = channel == 0 and pid == P.DEVICE_DESCRIPTOR
+            value = requests.get(job.node_id, pid, channel, timeout=read_timeout,
+                                 bulk_first=long_value)
         except DeviceRefusedError:
             value = None  # not implemented by this device: left at its default
         job.values[pid, channel] = value

@@ -83,6 +83,20 @@ def test_bulk_get_of_the_33_byte_descriptor():
     assert s.hex() == ["03 07 00", "0c 07 00", "8e 01"]
 
 
+def test_a_value_known_to_be_long_starts_with_configure_get_bulk():
+    def reply(m: Message) -> list[Message]:
+        assert m.CODE != 0x03, "bulk_first must skip the inline Get"
+        if m.CODE == 0x0C:
+            packets = [BulkData(5, n + 1, DESCRIPTOR[i:i + 6], mode=Mode.DEVICE)
+                       for n, i in enumerate(range(0, 33, 6))]
+            return [ConfigureGetBulkResponse(5, OK, 7, 0, 33), *packets]
+        return []
+
+    s = Script(reply)
+    assert s.engine.get(5, 7, 0, bulk_first=True) == DESCRIPTOR
+    assert s.hex() == ["0c 07 00", "8e 01"]
+
+
 def test_bulk_set_of_17_bytes():
     value = bytes(range(17))
     got: list[bytes] = []
