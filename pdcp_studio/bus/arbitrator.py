@@ -266,7 +266,7 @@ class Arbitrator:
                                       retries=retries)
         self._lock = threading.RLock()
         self._plan_lock = threading.RLock()
-        self._subscribers: list[Callable[[ev.Event], None]] = []
+        self._subscribers = ev.Subscribers(name)
         self._system = System()
         self._pool = NodeIdPool(*node_ids)
         self._nodes: dict[int, _Node] = {}
@@ -343,24 +343,10 @@ class Arbitrator:
     # -- events ---------------------------------------------------------------------------
     def subscribe(self, callback: Callable[[ev.Event], None]) -> Callable[[], None]:
         """Call ``callback(event)`` for every event; returns the unsubscribe function."""
-        with self._lock:
-            self._subscribers.append(callback)
-
-        def unsubscribe() -> None:
-            with self._lock:
-                if callback in self._subscribers:
-                    self._subscribers.remove(callback)
-
-        return unsubscribe
+        return self._subscribers.add(callback)
 
     def _emit(self, event: ev.Event) -> None:
-        with self._lock:
-            targets = list(self._subscribers)
-        for callback in targets:
-            try:
-                callback(event)
-            except Exception:  # a subscriber's bug must not stop the arbitrator
-                log.exception("%s: a subscriber failed on %s", self.name, type(event).__name__)
+        self._subscribers.emit(event)
 
     def _error(self, message: str, kind: str = "") -> None:
         log.warning("%s: %s", self.name, message)

@@ -6,11 +6,16 @@ Plain frozen dataclasses so a subscriber on any thread can keep them; they carry
 
 from __future__ import annotations
 
+import logging
+import threading
+from collections.abc import Callable
 from dataclasses import dataclass
 from typing import Any
 
 from pdcp_studio.model.refs import ChannelRef, DeviceKey
 from pdcp_studio.model.system import Link
+
+log = logging.getLogger(__name__)
 
 
 @dataclass(frozen=True)
@@ -89,3 +94,40 @@ Event = (
     DeviceJoined | DeviceLeft | LinkMade | LinkRemoved | FrameSeen | BusError | PlanApplied
     | ChannelValue | Progress
 )
+
+
+class Subscribers:
+    """Thread-safe fan-out of events to callbacks (arbitrator, sessions, host link).
+
+    A callback runs on the emitting thread and must not block; one that raises is logged and
+    the others still get the event, so a subscriber's bug never stops a bus thread.
+    """
+
+    def __init__(self, owner: str) -> None:
+        self.owner = owner
+        self._callbacks: list[Callable[[Any], None]] = []
+        self._lock = threading.Lock()
+
+    def __len__(self) -> int:
+        return len(self._callbacks)
+
+    def add(self, callback: Callable[[Any], None]) -> Callable[[], None]:
+        """Register ``callback``; returns the function that unregisters it (idempotent)."""
+        with self._lock:
+            self._callbacks.append(callback)
+
+        def remove() -> None:
+            with self._lock:
+                if callback in self._callbacks:
+                    self._callbacks.remove(callback)
+
+        return remove
+
+    def emit(self, event: Any) -> None:
+        with self._lock:
+            callbacks = list(self._callbacks)
+        for callback in callbacks:
+            try:
+                callback(event)
+            except Exception:
+                log.exception("%s: a subscriber failed on %s", self.owner, type(event).__name__)

@@ -77,8 +77,7 @@ class HostLinkSession:
         self.bad_frames = 0
         self._reader = hl.FrameReader()
         self._io = threading.Lock()
-        self._subs_lock = threading.Lock()
-        self._subscribers: list[Callable[[object], None]] = []
+        self._subscribers = ev.Subscribers(url or "host link")
         self._system: System | None = None
         self._stale = True
         self._closed = threading.Event()
@@ -147,24 +146,10 @@ class HostLinkSession:
     # -- events -----------------------------------------------------------------------
     def subscribe(self, callback: Callable[[object], None]) -> Callable[[], None]:
         """Call ``callback(event)`` from the poll thread; returns the unsubscribe function."""
-        with self._subs_lock:
-            self._subscribers.append(callback)
-
-        def unsubscribe() -> None:
-            with self._subs_lock:
-                if callback in self._subscribers:
-                    self._subscribers.remove(callback)
-
-        return unsubscribe
+        return self._subscribers.add(callback)
 
     def _emit(self, event: object) -> None:
-        with self._subs_lock:
-            subscribers = list(self._subscribers)
-        for callback in subscribers:
-            try:
-                callback(event)
-            except Exception:  # a subscriber's bug must not stop the poller
-                log.exception("host link: a subscriber failed on %r", event)
+        self._subscribers.emit(event)
 
     def _poll_loop(self, interval: float) -> None:
         reported = False

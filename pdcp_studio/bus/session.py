@@ -97,8 +97,7 @@ class Session:
         self.arbitrator = arbitrator
         self.scan_window = scan_window
         self.scan_pace_s = scan_pace_s
-        self._subs: list[Subscriber] = []
-        self._subs_lock = threading.Lock()
+        self._subs = ev.Subscribers(url or "session")
         self._closed = threading.Event()
         self._close_lock = threading.Lock()
         self._unsubscribe = arbitrator.subscribe(self._emit)
@@ -123,24 +122,10 @@ class Session:
     # -- events -----------------------------------------------------------------------
     def subscribe(self, callback: Subscriber) -> Callable[[], None]:
         """Call ``callback(event)`` for every bus event (bus/events.py); returns unsubscribe."""
-        with self._subs_lock:
-            self._subs.append(callback)
-
-        def unsubscribe() -> None:
-            with self._subs_lock:
-                if callback in self._subs:
-                    self._subs.remove(callback)
-
-        return unsubscribe
+        return self._subs.add(callback)
 
     def _emit(self, event: object) -> None:
-        with self._subs_lock:
-            subscribers = list(self._subs)
-        for callback in subscribers:
-            try:
-                callback(event)
-            except Exception:  # a subscriber's bug must not stop the arbitrator's thread
-                log.exception("%s: a subscriber failed on %r", self.url, event)
+        self._subs.emit(event)
 
     # -- the bus ------------------------------------------------------------------------
     def system(self) -> System:

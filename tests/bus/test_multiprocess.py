@@ -2,7 +2,6 @@
 
 from __future__ import annotations
 
-import os
 import queue
 import signal
 import subprocess
@@ -10,7 +9,6 @@ import sys
 import threading
 import time
 
-import can
 import pytest
 from test_arbitrator_rig import load, no_bus_left_open  # noqa: F401
 
@@ -21,30 +19,6 @@ from pdcp_studio.model import parameters as P
 from pdcp_studio.model.refs import DeviceKey
 
 GROUP = "239.74.163.2"
-
-
-def _port() -> int:
-    return 41000 + os.getpid() % 20000
-
-
-def _multicast_works(url: str) -> str | None:
-    """None if two buses on ``url`` hear each other, else why not."""
-    spec = parse_bus_url(url)
-    try:
-        a, b = open_spec(spec), open_spec(spec)
-    except Exception as err:
-        return f"cannot open udp_multicast: {err}"
-    try:
-        a.send(can.Message(arbitration_id=0x7AB, data=b"ping", is_extended_id=False))
-        deadline = time.monotonic() + 1.0
-        while time.monotonic() < deadline:
-            msg = b.recv(0.2)
-            if msg is not None and msg.arbitration_id == 0x7AB:
-                return None
-        return "multicast frames do not arrive on loopback"
-    finally:
-        a.shutdown()
-        b.shutdown()
 
 
 class Lines:
@@ -73,11 +47,8 @@ class Lines:
 
 
 @pytest.mark.slow
-def test_arbitrator_process_binds_and_links_devices_of_this_process(tmp_path):
-    url = f"can:udp_multicast:{GROUP}?port={_port()}"
-    why = _multicast_works(url)
-    if why is not None:
-        pytest.skip(why)
+def test_arbitrator_process_binds_and_links_devices_of_this_process(tmp_path, multicast_url):
+    url = multicast_url(GROUP, 41000)
     system = load("appendix-d")
     devices = [SimulatedDevice(d, data_rate_hz=20) for d in system.devices.values()]
     host = DeviceHost(open_spec(parse_bus_url(url)), devices, plugged=True, name="here")

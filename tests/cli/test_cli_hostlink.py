@@ -20,36 +20,9 @@ from pdcp_studio.storage import config_codec
 pytestmark = pytest.mark.skipif(not hasattr(os, "openpty"), reason="needs POSIX pseudo-terminals")
 
 
-def _multicast_fails(url: str) -> str | None:
-    import time
-
-    import can
-
-    from pdcp_studio.bus.urls import open_spec, parse_bus_url
-
-    try:
-        a, b = open_spec(parse_bus_url(url)), open_spec(parse_bus_url(url))
-    except Exception as err:
-        return f"cannot open udp_multicast: {err}"
-    try:
-        a.send(can.Message(arbitration_id=0x7AC, data=b"ping", is_extended_id=False))
-        deadline = time.monotonic() + 1.0
-        while time.monotonic() < deadline:
-            msg = b.recv(0.2)
-            if msg is not None and msg.arbitration_id == 0x7AC:
-                return None
-        return "multicast frames do not arrive on loopback"
-    finally:
-        a.shutdown()
-        b.shutdown()
-
-
 @pytest.fixture
-def serial_url(tmp_path):
-    url = f"can:udp_multicast:239.74.163.4?port={43000 + os.getpid() % 20000}"
-    why = _multicast_fails(url)
-    if why:
-        pytest.skip(why)
+def serial_url(tmp_path, multicast_url):
+    url = multicast_url("239.74.163.4", 43000)
     cmd = [sys.executable, "-m", "pdcp_studio"]
     devices = subprocess.Popen([*cmd, "sim", "devices", "transradial", "--bus", url,
                                 "--seconds", "60"], stderr=subprocess.PIPE, text=True)

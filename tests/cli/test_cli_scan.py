@@ -89,40 +89,11 @@ def test_scan_missing_adapter_is_exit_1(capsys):
     assert "can:no_such_interface:can0" in capsys.readouterr().err
 
 
-def _multicast_fails(url: str) -> str | None:
-    """Why two buses on ``url`` do not hear each other (None when they do)."""
-    import time
-
-    import can
-
-    from pdcp_studio.bus.urls import open_spec, parse_bus_url
-
-    try:
-        a, b = open_spec(parse_bus_url(url)), open_spec(parse_bus_url(url))
-    except Exception as err:
-        return f"cannot open udp_multicast: {err}"
-    try:
-        a.send(can.Message(arbitration_id=0x7AB, data=b"ping", is_extended_id=False))
-        deadline = time.monotonic() + 1.0
-        while time.monotonic() < deadline:
-            msg = b.recv(0.2)
-            if msg is not None and msg.arbitration_id == 0x7AB:
-                return None
-        return "multicast frames do not arrive on loopback"
-    finally:
-        a.shutdown()
-        b.shutdown()
-
-
-def test_scan_of_devices_in_another_process_over_udp_multicast(capsys):
-    import os
+def test_scan_of_devices_in_another_process_over_udp_multicast(capsys, multicast_url):
     import subprocess
     import sys
 
-    url = f"can:udp_multicast:239.74.163.3?port={42000 + os.getpid() % 20000}"
-    why = _multicast_fails(url)
-    if why:
-        pytest.skip(why)
+    url = multicast_url("239.74.163.3", 42000)
     devices = subprocess.Popen(
         [sys.executable, "-m", "pdcp_studio", "sim", "devices", "thesis-test2", "--bus", url,
          "--seconds", "20"], stderr=subprocess.PIPE, text=True)
