@@ -62,7 +62,58 @@ class SetLinksCommand(QUndoCommand):
         self.doc.set_links(self.before)
 
 
+#: Channel fields a user may write to a live device: field → catalog parameter ID.
+#: (Node IDs and the input's source fields are the arbitrator's: they follow the links.)
+LIVE_CHANNEL_PARAMS = {"type": 1, "profile": 1, "descriptor": 2, "data_enabled": 4,
+                       "required_inputs": 9, "desired_inputs": 10, "terminal_profile": 11}
+LIVE_DEVICE_PARAMS = {"descriptor": 7, "beacon_interval": 10, "ack_timeout": 11,
+                      "bind_timeout": 12}
+
+
+def live_write_refusal(doc: Document, name: str, *, device: bool) -> str | None:
+    """Why a field may not be edited on a live bus (None: it may, and will be written)."""
+    if _live(doc) is None:
+        return None
+    table = LIVE_DEVICE_PARAMS if device else LIVE_CHANNEL_PARAMS
+    if name in table or name == "name":
+        return None
+    if name == "node_id":
+        return "node IDs are assigned by the arbitrator on a live bus"
+    return f"{name.replace('_', ' ')} cannot be written to a live device"
+
+
+def _write_live(doc: Document, key: DeviceKey, index: int, name: str) -> None:
+    """Write the model's current value of one field to the live device (worker thread)."""
+    from pdcp_studio.model import parameters as params
+
+    bridge = _live(doc)
+    if bridge is None or not hasattr(bridge.session, "set_parameter"):
+        return
+    device = doc.device(key)
+    if index == 0:
+        pid = LIVE_DEVICE_PARAMS.get(name)
+        if pid is None:
+            return
+        spec = params.device_parameter(pid)
+        value: Any = getattr(device, name)
+    else:
+        pid = LIVE_CHANNEL_PARAMS.get(name)
+        if pid is None:
+            return
+        ch = device.channels[index]
+        spec = params.channel_parameter(pid, ch.direction)
+        value = (ch.type, ch.profile) if pid == 1 else getattr(ch, name)
+        if pid == 4:
+            value = int(bool(value))
+    data = params.encode_value(spec, value)
+    session = bridge.session
+    bridge.run(lambda _p, _c: session.set_parameter(key, pid, index, data),
+               f"Write {spec.name} of {key}" + (f" #{index}" if index else ""))
+
+
 class SetChannelFieldCommand(QUndoCommand):
+    """One channel field; on a live bus also written to the device (redo and undo)."""
+
     def __init__(self, doc: Document, ref: ChannelRef, name: str, value: Any,
                  text: str = "", parent: QUndoCommand | None = None) -> None:
         super().__init__(text or f"Set {name.replace('_', ' ')} of {ref}", parent)
@@ -71,12 +122,16 @@ class SetChannelFieldCommand(QUndoCommand):
 
     def redo(self) -> None:
         self.doc.set_channel_field(self.ref, self.name, self.value)
+        _write_live(self.doc, self.ref.device, self.ref.index, self.name)
 
     def undo(self) -> None:
         self.doc.set_channel_field(self.ref, self.name, self.old)
+        _write_live(self.doc, self.ref.device, self.ref.index, self.name)
 
 
 class SetDeviceFieldCommand(QUndoCommand):
+    """One device field; on a live bus also written to the device (redo and undo)."""
+
     def __init__(self, doc: Document, key: DeviceKey, name: str, value: Any,
                  text: str = "", parent: QUndoCommand | None = None) -> None:
         super().__init__(text or f"Set {name.replace('_', ' ')} of {key}", parent)
@@ -85,9 +140,11 @@ class SetDeviceFieldCommand(QUndoCommand):
 
     def redo(self) -> None:
         self.doc.set_device_field(self.key, self.name, self.value)
+        _write_live(self.doc, self.key, 0, self.name)
 
     def undo(self) -> None:
         self.doc.set_device_field(self.key, self.name, self.old)
+        _write_live(self.doc, self.key, 0, self.name)
 
 
 class MoveDeviceCommand(QUndoCommand):
@@ -157,9 +214,37 @@ def push_device_field(doc: Document, key: DeviceKey, name: str, value: Any,
     return True
 
 
+def manual_plan(doc: Document, adds: Iterable[Link] = (), removes: Iterable[Link] = ()) -> Any:
+    """Edits by hand as an engine ``Plan``, for a live bus (the session applies plans)."""
+    from pdcp_studio.engine import Action, ChannelFacts, Op, Plan, Rule
+
+    system = doc.system
+    actions = [Action(Op.REMOVE, lk, Rule.NOT_STORED, "removed by hand") for lk in removes]
+    actions += [Action(Op.ADD, lk, Rule.STORED, "linked by hand") for lk in adds]
+    channels = {}
+    for a in actions:
+        for ref in (a.link.output, a.link.input):
+            ch = system.channel(ref)
+            if ch is not None:
+                channels[ref] = ChannelFacts(ch.type, ch.profile, ch.terminal_profile,
+                                             ch.descriptor, system.is_present(ref))
+    return Plan("manual", actions=actions, links_before=list(system.links), channels=channels)
+
+
+def _live(doc: Document) -> Any:
+    """The session bridge when the document shows a live bus (edits go to the bus)."""
+    bridge = doc.session
+    return bridge if bridge is not None and hasattr(bridge, "apply_plan") else None
+
+
 def push_add_link(doc: Document, link: Link) -> bool:
+    """Add a link: one undo step offline; on a live bus a one-action plan for the session."""
     if doc.system.has_link(link):
         return False
+    bridge = _live(doc)
+    if bridge is not None:
+        bridge.apply_plan(manual_plan(doc, adds=[link]))
+        return True
     doc.undo_stack.push(AddLinkCommand(doc, link))
     return True
 
@@ -169,6 +254,10 @@ def push_remove_links(doc: Document, links: Iterable[Link]) -> int:
     links = [lk for lk in links if doc.system.has_link(lk)]
     if not links:
         return 0
+    bridge = _live(doc)
+    if bridge is not None:
+        bridge.apply_plan(manual_plan(doc, removes=links))
+        return len(links)
     if len(links) == 1:
         doc.undo_stack.push(RemoveLinkCommand(doc, links[0]))
         return 1

@@ -111,6 +111,8 @@ class Document(QObject):
         self.positions: dict[DeviceKey, Position] = {}
         #: What kind of file ``path`` is: "system" or "config" (a .pdcfg opened as a view).
         self.kind = "system"
+        #: The stored configuration plans use (an opened .pdcfg, or one read from a bus).
+        self.config: Any = None
         self._selection: Selection = None
         self._extra_dirty = False
         self._was_dirty = False
@@ -118,8 +120,8 @@ class Document(QObject):
 
     # -- whole document -----------------------------------------------------------
     def set_system(self, system: System, path: Path | str | None = None, session: Any = None,
-                   *, dirty: bool = False, positions: dict[DeviceKey, Position] | None = None
-                   ) -> None:
+                   *, dirty: bool = False, positions: dict[DeviceKey, Position] | None = None,
+                   kind: str = "system", config: Any = None) -> None:
         """Show a different system: clears undo history, selection and preview.
 
         ``dirty`` marks a system that exists nowhere on disk yet (an autoconfigured
@@ -127,6 +129,7 @@ class Document(QObject):
         """
         self.system = system
         self.path = Path(path) if path is not None else None
+        self.kind, self.config = kind, config
         session_changed = session is not self.session
         self.session = session
         self.preview_plan = None
@@ -143,6 +146,51 @@ class Document(QObject):
         if session_changed:
             self.sessionChanged.emit(session)
         self._emit_dirty()
+
+    def sync_live(self, snapshot: System) -> None:
+        """Follow the live bus: presence, node IDs, new devices and the links.
+
+        Devices the snapshot lacks stay, marked missing (their card shows it); devices it
+        has keep their objects (so local parameter edits survive) with presence and node
+        IDs updated. Not an undo step: the bus changed, not the user.
+        """
+        system = self.system
+        added = False
+        for key, device in snapshot.devices.items():
+            mine = system.devices.get(key)
+            if mine is None:
+                system.add_device(device)
+                added = True
+                continue
+            changed = mine.present != device.present or mine.node_id != device.node_id
+            mine.present, mine.node_id = device.present, device.node_id
+            for index, ch in device.channels.items():
+                own = mine.channels.get(index)
+                if own is not None and own.node_id != ch.node_id:
+                    own.node_id = ch.node_id
+            if changed and not added:
+                self.deviceChanged.emit(key)
+        for key, mine in system.devices.items():
+            if key not in snapshot.devices and mine.present:
+                mine.present = False
+                if not added:
+                    self.deviceChanged.emit(key)
+        links = [lk for lk in snapshot.links
+                 if system.channel(lk.output) is not None and system.channel(lk.input)]
+        if added:
+            system.clear_links()
+            for link in links:
+                system.add_link(link, check=False)
+            self.systemReset.emit()
+        elif set(links) != set(system.links):
+            self.set_links(links)
+
+    def set_present(self, key: DeviceKey, present: bool) -> None:
+        """A device joined or left the live bus (not an undo step)."""
+        device = self.system.devices.get(key)
+        if device is not None and device.present != present:
+            device.present = present
+            self.deviceChanged.emit(key)
 
     def set_session(self, session: Any) -> None:
         """Bind or unbind a live session without touching the system."""
@@ -169,7 +217,11 @@ class Document(QObject):
 
     @property
     def is_dirty(self) -> bool:
-        return self._extra_dirty or not self.undo_stack.isClean()
+        try:
+            clean = self.undo_stack.isClean()
+        except RuntimeError:  # the stack is being destroyed with us and still signals
+            return self._extra_dirty
+        return self._extra_dirty or not clean
 
     def _on_clean_changed(self, _clean: bool) -> None:
         self._emit_dirty()
@@ -233,6 +285,8 @@ class Document(QObject):
         self.linksChanged.emit()
 
     def remove_link(self, link: Link) -> None:
+        if not self.system.has_link(link):
+            return  # already gone (the live bus removed it): undo/redo stays harmless
         self.system.remove_link(link)
         if self._selection == link:
             self.select(None)

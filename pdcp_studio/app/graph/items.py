@@ -16,6 +16,7 @@ from PySide6.QtGui import QBrush, QColor, QFont, QFontMetricsF, QPainter, QPen
 from PySide6.QtWidgets import (
     QGraphicsEllipseItem,
     QGraphicsItem,
+    QGraphicsRectItem,
     QGraphicsSceneHoverEvent,
     QGraphicsSceneMouseEvent,
     QStyleOptionGraphicsItem,
@@ -120,7 +121,7 @@ class PortItem(QGraphicsEllipseItem):
             scene.end_link_drag(event.scenePos())
 
 
-class DeviceItem(QGraphicsItem):
+class DeviceItem(QGraphicsRectItem):
     """One device as a card; movable, selectable, one row per channel."""
 
     def __init__(self, scene: BusScene, device: Device, role: str) -> None:
@@ -131,6 +132,8 @@ class DeviceItem(QGraphicsItem):
         self.role = role
         self.width = style.CARD_WIDTH
         self.height = card_height(device)
+        self.setPen(QPen(Qt.PenStyle.NoPen))
+        self._set_bounds()
         self.problems: list[str] = []
         self.selected_ref: ChannelRef | None = None
         self.links: set[LinkItem] = set()
@@ -169,8 +172,8 @@ class DeviceItem(QGraphicsItem):
         new = sorted(((c.index, c.direction) for c in device.inputs()), key=lambda t: t[0]) + \
             sorted(((c.index, c.direction) for c in device.outputs()), key=lambda t: t[0])
         if old != new:
-            self.prepareGeometryChange()
             self.height = card_height(device)
+            self._set_bounds()
             links = {lk for p in self.ports.values() for lk in p.links}
             self._build_rows()
             for lk in links:
@@ -189,9 +192,14 @@ class DeviceItem(QGraphicsItem):
         return self.rows[i]
 
     # -- Qt virtuals ----------------------------------------------------------------
-    def boundingRect(self) -> QRectF:
+    def _set_bounds(self) -> None:
+        """The card's bounds as the C++ rect (no pen, no brush: ``paint`` draws it).
+
+        A built-in ``boundingRect`` spares the scene a call into Python (and a wait for the
+        GIL, which bus threads hold often) every time it looks the card up while painting.
+        """
         r = style.PORT_RADIUS + 2
-        return QRectF(-r, -2, self.width + 2 * r, self.height + 6)
+        self.setRect(QRectF(-r, -2, self.width + 2 * r, self.height + 6))
 
     def itemChange(self, change: QGraphicsItem.GraphicsItemChange, value: object) -> object:
         if change == QGraphicsItem.GraphicsItemChange.ItemPositionHasChanged:

@@ -1,10 +1,13 @@
 """Layered placement of device cards: sensors → control → terminal devices, left to right.
 
-A Sugiyama-style layout written out here instead of networkx's ``multipartite_layout``:
-it needs the same layer assignment anyway, and avoiding the networkx import (~0.2 s)
-keeps start-up fast. Steps: break cycles (DFS back edges), longest-path layers lifted by
-role (terminal devices last), a few barycentre sweeps to reduce crossings, then stacked
-columns (a very tall layer wraps into sub-columns). Pure: no Qt.
+A Sugiyama-style layout, no force-directed step (``spring_layout`` takes seconds beyond a
+few hundred nodes). networkx assigns the layers: the device graph's condensation (a
+feedback loop collapses into one node) in topological order, each device at the longest
+path from the sources but at least its role's layer, terminal devices last. Then a few
+barycentre sweeps order each layer to reduce crossings, and the cards are stacked in
+columns — rather than networkx's ``multipartite_layout``, which knows neither card
+heights nor that a very tall layer should wrap into sub-columns. Pure: no Qt.
+networkx is imported on first use; the app preloads it while a bus connects.
 
 Stability: :func:`place` keeps every remembered position and puts only newcomers, at
 the bottom of their layer's column, so one device coming or going never reshuffles
@@ -15,6 +18,7 @@ from __future__ import annotations
 
 import math
 from collections.abc import Mapping
+from typing import Any
 
 from pdcp_studio.app.graph import style
 from pdcp_studio.app.graph.analysis import ROLE_LAYER, TERMINAL, device_role
@@ -41,51 +45,46 @@ def device_edges(system: System) -> dict[DeviceKey, set[DeviceKey]]:
     return succ
 
 
-def _acyclic(succ: dict[DeviceKey, set[DeviceKey]]) -> dict[DeviceKey, set[DeviceKey]]:
-    """Drop DFS back edges (iteratively: deep chains must not hit the recursion limit)."""
-    dag = {k: set(v) for k, v in succ.items()}
-    state: dict[DeviceKey, int] = {}  # 1 = on stack, 2 = done
-    for root in sorted(succ):
-        if root in state:
-            continue
-        stack = [(root, iter(sorted(succ[root])))]
-        state[root] = 1
-        while stack:
-            node, it = stack[-1]
-            nxt = next(it, None)
-            if nxt is None:
-                state[node] = 2
-                stack.pop()
-            elif state.get(nxt) == 1:
-                dag[node].discard(nxt)
-            elif nxt not in state:
-                state[nxt] = 1
-                stack.append((nxt, iter(sorted(succ[nxt]))))
-    return dag
+def _device_graph(system: System) -> Any:
+    """The devices as a networkx DiGraph, an edge where one feeds another."""
+    import networkx as nx
+
+    graph = nx.DiGraph()
+    graph.add_nodes_from(system.devices)
+    graph.add_edges_from((a, b) for a, bs in device_edges(system).items() for b in bs)
+    return graph
 
 
 def assign_layers(system: System) -> dict[DeviceKey, int]:
-    """Longest path from the sources, at least the role's layer; terminal devices last."""
-    dag = _acyclic(device_edges(system))
-    indeg = {k: 0 for k in dag}
-    for vs in dag.values():
-        for v in vs:
-            indeg[v] += 1
+    """Layers by networkx: longest path over the condensation (a feedback loop shares a
+    layer), at least the role's layer; terminal devices last."""
+    import networkx as nx
+
     roles = {k: device_role(d) for k, d in system.devices.items()}
-    layer = {k: ROLE_LAYER[roles[k]] if roles[k] != TERMINAL else 1 for k in dag}
-    ready = sorted(k for k, n in indeg.items() if n == 0)
-    while ready:
-        node = ready.pop()
-        for v in dag[node]:
-            layer[v] = max(layer[v], layer[node] + 1)
-            indeg[v] -= 1
-            if indeg[v] == 0:
-                ready.append(v)
+    graph = _device_graph(system)
+    dag = nx.condensation(graph)
+    members = {c: dag.nodes[c]["members"] for c in dag.nodes}
+    level: dict[int, int] = {}
+    for comp in nx.topological_sort(dag):
+        base = min(ROLE_LAYER[roles[k]] if roles[k] != TERMINAL else 1 for k in members[comp])
+        preds = [level[p] + 1 for p in dag.predecessors(comp)]
+        level[comp] = max([base, *preds])
+    mapping = dag.graph["mapping"]
+    layer = {k: level[mapping[k]] for k in system.devices}
     # Compact: remove empty layers, then put every terminal device in the last one.
     used = sorted({layer[k] for k in layer if roles[k] != TERMINAL})
     remap = {v: i for i, v in enumerate(used)}
     last = len(used)
     return {k: (last if roles[k] == TERMINAL else remap[layer[k]]) for k in layer}
+
+
+def _row_fraction(device: Device, index: int) -> float:
+    """Where a channel's port sits on its card, 0 (top) … <1 (bottom): inputs, then outputs."""
+    rows = sorted(device.channels.values(), key=lambda c: (c.is_output, c.index))
+    for i, ch in enumerate(rows):
+        if ch.index == index:
+            return i / max(1, len(rows))
+    return 0.0
 
 
 def _order(system: System, layers: dict[DeviceKey, int]) -> list[list[DeviceKey]]:
@@ -94,11 +93,17 @@ def _order(system: System, layers: dict[DeviceKey, int]) -> list[list[DeviceKey]
     columns: list[list[DeviceKey]] = [[] for _ in range(n)]
     for key in system.devices:  # file order is the user's order: a good start
         columns[layers[key]].append(key)
-    succ = device_edges(system)
-    pred: dict[DeviceKey, set[DeviceKey]] = {k: set() for k in succ}
-    for a, bs in succ.items():
-        for b in bs:
-            pred[b].add(a)
+    # Port-level neighbours: a device's barycentre is taken at the rows of the ports its
+    # links use, so two sensors feeding inputs 1 and 2 of one control unit come out in
+    # that order instead of crossing.
+    pred: dict[DeviceKey, list[tuple[DeviceKey, float]]] = {k: [] for k in system.devices}
+    succ: dict[DeviceKey, list[tuple[DeviceKey, float]]] = {k: [] for k in system.devices}
+    for link in system.links:
+        a, b = link.output.device, link.input.device
+        if a == b or a not in pred or b not in pred:
+            continue
+        pred[b].append((a, _row_fraction(system.devices[a], link.output.index)))
+        succ[a].append((b, _row_fraction(system.devices[b], link.input.index)))
     for sweep in range(SWEEPS):
         forward = sweep % 2 == 0
         rng = range(1, n) if forward else range(n - 2, -1, -1)
@@ -110,7 +115,7 @@ def _order(system: System, layers: dict[DeviceKey, int]) -> list[list[DeviceKey]
 
             def bary(k: DeviceKey, pos: dict = pos, neigh: dict = neigh,
                      current: dict = current) -> float:
-                ps = [pos[m] for m in neigh[k] if m in pos]
+                ps = [pos[m] + frac for m, frac in neigh[k] if m in pos]
                 return sum(ps) / len(ps) if ps else current[k] * (len(pos) / max(1, len(current)))
 
             columns[i].sort(key=lambda k, f=bary: (f(k), current[k]))

@@ -1,7 +1,10 @@
 """Links drawn as cubic curves from an output port to an input port.
 
-Built-in ``QGraphicsPathItem`` painting (no Python ``paint``) keeps big systems fast;
-``shape()`` is a cached wide stroke so a 2-pixel curve is still easy to click.
+Built-in ``QGraphicsPathItem`` painting and bounds (no Python ``paint`` or
+``boundingRect``: the scene calls those on every repaint, and each call from C++ into
+Python waits for the GIL, which the bus threads hold often) keep big systems fast and
+the GUI responsive during a scan; ``shape()`` is a cached wide stroke so a 2-pixel curve
+is still easy to click (used for hit tests only).
 Kinds: ``link`` (in the system), ``add`` / ``remove`` (a previewed plan, dashed green /
 red), ``drag`` (the rubber link while the user drags from a port).
 """
@@ -10,7 +13,7 @@ from __future__ import annotations
 
 from typing import TYPE_CHECKING
 
-from PySide6.QtCore import QPointF, QRectF, Qt
+from PySide6.QtCore import QPointF, Qt
 from PySide6.QtGui import QPainterPath, QPainterPathStroker, QPen
 from PySide6.QtWidgets import QGraphicsItem, QGraphicsPathItem
 
@@ -47,7 +50,6 @@ class LinkItem(QGraphicsPathItem):
         self.missing = False
         self.live = False
         self._shape = QPainterPath()
-        self._bounds = QRectF()
         if kind == "link":
             self.setFlag(QGraphicsItem.GraphicsItemFlag.ItemIsSelectable, True)
             self.setZValue(-1)
@@ -89,7 +91,6 @@ class LinkItem(QGraphicsPathItem):
         stroker = QPainterPathStroker()
         stroker.setWidth(HIT_WIDTH)
         self._shape = stroker.createStroke(path)
-        self._bounds = self._shape.boundingRect()
 
     def refresh(self) -> None:
         """Pen from the kind and state; selection wins over everything but preview."""
@@ -113,9 +114,6 @@ class LinkItem(QGraphicsPathItem):
         self.setPen(pen)
 
     # -- Qt virtuals ----------------------------------------------------------------
-    def boundingRect(self) -> QRectF:
-        return self._bounds
-
     def shape(self) -> QPainterPath:
         return self._shape
 

@@ -9,13 +9,13 @@ from __future__ import annotations
 from PySide6.QtGui import QColor, QFont
 
 # -- geometry (scene units = pixels at 100 % zoom) ---------------------------------------
-CARD_WIDTH = 236.0
+CARD_WIDTH = 268.0
 HEADER_HEIGHT = 40.0
 ROW_HEIGHT = 22.0
 FOOTER = 6.0
 PORT_RADIUS = 5.5
 CORNER = 7.0
-LAYER_GAP = 130.0  # horizontal space between layers (room for the link curves)
+LAYER_GAP = 110.0  # horizontal space between layers (room for the link curves)
 CARD_GAP = 28.0  # vertical space between cards in a layer
 
 # -- role colours (header tint, accent bar) -----------------------------------------------

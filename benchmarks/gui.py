@@ -1,0 +1,195 @@
+"""Desktop app performance (issue 5): start-up, a 254-device system, a responsive GUI.
+
+1. Start-up: ``python -m pdcp_studio`` (bare: the simulated prosthesis ``sim:transradial``)
+   from process spawn until the window is shown, laid out and bound to the bus — the app
+   prints a line then (``PDCP_STUDIO_STARTUP_PROBE``) and exits. Target < 1.5 s.
+2. A 254-device system: load the file, lay it out, build the scene and render it once.
+   Target < 1 s (layered layout, no force-directed step).
+3. The GUI thread while scans run on the simulated prosthesis: a 5 ms QTimer heartbeat;
+   the longest gap between two beats. Target: never blocked > 50 ms.
+
+Run: ``python benchmarks/gui.py`` (offscreen; prints the figures).
+"""
+
+from __future__ import annotations
+
+import os
+import statistics
+import subprocess
+import sys
+import tempfile
+import time
+from pathlib import Path
+
+os.environ.setdefault("QT_QPA_PLATFORM", "offscreen")
+ROOT = Path(__file__).resolve().parents[1]
+sys.path.insert(0, str(ROOT))
+
+STARTUP_RUNS = 5
+SCAN_SECONDS = 4.0
+HEARTBEAT_MS = 5
+#: The longest gap varies with machine load: measure several rounds and print each.
+HEARTBEAT_ROUNDS = 3
+
+
+def startup() -> list[float]:
+    """Wall seconds from spawn to the probe line, per run."""
+    env = dict(os.environ, PDCP_STUDIO_STARTUP_PROBE="1", QT_QPA_PLATFORM="offscreen")
+    times = []
+    for _ in range(STARTUP_RUNS):
+        t0 = time.perf_counter()
+        proc = subprocess.Popen([sys.executable, "-m", "pdcp_studio"], stdout=subprocess.PIPE,
+                                stderr=subprocess.DEVNULL, text=True, env=env, cwd=ROOT)
+        line = proc.stdout.readline()
+        t1 = time.perf_counter()
+        proc.wait(timeout=30)
+        if not line.startswith("startup_s=") or "live=True" not in line:
+            raise SystemExit(f"start-up probe failed: {line!r}")
+        times.append(t1 - t0)
+    return times
+
+
+def big_system(n: int = 254):
+    """n devices: pairs of sensors feeding a control unit feeding a hand."""
+    from pdcp_studio.model.refs import Direction
+    from pdcp_studio.model.system import Channel, Device, Link, System
+
+    s = System()
+    for g in range(n // 4):
+        sensors = []
+        for k in range(2):
+            d = Device(10, 1, g * 2 + k + 1, name=f"EMG sensor {g}.{k}")
+            d.add_channel(Channel(1, Direction.OUTPUT, type=0x9000, profile=0x4222 + 2 * k))
+            s.add_device(d)
+            sensors.append(d)
+        c = Device(10, 2, g + 1, name=f"Control unit {g}")
+        c.add_channel(Channel(1, Direction.INPUT, type=0x9200, profile=0x4222))
+        c.add_channel(Channel(2, Direction.INPUT, type=0x9200, profile=0x4224))
+        c.add_channel(Channel(3, Direction.OUTPUT, type=0x9000, profile=0x2220))
+        c.add_channel(Channel(4, Direction.OUTPUT, type=0x9000, profile=0x2240))
+        s.add_device(c)
+        t = Device(10, 3, g + 1, name=f"Hand {g}")
+        t.add_channel(Channel(1, Direction.INPUT, type=0x9300, profile=0x2220))
+        t.add_channel(Channel(2, Direction.INPUT, type=0x9300, profile=0x2240))
+        s.add_device(t)
+        s.add_link(Link(sensors[0].ref(1), c.ref(1)))
+        s.add_link(Link(sensors[1].ref(1), c.ref(2)))
+        s.add_link(Link(c.ref(3), t.ref(1)))
+        s.add_link(Link(c.ref(4), t.ref(2)))
+    for extra in range(n - 4 * (n // 4)):
+        d = Device(10, 9, extra + 1, name=f"Spare sensor {extra}")
+        d.add_channel(Channel(1, Direction.OUTPUT, type=0x9000, profile=0x4600))
+        s.add_device(d)
+    return s
+
+
+def big_open_render() -> dict[str, float]:
+    from PySide6.QtGui import QImage, QPainter
+    from PySide6.QtWidgets import QApplication
+
+    QApplication.instance() or QApplication([])
+    import networkx  # noqa: F401  (the app preloads it while connecting; not counted here)
+
+    from pdcp_studio.app import files
+    from pdcp_studio.app.document import Document
+    from pdcp_studio.app.graph.scene import BusScene
+    from pdcp_studio.app.graph.view import GraphView
+
+    path = Path(tempfile.mkdtemp()) / "big.json"
+    files.save_system(big_system(254), path)
+    runs = []
+    for _ in range(3):
+        t0 = time.perf_counter()
+        opened = files.open_path(path)
+        t1 = time.perf_counter()
+        doc = Document(opened.system)
+        scene = BusScene(doc)
+        t2 = time.perf_counter()
+        view = GraphView(scene)
+        view.resize(1400, 900)
+        view.fit_all()
+        image = QImage(1400, 900, QImage.Format.Format_ARGB32)
+        image.fill(0xFFFFFFFF)
+        painter = QPainter(image)
+        view.render(painter)
+        painter.end()
+        t3 = time.perf_counter()
+        runs.append({"load": t1 - t0, "layout+scene": t2 - t1, "render": t3 - t2,
+                     "total": t3 - t0, "devices": len(doc.system.devices),
+                     "links": len(doc.system.links)})
+    return min(runs, key=lambda r: r["total"])
+
+
+def heartbeat_during_scans() -> dict[str, float]:
+    from PySide6.QtCore import QElapsedTimer, QTimer
+    from PySide6.QtWidgets import QApplication
+
+    app = QApplication.instance() or QApplication([])
+    from pdcp_studio.app.main_window import MainWindow
+
+    window = MainWindow()
+    window.quiet = True
+    window.show()
+    ready = {"ok": False}
+    window.ready.connect(lambda: ready.update(ok=True))
+    window.connect_bus("sim:transradial")
+    deadline = time.monotonic() + 20
+    while not ready["ok"] and time.monotonic() < deadline:
+        app.processEvents()
+        time.sleep(0.005)
+    if not window.live.is_live:
+        raise SystemExit("the simulated prosthesis did not connect: "
+                         + window.statusBar().currentMessage())
+    bridge = window.live.bridge
+    gaps: list[float] = []
+    clock = QElapsedTimer()
+    clock.start()
+    last = {"t": clock.nsecsElapsed()}
+    scans = {"done": 0}
+    end = time.monotonic() + SCAN_SECONDS
+
+    def beat() -> None:
+        now = clock.nsecsElapsed()
+        gaps.append((now - last["t"]) / 1e6)
+        last["t"] = now
+
+    def scanned(_system: object) -> None:
+        scans["done"] += 1
+        if time.monotonic() < end:
+            bridge.scan()
+
+    bridge.scanned.connect(scanned)
+    timer = QTimer()
+    timer.setInterval(HEARTBEAT_MS)
+    timer.timeout.connect(beat)
+    timer.start()
+    bridge.scan()
+    QTimer.singleShot(int(SCAN_SECONDS * 1000), app.quit)
+    app.exec()  # the real event loop, as in the app
+    timer.stop()
+    window.doc.mark_saved()
+    window.close()
+    gaps = gaps[1:]
+    return {"scans": scans["done"], "beats": len(gaps), "max_gap_ms": max(gaps),
+            "p99_gap_ms": sorted(gaps)[int(len(gaps) * 0.99) - 1]}
+
+
+def main() -> None:
+    times = startup()
+    print(f"start-up to window shown, laid out, live on sim:transradial: "
+          f"median {statistics.median(times):.3f} s, best {min(times):.3f} s, "
+          f"worst {max(times):.3f} s over {len(times)} runs (target < 1.5 s)")
+    big = big_open_render()
+    print(f"254-device system: {big['devices']} devices, {big['links']} links — load "
+          f"{big['load'] * 1000:.0f} ms, layout+scene {big['layout+scene'] * 1000:.0f} ms, "
+          f"render {big['render'] * 1000:.0f} ms, total {big['total'] * 1000:.0f} ms "
+          "(target < 1000 ms)")
+    for n in range(1, HEARTBEAT_ROUNDS + 1):
+        hb = heartbeat_during_scans()
+        print(f"GUI thread, round {n}: {hb['scans']} scans in {SCAN_SECONDS:.0f} s, longest gap "
+              f"between {HEARTBEAT_MS} ms heartbeats {hb['max_gap_ms']:.1f} ms, p99 "
+              f"{hb['p99_gap_ms']:.1f} ms over {hb['beats']} beats (target: never > 50 ms)")
+
+
+if __name__ == "__main__":
+    main()

@@ -1,0 +1,151 @@
+"""Start the desktop app: a file, a bus, or the built-in simulated prosthesis.
+
+``run_app`` is what ``pdcp-studio`` and ``pdcp-studio gui`` call. With ``screenshot`` it
+waits until the first system is on screen and laid out, saves the window as a PNG and
+exits (contracts §2). With the environment variable ``PDCP_STUDIO_STARTUP_PROBE`` set it
+prints how long start-up took once the window is shown and laid out, then exits — the
+start-up benchmark uses it.
+"""
+
+from __future__ import annotations
+
+import os
+import sys
+import time
+from pathlib import Path
+
+PROBE_ENV = "PDCP_STUDIO_STARTUP_PROBE"
+#: A screenshot run gives up after this long (a bus that never answers must not hang CI).
+SCREENSHOT_TIMEOUT_MS = 30_000
+#: After "ready", let queued layout and paint events settle before grabbing.
+SETTLE_MS = 150
+
+
+def run_app(path: str | Path | None = None, bus: str | None = None,
+            screenshot: str | Path | None = None, *, size: tuple[int, int] | None = None,
+            started: float | None = None) -> int:
+    """Run the app until its window closes; returns the exit status.
+
+    ``path`` is opened before the window appears so a bad file fails like any CLI input
+    (``SystemFileError`` / ``ConfigFormatError`` → exit 2 in the CLI).
+    """
+    started = time.perf_counter() if started is None else started
+    opened = None
+    if path is not None:
+        from pdcp_studio.app import files
+
+        opened = files.open_path(path)
+
+    if screenshot is not None and not _has_display():
+        # A screenshot needs no screen: render off screen (CI, ssh) rather than abort.
+        os.environ.setdefault("QT_QPA_PLATFORM", "offscreen")
+    from PySide6.QtCore import QTimer
+    from PySide6.QtWidgets import QApplication
+
+    app = QApplication.instance() or QApplication(sys.argv[:1])
+    app.setApplicationName("PDCP Studio")
+    app.setOrganizationName("PDCP Studio")
+    app.setApplicationDisplayName("PDCP Studio")
+    _set_icon(app)
+
+    from pdcp_studio.app.main_window import DEFAULT_BUS, MainWindow
+
+    scripted = screenshot is not None or bool(os.environ.get(PROBE_ENV))
+    window = MainWindow(recovery=None if scripted else _recovery())
+    window.quiet = scripted
+    if size is not None:
+        window.resize(*size)
+    status = {"code": 0}
+
+    def finish_screenshot() -> None:
+        window.view.fit_all()
+        image = window.grab()
+        if status["code"]:
+            pass  # what was asked for is not on screen: no picture of an empty window
+        elif not image.save(str(screenshot), "PNG"):
+            print(f"pdcp-studio: error: cannot write {screenshot}", file=sys.stderr)
+            status["code"] = 1
+        window.doc.mark_saved()  # nothing to ask about on the way out
+        window.close()
+        app.quit()
+
+    def on_ready() -> None:
+        if os.environ.get(PROBE_ENV):
+            QTimer.singleShot(0, probe)
+        if screenshot is not None:
+            QTimer.singleShot(SETTLE_MS, finish_screenshot)
+
+    def probe() -> None:
+        app.processEvents()
+        print(f"startup_s={time.perf_counter() - started:.3f} "
+              f"devices={len(window.doc.system.devices)} live={window.live.is_live}",
+              flush=True)
+        window.doc.mark_saved()
+        window.close()
+        app.quit()
+
+    def give_up() -> None:
+        if not window.is_ready:
+            print("pdcp-studio: error: the window did not finish loading in time",
+                  file=sys.stderr)
+            status["code"] = 1
+            window.doc.mark_saved()
+            window.close()
+            app.quit()
+
+    def on_failed(url: str, message: str) -> None:
+        # A bus asked for by name that does not answer is a failure for a scripted run
+        # (the built-in prosthesis falls back to its file instead, and says so).
+        if scripted and url != DEFAULT_BUS:
+            where = "" if message.startswith(url) else f"{url}: "
+            print(f"pdcp-studio: error: {where}{message}", file=sys.stderr)
+            status["code"] = 1
+
+    window.live.failed.connect(on_failed)
+    window.ready.connect(on_ready)
+    window.show()
+    if opened is not None:
+        window.show_opened(opened, Path(path))
+    elif not scripted and window.offer_recovery():
+        pass  # the recovered document is on screen; connect later from the Bus menu
+    else:
+        window.connect_bus(bus or DEFAULT_BUS)
+        # The graph's layout needs networkx (~0.3 s to import): load it while the bus
+        # connects on its worker, not after the bus has answered.
+        QTimer.singleShot(0, _preload_layout)
+    if screenshot is not None or os.environ.get(PROBE_ENV):
+        QTimer.singleShot(SCREENSHOT_TIMEOUT_MS, give_up)
+    code = app.exec()
+    window.live.disconnect_bus()
+    return status["code"] or int(code)
+
+
+def _recovery() -> object | None:
+    """The autosave store, or None when this build has none."""
+    try:
+        from pdcp_studio.app.recovery import Recovery
+    except ImportError:
+        return None
+    return Recovery()
+
+
+def _preload_layout() -> None:
+    import networkx  # noqa: F401
+
+
+def _has_display() -> bool:
+    return bool(os.environ.get("DISPLAY") or os.environ.get("WAYLAND_DISPLAY")
+                or os.environ.get("QT_QPA_PLATFORM") or sys.platform in ("win32", "darwin"))
+
+
+def _set_icon(app: object) -> None:
+    from PySide6.QtGui import QIcon
+
+    try:
+        from pdcp_studio.paths import resources_dir
+
+        icon = resources_dir() / "icons" / "pdcp-studio.svg"
+    except FileNotFoundError:
+        return
+    if icon.is_file():
+        app.setWindowIcon(QIcon(str(icon)))  # type: ignore[attr-defined]

@@ -1,0 +1,587 @@
+"""The inspector: every catalog parameter of the selected device or channel, editable.
+
+One row per parameter of :mod:`pdcp_studio.model.parameters` (name, value, unit, layout),
+edited through a widget that fits the layout: type flags as check boxes and choices, a
+profile chosen from the named tree or typed in hex, required/desired inputs as a checkable
+list of the device's inputs, numbers as spin boxes. A value is checked before it becomes
+an undo step; a refused one stays in its field with the reason beneath it. Read-only
+parameters (identity, versions, the input's source, kept in step with the links) are
+shown as text. The form is rebuilt from the document after every change, so undo and
+redo show up here too.
+"""
+
+from __future__ import annotations
+
+from collections.abc import Callable
+from typing import Any
+
+from PySide6.QtCore import Qt, Signal
+from PySide6.QtGui import QColor, QFont
+from PySide6.QtWidgets import (
+    QCheckBox,
+    QComboBox,
+    QGridLayout,
+    QHBoxLayout,
+    QLabel,
+    QLineEdit,
+    QListWidget,
+    QListWidgetItem,
+    QPushButton,
+    QScrollArea,
+    QSpinBox,
+    QVBoxLayout,
+    QWidget,
+)
+
+from pdcp_studio.app import commands
+from pdcp_studio.app.document import Document
+from pdcp_studio.errors import ParameterError
+from pdcp_studio.model import parameters as params
+from pdcp_studio.model import profile as prof
+from pdcp_studio.model.channel_type import (
+    BYTE_SIZE_BITS,
+    PRESCALER_HINTS,
+    ControlMode,
+    DataType,
+)
+from pdcp_studio.model.refs import ChannelRef, DeviceKey
+from pdcp_studio.model.system import Channel, Device, Link
+
+ERROR_STYLE = "color: #b91c1c;"
+DIM_STYLE = "color: #66707b;"
+#: Device parameters (channel index 0) → Device attribute edited through them.
+DEVICE_FIELD = {
+    params.DEVICE_DESCRIPTOR: "descriptor",
+    params.DEVICE_NODE_ID: "node_id",
+    params.DEVICE_BEACON_INTERVAL: "beacon_interval",
+    params.DEVICE_ACK_TIMEOUT: "ack_timeout",
+    params.DEVICE_BIND_TIMEOUT: "bind_timeout",
+}
+
+
+def parse_profile(text: str, tree_items: dict[str, int], *, allow_null: bool = False) -> int:
+    """A profile from a tree entry's text or typed hex; ValueError says why not."""
+    text = text.strip()
+    if text in tree_items:
+        return tree_items[text]
+    if "(" in text and text.endswith(")"):  # "Power Grip (0x2220)" edited around the name
+        text = text[text.rindex("(") + 1 : -1]
+    try:
+        value = int(text, 16)
+    except ValueError:
+        raise ValueError(f"“{text}” is neither a profile of the tree nor a hex value") from None
+    if not 0 <= value <= 0xFFFF:
+        raise ValueError(f"0x{value:X} does not fit in 16 bits")
+    if value == prof.NULL_PROFILE:
+        if allow_null:
+            return value
+        raise ValueError("0x0000 is the null profile, which is invalid for a channel")
+    if not prof.is_well_formed(value):
+        raise ValueError(f"{prof.fmt(value)}: a component follows a zero component")
+    return value
+
+
+def _selectable(text: str) -> QLabel:
+    label = QLabel(text)
+    label.setTextInteractionFlags(Qt.TextInteractionFlag.TextSelectableByMouse)
+    label.setWordWrap(True)
+    return label
+
+
+class Inspector(QScrollArea):
+    """Parameters of ``doc.selection``; edits become undo steps on the document's stack."""
+
+    #: A short message for the status bar (an edit refused, a link deleted).
+    statusMessage = Signal(str)
+
+    def __init__(self, doc: Document, parent: QWidget | None = None) -> None:
+        super().__init__(parent)
+        self.doc = doc
+        self.setWidgetResizable(True)
+        self.setHorizontalScrollBarPolicy(Qt.ScrollBarPolicy.ScrollBarAlwaysOff)
+        self.setMinimumWidth(300)
+        #: Editors and error labels of the current form by field name (tests drive them).
+        self.editors: dict[str, QWidget] = {}
+        self.errors: dict[str, QLabel] = {}
+        self.subject: object = None
+        self._building = False
+        doc.selectionChanged.connect(self.show_object)
+        doc.channelChanged.connect(self._on_channel_changed)
+        doc.deviceChanged.connect(self._on_device_changed)
+        doc.systemReset.connect(lambda: self.show_object(doc.selection))
+        doc.linksChanged.connect(self._on_links_changed)
+        self.show_object(None)
+
+    # -- building -------------------------------------------------------------------
+    def show_object(self, obj: object) -> None:
+        """Rebuild the form for a device, channel, link or nothing."""
+        self._building = True
+        try:
+            self.subject = obj
+            self.editors.clear()
+            self.errors.clear()
+            form = QWidget()
+            box = QVBoxLayout(form)
+            box.setContentsMargins(10, 10, 10, 10)
+            if isinstance(obj, DeviceKey) and obj in self.doc.system.devices:
+                self._build_device(box, self.doc.system.devices[obj])
+            elif isinstance(obj, ChannelRef) and self.doc.system.channel(obj) is not None:
+                self._build_channel(box, obj, self.doc.channel(obj))
+            elif isinstance(obj, Link) and self.doc.system.has_link(obj):
+                self._build_link(box, obj)
+            else:
+                self.subject = None
+                self._build_system(box)
+            if obj is not None:
+                box.addStretch(1)
+            old = self.takeWidget()
+            if old is not None:
+                old.deleteLater()
+            self.setWidget(form)
+        finally:
+            self._building = False
+
+    def _title(self, box: QVBoxLayout, title: str, subtitle: str) -> None:
+        t = QLabel(title)
+        f = QFont(t.font())
+        f.setBold(True)
+        f.setPointSizeF(f.pointSizeF() * 1.15)
+        t.setFont(f)
+        t.setWordWrap(True)
+        box.addWidget(t)
+        s = _selectable(subtitle)
+        s.setStyleSheet(DIM_STYLE)
+        box.addWidget(s)
+
+    def _grid(self, box: QVBoxLayout) -> QGridLayout:
+        if self.doc.session is not None:
+            note = QLabel("Live bus: an edit here is written to the device at once "
+                          "(and written back by Undo).")
+            note.setWordWrap(True)
+            note.setStyleSheet("color: #b45309;")
+            box.addWidget(note)
+        grid = QGridLayout()
+        grid.setHorizontalSpacing(8)
+        grid.setVerticalSpacing(3)
+        grid.setColumnStretch(1, 1)
+        for col, text in enumerate(("Parameter", "Value")):
+            h = QLabel(f"<b>{text}</b>")
+            grid.addWidget(h, 0, col)
+        box.addLayout(grid)
+        return grid
+
+    def _row(self, grid: QGridLayout, spec: params.ParameterSpec | None, name: str,
+             field: str, editor: QWidget, meta: str | None = None) -> None:
+        """One parameter: name, editor, unit and layout; an error line below it."""
+        row = grid.rowCount()
+        if meta is None:
+            meta = " · ".join(x for x in (spec.unit if spec else "",
+                                           spec.layout if spec else "PDCP Studio only") if x)
+        title = spec.name if spec else name
+        label = QLabel(f"{title}<br><span style='color:#66707b; font-size:small'>{meta}</span>"
+                       if title else f"<span style='color:#66707b; font-size:small'>{meta}"
+                                     "</span>")
+        label.setWordWrap(True)
+        label.setMinimumWidth(90)
+        label.setMaximumWidth(130)
+        tip = f"parameter {spec.id}: {spec.doc}" if spec and spec.doc else (
+            f"parameter {spec.id}" if spec else "kept by PDCP Studio only")
+        if spec and not spec.writable:
+            tip += " (read-only)"
+        label.setToolTip(tip)
+        grid.addWidget(label, row, 0, Qt.AlignmentFlag.AlignTop)
+        grid.addWidget(editor, row, 1)
+        err = QLabel()
+        err.setStyleSheet(ERROR_STYLE)
+        err.setWordWrap(True)
+        err.hide()
+        grid.addWidget(err, row + 1, 1)
+        self.editors[field] = editor
+        self.errors[field] = err
+
+    # -- the whole system (nothing selected) ---------------------------------------
+    def _build_system(self, box: QVBoxLayout) -> None:
+        """An overview and the engine's checks; a finding selects its channel."""
+        from pdcp_studio.engine import check_system
+
+        system = self.doc.system
+        missing = sum(1 for d in system.devices.values() if not d.present)
+        where = (f"live: {getattr(self.doc.session, 'url', '') or 'bus'}"
+                 if self.doc.session is not None else self.doc.title)
+        self._title(box, "System", f"{len(system.devices)} devices"
+                    + (f" ({missing} missing)" if missing else "")
+                    + f", {len(system.links)} links · {where}")
+        hint = QLabel("Select a device, channel or link on the graph or in the tree to see "
+                      "and edit its parameters.")
+        hint.setWordWrap(True)
+        hint.setStyleSheet(DIM_STYLE)
+        box.addWidget(hint)
+        findings = check_system(system) if system.devices else []
+        box.addWidget(QLabel(f"<b>Checks</b> — {len(findings) or 'no'} finding"
+                             f"{'s' * (len(findings) != 1)}"))
+        lst = QListWidget()
+        lst.setWordWrap(True)
+        colours = {"error": "#b91c1c", "warning": "#b45309", "info": "#475569"}
+        for f in findings:
+            item = QListWidgetItem(f"{f.severity.value}: {f.message}")
+            item.setForeground(QColor(colours.get(f.severity.value, "#1f2933")))
+            item.setData(Qt.ItemDataRole.UserRole, f.refs[0] if f.refs else None)
+            item.setToolTip(f.code)
+            lst.addItem(item)
+        if not findings:
+            lst.addItem("Nothing to report: every check passed.")
+        lst.itemClicked.connect(lambda it: self._select_finding(it))
+        box.addWidget(lst, 1)
+        self.editors["findings"] = lst
+
+    def _select_finding(self, item: QListWidgetItem) -> None:
+        ref = item.data(Qt.ItemDataRole.UserRole)
+        if ref is not None:
+            self.doc.select(ref)
+
+    # -- devices --------------------------------------------------------------------
+    def _build_device(self, box: QVBoxLayout, d: Device) -> None:
+        state = "" if d.present else "  —  missing from the bus"
+        self._title(box, d.label, f"Device {d.vid}/{d.pid}/{d.serial}{state}")
+        grid = self._grid(box)
+        name = QLineEdit(d.name)
+        name.setPlaceholderText("a name for this device (not sent to it)")
+        name.editingFinished.connect(
+            lambda w=name: self._commit_device(d.key, "name", w.text().strip(), None, "name"))
+        self._row(grid, None, "Name (PDCP Studio)", "name", name)
+        values = {
+            params.DEVICE_VID_PID: f"0x{d.vid:04X} / 0x{d.pid:04X}  ({d.vid} / {d.pid})",
+            params.DEVICE_SERIAL: str(d.serial),
+            params.DEVICE_EAN_LOW: f"0x{d.ean_low:08X}",
+            params.DEVICE_EAN_HIGH: f"0x{d.ean_high:08X}",
+            params.DEVICE_VERSION: f"FW 0x{d.fw_version:04X} / HW 0x{d.hw_version:04X}",
+            params.DEVICE_TYPE_PROFILE: f"0x{d.device_type:04X} / 0x{d.device_profile:04X}",
+            params.DEVICE_CHANNEL_COUNT: f"{len(d.channels)} ({len(d.inputs())} in, "
+                                         f"{len(d.outputs())} out)",
+        }
+        for spec in params.parameters_for("device"):
+            field = DEVICE_FIELD.get(spec.id)
+            if field is None:
+                self._row(grid, spec, spec.name, f"p{spec.id}", _selectable(values[spec.id]))
+            elif spec.layout == "string":
+                edit = QLineEdit(getattr(d, field))
+                edit.editingFinished.connect(
+                    lambda w=edit, s=spec, f=field: self._commit_device(
+                        d.key, f, w.text(), s, f))
+                self._row(grid, spec, spec.name, field, edit)
+            else:
+                spin = self._spin(spec, getattr(d, field))
+                spin.editingFinished.connect(
+                    lambda w=spin, s=spec, f=field: self._commit_device(
+                        d.key, f, self._spin_value(w), s, f))
+                self._row(grid, spec, spec.name, field, spin)
+
+    def _spin(self, spec: params.ParameterSpec, value: int | None) -> QSpinBox:
+        spin = QSpinBox()
+        top = 0xFF if spec.layout == "u8" else 0xFFFF
+        nullable = spec.id in (params.DEVICE_NODE_ID, params.OUT_NODE_ID) and spec.layout == "u8"
+        spin.setRange(-1 if nullable else 0, top)
+        if nullable:
+            spin.setSpecialValueText("not assigned")
+        spin.setValue(-1 if value is None else int(value))
+        if spec.unit:
+            spin.setSuffix(f" {spec.unit}")
+        spin.setKeyboardTracking(False)
+        return spin
+
+    @staticmethod
+    def _spin_value(spin: QSpinBox) -> int | None:
+        return None if spin.value() < 0 else spin.value()
+
+    # -- channels -------------------------------------------------------------------
+    def _build_channel(self, box: QVBoxLayout, ref: ChannelRef, ch: Channel) -> None:
+        d = self.doc.device(ref.device)
+        name = self.doc.tree.name_of(ch.profile)
+        self._title(box, f"#{ch.index} {ch.direction.value}: {ch.descriptor or name}",
+                    f"{d.label} ({d.vid}/{d.pid}/{d.serial}) · {name} {prof.fmt(ch.profile)}")
+        box.addWidget(self._links_summary(ref, ch))
+        grid = self._grid(box)
+        for spec in params.parameters_for(ch.direction):
+            self._channel_row(grid, spec, ref, ch, d)
+
+    def _channel_row(self, grid: QGridLayout, spec: params.ParameterSpec, ref: ChannelRef,
+                     ch: Channel, d: Device) -> None:
+        pid = spec.id
+        if pid == params.CH_TYPE_PROFILE:
+            self._row(grid, spec, "Channel Type", "type", self._type_editor(ref, ch))
+            self._row(grid, None, "Profile", "profile",
+                      self._profile_editor(ref, "profile", ch.profile, allow_null=False),
+                      meta="parameter 1, bytes 2–3")
+            self.editors["profile"].setToolTip("the profile (bytes 2–3 of parameter 1)")
+        elif pid == params.CH_DESCRIPTOR:
+            edit = QLineEdit(ch.descriptor)
+            edit.editingFinished.connect(
+                lambda w=edit, s=spec: self._commit_channel(ref, "descriptor", w.text(), s))
+            self._row(grid, spec, spec.name, "descriptor", edit)
+        elif pid == params.CH_TRANSFER_TYPE:
+            self._row(grid, spec, spec.name, "transfer_type", _selectable(
+                f"{ch.direction.transfer_type} ({ch.direction.value})"))
+        elif pid == params.CH_DATA_ENABLED:
+            box = QCheckBox("enabled")
+            box.setChecked(ch.data_enabled)
+            box.toggled.connect(
+                lambda on: self._commit_channel(ref, "data_enabled", bool(on), None))
+            self._row(grid, spec, spec.name, "data_enabled", box)
+        elif pid in (params.CH_REQUIRED_INPUTS, params.CH_DESIRED_INPUTS):
+            field = "required_inputs" if pid == params.CH_REQUIRED_INPUTS else "desired_inputs"
+            self._row(grid, spec, spec.name, field, self._inputs_list(ref, ch, d, field, spec))
+        elif ch.is_input and pid == params.IN_TERMINAL_PROFILE:
+            self._row(grid, spec, spec.name, "terminal_profile",
+                      self._profile_editor(ref, "terminal_profile", ch.terminal_profile,
+                                           allow_null=True))
+        elif ch.is_output and pid == params.OUT_NODE_ID:
+            spin = self._spin(spec, ch.node_id)
+            spin.editingFinished.connect(
+                lambda w=spin, s=spec: self._commit_channel(
+                    ref, "node_id", self._spin_value(w), s))
+            self._row(grid, spec, spec.name, "node_id", spin)
+        else:
+            self._row(grid, spec, spec.name, f"p{pid}", _selectable(self._source_text(ch, pid)))
+
+    @staticmethod
+    def _source_text(ch: Channel, pid: int) -> str:
+        s = ch.source
+        if pid == params.IN_SOURCE_VID_PID:
+            text = f"0x{s.vid:04X} / 0x{s.pid:04X}"
+        elif pid == params.IN_SOURCE_SN_INDEX:
+            text = f"SN {s.serial}, channel {s.index}"
+        elif pid == params.IN_SOURCE_NODE_IDS:
+            text = "set by the arbitrator when linked"
+        elif pid == params.IN_SOURCE_TYPE_PROFILE:
+            text = f"0x{s.type:04X} / 0x{s.profile:04X}"
+        else:
+            return "—"
+        return text + ("" if s.connected else "  (not connected)")
+
+    def _links_summary(self, ref: ChannelRef, ch: Channel) -> QLabel:
+        system = self.doc.system
+        if ch.is_input:
+            src = system.source_of(ref)
+            text = f"Source: {self._describe(src)}" if src else "Source: none (not linked)"
+        else:
+            fed = system.inputs_fed_by(ref)
+            text = "Feeds: " + (", ".join(self._describe(r) for r in fed) or "nothing")
+        label = _selectable(text)
+        return label
+
+    def _describe(self, ref: ChannelRef) -> str:
+        dev = self.doc.system.device(ref.device)
+        ch = self.doc.system.channel(ref)
+        name = self.doc.profile_name(ch.profile) if ch else "?"
+        return f"{dev.label if dev else ref.device} #{ref.index} ({name})"
+
+    def _type_editor(self, ref: ChannelRef, ch: Channel) -> QWidget:
+        ct = ch.ctype
+        w = QWidget()
+        grid = QGridLayout(w)
+        grid.setContentsMargins(0, 0, 0, 0)
+        grid.setVerticalSpacing(2)
+        size = QComboBox()
+        size.addItems([f"{b}-bit" for b in BYTE_SIZE_BITS])
+        size.setCurrentIndex(ct.byte_size_code)
+        dtype = QComboBox()
+        dtype.addItems([t.label for t in DataType])
+        dtype.setCurrentIndex(int(ct.data_type))
+        mode = QComboBox()
+        mode.addItems([m.label for m in ControlMode])
+        mode.setCurrentIndex(int(ct.control_mode))
+        pres = QComboBox()
+        pres.addItems([f"{i} (≈{h})" for i, h in enumerate(PRESCALER_HINTS)])
+        pres.setCurrentIndex(ct.prescaler)
+        sole = QCheckBox("sole access")
+        sole.setChecked(ct.sole_access)
+        term = QCheckBox("terminal")
+        term.setChecked(ct.terminal)
+        if ch.is_output:
+            sole.setToolTip("sole access is a property of input channels")
+            term.setToolTip("terminal is a property of input channels")
+        for combo in (size, dtype, mode, pres):
+            combo.setSizeAdjustPolicy(
+                QComboBox.SizeAdjustPolicy.AdjustToMinimumContentsLengthWithIcon)
+            combo.setMinimumContentsLength(6)
+        hex_label = QLabel(f"= {ct}")
+        hex_label.setStyleSheet(DIM_STYLE)
+        grid.addWidget(size, 0, 0)
+        grid.addWidget(dtype, 0, 1)
+        grid.addWidget(mode, 1, 0)
+        grid.addWidget(pres, 1, 1)
+        grid.addWidget(sole, 2, 0)
+        grid.addWidget(term, 2, 1)
+        grid.addWidget(hex_label, 3, 0, 1, 2)
+        parts = {"type.bits": size, "type.data_type": dtype, "type.control_mode": mode,
+                 "type.prescaler": pres, "type.sole_access": sole, "type.terminal": term}
+        self.editors.update(parts)
+
+        def commit() -> None:
+            try:
+                new = ct.replace(bits=BYTE_SIZE_BITS[size.currentIndex()],
+                                 data_type=DataType(dtype.currentIndex()),
+                                 control_mode=ControlMode(mode.currentIndex()),
+                                 prescaler=pres.currentIndex(),
+                                 sole_access=sole.isChecked(), terminal=term.isChecked())
+            except ValueError as err:
+                self._refuse("type", str(err))
+                return
+            self._commit_channel(ref, "type", new.value, None, "type")
+
+        for combo in (size, dtype, mode, pres):
+            combo.currentIndexChanged.connect(lambda _i: commit())
+        for check in (sole, term):
+            check.toggled.connect(lambda _on: commit())
+        return w
+
+    def _tree_items(self) -> dict[str, int]:
+        return {f"{self.doc.tree.name_of(value)} ({prof.fmt(value)})": value
+                for value, _node in self.doc.tree.walk()}
+
+    def _profile_editor(self, ref: ChannelRef, field: str, value: int, *,
+                        allow_null: bool) -> QComboBox:
+        items = self._tree_items()
+        combo = QComboBox()
+        combo.setEditable(True)
+        combo.setInsertPolicy(QComboBox.InsertPolicy.NoInsert)
+        combo.setSizeAdjustPolicy(QComboBox.SizeAdjustPolicy.AdjustToMinimumContentsLengthWithIcon)
+        combo.setMinimumContentsLength(14)
+        if allow_null:
+            combo.addItem("(none) (0x0000)", 0)
+            items["(none) (0x0000)"] = 0
+        for text, v in items.items():
+            if v or not allow_null:
+                combo.addItem(text, v)
+        current = next((t for t, v in items.items() if v == value), None)
+        combo.setCurrentText(current if current is not None else prof.fmt(value))
+        combo.lineEdit().setCursorPosition(0)  # the start of the name, not its tail
+        combo.lineEdit().setToolTip("choose a profile of the named tree or type one in hex")
+
+        def commit() -> None:
+            if self._building:
+                return
+            try:
+                new = parse_profile(combo.currentText(), items, allow_null=allow_null)
+            except ValueError as err:
+                self._refuse(field, str(err))
+                return
+            self._commit_channel(ref, field, new, None, field)
+
+        combo.lineEdit().editingFinished.connect(commit)
+        combo.activated.connect(lambda _i: commit())
+        return combo
+
+    def _inputs_list(self, ref: ChannelRef, ch: Channel, d: Device, field: str,
+                     spec: params.ParameterSpec) -> QListWidget:
+        lst = QListWidget()
+        chosen = set(getattr(ch, field))
+        inputs = sorted(d.inputs(), key=lambda c: c.index)
+        for inp in inputs:
+            item = QListWidgetItem(f"#{inp.index} {inp.descriptor or ''} "
+                                   f"({self.doc.profile_name(inp.profile)})".replace("  ", " "))
+            item.setData(Qt.ItemDataRole.UserRole, inp.index)
+            item.setFlags(item.flags() | Qt.ItemFlag.ItemIsUserCheckable)
+            item.setCheckState(Qt.CheckState.Checked if inp.index in chosen
+                               else Qt.CheckState.Unchecked)
+            lst.addItem(item)
+        if not inputs:
+            lst.addItem("(this device has no input channels)")
+            lst.setEnabled(False)
+        lst.setMaximumHeight(22 * max(1, min(len(inputs), 5)) + 6)
+
+        def commit(_item: QListWidgetItem) -> None:
+            if self._building:
+                return
+            picked = [lst.item(i).data(Qt.ItemDataRole.UserRole) for i in range(lst.count())
+                      if lst.item(i).checkState() == Qt.CheckState.Checked]
+            self._commit_channel(ref, field, tuple(picked), spec, field)
+
+        lst.itemChanged.connect(commit)
+        return lst
+
+    # -- links ----------------------------------------------------------------------
+    def _build_link(self, box: QVBoxLayout, link: Link) -> None:
+        self._title(box, "Link", f"{self._describe(link.output)}\n→ {self._describe(link.input)}")
+        out = self.doc.system.channel(link.output)
+        inp = self.doc.system.channel(link.input)
+        if out is not None and inp is not None:
+            from pdcp_studio.engine.similarity import determine_similarity
+
+            sim = determine_similarity(out.type, out.profile, inp.type, inp.profile)
+            box.addWidget(_selectable(f"Similarity {sim.describe()}"))
+        row = QHBoxLayout()
+        delete = QPushButton("Delete link")
+        delete.clicked.connect(lambda: self._delete_link(link))
+        row.addWidget(delete)
+        row.addStretch(1)
+        box.addLayout(row)
+        self.editors["delete"] = delete
+
+    def _delete_link(self, link: Link) -> None:
+        if commands.push_remove_links(self.doc, [link]):
+            self.statusMessage.emit(f"Removed link {link}")
+
+    # -- committing -----------------------------------------------------------------
+    def _refuse(self, field: str, reason: str) -> None:
+        label = self.errors.get(field)
+        if label is not None:
+            label.setText(f"Refused: {reason}")
+            label.show()
+        self.statusMessage.emit(f"Refused: {reason}")
+
+    def _validate(self, spec: params.ParameterSpec | None, value: Any) -> str | None:
+        if spec is None or value is None:
+            return None
+        try:
+            params.encode_value(spec, value)
+        except ParameterError as err:
+            return str(err)
+        return None
+
+    def _commit(self, field: str, spec: params.ParameterSpec | None, value: Any,
+                push: Callable[[], bool]) -> bool:
+        if self._building:
+            return False
+        reason = self._validate(spec, value)
+        if reason is not None:
+            self._refuse(field, reason)
+            return False
+        label = self.errors.get(field)
+        if label is not None:
+            label.hide()
+        return push()
+
+    def _commit_channel(self, ref: ChannelRef, name: str, value: Any,
+                        spec: params.ParameterSpec | None, field: str | None = None) -> bool:
+        """Check and push one channel edit; a refusal shows beside the field."""
+        live = commands.live_write_refusal(self.doc, name, device=False)
+        if live is not None and not self._building:
+            self._refuse(field or name, live)
+            return False
+        return self._commit(field or name, spec, value,
+                            lambda: commands.push_channel_field(self.doc, ref, name, value))
+
+    def _commit_device(self, key: DeviceKey, name: str, value: Any,
+                       spec: params.ParameterSpec | None, field: str) -> bool:
+        live = commands.live_write_refusal(self.doc, name, device=True)
+        if live is not None and not self._building:
+            self._refuse(field, live)
+            return False
+        return self._commit(field, spec, value,
+                            lambda: commands.push_device_field(self.doc, key, name, value))
+
+    # -- document → form ------------------------------------------------------------
+    def _on_channel_changed(self, ref: ChannelRef) -> None:
+        if self.subject == ref or (isinstance(self.subject, DeviceKey)
+                                   and self.subject == ref.device):
+            self.show_object(self.subject)
+
+    def _on_device_changed(self, key: DeviceKey) -> None:
+        subj = self.subject
+        if subj is None or subj == key or (isinstance(subj, ChannelRef) and subj.device == key):
+            self.show_object(subj)
+
+    def _on_links_changed(self) -> None:
+        if self.subject is None or isinstance(self.subject, ChannelRef | Link):
+            self.show_object(self.doc.selection)

@@ -1,0 +1,170 @@
+"""The live bus behind a document: connect off the GUI thread, follow events, disconnect.
+
+``open_session(url)`` (binding, start-up, a first look at the bus) runs on a worker with
+progress; the session's events arrive through :class:`SessionBridge` signals and keep the
+document in step — a device that leaves is marked missing at once, and every change asks
+the session for a fresh snapshot (one request in flight, coalesced), merged by
+:meth:`Document.sync_live`. Data frames light up the links they flow on.
+"""
+
+from __future__ import annotations
+
+import logging
+from typing import Any
+
+from PySide6.QtCore import QObject, Signal
+
+from pdcp_studio.app.document import Document
+from pdcp_studio.app.workers import Worker
+
+log = logging.getLogger(__name__)
+
+
+def open_session_blocking(url: str, progress: Any = None, cancel: Any = None) -> Any:
+    """Open a bus session (on a worker thread); PdcpError or ImportError on failure."""
+    from pdcp_studio.bus.session import open_session
+
+    if progress is not None:
+        progress(0, 0, f"Connecting to {url}…")
+    return open_session(url)
+
+
+class LiveController(QObject):
+    """Owns the bridge of the document's live session, if any."""
+
+    connected = Signal(str)  # url — the document now shows the bus
+    failed = Signal(str, str)  # url, message
+    disconnected = Signal()
+    statusMessage = Signal(str)
+    progress = Signal(int, int, str)
+    busyChanged = Signal(bool)
+    #: Every bridge, when made (for docks that want frames or values).
+    bridgeReady = Signal(object)
+
+    def __init__(self, doc: Document, parent: QObject | None = None) -> None:
+        super().__init__(parent)
+        self.doc = doc
+        self.bridge: Any = None
+        self.url = ""
+        self.connecting: Worker | None = None
+        self._refreshing = False
+        self._again = False
+        #: A callable given each output ref that sent data (the scene's ``note_data``).
+        self.on_data: Any = None
+
+    @property
+    def is_live(self) -> bool:
+        return self.bridge is not None
+
+    # -- connecting -----------------------------------------------------------------
+    def connect_bus(self, url: str) -> Worker:
+        """Open ``url`` on a worker; ``connected`` or ``failed`` follows."""
+        self.disconnect_bus()
+        self.url = url
+        self.busyChanged.emit(True)
+        worker = Worker(lambda p, c: open_session_blocking(url, p, c), f"Connect {url}")
+        worker.progress.connect(self.progress)
+        worker.finished.connect(self._opened)
+        worker.failed.connect(lambda msg: self._failed(url, msg))
+        worker.done.connect(lambda: self.busyChanged.emit(False))
+        self.connecting = worker  # kept until the next connect: its done() must still run
+        self.statusMessage.emit(f"Connecting to {url}…")
+        return worker.start()
+
+    def _failed(self, url: str, message: str) -> None:
+        self.failed.emit(url, message)
+
+    def _opened(self, session: Any) -> None:
+        from pdcp_studio.app.session_bridge import SessionBridge
+
+        bridge = SessionBridge(session, self, url=self.url)
+        self.bridge = bridge
+        bridge.deviceJoined.connect(self._on_joined)
+        bridge.deviceLeft.connect(self._on_left)
+        bridge.linkMade.connect(lambda _l: self.refresh())
+        bridge.linkRemoved.connect(lambda _l: self.refresh())
+        bridge.planApplied.connect(self._on_plan_applied)
+        bridge.channelValues.connect(self._on_values)
+        bridge.error.connect(lambda msg: self.statusMessage.emit(f"Bus: {msg}"))
+        bridge.progress.connect(self.progress)
+        bridge.busyChanged.connect(self.busyChanged)
+        bridge.scanned.connect(self._on_snapshot)
+        self.bridgeReady.emit(bridge)
+        bridge.run(lambda _p, _c: session.system(), "Read the bus", self._first_snapshot)
+
+    def _first_snapshot(self, system: Any) -> None:
+        self.doc.set_system(system, None, self.bridge, positions={})
+        self.connected.emit(self.url)
+        self.statusMessage.emit(
+            f"Live: {self.url} — {len(system.devices)} devices, {len(system.links)} links")
+
+    def disconnect_bus(self) -> None:
+        """Close the session (off the GUI thread, bounded wait); the system stays on screen."""
+        if self.connecting is not None and self.connecting.is_running:
+            self.connecting.cancel()
+        bridge, self.bridge = self.bridge, None
+        if bridge is None:
+            return
+        bridge.close(wait_ms=2000)
+        if self.doc.session is bridge:
+            self.doc.set_session(None)
+        self.disconnected.emit()
+
+    # -- following the bus ----------------------------------------------------------
+    def refresh(self) -> None:
+        """Ask for a fresh snapshot; while one is in flight, ask once more afterwards."""
+        if self.bridge is None:
+            return
+        if self._refreshing:
+            self._again = True
+            return
+        self._refreshing = True
+        session = self.bridge.session
+        worker = self.bridge.run(lambda _p, _c: session.system(), "Refresh", self._on_snapshot)
+        if worker is None:
+            self._refreshing = False
+            return
+        worker.done.connect(self._refresh_done)
+
+    def _refresh_done(self) -> None:
+        self._refreshing = False
+        if self._again:
+            self._again = False
+            self.refresh()
+
+    def _on_snapshot(self, system: Any) -> None:
+        if self.bridge is not None and self.doc.session is self.bridge:
+            self.doc.sync_live(system)
+
+    def _on_joined(self, key: Any) -> None:
+        self.doc.set_present(key, True)
+        self.statusMessage.emit(f"Device {key} joined the bus")
+        self.refresh()
+
+    def _on_left(self, key: Any) -> None:
+        self.doc.set_present(key, False)
+        device = self.doc.system.device(key)
+        self.statusMessage.emit(f"{device.label if device else key} left the bus")
+        self.refresh()
+
+    def _on_plan_applied(self, plan: Any) -> None:
+        mode = getattr(plan, "mode", None) or (plan.get("mode") if isinstance(plan, dict)
+                                                else "plan")
+        self.statusMessage.emit(f"The bus applied {mode}")
+        self.refresh()
+
+    def _on_values(self, values: list) -> None:
+        if self.on_data is None:
+            return
+        for ref in {v.ref for v in values}:
+            self.on_data(ref)
+
+    def scan(self) -> Worker | None:
+        return self.bridge.scan() if self.bridge is not None else None
+
+    def wait_idle(self, timeout: float = 5.0) -> bool:
+        """For shutdown and tests: wait until the bridge's calls finished."""
+        if self.bridge is None:
+            return True
+        return bool(self.bridge._pool.waitForDone(int(timeout * 1000)))
+

@@ -1,0 +1,230 @@
+"""Plans, previewed: run a profile-layer operation, see it, then Apply or Discard.
+
+The engine computes a :class:`~pdcp_studio.engine.plan.Plan` from a copy-free read of the
+document's system; the panel lists its actions in order (op, both channels with profile
+names, rule, reason, similarity and its breakdown) and what was tried and refused, while
+the graph draws the links to add and to remove. Nothing changes until Apply: offline the
+plan becomes one undo step; on a live bus it goes to the session through the bridge.
+"""
+
+from __future__ import annotations
+
+from typing import Any
+
+from PySide6.QtCore import Qt, Signal
+from PySide6.QtGui import QBrush
+from PySide6.QtWidgets import (
+    QHBoxLayout,
+    QHeaderView,
+    QLabel,
+    QPushButton,
+    QTreeWidget,
+    QTreeWidgetItem,
+    QVBoxLayout,
+    QWidget,
+)
+
+from pdcp_studio.app import commands
+from pdcp_studio.app.document import Document
+from pdcp_studio.app.graph import style
+from pdcp_studio.errors import PdcpError
+from pdcp_studio.model import profile as prof
+from pdcp_studio.model.refs import ChannelRef
+
+#: The operations offered, in menu order: (engine mode, menu text).
+OPERATIONS = (
+    ("autoconfigure", "Autoconfigure"),
+    ("replacements", "Find replacements"),
+    ("startup", "Start-up"),
+    ("enforce", "Enforce sole access"),
+)
+LINK_ROLE = Qt.ItemDataRole.UserRole
+
+
+class PlanPanel(QWidget):
+    """The previewed plan of the document, with Apply and Discard."""
+
+    statusMessage = Signal(str)
+    #: A plan was applied (offline: pushed on the undo stack; live: sent to the bus).
+    applied = Signal(object)
+
+    def __init__(self, doc: Document, parent: QWidget | None = None) -> None:
+        super().__init__(parent)
+        self.doc = doc
+        self.plan: Any = None
+        box = QVBoxLayout(self)
+        box.setContentsMargins(6, 6, 6, 6)
+        buttons = QHBoxLayout()
+        self.mode_buttons: dict[str, QPushButton] = {}
+        for mode, text in OPERATIONS:
+            b = QPushButton(text)
+            b.setToolTip(f"Preview what {text.lower()} would change")
+            b.clicked.connect(lambda _c=False, m=mode: self.preview(m))
+            buttons.addWidget(b)
+            self.mode_buttons[mode] = b
+        buttons.addStretch(1)
+        box.addLayout(buttons)
+        self.summary = QLabel("No plan previewed. Choose an operation to see what it would "
+                              "change before anything changes.")
+        self.summary.setWordWrap(True)
+        box.addWidget(self.summary)
+        self.actions_view = QTreeWidget()
+        self.actions_view.setColumnCount(4)
+        self.actions_view.setHeaderLabels(["Action", "Output → input", "Rule", "Similarity"])
+        self.actions_view.setUniformRowHeights(False)
+        header = self.actions_view.header()
+        header.setStretchLastSection(False)
+        header.setSectionResizeMode(1, QHeaderView.ResizeMode.Stretch)
+        for col in (0, 2, 3):
+            header.setSectionResizeMode(col, QHeaderView.ResizeMode.ResizeToContents)
+        self.actions_view.setAlternatingRowColors(True)
+        self.actions_view.itemSelectionChanged.connect(self._on_row_selected)
+        box.addWidget(self.actions_view, 1)
+        row = QHBoxLayout()
+        row.addStretch(1)
+        self.discard_button = QPushButton("Discard")
+        self.apply_button = QPushButton("Apply")
+        self.apply_button.setDefault(True)
+        self.discard_button.clicked.connect(self.discard)
+        self.apply_button.clicked.connect(self.apply)
+        row.addWidget(self.discard_button)
+        row.addWidget(self.apply_button)
+        box.addLayout(row)
+        doc.systemReset.connect(self._on_system_reset)
+        doc.previewChanged.connect(self._on_preview_changed)
+        self._update_buttons()
+
+    # -- computing ------------------------------------------------------------------
+    def configuration(self) -> Any:
+        """The stored configuration plans use: the opened/read one, else None."""
+        return getattr(self.doc, "config", None)
+
+    def preview(self, mode: str) -> Any:
+        """Compute ``mode``'s plan and show it (graph and list); returns it or None."""
+        from pdcp_studio.engine import plan_for
+
+        try:
+            plan = plan_for(mode, self.doc.system, self.configuration())
+        except (PdcpError, ValueError) as err:
+            self.statusMessage.emit(f"{dict(OPERATIONS).get(mode, mode)}: {err}")
+            self.summary.setText(f"<span style='color:#b91c1c'>Cannot plan: {err}</span>")
+            return None
+        self.doc.set_preview(plan)
+        return plan
+
+    def _on_preview_changed(self, plan: Any) -> None:
+        self.plan = plan
+        self._fill(plan)
+        self._update_buttons()
+
+    def _on_system_reset(self) -> None:
+        if self.plan is not None and self.doc.preview_plan is None:
+            self.plan = None
+            self._fill(None)
+            self._update_buttons()
+
+    def _update_buttons(self) -> None:
+        has = self.plan is not None
+        self.discard_button.setEnabled(has)
+        self.apply_button.setEnabled(has and bool(self.plan.actions))
+        live = self.doc.session is not None
+        self.apply_button.setText("Apply to the bus" if live else "Apply")
+
+    # -- showing --------------------------------------------------------------------
+    def _ref_text(self, plan: Any, ref: ChannelRef) -> str:
+        facts = plan.channels.get(ref)
+        dev = self.doc.system.device(ref.device)
+        who = dev.label if dev else str(ref.device)
+        if facts is None:
+            return f"{who} #{ref.index}"
+        missing = "" if facts.present else " [missing]"
+        return (f"{who} #{ref.index} {self.doc.profile_name(facts.profile)} "
+                f"{prof.fmt(facts.profile)}{missing}")
+
+    def _fill(self, plan: Any) -> None:
+        view = self.actions_view
+        view.clear()
+        if plan is None:
+            self.summary.setText("No plan previewed. Choose an operation to see what it "
+                                 "would change before anything changes.")
+            return
+        title = dict(OPERATIONS).get(plan.mode, plan.mode)
+        text = (f"<b>{title}</b>: add {len(plan.added)}, remove {len(plan.removed)} "
+                f"({len(plan.links_before)} links before, {len(plan.final_links)} after)")
+        if plan.configuration_reason:
+            text += f"<br>Configuration ({plan.configuration_source}): " \
+                    f"{plan.configuration_reason}"
+        if not plan.actions:
+            text += "<br>Nothing to change."
+        self.summary.setText(text)
+        for n, a in enumerate(plan.actions, 1):
+            add = a.op.value == "add"
+            sign = "+ add" if add else "− remove"
+            sim = str(a.similarity.total) if a.similarity is not None else ""
+            item = QTreeWidgetItem([f"{n}. {'  ' * a.depth}{sign}",
+                                    f"{self._ref_text(plan, a.link.output)} → "
+                                    f"{self._ref_text(plan, a.link.input)}",
+                                    a.rule.label, sim])
+            colour = style.PREVIEW_ADD if add else style.PREVIEW_REMOVE
+            item.setForeground(0, QBrush(colour))
+            item.setData(0, LINK_ROLE, a.link)
+            details = [f"why: {a.reason}"]
+            if a.similarity is not None:
+                details.append(f"similarity {a.similarity.describe()}")
+            view.addTopLevelItem(item)
+            for text in details:
+                child = QTreeWidgetItem([text])
+                child.setData(0, LINK_ROLE, a.link)
+                child.setToolTip(0, text)
+                item.addChild(child)
+                child.setFirstColumnSpanned(True)
+        if plan.rejections:
+            head = QTreeWidgetItem(["Refused", f"{len(plan.rejections)} attempt(s) refused",
+                                    "", ""])
+            for r in plan.rejections:
+                at = r.attempt
+                if at.link is not None:
+                    what = (f"{self._ref_text(plan, at.link.output)} → "
+                            f"{self._ref_text(plan, at.link.input)}")
+                elif at.channel is not None:
+                    what = self._ref_text(plan, at.channel)
+                else:
+                    what = ""
+                child = QTreeWidgetItem([r.kind.value, what, at.rule.label, ""])
+                head.addChild(child)
+                why = QTreeWidgetItem([f"why: {r.reason}"])
+                child.addChild(why)
+                why.setFirstColumnSpanned(True)
+            view.addTopLevelItem(head)
+        for note in plan.notes:
+            view.addTopLevelItem(QTreeWidgetItem(["Note", note, "", ""]))
+        view.expandAll()
+
+    def _on_row_selected(self) -> None:
+        items = self.actions_view.selectedItems()
+        link = items[0].data(0, LINK_ROLE) if items else None
+        if link is not None and self.doc.system.has_link(link):
+            self.doc.select(link)
+
+    # -- Apply / Discard --------------------------------------------------------------
+    def discard(self) -> None:
+        if self.plan is not None:
+            self.doc.set_preview(None)
+            self.statusMessage.emit("Plan discarded: nothing changed")
+
+    def apply(self) -> bool:
+        """Offline: one undo step. Live: sent to the bus through the session bridge."""
+        plan = self.plan
+        if plan is None or not plan.actions:
+            return False
+        bridge = self.doc.session
+        self.doc.set_preview(None)
+        if bridge is not None and hasattr(bridge, "apply_plan"):
+            bridge.apply_plan(plan)
+            self.statusMessage.emit(f"Applying {plan.mode} on the bus…")
+        else:
+            commands.push_plan(self.doc, plan)
+            self.statusMessage.emit(f"Applied {plan.mode}: {len(plan.added)} added, "
+                                    f"{len(plan.removed)} removed (Undo reverts it)")
+        self.applied.emit(plan)
+        return True

@@ -1,0 +1,59 @@
+"""``gui [FILE] [--bus URL] [--screenshot PNG]``: the desktop app (also bare ``pdcp-studio``).
+
+Qt is imported only in ``run``, so the rest of the CLI never pays for it. A FILE that does
+not load is bad input (exit 2, naming where); a screenshot that cannot be made is exit 1.
+"""
+
+from __future__ import annotations
+
+import argparse
+import time
+
+from pdcp_studio.cli.main import BadInput
+
+_STARTED = time.perf_counter()
+
+
+def add_subparser(subparsers: argparse._SubParsersAction) -> None:
+    p = subparsers.add_parser(
+        "gui", help="open the desktop app on a file or a bus",
+        description="Open the desktop app on a system file (.json), a stored configuration "
+                    "(.pdcfg) or a live bus; without either, on the simulated prosthesis "
+                    "sim:transradial.")
+    p.add_argument("file", nargs="?", metavar="FILE",
+                   help="a pdcp-system/1 file or a stored configuration (.pdcfg)")
+    p.add_argument("--bus", metavar="URL",
+                   help="a bus URL: sim:NAME, can:INTERFACE:CHANNEL[@BITRATE], serial:PORT")
+    p.add_argument("--screenshot", metavar="PNG",
+                   help="render the main window once loaded and laid out, save it, exit")
+    p.add_argument("--size", metavar="WxH", default=None,
+                   help="window size, e.g. 1400x860 (for screenshots)")
+    p.set_defaults(func=run)
+
+
+def _size(text: str | None) -> tuple[int, int] | None:
+    if not text:
+        return None
+    try:
+        w, h = (int(v) for v in text.lower().split("x"))
+    except ValueError:
+        raise BadInput(f"--size {text!r}: expected WIDTHxHEIGHT, e.g. 1400x860") from None
+    if not (200 <= w <= 8000 and 200 <= h <= 8000):
+        raise BadInput(f"--size {text}: each side must be 200…8000 pixels")
+    return w, h
+
+
+def run(args: argparse.Namespace) -> int:
+    if args.file and args.bus:
+        raise BadInput("give a FILE or --bus, not both")
+    size = _size(args.size)
+    if args.bus:
+        from pdcp_studio.bus.urls import BusUrlError, parse_bus_url
+
+        try:
+            parse_bus_url(args.bus)
+        except BusUrlError as err:
+            raise BadInput(str(err)) from err
+    from pdcp_studio.app.application import run_app
+
+    return run_app(args.file, args.bus, args.screenshot, size=size, started=_STARTED)
