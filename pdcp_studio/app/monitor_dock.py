@@ -302,16 +302,25 @@ class MonitorDock(QDockWidget):
         self.save_button.clicked.connect(self._ask_save)
         self.open_button.clicked.connect(self._ask_open)
 
-        bar = QHBoxLayout()
-        for w in (self.text_filter, self.function_filter, self.node_filter, self.pause_box,
-                  self.autoscroll_box, self.clear_button, self.open_button, self.save_button,
-                  self.count_label):
-            bar.addWidget(w)
-        bar.setStretch(0, 1)
+        # Long function names must not make the dock (and so the window) wide.
+        self.function_filter.setSizeAdjustPolicy(
+            QComboBox.SizeAdjustPolicy.AdjustToMinimumContentsLengthWithIcon)
+        self.function_filter.setMinimumContentsLength(14)
+        self.text_filter.setMinimumWidth(90)
+        filters, actions = QHBoxLayout(), QHBoxLayout()
+        for w in (self.text_filter, self.function_filter, self.node_filter):
+            filters.addWidget(w)
+        filters.setStretch(0, 1)
+        for w in (self.pause_box, self.autoscroll_box, self.count_label):
+            actions.addWidget(w)
+        actions.addStretch(1)
+        for w in (self.clear_button, self.open_button, self.save_button):
+            actions.addWidget(w)
         body = QWidget()
         layout = QVBoxLayout(body)
         layout.setContentsMargins(2, 2, 2, 2)
-        layout.addLayout(bar)
+        layout.addLayout(filters)
+        layout.addLayout(actions)
         layout.addWidget(self.view)
         self.setWidget(body)
 

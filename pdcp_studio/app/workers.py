@@ -160,7 +160,10 @@ class Worker(QObject):
             if self.cancel_event.is_set():
                 self._end("cancelled", None)
                 return
-            log.warning("%s failed", self.description, exc_info=True)
+            if isinstance(err, PdcpError | OSError):  # expected: the message says it all
+                log.info("%s failed: %s", self.description, err)
+            else:  # a bug: keep the traceback
+                log.warning("%s failed", self.description, exc_info=True)
             self.error = error_message(err)
             self._end("failed", self.error)
         else:
