@@ -12,6 +12,7 @@ python-can is imported inside the capture functions only, so importing this modu
 
 from __future__ import annotations
 
+import copy
 from collections import Counter
 from collections.abc import Iterator, Mapping, Sequence
 from dataclasses import dataclass, field
@@ -380,6 +381,31 @@ class FrameDecoder:
 # -- captures --------------------------------------------------------------------------------
 
 
+#: Largest channel number the log formats carry (BLF stores a u16; 255 is plenty for CAN).
+MAX_LOG_CHANNEL = 255
+
+
+def _loggable(msg: Any, fallback: str | int | None) -> Any:
+    """``msg`` with a channel every log format can store.
+
+    python-can's writers turn a channel name into a number by its trailing digits, so a
+    virtual channel such as ``pdcp-sim-8a81c7c786c490cb46c66be45734036`` becomes a number no
+    BLF record can hold. Such channels are written as ``fallback`` instead (a copy: the
+    frame is shared with other listeners).
+    """
+    from can.util import channel2int
+
+    channel = msg.channel
+    if channel is None or (isinstance(channel, int) and 0 <= channel <= MAX_LOG_CHANNEL):
+        return msg
+    number = channel2int(channel) if isinstance(channel, str) else None
+    if number is not None and 0 <= number <= MAX_LOG_CHANNEL:
+        return msg
+    safe = copy.copy(msg)
+    safe.channel = fallback
+    return safe
+
+
 class Recorder:
     """Writes frames to a capture; ``can.Logger`` picks the format from the suffix.
 
@@ -396,7 +422,7 @@ class Recorder:
             raise CaptureError(self.path, f"cannot write this capture: {err}") from err
 
     def write_message(self, msg: Any) -> None:
-        self._writer.on_message_received(msg)
+        self._writer.on_message_received(_loggable(msg, self.channel))
         self.frames += 1
 
     def write(self, arbitration_id: int, data: bytes, timestamp: float | None = None) -> None:

@@ -389,3 +389,15 @@ def test_committed_capture_matches_a_fresh_recording(tmp_path):
 
 if __name__ == "__main__":  # pragma: no cover - regenerates the committed capture
     record_on_virtual_bus(session_frames(), SESSION_CAPTURE)
+
+
+def test_a_channel_name_with_long_trailing_digits_still_records(tmp_path):
+    """python-can reads a channel number from a name's trailing digits; BLF holds a u16."""
+    path = tmp_path / "named.blf"
+    msg = can.Message(arbitration_id=0x601, data=b"\x01\x01\x00", is_extended_id=False,
+                      channel="monitor-08a81c7c786c490cb46c66be45734036", timestamp=1.0)
+    with Recorder(path) as recorder:
+        recorder.write_message(msg)
+    assert msg.channel == "monitor-08a81c7c786c490cb46c66be45734036"  # not changed in place
+    (back,) = list(read_capture(path))
+    assert back.arbitration_id == 0x601 and bytes(back.data) == b"\x01\x01\x00"
