@@ -73,6 +73,10 @@ def run(args: argparse.Namespace) -> int:
     if spec.kind != "can":
         raise BadInput(f"--bus {args.bus}: the arbitrator runs on a can: bus "
                        "(can:INTERFACE:CHANNEL[@BITRATE])")
+    if args.memory is not None:
+        from pdcp_studio.cli.scan import check_memory_path
+
+        check_memory_path(args.memory)
     server_cls = None
     if args.host_serial:
         try:

@@ -7,8 +7,9 @@ behind each step and what it tried and refused; ``--json`` prints the contract's
 ``--config`` is read for ``replacements``, ``implement`` and ``startup`` only (ignored,
 unread, for the others). It may be stored-configuration bytes (``.pdcfg``), the JSON that
 ``config decode --json`` prints, or a ``pdcp-system/1`` file whose links are taken as the
-configuration. ``implement`` needs it; ``replacements`` without it repairs the system's
-own links; ``startup`` without it retrieves the configuration from the devices.
+configuration. ``implement`` and ``replacements`` without it work on the system's own
+links; ``startup`` without it retrieves the configuration from the devices. A collection
+with no configuration in it (an arbitrator's empty memory) means nothing stored.
 """
 
 from __future__ import annotations
@@ -115,8 +116,6 @@ def make_plan(args: argparse.Namespace) -> tuple[System, Plan]:
     config = None
     if args.mode in CONFIG_MODES and args.config:
         config = load_config(args.config)
-    if args.mode == "implement" and config is None:
-        raise BadInput("plan implement needs --config CFG (the configuration to implement)")
     try:
         return system, plan_for(args.mode, system, config)
     except EngineError as err:

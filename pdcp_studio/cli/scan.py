@@ -47,6 +47,7 @@ def open_bus_session(url: str, *, memory: str | None = None, settle: float | Non
     if memory is not None:
         if spec.kind == "serial":
             raise BadInput(f"--memory: the arbitrator behind {url} keeps its own memory")
+        check_memory_path(memory)
         options["memory"] = memory
     if settle is not None and spec.kind in ("can", "serial"):
         options["settle_timeout"] = settle
@@ -56,6 +57,29 @@ def open_bus_session(url: str, *, memory: str | None = None, settle: float | Non
         return open_session(url, **options)
     except UnknownProsthesisError as err:
         raise BadInput(f"--bus {url}: {err}") from err
+
+
+def check_memory_path(path: str) -> None:
+    """``--memory FILE`` must be a readable file, or a new one in an existing folder.
+
+    Checked before the bus opens, so a wrong path is bad input (exit 2) instead of an
+    arbitrator that cannot read its memory and never settles.
+    """
+    from pathlib import Path
+
+    from pdcp_studio.cli.main import BadInput
+
+    memory = Path(path)
+    if memory.is_dir():
+        raise BadInput(f"--memory {path}: is a directory, not a memory file")
+    if memory.exists():
+        try:
+            with open(memory, "rb"):
+                pass
+        except OSError as err:
+            raise BadInput(f"--memory {path}: cannot read: {err.strerror or err}") from err
+    elif not memory.parent.is_dir():
+        raise BadInput(f"--memory {path}: no folder {memory.parent}")
 
 
 def stderr_progress(enabled: bool) -> Any:

@@ -25,17 +25,29 @@ def plan_autoconfigure(system: System) -> Plan:
 
 
 def _configured(layer: ProfileLayer, config: AnyConfig, *, source: str) -> StoredConfiguration:
+    """The configuration to work from, recorded on the plan.
+
+    Without one (contracts §2: ``--config`` is optional) it is the system's own links; a
+    collection with no configuration in it (what an arbitrator with empty memory stores)
+    is an empty configuration: nothing to implement or repair, not an error.
+    """
+    plan = layer.plan
+    if config is None:
+        cfg = proc.configuration_from_system(layer.system)
+        plan.configuration, plan.configuration_source = cfg, "system"
+        plan.configuration_reason = "no configuration given: the system's current links"
+        return cfg
     cfg, why = proc.resolve_configuration(layer.system, config)
     if cfg is None:
-        raise EngineError(f"plan {layer.plan.mode} needs a stored configuration"
-                          + (f" ({why})" if why else ""))
-    plan = layer.plan
+        plan.configuration_source, plan.configuration_reason = source, why
+        return StoredConfiguration(index=1, links=[])
     plan.configuration, plan.configuration_source, plan.configuration_reason = cfg, source, why
     return cfg
 
 
 def plan_implement(system: System, configuration: AnyConfig) -> Plan:
-    """Listing 4.3: make the stored links (links with a missing end are refused)."""
+    """Listing 4.3: make the stored links (links with a missing end are refused).
+    Without a configuration, the system's own links are implemented."""
     layer = ProfileLayer(system, "implement")
     cfg = _configured(layer, configuration, source="given")
     proc.implement_configuration(layer, cfg, Rule.STORED)
@@ -46,13 +58,7 @@ def plan_replacements(system: System, configuration: AnyConfig) -> Plan:
     """Implement the stored links whose ends are all present, then repair the others
     (listing 4.6). Without a configuration, the system's own links are repaired."""
     layer = ProfileLayer(system, "replacements")
-    if configuration is None:
-        cfg = proc.configuration_from_system(system)
-        plan = layer.plan
-        plan.configuration, plan.configuration_source = cfg, "system"
-        plan.configuration_reason = "no configuration given: the system's current links"
-    else:
-        cfg = _configured(layer, configuration, source="given")
+    cfg = _configured(layer, configuration, source="given")
     whole = [sl for sl in cfg.links
              if layer.is_present(sl.output.ref, Direction.OUTPUT)
              and layer.is_present(sl.input.ref, Direction.INPUT)]

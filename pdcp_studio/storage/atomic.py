@@ -16,6 +16,7 @@ Decisions:
 from __future__ import annotations
 
 import contextlib
+import errno
 import os
 import secrets
 import stat
@@ -54,6 +55,8 @@ def _fsync_directory(directory: Path) -> None:
 def atomic_write_bytes(path: str | os.PathLike[str], data: bytes) -> None:
     """Replace ``path`` with ``data`` atomically and durably (see the module docstring)."""
     target = Path(os.path.realpath(path))
+    if target.is_dir():  # else the error would name the temporary file, not the target
+        raise IsADirectoryError(errno.EISDIR, os.strerror(errno.EISDIR), os.fspath(path))
     directory = target.parent
     fd, temp = _open_temp(directory, target.name)
     try:

@@ -35,6 +35,7 @@ Decisions (reference §3 plus the ones it leaves open):
 
 from __future__ import annotations
 
+import re
 import struct
 from dataclasses import dataclass
 from pathlib import Path
@@ -76,6 +77,7 @@ _TWO_RECORDS = struct.Struct("<BHBH")
 # (11, PID), (12, serial); owner type/profile (13, 14) follow as single records when set.
 _CHANNEL = struct.Struct("<" + "BH" * 7)
 
+_HEX = re.compile(r"0[xX][0-9A-Fa-f]+")
 _REQUIRED = (CHANNEL_INDEX, OWNER_VID, OWNER_PID, OWNER_SERIAL)
 _Err = ConfigFormatError  # short alias: messages stay on one line
 
@@ -374,17 +376,17 @@ def to_json(collection: ConfigCollection) -> dict[str, Any]:
 
 def _json_int(doc: dict, key: str, path: str, hi: int = 0xFFFF, lo: int = 0,
               default: int | None = None, required: bool = True) -> Any:
-    """An integer or number string (``"0x…"``) within lo…hi; ``default`` when absent."""
+    """An integer or ``"0x…"`` string within lo…hi; ``default`` when absent."""
     value, where = doc.get(key), f"{path}.{key}"
     if value is None:
         if default is None and required:
             raise _Err(f"{where}: missing")
         return default
     if isinstance(value, str):
-        try:
-            value = int(value.strip(), 0)
-        except ValueError:
-            raise _Err(f"{where}: {value!r} is not a number") from None
+        # Contracts: an integer or a "0x…" string; a bare "2200" is refused, not read as decimal.
+        if not _HEX.fullmatch(value):
+            raise _Err(f"{where}: {value!r} is not a number (an integer or \"0x…\")")
+        value = int(value, 16)
     if isinstance(value, bool) or not isinstance(value, int):
         raise _Err(f"{where}: expected an integer, got {value!r}")
     if not lo <= value <= hi:

@@ -8,6 +8,7 @@ profile as ``"0x%04X"`` strings and everything else as integers, atomically.
 from __future__ import annotations
 
 import json
+import re
 from pathlib import Path
 from typing import Any
 
@@ -17,6 +18,7 @@ from pdcp_studio.model.system import NO_SOURCE, Channel, Device, Link, SourceInf
 
 FORMAT = "pdcp-system/1"
 MAX_FILE_BYTES = 16 * 1024 * 1024
+_HEX = re.compile(r"0[xX][0-9A-Fa-f]+")
 
 
 # -- reading ---------------------------------------------------------------------
@@ -25,10 +27,12 @@ def _int(value: Any, path: str, lo: int, hi: int) -> int:
     if isinstance(value, bool):
         raise SystemFileError(f"expected a number, got {value!r}", path)
     if isinstance(value, str):
-        try:
-            value = int(value, 0)
-        except ValueError:
-            raise SystemFileError(f"{value!r} is not a number", path) from None
+        # Contracts: a number is an integer or a "0x…" string. A bare "2200" is refused,
+        # not read as decimal: it was most likely meant as hex.
+        if not _HEX.fullmatch(value):
+            raise SystemFileError(f"{value!r} is not a number (an integer or \"0x…\")",
+                                  path)
+        value = int(value, 16)
     if not isinstance(value, int):
         raise SystemFileError(f"expected a number, got {value!r}", path)
     if not lo <= value <= hi:
@@ -45,6 +49,21 @@ def _obj(value: Any, path: str) -> dict:
 def _list(value: Any, path: str) -> list:
     if not isinstance(value, list):
         raise SystemFileError("expected a list", path)
+    return value
+
+
+def _str(d: dict, key: str, path: str) -> str:
+    """An optional string field (default empty), else SystemFileError at ``path.key``."""
+    value = d.get(key, "")
+    if not isinstance(value, str):
+        raise SystemFileError(f"expected a string, got {value!r}", f"{path}.{key}")
+    return value
+
+
+def _bool(d: dict, key: str, path: str, default: bool) -> bool:
+    value = d.get(key, default)
+    if not isinstance(value, bool):
+        raise SystemFileError("expected true or false", f"{path}.{key}")
     return value
 
 
@@ -90,6 +109,7 @@ def _channel(doc: Any, path: str) -> Channel:
         raise SystemFileError(
             f"must be 'input' or 'output', not {direction!r}", f"{path}.direction"
         )
+    descriptor = _str(d, "descriptor", path)
     ch = Channel(
         index=_int(d["index"], f"{path}.index", 1, 255),
         direction=Direction(direction),
@@ -98,13 +118,11 @@ def _channel(doc: Any, path: str) -> Channel:
         terminal_profile=_int(d.get("terminal_profile", 0), f"{path}.terminal_profile", 0, 0xFFFF),
         required_inputs=_indices(d.get("required_inputs", []), f"{path}.required_inputs"),
         desired_inputs=_indices(d.get("desired_inputs", []), f"{path}.desired_inputs"),
-        descriptor=str(d.get("descriptor", "")),
+        descriptor=descriptor,
         source=_source(d["source"], f"{path}.source") if "source" in d else NO_SOURCE,
         node_id=_int(d["node_id"], f"{path}.node_id", 1, 254) if "node_id" in d else None,
-        data_enabled=bool(d.get("data_enabled", False)),
+        data_enabled=_bool(d, "data_enabled", path, False),
     )
-    if not isinstance(d.get("descriptor", ""), str):
-        raise SystemFileError("expected a string", f"{path}.descriptor")
     return ch
 
 
@@ -126,17 +144,15 @@ def _device(doc: Any, path: str) -> Device:
     for key in ("vid", "pid", "serial"):
         if key not in d:
             raise SystemFileError(f"missing {key!r}", path)
-    present = d.get("present", True)
-    if not isinstance(present, bool):
-        raise SystemFileError("expected true or false", f"{path}.present")
+    present = _bool(d, "present", path, True)
     device = Device(
         vid=_int(d["vid"], f"{path}.vid", 0, 0xFFFF),
         pid=_int(d["pid"], f"{path}.pid", 0, 0xFFFF),
         serial=_int(d["serial"], f"{path}.serial", 0, 0xFFFF),
-        name=str(d.get("name", "")),
+        name=_str(d, "name", path),
         present=present,
         node_id=_int(d["node_id"], f"{path}.node_id", 1, 254) if "node_id" in d else None,
-        descriptor=str(d.get("descriptor", "")),
+        descriptor=_str(d, "descriptor", path),
         **{k: _int(d[k], f"{path}.{k}", 0, hi) for k, hi in _DEVICE_INTS.items() if k in d},
     )
     for i, ch_doc in enumerate(_list(d.get("channels", []), f"{path}.channels")):

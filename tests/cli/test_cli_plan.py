@@ -119,7 +119,7 @@ def test_bad_config_exits_2_naming_file_and_offset(capsys, tmp_path):
 
 
 @pytest.mark.parametrize("argv", [
-    ["plan", "implement", "--system", str(SYSTEMS / "appendix-d.json")],
+    ["plan", "implement", "--system", str(SYSTEMS / "appendix-d.json"), "--config", "/nope"],
     ["plan", "autoconfigure", "--system", "/nonexistent/system.json"],
     ["plan", "startup", "--system", str(SYSTEMS / "appendix-d.json"), "--config", "/nope.pdcfg"],
 ])

@@ -18,6 +18,7 @@ from pdcp_studio.engine import (
 )
 from pdcp_studio.errors import EngineError
 from pdcp_studio.model import NO_SOURCE, ProfileTree
+from pdcp_studio.model.configuration import ConfigCollection
 from pdcp_studio.storage import system_file
 
 ROOT_PROFILES = ROOT / "resources" / "profiles" / "thesis-tests.json"
@@ -167,6 +168,21 @@ def test_unknown_mode_is_an_engine_error():
         plan_for("reboot", _rig())
 
 
-def test_implement_without_a_configuration_is_an_engine_error():
-    with pytest.raises(EngineError, match="needs a stored configuration"):
-        plan_for("implement", _rig(), None)
+def test_implement_without_a_configuration_implements_the_systems_own_links():
+    # Appendix D without SN4.O1 → SN5.I2: intelligently connecting the terminal link
+    # SN5.O3 → SN6.I1 brings back the input its output requires.
+    s = load("appendix-d")
+    full = s.links
+    s.remove_link(full[0])
+    plan = plan_for("implement", s, None)
+    assert plan.configuration_source == "system"
+    assert [a.link for a in plan.actions] == [full[0]]
+    assert plan.final_links == full
+
+
+def test_an_empty_stored_collection_is_nothing_to_implement_not_an_error():
+    rig = _rig()
+    for mode in ("implement", "replacements"):
+        plan = plan_for(mode, rig, ConfigCollection([]))
+        assert plan.actions == [] and plan.final_links == rig.links
+        assert "holds no configuration" in plan.configuration_reason

