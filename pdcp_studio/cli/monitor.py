@@ -87,9 +87,23 @@ def _can_frames(spec: Any, stop: Callable[[], bool]) -> Iterator[tuple[float, in
         bus.shutdown()
 
 
-def _session_frames(url: str, stop: Callable[[], bool]) -> Iterator[tuple[float, int, bytes, Any]]:
-    """Frames a bus session reports (sim:, serial:): its FrameSeen events."""
-    from pdcp_studio.bus.events import FrameSeen
+def learn_links(links: dict, system: Any) -> None:
+    """Fill a FrameDecoder's link map from a system with node IDs: frames from an output's
+    node ID are channel data on its links, not function codes."""
+    links.clear()
+    for ref, ch in system.channels():
+        if ch.is_output and ch.node_id:
+            links[ch.node_id] = (ref, tuple(system.inputs_fed_by(ref)))
+
+
+def _session_frames(url: str, stop: Callable[[], bool],
+                    links: dict | None = None) -> Iterator[tuple[float, int, bytes, Any]]:
+    """Frames a bus session reports (sim:, serial:): its FrameSeen events.
+
+    ``links`` (the decoder's link map) is kept current from the session's system, re-read
+    whenever a device or link comes or goes.
+    """
+    from pdcp_studio.bus.events import DeviceJoined, DeviceLeft, FrameSeen, LinkMade, LinkRemoved
 
     try:
         from pdcp_studio.bus.session import open_session
@@ -101,11 +115,19 @@ def _session_frames(url: str, stop: Callable[[], bool]) -> Iterator[tuple[float,
     session = open_session(url)
     try:
         # The session's callback only enqueues; decoding happens on this thread.
-        session.subscribe(lambda ev: seen.put(ev) if isinstance(ev, FrameSeen) else None)
+        wanted = (FrameSeen, DeviceJoined, DeviceLeft, LinkMade, LinkRemoved)
+        session.subscribe(
+            lambda ev: seen.put(ev) if isinstance(ev, wanted) else None)
+        if links is not None:
+            learn_links(links, session.system())
         while not stop():
             try:
                 ev = seen.get(timeout=POLL_S)
             except queue.Empty:
+                continue
+            if not isinstance(ev, FrameSeen):
+                if links is not None:
+                    learn_links(links, session.system())
                 continue
             yield ev.timestamp, ev.arbitration_id, bytes(ev.data), None
     finally:
@@ -125,7 +147,8 @@ def run(args: argparse.Namespace) -> int:
     show = make_filter(args.filter)
     if args.seconds is not None and args.seconds <= 0:
         raise BadInput(f"--seconds {args.seconds}: must be positive")
-    decoder = FrameDecoder()
+    links: dict = {}
+    decoder = FrameDecoder(links)
     shown: list[dict[str, Any]] = []
     started = time.monotonic()
 
@@ -142,7 +165,7 @@ def run(args: argparse.Namespace) -> int:
         except BusUrlError as err:
             raise BadInput(str(err)) from err
         frames = (_can_frames(spec, stop) if spec.kind == "can"
-                  else _session_frames(args.bus, stop))
+                  else _session_frames(args.bus, stop, links))
     try:
         with ExitStack() as stack:
             stack.enter_context(closing(frames))  # shuts a live bus down on any exit

@@ -8,7 +8,6 @@ import subprocess
 import sys
 import threading
 import time
-import types
 import uuid
 from pathlib import Path
 
@@ -172,25 +171,20 @@ class FakeSession:
         self.closed = True
 
 
-def test_sim_url_uses_the_session_frame_events(monkeypatch, capsys, tmp_path):
-    frames = [M.BindRequest(3, 2, 2, 4).encode(), M.BindResponse(3, 3, 2, 2, 4).encode()]
-    sessions: list[FakeSession] = []
-
-    def open_session(url):
-        assert url == "sim:thesis-test1"
-        sessions.append(FakeSession(frames))
-        return sessions[-1]
-
-    fake = types.ModuleType("pdcp_studio.bus.session")
-    fake.open_session = open_session
-    monkeypatch.setitem(sys.modules, "pdcp_studio.bus.session", fake)
+def test_sim_url_names_the_links_of_channel_data(capsys, tmp_path):
+    """On a simulated prosthesis the monitor knows the outputs' node IDs from the session, so
+    channel data frames read as data on their links, never as undecodable function codes."""
     log = tmp_path / "sim.csv"
-    assert main(["monitor", "--bus", "sim:thesis-test1", "--seconds", "0.5", "--json",
+    assert main(["monitor", "--bus", "sim:transradial", "--seconds", "1.0", "--json",
                  "--log", str(log)]) == 0
-    shown = json.loads(capsys.readouterr().out)
-    assert [f["function"] for f in shown] == ["Bind Device Request", "Bind Device Request Response"]
-    assert "node 3 granted" in shown[1]["fields"] and sessions[0].closed
-    assert [(m.arbitration_id, bytes(m.data)) for m in can.LogReader(str(log))] == frames
+    out, err = capsys.readouterr()
+    shown = json.loads(out)
+    data = [f for f in shown if f["function"] == "Channel data"]
+    assert data, "transradial streams EMG and set points at 20 Hz"
+    assert all(f["link"] and f["link"]["inputs"] and f["error"] is None for f in data)
+    assert "0 undecodable" in err
+    logged = [(m.arbitration_id, bytes(m.data)) for m in can.LogReader(str(log))]
+    assert len(logged) == len(shown)
 
 
 def test_subprocess_replay():
