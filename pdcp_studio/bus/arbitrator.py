@@ -1195,7 +1195,14 @@ class Arbitrator:
         with self._plan_lock:
             with self._lock:
                 self._duty_needed = False
-            stored = self.read_memory()
+            try:
+                stored = self.read_memory()
+            except (OSError, PdcpError) as err:
+                # An unreadable memory must not keep the prosthesis unlinked: say so once and
+                # start up from what the devices themselves store (as a replaced arbitrator).
+                self._error(f"stored configuration unreadable, starting up from the devices' "
+                            f"own source fields: {err}", "plan")
+                stored = ConfigCollection([])
             snapshot = self.system()
             plan = plan_startup(snapshot, stored if stored.configurations else None)
             try:
