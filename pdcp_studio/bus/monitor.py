@@ -450,6 +450,8 @@ def read_capture(path: str | Path) -> Iterator[Any]:
     import can
 
     path = Path(path)
+    if path.is_dir():
+        raise CaptureError(path, "is a folder, not a capture file")
     if not path.is_file():
         raise CaptureError(path, "no such file")
     # ASC stores times relative to its header; ask for absolute ones like the other formats.

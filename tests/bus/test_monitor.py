@@ -401,3 +401,8 @@ def test_a_channel_name_with_long_trailing_digits_still_records(tmp_path):
     assert msg.channel == "monitor-08a81c7c786c490cb46c66be45734036"  # not changed in place
     (back,) = list(read_capture(path))
     assert back.arbitration_id == 0x601 and bytes(back.data) == b"\x01\x01\x00"
+
+
+def test_a_folder_is_not_a_capture(tmp_path):
+    with pytest.raises(CaptureError, match="folder"):
+        list(read_capture(tmp_path))
