@@ -124,6 +124,9 @@ TICK_S = 0.01
 UNKNOWN_RESET_S = 1.0
 #: A node ID heard from a device bound elsewhere stays out of the pool this long after.
 FOREIGN_HOLD_S = 1.0
+#: After a reset, channel data frames still arriving on the old channel node IDs are expected
+#: for this long (devices finish what they queued before the Reset reached them).
+RESET_GRACE_S = 1.0
 #: Without a reset at start, binding waits this long while node IDs in use are heard.
 FOREIGN_LISTEN_S = 3.5 * DEFAULT_BEACON_INTERVAL_S
 #: How long close() waits for each thread.
@@ -282,6 +285,11 @@ class Arbitrator:
         self._unknown_reset: dict[int, float] = {}
         self._foreign: dict[int, float] = {}  # node ID heard but not bound here: last heard
         self._foreign_shown: set[int] = set()
+        # Channel node IDs given out before the last reset, and until when their in-flight data
+        # frames are expected (counted in stale_data_frames, not reported as undecodable).
+        self._stale_channels: frozenset[int] = frozenset()
+        self._stale_until = 0.0
+        self.stale_data_frames = 0
         self._other_arbitrator = False
         self._epoch = 0  # bumped by reset(): stale set-ups discard their results
         self._generations = itertools.count(1)
@@ -593,6 +601,9 @@ class Arbitrator:
         try:
             message = decode(aid, data)
         except FrameError as err:
+            if node_id in self._stale_channels and now < self._stale_until:
+                self.stale_data_frames += 1  # data already on the wire when we reset
+                return
             self.bad_frames += 1
             if node_id not in self._foreign_shown:
                 self._foreign_shown.add(node_id)
@@ -1283,6 +1294,8 @@ class Arbitrator:
                 self.memory.erase()
             with self._lock:
                 nodes = list(self._nodes)
+                self._stale_channels = frozenset(self._channel_ids)
+                self._stale_until = time.monotonic() + RESET_GRACE_S
                 self._epoch += 1
                 self._system = System()
                 self._pool.clear()
