@@ -49,16 +49,51 @@ def _multicast_problem(url: str) -> str | None:
         b.shutdown()
 
 
+def _claim_udp_port(first: int):
+    """A UDP port from ``first`` on that no socket on this machine holds, and a socket that
+    holds it for us (SO_REUSEADDR/SO_REUSEPORT on 127.0.0.1, so python-can's multicast
+    sockets here and in our child processes can still bind it, while another test run's
+    exclusive probe fails and moves on). Another run's PID may map to the same first port
+    (PIDs wrap at pid_max; the bases are 1000 apart): then the two would hear each other."""
+    import socket
+
+    for port in range(first, first + 200):
+        probe = socket.socket(socket.AF_INET, socket.SOCK_DGRAM)
+        try:
+            probe.bind(("", port))
+        except OSError:
+            continue  # someone (another test run) is on this port
+        finally:
+            probe.close()
+        hold = socket.socket(socket.AF_INET, socket.SOCK_DGRAM)
+        hold.setsockopt(socket.SOL_SOCKET, socket.SO_REUSEADDR, 1)
+        if hasattr(socket, "SO_REUSEPORT"):
+            hold.setsockopt(socket.SOL_SOCKET, socket.SO_REUSEPORT, 1)
+        try:
+            hold.bind(("127.0.0.1", port))  # not the group's address: it receives nothing
+        except OSError:
+            hold.close()
+            continue
+        return port, hold
+    pytest.skip(f"no free UDP port in {first}..{first + 199}")
+
+
 @pytest.fixture
 def multicast_url():
-    """``make(group, base_port)``: a udp_multicast bus URL private to this process (the port
-    follows the PID so parallel runs do not hear each other); skips when multicast fails here."""
+    """``make(group, base_port)``: a udp_multicast bus URL private to this test run (the port
+    follows the PID and is held for the test, so parallel runs do not hear each other);
+    skips when multicast fails here."""
+    held = []
 
     def make(group: str, base_port: int) -> str:
-        url = f"can:udp_multicast:{group}?port={base_port + os.getpid() % 20000}"
+        port, hold = _claim_udp_port(base_port + os.getpid() % 20000)
+        held.append(hold)
+        url = f"can:udp_multicast:{group}?port={port}"
         why = _multicast_problem(url)
         if why is not None:
             pytest.skip(why)
         return url
 
-    return make
+    yield make
+    for hold in held:
+        hold.close()

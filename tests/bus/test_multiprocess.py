@@ -22,12 +22,17 @@ GROUP = "239.74.163.2"
 
 
 class Lines:
-    """A subprocess's stdout, line by line, readable with a timeout."""
+    """A subprocess's stdout, line by line, readable with a timeout; its stderr is drained
+    too (into ``errors``), so a chatty child never blocks on a full pipe."""
 
     def __init__(self, proc: subprocess.Popen) -> None:
         self.all: list[str] = []
+        self.errors: list[str] = []
         self._q: queue.SimpleQueue[str] = queue.SimpleQueue()
         threading.Thread(target=self._read, args=(proc,), daemon=True).start()
+        self.stderr_reader = threading.Thread(target=self.errors.extend, args=(proc.stderr,),
+                                              daemon=True)
+        self.stderr_reader.start()
 
     def _read(self, proc: subprocess.Popen) -> None:
         for line in proc.stdout:
@@ -46,6 +51,13 @@ class Lines:
         return True
 
 
+#: ``python -m pdcp_studio`` that Ctrl-C stops whatever the test run inherited: a shell
+#: starts a background job (``pytest &``) with SIGINT ignored, every child inherits that,
+#: and the arbitrator below would then never hear the SIGINT that ends the test.
+_CTRL_C_ABLE = ("import signal, sys; signal.signal(signal.SIGINT, signal.default_int_handler); "
+                "from pdcp_studio.cli.main import main; sys.exit(main())")
+
+
 @pytest.mark.slow
 def test_arbitrator_process_binds_and_links_devices_of_this_process(tmp_path, multicast_url):
     url = multicast_url(GROUP, 41000)
@@ -53,7 +65,7 @@ def test_arbitrator_process_binds_and_links_devices_of_this_process(tmp_path, mu
     devices = [SimulatedDevice(d, data_rate_hz=20) for d in system.devices.values()]
     host = DeviceHost(open_spec(parse_bus_url(url)), devices, plugged=True, name="here")
     proc = subprocess.Popen(
-        [sys.executable, "-m", "pdcp_studio", "arbitrator", "--bus", url,
+        [sys.executable, "-c", _CTRL_C_ABLE, "arbitrator", "--bus", url,
          "--memory", str(tmp_path / "mem"), "--startup-quiet", "0.3"],
         stdout=subprocess.PIPE, stderr=subprocess.PIPE, text=True)
     lines = Lines(proc)
@@ -93,6 +105,7 @@ def test_arbitrator_process_binds_and_links_devices_of_this_process(tmp_path, mu
                 proc.kill()
             host.close()
     assert lines.until(lambda ls: "arbitrator stopped" in ls, 5)
-    assert proc.returncode == 0, proc.stderr.read()
+    lines.stderr_reader.join(5)  # the child has exited: its stderr is at its end
+    assert proc.returncode == 0, "".join(lines.errors)
     proc.stdout.close()
     proc.stderr.close()
