@@ -39,6 +39,8 @@ def serial_url(tmp_path, multicast_url):
             proc.terminate()
         for proc in (arbitrator, devices):
             proc.wait(10)
+        arbitrator.stdout.close()
+        devices.stderr.close()
 
 
 def test_scan_over_the_host_link_prints_the_contracts_system(serial_url, capsys):
