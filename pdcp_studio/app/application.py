@@ -59,6 +59,9 @@ def run_app(path: str | Path | None = None, bus: str | None = None,
 
     def finish_screenshot() -> None:
         window.view.fit_all()
+        bridge = window.live.bridge
+        if window.progress.isVisible() and (bridge is None or not bridge.busy):
+            window.progress.hide()  # the last job's bar, hidden a moment later anyway
         image = window.grab()
         if status["code"]:
             pass  # what was asked for is not on screen: no picture of an empty window
