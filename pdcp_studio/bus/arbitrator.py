@@ -1202,6 +1202,7 @@ class Arbitrator:
     def run_startup(self) -> Plan:
         """Listing 4.1 / 5.1 with the memory's configuration (or the devices' own)."""
         from pdcp_studio.engine import plan_startup
+        from pdcp_studio.engine.procedures import missing_devices
 
         with self._plan_lock:
             with self._lock:
@@ -1215,9 +1216,15 @@ class Arbitrator:
                             f"own source fields: {err}", "plan")
                 stored = ConfigCollection([])
             snapshot = self.system()
-            plan = plan_startup(snapshot, stored if stored.configurations else None)
+            config = stored if stored.configurations else None
+            plan = plan_startup(snapshot, config)
             try:
                 self.apply_plan(plan)
+                # What the stored configuration names and the bus lacks is shown as missing.
+                with self._lock:
+                    for device in missing_devices(self._system, config):
+                        if self._system.device(device.key) is None:
+                            self._system.add_device(device)
             finally:
                 with self._lock:
                     self._startup_done = True

@@ -17,8 +17,8 @@ from pdcp_studio.model.configuration import (
     StoredLink,
 )
 from pdcp_studio.model.profile import fmt
-from pdcp_studio.model.refs import ChannelRef, Direction
-from pdcp_studio.model.system import Link, System
+from pdcp_studio.model.refs import ChannelRef, DeviceKey, Direction
+from pdcp_studio.model.system import Channel, Device, Link, System
 
 
 # -- configurations ------------------------------------------------------------------------
@@ -292,3 +292,24 @@ def clear(layer: ProfileLayer) -> None:
     """Remove every link."""
     for link in sorted(layer.links):
         layer.remove(link, Rule.CLEAR, "clear: every link is removed")
+
+
+def missing_devices(system: System, config: ConfigCollection | StoredConfiguration | None
+                    ) -> list[Device]:
+    """Devices a stored configuration names that ``system`` lacks, as ``present=False``
+    devices with the channels the configuration remembers (type and profile), so a
+    prosthetist sees what is missing — the replaced hand, the unplugged sensor."""
+    cfg, _why = resolve_configuration(system, config)
+    if cfg is None:
+        return []
+    found: dict[DeviceKey, Device] = {}
+    for sl in cfg.links:
+        for stored, direction in ((sl.output, Direction.OUTPUT), (sl.input, Direction.INPUT)):
+            key = stored.ref.device
+            if system.device(key) is not None:
+                continue
+            device = found.setdefault(key, Device(*key, present=False))
+            if stored.index not in device.channels:
+                device.add_channel(Channel(stored.index, direction, type=stored.type,
+                                           profile=stored.profile))
+    return [found[k] for k in sorted(found)]

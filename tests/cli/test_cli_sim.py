@@ -112,3 +112,13 @@ def test_sim_list_starts_fast():
     subprocess.run([sys.executable, "-m", "pdcp_studio", "sim", "list"], check=True,
                    capture_output=True)
     assert time.monotonic() - started < 5
+
+
+def test_replay_lists_the_replaced_device_as_missing(capsys):
+    """Thesis test 1: D2 is replaced by D3; after the reset the stored configuration still
+    names D2, so the final system shows it, not present, beside D1.O1 → D3.I1."""
+    assert main(["sim", "replay", "thesis-test1", "--json"]) == 0
+    doc = json.loads(capsys.readouterr().out)
+    by_serial = {d["serial"]: d for d in doc["devices"]}
+    assert by_serial[5]["present"] is False and "node_id" not in by_serial[5]
+    assert by_serial[4]["present"] is not False and by_serial[6]["present"] is not False
