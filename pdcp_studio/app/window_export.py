@@ -1,0 +1,74 @@
+"""Exporting the graph (PNG, SVG) and the fitting report (PDF) from the main window.
+
+Kept apart from :mod:`main_window`: output that leaves the app, as opposed to saving the
+document (:mod:`window_files`).
+"""
+
+from __future__ import annotations
+
+from pathlib import Path
+
+from PySide6.QtGui import QImage, QPainter
+from PySide6.QtWidgets import QFileDialog
+
+from pdcp_studio.app.window_support import optional_module
+from pdcp_studio.errors import PdcpError
+
+
+class ExportMixin:
+    """Graph image, PNG/SVG export and the PDF report of :class:`MainWindow`."""
+
+    def graph_image(self, scale: float = 2.0) -> QImage:
+        """The whole graph rendered off screen (for PNG export and the report)."""
+        rect = self.scene.itemsBoundingRect().adjusted(-20, -20, 20, 20)
+        image = QImage(max(1, int(rect.width() * scale)), max(1, int(rect.height() * scale)),
+                       QImage.Format.Format_ARGB32)
+        image.fill(self.scene.backgroundBrush().color())
+        painter = QPainter(image)
+        painter.setRenderHint(QPainter.RenderHint.Antialiasing)
+        self.scene.render(painter, source=rect)
+        painter.end()
+        return image
+
+    def export_graph(self, path: str | Path) -> None:
+        path = Path(path)
+        rect = self.scene.itemsBoundingRect().adjusted(-20, -20, 20, 20)
+        if path.suffix.lower() == ".svg":
+            from PySide6.QtSvg import QSvgGenerator
+
+            gen = QSvgGenerator()
+            gen.setFileName(str(path))
+            gen.setSize(rect.size().toSize())
+            gen.setViewBox(rect)
+            gen.setTitle(self.doc.title)
+            painter = QPainter(gen)
+            self.scene.render(painter, source=rect)
+            painter.end()
+        elif not self.graph_image().save(str(path)):
+            raise OSError(f"{path}: could not write the image")
+
+    def ask_export(self, kind: str) -> None:
+        path, _ = QFileDialog.getSaveFileName(self, "Export graph",
+                                              str(Path(self._last_dir()) / f"bus.{kind}"),
+                                              f"{kind.upper()} (*.{kind})")
+        if path:
+            try:
+                self.export_graph(path)
+                self.show_message(f"Exported {path}")
+            except OSError as err:
+                self.error_box("Cannot export", str(err))
+
+    def ask_report(self) -> None:
+        report = optional_module("report")
+        if report is None:
+            self.error_box("Report", "this build has no report module")
+            return
+        path, _ = QFileDialog.getSaveFileName(self, "Fitting report",
+                                              str(Path(self._last_dir()) / "fitting.pdf"),
+                                              "PDF (*.pdf)")
+        if path:
+            try:
+                report.write_report(path, self.doc.system, self.doc.tree, self.graph_image())
+                self.show_message(f"Wrote the fitting report {path}")
+            except (PdcpError, OSError) as err:
+                self.error_box("Cannot write the report", str(err))

@@ -1,0 +1,102 @@
+"""Opening and saving documents from the main window (dialogs, last folder, unsaved changes).
+
+Kept apart from :mod:`main_window` so the file round trip reads in one place; reading and
+writing the formats themselves is :mod:`pdcp_studio.app.files`.
+"""
+
+from __future__ import annotations
+
+from pathlib import Path
+
+from PySide6.QtCore import QSettings
+from PySide6.QtWidgets import QFileDialog, QMessageBox
+
+from pdcp_studio.app import files
+from pdcp_studio.app.window_support import FILE_FILTERS
+from pdcp_studio.errors import PdcpError
+
+
+class FileHandlingMixin:
+    """Open, save, save as, and the ask-before-dropping-changes of :class:`MainWindow`."""
+
+    def open_path(self, path: str | Path) -> bool:
+        """Open a system file or a .pdcfg; errors go to a message box and return False."""
+        try:
+            opened = files.open_path(path)
+        except (PdcpError, OSError) as err:
+            self.error_box("Cannot open", str(err))
+            return False
+        self.show_opened(opened, Path(path))
+        return True
+
+    def show_opened(self, opened: files.Opened, path: Path | None) -> None:
+        """Put a loaded file on screen (offline)."""
+        self.live.disconnect_bus()
+        self.doc.set_system(opened.system, path, None, positions=opened.positions,
+                            kind=opened.kind, config=opened.config)
+        what = "configuration" if opened.kind == "config" else "system"
+        note = f" ({opened.note})" if opened.note else ""
+        self.show_message(f"Opened {what} {path.name if path else ''}: "
+                          f"{len(opened.system.devices)} devices, "
+                          f"{len(opened.system.links)} links{note}")
+        self._loaded()
+
+    def ask_open(self) -> None:
+        if not self.maybe_save():
+            return
+        path, _ = QFileDialog.getOpenFileName(self, "Open", self._last_dir(), FILE_FILTERS)
+        if path:
+            self._remember_dir(path)
+            self.open_path(path)
+
+    def save(self) -> bool:
+        if self.doc.path is None:
+            return self.ask_save_as()
+        return self.save_to(self.doc.path)
+
+    def ask_save_as(self) -> bool:
+        start = str(self.doc.path) if self.doc.path else str(Path(self._last_dir())
+                                                             / "system.json")
+        path, _ = QFileDialog.getSaveFileName(self, "Save as", start, FILE_FILTERS)
+        if not path:
+            return False
+        self._remember_dir(path)
+        return self.save_to(path)
+
+    def save_to(self, path: str | Path) -> bool:
+        """Save as a system file, or as a .pdcfg (links only) by the extension."""
+        path = Path(path)
+        try:
+            if files.is_config_path(path):
+                files.save_configuration(self.doc.system, path)
+            else:
+                files.save_system(self.doc.system, path, self.doc.positions)
+        except (PdcpError, OSError, ValueError) as err:
+            self.error_box("Cannot save", f"{path}: {err}")
+            return False
+        self.doc.kind = "config" if files.is_config_path(path) else "system"
+        self.doc.mark_saved(path)
+        self.show_message(f"Saved {path}")
+        return True
+
+    def maybe_save(self) -> bool:
+        """True when it is fine to drop the document (saved, discarded, or clean)."""
+        if not self.doc.is_dirty:
+            return True
+        answer = self.ask_save_changes()
+        if answer == QMessageBox.StandardButton.Save:
+            return self.save()
+        return answer == QMessageBox.StandardButton.Discard
+
+    def ask_save_changes(self) -> QMessageBox.StandardButton:
+        """Save, Discard or Cancel (tests replace this method)."""
+        SB = QMessageBox.StandardButton
+        return QMessageBox.question(
+            self, "Unsaved changes", f"Save the changes to {self.doc.title}?",
+            SB.Save | SB.Discard | SB.Cancel, SB.Save)
+
+    def _last_dir(self) -> str:
+        return str(QSettings().value("files/last_dir", str(Path.home())))
+
+    def _remember_dir(self, path: str) -> None:
+        QSettings().setValue("files/last_dir", str(Path(path).parent))

@@ -1,0 +1,123 @@
+"""The main window's actions, menus and toolbar.
+
+Kept apart from :mod:`main_window` so the long list of what the user can trigger (and
+where it shows) reads in one place; every action only calls a method of the window.
+"""
+
+from __future__ import annotations
+
+from typing import Any
+
+from PySide6.QtGui import QAction, QKeySequence
+
+from pdcp_studio.app.plan_panel import OPERATIONS
+from pdcp_studio.app.window_support import DEFAULT_BUS
+
+
+class MenusMixin:
+    """Builds ``act_*``, ``plan_actions``, the menus (``view_menu``, ``bus_menu``) and toolbar."""
+
+    def _action(self, text: str, slot: Any, shortcut: Any = None, tip: str = "") -> QAction:
+        action = QAction(text, self)
+        if shortcut is not None:
+            action.setShortcut(QKeySequence(shortcut))
+        if tip:
+            action.setStatusTip(tip)
+        action.triggered.connect(lambda _checked=False: slot())
+        return action
+
+    def _build_actions(self) -> None:
+        K = QKeySequence.StandardKey
+        self.act_open = self._action("&Open…", self.ask_open, K.Open,
+                                     "Open a system file (.json) or a configuration (.pdcfg)")
+        self.act_save = self._action("&Save", self.save, K.Save)
+        self.act_save_as = self._action("Save &As…", self.ask_save_as, K.SaveAs)
+        self.act_export_png = self._action("Export graph as &PNG…",
+                                           lambda: self.ask_export("png"))
+        self.act_export_svg = self._action("Export graph as S&VG…",
+                                           lambda: self.ask_export("svg"))
+        self.act_report = self._action("Fitting &report (PDF)…", self.ask_report)
+        self.act_quit = self._action("&Quit", self.close, K.Quit)
+        self.act_undo = self.doc.undo_stack.createUndoAction(self, "&Undo")
+        self.act_undo.setShortcut(QKeySequence(K.Undo))
+        self.act_redo = self.doc.undo_stack.createRedoAction(self, "&Redo")
+        self.act_redo.setShortcut(QKeySequence(K.Redo))
+        self.act_delete = self._action("&Delete link", self.scene.delete_selected,
+                                       K.Delete, "Remove the selected links")
+        self.act_fit = self._action("&Fit to window", self.view.fit_all, "Ctrl+0")
+        self.act_zoom_in = self._action("Zoom &in", lambda: self.view.zoom_by(1.25), K.ZoomIn)
+        self.act_zoom_out = self._action("Zoom &out", lambda: self.view.zoom_by(0.8), K.ZoomOut)
+        self.act_legend = self._action("Show &legend", lambda: self.view.set_legend_visible(
+            self.act_legend.isChecked()))
+        self.act_legend.setCheckable(True)
+        self.act_legend.setChecked(True)
+        self.act_arrange = self._action("&Arrange in layers", self.arrange,
+                                        tip="Lay the cards out again: sensors → control → "
+                                            "terminal devices (one undo step)")
+        self.plan_actions = {
+            mode: self._action(f"{text}…", lambda m=mode: self.preview_plan(m))
+            for mode, text in OPERATIONS}
+        self.act_connect = self._action("&Connect…", self.ask_connect,
+                                        tip="Connect to a simulated prosthesis or a CAN bus")
+        self.act_connect_sim = self._action(
+            "Open the &simulated prosthesis",
+            lambda: self.maybe_save() and self.connect_bus(DEFAULT_BUS))
+        self.act_disconnect = self._action("&Disconnect", self.live.disconnect_bus)
+        self.act_scan = self._action("&Scan the bus", self.live.scan)
+        self.act_read_config = self._action(
+            "&Read the stored configuration", self.read_configuration,
+            tip="Read the arbitrator's stored configuration; plans that take a "
+                "configuration (Find replacements, Start-up) then use it")
+        self.act_cancel = self._action("Ca&ncel bus work", self.cancel_bus_work, None,
+                                       "Cancel what the bus is doing for you (scan, apply…)")
+        self.act_compare = self._action("Co&mpare configurations…", self.show_compare)
+        self.act_write = self._action("&Write configuration to the arbitrator…",
+                                      self.ask_write_configuration)
+        self.act_profiles = self._action("&Profile tree…", self.show_profile_tree)
+        self.act_about = self._action("&About PDCP Studio", self.about)
+
+    def _build_menus(self) -> None:
+        mb = self.menuBar()
+        m = mb.addMenu("&File")
+        for a in (self.act_open, self.act_save, self.act_save_as):
+            m.addAction(a)
+        m.addSeparator()
+        for a in (self.act_export_png, self.act_export_svg, self.act_report):
+            m.addAction(a)
+        m.addSeparator()
+        m.addAction(self.act_quit)
+        m = mb.addMenu("&Edit")
+        for a in (self.act_undo, self.act_redo):
+            m.addAction(a)
+        m.addSeparator()
+        m.addAction(self.act_delete)
+        m.addSeparator()
+        m.addAction(self.act_profiles)
+        self.view_menu = m = mb.addMenu("&View")
+        for a in (self.act_fit, self.act_zoom_in, self.act_zoom_out, self.act_arrange,
+                  self.act_legend):
+            m.addAction(a)
+        m.addSeparator()
+        for dock in (self.tree_dock, self.inspector_dock, self.plan_dock):
+            m.addAction(dock.toggleViewAction())
+        m = mb.addMenu("&Plan")
+        for a in self.plan_actions.values():
+            m.addAction(a)
+        self.bus_menu = m = mb.addMenu("&Bus")
+        for a in (self.act_connect, self.act_connect_sim, self.act_disconnect, self.act_scan,
+                  self.act_read_config, self.act_cancel):
+            m.addAction(a)
+        m.addSeparator()
+        m.addAction(self.act_compare)
+        m.addAction(self.act_write)
+        mb.addMenu("&Help").addAction(self.act_about)
+        tb = self.addToolBar("Main")
+        tb.setObjectName("MainToolBar")
+        tb.setMovable(False)
+        for a in (self.act_open, self.act_save, None, self.act_undo, self.act_redo, None,
+                  self.act_fit, self.act_arrange, None, *self.plan_actions.values(), None,
+                  self.act_connect):
+            if a is None:
+                tb.addSeparator()
+            else:
+                tb.addAction(a)

@@ -1,0 +1,59 @@
+"""Crash recovery for the main window: autosaving the document and offering it back.
+
+Kept apart from :mod:`main_window`; the autosaver and the dialog themselves are the
+optional :mod:`pdcp_studio.app.recovery`.
+"""
+
+from __future__ import annotations
+
+from typing import Any
+
+from pdcp_studio.app import files
+from pdcp_studio.app.window_support import optional_module
+from pdcp_studio.errors import PdcpError
+
+
+class RecoveryMixin:
+    """Autosave while editing; after a crash, offer and restore what was autosaved."""
+
+    def _start_autosave(self, recovery: Any) -> None:
+        mod = optional_module("recovery")
+        if mod is None:
+            return
+        doc = self.doc
+        self.autosaver = mod.Autosaver(
+            recovery, lambda: str(doc.path) if doc.path else "untitled",
+            lambda: files.system_text(doc.system, doc.positions),
+            path_fn=lambda: str(doc.path) if doc.path else None, parent=self)
+        self.autosaver.error.connect(self.show_message)
+        self.autosaver.watch(doc)
+
+    def offer_recovery(self) -> bool:
+        """After a crash: offer the autosaved documents; True if one was restored."""
+        mod = optional_module("recovery")
+        if mod is None or self.recovery is None:
+            return False
+        pending = self.recovery.pending()
+        if not pending:
+            return False
+        dialog = mod.RecoveryDialog(pending, self)
+        chosen = dialog.chosen() if dialog.exec() == dialog.DialogCode.Accepted else []
+        for entry in pending:
+            if not chosen or entry is not chosen[0]:
+                self.recovery.discard(entry.name)
+        if not chosen:
+            return False
+        return self.restore(chosen[0])
+
+    def restore(self, entry: Any) -> bool:
+        """Show an autosaved document, marked unsaved (its file, if any, is older)."""
+        try:
+            opened = files.loads_system(entry.text, entry.name)
+        except PdcpError as err:
+            self.error_box("Cannot recover", str(err))
+            return False
+        self.doc.set_system(opened.system, entry.path, None, dirty=True,
+                            positions=opened.positions)
+        self._loaded()
+        self.show_message(f"Recovered unsaved work: {entry.title}")
+        return True
