@@ -34,16 +34,26 @@ class ExportMixin:
         path = Path(path)
         rect = self.scene.itemsBoundingRect().adjusted(-20, -20, 20, 20)
         if path.suffix.lower() == ".svg":
+            from PySide6.QtCore import QBuffer, QByteArray, QIODevice
             from PySide6.QtSvg import QSvgGenerator
 
+            from pdcp_studio.storage.atomic import atomic_write_bytes
+
+            data = QByteArray()
+            buffer = QBuffer(data)
+            buffer.open(QIODevice.OpenModeFlag.WriteOnly)
             gen = QSvgGenerator()
-            gen.setFileName(str(path))
+            gen.setOutputDevice(buffer)  # rendered in memory, then written atomically
             gen.setSize(rect.size().toSize())
             gen.setViewBox(rect)
             gen.setTitle(self.doc.title)
             painter = QPainter(gen)
             self.scene.render(painter, source=rect)
             painter.end()
+            buffer.close()
+            if data.isEmpty():
+                raise OSError(f"{path}: the SVG renderer produced nothing")
+            atomic_write_bytes(path, bytes(data.data()))
         elif not self.graph_image().save(str(path)):
             raise OSError(f"{path}: could not write the image")
 

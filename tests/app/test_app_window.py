@@ -279,7 +279,14 @@ def test_export_png_and_svg(window, tmp_path):
     window.export_graph(tmp_path / "g.png")
     window.export_graph(tmp_path / "g.svg")
     assert (tmp_path / "g.png").read_bytes()[:8] == b"\x89PNG\r\n\x1a\n"
-    assert b"<svg" in (tmp_path / "g.svg").read_bytes()
+    svg = (tmp_path / "g.svg").read_bytes()
+    assert b"<svg" in svg and b"</svg>" in svg and svg.count(b"<path") > 10  # cards, links
+
+
+def test_export_to_a_folder_that_does_not_exist_is_an_error(window, tmp_path):
+    for name in ("g.svg", "g.png"):
+        with pytest.raises(OSError):
+            window.export_graph(tmp_path / "no-such-folder" / name)
 
 
 def test_autosave_and_restore(qtbot, tmp_path, monkeypatch):
