@@ -9,7 +9,7 @@ from __future__ import annotations
 from pathlib import Path
 
 from PySide6.QtGui import QImage, QPainter
-from PySide6.QtWidgets import QFileDialog
+from PySide6.QtWidgets import QFileDialog, QGraphicsItem
 
 from pdcp_studio.app.window_support import optional_module
 from pdcp_studio.errors import PdcpError
@@ -47,9 +47,18 @@ class ExportMixin:
             gen.setSize(rect.size().toSize())
             gen.setViewBox(rect)
             gen.setTitle(self.doc.title)
-            painter = QPainter(gen)
-            self.scene.render(painter, source=rect)
-            painter.end()
+            # Cards keep a pixmap cache for the screen; a vector file wants their vectors.
+            cached = [(item, item.cacheMode()) for item in self.scene.items()
+                      if item.cacheMode() != QGraphicsItem.CacheMode.NoCache]
+            for item, _mode in cached:
+                item.setCacheMode(QGraphicsItem.CacheMode.NoCache)
+            try:
+                painter = QPainter(gen)
+                self.scene.render(painter, source=rect)
+                painter.end()
+            finally:
+                for item, mode in cached:
+                    item.setCacheMode(mode)
             buffer.close()
             if data.isEmpty():
                 raise OSError(f"{path}: the SVG renderer produced nothing")
