@@ -1,0 +1,162 @@
+"""Device set-up after binding (reference §1 steps 1–6), on the arbitrator's set-up pool.
+
+A mixin of :class:`pdcp_studio.bus.arbitrator.Arbitrator`: reads a newly bound device and its
+channels, gives its outputs node IDs, installs it in the system and re-makes its links. A set-up
+of an older binding (or from before a reset) discards its result.
+"""
+
+from __future__ import annotations
+
+import logging
+import time
+
+from pdcp_studio.bus import events as ev
+from pdcp_studio.bus.arb_common import (
+    _CHANNEL_PARAMS,
+    _DEVICE_PARAMS,
+    _INPUT_PARAMS,
+    _PAIR,
+    SETUP_ATTEMPTS,
+    _only_inputs,
+    learn_value,
+)
+from pdcp_studio.bus.requests import DeviceRefusedError
+from pdcp_studio.errors import ModelError, NodeIdExhaustedError, PdcpError
+from pdcp_studio.model import parameters as P
+from pdcp_studio.model.refs import DeviceKey, Direction
+from pdcp_studio.model.system import Channel, Device
+from pdcp_studio.protocol import Reset
+
+log = logging.getLogger("pdcp_studio.bus.arbitrator")  # one logger for the arbitrator
+
+
+class SetupMixin:
+    """The set-up jobs of the :class:`Arbitrator` (one per binding)."""
+
+    # -- set-up (reference §1 steps 1–6) --------------------------------------------------
+    def _current(self, key: DeviceKey, node_id: int, generation: int, epoch: int) -> bool:
+        with self._lock:
+            node = self._nodes.get(node_id)
+            return (epoch == self._epoch and node is not None and node.key == key
+                    and node.generation == generation)
+
+    def _setup_job(self, key: DeviceKey, node_id: int, generation: int, epoch: int) -> None:
+        try:
+            device = self._read_device(key, node_id)
+            if self._current(key, node_id, generation, epoch):
+                self._commit(key, node_id, generation, epoch, device)
+        except PdcpError as err:
+            if self._current(key, node_id, generation, epoch) and not self._stop.is_set():
+                with self._lock:
+                    failures = self._setup_failures[key] = self._setup_failures.get(key, 0) + 1
+                again = failures < SETUP_ATTEMPTS
+                self._error(f"set-up of device {key} (node {node_id}) failed: {err}"
+                            + ("; resetting it to try again" if again else ""), "setup")
+                if again:
+                    self._send_quiet(Reset(node_id))
+        except Exception:
+            log.exception("%s: set-up of %s failed", self.name, key)
+        finally:
+            with self._lock:
+                if self._setups.get(key) == (epoch, generation):
+                    del self._setups[key]
+                self._last_change = time.monotonic()
+            self._wake.set()
+
+    def _get(self, node_id: int, param: int, channel: int = 0) -> bytes | None:
+        """A set-up read; None if the device refuses (a parameter it does not have)."""
+        try:
+            return self.requests.get(node_id, param, channel)
+        except DeviceRefusedError:
+            return None
+
+    def _read_device(self, key: DeviceKey, node_id: int) -> Device:
+        """Steps 1–3 and the reads of steps 4–5: the device and all its channels."""
+        device = Device(key.vid, key.pid, key.serial)
+        ident = self._get(node_id, P.DEVICE_VID_PID)
+        if ident is not None and len(ident) == 4 and _PAIR.unpack(ident) != (key.vid, key.pid):
+            self._error(f"device {key} reports VID/PID {ident.hex()} after binding", "setup")
+        for param in _DEVICE_PARAMS:
+            value = self._get(node_id, param)
+            if value is not None:
+                learn_value(device, param, 0, value)
+        count = self._get(node_id, P.DEVICE_CHANNEL_COUNT) or b"\0"
+        for index in range(1, count[0] + 1):
+            transfer = self._get(node_id, P.CH_TRANSFER_TYPE, index)
+            if not transfer:
+                continue
+            try:
+                direction = Direction.from_transfer_type(transfer[0])
+            except ValueError as err:
+                self._error(f"device {key} channel {index}: {err}", "setup")
+                continue
+            ch = device.add_channel(Channel(index, direction))
+            params = _CHANNEL_PARAMS + (_INPUT_PARAMS if ch.is_input else ())
+            for param in params:
+                value = self._get(node_id, param, index)
+                if value is not None:
+                    learn_value(device, param, index, value)
+        _only_inputs(device)
+        return device
+
+    def _commit(self, key: DeviceKey, node_id: int, generation: int, epoch: int,
+                device: Device) -> None:
+        """Steps 4 (channel node IDs), 5 and 6: install the device, re-make its links."""
+        with self._plan_lock:
+            ids: dict[int, int] = {}
+            refused: list[str] = []
+            with self._lock:
+                if not self._current(key, node_id, generation, epoch):
+                    return
+                for ch in device.outputs():
+                    try:
+                        ids[ch.index] = self._pool.take((key, ch.index))
+                    except NodeIdExhaustedError as err:
+                        refused.append(f"output {device.ref(ch.index)} gets no node ID and "
+                                       f"cannot be linked: {err}")
+                self._refresh_channel_ids()
+            for text in refused:
+                self._error(text, "node_ids_exhausted")
+            for index, channel_id in ids.items():
+                self.requests.set(node_id, P.OUT_NODE_ID, index, bytes([channel_id]))
+                device.channels[index].node_id = channel_id
+            with self._lock:
+                if not self._current(key, node_id, generation, epoch):
+                    return
+                node = self._nodes[node_id]
+                old = self._system.device(key)
+                joined = old is None or not old.present
+                device.present, device.node_id = True, node_id
+                device.name = old.name if old is not None else ""
+                node.beacon_interval = max(device.beacon_interval, 1) / 1000.0
+                if old is None:
+                    self._system.add_device(device)
+                else:
+                    self._system.devices[key] = device
+                    for link in self._system.links:
+                        if key in (link.output.device, link.input.device):
+                            try:
+                                self._system.check_link(link)
+                            except ModelError:
+                                self._system.remove_link(link)
+                links = [lk for lk in self._system.links
+                         if key in (lk.output.device, lk.input.device)
+                         and self._system.is_present(lk.output)
+                         and self._system.is_present(lk.input)]
+                node.set_up = True
+                node.updates.clear()
+                self._setup_failures.pop(key, None)
+                if joined:
+                    self._duty_needed = True
+                self._last_change = time.monotonic()
+            for link in links:
+                try:
+                    self._wire_add(link)
+                except PdcpError as err:
+                    self._error(f"link {link} could not be re-made: {err}", "transport")
+        if joined:
+            log.info("%s: device %s joined (node %d, %d channels)", self.name, key, node_id,
+                     len(device.channels))
+            self._emit(ev.DeviceJoined(key))
+        self._wake.set()
+
