@@ -18,15 +18,15 @@ a crowded prosthesis — most outputs taken — is searched as fast as an empty 
 
 from __future__ import annotations
 
-from bisect import bisect_left, insort
+from bisect import bisect_left
 from collections.abc import Callable, Iterable, Iterator
 from typing import NamedTuple
 
-from pdcp_studio.engine.similarity import Similarity, type_score
+from pdcp_studio.engine.similarity import Similarity, similarity_at, type_score
+from pdcp_studio.model import profile as prof
 from pdcp_studio.model.channel_type import BYTE_SIZE_MASK, CONTROL_MODE_MASK, DATA_TYPE_MASK
 from pdcp_studio.model.refs import ChannelRef, DeviceKey
 
-_SHIFTS = (12, 8, 4, 0)
 _SCORED = CONTROL_MODE_MASK | DATA_TYPE_MASK | BYTE_SIZE_MASK
 
 
@@ -38,19 +38,10 @@ class Candidate(NamedTuple):
     profile: int
 
 
-# A group member: (profile, ref, candidate) sorts in the tie-break order.
+# A group member: (profile, ref, candidate) sorts in the tie-break order (refs are unique
+# in a group, so the candidate itself never decides).
 _Entry = tuple[int, ChannelRef, Candidate]
 _Groups = dict[int, list[_Entry]]  # scored type bits → members, sorted
-
-
-def _prefix_depth(profile: int) -> int:
-    """Leading non-zero components (a zero component ends the path)."""
-    depth = 0
-    for shift in _SHIFTS:
-        if (profile >> shift) & 0xF == 0:
-            break
-        depth += 1
-    return depth
 
 
 def _key(depth: int, profile: int) -> tuple[int, int]:
@@ -58,7 +49,7 @@ def _key(depth: int, profile: int) -> tuple[int, int]:
 
 
 def _keys(profile: int) -> Iterator[tuple[int, int]]:
-    for depth in range(1, _prefix_depth(profile) + 1):
+    for depth in range(1, prof.depth(profile) + 1):
         yield _key(depth, profile)
 
 
@@ -76,7 +67,7 @@ class CandidateIndex:
         for table in (self._all, self._sole_free):
             for groups in table.values():
                 for members in groups.values():
-                    members.sort(key=lambda e: (e[0], e[1]))
+                    members.sort()
 
     # -- sole-access bookkeeping ------------------------------------------------------
     def take(self, c: Candidate) -> None:
@@ -84,7 +75,7 @@ class CandidateIndex:
         entry = (c.profile, c.ref, c)
         for key in _keys(c.profile):
             members = self._sole_free[key][c.type & _SCORED]
-            i = bisect_left(members, entry[:2], key=lambda e: (e[0], e[1]))
+            i = bisect_left(members, entry)
             if i < len(members) and members[i][1] == c.ref:
                 del members[i]
 
@@ -93,9 +84,9 @@ class CandidateIndex:
         entry = (c.profile, c.ref, c)
         for key in _keys(c.profile):
             members = self._sole_free[key][c.type & _SCORED]
-            i = bisect_left(members, entry[:2], key=lambda e: (e[0], e[1]))
+            i = bisect_left(members, entry)
             if i == len(members) or members[i][1] != c.ref:
-                insort(members, entry, key=lambda e: (e[0], e[1]))
+                members.insert(i, entry)
 
     # -- listing 4.8 ----------------------------------------------------------------------
     def best(
@@ -114,7 +105,7 @@ class CandidateIndex:
         only the candidates not ``take``-n (outputs still free for a sole-access input).
         """
         table = self._sole_free if sole_free else self._all
-        for depth in range(_prefix_depth(q_profile), 0, -1):
+        for depth in range(prof.depth(q_profile), 0, -1):
             groups = table.get(_key(depth, q_profile))
             if not groups:
                 continue
@@ -130,16 +121,14 @@ class CandidateIndex:
                         best = (score, profile, ref, c)
                     break  # later members of this group only lose the tie-break
             if best is not None:
-                score, _, _, c = best
-                diff = q_type ^ c.type
-                return c, Similarity(depth * 8 + score, depth, not diff & CONTROL_MODE_MASK,
-                                     not diff & DATA_TYPE_MASK, not diff & BYTE_SIZE_MASK)
+                c = best[3]
+                return c, similarity_at(depth, q_type, c.type)
         return None
 
     def sharing_root(self, q_profile: int) -> Iterator[Candidate]:
         """Every candidate with the query's root component (for explanations), lazily and
         in a fixed order (by scored type bits, then profile, then reference)."""
-        if _prefix_depth(q_profile) == 0:
+        if prof.depth(q_profile) == 0:
             return
         groups = self._all.get(_key(1, q_profile), {})
         for bits in sorted(groups):

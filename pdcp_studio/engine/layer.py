@@ -54,7 +54,7 @@ class ProfileLayer:
         ins: list[Candidate] = []
         for device in system.devices.values():
             for ch in device.channels.values():
-                ref = ChannelRef(device.vid, device.pid, device.serial, ch.index)
+                ref = device.ref(ch.index)
                 self.channels[ref] = ch
                 if device.present:
                     self.present.add(ref)

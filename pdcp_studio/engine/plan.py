@@ -204,10 +204,11 @@ class Plan:
     # -- rendering -----------------------------------------------------------------
     def to_json(self) -> dict:
         """The contract's ``plan --json`` document (contracts §2) plus explanations."""
+        final = self.final_links
         doc: dict = {
             "mode": self.mode,
             "actions": [a.to_json() for a in self.actions],
-            "links": [lk.as_json() for lk in self.final_links],
+            "links": [lk.as_json() for lk in final],
             "rejections": [r.to_json() for r in self.rejections],
             "notes": list(self.notes),
         }
@@ -223,7 +224,7 @@ class Plan:
             "added": len(self.added),
             "removed": len(self.removed),
             "links_before": len(self.links_before),
-            "links_after": len(self.final_links),
+            "links_after": len(final),
             "rejections": len(self.rejections),
         }
         return doc

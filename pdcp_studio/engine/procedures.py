@@ -9,6 +9,7 @@ from __future__ import annotations
 
 from pdcp_studio.engine.layer import ProfileLayer
 from pdcp_studio.engine.plan import Attempt, Refusal, Rule
+from pdcp_studio.engine.similarity import Similarity
 from pdcp_studio.errors import EngineError
 from pdcp_studio.model.configuration import (
     ConfigCollection,
@@ -150,7 +151,7 @@ def implement_configuration(layer: ProfileLayer, cfg: StoredConfiguration,
 def find_replacements(layer: ProfileLayer, cfg: StoredConfiguration) -> None:
     """Repair each stored link with exactly one missing channel with the present channel
     most similar to the stored one; connect the repaired links, most similar first."""
-    repaired: list[tuple[Link, Link, ChannelRef, str]] = []
+    repaired: list[tuple[Link, Similarity, Link, ChannelRef, str]] = []
     for sl in cfg.links:
         original = Link(sl.output.ref, sl.input.ref)
         out_ok = layer.is_present(sl.output.ref, Direction.OUTPUT)
@@ -180,11 +181,12 @@ def find_replacements(layer: ProfileLayer, cfg: StoredConfiguration) -> None:
         link = Link(new_ref, sl.input.ref) if not out_ok else Link(sl.output.ref, new_ref)
         reason = (f"replaces missing {kind} {missing.ref} ({fmt(missing.profile)}): the most "
                   f"similar free present {kind} (similarity {sim.total} to the missing one)")
-        repaired.append((link, original, missing.ref, reason))
+        repaired.append((link, layer.similarity(link), original, missing.ref, reason))
     # Decision: highest input–output similarity first; ties by output, then input.
-    repaired.sort(key=lambda r: (-layer.similarity(r[0]).total, r[0].output, r[0].input))
-    for link, original, missing_ref, reason in repaired:
-        if not layer.intelligently_connect(link, Rule.REPLACEMENT, reason, cause=missing_ref):
+    repaired.sort(key=lambda r: (-r[1].total, r[0].output, r[0].input))
+    for link, link_sim, original, missing_ref, reason in repaired:
+        if not layer.intelligently_connect(link, Rule.REPLACEMENT, reason, cause=missing_ref,
+                                           similarity=link_sim):
             continue
         if original in layer.links:
             layer.remove(original, Rule.REPLACED,

@@ -16,6 +16,7 @@ from pdcp_studio.model.channel_type import (
     CONTROL_MODE_MASK,
     DATA_TYPE_MASK,
 )
+from pdcp_studio.model.profile import common_prefix_depth
 
 PROFILE_STEP = 8
 CONTROL_MODE_SCORE = 4
@@ -70,17 +71,6 @@ class Similarity:
         }
 
 
-def profile_match_depth(a_profile: int, b_profile: int) -> int:
-    """Leading 4-bit components equal in both and not 0, from the most significant."""
-    depth = 0
-    for shift in (12, 8, 4, 0):
-        ca = (a_profile >> shift) & 0xF
-        if ca == 0 or ca != (b_profile >> shift) & 0xF:
-            break
-        depth += 1
-    return depth
-
-
 def type_score(a_type: int, b_type: int) -> int:
     """The type part of the score (0…7): control mode 4, data type 2, byte size 1."""
     diff = a_type ^ b_type
@@ -126,7 +116,11 @@ def determine_similarity(a: int | Typed | tuple[int, int], b: int | Typed | tupl
         a_type, a_profile = a, b
     else:
         raise TypeError("determine_similarity takes two channels or four numbers")
-    depth = profile_match_depth(a_profile, b_profile)
+    return similarity_at(common_prefix_depth(a_profile, b_profile), a_type, b_type)
+
+
+def similarity_at(depth: int, a_type: int, b_type: int) -> Similarity:
+    """The similarity of two channels whose profiles share ``depth`` leading components."""
     diff = a_type ^ b_type
     cm = not diff & CONTROL_MODE_MASK
     dt = not diff & DATA_TYPE_MASK

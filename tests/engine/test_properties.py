@@ -22,7 +22,6 @@ from pdcp_studio.engine import (
     plan_startup,
 )
 from pdcp_studio.engine.layer import ProfileLayer
-from pdcp_studio.engine.similarity import profile_match_depth
 from pdcp_studio.model import (
     Channel,
     ChannelRef,
@@ -32,6 +31,7 @@ from pdcp_studio.model import (
     Link,
     System,
 )
+from pdcp_studio.model.profile import common_prefix_depth
 
 SENSOR = [0x4220, 0x4240, 0x4222, 0x4400, 0x4620, 0x4640, 0x4800]
 SET_POINT = [0x2220, 0x2240, 0x2200, 0x2400, 0x2600, 0x2420]
@@ -114,7 +114,7 @@ def assert_basic_rules(s: System, plan: Plan) -> None:
     assert len(inputs) == len(set(inputs)), "two sources on one input"
     for lk in links:
         o, i = s.channel(lk.output), s.channel(lk.input)
-        assert profile_match_depth(o.profile, i.profile) >= 1, f"{lk} shares no root"
+        assert common_prefix_depth(o.profile, i.profile) >= 1, f"{lk} shares no root"
 
 
 def wanted(s: System, lk) -> set[ChannelRef]:
