@@ -9,8 +9,8 @@ best of many runs so one slow scheduling hiccup does not decide the figure.
 from __future__ import annotations
 
 import argparse
-import statistics
-import time
+
+from _timing import median_and_best
 
 from pdcp_studio.model.configuration import (
     ConfigCollection,
@@ -35,15 +35,6 @@ def make_collection(n_links: int) -> ConfigCollection:
     return ConfigCollection([StoredConfiguration(index=1, links=links)])
 
 
-def _time(fn, runs: int) -> tuple[float, float]:
-    samples = []
-    for _ in range(runs):
-        t0 = time.perf_counter()
-        fn()
-        samples.append((time.perf_counter() - t0) * 1000)
-    return statistics.median(samples), min(samples)
-
-
 def main() -> int:
     ap = argparse.ArgumentParser(description=__doc__.splitlines()[0])
     ap.add_argument("--links", type=int, default=1000)
@@ -54,8 +45,8 @@ def main() -> int:
     data = config_codec.dumps(collection)
     assert config_codec.dumps(config_codec.loads(data)) == data, "round trip must be exact"
 
-    enc_med, enc_min = _time(lambda: config_codec.dumps(collection), args.runs)
-    dec_med, dec_min = _time(lambda: config_codec.loads(data), args.runs)
+    enc_med, enc_min = median_and_best(lambda: config_codec.dumps(collection), args.runs)
+    dec_med, dec_min = median_and_best(lambda: config_codec.loads(data), args.runs)
     print(f"configuration: {args.links} links, {len(data)} bytes, {args.runs} runs")
     print(f"{'':8} {'median ms':>10} {'best ms':>9} {'target':>8}")
     for name, med, best in (("encode", enc_med, enc_min), ("decode", dec_med, dec_min)):

@@ -14,12 +14,12 @@ from __future__ import annotations
 import argparse
 import math
 import random
-import statistics
 import subprocess
 import sys
 import tempfile
-import time
 from pathlib import Path
+
+from _timing import median_and_best
 
 from pdcp_studio.engine import configuration_from_system, plan_autoconfigure, plan_startup
 from pdcp_studio.model import Channel, ConfigCollection, Device, Direction, System
@@ -88,19 +88,10 @@ def swapped(system: System, seed: int) -> System:
     return s
 
 
-def _time(fn, runs: int) -> tuple[float, float]:
-    samples = []
-    for _ in range(runs):
-        t0 = time.perf_counter()
-        fn()
-        samples.append((time.perf_counter() - t0) * 1000)
-    return statistics.median(samples), min(samples)
-
-
 def _command_ms(path: Path, runs: int) -> tuple[float, float]:
     cmd = [sys.executable, "-m", "pdcp_studio", "plan", "autoconfigure", "--system", str(path),
            "--json"]
-    return _time(lambda: subprocess.run(cmd, check=True, stdout=subprocess.DEVNULL), runs)
+    return median_and_best(lambda: subprocess.run(cmd, check=True, stdout=subprocess.DEVNULL), runs)
 
 
 def main() -> int:
@@ -117,7 +108,7 @@ def main() -> int:
             s = make_system(n, args.seed + n)
             channels = sum(len(d.channels) for d in s.devices.values())
             plan = plan_autoconfigure(s)
-            auto = _time(lambda s=s: plan_autoconfigure(s), args.runs)
+            auto = median_and_best(lambda s=s: plan_autoconfigure(s), args.runs)
 
             configured = s.copy()
             plan.apply(configured)
@@ -125,7 +116,7 @@ def main() -> int:
             after = swapped(configured, args.seed)
             start_plan = plan_startup(after, stored)
             replaced = sum(a.rule.value == "replacement" for a in start_plan.actions)
-            start = _time(lambda a=after, c=stored: plan_startup(a, c), args.runs)
+            start = median_and_best(lambda a=after, c=stored: plan_startup(a, c), args.runs)
 
             path = Path(tmp) / f"system-{n}.json"
             system_file.save_path(s, path)

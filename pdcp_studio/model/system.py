@@ -14,7 +14,7 @@ from dataclasses import dataclass, field
 
 from pdcp_studio.errors import ModelError
 from pdcp_studio.model import profile as prof
-from pdcp_studio.model.channel_type import ChannelType
+from pdcp_studio.model.channel_type import SOLE_ACCESS_MASK, TERMINAL_MASK, ChannelType
 from pdcp_studio.model.refs import ChannelRef, DeviceKey, Direction
 
 NO_VID_PID = 0xFFFF
@@ -80,11 +80,11 @@ class Channel:
 
     @property
     def terminal(self) -> bool:
-        return self.is_input and bool(self.type & 0x0100)
+        return self.is_input and bool(self.type & TERMINAL_MASK)
 
     @property
     def sole_access(self) -> bool:
-        return self.is_input and bool(self.type & 0x0200)
+        return self.is_input and bool(self.type & SOLE_ACCESS_MASK)
 
 
 @dataclass

@@ -35,7 +35,6 @@ Decisions (reference §3 plus the ones it leaves open):
 
 from __future__ import annotations
 
-import re
 import struct
 from dataclasses import dataclass
 from pathlib import Path
@@ -49,6 +48,7 @@ from pdcp_studio.model.configuration import (
     StoredLink,
 )
 from pdcp_studio.protocol.crc import crc16_ccitt_false
+from pdcp_studio.storage.json_number import parse_number
 
 # Codes of table 4.1, plus the checksum extension (16).
 COUNT_CONFIGURATIONS, CONFIGURATION, COUNT_LINKS, LINK = 1, 2, 3, 4
@@ -77,7 +77,6 @@ _TWO_RECORDS = struct.Struct("<BHBH")
 # (11, PID), (12, serial); owner type/profile (13, 14) follow as single records when set.
 _CHANNEL = struct.Struct("<" + "BH" * 7)
 
-_HEX = re.compile(r"0[xX][0-9A-Fa-f]+")
 _REQUIRED = (CHANNEL_INDEX, OWNER_VID, OWNER_PID, OWNER_SERIAL)
 _Err = ConfigFormatError  # short alias: messages stay on one line
 
@@ -382,16 +381,10 @@ def _json_int(doc: dict, key: str, path: str, hi: int = 0xFFFF, lo: int = 0,
         if default is None and required:
             raise _Err(f"{where}: missing")
         return default
-    if isinstance(value, str):
-        # Contracts: an integer or a "0x…" string; a bare "2200" is refused, not read as decimal.
-        if not _HEX.fullmatch(value):
-            raise _Err(f"{where}: {value!r} is not a number (an integer or \"0x…\")")
-        value = int(value, 16)
-    if isinstance(value, bool) or not isinstance(value, int):
-        raise _Err(f"{where}: expected an integer, got {value!r}")
-    if not lo <= value <= hi:
-        raise _Err(f"{where}: {value} is out of range {lo}…{hi}")
-    return value
+    try:
+        return parse_number(value, lo, hi)
+    except ValueError as err:
+        raise _Err(f"{where}: {err}") from None
 
 
 def _json_list(doc: Any, key: str, path: str) -> list:

@@ -8,36 +8,25 @@ profile as ``"0x%04X"`` strings and everything else as integers, atomically.
 from __future__ import annotations
 
 import json
-import re
 from pathlib import Path
 from typing import Any
 
 from pdcp_studio.errors import ModelError, SystemFileError
 from pdcp_studio.model.refs import ChannelRef, Direction
 from pdcp_studio.model.system import NO_SOURCE, Channel, Device, Link, SourceInfo, System
+from pdcp_studio.storage.json_number import parse_number
 
 FORMAT = "pdcp-system/1"
 MAX_FILE_BYTES = 16 * 1024 * 1024
-_HEX = re.compile(r"0[xX][0-9A-Fa-f]+")
 
 
 # -- reading ---------------------------------------------------------------------
 def _int(value: Any, path: str, lo: int, hi: int) -> int:
     """An integer or ``"0x…"`` string within lo…hi, else SystemFileError at ``path``."""
-    if isinstance(value, bool):
-        raise SystemFileError(f"expected a number, got {value!r}", path)
-    if isinstance(value, str):
-        # Contracts: a number is an integer or a "0x…" string. A bare "2200" is refused,
-        # not read as decimal: it was most likely meant as hex.
-        if not _HEX.fullmatch(value):
-            raise SystemFileError(f"{value!r} is not a number (an integer or \"0x…\")",
-                                  path)
-        value = int(value, 16)
-    if not isinstance(value, int):
-        raise SystemFileError(f"expected a number, got {value!r}", path)
-    if not lo <= value <= hi:
-        raise SystemFileError(f"{value} is out of range {lo}…{hi}", path)
-    return value
+    try:
+        return parse_number(value, lo, hi, expected="a number")
+    except ValueError as err:
+        raise SystemFileError(str(err), path) from None
 
 
 def _obj(value: Any, path: str) -> dict:

@@ -6,7 +6,6 @@ from pathlib import Path
 
 import pytest
 
-from pdcp_studio.bus.connection import open_connections
 from pdcp_studio.bus.memory import MemoryStore
 from pdcp_studio.cli.main import main
 from pdcp_studio.model.configuration import (
@@ -21,10 +20,7 @@ ROOT = Path(__file__).resolve().parents[2]
 FIG410 = ROOT / "resources" / "configs" / "fig410.pdcfg"
 
 
-@pytest.fixture(autouse=True)
-def _no_bus_left_open():
-    yield
-    assert not open_connections(), "a test left a bus open"
+pytestmark = pytest.mark.usefixtures("no_bus_left_open")
 
 
 def _test2_link_file(path: Path) -> Path:

@@ -6,7 +6,6 @@ import json
 
 import pytest
 
-from pdcp_studio.bus.connection import open_connections
 from pdcp_studio.bus.device_host import DeviceHost
 from pdcp_studio.bus.device_sim import SimulatedDevice
 from pdcp_studio.bus.simulator import load_prosthesis
@@ -24,10 +23,7 @@ TEST2_LINKS = [
 ]
 
 
-@pytest.fixture(autouse=True)
-def _no_bus_left_open():
-    yield
-    assert not open_connections(), "a test left a bus open"
+pytestmark = pytest.mark.usefixtures("no_bus_left_open")
 
 
 def _check_contract(doc: dict) -> None:

@@ -11,15 +11,10 @@ import json
 import pytest
 import serial
 
-from pdcp_studio.bus.connection import open_connections
 from pdcp_studio.bus.urls import unique_virtual_channel
 from pdcp_studio.cli.main import main
 
-
-@pytest.fixture(autouse=True)
-def _no_bus_left_open():
-    yield
-    assert not open_connections(), "a test left a bus open"
+pytestmark = pytest.mark.usefixtures("no_bus_left_open")
 
 
 def test_can_virtual_bus_with_nobody_on_it_scans_to_an_empty_system(capsys):

@@ -11,7 +11,6 @@ from pathlib import Path
 
 import pytest
 
-from pdcp_studio.bus.connection import open_connections
 from pdcp_studio.cli.main import main
 from pdcp_studio.storage import config_codec, system_file
 
@@ -32,10 +31,7 @@ def _link(out: tuple[int, int], inp: tuple[int, int]) -> dict:
 TEST2_LINKS = [_link((4, 1), (5, 2)), _link((5, 3), (6, 1)), _link((5, 5), (6, 2))]
 
 
-@pytest.fixture(autouse=True)
-def _no_bus_left_open():
-    yield
-    assert not open_connections(), "a test left a bus open"
+pytestmark = pytest.mark.usefixtures("no_bus_left_open")
 
 
 def run(capsys, *argv: str) -> tuple[int, str, str]:
