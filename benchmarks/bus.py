@@ -19,12 +19,13 @@ frames are those to or from a device node ID with a transaction function code. R
 from __future__ import annotations
 
 import argparse
-import math
 import queue
 import sys
 import time
 
-from pdcp_studio.bus.bustime import BITRATE, BusTimeMeter
+from pdcp_studio.bus.bustime import BITRATE, CRC_BITS, HEADER_BITS, TRAILER_BITS, BusTimeMeter
+from pdcp_studio.model.parameters import needs_bulk
+from pdcp_studio.protocol import packetize
 
 #: Function codes of scan transactions (get, bulk get, bulk data and their responses).
 SCAN_CODES = {0x03, 0x83, 0x0C, 0x8C, 0x0E, 0x8E}
@@ -34,7 +35,7 @@ TARGET_WALL_S = 2.0
 
 def _bits_unstuffed(dlc: int) -> int:
     """A base data frame with no stuff bits: 34 + 8n stuffable bits and the 13-bit trailer."""
-    return 47 + 8 * dlc
+    return HEADER_BITS + 8 * dlc + CRC_BITS + TRAILER_BITS
 
 
 def lower_bound_bits(values: dict) -> int:
@@ -43,12 +44,11 @@ def lower_bound_bits(values: dict) -> int:
     for data in values.values():
         if data is None:  # refused: request and a failure response without a value
             bits += _bits_unstuffed(3) + _bits_unstuffed(4)
-        elif len(data) <= 4:
+        elif not needs_bulk(data):
             bits += _bits_unstuffed(3) + _bits_unstuffed(4 + len(data))
         else:
-            packets = math.ceil(len(data) / 6)
             bits += _bits_unstuffed(3) + _bits_unstuffed(6)  # 0C and 8C
-            bits += sum(_bits_unstuffed(2 + min(6, len(data) - 6 * k)) for k in range(packets))
+            bits += sum(_bits_unstuffed(2 + len(p.data)) for p in packetize(data))
             bits += _bits_unstuffed(2)  # 8E
     return bits
 
@@ -118,7 +118,7 @@ def run(window: int, repeat: int) -> dict:
                 "retries": after[2] - before[2], "timeouts": after[3] - before[3],
                 "bus_s": exact.bus_time_s, "bus_worst_s": worst.bus_time_s,
                 "bound_s": bound / BITRATE,
-                "bulk_reads": sum(1 for v in captured.values() if v is not None and len(v) > 4),
+                "bulk_reads": sum(1 for v in captured.values() if v is not None and needs_bulk(v)),
             })
     finally:
         tap.close()

@@ -8,12 +8,11 @@ that patches one must patch it in the module that reads it.
 
 from __future__ import annotations
 
-import struct
 from dataclasses import dataclass, field, replace
 
 from pdcp_studio.errors import ParameterError
 from pdcp_studio.model import parameters as P
-from pdcp_studio.model.refs import DeviceKey
+from pdcp_studio.model.refs import DeviceKey, Direction
 from pdcp_studio.model.system import Device
 
 #: Retries per request (so at most RETRIES + 1 attempts) unless the caller says otherwise.
@@ -58,13 +57,18 @@ FOREIGN_LISTEN_S = 3.5 * DEFAULT_BEACON_INTERVAL_S
 #: How long close() waits for each thread.
 JOIN_S = 2.0
 
-_PAIR = struct.Struct("<HH")  # X, Y (VID/PID, type/profile)
-_SN_INDEX = struct.Struct("<HB")  # serial, channel index
 _OFF, _ON = b"\x00", b"\x01"
+
+
+def _input_value(param: int, value: object) -> bytes:
+    """An input channel's parameter value in the catalog's layout."""
+    return P.encode_value(P.channel_parameter(param, Direction.INPUT), value)
+
+
 _NOT_CONNECTED = {
-    P.IN_SOURCE_VID_PID: _PAIR.pack(0xFFFF, 0xFFFF),
-    P.IN_SOURCE_SN_INDEX: _SN_INDEX.pack(0xFFFF, 0xFF),
-    P.IN_SOURCE_TYPE_PROFILE: _PAIR.pack(0, 0),
+    P.IN_SOURCE_VID_PID: _input_value(P.IN_SOURCE_VID_PID, (0xFFFF, 0xFFFF)),
+    P.IN_SOURCE_SN_INDEX: _input_value(P.IN_SOURCE_SN_INDEX, (0xFFFF, 0xFF)),
+    P.IN_SOURCE_TYPE_PROFILE: _input_value(P.IN_SOURCE_TYPE_PROFILE, (0, 0)),
 }
 _DEVICE_PARAMS = (P.DEVICE_SERIAL, P.DEVICE_EAN_LOW, P.DEVICE_EAN_HIGH, P.DEVICE_VERSION,
                   P.DEVICE_TYPE_PROFILE, P.DEVICE_DESCRIPTOR, P.DEVICE_BEACON_INTERVAL,

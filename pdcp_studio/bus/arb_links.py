@@ -8,7 +8,7 @@ whose source left. Wire work is serialized by the arbitrator's plan lock.
 from __future__ import annotations
 
 from pdcp_studio.bus import events as ev
-from pdcp_studio.bus.arb_common import _NOT_CONNECTED, _OFF, _ON, _PAIR, _SN_INDEX, _Node
+from pdcp_studio.bus.arb_common import _NOT_CONNECTED, _OFF, _ON, _input_value, _Node
 from pdcp_studio.errors import ModelError, NodeIdExhaustedError, PdcpError
 from pdcp_studio.model import parameters as P
 from pdcp_studio.model.refs import ChannelRef
@@ -103,13 +103,14 @@ class LinksMixin:
         i = link.input.index
         self.requests.set(in_node, P.IN_SOURCE_NODE_IDS, i, bytes([out_node, out_id]))
         if (have.vid, have.pid) != (want.vid, want.pid):
-            self.requests.set(in_node, P.IN_SOURCE_VID_PID, i, _PAIR.pack(want.vid, want.pid))
+            self.requests.set(in_node, P.IN_SOURCE_VID_PID, i,
+                              _input_value(P.IN_SOURCE_VID_PID, (want.vid, want.pid)))
         if (have.serial, have.index) != (want.serial, want.index):
             self.requests.set(in_node, P.IN_SOURCE_SN_INDEX, i,
-                              _SN_INDEX.pack(want.serial, want.index))
+                              _input_value(P.IN_SOURCE_SN_INDEX, (want.serial, want.index)))
         if (have.type, have.profile) != (want.type, want.profile):
             self.requests.set(in_node, P.IN_SOURCE_TYPE_PROFILE, i,
-                              _PAIR.pack(want.type, want.profile))
+                              _input_value(P.IN_SOURCE_TYPE_PROFILE, (want.type, want.profile)))
         with self._lock:
             in_ch.source = want
         self.requests.set(in_node, P.CH_DATA_ENABLED, i, _ON)

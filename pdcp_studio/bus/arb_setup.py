@@ -15,7 +15,6 @@ from pdcp_studio.bus.arb_common import (
     _CHANNEL_PARAMS,
     _DEVICE_PARAMS,
     _INPUT_PARAMS,
-    _PAIR,
     SETUP_ATTEMPTS,
     _only_inputs,
     learn_value,
@@ -74,7 +73,8 @@ class SetupMixin:
         """Steps 1–3 and the reads of steps 4–5: the device and all its channels."""
         device = Device(key.vid, key.pid, key.serial)
         ident = self._get(node_id, P.DEVICE_VID_PID)
-        if ident is not None and len(ident) == 4 and _PAIR.unpack(ident) != (key.vid, key.pid):
+        expected = P.encode_value(P.device_parameter(P.DEVICE_VID_PID), (key.vid, key.pid))
+        if ident is not None and len(ident) == 4 and ident != expected:
             self._error(f"device {key} reports VID/PID {ident.hex()} after binding", "setup")
         for param in _DEVICE_PARAMS:
             value = self._get(node_id, param)

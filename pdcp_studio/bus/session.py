@@ -283,10 +283,9 @@ class SimSession(Session):
         deadline = time.monotonic() + timeout
         time.sleep(JOIN_GRACE_S)  # let the arbitrator's thread take the bind request in
 
-        def joined() -> bool:
-            device = self.arbitrator.system().device(key)
-            return device is not None and device.present and (
-                self.arbitrator.node_id_of(key) is not None)
+        def joined() -> bool:  # no system() copy per poll
+            return (key in self.arbitrator.devices_present()
+                    and self.arbitrator.node_id_of(key) is not None)
 
         while not joined():
             if time.monotonic() >= deadline:
