@@ -85,7 +85,7 @@ class ProfileMixin:
 
     def run_startup(self) -> Plan:
         """Listing 4.1 / 5.1 with the memory's configuration (or the devices' own)."""
-        from pdcp_studio.engine import plan_startup
+        from pdcp_studio.engine import plan_on_bus
         from pdcp_studio.engine.procedures import missing_devices
 
         with self._plan_lock:
@@ -99,16 +99,14 @@ class ProfileMixin:
                 self._error(f"stored configuration unreadable, starting up from the devices' "
                             f"own source fields: {err}", "plan")
                 stored = ConfigCollection([])
-            snapshot = self.system()
-            config = stored if stored.configurations else None
-            plan = plan_startup(snapshot, config)
+            plan = plan_on_bus("startup", self.system(), stored)
             try:
                 self.apply_plan(plan)
                 # What the stored configuration names and the bus lacks is shown as missing.
+                stored_cfg = plan.configuration if plan.configuration_source == "stored" else None
                 with self._lock:
-                    for device in missing_devices(self._system, config):
-                        if self._system.device(device.key) is None:
-                            self._system.add_device(device)
+                    for device in missing_devices(self._system, stored_cfg):
+                        self._system.add_device(device)
             finally:
                 with self._lock:
                     self._startup_done = True

@@ -265,12 +265,11 @@ class HostLinkSession:
 
     def preview(self, mode: str, config: ConfigCollection | None = None) -> Any:
         """The engine's plan on the arbitrator's system (and its memory unless ``config``)."""
-        from pdcp_studio.engine import plan_for
+        from pdcp_studio.engine import plan_for, plan_on_bus
 
-        if config is None:
-            memory = self.read_configuration()
-            config = memory if memory.configurations else None
-        return plan_for(mode, self.system(), config)
+        if config is not None:
+            return plan_for(mode, self.system(), config)
+        return plan_on_bus(mode, self.system(), self.read_configuration())
 
     def apply_plan(self, plan: Any, progress: Callable[[int, int, str], None] | None = None,
                    cancel: threading.Event | None = None) -> None:

@@ -270,12 +270,10 @@ class HostLinkServer:
         return json.dumps(docs).encode()
 
     def _plan(self, payload: bytes) -> Any:
-        from pdcp_studio.engine import plan_for
+        from pdcp_studio.engine import plan_on_bus
 
         mode = payload.decode("ascii", errors="replace").strip()
-        memory = self.arbitrator.read_memory()
-        config = memory if memory.configurations else None
-        return plan_for(mode, self.arbitrator.system(), config)
+        return plan_on_bus(mode, self.arbitrator.system(), self.arbitrator.read_memory())
 
     def _preview_plan(self, payload: bytes) -> bytes:
         return json.dumps(self._plan(payload).to_json()).encode()

@@ -164,13 +164,12 @@ class Session:
     def preview(self, mode: str, config: ConfigCollection | None = None) -> Plan:
         """The engine's plan for ``mode`` on the current system; ``config`` defaults to the
         arbitrator's stored configuration (none when its memory is empty)."""
-        from pdcp_studio.engine import plan_for
+        from pdcp_studio.engine import plan_for, plan_on_bus
 
         self._check_open()
-        if config is None:
-            memory = self.read_configuration()
-            config = memory if memory.configurations else None
-        return plan_for(mode, self.system(), config)
+        if config is not None:
+            return plan_for(mode, self.system(), config)
+        return plan_on_bus(mode, self.system(), self.read_configuration())
 
     def apply_plan(self, plan: Plan, progress: ProgressFn | None = None,
                    cancel: threading.Event | None = None) -> Any:

@@ -16,6 +16,7 @@ from pdcp_studio.engine.modes import (
     plan_enforce,
     plan_for,
     plan_implement,
+    plan_on_bus,
     plan_replacements,
     plan_startup,
 )
@@ -63,6 +64,7 @@ __all__ = [
     "plan_enforce",
     "plan_for",
     "plan_implement",
+    "plan_on_bus",
     "plan_replacements",
     "plan_startup",
     "resolve_configuration",

@@ -110,3 +110,10 @@ def plan_for(mode: str, system: System, config: AnyConfig = None) -> Plan:
     if mode == "duty-cycle":
         return plan_duty_cycle(system, None)
     raise EngineError(f"unknown mode {mode!r} (one of {', '.join(MODES + EXTRA_MODES)})")
+
+
+def plan_on_bus(mode: str, system: System, memory: ConfigCollection) -> Plan:
+    """``plan_for`` on a live bus, with the arbitrator's stored configuration; an empty
+    memory means none is stored, so the plan works from the system's own links (start-up
+    retrieves them from the inputs' source fields)."""
+    return plan_for(mode, system, memory if memory.configurations else None)
