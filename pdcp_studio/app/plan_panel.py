@@ -51,7 +51,6 @@ class PlanPanel(QWidget):
     def __init__(self, doc: Document, parent: QWidget | None = None) -> None:
         super().__init__(parent)
         self.doc = doc
-        self.plan: Any = None
         box = QVBoxLayout(self)
         box.setContentsMargins(6, 6, 6, 6)
         buttons = QHBoxLayout()
@@ -90,7 +89,6 @@ class PlanPanel(QWidget):
         row.addWidget(self.discard_button)
         row.addWidget(self.apply_button)
         box.addLayout(row)
-        doc.systemReset.connect(self._on_system_reset)
         doc.previewChanged.connect(self._on_preview_changed)
         self._update_buttons()
 
@@ -112,16 +110,14 @@ class PlanPanel(QWidget):
         self.doc.set_preview(plan)
         return plan
 
+    @property
+    def plan(self) -> Any:
+        """The previewed plan (the document's; a new system clears it)."""
+        return self.doc.preview_plan
+
     def _on_preview_changed(self, plan: Any) -> None:
-        self.plan = plan
         self._fill(plan)
         self._update_buttons()
-
-    def _on_system_reset(self) -> None:
-        if self.plan is not None and self.doc.preview_plan is None:
-            self.plan = None
-            self._fill(None)
-            self._update_buttons()
 
     def _update_buttons(self) -> None:
         has = self.plan is not None

@@ -257,6 +257,7 @@ class WriteConfigDialog(QDialog):
         self._worker = worker
         worker.finished.connect(self._on_read_back)
         worker.failed.connect(self._read_back_failed)
+        worker.cancelled.connect(self._cancelled)  # else stuck in VERIFYING: no Close
 
     def _on_read_back(self, read_back: ConfigCollection | None) -> None:
         ok, message = verify_collection(self.collection, read_back)

@@ -13,7 +13,6 @@ from pathlib import Path
 import pytest
 
 from pdcp_studio.app import live as live_mod
-from pdcp_studio.app.main_window import MainWindow
 from pdcp_studio.bus import events as ev
 from pdcp_studio.model.refs import ChannelRef, DeviceKey
 from pdcp_studio.model.system import Link
@@ -92,14 +91,8 @@ class FakeSession:
 
 
 @pytest.fixture
-def window(qtbot):
-    w = MainWindow()
-    w.quiet = True
-    w.show()
-    yield w
-    w.doc.mark_saved()
-    w.close()
-    w.deleteLater()
+def window(make_window):
+    return make_window()
 
 
 @pytest.fixture

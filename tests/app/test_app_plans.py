@@ -8,7 +8,6 @@ import pytest
 
 from pdcp_studio.app.document import Document
 from pdcp_studio.app.graph.scene import BusScene
-from pdcp_studio.app.main_window import MainWindow
 from pdcp_studio.model.refs import ChannelRef, DeviceKey
 from pdcp_studio.model.system import Link
 from pdcp_studio.storage import system_file
@@ -20,15 +19,8 @@ FLEXOR = DeviceKey(2641, 257, 101)
 
 
 @pytest.fixture
-def window(qtbot):
-    w = MainWindow()
-    w.quiet = True
-    w.show()
-    assert w.open_path(TRANSRADIAL)
-    yield w
-    w.doc.mark_saved()
-    w.close()
-    w.deleteLater()
+def window(make_window):
+    return make_window(TRANSRADIAL)
 
 
 def test_autoconfigure_preview_then_apply_and_undo(window):

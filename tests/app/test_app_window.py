@@ -23,16 +23,8 @@ FLEXOR = DeviceKey(2641, 257, 101)
 
 
 @pytest.fixture
-def window(qtbot):
-    w = MainWindow()
-    w.quiet = True
-    w.resize(1200, 800)
-    w.show()
-    assert w.open_path(TRANSRADIAL)
-    yield w
-    w.doc.mark_saved()  # no close prompt at teardown
-    w.close()
-    w.deleteLater()
+def window(make_window):
+    return make_window(TRANSRADIAL, size=(1200, 800))
 
 
 def test_open_shows_every_device_and_channel(window):

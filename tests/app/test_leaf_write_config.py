@@ -145,3 +145,20 @@ def test_a_refused_write_and_a_mismatching_read_back_are_shown(qtbot, bridge):
     qtbot.waitUntil(lambda: good.state == wcd.READY, timeout=5000)
     good._on_read_back(ConfigCollection())  # as if the arbitrator had kept nothing
     assert good.state == wcd.MISMATCH and "Verification failed" in good.result.text()
+
+
+def test_a_cancelled_read_back_fails_instead_of_staying_unclosable(qtbot, bridge, monkeypatch):
+    from pdcp_studio.app.workers import Cancelled, Worker
+
+    dialog = WriteConfigDialog.for_system(bridge, bridge.system())
+    qtbot.addWidget(dialog)
+    qtbot.waitUntil(lambda: dialog.state == wcd.READY, timeout=5000)
+
+    def cancelled(_p, _c):
+        raise Cancelled
+
+    monkeypatch.setattr(bridge, "read_configuration", lambda: Worker(cancelled, "read").start())
+    with qtbot.waitSignal(dialog.verified, timeout=5000) as result:
+        dialog._read_back()  # as if the bus closed while verifying
+    assert result.args == [False, "cancelled while verifying"]
+    assert dialog.state == wcd.FAILED and dialog.close_button.text() == "Close"

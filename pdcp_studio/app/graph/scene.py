@@ -140,7 +140,7 @@ class BusScene(QGraphicsScene):
         for key, card in self.cards.items():
             card.role = st.roles.get(key, card.role)
             card.problems = st.device_problems(key)
-            for index, port in card.ports.items():
+            for port in card.ports.values():
                 ref = port.ref
                 if port.is_output:
                     port.connected = bool(system.inputs_fed_by(ref))
@@ -150,7 +150,6 @@ class BusScene(QGraphicsScene):
                     port.connected = source is not None
                     port.live = source in live
                 port.unmet = ref in st.unmet_required
-                del index
             card.refresh()
         dim = bool(self.preview_items)
         for link, item in self.link_items.items():
@@ -175,20 +174,13 @@ class BusScene(QGraphicsScene):
             if card.selected_ref is not None:
                 card.selected_ref = None
                 card.update()
-        if isinstance(obj, Link):
-            item = self.link_items.get(obj)
-            if item is not None:
-                item.setSelected(True)
-        elif isinstance(obj, ChannelRef):
-            card = self.cards.get(obj.device)
-            if card is not None:
-                card.setSelected(True)
-                card.selected_ref = obj
-                card.update()
-        elif isinstance(obj, DeviceKey):
-            card = self.cards.get(obj)
-            if card is not None:
-                card.setSelected(True)
+        item = self.item_for(obj)
+        if item is None:
+            return
+        item.setSelected(True)
+        if isinstance(obj, ChannelRef) and isinstance(item, DeviceItem):
+            item.selected_ref = obj
+            item.update()
 
     def item_for(self, obj: object) -> DeviceItem | LinkItem | None:
         """The graphics item showing a device, channel or link (for centring the view)."""
