@@ -15,7 +15,7 @@ from __future__ import annotations
 from collections.abc import Callable
 from typing import Any
 
-from PySide6.QtCore import Qt, Signal
+from PySide6.QtCore import Qt, QTimer, Signal
 from PySide6.QtGui import QColor, QFont
 from PySide6.QtWidgets import (
     QCheckBox,
@@ -105,6 +105,11 @@ class Inspector(QScrollArea):
         self.errors: dict[str, QLabel] = {}
         self.subject: object = None
         self._building = False
+        self._pending: object = None
+        self._refresh_timer = QTimer(self)
+        self._refresh_timer.setSingleShot(True)
+        self._refresh_timer.setInterval(0)
+        self._refresh_timer.timeout.connect(lambda: self.show_object(self._pending))
         doc.selectionChanged.connect(self.show_object)
         doc.channelChanged.connect(self._on_channel_changed)
         doc.deviceChanged.connect(self._on_device_changed)
@@ -115,6 +120,7 @@ class Inspector(QScrollArea):
     # -- building -------------------------------------------------------------------
     def show_object(self, obj: object) -> None:
         """Rebuild the form for a device, channel, link or nothing."""
+        self._refresh_timer.stop()
         self._building = True
         try:
             self.subject = obj
@@ -572,16 +578,22 @@ class Inspector(QScrollArea):
                             lambda: commands.push_device_field(self.doc, key, name, value))
 
     # -- document → form ------------------------------------------------------------
+    def _refresh_later(self, obj: object) -> None:
+        """Rebuild the form for ``obj`` once the event loop is free: a live snapshot changes
+        many devices at once, and the overview runs every check on the whole system."""
+        self._pending = obj
+        self._refresh_timer.start()
+
     def _on_channel_changed(self, ref: ChannelRef) -> None:
         if self.subject == ref or (isinstance(self.subject, DeviceKey)
                                    and self.subject == ref.device):
-            self.show_object(self.subject)
+            self._refresh_later(self.subject)
 
     def _on_device_changed(self, key: DeviceKey) -> None:
         subj = self.subject
         if subj is None or subj == key or (isinstance(subj, ChannelRef) and subj.device == key):
-            self.show_object(subj)
+            self._refresh_later(subj)
 
     def _on_links_changed(self) -> None:
         if self.subject is None or isinstance(self.subject, ChannelRef | Link):
-            self.show_object(self.doc.selection)
+            self._refresh_later(self.doc.selection)

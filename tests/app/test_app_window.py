@@ -355,3 +355,25 @@ def test_click_on_a_link_selects_it(window):
                      Qt.KeyboardModifier.NoModifier, pos)
     assert window.doc.selection == link
     assert window.inspector.editors.get("delete") is not None
+
+
+def test_a_snapshot_where_every_device_left_updates_cards_and_overview_once(window, qtbot):
+    """A live snapshot can change every device at once; the scene and the inspector follow
+    once the event loop is free, not once per device."""
+    window.doc.select(None)
+    gone = window.doc.system.copy()
+    for device in gone.devices.values():
+        device.present = False
+    rebuilds = []
+    before = window.scene.states
+    window.inspector.editors.clear()
+    original = window.inspector.show_object
+    window.inspector.show_object = lambda obj: (rebuilds.append(obj), original(obj))
+    window.inspector._refresh_timer.timeout.disconnect()
+    window.inspector._refresh_timer.timeout.connect(
+        lambda: window.inspector.show_object(window.inspector._pending))
+    window.doc.sync_live(gone)
+    qtbot.waitUntil(lambda: "findings" in window.inspector.editors)
+    assert len(rebuilds) == 1
+    assert all(not card.device.present for card in window.scene.cards.values())
+    assert window.scene.states is not before and not window.scene._states_timer.isActive()

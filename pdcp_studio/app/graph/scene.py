@@ -60,6 +60,10 @@ class BusScene(QGraphicsScene):
         doc.selectionChanged.connect(self._on_doc_selection)
         doc.previewChanged.connect(self._on_preview)
         self.selectionChanged.connect(self._on_qt_selection)
+        self._states_timer = QTimer(self)
+        self._states_timer.setSingleShot(True)
+        self._states_timer.setInterval(0)
+        self._states_timer.timeout.connect(self.refresh_states)
         self.rebuild()
 
     # -- building -------------------------------------------------------------------
@@ -124,8 +128,15 @@ class BusScene(QGraphicsScene):
         if device is None or card is None:
             self.rebuild()
             return
+        card.set_device(device, card.role)
+        # A live snapshot changes many devices at once: recompute the states (O(system))
+        # once, when the event loop is free, not once per device.
+        self._states_timer.start()
+
+    def refresh_states(self) -> None:
+        """Recompute roles and problems for the whole system and show them on every item."""
+        self._states_timer.stop()
         self.states = compute_states(self.doc.system)
-        card.set_device(device, self.states.roles[key])
         self._apply_states()
 
     def _on_position_changed(self, key: DeviceKey) -> None:
