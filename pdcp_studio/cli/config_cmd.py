@@ -18,6 +18,8 @@ import argparse
 import importlib
 from typing import Any
 
+from pdcp_studio.cli import options
+
 BUS_MODULE = "pdcp_studio.cli.config_bus"
 #: The JSON ``config encode`` reads holds at most this many bytes: the largest collection the
 #: codec accepts (16,384 links), as ``decode --json`` prints it, fits with room to spare.
@@ -41,7 +43,8 @@ def add_subparser(subparsers: Any) -> None:
 
     encode = actions.add_parser("encode", help="write a stored-configuration file from JSON")
     encode.add_argument("json_file", metavar="JSON", help="JSON as `decode --json` prints it")
-    encode.add_argument("-o", "--output", required=True, metavar="FILE", help="the .pdcfg")
+    encode.add_argument("-o", "--output", required=True, type=options.file_name,
+                        metavar="FILE", help="the .pdcfg")
     encode.set_defaults(func=run_encode)
 
     add_bus_commands(actions)
