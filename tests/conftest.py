@@ -3,12 +3,21 @@ bus open."""
 
 from __future__ import annotations
 
+import atexit
 import os
+import shutil
+import tempfile
 from pathlib import Path
 
 import pytest
 
 os.environ.setdefault("QT_QPA_PLATFORM", "offscreen")
+# The user's own data and settings (profile trees, recent files, window layout, autosaves)
+# are never read or written by a test run: a private home for both, per run.
+_HOME = tempfile.mkdtemp(prefix="pdcp-studio-tests-")
+os.environ["XDG_DATA_HOME"] = os.path.join(_HOME, "data")
+os.environ["XDG_CONFIG_HOME"] = os.path.join(_HOME, "config")
+atexit.register(shutil.rmtree, _HOME, True)
 
 ROOT = Path(__file__).resolve().parent.parent
 RESOURCES = ROOT / "resources"
