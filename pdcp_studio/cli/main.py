@@ -31,6 +31,7 @@ COMMAND_MODULES = (
     "sim",
     "arbitrator",
     "monitor",
+    "doctor",
 )
 
 EXIT_OK = 0
