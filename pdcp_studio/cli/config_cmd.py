@@ -4,8 +4,8 @@
 document on stdout); ``encode JSON -o FILE`` writes one from that JSON, atomically.
 ``-`` reads standard input. The bus actions (``config read`` / ``config write``) live in
 ``pdcp_studio.cli.config_bus``, which registers them through
-``add_bus_commands(config_subparsers)`` when that module exists; it is imported while the
-parser is built, so it too must keep heavy imports (python-can) inside its ``run``.
+``add_bus_commands(config_subparsers)``; it is imported while the parser is built, so it
+too must keep heavy imports (python-can) inside its ``run``.
 
 Errors: a file that does not decode or validate, and an input file that cannot be read,
 are bad input (exit 2) with one stderr line naming the file, ``offset N`` and the reason.
@@ -15,12 +15,10 @@ A failure to write the output is exit 1 (an ``OSError``, handled by the dispatch
 from __future__ import annotations
 
 import argparse
-import importlib
 from typing import Any
 
 from pdcp_studio.cli import options
 
-BUS_MODULE = "pdcp_studio.cli.config_bus"
 #: The JSON ``config encode`` reads holds at most this many bytes: the largest collection the
 #: codec accepts (16,384 links), as ``decode --json`` prints it, fits with room to spare.
 MAX_JSON_BYTES = 16 * 1024 * 1024
@@ -47,18 +45,9 @@ def add_subparser(subparsers: Any) -> None:
                         metavar="FILE", help="the .pdcfg")
     encode.set_defaults(func=run_encode)
 
-    add_bus_commands(actions)
+    from pdcp_studio.cli import config_bus
 
-
-def add_bus_commands(actions: Any) -> None:
-    """Let ``config_bus`` add ``read`` and ``write`` if this build has it."""
-    try:
-        module = importlib.import_module(BUS_MODULE)
-    except ModuleNotFoundError as err:
-        if err.name == BUS_MODULE:
-            return  # not built into this version
-        raise
-    module.add_bus_commands(actions)
+    config_bus.add_bus_commands(actions)
 
 
 def _read_input(path: str, limit: int, what: str, *, refuse: bool = True) -> bytes:
