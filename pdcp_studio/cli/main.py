@@ -26,6 +26,8 @@ COMMAND_MODULES = (
     "listing",
     "plan",
     "apply",
+    "policy",
+    "history",
     "check",
     "scan",
     "sim",
