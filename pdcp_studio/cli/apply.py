@@ -17,6 +17,7 @@ from __future__ import annotations
 import argparse
 import json
 
+from pdcp_studio.cli import options
 from pdcp_studio.cli.change_road import add_road_arguments
 from pdcp_studio.cli.main import BadInput
 from pdcp_studio.cli.plan import CONFIG_MODES, add_mode_arguments, load_config, load_tree, make_plan
@@ -30,7 +31,7 @@ def add_subparser(subparsers: argparse._SubParsersAction) -> None:
     p.add_argument("--bus", metavar="URL", help="a live prosthesis (contracts §3)")
     p.add_argument("--memory", metavar="FILE",
                    help="PDCP Studio's own arbitrator memory (sim: and can: buses)")
-    p.add_argument("-o", "--output", metavar="NEW.json",
+    p.add_argument("-o", "--output", type=options.file_name, metavar="NEW.json",
                    help="with --system: where to write the resulting pdcp-system/1 file")
     add_road_arguments(p)
     p.set_defaults(func=run)
