@@ -46,6 +46,7 @@ def run_app(path: str | Path | None = None, bus: str | None = None,
     app.setApplicationName("PDCP Studio")
     app.setOrganizationName("PDCP Studio")
     app.setApplicationDisplayName("PDCP Studio")
+    app.setDesktopFileName("pdcp-studio")  # matches packaging/pdcp-studio.desktop
     _set_icon(app)
 
     from pdcp_studio.app.main_window import DEFAULT_BUS, MainWindow
@@ -53,6 +54,10 @@ def run_app(path: str | Path | None = None, bus: str | None = None,
     scripted = screenshot is not None or bool(os.environ.get(PROBE_ENV))
     window = MainWindow(recovery=None if scripted else _recovery())
     window.quiet = scripted
+    if not scripted:
+        from pdcp_studio.app.window_desktop import remember_layout
+
+        remember_layout(window)  # last session's size and docks; saved again on close
     if size is not None:
         window.resize(*size)
     status = {"code": 0}
