@@ -13,7 +13,7 @@ from __future__ import annotations
 from pathlib import Path
 from typing import Any
 
-from PySide6.QtCore import QByteArray, QEvent, QObject, QSettings, Qt, QTimer
+from PySide6.QtCore import QByteArray, QEvent, QModelIndex, QObject, QSettings, Qt, QTimer
 from PySide6.QtGui import QAction, QDragEnterEvent, QDropEvent, QKeySequence
 from PySide6.QtWidgets import (
     QAbstractButton,
@@ -25,14 +25,17 @@ from PySide6.QtWidgets import (
     QDockWidget,
     QFormLayout,
     QGraphicsView,
+    QHeaderView,
     QLabel,
     QLineEdit,
     QMainWindow,
     QPlainTextEdit,
     QScrollBar,
     QStyle,
+    QTableView,
     QTextEdit,
     QToolBar,
+    QTreeView,
     QWidget,
 )
 
@@ -84,7 +87,34 @@ def _qt_part_name(widget: QWidget) -> str:
     """Names for the buttons Qt adds itself (menu bar and toolbar overflow)."""
     tr = QApplication.translate
     return {"qt_menubar_ext_button": tr("Desktop", "More menus"),
-            "qt_toolbar_ext_button": tr("Desktop", "More tools")}.get(widget.objectName(), "")
+            "qt_toolbar_ext_button": tr("Desktop", "More tools"),
+            "qt_tableview_cornerbutton": tr("Desktop", "Select all")}.get(widget.objectName(), "")
+
+
+def _headers(view: QAbstractItemView) -> str:
+    """A table's or tree's column titles, as a name for it."""
+    model = view.model()
+    if model is None or not isinstance(view, QTableView | QTreeView):
+        return ""  # a list's model has no columns to name it by
+    try:
+        count = model.columnCount(QModelIndex())
+    except TypeError:  # a list model seen through a table: no column titles
+        return ""
+    titles = [str(model.headerData(c, Qt.Orientation.Horizontal) or "")
+              for c in range(min(count, 4))]
+    return ", ".join(t for t in titles if t and not t.isdigit())
+
+
+def _part_of_another_control(widget: QWidget) -> bool:
+    """Scroll bars, headers, a combo box's list and line edit: named by their owner."""
+    if isinstance(widget, QScrollBar | QHeaderView):
+        return True
+    parent = widget.parentWidget()
+    while parent is not None:
+        if isinstance(parent, QComboBox | QAbstractSpinBox):
+            return True
+        parent = parent.parentWidget()
+    return False
 
 
 def accessible_name(widget: QWidget) -> str:
@@ -99,11 +129,15 @@ def accessible_name(widget: QWidget) -> str:
                    _plain(widget.whatsThis())]
     if isinstance(widget, QComboBox) and widget.count():
         candidates.append(widget.itemText(0))
+    if isinstance(widget, QAbstractItemView):
+        candidates.append(_headers(widget))
     dock = widget.parentWidget()
     while dock is not None and not isinstance(dock, QDockWidget):
         dock = dock.parentWidget()
     if dock is not None:
         candidates.append(_plain(dock.windowTitle()))
+    if isinstance(widget, QAbstractItemView | QTextEdit | QPlainTextEdit):
+        candidates.append(_plain(widget.window().windowTitle()))
     return next((c for c in candidates if c), "")
 
 
@@ -112,8 +146,8 @@ def name_controls(root: QWidget) -> list[QWidget]:
     tooltip) where it has none; returns the controls still without one."""
     unnamed = []
     for widget in [root, *root.findChildren(QWidget)]:
-        if not isinstance(widget, CONTROLS) or isinstance(widget, QScrollBar):
-            continue  # a scroll bar belongs to the view it scrolls
+        if not isinstance(widget, CONTROLS) or _part_of_another_control(widget):
+            continue
         if not widget.accessibleName():
             name = accessible_name(widget)
             if name:
