@@ -23,7 +23,7 @@ SETTLE_MS = 150
 
 def run_app(path: str | Path | None = None, bus: str | None = None,
             screenshot: str | Path | None = None, *, size: tuple[int, int] | None = None,
-            started: float | None = None) -> int:
+            started: float | None = None, lang: str | None = None) -> int:
     """Run the app until its window closes; returns the exit status.
 
     ``path`` is opened before the window appears so a bad file fails like any CLI input
@@ -47,6 +47,9 @@ def run_app(path: str | Path | None = None, bus: str | None = None,
     app.setOrganizationName("PDCP Studio")
     app.setApplicationDisplayName("PDCP Studio")
     app.setDesktopFileName("pdcp-studio")  # matches packaging/pdcp-studio.desktop
+    from pdcp_studio.app import i18n
+
+    i18n.install(app, lang)  # the system's language, or --lang
     _set_icon(app)
 
     from pdcp_studio.app.main_window import DEFAULT_BUS, MainWindow
