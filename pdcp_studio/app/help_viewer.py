@@ -120,6 +120,14 @@ class HelpViewer(QDialog):
         return block.text() if block.isValid() else ""
 
 
+def qt_versions() -> dict[str, str]:
+    """The Qt and PySide6 this program runs on."""
+    from PySide6 import __version__ as pyside_version
+    from PySide6.QtCore import qVersion
+
+    return {"PySide6": pyside_version, "qt": qVersion()}
+
+
 def versions_text() -> str:
     """PDCP Studio's and its parts' versions, one a line (About, and support requests)."""
     from PySide6 import __version__ as pyside_version
