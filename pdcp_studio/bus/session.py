@@ -26,7 +26,7 @@ from collections.abc import Callable
 from typing import TYPE_CHECKING, Any
 
 from pdcp_studio.bus import events as ev
-from pdcp_studio.bus.urls import BusUrlError, parse_bus_url
+from pdcp_studio.bus.urls import BusUrlError, check_bus_url
 from pdcp_studio.errors import PdcpError, TransportError
 from pdcp_studio.model.configuration import ConfigCollection
 from pdcp_studio.model.refs import DeviceKey
@@ -512,10 +512,11 @@ def open_can_session(spec: Any, *, settle_timeout: float = CAN_SETTLE_TIMEOUT_S,
 def open_session(url: str, **options: Any) -> Any:
     """Open a bus URL (``sim:``, ``can:``, ``serial:``) as a session; see the module doc.
 
-    BusUrlError for a URL that does not parse; UnknownProsthesisError for an unknown
-    ``sim:`` name; TransportError when the bus cannot be opened.
+    BusUrlError for a URL that does not parse, names an interface python-can does not have
+    or a ``sim:`` prosthesis that does not exist, or carries options the interface refuses;
+    TransportError when the bus cannot be opened (a missing driver or adapter: the fix).
     """
-    spec = parse_bus_url(url)
+    spec = check_bus_url(url)
     if spec.kind == "sim":
         return open_sim_session(spec.name, url=url, **options)
     if spec.kind == "can":

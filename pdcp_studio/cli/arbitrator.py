@@ -63,13 +63,10 @@ def describe(event: Any) -> str | None:
 
 
 def run(args: argparse.Namespace) -> int:
-    from pdcp_studio.bus.urls import BusUrlError, open_spec, parse_bus_url
+    from pdcp_studio.bus.urls import check_bus_url, open_spec
     from pdcp_studio.cli.main import EXIT_BAD_INPUT, BadInput
 
-    try:
-        spec = parse_bus_url(args.bus)
-    except BusUrlError as err:
-        raise BadInput(str(err)) from err
+    spec = check_bus_url(args.bus)  # BusUrlError: exit 2, as from every command
     if spec.kind != "can":
         raise BadInput(f"--bus {args.bus}: the arbitrator runs on a can: bus "
                        "(can:INTERFACE:CHANNEL[@BITRATE])")

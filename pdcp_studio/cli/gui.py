@@ -48,12 +48,9 @@ def run(args: argparse.Namespace) -> int:
         raise BadInput("give a FILE or --bus, not both")
     size = _size(args.size)
     if args.bus:
-        from pdcp_studio.bus.urls import BusUrlError, parse_bus_url
+        from pdcp_studio.bus.urls import check_bus_url
 
-        try:
-            parse_bus_url(args.bus)
-        except BusUrlError as err:
-            raise BadInput(str(err)) from err
+        check_bus_url(args.bus)  # BusUrlError: exit 2, as from every command
     from pdcp_studio.app.application import run_app
 
     return run_app(args.file, args.bus, args.screenshot, size=size, started=_STARTED)

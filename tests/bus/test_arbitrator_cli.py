@@ -49,8 +49,10 @@ def test_bad_bus_urls_exit_2(capsys):
 
 
 def test_a_missing_adapter_driver_exits_1(capsys):
-    assert main(["arbitrator", "--bus", "can:no_such_interface:x", "--seconds", "0"]) == 1
+    assert main(["arbitrator", "--bus", "can:no_such_interface:x", "--seconds", "0"]) == 2
     assert "can:no_such_interface:x" in capsys.readouterr().err
+    assert main(["arbitrator", "--bus", "can:kvaser:0", "--seconds", "0"]) == 1
+    assert "fix: install Kvaser CANlib" in capsys.readouterr().err
 
 
 def test_host_serial_without_the_host_link_module_exits_2(capsys, monkeypatch):
