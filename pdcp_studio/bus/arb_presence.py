@@ -10,6 +10,7 @@ from __future__ import annotations
 import logging
 
 from pdcp_studio.bus import events as ev
+from pdcp_studio.bus.arb_claim import Decision
 from pdcp_studio.bus.arb_common import (
     BEACON_WINDOW,
     BIND_HOLD_S,
@@ -29,6 +30,7 @@ from pdcp_studio.protocol import (
     Beacon,
     BindRequest,
     FunctionCode,
+    Mode,
     Reset,
     ResponseCode,
     UpdateDataChannel,
@@ -41,6 +43,46 @@ log = logging.getLogger("pdcp_studio.bus.arbitrator")  # one logger for the arbi
 
 class PresenceMixin:
     """Presence, departures, duplicate devices and foreign nodes of the :class:`Arbitrator`."""
+
+    # -- one arbitrator per bus (reference §5; the decisions are arb_claim's) ---------------
+    def _hear_claim(self, arbitration_id: int, data: bytes, now: float) -> bool:
+        """Feed a received frame to the claim; False once another arbitrator is on the bus
+        (then nothing received is ours to handle)."""
+        decision = self._claim.heard(arbitration_id, data, now)
+        if decision is not None:
+            self._claim_yielded(decision)
+        return not self._claim.yielded
+
+    def _claim_tick(self, now: float) -> bool:
+        """End the listening when it is due, beacon when due; True while arbitrating."""
+        decision = self._claim.tick(now)
+        if decision is not None:
+            self._claim_started(decision)
+        if self._claim.beacon_due(now):
+            self._send_quiet(Beacon(0, mode=Mode.ARBITRATOR))
+        return bool(self._claim.may_write)
+
+    def _claim_started(self, decision: Decision | None) -> None:
+        """The bus is ours: the start-up reset (a replaced arbitrator's devices bind again)."""
+        if decision is not None:
+            self.bus_message = decision.message
+            log.info("%s: %s", self.name, decision.message)
+            self._emit(ev.BusState("arbitrating", decision.message))
+            with self._lock:
+                self._unknown_reset.clear()  # resets skipped while listening may go now
+        if self._reset_on_claim or (decision is not None and decision.takeover):
+            self._broadcast_reset()
+
+    def _claim_yielded(self, decision: Decision) -> None:
+        """Another arbitrator is on the bus: stop writing at once and say so, once."""
+        self.bus_message = decision.message
+        log.warning("%s: %s", self.name, decision.message)
+        with self._lock:
+            nodes = list(self._nodes)
+        for node_id in nodes:
+            self.requests.abort(node_id, "another bus arbitrator is on the bus")
+        self._emit(ev.BusState("yielded", decision.message))
+        self._wake.set()
 
     # -- foreign nodes and twins ----------------------------------------------------------
     def _foreign_frame(self, node_id: int, aid: int, data: bytes, now: float) -> None:

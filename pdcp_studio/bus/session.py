@@ -59,7 +59,12 @@ CAN_SCAN_PACE_S = 0.0002
 PROGRESS_EVENT_INTERVAL_S = 0.1
 HOSTLINK_MODULE = "pdcp_studio.bus.hostlink_client"
 
-__all__ = ["BusUrlError", "ConfigVerifyError", "Session", "SimSession", "open_session"]
+__all__ = ["BusUrlError", "ConfigVerifyError", "OtherArbitratorError", "Session", "SimSession",
+           "open_session"]
+
+
+class OtherArbitratorError(TransportError):
+    """Another bus arbitrator is on the bus: PDCP Studio does not arbitrate there (§5)."""
 
 
 class ConfigVerifyError(TransportError):
@@ -443,7 +448,7 @@ def _known(host: Any, key: DeviceKey) -> DeviceKey:
 def _arbitrator_options(options: dict[str, Any]) -> dict[str, Any]:
     names = ("memory", "profile_layer", "pace_s", "response_timeout", "retries",
              "startup_quiet_s", "duty_quiet_s", "node_ids", "frame_events", "channel_events",
-             "reset_on_start")
+             "reset_on_start", "listen_s")
     return {n: options.pop(n) for n in names if n in options}
 
 
@@ -491,16 +496,21 @@ def open_sim_session(name: str, *, url: str = "", settle_timeout: float = SIM_SE
 
 def open_can_session(spec: Any, *, settle_timeout: float = CAN_SETTLE_TIMEOUT_S,
                      **options: Any) -> Session:
-    """PDCP Studio as the arbitrator of a python-can bus."""
+    """PDCP Studio as the arbitrator of a python-can bus, once it has listened and heard no
+    other arbitrator there (reference §5); OtherArbitratorError (one line) if it heard one."""
+    from pdcp_studio.bus.arb_claim import LISTEN_S
     from pdcp_studio.bus.arbitrator import Arbitrator
     from pdcp_studio.bus.urls import open_spec
 
     arb_opts = _arbitrator_options(options)
     arb_opts.setdefault("frame_events", True)
+    arb_opts.setdefault("listen_s", LISTEN_S)
     options.setdefault("scan_pace_s", CAN_SCAN_PACE_S if spec.interface != "virtual" else 0.0)
     arbitrator = Arbitrator(open_spec(spec), name=f"{spec.url} arbitrator", **arb_opts)
     try:
         session = Session(arbitrator, url=spec.url, **options)
+        if not arbitrator.wait_claimed(arb_opts["listen_s"] + 2.0):
+            raise OtherArbitratorError(f"{spec.url}: {arbitrator.bus_message}")
     except BaseException:
         arbitrator.close()
         raise

@@ -53,6 +53,8 @@ def describe(event: Any) -> str | None:
         return f"link removed {event.link}"
     if isinstance(event, ev.BusError):
         return f"error {event.message}"
+    if isinstance(event, ev.BusState):  # a yield is the error line on stderr instead
+        return None if event.state == "yielded" else f"{event.state}: {event.message}"
     if isinstance(event, ev.PlanApplied):
         plan = event.plan
         lines = [f"plan {plan.mode}: {len(plan.added)} added, {len(plan.removed)} removed, "
@@ -64,7 +66,7 @@ def describe(event: Any) -> str | None:
 
 def run(args: argparse.Namespace) -> int:
     from pdcp_studio.bus.urls import check_bus_url, open_spec
-    from pdcp_studio.cli.main import EXIT_BAD_INPUT, BadInput
+    from pdcp_studio.cli.main import EXIT_BAD_INPUT, EXIT_FAILURE, BadInput
 
     spec = check_bus_url(args.bus)  # BusUrlError: exit 2, as from every command
     if spec.kind != "can":
@@ -93,8 +95,11 @@ def run(args: argparse.Namespace) -> int:
         if text is not None:
             lines.put(text)
 
+    from pdcp_studio.bus.arb_claim import LISTEN_S
+
     options: dict[str, Any] = {"memory": args.memory, "name": "arbitrator",
-                               "profile_layer": not args.no_profile_layer}
+                               "profile_layer": not args.no_profile_layer,
+                               "listen_s": LISTEN_S}
     if args.startup_quiet is not None:
         options["startup_quiet_s"] = args.startup_quiet
     stop = threading.Event()
@@ -107,6 +112,7 @@ def run(args: argparse.Namespace) -> int:
         bus.shutdown()
         raise
     server = None
+    code = 0
     try:
         arbitrator.subscribe(on_event)
         if server_cls is not None:
@@ -117,6 +123,9 @@ def run(args: argparse.Namespace) -> int:
               flush=True)
         deadline = None if args.seconds is None else time.monotonic() + args.seconds
         while not stop.is_set():
+            if arbitrator.yielded:  # another arbitrator is on the bus (reference §5)
+                code = EXIT_FAILURE
+                break
             if deadline is not None and time.monotonic() >= deadline:
                 break
             try:
@@ -136,5 +145,7 @@ def run(args: argparse.Namespace) -> int:
                 print(lines.get_nowait(), flush=True)
             except queue.Empty:
                 break
+    if code:
+        print(f"pdcp-studio: error: {spec.url}: {arbitrator.bus_message}", file=sys.stderr)
     print("arbitrator stopped", flush=True)
-    return 0
+    return code
