@@ -170,25 +170,27 @@ def bitrate_warning(spec: BusSpec) -> str:
 _NO_BITRATE = ("virtual", "udp_multicast")
 
 
-class _Collect:
+class _Collect(logging.Handler):
     """Keeps python-can's log records while a bus opens (its drivers log what they miss,
     which the one-line error already says)."""
 
     def __init__(self) -> None:
+        super().__init__()
         self.records: list[logging.LogRecord] = []
         self._logger = logging.getLogger("can")
-        self._handler = logging.Handler()
-        self._handler.emit = self.records.append  # type: ignore[method-assign]
         self._propagate = True
+
+    def emit(self, record: logging.LogRecord) -> None:
+        self.records.append(record)
 
     def __enter__(self) -> _Collect:
         self._propagate = self._logger.propagate
-        self._logger.addHandler(self._handler)
+        self._logger.addHandler(self)
         self._logger.propagate = False
         return self
 
     def __exit__(self, *exc: object) -> None:
-        self._logger.removeHandler(self._handler)
+        self._logger.removeHandler(self)
         self._logger.propagate = self._propagate
 
 
