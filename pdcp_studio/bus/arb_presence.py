@@ -8,6 +8,7 @@ IDs out of the pool and get the device reset.
 from __future__ import annotations
 
 import logging
+import time
 
 from pdcp_studio.bus import events as ev
 from pdcp_studio.bus.arb_claim import Decision
@@ -23,7 +24,8 @@ from pdcp_studio.bus.arb_common import (
     _Foreign,
     _Node,
 )
-from pdcp_studio.errors import FrameError
+from pdcp_studio.errors import FrameError, PdcpError
+from pdcp_studio.model import parameters as P
 from pdcp_studio.model.refs import DeviceKey
 from pdcp_studio.model.system import Link
 from pdcp_studio.protocol import (
@@ -53,14 +55,72 @@ class PresenceMixin:
             self._claim_yielded(decision)
         return not self._claim.yielded
 
+    # -- a pulled adapter (bus/reopen.py reopens it) ------------------------------------------
+    def _adapter_state(self, state: str, line: str) -> None:
+        """Called on the Notifier's thread: hand it to the dispatch thread."""
+        self.conn.post(lambda: self._on_adapter_state(state, line))
+
+    def _on_adapter_state(self, state: str, line: str) -> None:
+        """Disconnected: presence is not judged (nobody can be heard) and nothing is sent.
+        Reconnected: every device gets its beacon intervals to be heard again, and the links
+        are read back from the inputs and re-made where they differ."""
+        now = time.monotonic()
+        with self._lock:
+            self._disconnected = state == "disconnected"
+            if not self._disconnected:
+                for node in self._nodes.values():
+                    node.last_seen = max(node.last_seen, now)
+                self._jobs += 1
+        self._emit(ev.BusState(state, line))
+        if self._disconnected:
+            return
+        try:
+            self._pool_exec.submit(self._reread_links)
+        except RuntimeError:
+            with self._lock:
+                self._jobs -= 1
+
+    def _reread_links(self) -> None:
+        """After an outage: read each linked input's Source's Node Ids and Data Transfer
+        Enabled back; re-make the links whose input does not say what the model says."""
+        try:
+            with self._plan_lock:
+                with self._lock:
+                    links = [lk for lk in self._system.links
+                             if self._system.is_present(lk.output)
+                             and self._system.is_present(lk.input)]
+                for link in links:
+                    with self._lock:
+                        in_node = self._node_of.get(link.input.device)
+                        out_node = self._node_of.get(link.output.device)
+                        out_id = self._pool.id_of((link.output.device, link.output.index))
+                    if None in (in_node, out_node, out_id):
+                        continue
+                    try:
+                        sources = self.requests.get(in_node, P.IN_SOURCE_NODE_IDS,
+                                                    link.input.index)
+                        enabled = self.requests.get(in_node, P.CH_DATA_ENABLED,
+                                                    link.input.index)
+                        if sources != bytes([out_node, out_id]) or enabled != b"\x01":
+                            log.info("%s: link %s was lost during the outage: re-making it",
+                                     self.name, link)
+                            self._wire_add(link)
+                    except PdcpError as err:
+                        self._error(f"link {link} could not be read back after the outage: "
+                                    f"{err}", "transport")
+        finally:
+            with self._lock:
+                self._jobs -= 1
+
     def _claim_tick(self, now: float) -> bool:
-        """End the listening when it is due, beacon when due; True while arbitrating."""
+        """End the listening when it is due, beacon when due; True while arbitrating (and
+        the adapter is there: presence is not judged while nobody can be heard)."""
         decision = self._claim.tick(now)
         if decision is not None:
             self._claim_started(decision)
         if self._claim.beacon_due(now):
             self._send_quiet(Beacon(0, mode=Mode.ARBITRATOR))
-        return bool(self._claim.may_write)
+        return bool(self._claim.may_write) and not self._disconnected
 
     def _claim_started(self, decision: Decision | None) -> None:
         """The bus is ours: the start-up reset (a replaced arbitrator's devices bind again)."""

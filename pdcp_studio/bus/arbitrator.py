@@ -163,6 +163,9 @@ class Arbitrator(BindingMixin, PresenceMixin, SetupMixin, LinksMixin, ProfileMix
         self.data_frames = 0
         self.duplicates: set[DeviceKey] = set()
         self.conn = Connection(bus, name=name, pace_s=pace_s)
+        self._disconnected = False  # the adapter was pulled (a ReopeningBus says so)
+        if hasattr(bus, "on_state"):
+            bus.on_state = self._adapter_state
         self.requests = RequestEngine(self._send, response_timeout=response_timeout,
                                       retries=retries)
         self._lock = threading.RLock()
@@ -409,8 +412,8 @@ class Arbitrator(BindingMixin, PresenceMixin, SetupMixin, LinksMixin, ProfileMix
             self._frame_event(arbitration_id, data, time.time())
 
     def _send_quiet(self, message: Message) -> None:
-        if not self._claim.may_write:
-            return  # listening, or another arbitrator is on the bus: silence is the point
+        if not self._claim.may_write or self._disconnected:
+            return  # listening, another arbitrator on the bus, or no adapter: say nothing
         try:
             self._send(message)
         except TransportError as err:

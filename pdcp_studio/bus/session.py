@@ -7,7 +7,8 @@
   the prosthesis's devices, each on its own bus object, talk in frames as on a real bus.
   Returns once the devices are bound and start-up has linked them.
 - ``can:INTERFACE:CHANNEL[@BITRATE]`` — PDCP Studio is the bus arbitrator: it binds the
-  devices it hears and runs start-up with its own memory.
+  devices it hears and runs start-up with its own memory, once it has listened and heard no
+  other arbitrator (reference §5); a pulled adapter is reopened (``Session.state``).
 - ``serial:PORT[@BAUD]`` — an arbitrator elsewhere, over its host link
   (``bus/hostlink_client.py``).
 
@@ -105,7 +106,9 @@ class Session:
         self._subs = ev.Subscribers(url or "session")
         self._closed = threading.Event()
         self._close_lock = threading.Lock()
-        self._unsubscribe = arbitrator.subscribe(self._emit)
+        self._unsubscribe = arbitrator.subscribe(self._on_event)
+        self._state = "arbitrating"
+        self._state_message = ""
 
     def __enter__(self) -> Session:
         return self
@@ -131,6 +134,22 @@ class Session:
 
     def _emit(self, event: object) -> None:
         self._subs.emit(event)
+
+    def _on_event(self, event: object) -> None:
+        if isinstance(event, ev.BusState):
+            self._state, self._state_message = event.state, event.message
+        self._emit(event)
+
+    @property
+    def state(self) -> str:
+        """The hold on the bus: ``arbitrating``, ``yielded``, ``disconnected`` (shown as
+        "disconnected — reconnecting"), ``reconnected`` (see ev.BusState)."""
+        return self._state
+
+    @property
+    def state_message(self) -> str:
+        """The one line that said why the state is what it is ('' at first)."""
+        return self._state_message
 
     # -- the bus ------------------------------------------------------------------------
     def system(self) -> System:
@@ -500,13 +519,15 @@ def open_can_session(spec: Any, *, settle_timeout: float = CAN_SETTLE_TIMEOUT_S,
     other arbitrator there (reference §5); OtherArbitratorError (one line) if it heard one."""
     from pdcp_studio.bus.arb_claim import LISTEN_S
     from pdcp_studio.bus.arbitrator import Arbitrator
-    from pdcp_studio.bus.urls import open_spec
+    from pdcp_studio.bus.reopen import open_reopening
 
     arb_opts = _arbitrator_options(options)
     arb_opts.setdefault("frame_events", True)
     arb_opts.setdefault("listen_s", LISTEN_S)
     options.setdefault("scan_pace_s", CAN_SCAN_PACE_S if spec.interface != "virtual" else 0.0)
-    arbitrator = Arbitrator(open_spec(spec), name=f"{spec.url} arbitrator", **arb_opts)
+    # A pulled adapter is reopened with backoff (bus/reopen.py); the session says
+    # "disconnected — reconnecting" meanwhile (ev.BusState).
+    arbitrator = Arbitrator(open_reopening(spec), name=f"{spec.url} arbitrator", **arb_opts)
     try:
         session = Session(arbitrator, url=spec.url, **options)
         if not arbitrator.wait_claimed(arb_opts["listen_s"] + 2.0):

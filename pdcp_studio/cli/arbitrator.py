@@ -65,7 +65,7 @@ def describe(event: Any) -> str | None:
 
 
 def run(args: argparse.Namespace) -> int:
-    from pdcp_studio.bus.urls import check_bus_url, open_spec
+    from pdcp_studio.bus.urls import check_bus_url
     from pdcp_studio.cli.main import EXIT_BAD_INPUT, EXIT_FAILURE, BadInput
 
     spec = check_bus_url(args.bus)  # BusUrlError: exit 2, as from every command
@@ -105,7 +105,9 @@ def run(args: argparse.Namespace) -> int:
     stop = threading.Event()
     main_thread = threading.current_thread() is threading.main_thread()
     previous = signal.signal(signal.SIGTERM, lambda *_: stop.set()) if main_thread else None
-    bus = open_spec(spec)
+    from pdcp_studio.bus.reopen import open_reopening
+
+    bus = open_reopening(spec)  # a pulled adapter is reopened; the outage is said once
     try:
         arbitrator = Arbitrator(bus, **options)
     except BaseException:
