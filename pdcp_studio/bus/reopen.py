@@ -51,7 +51,7 @@ class ReopeningBus(can.BusABC):
         #: The real bus's class name (the connection's echo filter needs it).
         self.inner_type = type(self._bus).__name__
         self.channel_info = f"{self._bus.channel_info} (reopened when it fails)"
-        super().__init__(channel=getattr(self._bus, "channel", None))
+        super().__init__(channel=getattr(self._bus, "channel", "") or "")
 
     @property
     def connected(self) -> bool:

@@ -5,6 +5,7 @@ far end is closed and reopened, and a bus whose reads and writes start raising."
 
 from __future__ import annotations
 
+import itertools
 import logging
 import threading
 import time
@@ -55,7 +56,7 @@ def test_reopening_backs_off_and_is_never_a_busy_loop():
         assert outage.due(now)
         tries.append(now)
         outage.attempt_failed(now, "no adapter")
-    gaps = [round(b - a, 6) for a, b in zip(tries, tries[1:], strict=False)]
+    gaps = [round(b - a, 6) for a, b in itertools.pairwise(tries)]
     assert gaps == sorted(gaps) and max(gaps) == BACKOFF_S[-1]
     assert len(tries) <= 20 / BACKOFF_S[-1] + len(BACKOFF_S)
 
