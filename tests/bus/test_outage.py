@@ -12,7 +12,6 @@ import time
 
 import can
 import pytest
-from slcan_rig import SlcanAdapter
 
 from pdcp_studio.bus import events as ev
 from pdcp_studio.bus.connection import open_connections
@@ -23,6 +22,7 @@ from pdcp_studio.bus.reopen import ReopeningBus
 from pdcp_studio.bus.session import open_session
 from pdcp_studio.bus.simulator import TEST2_LINKS, load_prosthesis
 from pdcp_studio.bus.urls import unique_virtual_channel
+from tests.bus.slcan_rig import SlcanAdapter
 
 
 @pytest.fixture(autouse=True)
