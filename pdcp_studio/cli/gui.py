@@ -52,12 +52,9 @@ def run(args: argparse.Namespace) -> int:
         raise BadInput("give a FILE or --bus, not both")
     size = _size(args.size)
     if args.bus:
-        from pdcp_studio.bus.urls import BusUrlError, parse_bus_url
+        from pdcp_studio.bus.urls import check_bus_url
 
-        try:
-            parse_bus_url(args.bus)
-        except BusUrlError as err:
-            raise BadInput(str(err)) from err
+        check_bus_url(args.bus)  # BusUrlError: exit 2, as from every command
     from pdcp_studio.app import qt_prereqs
 
     why = qt_prereqs.problem(screenshot=bool(args.screenshot))

@@ -6,7 +6,9 @@ libraries (python-can, networkx, Qt) inside ``run`` only, so a headless command
 starts fast and never loads Qt.
 
 Exit status: 0 success, 2 bad input (``BadInput``: a file that does not parse or
-validate, named with where and why), 1 any other failure.
+validate, named with where and why; ``BusUrlError``: a ``--bus`` URL that is malformed or names
+what python-can or the simulator does not have, the same line from every command), 1 any
+other failure.
 """
 
 from __future__ import annotations
@@ -17,6 +19,7 @@ import sys
 from collections.abc import Sequence
 
 from pdcp_studio import __version__
+from pdcp_studio.bus.urls import BusUrlError
 from pdcp_studio.errors import ConfigFormatError, PdcpError, SystemFileError
 
 # Order = order in --help.
@@ -70,7 +73,7 @@ def main(argv: Sequence[str] | None = None) -> int:
             return EXIT_OK
     try:
         return int(args.func(args) or 0)
-    except (BadInput, ConfigFormatError, SystemFileError) as err:
+    except (BadInput, BusUrlError, ConfigFormatError, SystemFileError) as err:
         print(f"pdcp-studio: {err}", file=sys.stderr)
         return EXIT_BAD_INPUT
     except PdcpError as err:
