@@ -34,7 +34,15 @@ UNDECODABLE = "undecodable"
 LinkMap = Mapping[int, tuple[ChannelRef, Sequence[ChannelRef]]]
 #: Capture formats python-can 4.6 both writes and reads without extra packages (``.gz`` too).
 CAPTURE_SUFFIXES = (".asc", ".blf", ".csv", ".log", ".trc", ".db")
+_FAILURE = ResponseCode.FAILURE.title
 _NO_SOURCE = (0, 0xFF)  # a Source's Node Ids byte that means "not connected"
+#: Per-ID statistics key extended identifiers above every base one.
+EXTENDED_KEY = 1 << 29
+NOT_PDCP = "not PDCP"
+#: Frames a capture needs, none of them PDCP's, before it is called ``not PDCP``.
+NOT_PDCP_MIN_FRAMES = 20
+#: Decoded messages and descriptions kept for frames seen again (cleared when full).
+CACHE_SIZE = 8192
 
 
 class CaptureError(PdcpError):
@@ -45,9 +53,13 @@ class CaptureError(PdcpError):
         super().__init__(f"{path}: {reason}")
 
 
-@dataclass(frozen=True)
+@dataclass(slots=True)
 class DecodedFrame:
-    """One frame as the monitor shows it; ``line`` is the text, ``as_json()`` the record."""
+    """One frame as the monitor shows it; ``line`` is the text, ``as_json()`` the record.
+
+    Treat it as read-only (it is not frozen only because a frozen dataclass costs a
+    monitor of a saturated bus several microseconds per frame).
+    """
 
     timestamp: float
     time: float  # seconds since the decoder's first frame
@@ -94,9 +106,19 @@ class DecodedFrame:
                 "text": self.line}
 
 
+#: Identifiers the per-ID statistics follow one by one; frames of any others are counted
+#: together (a base bus has 2,048 identifiers, extended frames could bring 2^29).
+MAX_TRACKED_IDS = 4096
+
+
 @dataclass
 class MonitorStats:
-    """Frames by function, errors and the bus time they took (for a bus-load estimate)."""
+    """Frames by function and by identifier, errors, and the bus time they took.
+
+    Every structure is bounded whatever the number of frames: counters by function name
+    (a fixed vocabulary plus one entry per undecodable reason kind), per-ID entries up to
+    ``MAX_TRACKED_IDS`` (``other_ids`` counts the rest).
+    """
 
     frames: int = 0
     by_function: Counter[str] = field(default_factory=Counter)
@@ -104,25 +126,79 @@ class MonitorStats:
     failures: int = 0  # responses with code 0 (failure)
     bulk_errors: int = 0
     meter: BusTimeMeter = field(default_factory=BusTimeMeter)
+    #: arbitration ID (extended ones + 0x20000000) → [count, first time, last time, last data]
+    by_id: dict[int, list[Any]] = field(default_factory=dict)
+    other_ids: int = 0
 
     @property
     def errors(self) -> int:
         return self.undecodable + self.failures + self.bulk_errors
 
+    def note_id(self, key: int, timestamp: float, data: bytes) -> None:
+        entry = self.by_id.get(key)
+        if entry is not None:
+            entry[0] += 1
+            entry[2] = timestamp
+            entry[3] = data
+        elif len(self.by_id) < MAX_TRACKED_IDS:
+            self.by_id[key] = [1, timestamp, timestamp, data]
+        else:
+            self.other_ids += 1
+
+    def id_stats(self) -> list[dict[str, Any]]:
+        """Per identifier: count, mean period in seconds (None below two frames), last data."""
+        rows = []
+        for key, (count, first, last, data) in sorted(self.by_id.items()):
+            extended = key >= EXTENDED_KEY
+            rows.append({"arbitration_id": key - EXTENDED_KEY if extended else key,
+                         "extended": extended, "count": count,
+                         "period_s": (last - first) / (count - 1) if count > 1 else None,
+                         "last_data": data.hex()})
+        return rows
+
+    @property
+    def pdcp_frames(self) -> int:
+        """Frames that decoded as PDCP functions or channel data."""
+        return self.frames - self.undecodable
+
+    def verdict(self) -> str | None:
+        """``not PDCP`` when plenty of frames came and none of them was PDCP's."""
+        if self.frames >= NOT_PDCP_MIN_FRAMES and self.pdcp_frames == 0:
+            return NOT_PDCP
+        return None
+
     def as_json(self, elapsed_s: float | None = None) -> dict[str, Any]:
         return {"frames": self.frames, "by_function": dict(self.by_function.most_common()),
                 "undecodable": self.undecodable, "failures": self.failures,
                 "bulk_errors": self.bulk_errors, "bus_time_us": round(self.meter.bus_time_us, 1),
-                "bus_load": self.meter.load(elapsed_s)}
+                "bus_load": self.meter.load(elapsed_s), "verdict": self.verdict(),
+                "ids": self.id_stats(), "other_ids": self.other_ids}
 
-    def summary(self, elapsed_s: float | None = None) -> str:
+    def summary(self, elapsed_s: float | None = None, top_ids: int = 12) -> str:
         load = self.meter.load(elapsed_s)
         span = self.meter.span_s if elapsed_s is None else elapsed_s
-        lines = [f"{self.frames} frames, {self.errors} errors ({self.undecodable} undecodable, "
-                 f"{self.failures} failure responses, {self.bulk_errors} bulk faults)",
-                 f"bus time {self.meter.bus_time_us / 1000:.3f} ms over {span:.3f} s"
+        if self.verdict() == NOT_PDCP:
+            head = (f"{self.frames} frames, {NOT_PDCP}: no frame fits PDCP's protocol "
+                    "(a capture of another bus?), so none is counted as an error")
+        else:
+            head = (f"{self.frames} frames, {self.errors} errors ({self.undecodable} "
+                    f"undecodable, {self.failures} failure responses, {self.bulk_errors} "
+                    "bulk faults)")
+        lines = [head, f"bus time {self.meter.bus_time_us / 1000:.3f} ms over {span:.3f} s"
                  + ("" if load is None else f" (bus load {100 * load:.2f} %)")]
         lines += [f"  {n:7d}  {name}" for name, n in self.by_function.most_common()]
+        busiest = sorted(self.id_stats(), key=lambda r: -r["count"])[:top_ids]
+        if busiest:
+            lines.append(f"busiest of {len(self.by_id)} identifiers"
+                         + (f" (+{self.other_ids} frames of others)" if self.other_ids else "")
+                         + ": count, mean period, last data")
+        for row in busiest:
+            ident = (f"{row['arbitration_id']:08X}" if row["extended"]
+                     else f"{row['arbitration_id']:03X}")
+            period = ("-" if row["period_s"] is None
+                      else f"{row['period_s'] * 1000:.3f} ms")
+            lines.append(f"  {ident:>8}  {row['count']:7d}  {period:>12}  "
+                         f"{row['last_data'].upper() or '(empty)'}")
         return "\n".join(lines)
 
 
@@ -144,6 +220,16 @@ class FrameDecoder:
         self._partial: dict[int, dict[str, int]] = {}
         self._bulk: dict[tuple[int, Mode], tuple[int, int, BulkReassembler]] = {}  # param, chan
         self._t0: float | None = None
+        # Caches for a saturated bus: decoded messages (or the reason they do not decode) by
+        # frame; the link and its text by channel node, valid while ``_version`` (bumped by
+        # every change to what was learned) and the caller's entry are the same.
+        self._messages: dict[tuple[int, bytes], Any] = {}
+        self._link_cache: dict[int, tuple[int, Any, Any, str]] = {}
+        self._version = 0
+
+    def _changed(self) -> None:
+        """What was learned changed: cached link texts are stale."""
+        self._version += 1
 
     @property
     def channel_node_ids(self) -> frozenset[int]:
@@ -162,38 +248,82 @@ class FrameDecoder:
                is_extended_id: bool = False, is_remote_frame: bool = False,
                is_error_frame: bool = False) -> DecodedFrame:
         """One frame → one line; never raises on what a bus can deliver."""
-        data = bytes(data)
+        if type(data) is not bytes:
+            data = bytes(data)
         if self._t0 is None:
             self._t0 = timestamp
+        stats = self.stats
+        stats.frames += 1
+        if is_extended_id or is_error_frame or is_remote_frame or not 0 <= arbitration_id <= 0x7FF:
+            return self._odd_frame(arbitration_id, data, timestamp, is_extended_id,
+                                   is_remote_frame, is_error_frame)
+        if len(data) <= 8:
+            stats.meter.add(arbitration_id, data, timestamp)
+        stats.note_id(arbitration_id, timestamp, data)
+        node = arbitration_id & 0xFF
+        if (arbitration_id < 0x600 and not arbitration_id & 0x100 and len(data) <= 8
+                and (node in self.links or node in self.outputs)):
+            return self._channel_data(arbitration_id, node, data, timestamp)
         base = {"timestamp": timestamp, "time": timestamp - self._t0,
                 "arbitration_id": arbitration_id, "data": data}
-        self.stats.frames += 1
-        if not (is_extended_id or is_error_frame):
+        key = (arbitration_id, data)
+        msg = self._messages.get(key)
+        if msg is None:
             try:
-                self.stats.meter.add(arbitration_id, data, timestamp)
-            except ValueError:
-                pass  # not a classical base frame: no bus time to add
-        reason = ("error frame" if is_error_frame else
-                  "extended 29-bit identifier (PDCP uses 11-bit base frames)" if is_extended_id
-                  else "remote frame (PDCP sends none)" if is_remote_frame else None)
-        try:
-            if reason:
-                raise FrameError(reason)
-            ident = split_id(arbitration_id)
-            base.update(priority=int(ident.priority), node_id=ident.node_id)
-            msg = M.decode(arbitration_id, data, channel_node_ids=self.channel_node_ids)
-        except FrameError as err:
-            return self._undecodable(base, str(err))
+                msg = M.decode(arbitration_id, data)
+            except FrameError as err:
+                msg = str(err)
+            if len(self._messages) >= CACHE_SIZE:
+                self._messages.clear()
+            self._messages[key] = msg
+        if isinstance(msg, str):
+            if node <= 254:
+                base.update(priority=arbitration_id >> 9, node_id=node)
+            return self._undecodable(base, msg)
+        base.update(priority=arbitration_id >> 9, node_id=node)
         try:
             frame = self._describe(msg, base)
         except Exception as err:  # a bug here must not stop a monitor: show the frame raw
             return self._undecodable(base, f"{type(err).__name__}: {err}")
-        self.stats.by_function[frame.function] += 1
-        if frame.response == ResponseCode.FAILURE.title:
-            self.stats.failures += 1
+        stats.by_function[frame.function] += 1
+        if frame.response == _FAILURE:
+            stats.failures += 1
         if frame.error:
-            self.stats.bulk_errors += 1
+            stats.bulk_errors += 1
         return frame
+
+    def _odd_frame(self, arbitration_id: int, data: bytes, timestamp: float, extended: bool,
+                   remote: bool, error: bool) -> DecodedFrame:
+        """Error, remote, extended or out-of-range frames: counted, never PDCP."""
+        if not (extended or error) and 0 <= arbitration_id <= 0x7FF and len(data) <= 8:
+            self.stats.meter.add(arbitration_id, data, timestamp)
+        if not error:
+            self.stats.note_id(arbitration_id + (EXTENDED_KEY if extended else 0),
+                               timestamp, data)
+        reason = ("error frame" if error else
+                  "extended 29-bit identifier (PDCP uses 11-bit base frames)" if extended
+                  else "remote frame (PDCP sends none)" if remote
+                  else f"arbitration ID 0x{arbitration_id:X} is not an 11-bit base identifier")
+        base = {"timestamp": timestamp, "time": timestamp - (self._t0 or 0.0),
+                "arbitration_id": arbitration_id, "data": data}
+        if not (extended or error) and 0 <= arbitration_id <= 0x7FF and arbitration_id & 0xFF <= 254:
+            base.update(priority=arbitration_id >> 9, node_id=arbitration_id & 0xFF)
+        return self._undecodable(base, reason)
+
+    def _channel_data(self, arbitration_id: int, node: int, data: bytes,
+                      timestamp: float) -> DecodedFrame:
+        given = self.links.get(node)
+        cached = self._link_cache.get(node)
+        if cached is None or cached[0] != self._version or cached[1] is not given:
+            link = self._link(node)
+            ins = ", ".join(map(str, link[1])) or "no input known"
+            cached = (self._version, given, link, f"{link[0]} → {ins}  ")
+            self._link_cache[node] = cached
+        self.stats.by_function["Channel data"] += 1
+        return DecodedFrame(timestamp, timestamp - self._t0, arbitration_id, data,  # type: ignore[operator]
+                            CHANNEL_DATA, arbitration_id >> 9, node, "Channel data",
+                            cached[3] + (data.hex(" ").upper() or "(empty)"), None, None,
+                            cached[2], None)
 
     # -- describing -------------------------------------------------------------------------
 
@@ -264,6 +394,7 @@ class FrameDecoder:
 
     def _bound(self, node: int, key: DeviceKey) -> None:
         """A device holds ``node`` now: forget its old node and any channel that used ``node``."""
+        self._changed()
         for old in [n for n, k in self.devices.items() if k == key and n != node]:
             self._forget_device(old)
         self._forget_device(node)
@@ -271,6 +402,7 @@ class FrameDecoder:
         self.devices[node] = key
 
     def _forget_device(self, node: int) -> None:
+        self._changed()
         self.devices.pop(node, None)
         for chan_node in [c for c, (d, _) in self.outputs.items() if d == node]:
             del self.outputs[chan_node]
@@ -282,6 +414,7 @@ class FrameDecoder:
         """The device at ``old`` was given node ID ``new``: its channels keep their node IDs."""
         if new == old or new in _NO_SOURCE:
             return
+        self._changed()
         self._bound(new, self.devices.pop(old))
         self.outputs = {c: (new if d == old else d, i) for c, (d, i) in self.outputs.items()}
         self.inputs = {c: {(new if d == old else d, i) for d, i in ins}
@@ -333,11 +466,13 @@ class FrameDecoder:
         elif param == P.CH_TRANSFER_TYPE and len(value) == 1 and value[0] in (1, 2):
             self.directions[node, chan] = Direction.from_transfer_type(value[0])
         elif param == P.OUT_NODE_ID and direction is Direction.OUTPUT and len(value) == 1:
+            self._changed()
             for chan_node in [c for c, owner in self.outputs.items() if owner == (node, chan)]:
                 del self.outputs[chan_node]
             if value[0] not in _NO_SOURCE and value[0] not in self.devices:
                 self.outputs[value[0]] = (node, chan)
         elif param == P.IN_SOURCE_NODE_IDS and len(value) == 2:
+            self._changed()
             for listeners in self.inputs.values():
                 listeners.discard((node, chan))
             if value[1] not in _NO_SOURCE:
