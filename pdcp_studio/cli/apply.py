@@ -11,6 +11,7 @@ from __future__ import annotations
 import argparse
 import json
 
+from pdcp_studio.cli import options
 from pdcp_studio.cli.main import BadInput
 from pdcp_studio.cli.plan import add_mode_arguments, load_tree, make_plan
 
@@ -19,7 +20,7 @@ def add_subparser(subparsers: argparse._SubParsersAction) -> None:
     p = subparsers.add_parser("apply", help="apply a profile-layer plan and write the new system",
                               description=__doc__.split("\n\n")[0])
     add_mode_arguments(p)
-    p.add_argument("-o", "--output", required=True, metavar="NEW.json",
+    p.add_argument("-o", "--output", required=True, type=options.file_name, metavar="NEW.json",
                    help="where to write the resulting pdcp-system/1 file")
     p.add_argument("--json", action="store_true", help="print the applied plan as JSON")
     p.set_defaults(func=run)

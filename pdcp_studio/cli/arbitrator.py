@@ -16,6 +16,8 @@ import threading
 import time
 from typing import Any
 
+from pdcp_studio.cli import options
+
 
 def add_subparser(subparsers: Any) -> None:
     parser = subparsers.add_parser(
@@ -32,9 +34,9 @@ def add_subparser(subparsers: Any) -> None:
                              "pseudo-terminal)")
     parser.add_argument("--no-profile-layer", action="store_true",
                         help="bind and set up only; no start-up or duty cycle")
-    parser.add_argument("--seconds", type=float, metavar="N",
+    parser.add_argument("--seconds", type=options.SECONDS, metavar="N",
                         help="stop after N seconds instead of waiting for Ctrl-C")
-    parser.add_argument("--startup-quiet", type=float, metavar="S",
+    parser.add_argument("--startup-quiet", type=options.WAIT_SECONDS, metavar="S",
                         help="seconds without bind requests before start-up runs")
     parser.set_defaults(func=run)
 

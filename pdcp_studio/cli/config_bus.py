@@ -11,12 +11,15 @@ from __future__ import annotations
 import argparse
 from typing import Any
 
+from pdcp_studio.cli import options
+
 
 def add_bus_commands(actions: Any) -> None:
     """Register ``read`` and ``write`` under ``config`` (called by cli/config_cmd.py)."""
     read = actions.add_parser("read", help="save an arbitrator's stored configuration")
     read.add_argument("--bus", required=True, metavar="URL", help="the bus (contracts §3)")
-    read.add_argument("-o", "--output", required=True, metavar="FILE", help="the .pdcfg")
+    read.add_argument("-o", "--output", required=True, type=options.file_name,
+                      metavar="FILE", help="the .pdcfg")
     read.add_argument("--memory", metavar="FILE", help="PDCP Studio's own arbitrator memory")
     read.set_defaults(func=run_read)
 
