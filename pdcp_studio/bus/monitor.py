@@ -62,6 +62,10 @@ class CaptureError(PdcpError):
         super().__init__(f"{path}: {reason}")
 
 
+class CaptureWriteError(CaptureError):
+    """A capture could not be written (full disk, …): a failure (exit 1), not bad input."""
+
+
 @dataclass(slots=True)
 class DecodedFrame:
     """One frame as the monitor shows it; ``line`` is the text, ``as_json()`` the record.
@@ -83,6 +87,8 @@ class DecodedFrame:
     response: str | None = None  # the response code's name
     link: tuple[ChannelRef | str, tuple[ChannelRef | str, ...]] | None = None
     message: Any = field(default=None, compare=False, repr=False)
+    #: The line without its time, when the decoder composed it already.
+    head: str = field(default="", compare=False, repr=False)
 
     @property
     def who(self) -> str:
@@ -94,6 +100,8 @@ class DecodedFrame:
 
     @property
     def line(self) -> str:
+        if self.head:
+            return f"{self.time:11.6f}  {self.head}"
         prio = "P?" if self.priority is None else f"P{self.priority}"
         text = f"{self.time:11.6f}  {prio}  {self.who} {self.function}"
         return f"{text}  {self.fields}" if self.fields else text
@@ -224,6 +232,8 @@ class FrameDecoder:
         self.passive = passive
         #: Set when the traffic is known not to be PDCP's: frames are shown raw, no errors.
         self.foreign = False
+        #: Count bus time (off for a decoder that only probes a capture).
+        self.meter_on = True
         self.stats = MonitorStats()
         self.devices: dict[int, DeviceKey] = {}  # device node ID → identity
         self.outputs: dict[int, tuple[int, int]] = {}  # channel node → (device node, index)
@@ -237,10 +247,12 @@ class FrameDecoder:
         # frame; the link and its text by channel node, valid while ``_version`` (bumped by
         # every change to what was learned) and the caller's entry are the same.
         self._messages: dict[tuple[int, bytes], Any] = {}
-        self._link_cache: dict[int, tuple[int, Any, Any, str]] = {}
+        self._link_cache: dict[int, tuple[Any, ...]] = {}
         self._version = 0
         # Requests seen and not yet answered: (node, response code) → count (bounded).
         self._pending: dict[tuple[int, int], int] = {}
+        #: Device node IDs heard beaconing or answering (at most 254).
+        self.heard: set[int] = set()
 
     def _changed(self) -> None:
         """What was learned changed: cached link texts are stale."""
@@ -273,8 +285,15 @@ class FrameDecoder:
             return self._odd_frame(arbitration_id, data, timestamp, is_extended_id,
                                    is_remote_frame, is_error_frame)
         if len(data) <= 8:
-            stats.meter.add(arbitration_id, data, timestamp)
-        stats.note_id(arbitration_id, timestamp, data)
+            if self.meter_on:
+                stats.meter.add_base(arbitration_id, data, timestamp)
+        entry = stats.by_id.get(arbitration_id)
+        if entry is not None:
+            entry[0] += 1
+            entry[2] = timestamp
+            entry[3] = data
+        else:
+            stats.note_id(arbitration_id, timestamp, data)
         node = arbitration_id & 0xFF
         if self.foreign:
             return self._raw(arbitration_id, data, timestamp)
@@ -297,7 +316,7 @@ class FrameDecoder:
             if node <= 254:
                 base.update(priority=arbitration_id >> 9, node_id=node)
                 if (self.passive and arbitration_id < 0x600 and not arbitration_id & 0x100
-                        and node not in self.devices):
+                        and node not in self.devices and node not in self.heard):
                     return self._unattributed(base)
             return self._undecodable(base, msg)
         self._context(msg)
@@ -317,6 +336,8 @@ class FrameDecoder:
         """Count frames that fit PDCP in context: a response to a request seen before it."""
         code = msg.CODE
         node = msg.node_id
+        if msg.mode is Mode.DEVICE and code != 0x01 and node:
+            self.heard.add(node)
         if code < 0x80:
             if msg.mode is Mode.ARBITRATOR or code == 0x01:
                 key = (node, code | 0x80)
@@ -371,18 +392,24 @@ class FrameDecoder:
     def _channel_data(self, arbitration_id: int, node: int, data: bytes,
                       timestamp: float) -> DecodedFrame:
         given = self.links.get(node)
-        cached = self._link_cache.get(node)
+        cached = self._link_cache.get(arbitration_id)  # by identifier: the line shows priority
         if cached is None or cached[0] != self._version or cached[1] is not given:
             link = self._link(node)
             ins = ", ".join(map(str, link[1])) or "no input known"
-            cached = (self._version, given, link, f"{link[0]} → {ins}  ")
-            self._link_cache[node] = cached
-        self.stats.by_function["Channel data"] += 1
-        self.stats.in_context += 1
+            text = f"{link[0]} → {ins}  "
+            cached = (self._version, given, link, text,
+                      f"P{arbitration_id >> 9}  #{node} data Channel data  {text}")
+            if len(self._link_cache) >= CACHE_SIZE:
+                self._link_cache.clear()
+            self._link_cache[arbitration_id] = cached
+        stats = self.stats
+        stats.by_function["Channel data"] += 1
+        stats.in_context += 1
+        hex_data = data.hex(" ").upper() or "(empty)"
         return DecodedFrame(timestamp, timestamp - self._t0, arbitration_id, data,  # type: ignore[operator]
                             CHANNEL_DATA, arbitration_id >> 9, node, "Channel data",
-                            cached[3] + (data.hex(" ").upper() or "(empty)"), None, None,
-                            cached[2], None)
+                            cached[3] + hex_data, None, None, cached[2], None,
+                            cached[4] + hex_data)
 
     # -- the node map, saved beside a capture ---------------------------------------------------
 
@@ -776,7 +803,7 @@ class Recorder:
         except (ValueError, ImportError, NotImplementedError) as err:
             raise CaptureError(self.path, f"cannot write this capture: {err}") from err
         except OSError as err:
-            raise CaptureError(self.path, f"cannot write: {err.strerror or err}") from err
+            raise CaptureWriteError(self.path, f"cannot write: {err.strerror or err}") from err
 
     def write_message(self, msg: Any) -> None:
         try:
@@ -803,7 +830,7 @@ class Recorder:
         with contextlib.suppress(Exception):
             self._writer.stop()
         self._closed = True
-        raise CaptureError(self.path, f"capture not written ({err.strerror or err}); the "
+        raise CaptureWriteError(self.path, f"capture not written ({err.strerror or err}); the "
                            f"frames so far are in {self.partial.name}, the previous file is "
                            "unchanged") from err
 
@@ -834,7 +861,7 @@ class Recorder:
         try:
             self._finish(self.path)
         except OSError as err:
-            raise CaptureError(self.path, f"capture not written ({err.strerror or err}); the "
+            raise CaptureWriteError(self.path, f"capture not written ({err.strerror or err}); the "
                                f"frames are in {self.partial.name}, the previous file is "
                                "unchanged") from err
 

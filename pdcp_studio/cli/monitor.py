@@ -119,6 +119,7 @@ def _can_frames(spec: Any, stop: Callable[[], bool]) -> Iterator[Any]:
     from pdcp_studio.bus.urls import open_spec
 
     bus = _ListenOnly(open_spec(spec, **_listen_only(spec)))  # TransportError names the URL
+    yield None  # open: the listening time starts now
     try:
         while not stop():
             msg = bus.recv(timeout=POLL_S)
@@ -162,6 +163,7 @@ def _session_frames(url: str, stop: Callable[[], bool],
             lambda ev: seen.put(ev) if isinstance(ev, wanted) else None)
         if links is not None:
             learn_links(links, session.system())
+        yield None  # open: the listening time starts now
         while not stop():
             try:
                 ev = seen.get(timeout=POLL_S)
@@ -183,6 +185,7 @@ def _probe_foreign(head: list[Any], decoder: Any) -> bool:
     from pdcp_studio.bus.monitor import NOT_PDCP_MIN_FRAMES, FrameDecoder
 
     probe = FrameDecoder(dict(decoder.links))
+    probe.meter_on = False
     probe.load_node_map(decoder.node_map())
     for msg in head:
         probe.decode(msg.arbitration_id, msg.data, msg.timestamp or 0.0,
@@ -219,6 +222,7 @@ def _load_system_links(links: dict, path: str) -> None:
 def run(args: argparse.Namespace) -> int:
     from pdcp_studio.bus.monitor import (
         CaptureError,
+        CaptureWriteError,
         FrameDecoder,
         JsonFrameWriter,
         Recorder,
@@ -234,10 +238,11 @@ def run(args: argparse.Namespace) -> int:
     decoder = FrameDecoder(links)
     if args.system:
         _load_system_links(links, args.system)
-    started = time.monotonic()
+    clock = {"started": time.monotonic(), "open": False}
 
     def stop() -> bool:
-        return args.seconds is not None and time.monotonic() - started >= args.seconds
+        elapsed = time.monotonic() - clock["started"]
+        return args.seconds is not None and elapsed >= args.seconds
 
     if args.replay:
         frames: Iterator[Any] = _replay_frames(args.replay, decoder)
@@ -266,7 +271,9 @@ def run(args: argparse.Namespace) -> int:
             lines: list[str] = []
             try:
                 for msg in frames:
-                    if msg is None:  # a quiet moment on a live bus
+                    if msg is None:  # a quiet moment on a live bus (or the bus just opened)
+                        if not clock["open"]:
+                            clock.update(started=time.monotonic(), open=True)
                         if lines:
                             out.write("\n".join(lines) + "\n")
                             lines.clear()
@@ -300,13 +307,15 @@ def run(args: argparse.Namespace) -> int:
     except CaptureError as err:
         if json_out is not None and json_out.count:
             json_out.close()  # stdout stays one JSON document
+        if isinstance(err, CaptureWriteError):
+            raise  # a failure (exit 1) naming the capture, not bad input
         raise BadInput(str(err)) from err
     if json_out is not None:
         json_out.close()
     out.flush()
     if limiter is not None:
         limiter.tick(final=True)
-    elapsed = None if args.replay else time.monotonic() - started
+    elapsed = None if args.replay else time.monotonic() - clock["started"]
     print(decoder.stats.summary(elapsed), file=sys.stderr)
     if args.log:
         print(f"wrote {args.log}", file=sys.stderr)
