@@ -101,16 +101,25 @@ def format_listing(name: str, decoded: Any) -> list[str]:
     lines = [f"{name}: {len(configs)} configuration(s), {links} link(s), {decoded.size} bytes, "
              f"{checksum}"]
     if decoded.unknown_records:
-        lines.append(f"  {decoded.unknown_records} record(s) with unknown codes skipped")
+        lines.append(f"  {decoded.unknown_records} record(s) with unknown codes kept")
+    if decoded.collection.unknown:
+        lines.append(f"  collection: {_unknown_text(decoded.collection.unknown)}")
     if decoded.trailing_bytes:
         lines.append(f"  {decoded.trailing_bytes} byte(s) after End ignored")
     for cfg in configs:
-        lines.append(f"configuration {cfg.index}: {len(cfg.links)} link(s)")
+        extra = f"; {_unknown_text(cfg.unknown)}" if cfg.unknown else ""
+        lines.append(f"configuration {cfg.index}: {len(cfg.links)} link(s){extra}")
         for link in cfg.links:
-            lines.append(f"  link {link.index}: output {_channel_text(link.output)}")
+            extra = f"  ({_unknown_text(link.unknown)})" if link.unknown else ""
+            lines.append(f"  link {link.index}: output {_channel_text(link.output)}{extra}")
             pad = " " * len(f"link {link.index}")
             lines.append(f"  {pad}→ input  {_channel_text(link.input)}")
     return lines
+
+
+def _unknown_text(records: Any) -> str:
+    """``unknown records: code 32 = 0x1234, …`` (kept and written back as they are)."""
+    return "unknown records: " + ", ".join(f"code {r.code} = 0x{r.value:04X}" for r in records)
 
 
 def _channel_text(ch: Any) -> str:
@@ -119,6 +128,8 @@ def _channel_text(ch: Any) -> str:
         text += f"  owner type {ch.owner_type}"
     if ch.owner_profile is not None:
         text += f"  owner profile {ch.owner_profile}"
+    if ch.unknown:
+        text += f"  {_unknown_text(ch.unknown)}"
     return text
 
 
