@@ -2,6 +2,8 @@
 
 ``decode FILE [--json]`` lists a ``.pdcfg`` file (``--json``: the contract JSON, one
 document on stdout); ``encode JSON -o FILE`` writes one from that JSON, atomically.
+``diff A B [--json]`` or ``diff A --bus URL`` compares two stored configurations (the
+one diff of :mod:`pdcp_studio.model.config_diff`): exit 0 when equal, 3 when they differ.
 ``-`` reads standard input. The bus actions (``config read`` / ``config write``) live in
 ``pdcp_studio.cli.config_bus``, which registers them through
 ``add_bus_commands(config_subparsers)`` when that module exists; it is imported while the
@@ -41,7 +43,22 @@ def add_subparser(subparsers: Any) -> None:
     encode.add_argument("-o", "--output", required=True, metavar="FILE", help="the .pdcfg")
     encode.set_defaults(func=run_encode)
 
+    diff = actions.add_parser(
+        "diff", help="compare two stored configurations (exit 3 when they differ)",
+        description="Compare two .pdcfg files, or a file with the stored configuration of the "
+                    "arbitrator on a bus. Exit 0 when equal, 3 when they differ.")
+    diff.add_argument("a", metavar="A", help="a .pdcfg file")
+    diff.add_argument("b", metavar="B", nargs="?", help="a second .pdcfg file")
+    diff.add_argument("--bus", metavar="URL", help="compare A with this bus's stored configuration")
+    diff.add_argument("--memory", metavar="FILE", help="PDCP Studio's own arbitrator memory")
+    diff.add_argument("--json", action="store_true", help="print the difference as JSON")
+    diff.set_defaults(func=run_diff)
+
     add_bus_commands(actions)
+
+
+#: ``config diff``'s exit status when the configurations differ (contracts §2).
+DIFFER = 3
 
 
 def add_bus_commands(actions: Any) -> None:
@@ -69,6 +86,55 @@ def _read_input(path: str, binary: bool, limit: int = -1) -> Any:
     except (OSError, UnicodeDecodeError) as err:
         reason = err.strerror if isinstance(err, OSError) and err.strerror else str(err)
         raise BadInput(f"{path}: cannot read: {reason}") from err
+
+
+def _load_collection(path: str) -> Any:
+    """A ``.pdcfg`` file (or stdin) as a collection; a bad one is bad input with its offset."""
+    from pdcp_studio.cli.main import BadInput
+    from pdcp_studio.errors import ConfigFormatError
+    from pdcp_studio.storage import config_codec
+
+    data = _read_input(path, binary=True, limit=config_codec.MAX_INPUT_BYTES + 1)
+    try:
+        return config_codec.loads(data)
+    except ConfigFormatError as err:
+        raise BadInput(f"{path}: offset {err.offset}: {err.reason}") from err
+
+
+def run_diff(args: argparse.Namespace) -> int:
+    """Compare A with B or with the bus's stored configuration; 0 equal, 3 different."""
+    import json
+
+    from pdcp_studio.cli.main import BadInput
+    from pdcp_studio.model.config_diff import diff_configurations
+
+    if (args.b is None) == (args.bus is None):
+        raise BadInput("config diff: give either a second file B or --bus URL (not both)")
+    if args.memory and args.bus is None:
+        raise BadInput("config diff: --memory needs --bus")
+    a = _load_collection(args.a)
+    if args.b is not None:
+        b, b_name = _load_collection(args.b), args.b
+    else:
+        from pdcp_studio.cli.scan import open_bus_session
+
+        session = open_bus_session(args.bus, memory=args.memory)
+        try:
+            b = session.read_configuration()
+        finally:
+            session.close()
+        b_name = f"the arbitrator on {args.bus}"
+    diff = diff_configurations(a, b)
+    if args.json:
+        print(json.dumps(diff.to_json(), indent=2))
+    elif diff.equal:
+        print(f"{args.a} and {b_name} store the same configurations "
+              f"({len(a.configurations)} configuration(s), "
+              f"{sum(len(c.links) for c in a.configurations)} link(s))")
+    else:
+        for line in diff.lines(args.a, b_name):
+            print(line)
+    return 0 if diff.equal else DIFFER
 
 
 def run_decode(args: argparse.Namespace) -> int:

@@ -108,7 +108,7 @@ def check_configuration(cfg: StoredConfiguration) -> list[ConfigFinding]:
                 Severity.WARNING, "inconsistent-records",
                 f"channel {ref} is stored with different records: {said}",
                 tuple(positions), (ref,)))
-    for pos, sl in enumerate(links):
+    for pos in range(len(links)):
         out += _fitness(cfg, pos)
     out.sort(key=lambda f: (f.severity.rank, f.links[:1] or (len(links),), f.code))
     return out
@@ -138,7 +138,7 @@ def _fitness(cfg: StoredConfiguration, pos: int) -> list[ConfigFinding]:
     o, i = sl.output, sl.input
     if o.profile == prof.NULL_PROFILE or i.profile == prof.NULL_PROFILE:
         return []
-    sim = determine_similarity(o, i)
+    sim = determine_similarity((o.type, o.profile), (i.type, i.profile))
     name = _names(cfg, [pos])
     if not sim.shares_root:
         return [ConfigFinding(

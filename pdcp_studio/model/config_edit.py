@@ -97,13 +97,15 @@ def set_channel(coll: ConfigCollection, position: int, ref: ChannelRef, *,
     configuration ``position`` that stores it (one channel, one record)."""
     new = copy_collection(coll)
     cfg = new.configurations[position]
-    changes = {k: v for k, v in (("type", type), ("profile", profile)) if v is not None}
-    for name, value in changes.items():
-        if isinstance(value, bool) or not 0 <= value <= 0xFFFF:
+    for name, value in (("type", type), ("profile", profile)):
+        if value is not None and (isinstance(value, bool) or not 0 <= value <= 0xFFFF):
             raise ValueError(f"{name} {value!r} is out of range 0…0xFFFF")
 
     def fix(ch: StoredChannel) -> StoredChannel:
-        return replace(ch, **changes) if ch.ref == ref else ch
+        if ch.ref != ref:
+            return ch
+        return replace(ch, type=ch.type if type is None else type,
+                       profile=ch.profile if profile is None else profile)
 
     cfg.links = [replace(lk, output=fix(lk.output), input=fix(lk.input))
                  if ref in (lk.output.ref, lk.input.ref) else lk for lk in cfg.links]
