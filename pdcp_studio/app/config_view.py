@@ -31,6 +31,7 @@ from PySide6.QtWidgets import (
     QHBoxLayout,
     QLabel,
     QLineEdit,
+    QListView,
     QListWidget,
     QListWidgetItem,
     QMainWindow,
@@ -41,8 +42,6 @@ from PySide6.QtWidgets import (
     QTableWidget,
     QTableWidgetItem,
     QTabWidget,
-    QTreeWidget,
-    QTreeWidgetItem,
     QVBoxLayout,
     QWidget,
 )
@@ -95,6 +94,16 @@ def system_for_configuration(cfg: StoredConfiguration | None,
                 and not system.has_link(link)):
             system.add_link(link, check=False)
     return system
+
+
+def _wrapping_list() -> QListWidget:
+    """A list of sentences: wrapped to the width, never cut short."""
+    lst = QListWidget()
+    lst.setWordWrap(True)
+    lst.setSpacing(3)
+    lst.setTextElideMode(Qt.TextElideMode.ElideNone)
+    lst.setResizeMode(QListView.ResizeMode.Adjust)
+    return lst
 
 
 def _hex(value: int) -> str:
@@ -315,18 +324,13 @@ class ConfigWindow(QMainWindow):
         middle.addWidget(links_box)
         middle.setSizes([560, 300])
 
-        self.checks = QListWidget()
-        self.checks.setWordWrap(True)
-        self.checks.setSpacing(3)
+        self.checks = _wrapping_list()
         self.checks.itemClicked.connect(self._on_finding)
         self.fit_label = QLabel("")
         self.fit_label.setWordWrap(True)
         self.fit_choice = QLabel("")
         self.fit_choice.setWordWrap(True)
-        self.fit_tree = QTreeWidget()
-        self.fit_tree.setHeaderLabels([self.tr("Link"), self.tr("On this prosthesis")])
-        self.fit_tree.setWordWrap(True)
-        self.fit_tree.setColumnWidth(0, 220)
+        self.fit_list = _wrapping_list()
         self.btn_fit_main = QPushButton(self.tr("Fit to the prosthesis in the main window"))
         self.btn_fit_file = QPushButton(self.tr("Fit to a system file…"))
         self.btn_fit_main.clicked.connect(self.fit_to_main)
@@ -335,7 +339,7 @@ class ConfigWindow(QMainWindow):
         fv = QVBoxLayout(fit_box)
         fv.addWidget(self.fit_label)
         fv.addWidget(self.fit_choice)
-        fv.addWidget(self.fit_tree, 1)
+        fv.addWidget(self.fit_list, 1)
         fv.addWidget(self.btn_fit_main)
         fv.addWidget(self.btn_fit_file)
         self.side = QTabWidget()
@@ -367,6 +371,10 @@ class ConfigWindow(QMainWindow):
         doc.dirtyChanged.connect(lambda _d: self._update_title())
         doc.pathChanged.connect(lambda _p: self._update_title())
         self.refresh()
+        # Problems in the file first; otherwise how it fits the prosthesis, if one is open.
+        if not self.findings and self.prosthesis()[0] is not None:
+            self.side.setCurrentIndex(1)
+            self.refresh_fit()
 
     # -- construction -----------------------------------------------------------------
     def _build_menus(self) -> None:
@@ -516,12 +524,13 @@ class ConfigWindow(QMainWindow):
             if f.severity.value in colours:
                 item.setForeground(colours[f.severity.value])
             self.checks.addItem(item)
+        QTimer.singleShot(0, self.checks.doItemsLayout)
 
     def refresh_fit(self) -> None:
         """Fit the current configuration to the prosthesis (if one is open)."""
         from pdcp_studio.engine.config_fit import fit_configuration
 
-        self.fit_tree.clear()
+        self.fit_list.clear()
         self.fit = None
         system, name = self.prosthesis()
         cfg = self.doc.configuration()
@@ -541,28 +550,30 @@ class ConfigWindow(QMainWindow):
             self.fit_choice.setText(str(err))
             return
         self.fit = fit
-        self.fit_choice.setText(self.tr("Start-up would use configuration %1: %2")
-                                .replace("%1", str(fit.chosen_index))
-                                .replace("%2", fit.chosen_reason))
+        self.fit_choice.setText(self.tr("At start-up: %1").replace("%1", fit.chosen_reason))
+        self.fit_choice.setStyleSheet("font-weight: bold;" if fit.chosen_index == fit.index
+                                      else "")
         for lf in fit.links:
             sl = lf.link
-            label = self.tr("link %1: %2 → %3").replace("%1", str(sl.index or lf.position + 1)) \
+            number = str(sl.index or lf.position + 1)
+            label = self.tr("Link %1: %2 → %3\n%4").replace("%1", number) \
                 .replace("%2", self._channel_text(sl.output)) \
-                .replace("%3", self._channel_text(sl.input))
-            item = QTreeWidgetItem([label, lf.summary()])
-            item.setToolTip(1, lf.summary())
+                .replace("%3", self._channel_text(sl.input)).replace("%4", lf.summary())
+            item = QListWidgetItem(label)
             if not lf.whole:
-                item.setForeground(1, Qt.GlobalColor.darkRed if not lf.actions
+                item.setForeground(Qt.GlobalColor.darkRed if not lf.actions
                                    else Qt.GlobalColor.darkYellow)
-            self.fit_tree.addTopLevelItem(item)
+            self.fit_list.addItem(item)
         if fit.plan.actions:
-            plan_item = QTreeWidgetItem([self.tr("Replacement plan"), self.tr(
-                "%1 step(s)").replace("%1", str(len(fit.plan.actions)))])
+            head = QListWidgetItem(self.tr("What start-up would do with this configuration "
+                                           "(%1 step(s)):").replace("%1",
+                                                                    str(len(fit.plan.actions))))
+            head.setForeground(Qt.GlobalColor.darkBlue)
+            self.fit_list.addItem(head)
             for a in fit.plan.actions:
-                plan_item.addChild(QTreeWidgetItem([
-                    f"{a.op.value} {a.link.output} → {a.link.input}", a.reason]))
-            self.fit_tree.addTopLevelItem(plan_item)
-            plan_item.setExpanded(True)
+                verb = self.tr("add") if a.op.value == "add" else self.tr("remove")
+                self.fit_list.addItem(f"    {verb} {a.link.output} → {a.link.input}: {a.reason}")
+        QTimer.singleShot(0, self.fit_list.doItemsLayout)  # wrap at the width it has now
 
     def set_prosthesis_source(self, source: ProsthesisSource | None) -> None:
         self._prosthesis_source = source

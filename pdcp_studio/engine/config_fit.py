@@ -1,17 +1,18 @@
 """Fit a stored configuration to a prosthesis: what is there, what would be replaced, and
 which configuration start-up would pick. Pure.
 
-This only reads the engine's own decisions — ``plan_replacements`` for the repair of links
-with a missing end (listing 4.6) and ``choose_configuration`` for start-up's choice among
-several stored configurations (thesis B.2.1 case 4) — so what the document shows is what
-the arbitrator would do.
+This only reads the engine's own decisions — ``plan_startup`` with this configuration as
+the stored one (listing 4.1: drop links it does not have, make its links, find replacements
+for its missing channels with listing 4.6, autoconfigure what is left) and
+``choose_configuration`` for start-up's choice among several stored configurations (thesis
+B.2.1 case 4) — so what the document shows is what the arbitrator would do.
 """
 
 from __future__ import annotations
 
 from dataclasses import dataclass, field
 
-from pdcp_studio.engine.modes import plan_replacements
+from pdcp_studio.engine.modes import plan_startup
 from pdcp_studio.engine.plan import Action, Plan
 from pdcp_studio.engine.procedures import choose_configuration
 from pdcp_studio.model.configuration import (
@@ -74,7 +75,7 @@ class ConfigFit:
 
     index: int
     links: list[LinkFit]
-    plan: Plan  # the replacement plan (listing 4.6) for this configuration
+    plan: Plan  # start-up with this configuration stored (replacements included)
     chosen_index: int | None  # the configuration start-up would pick from the collection
     chosen_reason: str
 
@@ -98,7 +99,7 @@ def fit_configuration(system: System, collection: ConfigCollection, position: in
                       ) -> ConfigFit:
     """Configuration ``position`` (0-based) of ``collection`` against ``system``."""
     cfg: StoredConfiguration = collection.configurations[position]
-    plan = plan_replacements(system, cfg)
+    plan = plan_startup(system, cfg)
     fits = []
     for pos, sl in enumerate(cfg.links):
         lf = LinkFit(pos, sl, end_state(system, sl.output, Direction.OUTPUT),

@@ -238,8 +238,12 @@ def test_fit_to_a_system_file_shows_presence_replacement_and_start_up_choice(
         (lf,) = fit.links
         assert lf.input == "missing"
         assert "replaced by 2/2/4#1 → 2/2/6#1" in lf.summary()
-        assert "Start-up would use configuration 1" in window.fit_choice.text()
-        assert window.fit_tree.topLevelItemCount() == 2  # the link, then the plan
+        assert window.fit_choice.text().startswith("At start-up: the only stored "
+                                                   "configuration 1")
+        texts = [window.fit_list.item(i).text() for i in range(window.fit_list.count())]
+        assert texts[0].startswith("Link 1: ") and "\ninput missing: replaced by" in texts[0]
+        assert texts[1].startswith("What start-up would do") and len(texts) == 2 + len(
+            fit.plan.actions)
         # Back to the main window's prosthesis (transradial): nothing of test 1 there.
         window.fit_to_main()
         assert window.fit is not None and window.fit.whole == 0

@@ -163,3 +163,22 @@ def test_the_one_diff_sees_unknown_records_at_every_level():
     (changed,) = diff.configurations[0].changed
     assert "link unknown records [] → [32=0x0001]" in diff.describe()
     assert changed.b.unknown == (rec,)
+
+
+def test_fit_of_the_second_terminal_device_configuration_replaces_the_hook_by_the_hand():
+    """Thesis B.2.1 case 4: the hook's configuration on a prosthesis wearing the hand."""
+    from pathlib import Path
+
+    system = system_file.load_path(systems_dir() / "transradial.json")
+    if not system.links:
+        plan_autoconfigure(system).apply(system)
+    root = Path(__file__).resolve().parents[2]
+    coll = config_codec.load_path(root / "resources" / "configs"
+                                  / "transradial-hand-and-hook.pdcfg")
+    fit = fit_configuration(system, coll, 1)
+    assert fit.chosen_index == 1  # the hand's configuration fits best
+    assert [lf.whole for lf in fit.links] == [True, True, False, False]
+    hook = fit.links[2]
+    (add,) = [a for a in hook.actions if a.op.value == "add"]
+    assert add.link.input == ChannelRef(2641, 769, 301, 1)
+    assert "replaced by 2641/513/201#3 → 2641/769/301#1" in hook.summary()
