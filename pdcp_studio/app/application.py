@@ -72,7 +72,10 @@ def run_app(path: str | Path | None = None, bus: str | None = None,
         bridge = window.live.bridge
         if window.progress.isVisible() and (bridge is None or not bridge.busy):
             window.progress.hide()  # the last job's bar, hidden a moment later anyway
-        image = window.grab()
+        # A .pdcfg opens in its own window (app/config_view.py): that is what was asked for.
+        target = (getattr(window, "config_windows", None) or [window])[-1]
+        target.view.fit_all()
+        image = target.grab()
         if status["code"]:
             pass  # what was asked for is not on screen: no picture of an empty window
         elif not image.save(str(screenshot), "PNG"):

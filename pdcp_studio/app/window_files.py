@@ -31,6 +31,9 @@ class FileHandlingMixin:
 
     def show_opened(self, opened: files.Opened, path: Path | None) -> None:
         """Put a loaded file on screen (offline)."""
+        if opened.kind == "config" and path is not None:
+            self.show_configuration_document(opened, path)
+            return
         self.live.disconnect_bus()
         self.doc.set_system(opened.system, path, None, positions=opened.positions,
                             kind=opened.kind, config=opened.config)
@@ -40,6 +43,16 @@ class FileHandlingMixin:
                           f"{len(opened.system.devices)} devices, "
                           f"{len(opened.system.links)} links{note}")
         self._loaded()
+
+    def show_configuration_document(self, opened: files.Opened, path: Path) -> None:
+        """A .pdcfg opens as its own document window (configurations, checks, fit); this
+        window stays on its prosthesis, which the configuration is fitted to."""
+        from pdcp_studio.app.config_view import open_config_window
+
+        open_config_window(self, path, opened.config)
+        self.show_message(f"Opened stored configurations {path.name} in their own window")
+        if not self.is_ready:
+            self._loaded()
 
     def ask_open(self) -> None:
         if not self.maybe_save():
