@@ -1,0 +1,467 @@
+"""The arbitrator's answers to host-link requests (docs/host-link.md §5), one method each.
+
+Every request gets exactly one reply: ``code | 0x80``, a status byte, then the body (OK) or a
+short reason (any other status). A handler never raises out: a malformed body is BAD_LENGTH,
+an arbitrator error is mapped to the status that says why (the table in ``_status_of``).
+
+State kept between requests is what a firmware keeps too, and as small: whether the PC has
+greeted, one parameter value in transfer, one configuration being written (staged; committed
+only whole with a matching CRC, by the memory's atomic double-buffered write), and the devices
+an open transaction holds suspended (renewed while it is open, released when the PC goes).
+"""
+
+from __future__ import annotations
+
+import logging
+import struct
+import threading
+import time
+from typing import Any
+
+from pdcp_studio import __version__
+from pdcp_studio.bus import events as ev
+from pdcp_studio.errors import (
+    BusTimeoutError,
+    ConfigFormatError,
+    FrameError,
+    ModelError,
+    PdcpError,
+)
+from pdcp_studio.model.refs import DeviceKey
+from pdcp_studio.protocol import hostlink_messages as hm
+from pdcp_studio.protocol.crc import crc16_ccitt_false
+from pdcp_studio.protocol.hostlink import MAX_PAYLOAD
+from pdcp_studio.protocol.hostlink_messages import Req, Status
+
+log = logging.getLogger(__name__)
+
+#: Largest parameter value moved over the link (the arbitrator's value buffer).
+MAX_VALUE = 1024
+#: Largest stored configuration accepted (the memory's slot).
+MAX_CONFIG = 8192
+#: Suspend Device's TimeValue while a transaction holds devices (reference §5), and renewal.
+TXN_HOLD_MS = 2000
+TXN_RENEW_S = 0.7
+BUS_ERROR_KINDS = ("", "bad_frame", "error_frame", "duplicate_device", "node_ids_exhausted",
+                   "setup", "plan", "transport", "other_arbitrator")
+CAPABILITIES = hm.CAP_MONITOR | hm.CAP_TRANSACTIONS | hm.CAP_PARAM_BULK
+
+
+class Refused(Exception):
+    """A handler's refusal: the status and the reason."""
+
+    def __init__(self, status: Status, reason: str) -> None:
+        super().__init__(reason)
+        self.status = status
+
+
+def _status_of(err: Exception) -> Status:
+    from pdcp_studio.bus.requests import DeviceRefusedError
+
+    if isinstance(err, DeviceRefusedError):
+        return Status.DEVICE_REFUSED
+    if isinstance(err, BusTimeoutError):
+        return Status.DEVICE_TIMEOUT
+    if isinstance(err, ConfigFormatError):
+        return Status.BAD_CONFIGURATION
+    if isinstance(err, ModelError):
+        return Status.MANAGED if "managed" in str(err) else Status.BAD_LINK
+    if isinstance(err, FrameError):
+        return Status.BAD_LENGTH
+    if "not on the bus" in str(err):
+        return Status.DEVICE_ABSENT
+    return Status.INTERNAL
+
+
+class Handlers:
+    """The request handlers of one :class:`HostLinkServer`."""
+
+    def __init__(self, arbitrator: Any, server: Any) -> None:
+        self.arb = arbitrator
+        self.server = server
+        self.greeted = False
+        self._value: tuple[tuple[int, ...], bytes] | None = None  # GET_PARAM in transfer
+        self._setting: tuple[tuple[int, ...], int, bytearray] | None = None  # SET_PARAM
+        self._staged: tuple[int, int, bytearray] | None = None  # total, crc, bytes
+        self._held: list[DeviceKey] = []
+        self._txn_stop = threading.Event()
+        self._txn_thread: threading.Thread | None = None
+        self._table = {
+            Req.HELLO: self.hello, Req.STATUS: self.status,
+            Req.LIST_DEVICES: self.list_devices, Req.GET_DEVICE: self.get_device,
+            Req.GET_CHANNELS: self.get_channels, Req.LIST_LINKS: self.list_links,
+            Req.GET_PARAM: self.get_param, Req.SET_PARAM: self.set_param,
+            Req.ADD_LINK: self.add_link, Req.REMOVE_LINK: self.remove_link,
+            Req.SUSPEND: self.suspend, Req.RELEASE: self.release,
+            Req.RESET_DEVICE: self.reset_device, Req.CONFIG_INFO: self.config_info,
+            Req.CONFIG_READ: self.config_read, Req.CONFIG_WRITE_BEGIN: self.config_begin,
+            Req.CONFIG_WRITE_CHUNK: self.config_chunk,
+            Req.CONFIG_WRITE_COMMIT: self.config_commit,
+            Req.TXN_BEGIN: self.txn_begin, Req.TXN_END: self.txn_end,
+            Req.GET_POLICY: self.get_policy, Req.SET_POLICY: self.set_policy,
+            Req.MONITOR: self.monitor,
+        }
+
+    # -- dispatch --------------------
+    def handle(self, message: bytes) -> bytes | None:
+        """The reply to one request (None for a message that is not a request)."""
+        if not message:
+            return None
+        code, body = message[0], bytes(message[1:])
+        if code & hm.REPLY or 0x40 <= code < 0x80:
+            return None  # replies and events go the other way
+        try:
+            request = Req(code)
+        except ValueError:
+            return self._fail(code, Status.UNKNOWN_REQUEST, f"unknown request 0x{code:02X}")
+        if request is not Req.HELLO and not self.greeted:
+            return self._fail(code, Status.NOT_GREETED, "send HELLO first")
+        try:
+            out = self._table[request](body)
+        except Refused as err:
+            return self._fail(code, err.status, str(err))
+        except hm.MessageError as err:
+            return self._fail(code, Status.BAD_LENGTH, f"{request.name}: {err}")
+        except (PdcpError, ValueError, KeyError) as err:
+            return self._fail(code, _status_of(err), f"{request.name}: {err}")
+        except Exception as err:
+            log.exception("host link: %s failed", request.name)
+            return self._fail(code, Status.INTERNAL, f"{request.name}: {err}")
+        reply = bytes([hm.reply_code(code), Status.OK]) + out
+        if len(reply) > MAX_PAYLOAD:  # a bug here, never the PC's fault
+            return self._fail(code, Status.INTERNAL, f"{request.name}: reply too long")
+        return reply
+
+    @staticmethod
+    def _fail(code: int, status: Status, reason: str) -> bytes:
+        return bytes([hm.reply_code(code), status]) + hm.short_text(reason, 200)
+
+    def forget_host(self) -> None:
+        self.greeted = False
+        self._end_transaction()
+
+    def close(self) -> None:
+        self._end_transaction()
+
+    # -- look-ups -------------------------------------------------------------------------------
+    def _device(self, key: DeviceKey, present: bool = False) -> Any:
+        device = self.arb.system().device(key)
+        if device is None:
+            raise Refused(Status.UNKNOWN_DEVICE, f"device {key} is not known to the arbitrator")
+        if present and (not device.present or self.arb.node_id_of(key) is None):
+            raise Refused(Status.DEVICE_ABSENT, f"device {key} is not on the bus")
+        return device
+
+    @staticmethod
+    def _exact(body: bytes, size: int, what: str) -> None:
+        if len(body) != size:
+            raise hm.MessageError(f"{what} is {size} bytes, not {len(body)}")
+
+    # -- hello and status --------------------
+    def hello(self, body: bytes) -> bytes:
+        hm.need(body, 1, "HELLO")
+        if body[0] != hm.VERSION:
+            self.greeted = False
+            raise Refused(Status.VERSION,
+                          f"this arbitrator speaks host-link version {hm.VERSION}, "
+                          f"not version {body[0]}")
+        self.greeted = True
+        self._end_transaction()
+        name = hm.short_text(f"pdcp-studio arbitrator {__version__}", 64)
+        return hm.HELLO.pack(hm.VERSION, CAPABILITIES, MAX_PAYLOAD) + name
+
+    def status(self, body: bytes) -> bytes:
+        system = self.arb.system()
+        flags = ((1 if self.arb.wait_settled(0) else 0) | (2 if self.arb.startup_done else 0)
+                 | (4 if getattr(self.arb, "_other_arbitrator", False) else 0))
+        return hm.STATUS.pack(flags, min(len(system.devices), 255), len(system.links),
+                              self.server.changes, self.server.events_lost & 0xFFFF)
+
+    # -- tables --------------------
+    def list_devices(self, body: bytes) -> bytes:
+        self._exact(body, 2, "LIST_DEVICES")
+        (start,) = struct.unpack("<H", body)
+        devices = [d for _, d in sorted(self.arb.system().devices.items())]
+        per = (hm.MAX_BODY - 1 - 4) // hm.DEVICE_ROW.size
+        rows = b"".join(hm.pack_device_row(d) for d in devices[start:start + per])
+        return struct.pack("<HH", len(devices), start) + rows
+
+    def get_device(self, body: bytes) -> bytes:
+        self._exact(body, hm.KEY.size, "GET_DEVICE")
+        return hm.pack_device_info(self._device(hm.unpack_key(body)))
+
+    def get_channels(self, body: bytes) -> bytes:
+        self._exact(body, hm.KEY.size + 1, "GET_CHANNELS")
+        device = self._device(hm.unpack_key(body))
+        channels = [device.channels[i] for i in sorted(device.channels)]
+        page, _ = hm.pack_channel_page(channels, body[hm.KEY.size])
+        return page
+
+    def list_links(self, body: bytes) -> bytes:
+        self._exact(body, 2, "LIST_LINKS")
+        (start,) = struct.unpack("<H", body)
+        links = sorted(self.arb.system().links)
+        per = (hm.MAX_BODY - 1 - 4) // (2 * hm.REF.size)
+        return (struct.pack("<HH", len(links), start)
+                + b"".join(hm.pack_link(lk) for lk in links[start:start + per]))
+
+    # -- parameters --------------------
+    def get_param(self, body: bytes) -> bytes:
+        self._exact(body, hm.PARAM.size + 2, "GET_PARAM")
+        address = hm.PARAM.unpack_from(body)
+        (offset,) = struct.unpack_from("<H", body, hm.PARAM.size)
+        if offset == 0:
+            key = DeviceKey(*address[:3])
+            self._device(key, present=True)
+            value = bytes(self.arb.get_parameter(key, address[4], address[3]))
+            if len(value) > MAX_VALUE:
+                raise Refused(Status.TOO_LARGE, f"the value is {len(value)} bytes, more than "
+                                                f"this arbitrator moves ({MAX_VALUE})")
+            self._value = (address, value)
+        elif self._value is None or self._value[0] != address:
+            raise Refused(Status.BAD_OFFSET, "read this parameter from offset 0 first")
+        value = self._value[1]
+        if offset > len(value):
+            raise Refused(Status.BAD_OFFSET, f"offset {offset} is past the value's "
+                                             f"{len(value)} bytes")
+        return hm.SPAN.pack(offset, len(value)) + value[offset:offset + hm.CHUNK]
+
+    def set_param(self, body: bytes) -> bytes:
+        hm.need(body, hm.PARAM.size + hm.SPAN.size, "SET_PARAM")
+        address = hm.PARAM.unpack_from(body)
+        offset, total = hm.SPAN.unpack_from(body, hm.PARAM.size)
+        chunk = body[hm.PARAM.size + hm.SPAN.size:]
+        if total > MAX_VALUE:
+            raise Refused(Status.TOO_LARGE, f"a value of {total} bytes is more than this "
+                                            f"arbitrator moves ({MAX_VALUE})")
+        if offset == 0:
+            self._setting = (address, total, bytearray())
+        setting = self._setting
+        if setting is None or setting[0] != address or setting[1] != total:
+            raise Refused(Status.NO_TRANSFER, "start the value at offset 0")
+        if offset != len(setting[2]):
+            raise Refused(Status.BAD_OFFSET, f"expected offset {len(setting[2])}, not {offset}")
+        if offset + len(chunk) > total:
+            raise Refused(Status.BAD_OFFSET, f"{offset + len(chunk)} bytes is past the value's "
+                                             f"{total}")
+        setting[2].extend(chunk)
+        if len(setting[2]) < total:
+            return struct.pack("<HB", len(setting[2]), 0)
+        self._setting = None
+        key = DeviceKey(*address[:3])
+        self._device(key, present=True)
+        self.arb.set_parameter(key, address[4], address[3], bytes(setting[2]))
+        return struct.pack("<HB", total, 1)
+
+    # -- links and devices --------------------
+    def add_link(self, body: bytes) -> bytes:
+        self._exact(body, 2 * hm.REF.size, "ADD_LINK")
+        self.arb.add_link(hm.unpack_link(body))
+        return b""
+
+    def remove_link(self, body: bytes) -> bytes:
+        self._exact(body, 2 * hm.REF.size, "REMOVE_LINK")
+        self.arb.remove_link(hm.unpack_link(body))
+        return b""
+
+    def suspend(self, body: bytes) -> bytes:
+        self._exact(body, hm.KEY.size + 2, "SUSPEND")
+        key = hm.unpack_key(body)
+        self._device(key, present=True)
+        self.arb.suspend(key, int.from_bytes(body[6:8], "little"))
+        return b""
+
+    def release(self, body: bytes) -> bytes:
+        self._exact(body, hm.KEY.size, "RELEASE")
+        key = hm.unpack_key(body)
+        self._device(key, present=True)
+        self.arb.release(key)
+        return b""
+
+    def reset_device(self, body: bytes) -> bytes:
+        self._exact(body, hm.KEY.size, "RESET_DEVICE")
+        key = hm.unpack_key(body)
+        self._device(key, present=True)
+        self.arb.reset_device(key)
+        return b""
+
+    # -- the stored configuration --------------------
+    def _stored(self) -> bytes:
+        from pdcp_studio.storage import config_codec
+
+        raw = getattr(self.arb.memory, "read_bytes", None)
+        data = raw() if raw is not None else None
+        return bytes(data) if data is not None else config_codec.dumps(self.arb.read_memory())
+
+    def config_info(self, body: bytes) -> bytes:
+        self._exact(body, 0, "CONFIG_INFO")
+        data = self._stored()
+        return hm.CONFIG_INFO.pack(len(data), crc16_ccitt_false(data))
+
+    def config_read(self, body: bytes) -> bytes:
+        self._exact(body, 2, "CONFIG_READ")
+        (offset,) = struct.unpack("<H", body)
+        data = self._stored()
+        if offset > len(data):
+            raise Refused(Status.BAD_OFFSET, f"offset {offset} is past the stored "
+                                             f"configuration's {len(data)} bytes")
+        return (hm.CONFIG_INFO.pack(len(data), crc16_ccitt_false(data))
+                + data[offset:offset + hm.CHUNK])
+
+    def config_begin(self, body: bytes) -> bytes:
+        self._exact(body, hm.CONFIG_INFO.size, "CONFIG_WRITE_BEGIN")
+        total, crc = hm.CONFIG_INFO.unpack(body)
+        if total > MAX_CONFIG:
+            self._staged = None
+            raise Refused(Status.TOO_LARGE, f"a configuration of {total} bytes does not fit "
+                                            f"the memory ({MAX_CONFIG})")
+        self._staged = (total, crc, bytearray())
+        return b""
+
+    def config_chunk(self, body: bytes) -> bytes:
+        hm.need(body, 2, "CONFIG_WRITE_CHUNK")
+        (offset,) = struct.unpack_from("<H", body)
+        if self._staged is None:
+            raise Refused(Status.NO_TRANSFER, "no configuration write is open (BEGIN first)")
+        total, _, data = self._staged
+        if offset > len(data):
+            raise Refused(Status.BAD_OFFSET, f"expected offset {len(data)}, not {offset}")
+        chunk = body[2:]
+        if offset + len(chunk) > total:
+            raise Refused(Status.BAD_OFFSET, f"{offset + len(chunk)} bytes is past the "
+                                             f"announced {total}")
+        data[offset:offset + len(chunk)] = chunk
+        return struct.pack("<H", len(data))
+
+    def config_commit(self, body: bytes) -> bytes:
+        from pdcp_studio.storage import config_codec
+
+        self._exact(body, 0, "CONFIG_WRITE_COMMIT")
+        staged, self._staged = self._staged, None
+        if staged is None:
+            raise Refused(Status.NO_TRANSFER, "no configuration write is open (BEGIN first)")
+        total, crc, data = staged
+        if len(data) != total:
+            raise Refused(Status.BAD_OFFSET, f"{len(data)} of {total} bytes received; nothing "
+                                             "stored")
+        if crc16_ccitt_false(data) != crc:
+            raise Refused(Status.CHECKSUM, f"CRC 0x{crc16_ccitt_false(data):04X} of the bytes "
+                                           f"received is not the announced 0x{crc:04X}; "
+                                           "nothing stored")
+        try:
+            collection = config_codec.loads(bytes(data))
+        except ConfigFormatError as err:
+            raise Refused(Status.BAD_CONFIGURATION, f"{err}; nothing stored") from err
+        try:
+            self.arb.write_memory(collection)
+        except (OSError, PdcpError) as err:
+            raise Refused(Status.STORAGE, f"the memory write failed: {err}") from err
+        stored = self._stored()
+        return hm.CONFIG_INFO.pack(len(stored), crc16_ccitt_false(stored))
+
+    # -- transactions (the motion interlock, reference §5) ----------------------------------------
+    def txn_begin(self, body: bytes) -> bytes:
+        hm.need(body, 1, "TXN_BEGIN")
+        count = body[0]
+        self._exact(body, 1 + count * hm.KEY.size, "TXN_BEGIN")
+        if self._held:
+            raise Refused(Status.BUSY, "a transaction is already open (TXN_END first)")
+        keys = [hm.unpack_key(body, 1 + i * hm.KEY.size) for i in range(count)]
+        held: list[DeviceKey] = []
+        for key in keys:
+            try:
+                self._device(key, present=True)
+                self.arb.suspend(key, TXN_HOLD_MS)
+            except (Refused, PdcpError) as err:
+                for done in held:
+                    self._quiet_release(done)
+                raise Refused(Status.INTERLOCK, f"device {key} did not suspend ({err}); "
+                                                "nothing was changed") from err
+            held.append(key)
+        self._held = held
+        self._txn_stop = threading.Event()
+        self._txn_thread = threading.Thread(target=self._renew, args=(self._txn_stop, held),
+                                            name="pdcp host link interlock", daemon=True)
+        self._txn_thread.start()
+        return bytes([len(held)])
+
+    def txn_end(self, body: bytes) -> bytes:
+        self._exact(body, 0, "TXN_END")
+        if not self._held:
+            raise Refused(Status.NO_TRANSFER, "no transaction is open")
+        return bytes([self._end_transaction()])
+
+    def _renew(self, stop: threading.Event, held: list[DeviceKey]) -> None:
+        while not stop.wait(TXN_RENEW_S):
+            for key in held:
+                try:
+                    self.arb.suspend(key, TXN_HOLD_MS)
+                except PdcpError as err:
+                    log.warning("host link: renewing the interlock of %s failed: %s", key, err)
+
+    def _end_transaction(self) -> int:
+        held, self._held = self._held, []
+        self._txn_stop.set()
+        if self._txn_thread is not None and self._txn_thread is not threading.current_thread():
+            self._txn_thread.join(timeout=3.0)
+        self._txn_thread = None
+        for key in held:
+            self._quiet_release(key)
+        return len(held)
+
+    def _quiet_release(self, key: DeviceKey) -> None:
+        try:
+            self.arb.release(key)
+        except PdcpError as err:
+            log.warning("host link: releasing %s failed (its hold ends by itself within %d ms): "
+                        "%s", key, TXN_HOLD_MS, err)
+
+    # -- policy and monitor --------------------
+    def get_policy(self, body: bytes) -> bytes:
+        self._exact(body, 0, "GET_POLICY")
+        return bytes([1 if self._autoconfigure() else 0])
+
+    def _autoconfigure(self) -> bool:
+        read = getattr(self.arb, "read_policy", None)
+        if read is not None:
+            return bool(read().autoconfigure)
+        return bool(getattr(self.arb, "profile_layer", True))
+
+    def set_policy(self, body: bytes) -> bytes:
+        self._exact(body, 1, "SET_POLICY")
+        write = getattr(self.arb, "write_policy", None)
+        if write is None:
+            raise Refused(Status.UNSUPPORTED, "this arbitrator's policy cannot be changed "
+                                              "over the host link")
+        from pdcp_studio.bus.transaction import Policy  # type: ignore[import-not-found]
+
+        write(Policy(autoconfigure=bool(body[0] & 1)))
+        return bytes([1 if self._autoconfigure() else 0])
+
+    def monitor(self, body: bytes) -> bytes:
+        self._exact(body, 2, "MONITOR")
+        flags, period = body[0], max(body[1], 1)
+        self.server.monitor.configure(bool(flags & 1), bool(flags & 2), period / 10.0,
+                                      time.monotonic())
+        return hm.MONITOR_REPLY.pack(self.server.monitor.budget_bytes_s)
+
+    # -- events --------------------
+    def event_message(self, event: object) -> bytes | None:
+        """The EVENT message for an arbitrator event (None for what the link does not push)."""
+        if isinstance(event, ev.DeviceJoined):
+            return (bytes([hm.Event.DEVICE_JOINED]) + hm.pack_key(event.key)
+                    + bytes([self.arb.node_id_of(event.key) or 0]))
+        if isinstance(event, ev.DeviceLeft):
+            return bytes([hm.Event.DEVICE_LEFT]) + hm.pack_key(event.key)
+        if isinstance(event, ev.LinkMade | ev.LinkRemoved):
+            code = hm.Event.LINK_MADE if isinstance(event, ev.LinkMade) else hm.Event.LINK_REMOVED
+            return bytes([code]) + hm.pack_link_event(
+                event.link, self.arb.channel_node_id(event.link.output))
+        if isinstance(event, ev.BusError):
+            if event.kind == "other_arbitrator":
+                return bytes([hm.Event.OTHER_ARBITRATOR]) + hm.short_text(event.message, 200)
+            if event.kind in ("bad_frame", "error_frame"):
+                return None  # the monitor counts these; too chatty for the line
+            kind = BUS_ERROR_KINDS.index(event.kind) if event.kind in BUS_ERROR_KINDS else 0
+            return bytes([hm.Event.BUS_ERROR, kind]) + hm.short_text(event.message, 200)
+        return None
