@@ -215,17 +215,20 @@ class HostLinkSession:
 
     # -- reading the tables --------------------
     def _fetch_device(self, key: DeviceKey) -> Device:
-        device, count = hm.unpack_device_info(key, self.request(Req.GET_DEVICE, hm.pack_key(key)))
-        start = 0
-        while count:
-            channels, nxt = hm.unpack_channel_page(
-                self.request(Req.GET_CHANNELS, hm.pack_key(key) + bytes([start])))
+        """GET_DEVICE (its parameters and the first channels), GET_CHANNELS for the rest."""
+        body = self.request(Req.GET_DEVICE, hm.pack_key(key))
+        device, count, used = hm.unpack_device_info(key, body)
+        channels, nxt = hm.unpack_channel_page(body[used:])
+        while True:
             for ch in channels:
                 device.add_channel(ch)
-            if not nxt or nxt <= start:
-                break
+            if len(device.channels) >= count or (channels and not nxt):
+                return device
             start = nxt
-        return device
+            channels, nxt = hm.unpack_channel_page(
+                self.request(Req.GET_CHANNELS, hm.pack_key(key) + bytes([start])))
+            if not channels:
+                return device
 
     def _fetch_rows(self) -> list[hm.DeviceRow]:
         rows: list[hm.DeviceRow] = []

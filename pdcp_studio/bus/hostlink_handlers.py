@@ -187,8 +187,13 @@ class Handlers:
         return struct.pack("<HH", len(devices), start) + rows
 
     def get_device(self, body: bytes) -> bytes:
+        """The device's own parameters, then as much of its channel table as fits."""
         self._exact(body, hm.KEY.size, "GET_DEVICE")
-        return hm.pack_device_info(self._device(hm.unpack_key(body)))
+        device = self._device(hm.unpack_key(body))
+        info = hm.pack_device_info(device)
+        channels = [device.channels[i] for i in sorted(device.channels)]
+        page, _ = hm.pack_channel_page(channels, 0, room=hm.MAX_BODY - 1 - len(info))
+        return info + page
 
     def get_channels(self, body: bytes) -> bytes:
         self._exact(body, hm.KEY.size + 1, "GET_CHANNELS")

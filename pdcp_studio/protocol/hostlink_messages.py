@@ -215,7 +215,7 @@ def unpack_device_rows(body: bytes) -> list[DeviceRow]:
 
 
 def pack_device_info(device: Device) -> bytes:
-    desc = short_text(device.descriptor, MAX_BODY - 1 - DEVICE_INFO.size)
+    desc = short_text(device.descriptor, MAX_BODY - 2 - DEVICE_INFO.size)
     return DEVICE_INFO.pack(
         device.node_id or 0, 1 if device.present else 0, device.fw_version, device.hw_version,
         device.device_type, device.device_profile, device.beacon_interval, device.ack_timeout,
@@ -223,8 +223,8 @@ def pack_device_info(device: Device) -> bytes:
         len(desc)) + desc
 
 
-def unpack_device_info(key: DeviceKey, body: bytes) -> tuple[Device, int]:
-    """The device (no channels yet) and how many channels it has."""
+def unpack_device_info(key: DeviceKey, body: bytes) -> tuple[Device, int, int]:
+    """The device (no channels yet), how many channels it has, and the bytes read."""
     need(body, DEVICE_INFO.size, "device info")
     (node, flags, fw, hw, dtype, dprofile, beacon, ack, bind, ean_lo, ean_hi, count,
      length) = DEVICE_INFO.unpack_from(body)
@@ -234,7 +234,7 @@ def unpack_device_info(key: DeviceKey, body: bytes) -> tuple[Device, int]:
                     node_id=node or None, descriptor=desc, fw_version=fw, hw_version=hw,
                     device_type=dtype, device_profile=dprofile, beacon_interval=beacon,
                     ack_timeout=ack, bind_timeout=bind, ean_low=ean_lo, ean_high=ean_hi)
-    return device, count
+    return device, count, DEVICE_INFO.size + length
 
 
 # -- channel tables --------------------
@@ -280,20 +280,20 @@ def unpack_channel(body: bytes, offset: int) -> tuple[Channel, int]:
     return ch, offset + 1 + n
 
 
-def pack_channel_page(channels: list[Channel], start: int) -> tuple[bytes, int]:
-    """Records of ``channels`` from list position ``start`` that fit one reply.
-
-    Returns the body (next position u8, 0 when done, then records) and the next position.
-    """
+def pack_channel_page(channels: list[Channel], start: int,
+                      room: int = MAX_BODY - 1) -> tuple[bytes, int]:
+    """Records of ``channels`` from list position ``start`` that fit ``room`` bytes (a reply
+    less its status byte). Returns the page (next position u8, 0 when done, then records)
+    and the next position; an empty page when not even one record fits (GET_DEVICE)."""
     records = b""
     pos = start
     while pos < len(channels):
         record = pack_channel(channels[pos])
-        if 1 + len(records) + len(record) > MAX_BODY - 1:  # status byte
+        if 1 + len(records) + len(record) > room:
             break
         records += record
         pos += 1
-    if pos == start and pos < len(channels):
+    if pos == start and pos < len(channels) and room >= MAX_BODY - 1:
         raise MessageError(f"channel {channels[pos].index}'s record does not fit a frame")
     nxt = pos if pos < len(channels) else 0
     return bytes([nxt]) + records, nxt
