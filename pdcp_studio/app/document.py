@@ -57,11 +57,10 @@ DEVICE_FIELDS = frozenset({
 
 
 def user_profiles_dir() -> Path | None:
-    """Where user and vendor profile trees live (AppDataLocation/profiles), if known."""
-    from PySide6.QtCore import QStandardPaths
+    """Where user and vendor profile trees live (the user's data folder, ``profiles``)."""
+    from pdcp_studio.paths import user_profiles_dir as folder
 
-    base = QStandardPaths.writableLocation(QStandardPaths.StandardLocation.AppDataLocation)
-    return Path(base) / "profiles" if base else None
+    return folder()
 
 
 def load_profile_tree(extra: Iterable[Path] = (), *, user_dir: bool = True) -> ProfileTree:

@@ -34,7 +34,8 @@ Decisions beyond the reference:
 This module keeps the class, its threads and its public API; the parts are mixins next to it:
 ``arb_binding`` (bind requests, node IDs), ``arb_presence`` (beacons, departures, twins, foreign
 nodes), ``arb_setup`` (set-up after binding), ``arb_links`` (links on the wire), ``arb_profile``
-(start-up, duty cycle, plans) and ``arb_common`` (constants, node state, wire formats).
+(start-up, duty cycle, plans), ``arb_transaction`` (the change road: interlock, write, verify,
+restore, release; the policy) and ``arb_common`` (constants, node state, wire formats).
 """
 
 
@@ -81,6 +82,7 @@ from pdcp_studio.bus.arb_links import LinksMixin
 from pdcp_studio.bus.arb_presence import PresenceMixin
 from pdcp_studio.bus.arb_profile import ProfileMixin
 from pdcp_studio.bus.arb_setup import SetupMixin
+from pdcp_studio.bus.arb_transaction import TransactionMixin
 from pdcp_studio.bus.connection import Connection
 from pdcp_studio.bus.memory import MemoryStore
 from pdcp_studio.bus.node_ids import NodeIdPool
@@ -136,7 +138,8 @@ __all__ = [
 ]
 
 
-class Arbitrator(BindingMixin, PresenceMixin, SetupMixin, LinksMixin, ProfileMixin):
+class Arbitrator(BindingMixin, PresenceMixin, SetupMixin, LinksMixin, ProfileMixin,
+                 TransactionMixin):
     """A headless PDCP bus arbitrator on ``bus`` (which it owns and shuts down on close)."""
 
     def __init__(self, bus: can.BusABC, *, memory: str | Path | MemoryStore | None = None,
@@ -146,7 +149,7 @@ class Arbitrator(BindingMixin, PresenceMixin, SetupMixin, LinksMixin, ProfileMix
                  startup_max_wait_s: float = STARTUP_MAX_WAIT_S,
                  node_ids: tuple[int, int] = (NODE_ID_MIN, NODE_ID_MAX),
                  frame_events: bool = False, channel_events: bool = True,
-                 reset_on_start: bool = True) -> None:
+                 reset_on_start: bool = True, autoconfigure: bool | None = None) -> None:
         self.name = name
         self.profile_layer = profile_layer
         self.retries = retries
@@ -156,6 +159,9 @@ class Arbitrator(BindingMixin, PresenceMixin, SetupMixin, LinksMixin, ProfileMix
         self.frame_events = frame_events
         self.channel_events = channel_events
         self.memory = memory if isinstance(memory, MemoryStore) else MemoryStore(memory)
+        if autoconfigure is not None and self.memory.read_policy()["autoconfigure"] != \
+                autoconfigure:  # ``--no-autoconfigure``: the flag sets the stored policy
+            self.memory.write_policy({"autoconfigure": autoconfigure})
         self.applied_plans: list[Plan] = []
         self.bad_frames = 0
         self.error_frames = 0

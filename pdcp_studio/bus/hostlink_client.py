@@ -28,6 +28,9 @@ from pdcp_studio.bus.hostlink_conn import (
     HostLinkError,
     VersionRefused,
 )
+from pdcp_studio.bus.session_api import TransactingMixin
+from pdcp_studio.bus.transaction import Change, Policy, TransactionResult
+from pdcp_studio.bus.transaction import Status as TxnStatus
 from pdcp_studio.errors import PdcpError, TransportError
 from pdcp_studio.model.configuration import ConfigCollection
 from pdcp_studio.model.refs import ChannelRef, DeviceKey
@@ -43,6 +46,8 @@ __all__ = ["ChannelCounts", "HostLinkError", "HostLinkSession", "VersionRefused"
 
 #: How long the arbitrator's system must stay the same to count as settled.
 SETTLE_POLL_S = 0.1
+#: Seconds TRANSACT_RUN may take: interlock, writes, read-back and perhaps a restore.
+TRANSACT_TIMEOUT_S = 30.0
 #: Reads of the stored configuration restarted when it changes under them.
 CONFIG_READ_ATTEMPTS = 3
 BUS_ERROR_KINDS = ("", "bad_frame", "error_frame", "duplicate_device", "node_ids_exhausted",
@@ -79,8 +84,9 @@ class _Cache:
             self.config = None
 
 
-class HostLinkSession:
-    """A live arbitrator reached over a serial line. Close it (or use ``with``)."""
+class HostLinkSession(TransactingMixin):
+    """A live arbitrator reached over a serial line; a :class:`BusSession` (bus/session_api.py).
+    Close it (or use ``with``)."""
 
     def __init__(self, port: Any, *, url: str = "", baudrate: int = 128_000,
                  reply_timeout: float | None = None, monitor: bool = True,
@@ -177,6 +183,19 @@ class HostLinkSession:
                 hm.need(body, 1, "BUS_ERROR")
                 kind = BUS_ERROR_KINDS[body[0]] if body[0] < len(BUS_ERROR_KINDS) else ""
                 self._emit(ev.BusError(hm.text(body[1:]), kind))
+            elif code == Event.TRANSACTION_DONE:
+                hm.need(body, 1, "TRANSACTION_DONE")
+                statuses = list(TxnStatus)
+                status = statuses[body[0]] if body[0] < len(statuses) else TxnStatus.FAILED
+                cache.config = None  # links come as their own events
+                self._emit(ev.TransactionDone(TransactionResult(status, hm.text(body[1:]))))
+            elif code == Event.TERMINALS_UNCONNECTED:
+                hm.need(body, 1, "TERMINALS_UNCONNECTED")
+                n = body[0]
+                hm.need(body, 1 + n * hm.REF.size, "TERMINALS_UNCONNECTED")
+                refs = tuple(ChannelRef(*hm.REF.unpack_from(body, 1 + i * hm.REF.size))
+                             for i in range(n))
+                self._emit(ev.TerminalsUnconnected(refs, hm.text(body[1 + n * hm.REF.size:])))
             elif code == Event.EVENTS_LOST:
                 cache.invalidate()
             elif code == Event.FRAMES:
@@ -401,9 +420,6 @@ class HostLinkSession:
     def reset_device(self, key: DeviceKey) -> None:
         self.request(Req.RESET_DEVICE, hm.pack_key(DeviceKey(*key)))
 
-    def read_autoconfigure(self) -> bool:
-        return bool(self.request(Req.GET_POLICY)[0] & 1)
-
     # -- the stored configuration --------------------
     def read_configuration_bytes(self) -> bytes:
         """The stored configuration's bytes (from the cache when its length and CRC match)."""
@@ -454,27 +470,69 @@ class HostLinkSession:
         self._cache.config = None
         self.request(Req.CONFIG_WRITE_COMMIT)
 
-    def write_configuration(self, configuration: ConfigCollection) -> ConfigCollection:
-        """Write, read back and compare; ConfigVerifyError says what differs."""
-        from pdcp_studio.bus.session import ConfigVerifyError, describe_config_difference
-        from pdcp_studio.storage import config_codec
+    # -- the change road ----------------------------------------------------------------
+    def carry_out(self, change: Change, progress: Callable[[int, int, str], None] | None = None,
+                  cancel: threading.Event | None = None) -> TransactionResult:
+        """The arbitrator carries ``change`` out as one transaction (interlock, write, read
+        back, restore on a mismatch, release): staged in chunks with a CRC, then run."""
+        from pdcp_studio.bus.hostlink_change import decode_result, encode_change
 
-        data = config_codec.dumps(configuration)
-        self.write_configuration_bytes(data)
-        back = self._read_config_fresh()
-        if back != data:
-            read = config_codec.loads(back) if back else ConfigCollection()
-            raise ConfigVerifyError(
-                f"{self.url}: the stored configuration does not verify after the write: "
-                f"{describe_config_difference(configuration, read)}")
-        return config_codec.loads(back)
+        if cancel is not None and cancel.is_set():
+            return TransactionResult(TxnStatus.DECLINED, change.action, "confirm", "cancelled")
+        data = encode_change(change)
+        chunks = range(0, len(data), hm.CHUNK)
+        try:
+            self.request(Req.TRANSACT_BEGIN,
+                         hm.CONFIG_INFO.pack(len(data), crc16_ccitt_false(data)))
+            for n, offset in enumerate(chunks):
+                if progress is not None:
+                    progress(n, len(chunks) + 1, f"{change.action}: sending the change")
+                self.request(Req.TRANSACT_CHUNK,
+                             struct.pack("<H", offset) + data[offset:offset + hm.CHUNK])
+            if progress is not None:
+                progress(len(chunks), len(chunks) + 1, f"{change.action}: the arbitrator "
+                                                       "carries it out")
+            length, crc = hm.CONFIG_INFO.unpack(self.request(Req.TRANSACT_RUN,
+                                                             timeout=TRANSACT_TIMEOUT_S))
+        except HostLinkError as err:
+            return TransactionResult(TxnStatus.FAILED, change.action, "write",
+                                     f"the arbitrator refused the change: {err}")
+        finally:
+            self._changed_by(change)
+        result_bytes = self._read_blob(Req.RESULT_READ, length, crc)
+        result = decode_result(result_bytes)
+        if progress is not None:
+            progress(1, 1, result.summary())
+        return result
 
-    def save_configuration(self) -> ConfigCollection:
-        """Store the current links as the arbitrator's configuration (verified)."""
-        from pdcp_studio.engine import configuration_from_system
+    def _changed_by(self, change: Change) -> None:
+        with self._cache.lock:
+            self._cache.config = None
+            self._cache.links_stale = True
+            for action in change.links:
+                self._cache.stale.update((action.link.output.device, action.link.input.device))
+            self._cache.stale.update(p.device for p in change.parameters)
 
-        return self.write_configuration(ConfigCollection([configuration_from_system(
-            self.system())]))
+    def _read_blob(self, code: Req, length: int, crc: int) -> bytes:
+        data = bytearray()
+        while len(data) < length:
+            body = self.request(code, struct.pack("<H", len(data)))
+            hm.need(body, hm.CONFIG_INFO.size, f"{code.name} reply")
+            if hm.CONFIG_INFO.unpack_from(body) != (length, crc):
+                raise TransportError(f"{self.url}: the arbitrator's {code.name} changed while "
+                                     "it was read")
+            chunk = body[hm.CONFIG_INFO.size:]
+            if not chunk:
+                break
+            data += chunk
+        if len(data) != length or crc16_ccitt_false(data) != crc:
+            raise TransportError(f"{self.url}: {code.name} gave {len(data)} bytes that do not "
+                                 f"match the announced {length} and CRC 0x{crc:04X}")
+        return bytes(data)
+
+    def read_policy(self) -> Policy:
+        """The arbitrator's profile-layer policy (GET_POLICY)."""
+        return Policy(autoconfigure=bool(self.request(Req.GET_POLICY)[0] & 1))
 
     # -- plans --------------------
     def preview(self, mode: str, config: ConfigCollection | None = None) -> Any:
@@ -484,22 +542,6 @@ class HostLinkSession:
         if config is not None:
             return plan_for(mode, self.system(), config)
         return plan_on_bus(mode, self.system(), self.read_configuration())
-
-    def apply_plan(self, plan: Any, progress: Callable[[int, int, str], None] | None = None,
-                   cancel: threading.Event | None = None) -> None:
-        """Carry out a previewed plan, action by action, in its order."""
-        actions = list(plan.actions)
-        for n, action in enumerate(actions, 1):
-            if cancel is not None and cancel.is_set():
-                raise PdcpError(f"plan cancelled after {n - 1} of {len(actions)} actions")
-            if progress:
-                progress(n - 1, len(actions), f"{action.op.value} {action.link}")
-            if action.op.value == "add":
-                self.add_link(action.link)
-            else:
-                self.remove_link(action.link)
-        if progress:
-            progress(len(actions), len(actions), "Plan applied")
 
 
 #: Options of other session kinds (memory, scan window, …) that mean nothing over a host link.

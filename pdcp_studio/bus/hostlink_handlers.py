@@ -14,7 +14,6 @@ from __future__ import annotations
 
 import logging
 import struct
-import threading
 import time
 from typing import Any
 
@@ -39,12 +38,11 @@ log = logging.getLogger(__name__)
 MAX_VALUE = 1024
 #: Largest stored configuration accepted (the memory's slot).
 MAX_CONFIG = 8192
-#: Suspend Device's TimeValue while a transaction holds devices (reference §5), and renewal.
-TXN_HOLD_MS = 2000
-TXN_RENEW_S = 0.7
+#: Largest change accepted by TRANSACT (links, parameters, a configuration).
+MAX_CHANGE = 16384
 BUS_ERROR_KINDS = ("", "bad_frame", "error_frame", "duplicate_device", "node_ids_exhausted",
                    "setup", "plan", "transport", "other_arbitrator")
-CAPABILITIES = hm.CAP_MONITOR | hm.CAP_TRANSACTIONS | hm.CAP_PARAM_BULK
+CAPABILITIES = hm.CAP_MONITOR | hm.CAP_TRANSACTIONS | hm.CAP_POLICY | hm.CAP_PARAM_BULK
 
 
 class Refused(Exception):
@@ -83,9 +81,8 @@ class Handlers:
         self._value: tuple[tuple[int, ...], bytes] | None = None  # GET_PARAM in transfer
         self._setting: tuple[tuple[int, ...], int, bytearray] | None = None  # SET_PARAM
         self._staged: tuple[int, int, bytearray] | None = None  # total, crc, bytes
-        self._held: list[DeviceKey] = []
-        self._txn_stop = threading.Event()
-        self._txn_thread: threading.Thread | None = None
+        self._change: tuple[int, int, bytearray] | None = None  # TRANSACT being sent
+        self._result: bytes | None = None  # the last transaction's result
         self._table = {
             Req.HELLO: self.hello, Req.STATUS: self.status,
             Req.LIST_DEVICES: self.list_devices, Req.GET_DEVICE: self.get_device,
@@ -97,9 +94,9 @@ class Handlers:
             Req.CONFIG_READ: self.config_read, Req.CONFIG_WRITE_BEGIN: self.config_begin,
             Req.CONFIG_WRITE_CHUNK: self.config_chunk,
             Req.CONFIG_WRITE_COMMIT: self.config_commit,
-            Req.TXN_BEGIN: self.txn_begin, Req.TXN_END: self.txn_end,
-            Req.GET_POLICY: self.get_policy, Req.SET_POLICY: self.set_policy,
-            Req.MONITOR: self.monitor,
+            Req.TRANSACT_BEGIN: self.transact_begin, Req.TRANSACT_CHUNK: self.transact_chunk,
+            Req.TRANSACT_RUN: self.transact_run, Req.RESULT_READ: self.result_read,
+            Req.GET_POLICY: self.get_policy, Req.MONITOR: self.monitor,
         }
 
     # -- dispatch --------------------
@@ -137,11 +134,10 @@ class Handlers:
         return bytes([hm.reply_code(code), status]) + hm.short_text(reason, 200)
 
     def forget_host(self) -> None:
+        """The PC is gone: what it was sending is dropped (a transaction already running
+        finishes on its own — the arbitrator restores and releases by itself)."""
         self.greeted = False
-        self._end_transaction()
-
-    def close(self) -> None:
-        self._end_transaction()
+        self._staged = self._change = self._setting = None
 
     # -- look-ups -------------------------------------------------------------------------------
     def _device(self, key: DeviceKey, present: bool = False) -> Any:
@@ -166,7 +162,6 @@ class Handlers:
                           f"this arbitrator speaks host-link version {hm.VERSION}, "
                           f"not version {body[0]}")
         self.greeted = True
-        self._end_transaction()
         name = hm.short_text(f"pdcp-studio arbitrator {__version__}", 64)
         return hm.HELLO.pack(hm.VERSION, CAPABILITIES, MAX_PAYLOAD) + name
 
@@ -325,36 +320,16 @@ class Handlers:
 
     def config_chunk(self, body: bytes) -> bytes:
         hm.need(body, 2, "CONFIG_WRITE_CHUNK")
-        (offset,) = struct.unpack_from("<H", body)
-        if self._staged is None:
-            raise Refused(Status.NO_TRANSFER, "no configuration write is open (BEGIN first)")
-        total, _, data = self._staged
-        if offset > len(data):
-            raise Refused(Status.BAD_OFFSET, f"expected offset {len(data)}, not {offset}")
-        chunk = body[2:]
-        if offset + len(chunk) > total:
-            raise Refused(Status.BAD_OFFSET, f"{offset + len(chunk)} bytes is past the "
-                                             f"announced {total}")
-        data[offset:offset + len(chunk)] = chunk
-        return struct.pack("<H", len(data))
+        return self._chunk(self._staged, body, "configuration")
 
     def config_commit(self, body: bytes) -> bytes:
         from pdcp_studio.storage import config_codec
 
         self._exact(body, 0, "CONFIG_WRITE_COMMIT")
         staged, self._staged = self._staged, None
-        if staged is None:
-            raise Refused(Status.NO_TRANSFER, "no configuration write is open (BEGIN first)")
-        total, crc, data = staged
-        if len(data) != total:
-            raise Refused(Status.BAD_OFFSET, f"{len(data)} of {total} bytes received; nothing "
-                                             "stored")
-        if crc16_ccitt_false(data) != crc:
-            raise Refused(Status.CHECKSUM, f"CRC 0x{crc16_ccitt_false(data):04X} of the bytes "
-                                           f"received is not the announced 0x{crc:04X}; "
-                                           "nothing stored")
+        data = self._whole(staged, "configuration")
         try:
-            collection = config_codec.loads(bytes(data))
+            collection = config_codec.loads(data)
         except ConfigFormatError as err:
             raise Refused(Status.BAD_CONFIGURATION, f"{err}; nothing stored") from err
         try:
@@ -364,62 +339,74 @@ class Handlers:
         stored = self._stored()
         return hm.CONFIG_INFO.pack(len(stored), crc16_ccitt_false(stored))
 
-    # -- transactions (the motion interlock, reference §5) ----------------------------------------
-    def txn_begin(self, body: bytes) -> bytes:
-        hm.need(body, 1, "TXN_BEGIN")
-        count = body[0]
-        self._exact(body, 1 + count * hm.KEY.size, "TXN_BEGIN")
-        if self._held:
-            raise Refused(Status.BUSY, "a transaction is already open (TXN_END first)")
-        keys = [hm.unpack_key(body, 1 + i * hm.KEY.size) for i in range(count)]
-        held: list[DeviceKey] = []
-        for key in keys:
-            try:
-                self._device(key, present=True)
-                self.arb.suspend(key, TXN_HOLD_MS)
-            except (Refused, PdcpError) as err:
-                for done in held:
-                    self._quiet_release(done)
-                raise Refused(Status.INTERLOCK, f"device {key} did not suspend ({err}); "
-                                                "nothing was changed") from err
-            held.append(key)
-        self._held = held
-        self._txn_stop = threading.Event()
-        self._txn_thread = threading.Thread(target=self._renew, args=(self._txn_stop, held),
-                                            name="pdcp host link interlock", daemon=True)
-        self._txn_thread.start()
-        return bytes([len(held)])
+    # -- transactions (the change road, reference §5) ------------------------------------
+    def transact_begin(self, body: bytes) -> bytes:
+        self._exact(body, hm.CONFIG_INFO.size, "TRANSACT_BEGIN")
+        total, crc = hm.CONFIG_INFO.unpack(body)
+        if total > MAX_CHANGE:
+            self._change = None
+            raise Refused(Status.TOO_LARGE, f"a change of {total} bytes is more than this "
+                                            f"arbitrator takes ({MAX_CHANGE})")
+        self._change = (total, crc, bytearray())
+        return b""
 
-    def txn_end(self, body: bytes) -> bytes:
-        self._exact(body, 0, "TXN_END")
-        if not self._held:
-            raise Refused(Status.NO_TRANSFER, "no transaction is open")
-        return bytes([self._end_transaction()])
+    def transact_chunk(self, body: bytes) -> bytes:
+        hm.need(body, 2, "TRANSACT_CHUNK")
+        return self._chunk(self._change, body, "change")
 
-    def _renew(self, stop: threading.Event, held: list[DeviceKey]) -> None:
-        while not stop.wait(TXN_RENEW_S):
-            for key in held:
-                try:
-                    self.arb.suspend(key, TXN_HOLD_MS)
-                except PdcpError as err:
-                    log.warning("host link: renewing the interlock of %s failed: %s", key, err)
+    def transact_run(self, body: bytes) -> bytes:
+        """Carry the staged change out as one transaction; the reply is the result's size and
+        CRC (RESULT_READ reads it)."""
+        from pdcp_studio.bus.hostlink_change import decode_change, encode_result
 
-    def _end_transaction(self) -> int:
-        held, self._held = self._held, []
-        self._txn_stop.set()
-        if self._txn_thread is not None and self._txn_thread is not threading.current_thread():
-            self._txn_thread.join(timeout=3.0)
-        self._txn_thread = None
-        for key in held:
-            self._quiet_release(key)
-        return len(held)
+        self._exact(body, 0, "TRANSACT_RUN")
+        staged, self._change = self._change, None
+        data = self._whole(staged, "change")
+        change = decode_change(data)
+        result = encode_result(self.arb.transact(change))
+        self._result = result
+        return hm.CONFIG_INFO.pack(len(result), crc16_ccitt_false(result))
 
-    def _quiet_release(self, key: DeviceKey) -> None:
-        try:
-            self.arb.release(key)
-        except PdcpError as err:
-            log.warning("host link: releasing %s failed (its hold ends by itself within %d ms): "
-                        "%s", key, TXN_HOLD_MS, err)
+    def result_read(self, body: bytes) -> bytes:
+        self._exact(body, 2, "RESULT_READ")
+        (offset,) = struct.unpack("<H", body)
+        if self._result is None:
+            raise Refused(Status.NO_TRANSFER, "no transaction result (TRANSACT_RUN first)")
+        data = self._result
+        if offset > len(data):
+            raise Refused(Status.BAD_OFFSET, f"offset {offset} is past the result's "
+                                             f"{len(data)} bytes")
+        return (hm.CONFIG_INFO.pack(len(data), crc16_ccitt_false(data))
+                + data[offset:offset + hm.CHUNK])
+
+    def _chunk(self, staged: tuple[int, int, bytearray] | None, body: bytes,
+               what: str) -> bytes:
+        (offset,) = struct.unpack_from("<H", body)
+        if staged is None:
+            raise Refused(Status.NO_TRANSFER, f"no {what} is being sent (BEGIN first)")
+        total, _, data = staged
+        if offset > len(data):
+            raise Refused(Status.BAD_OFFSET, f"expected offset {len(data)}, not {offset}")
+        chunk = body[2:]
+        if offset + len(chunk) > total:
+            raise Refused(Status.BAD_OFFSET, f"{offset + len(chunk)} bytes is past the "
+                                             f"announced {total}")
+        data[offset:offset + len(chunk)] = chunk
+        return struct.pack("<H", len(data))
+
+    @staticmethod
+    def _whole(staged: tuple[int, int, bytearray] | None, what: str) -> bytes:
+        if staged is None:
+            raise Refused(Status.NO_TRANSFER, f"no {what} is being sent (BEGIN first)")
+        total, crc, data = staged
+        if len(data) != total:
+            raise Refused(Status.BAD_OFFSET, f"{len(data)} of {total} bytes received; "
+                                             "nothing done")
+        if crc16_ccitt_false(data) != crc:
+            raise Refused(Status.CHECKSUM, f"CRC 0x{crc16_ccitt_false(data):04X} of the bytes "
+                                           f"received is not the announced 0x{crc:04X}; "
+                                           "nothing done")
+        return bytes(data)
 
     # -- policy and monitor --------------------
     def get_policy(self, body: bytes) -> bytes:
@@ -431,17 +418,6 @@ class Handlers:
         if read is not None:
             return bool(read().autoconfigure)
         return bool(getattr(self.arb, "profile_layer", True))
-
-    def set_policy(self, body: bytes) -> bytes:
-        self._exact(body, 1, "SET_POLICY")
-        write = getattr(self.arb, "write_policy", None)
-        if write is None:
-            raise Refused(Status.UNSUPPORTED, "this arbitrator's policy cannot be changed "
-                                              "over the host link")
-        from pdcp_studio.bus.transaction import Policy  # type: ignore[import-not-found]
-
-        write(Policy(autoconfigure=bool(body[0] & 1)))
-        return bytes([1 if self._autoconfigure() else 0])
 
     def monitor(self, body: bytes) -> bytes:
         self._exact(body, 2, "MONITOR")
@@ -469,4 +445,14 @@ class Handlers:
                 return None  # the monitor counts these; too chatty for the line
             kind = BUS_ERROR_KINDS.index(event.kind) if event.kind in BUS_ERROR_KINDS else 0
             return bytes([hm.Event.BUS_ERROR, kind]) + hm.short_text(event.message, 200)
+        if isinstance(event, ev.TransactionDone):
+            from pdcp_studio.bus.hostlink_change import encode_result
+
+            result = event.result
+            return (bytes([hm.Event.TRANSACTION_DONE]) + encode_result(result)[:1]
+                    + hm.short_text(result.action, 120))
+        if isinstance(event, ev.TerminalsUnconnected):
+            refs = event.refs[:24]
+            return (bytes([hm.Event.TERMINALS_UNCONNECTED, len(refs)])
+                    + b"".join(hm.REF.pack(*r) for r in refs) + hm.short_text(event.why, 60))
         return None

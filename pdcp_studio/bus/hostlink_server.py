@@ -90,7 +90,6 @@ class HostLinkServer:
         self._requests.put(None)
         self._line.join(timeout=2.0)
         self._worker.join(timeout=5.0)
-        self.handlers.close()
         try:
             self.port.close()
         except Exception:

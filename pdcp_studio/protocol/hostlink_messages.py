@@ -48,11 +48,12 @@ class Req(IntEnum):
     CONFIG_WRITE_BEGIN = 0x10
     CONFIG_WRITE_CHUNK = 0x11
     CONFIG_WRITE_COMMIT = 0x12
-    TXN_BEGIN = 0x13
-    TXN_END = 0x14
+    TRANSACT_BEGIN = 0x13
+    TRANSACT_CHUNK = 0x14
     GET_POLICY = 0x15
-    SET_POLICY = 0x16
+    TRANSACT_RUN = 0x16
     MONITOR = 0x17
+    RESULT_READ = 0x18
 
 
 class Event(IntEnum):
@@ -65,7 +66,8 @@ class Event(IntEnum):
     FRAMES = 0x47
     CHANNEL_COUNTS = 0x48
     EVENTS_LOST = 0x49
-    POLICY_CHANGED = 0x4A
+    TRANSACTION_DONE = 0x4A
+    TERMINALS_UNCONNECTED = 0x4B
 
 
 class Status(IntEnum):

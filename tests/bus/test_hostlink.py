@@ -11,7 +11,6 @@ import os
 import struct
 
 import pytest
-from hostlink_rig import arbitrator_rig, wait_for
 
 from pdcp_studio.bus import events as ev
 from pdcp_studio.bus.hostlink_client import HostLinkError, open_hostlink_session
@@ -28,6 +27,8 @@ from pdcp_studio.model.configuration import (
 from pdcp_studio.model.refs import ChannelRef, DeviceKey
 from pdcp_studio.model.system import Link
 from pdcp_studio.protocol.hostlink_messages import Req, Status
+
+from .hostlink_rig import arbitrator_rig, wait_for
 
 pytestmark = pytest.mark.skipif(not hasattr(os, "openpty"), reason="needs POSIX pseudo-terminals")
 
@@ -160,13 +161,34 @@ def test_a_commit_with_a_wrong_crc_stores_nothing(rig, session):
     assert err.value.status is Status.NO_TRANSFER
 
 
-def test_a_transaction_holds_the_devices_and_releases_them(rig, session):
-    body = bytes([2]) + struct.pack("<HHH", *EMG1) + struct.pack("<HHH", *CONTROL)
-    assert session.request(Req.TXN_BEGIN, body) == b"\x02"
+def test_a_change_runs_as_the_arbitrators_transaction_with_its_interlock(rig, session):
+    from pdcp_studio.bus.transaction import Change, LinkAction, ParameterWrite, Policy
+
+    arbitrator, _ = rig
+    interval = P.encode_value(P.device_parameter(P.DEVICE_BEACON_INTERVAL), 120)
+    change = Change("test change", [LinkAction("add", FLEXOR_LINK, "a reason, in words")],
+                    [ParameterWrite(EMG1, P.DEVICE_BEACON_INTERVAL, 0, interval)],
+                    policy=Policy(autoconfigure=True))
+    result = session.carry_out(change)
+    try:
+        assert result.status == "applied" and result.verified, result.summary()
+        assert FLEXOR_LINK in result.links_after and FLEXOR_LINK not in result.links_before
+        assert result.interlock  # the devices feeding the hand were held, then released
+        assert arbitrator.system().has_link(FLEXOR_LINK)
+        assert session.system().devices[EMG1].beacon_interval == 120
+        assert session.read_policy() == Policy(autoconfigure=True)
+    finally:
+        arbitrator.remove_link(FLEXOR_LINK)
+
+
+def test_a_staged_change_with_a_wrong_crc_runs_nothing(rig, session):
+    before = rig[0].system().links
+    session.request(Req.TRANSACT_BEGIN, struct.pack("<HH", 3, 0x0BAD))
+    session.request(Req.TRANSACT_CHUNK, b"\x00\x00abc")
     with pytest.raises(HostLinkError) as err:
-        session.request(Req.TXN_BEGIN, body)
-    assert err.value.status is Status.BUSY
-    assert session.request(Req.TXN_END) == b"\x02"
+        session.request(Req.TRANSACT_RUN)
+    assert err.value.status is Status.CHECKSUM
+    assert rig[0].system().links == before
 
 
 def test_a_plan_previewed_on_the_host_is_the_plan_applied(rig, session):
@@ -174,7 +196,8 @@ def test_a_plan_previewed_on_the_host_is_the_plan_applied(rig, session):
     before = arbitrator.system().links
     plan = session.preview("autoconfigure")
     try:
-        session.apply_plan(plan)
+        result = session.apply_plan(plan)
+        assert result.status == "applied" and result.verified, result.summary()
         assert set(arbitrator.system().links) == set(plan.final_links)
         assert set(session.system().links) == set(plan.final_links)
     finally:

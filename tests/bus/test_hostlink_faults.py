@@ -13,7 +13,6 @@ import time
 from pathlib import Path
 
 import pytest
-from hostlink_rig import arbitrator_rig, wait_for
 
 from pdcp_studio.bus import events as ev
 from pdcp_studio.bus.hostlink_client import HostLinkSession, VersionRefused
@@ -31,6 +30,8 @@ from pdcp_studio.model.system import Link
 from pdcp_studio.protocol import hostlink_messages as hm
 from pdcp_studio.protocol.hostlink import Frame, FrameReader, Kind
 from pdcp_studio.storage import config_codec
+
+from .hostlink_rig import arbitrator_rig, wait_for
 
 pytestmark = pytest.mark.skipif(not hasattr(os, "openpty"), reason="needs POSIX pseudo-terminals")
 
