@@ -128,6 +128,8 @@ class Document(QObject):
         #: The prosthesis as last seen (live only): what the project's edits are staged
         #: against. None offline.
         self.bus_system: System | None = None
+        #: Why a link was staged (a plan's reason, "linked by hand"): for the pending list.
+        self.link_reasons: dict[Link, str] = {}
         self._selection: Selection = None
         self._extra_dirty = False
         self._was_dirty = False
@@ -363,6 +365,8 @@ class Document(QObject):
         """Carry a plan's actions out on the system with the engine's one apply path
         (``Plan.apply``: links, the inputs' source fields, Data Transfer Enabled)."""
         plan.apply(self.system)
+        for a in plan.actions:
+            self.link_reasons[a.link] = a.reason
         if isinstance(self._selection, Link) and not self.system.has_link(self._selection):
             self.select(None)
         self.linksChanged.emit()
