@@ -14,7 +14,8 @@ from collections.abc import Callable
 from typing import TYPE_CHECKING, Any
 
 from pdcp_studio.bus import events as ev
-from pdcp_studio.errors import PdcpError, TransportError
+from pdcp_studio.bus.transaction import Status, TransactionResult
+from pdcp_studio.errors import PdcpError
 from pdcp_studio.model.configuration import ConfigCollection
 from pdcp_studio.model.refs import ChannelRef
 
@@ -29,24 +30,27 @@ class ProfileMixin:
 
     # -- plans ----------------------------------------------------------------------------
     def apply_plan(self, plan: Plan, progress: Callable[[int, int, str], Any] | None = None,
-                   cancel: threading.Event | None = None) -> None:
-        """Carry out an engine plan's actions on the bus, in order; log it.
+                   cancel: threading.Event | None = None) -> TransactionResult:
+        """Carry out an engine plan's actions on the bus, in order, with no interlock (the
+        profile layer's own start-up and duty cycle); log it and return what came of it.
 
-        An action that fails on the wire is reported and skipped, the others go on; the
-        failures are raised together at the end (TransportError). ``cancel`` stops between
-        actions (noted in the plan).
+        An action that fails on the wire is reported and skipped, the others go on (status
+        ``failed``, reason naming them). ``cancel`` stops between actions. Changes a person
+        asks for go through :meth:`transact` instead (interlock, verify, all or nothing).
         """
         from pdcp_studio.engine.plan import Op
 
         failures: list[str] = []
+        cancelled = ""
         with self._plan_lock:
             with self._lock:
                 self._plan_running += 1
+                before = self._system.links
             try:
                 total = len(plan.actions)
                 for done, action in enumerate(plan.actions):
                     if cancel is not None and cancel.is_set():
-                        plan.notes.append(f"cancelled after {done} of {total} actions")
+                        cancelled = f"cancelled after {done} of {total} actions"
                         break
                     if progress is not None:
                         progress(done, total, f"{action.op.value} {action.link}")
@@ -78,10 +82,16 @@ class ProfileMixin:
             finally:
                 with self._lock:
                     self._plan_running -= 1
+                    after = self._system.links
         self._emit(ev.PlanApplied(plan))
-        if failures:
-            raise TransportError(f"plan {plan.mode}: {len(failures)} action(s) failed: "
-                                 + "; ".join(failures[:5]))
+        result = TransactionResult(Status.APPLIED, f"apply {plan.mode}", links_before=before,
+                                   links_after=after, verified=False, interlock="not used")
+        if failures or cancelled:
+            result.status, result.step = Status.FAILED, "write"
+            result.reason = "; ".join(([cancelled] if cancelled else [])
+                                      + ([f"{len(failures)} action(s) failed: "
+                                          + "; ".join(failures[:5])] if failures else []))
+        return result
 
     def run_startup(self) -> Plan:
         """Listing 4.1 / 5.1 with the memory's configuration (or the devices' own)."""

@@ -34,7 +34,8 @@ Decisions beyond the reference:
 This module keeps the class, its threads and its public API; the parts are mixins next to it:
 ``arb_binding`` (bind requests, node IDs), ``arb_presence`` (beacons, departures, twins, foreign
 nodes), ``arb_setup`` (set-up after binding), ``arb_links`` (links on the wire), ``arb_profile``
-(start-up, duty cycle, plans) and ``arb_common`` (constants, node state, wire formats).
+(start-up, duty cycle, plans), ``arb_transaction`` (the change road: interlock, write, verify,
+restore, release; the policy) and ``arb_common`` (constants, node state, wire formats).
 """
 
 
@@ -81,6 +82,7 @@ from pdcp_studio.bus.arb_links import LinksMixin
 from pdcp_studio.bus.arb_presence import PresenceMixin
 from pdcp_studio.bus.arb_profile import ProfileMixin
 from pdcp_studio.bus.arb_setup import SetupMixin
+from pdcp_studio.bus.arb_transaction import TransactionMixin
 from pdcp_studio.bus.connection import Connection
 from pdcp_studio.bus.memory import MemoryStore
 from pdcp_studio.bus.node_ids import NodeIdPool
@@ -136,7 +138,8 @@ __all__ = [
 ]
 
 
-class Arbitrator(BindingMixin, PresenceMixin, SetupMixin, LinksMixin, ProfileMixin):
+class Arbitrator(BindingMixin, PresenceMixin, SetupMixin, LinksMixin, ProfileMixin,
+                 TransactionMixin):
     """A headless PDCP bus arbitrator on ``bus`` (which it owns and shuts down on close)."""
 
     def __init__(self, bus: can.BusABC, *, memory: str | Path | MemoryStore | None = None,

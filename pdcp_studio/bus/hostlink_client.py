@@ -20,6 +20,8 @@ from collections.abc import Callable
 from typing import Any
 
 from pdcp_studio.bus import events as ev
+from pdcp_studio.bus.session_api import TransactingMixin
+from pdcp_studio.bus.transaction import Change, Policy, Status, TransactionResult
 from pdcp_studio.errors import BusTimeoutError, PdcpError, TransportError
 from pdcp_studio.model.configuration import ConfigCollection
 from pdcp_studio.model.refs import ChannelRef, DeviceKey
@@ -33,12 +35,15 @@ log = logging.getLogger(__name__)
 REPLY_TIMEOUT_S = 1.0
 #: Extra attempts for requests that change nothing on the arbitrator.
 READ_RETRIES = 2
+#: Extra seconds a TRANSACT reply may take (the arbitrator writes and reads back first).
+TRANSACT_TIMEOUT_S = 20.0
 #: Seconds between two POLL_EVENTS requests.
 POLL_INTERVAL_S = 0.2
 #: How long the arbitrator's system must stay the same to count as settled.
 SETTLE_QUIET_S = 0.6
 _READ_ONLY = {HostCommand.PING, HostCommand.GET_SYSTEM, HostCommand.GET_PARAMETER,
-              HostCommand.READ_CONFIGURATION, HostCommand.PREVIEW_PLAN}
+              HostCommand.READ_CONFIGURATION, HostCommand.PREVIEW_PLAN,
+              HostCommand.READ_POLICY}
 
 
 class HostLinkError(PdcpError):
@@ -60,14 +65,20 @@ def _event_from_json(doc: dict) -> object | None:
         link = Link(ChannelRef(**d["output"]), ChannelRef(**d["input"]))
         return ev.LinkMade(link) if kind == "LinkMade" else ev.LinkRemoved(link)
     if kind == "BusError":
-        return ev.BusError(str(doc.get("message", "")))
+        return ev.BusError(str(doc.get("message", "")), str(doc.get("error_kind", "")))
     if kind == "PlanApplied":
         return ev.PlanApplied(doc.get("plan", {}))
     return None
 
 
-class HostLinkSession:
-    """A live arbitrator reached over a serial line. Close it (or use ``with``)."""
+class HostLinkSession(TransactingMixin):
+    """A live arbitrator reached over a serial line. Close it (or use ``with``).
+
+    Implements :class:`pdcp_studio.bus.session_api.BusSession`."""
+
+    @property
+    def closed(self) -> bool:
+        return self._closed.is_set()
 
     def __init__(self, port: Any, *, url: str = "", reply_timeout: float = REPLY_TIMEOUT_S,
                  poll_interval: float = POLL_INTERVAL_S) -> None:
@@ -107,6 +118,8 @@ class HostLinkSession:
         attempts = 1 + (READ_RETRIES if command in _READ_ONLY else 0)
         frame = HostMessage(int(command), payload).encode()
         timeout = self._timeout_for(len(payload) + reply_size_hint)
+        if command == HostCommand.TRANSACT:  # interlock, writes, read-back on the far side
+            timeout += TRANSACT_TIMEOUT_S
         with self._io:
             for attempt in range(1, attempts + 1):
                 try:
@@ -249,20 +262,6 @@ class HostLinkSession:
 
         return config_codec.loads(self.request(HostCommand.READ_CONFIGURATION))
 
-    def write_configuration(self, configuration: ConfigCollection) -> ConfigCollection:
-        """Write, read back, compare: a mismatch raises and says so."""
-        from pdcp_studio.storage import config_codec
-
-        data = config_codec.dumps(configuration)
-        echoed = self.request(HostCommand.WRITE_CONFIGURATION, data, reply_size_hint=len(data))
-        again = self.request(HostCommand.READ_CONFIGURATION, reply_size_hint=len(data))
-        for what, got in (("the write's echo", echoed), ("a fresh read", again)):
-            if bytes(got) != data:
-                raise TransportError(
-                    f"host link {self.url}: the stored configuration does not verify: "
-                    f"{what} gave {len(got)} bytes that differ from the {len(data)} written")
-        return config_codec.loads(again)
-
     def preview(self, mode: str, config: ConfigCollection | None = None) -> Any:
         """The engine's plan on the arbitrator's system (and its memory unless ``config``)."""
         from pdcp_studio.engine import plan_for, plan_on_bus
@@ -271,21 +270,29 @@ class HostLinkSession:
             return plan_for(mode, self.system(), config)
         return plan_on_bus(mode, self.system(), self.read_configuration())
 
-    def apply_plan(self, plan: Any, progress: Callable[[int, int, str], None] | None = None,
-                   cancel: threading.Event | None = None) -> None:
-        """Carry out a previewed plan, action by action, in its order."""
-        actions = list(plan.actions)
-        for n, action in enumerate(actions, 1):
-            if cancel is not None and cancel.is_set():
-                raise PdcpError(f"plan cancelled after {n - 1} of {len(actions)} actions")
-            if progress:
-                progress(n - 1, len(actions), f"{action.op.value} {action.link}")
-            if action.op.value == "add":
-                self.add_link(action.link)
-            else:
-                self.remove_link(action.link)
+    # -- the change road (issue 8): kept apart, the host-link rewrite carries it over ----
+    def carry_out(self, change: Change, progress: Callable[[int, int, str], None] | None = None,
+                  cancel: threading.Event | None = None) -> TransactionResult:
+        """The arbitrator carries the change out as one transaction (TRANSACT request)."""
+        if cancel is not None and cancel.is_set():
+            return TransactionResult(Status.DECLINED, change.action, "confirm", "cancelled")
         if progress:
-            progress(len(actions), len(actions), "Plan applied")
+            progress(0, 1, f"{change.action}: sent to the arbitrator")
+        payload = json.dumps(change.to_json()).encode()
+        try:
+            reply = self.request(HostCommand.TRANSACT, payload, reply_size_hint=len(payload))
+        except HostLinkError as err:
+            return TransactionResult(Status.FAILED, change.action, "write",
+                                     f"the arbitrator refused the change: {err}")
+        finally:
+            self._stale = True
+        result = TransactionResult.from_json(json.loads(reply.decode("utf-8")))
+        if progress:
+            progress(1, 1, result.summary())
+        return result
+
+    def read_policy(self) -> Policy:
+        return Policy.from_json(json.loads(self.request(HostCommand.READ_POLICY)))
 
     def reset_device(self, key: DeviceKey) -> None:
         self.request(HostCommand.RESET_DEVICE, hl.pack_key(key.vid, key.pid, key.serial))

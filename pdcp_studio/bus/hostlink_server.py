@@ -115,7 +115,7 @@ def event_to_json(event: object) -> dict | None:
     if isinstance(event, ev.LinkMade | ev.LinkRemoved):
         return {"kind": type(event).__name__, "link": event.link.as_json()}
     if isinstance(event, ev.BusError):
-        return {"kind": "BusError", "message": event.message}
+        return {"kind": "BusError", "message": event.message, "error_kind": event.kind}
     if isinstance(event, ev.PlanApplied):
         plan = event.plan
         return {"kind": "PlanApplied", "plan": plan.to_json() if hasattr(plan, "to_json") else {}}
@@ -151,6 +151,8 @@ class HostLinkServer:
             HostCommand.PREVIEW_PLAN: self._preview_plan,
             HostCommand.APPLY_PLAN: self._apply_plan,
             HostCommand.RESET_DEVICE: self._reset_device,
+            HostCommand.TRANSACT: self._transact,
+            HostCommand.READ_POLICY: self._read_policy,
         }
         self._thread = threading.Thread(target=self._run, name=f"pdcp {name}", daemon=True)
         self._thread.start()
@@ -290,3 +292,14 @@ class HostLinkServer:
             raise FrameError(f"device {key.vid}/{key.pid}/{key.serial} is not bound")
         self.arbitrator.requests.reset(node_id)
         return b""
+
+    # -- the change road (issue 8): kept apart, the host-link rewrite carries it over ----
+    def _transact(self, payload: bytes) -> bytes:
+        """Carry out one Change (JSON) as the arbitrator's transaction; the result as JSON."""
+        from pdcp_studio.bus.transaction import Change
+
+        change = Change.from_json(json.loads(payload.decode("utf-8")))
+        return json.dumps(self.arbitrator.transact(change).to_json()).encode()
+
+    def _read_policy(self, payload: bytes) -> bytes:
+        return json.dumps(self.arbitrator.read_policy().to_json()).encode()

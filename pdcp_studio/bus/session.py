@@ -26,6 +26,8 @@ from collections.abc import Callable
 from typing import TYPE_CHECKING, Any
 
 from pdcp_studio.bus import events as ev
+from pdcp_studio.bus.session_api import TransactingMixin
+from pdcp_studio.bus.transaction import Change, Policy, TransactionResult
 from pdcp_studio.bus.urls import BusUrlError, parse_bus_url
 from pdcp_studio.errors import PdcpError, TransportError
 from pdcp_studio.model.configuration import ConfigCollection
@@ -33,6 +35,7 @@ from pdcp_studio.model.refs import DeviceKey
 from pdcp_studio.model.system import Device, Link, System
 
 if TYPE_CHECKING:
+    from pdcp_studio.bus.session_api import BusSession
     from pdcp_studio.bus.simulator import ScriptResult
     from pdcp_studio.engine import Plan
 
@@ -66,30 +69,10 @@ class ConfigVerifyError(TransportError):
     """The stored configuration read back after a write differs from what was written."""
 
 
-def describe_config_difference(written: ConfigCollection, read: ConfigCollection) -> str:
-    """What differs between two collections, link by link (for a failed verification)."""
-    def links(cfg: ConfigCollection) -> dict[int, set[tuple]]:
-        return {c.index: {(sl.output, sl.input) for sl in c.links} for c in cfg.configurations}
+class Session(TransactingMixin):
+    """A live bus run by PDCP Studio's own arbitrator. Close it (or use ``with``).
 
-    a, b = links(written), links(read)
-    parts: list[str] = []
-    if len(written.configurations) != len(read.configurations):
-        parts.append(f"{len(written.configurations)} configuration(s) written, "
-                     f"{len(read.configurations)} read back")
-    for index in sorted(set(a) | set(b)):
-        lost, extra = a.get(index, set()) - b.get(index, set()), b.get(index, set()) - a.get(
-            index, set())
-        for out, inp in sorted(lost, key=repr):
-            parts.append(f"configuration {index}: link {out.ref} → {inp.ref} was written "
-                         "but is not read back")
-        for out, inp in sorted(extra, key=repr):
-            parts.append(f"configuration {index}: link {out.ref} → {inp.ref} is read back "
-                         "but was not written")
-    return "; ".join(parts) or "the bytes differ (order or channel details)"
-
-
-class Session:
-    """A live bus run by PDCP Studio's own arbitrator. Close it (or use ``with``)."""
+    Implements :class:`pdcp_studio.bus.session_api.BusSession`."""
 
     def __init__(self, arbitrator: Any, *, url: str = "", scan_window: int = 8,
                  scan_pace_s: float = 0.0) -> None:
@@ -171,11 +154,12 @@ class Session:
             return plan_for(mode, self.system(), config)
         return plan_on_bus(mode, self.system(), self.read_configuration())
 
-    def apply_plan(self, plan: Plan, progress: ProgressFn | None = None,
-                   cancel: threading.Event | None = None) -> Any:
-        """Carry out a previewed plan on the bus, action by action."""
+    def carry_out(self, change: Change, progress: ProgressFn | None = None,
+                  cancel: threading.Event | None = None) -> TransactionResult:
+        """The arbitrator's half of the change road (interlock, write, verify, restore,
+        release); ``transact`` adds the preview, confirmation and record."""
         self._check_open()
-        return self.arbitrator.apply_plan(plan, progress=progress, cancel=cancel)
+        return self.arbitrator.transact(change, progress, cancel)
 
     # -- the stored configuration -------------------------------------------------------
     def read_configuration(self) -> ConfigCollection:
@@ -183,26 +167,10 @@ class Session:
         self._check_open()
         return self.arbitrator.read_memory()
 
-    def write_configuration(self, configuration: ConfigCollection) -> ConfigCollection:
-        """Write, read back and compare; ConfigVerifyError says what differs."""
-        from pdcp_studio.storage import config_codec
-
+    def read_policy(self) -> Policy:
+        """The arbitrator's profile-layer policy (autoconfigure on or off)."""
         self._check_open()
-        data = config_codec.dumps(configuration)
-        self.arbitrator.write_memory(configuration)
-        back = self.arbitrator.read_memory()
-        if config_codec.dumps(back) != data:
-            raise ConfigVerifyError(
-                f"{self.url or 'bus'}: the stored configuration does not verify after the "
-                f"write: {describe_config_difference(configuration, back)}")
-        return back
-
-    def save_configuration(self) -> ConfigCollection:
-        """Store the current links as the arbitrator's configuration (verified)."""
-        from pdcp_studio.engine import configuration_from_system
-
-        return self.write_configuration(
-            ConfigCollection([configuration_from_system(self.system())]))
+        return self.arbitrator.read_policy()
 
     # -- scan ---------------------------------------------------------------------------
     def scan(self, progress: ProgressFn | None = None,
@@ -396,14 +364,10 @@ class SimSession(Session):
         self._changed()
         super().remove_link(link)
 
-    def apply_plan(self, plan: Plan, progress: ProgressFn | None = None,
-                   cancel: threading.Event | None = None) -> Any:
+    def carry_out(self, change: Change, progress: ProgressFn | None = None,
+                  cancel: threading.Event | None = None) -> TransactionResult:
         self._changed()
-        return super().apply_plan(plan, progress, cancel)
-
-    def write_configuration(self, configuration: ConfigCollection) -> ConfigCollection:
-        self._changed()
-        return super().write_configuration(configuration)
+        return super().carry_out(change, progress, cancel)
 
     def set_parameter(self, key: DeviceKey, param: int, channel: int, value: bytes, *,
                       timeout: float | None = None) -> None:
@@ -509,7 +473,7 @@ def open_can_session(spec: Any, *, settle_timeout: float = CAN_SETTLE_TIMEOUT_S,
     return session
 
 
-def open_session(url: str, **options: Any) -> Any:
+def open_session(url: str, **options: Any) -> BusSession:
     """Open a bus URL (``sim:``, ``can:``, ``serial:``) as a session; see the module doc.
 
     BusUrlError for a URL that does not parse; UnknownProsthesisError for an unknown

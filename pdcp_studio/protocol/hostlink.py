@@ -43,6 +43,9 @@ class HostCommand(IntEnum):
     PREVIEW_PLAN = 0x2B  # mode (ASCII) → JSON plan
     APPLY_PLAN = 0x2E  # mode (ASCII) → JSON plan applied
     RESET_DEVICE = 0x31  # vid pid serial
+    # The change road (issue 8): one transaction carried out by the arbitrator.
+    TRANSACT = 0x34  # JSON Change → JSON TransactionResult
+    READ_POLICY = 0x37  # → JSON {"autoconfigure": bool}
 
 
 def reply_ok(command: int) -> int:

@@ -132,9 +132,10 @@ def test_a_plan_previewed_on_the_host_is_the_plan_applied(rig, session):
     plan = session.preview("autoconfigure")
     assert plan.actions, "transradial autoconfigure links the EMG sites and the hand"
     done: list[tuple[int, int]] = []
-    session.apply_plan(plan, progress=lambda d, t, _text: done.append((d, t)))
+    result = session.apply_plan(plan, progress=lambda d, t, _text: done.append((d, t)))
+    assert result.status == "applied" and result.verified, result.summary()
     assert set(arbitrator.system().links) == set(plan.final_links)
-    assert done[-1] == (len(plan.actions), len(plan.actions))
+    assert done[-1][0] == done[-1][1]  # finished
 
 
 def test_garbage_on_the_line_costs_nothing_but_a_counted_frame(rig, session):

@@ -145,8 +145,10 @@ def test_a_mismatch_after_a_write_raises_and_says_what_differs(test2, monkeypatc
     with pytest.raises(ConfigVerifyError) as info:
         test2.write_configuration(_collection(TEST2[0]))
     text = str(info.value)
-    assert "2/2/4#1 → 2/2/5#2 was written but is not read back" in text
-    assert "2/2/5#3 → 2/2/6#1 is read back but was not written" in text
+    assert "rolled back at step verify" in text
+    assert "link 2/2/4#1 → 2/2/5#2 is only in written" in text
+    assert "link 2/2/5#3 → 2/2/6#1 is only in read back" in text
+    assert "what was there is restored" in text
 
 
 def test_close_is_idempotent_and_closed_sessions_refuse_calls():
