@@ -38,7 +38,7 @@ def prosthesis_id(devices: Iterable[DeviceKey]) -> str:
 def login_name() -> str:
     try:
         return getpass.getuser()
-    except Exception:  # noqa: BLE001 - no login name on this system
+    except Exception:  # no login name on this system
         return ""
 
 

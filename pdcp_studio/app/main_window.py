@@ -10,7 +10,8 @@ This module builds the window (docks, status bar, signal wiring) and follows the
 from loading to closing; the rest of :class:`MainWindow` comes from mixins, one job each:
 :mod:`window_menus` (actions, menus, toolbar), :mod:`window_files` (open, save),
 :mod:`window_export` (PNG/SVG, report), :mod:`window_bus` (live-bus docks and commands),
-:mod:`window_recovery` (autosave, crash recovery); shared names are in
+:mod:`window_recovery` (autosave, crash recovery), :mod:`window_transactions` (pending
+changes, Write to prosthesis, fitting history); shared names are in
 :mod:`window_support`.
 """
 
@@ -49,6 +50,7 @@ from pdcp_studio.app.window_support import (
     OFFLINE_SYSTEM,
     optional_module,
 )
+from pdcp_studio.app.window_transactions import TransactionsMixin
 from pdcp_studio.model.system import System
 
 __all__ = ["DEFAULT_BUS", "FILE_FILTERS", "OFFLINE_SYSTEM", "MainWindow", "optional_module",
@@ -58,7 +60,7 @@ log = logging.getLogger(__name__)
 
 
 class MainWindow(MenusMixin, FileHandlingMixin, ExportMixin, BusMixin, RecoveryMixin,
-                 QMainWindow):
+                 TransactionsMixin, QMainWindow):
     """PDCP Studio's window on one document."""
 
     #: The first system is on screen and laid out (a file, a bus, or the offline fallback).
@@ -81,6 +83,7 @@ class MainWindow(MenusMixin, FileHandlingMixin, ExportMixin, BusMixin, RecoveryM
         self._build_status()
         self._build_actions()
         self._build_menus()
+        self._build_transactions()
         self._connect()
         self._update_title()
         self.recovery = recovery

@@ -41,6 +41,8 @@ class PendingPanel(QWidget):
     discardRequested = Signal()
     #: The patient reference was edited (text).
     patientChanged = Signal(str)
+    #: The list was computed again.
+    changed = Signal()
 
     def __init__(self, doc: Document, parent: QWidget | None = None) -> None:
         super().__init__(parent)
@@ -141,6 +143,7 @@ class PendingPanel(QWidget):
         name = fitting.stored_operator()
         self.operator.setText(self.tr("Operator: {0}").format(name) if name else
                               self.tr("Operator: (asked at the first write)"))
+        self.changed.emit()
 
     def set_patient(self, text: str) -> None:
         if self.patient.text() != text:

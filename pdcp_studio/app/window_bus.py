@@ -168,7 +168,8 @@ class BusMixin:
             return
         dialog = mod.CompareDialog(self.doc.system, bridge=self.live.bridge, parent=self)
         if self.doc.config is not None and hasattr(mod, "sources_of_collection"):
-            dialog.set_file_sources(mod.sources_of_collection(self.doc.title, self.doc.config))
+            dialog.set_file_sources(mod.sources_of_collection(self.doc.title, self.doc.config),
+                                    self.doc.config)
         dialog.show()
 
     def compare_with_prosthesis(self, path: Any) -> Any:
@@ -192,4 +193,7 @@ class BusMixin:
             self.error_box("Write configuration", "connect to a bus first")
             return
         dialog = mod.WriteConfigDialog.for_system(self.live.bridge, self.doc.system, self)
+        # Whatever came of it, plans must use what the arbitrator stores now.
+        dialog.verified.connect(lambda _ok, _msg: self.reread_configuration())
+        dialog.verified.connect(lambda _ok, _msg: self.history_panel.refresh())
         dialog.show()

@@ -12,7 +12,6 @@ from PySide6.QtGui import QImage, QPainter
 from PySide6.QtWidgets import QFileDialog, QGraphicsItem
 
 from pdcp_studio.app.window_support import optional_module
-from pdcp_studio.errors import PdcpError
 
 
 class ExportMixin:
@@ -86,8 +85,4 @@ class ExportMixin:
                                               str(Path(self._last_dir()) / "fitting.pdf"),
                                               "PDF (*.pdf)")
         if path:
-            try:
-                report.write_report(path, self.doc.system, self.doc.tree, self.graph_image())
-                self.show_message(f"Wrote the fitting report {path}")
-            except (PdcpError, OSError) as err:
-                self.error_box("Cannot write the report", str(err))
+            self.write_fitting_report(path)  # patient, prosthetist, this session's changes
