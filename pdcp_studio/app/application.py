@@ -145,9 +145,9 @@ def _set_icon(app: object) -> None:
     from PySide6.QtGui import QIcon
 
     try:
-        from pdcp_studio.paths import resources_dir
+        from pdcp_studio.paths import icon_path
 
-        icon = resources_dir() / "icons" / "pdcp-studio.svg"
+        icon = icon_path()
     except FileNotFoundError:
         return
     if icon.is_file():

@@ -68,11 +68,10 @@ DEVICE_FIELDS = frozenset({
 
 
 def user_profiles_dir() -> Path | None:
-    """Where user and vendor profile trees live (AppDataLocation/profiles), if known."""
-    from PySide6.QtCore import QStandardPaths
+    """Where user and vendor profile trees live (the user's data folder, ``profiles``)."""
+    from pdcp_studio.paths import user_profiles_dir as folder
 
-    base = QStandardPaths.writableLocation(QStandardPaths.StandardLocation.AppDataLocation)
-    return Path(base) / "profiles" if base else None
+    return folder()
 
 
 def load_profile_tree(extra: Iterable[Path] = (), *, user_dir: bool = True) -> ProfileTree:
@@ -352,25 +351,34 @@ class Document(QObject):
         return list(self.system.links), fields
 
     def restore_links_state(self, state: tuple[list[Link], dict[ChannelRef, Any]]) -> None:
+        """Put links back (through the one apply path), then the link-kept fields exactly
+        as they were (an undo restores a file's own values too)."""
+        from pdcp_studio.engine import set_links
+
         links, fields = state
+        set_links(self.system, links)
         for ref, (source, enabled) in fields.items():
             ch = self.system.channel(ref)
             if ch is not None:
                 ch.source, ch.data_enabled = source, enabled
-        self.set_links(links)
-        for ref in fields:
-            self.channelChanged.emit(ref)
+        self._links_done(fields)
 
     def apply_plan_actions(self, plan: Any) -> None:
-        """Carry a plan's actions out on the system with the engine's one apply path
-        (``Plan.apply``: links, the inputs' source fields, Data Transfer Enabled)."""
-        plan.apply(self.system)
+        """Carry a plan's actions out with the engine's ONE offline apply path
+        (``engine.set_links``: links, the inputs' source fields, Data Transfer Enabled — the
+        system the CLI's ``apply`` writes for the same plan)."""
+        from pdcp_studio.engine import set_links
+
+        set_links(self.system, _after(self.system.links, plan.actions))
         for a in plan.actions:
             self.link_reasons[a.link] = a.reason
+        self._links_done({r for a in plan.actions for r in (a.link.output, a.link.input)})
+
+    def _links_done(self, refs: Iterable[ChannelRef]) -> None:
         if isinstance(self._selection, Link) and not self.system.has_link(self._selection):
             self.select(None)
         self.linksChanged.emit()
-        for ref in {r for a in plan.actions for r in (a.link.output, a.link.input)}:
+        for ref in refs:
             self.channelChanged.emit(ref)
 
     def set_channel_field(self, ref: ChannelRef, name: str, value: Any) -> None:
@@ -411,6 +419,14 @@ class Document(QObject):
     def copy_channel(self, ref: ChannelRef, **changes: Any) -> Channel:
         """A changed copy of a channel (for computing an edit without applying it)."""
         return replace(self.channel(ref), **changes)
+
+
+def _after(links: Iterable[Link], actions: Iterable[Any]) -> list[Link]:
+    """The links once ``actions`` (add/remove, in order) are carried out on ``links``."""
+    out = set(links)
+    for a in actions:
+        (out.add if getattr(a.op, "value", a.op) == "add" else out.discard)(a.link)
+    return sorted(out)
 
 
 def _merge_fields(mine: Any, theirs: Any, base: Any, owned: Iterable[str],

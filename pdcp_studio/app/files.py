@@ -102,10 +102,12 @@ def open_path(path: str | Path) -> Opened:
         return Opened(system, "config", collection, note=note)
     from pdcp_studio.storage import system_file
 
-    system = system_file.load_path(path)
+    # Read once, within the system file's limits; the card positions come from the same bytes.
+    data = system_file.read_path(path)
+    system = system_file.loads(data, str(path))
     try:
-        positions = _positions(json.loads(path.read_bytes()))
-    except (OSError, ValueError):
+        positions = _positions(json.loads(data))
+    except ValueError:
         positions = {}
     return Opened(system, "system", None, positions)
 

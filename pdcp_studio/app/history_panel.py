@@ -122,21 +122,6 @@ def entry_details(entry: dict) -> list[str]:
     return out
 
 
-def restore_change(entry: dict, current_links: list[Link]) -> Any:
-    """The transaction that puts a prosthesis back as it was after ``entry``: its links, and
-    the stored configuration recorded with it (if any)."""
-    from pdcp_studio.bus.transaction import Change
-    from pdcp_studio.storage import config_codec
-
-    change = Change.links_to(current_links, entry_links(entry),
-                             f"restore history entry {entry['id']}",
-                             f"as after history entry {entry['id']}")
-    cfg = entry.get("configuration_after")
-    if cfg is not None:
-        change.configuration = config_codec.from_json(cfg)
-    return change
-
-
 def read_history(_progress: Any = None, _cancel: threading.Event | None = None) -> tuple:
     """Every entry and the chain's verification (a worker's job: file I/O)."""
     from pdcp_studio.storage.history import History
@@ -307,6 +292,8 @@ class HistoryPanel(QWidget):
             self.window.error_box(self.tr("Restore"), self.tr("connect to the prosthesis "
                                                               "first"))
             return False
+        from pdcp_studio.cli.history import restore_change  # the CLI's own: one restore
+
         change = restore_change(entry, list(bus.links))
         return bool(self.window.flow.run(
             change, self.tr("Restore history entry {0}").format(entry["id"])))

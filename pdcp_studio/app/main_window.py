@@ -48,12 +48,11 @@ from pdcp_studio.app.window_support import (
     DEFAULT_BUS,
     FILE_FILTERS,
     OFFLINE_SYSTEM,
-    optional_module,
 )
 from pdcp_studio.app.window_transactions import TransactionsMixin
 from pdcp_studio.model.system import System
 
-__all__ = ["DEFAULT_BUS", "FILE_FILTERS", "OFFLINE_SYSTEM", "MainWindow", "optional_module",
+__all__ = ["DEFAULT_BUS", "FILE_FILTERS", "OFFLINE_SYSTEM", "MainWindow",
            "start_default"]
 
 log = logging.getLogger(__name__)
@@ -293,11 +292,9 @@ class MainWindow(MenusMixin, FileHandlingMixin, ExportMixin, BusMixin, RecoveryM
         return self.plan_panel.preview(mode)
 
     def show_profile_tree(self) -> None:
-        mod = optional_module("profile_tree_editor")
-        if mod is None:
-            self.error_box("Profile tree", "this build has no profile-tree editor")
-            return
-        dialog = mod.ProfileTreeDialog(self.doc.tree, None, self)
+        from pdcp_studio.app.profile_tree_editor import ProfileTreeDialog
+
+        dialog = ProfileTreeDialog(self.doc.tree, None, self)
         dialog.editor.treeChanged.connect(self._tree_changed)
         dialog.show()
 

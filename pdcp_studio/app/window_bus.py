@@ -12,8 +12,6 @@ from typing import Any
 
 from PySide6.QtCore import Qt
 
-from pdcp_studio.app.window_support import DEFAULT_BUS, optional_module
-
 log = logging.getLogger("pdcp_studio.app.main_window")  # the name it always logged under
 
 
@@ -21,8 +19,9 @@ class BusMixin:
     """Bus docks (made once per window, fed by each new bridge) and bus commands."""
 
     def ask_connect(self) -> None:
-        mod = optional_module("connect_dialog")
-        url = mod.ConnectDialog.get_url(self) if mod is not None else DEFAULT_BUS
+        from pdcp_studio.app.connect_dialog import ConnectDialog
+
+        url = ConnectDialog.get_url(self)
         if url and self.maybe_save():
             self.connect_bus(url)
 
@@ -36,37 +35,34 @@ class BusMixin:
 
     def _attach_bus_docks(self, bridge: Any) -> None:
         """Monitor, live plot and simulator panel for a new bridge (made once, reused)."""
-        monitor = optional_module("monitor_dock")
-        if monitor is not None:
-            dock = self._leaf_docks.get("monitor")
-            if dock is None:
-                dock = monitor.MonitorDock(self)
-                self.addDockWidget(Qt.DockWidgetArea.BottomDockWidgetArea, dock)
-                self.tabifyDockWidget(self.plan_dock, dock)
-                self.plan_dock.raise_()
-                self.view_menu.addAction(dock.toggleViewAction())
-                self._leaf_docks["monitor"] = dock
-            bridge.frameSeen.connect(dock.add_frames)
-        plot_mod = optional_module("live_plot")
-        if plot_mod is not None:
-            dock = self._leaf_docks.get("plot")
-            if dock is None:
-                plot = plot_mod.LivePlot()
-                dock = self._dock("Live plot", "LivePlotDock", plot,
-                                  Qt.DockWidgetArea.BottomDockWidgetArea)
-                self.tabifyDockWidget(self.plan_dock, dock)
-                self.plan_dock.raise_()
-                self.view_menu.addAction(dock.toggleViewAction())
-                self._leaf_docks["plot"] = dock
-                self.doc.selectionChanged.connect(self._plot_selection)
-            bridge.channelValues.connect(dock.widget().add_values)
-        sim = optional_module("sim_panel")
-        if sim is not None and bridge.is_sim:
+        from pdcp_studio.app import live_plot, monitor_dock, sim_panel
+
+        dock = self._leaf_docks.get("monitor")
+        if dock is None:
+            dock = monitor_dock.MonitorDock(self)
+            self.addDockWidget(Qt.DockWidgetArea.BottomDockWidgetArea, dock)
+            self.tabifyDockWidget(self.plan_dock, dock)
+            self.plan_dock.raise_()
+            self.view_menu.addAction(dock.toggleViewAction())
+            self._leaf_docks["monitor"] = dock
+        bridge.frameSeen.connect(dock.add_frames)
+        dock = self._leaf_docks.get("plot")
+        if dock is None:
+            plot = live_plot.LivePlot()
+            dock = self._dock("Live plot", "LivePlotDock", plot,
+                              Qt.DockWidgetArea.BottomDockWidgetArea)
+            self.tabifyDockWidget(self.plan_dock, dock)
+            self.plan_dock.raise_()
+            self.view_menu.addAction(dock.toggleViewAction())
+            self._leaf_docks["plot"] = dock
+            self.doc.selectionChanged.connect(self._plot_selection)
+        bridge.channelValues.connect(dock.widget().add_values)
+        if bridge.is_sim:
             old = self._leaf_docks.pop("sim", None)
             if old is not None:
                 old.close()
                 old.deleteLater()
-            panel = sim.SimPanel(bridge)
+            panel = sim_panel.SimPanel(bridge)
             dock = self._dock("Simulator", "SimDock", panel,
                               Qt.DockWidgetArea.RightDockWidgetArea)
             self.tabifyDockWidget(self.inspector_dock, dock)
@@ -162,12 +158,10 @@ class BusMixin:
                 dock.widget().set_channel(obj, str(obj))
 
     def show_compare(self) -> None:
-        mod = optional_module("compare_dialog")
-        if mod is None:
-            self.error_box("Compare", "this build has no compare dialog")
-            return
+        from pdcp_studio.app import compare_dialog as mod
+
         dialog = mod.CompareDialog(self.doc.system, bridge=self.live.bridge, parent=self)
-        if self.doc.config is not None and hasattr(mod, "sources_of_collection"):
+        if self.doc.config is not None:
             dialog.set_file_sources(mod.sources_of_collection(self.doc.title, self.doc.config),
                                     self.doc.config)
         dialog.show()
@@ -175,10 +169,8 @@ class BusMixin:
     def compare_with_prosthesis(self, path: Any) -> Any:
         """Compare a file's links with the prosthesis (on screen and its arbitrator's stored
         configuration), staying connected; returns the dialog."""
-        mod = optional_module("compare_dialog")
-        if mod is None:
-            self.error_box("Compare", "this build has no compare dialog")
-            return None
+        from pdcp_studio.app import compare_dialog as mod
+
         dialog = mod.CompareDialog(self.doc.system, bridge=self.live.bridge, parent=self)
         dialog.load_file(path)
         if self.live.bridge is not None:
@@ -188,8 +180,9 @@ class BusMixin:
         return dialog
 
     def ask_write_configuration(self) -> None:
-        mod = optional_module("write_config_dialog")
-        if mod is None or self.live.bridge is None:
+        from pdcp_studio.app import write_config_dialog as mod
+
+        if self.live.bridge is None:
             self.error_box("Write configuration", "connect to a bus first")
             return
         dialog = mod.WriteConfigDialog.for_system(self.live.bridge, self.doc.system, self)

@@ -11,8 +11,6 @@ from pathlib import Path
 from PySide6.QtGui import QImage, QPainter
 from PySide6.QtWidgets import QFileDialog, QGraphicsItem
 
-from pdcp_studio.app.window_support import optional_module
-
 
 class ExportMixin:
     """Graph image, PNG/SVG export and the PDF report of :class:`MainWindow`."""
@@ -77,10 +75,6 @@ class ExportMixin:
                 self.error_box("Cannot export", str(err))
 
     def ask_report(self) -> None:
-        report = optional_module("report")
-        if report is None:
-            self.error_box("Report", "this build has no report module")
-            return
         path, _ = QFileDialog.getSaveFileName(self, "Fitting report",
                                               str(Path(self._last_dir()) / "fitting.pdf"),
                                               "PDF (*.pdf)")

@@ -109,9 +109,11 @@ class ProfileMixin:
                 self._error(f"stored configuration unreadable, starting up from the devices' "
                             f"own source fields: {err}", "plan")
                 stored = ConfigCollection([])
-            plan = plan_on_bus("startup", self.system(), stored)
+            autoconfigure = self.read_policy().autoconfigure
+            plan = plan_on_bus("startup", self.system(), stored, autoconfigure=autoconfigure)
             try:
                 self.apply_plan(plan)
+                self._report_policy(plan, autoconfigure)
                 # What the stored configuration names and the bus lacks is shown as missing.
                 stored_cfg = plan.configuration if plan.configuration_source == "stored" else None
                 with self._lock:
@@ -132,14 +134,31 @@ class ProfileMixin:
                 self._duty_needed = False
                 before = set(self._last_present)
             snapshot = self.system()
-            plan = plan_duty_cycle(snapshot, before)
+            autoconfigure = self.read_policy().autoconfigure
+            plan = plan_duty_cycle(snapshot, before, autoconfigure=autoconfigure)
             try:
                 if plan.actions:
                     self.apply_plan(plan)
+                self._report_policy(plan, autoconfigure)
             finally:
                 with self._lock:
                     self._last_present = self._present_refs()
         return plan
+
+    def _report_policy(self, plan: Plan, autoconfigure: bool) -> None:
+        """With autoconfigure off, say which terminal channels were left unconnected."""
+        if autoconfigure:
+            return
+        from pdcp_studio.engine.layer import ProfileLayer
+        from pdcp_studio.engine.procedures import AUTOCONFIGURE_OFF
+
+        refs = tuple(ProfileLayer(self.system(), "policy").unconnected_terminals())
+        if refs:
+            log.info("%s: %d terminal channel(s) not connected: %s", self.name, len(refs),
+                     AUTOCONFIGURE_OFF)
+            self._emit(ev.TerminalsUnconnected(
+                refs, f"{len(refs)} terminal channel(s) not connected — {AUTOCONFIGURE_OFF}: "
+                + ", ".join(str(r) for r in refs)))
 
     def _present_refs(self) -> set[ChannelRef]:
         return {ref for ref, _ in self._system.channels() if self._system.is_present(ref)}

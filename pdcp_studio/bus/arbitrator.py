@@ -149,7 +149,7 @@ class Arbitrator(BindingMixin, PresenceMixin, SetupMixin, LinksMixin, ProfileMix
                  startup_max_wait_s: float = STARTUP_MAX_WAIT_S,
                  node_ids: tuple[int, int] = (NODE_ID_MIN, NODE_ID_MAX),
                  frame_events: bool = False, channel_events: bool = True,
-                 reset_on_start: bool = True) -> None:
+                 reset_on_start: bool = True, autoconfigure: bool | None = None) -> None:
         self.name = name
         self.profile_layer = profile_layer
         self.retries = retries
@@ -159,6 +159,9 @@ class Arbitrator(BindingMixin, PresenceMixin, SetupMixin, LinksMixin, ProfileMix
         self.frame_events = frame_events
         self.channel_events = channel_events
         self.memory = memory if isinstance(memory, MemoryStore) else MemoryStore(memory)
+        if autoconfigure is not None and self.memory.read_policy()["autoconfigure"] != \
+                autoconfigure:  # ``--no-autoconfigure``: the flag sets the stored policy
+            self.memory.write_policy({"autoconfigure": autoconfigure})
         self.applied_plans: list[Plan] = []
         self.bad_frames = 0
         self.error_frames = 0

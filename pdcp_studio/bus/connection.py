@@ -8,7 +8,9 @@ never overflows.
 python-can's ``udp_multicast`` interface hands every process its own frames back (multicast
 loopback; its ``receive_own_messages=False`` is not implemented). A connection on such a bus
 remembers what it sent and drops the first identical frame that comes back within
-``ECHO_WINDOW_S``, so every role sees only the others' frames, as on a real CAN bus.
+``ECHO_WINDOW_S``, so every role sees only the others' frames, as on a real CAN bus. The
+memory of sent frames is bounded (:class:`EchoFilter`): at most ``ECHO_MAX_PENDING`` frames,
+none older than the window, whatever the number of frames a long run sends.
 """
 
 from __future__ import annotations
@@ -36,6 +38,8 @@ SEND_TIMEOUT_S = 0.2
 
 #: How long a sent frame waits for its multicast echo before it is forgotten.
 ECHO_WINDOW_S = 2.0
+#: At most this many sent frames wait for their echo; beyond it the oldest is forgotten.
+ECHO_MAX_PENDING = 4096
 #: Interfaces that return a process's own frames to it.
 _ECHOING = ("UdpMulticastBus",)
 
@@ -68,6 +72,71 @@ class _Enqueue:
         pass
 
 
+class EchoFilter:
+    """The frames this process sent and has not seen come back yet; bounded, thread-safe.
+
+    ``order`` holds every remembered send in send order (for expiry by age and by count);
+    ``pending`` holds, per frame, the send times still waiting for their echo, oldest first.
+    An echo consumes the oldest pending send of its frame, so the pending sends of a frame are
+    always the newest of its entries in ``order``: an entry of ``order`` is still pending exactly
+    when its frame's oldest pending time is not later than the entry's. Both stay within
+    ``max_pending`` entries; no operation depends on a container being non-empty.
+    """
+
+    def __init__(self, window_s: float = ECHO_WINDOW_S, max_pending: int = ECHO_MAX_PENDING
+                 ) -> None:
+        self.window_s = window_s
+        self.max_pending = max_pending
+        self._order: collections.deque[tuple[float, tuple[int, bytes]]] = collections.deque()
+        self._pending: dict[tuple[int, bytes], collections.deque[float]] = {}
+        self._lock = threading.Lock()
+        #: Sends forgotten before their echo came (count bound or window passed).
+        self.forgotten = 0
+
+    def __len__(self) -> int:
+        with self._lock:
+            return sum(len(q) for q in self._pending.values())
+
+    @property
+    def remembered(self) -> int:
+        """Entries held (pending or already echoed, not yet expired): the memory bound."""
+        return len(self._order)
+
+    def sent(self, key: tuple[int, bytes], now: float) -> None:
+        """Remember one send of ``key`` at ``now``."""
+        with self._lock:
+            self._expire(now)
+            while len(self._order) >= self.max_pending:
+                self._drop_oldest()
+            self._order.append((now, key))
+            self._pending.setdefault(key, collections.deque()).append(now)
+
+    def is_echo(self, key: tuple[int, bytes], now: float) -> bool:
+        """True (and the send is consumed) when ``key`` is the echo of a pending send."""
+        with self._lock:
+            self._expire(now)
+            times = self._pending.get(key)
+            if not times:
+                return False
+            times.popleft()
+            if not times:
+                del self._pending[key]
+            return True
+
+    def _expire(self, now: float) -> None:
+        while self._order and now - self._order[0][0] > self.window_s:
+            self._drop_oldest()
+
+    def _drop_oldest(self) -> None:
+        when, key = self._order.popleft()
+        times = self._pending.get(key)
+        if times and times[0] <= when:  # still pending: its echo never came
+            times.popleft()
+            self.forgotten += 1
+            if not times:
+                del self._pending[key]
+
+
 class Connection:
     """A bus owned by one role (arbitrator, device host); ``inbound`` yields can.Message.
 
@@ -89,8 +158,7 @@ class Connection:
         self._last_send = 0.0
         self._closed = False
         self.drop_own = (type(bus).__name__ in _ECHOING) if drop_own is None else drop_own
-        self._own: dict[tuple[int, bytes], collections.deque[float]] = {}
-        self._own_lock = threading.Lock()
+        self._echoes = EchoFilter()
         self._listener = _Enqueue(self.inbound)
         self._notifier = can.Notifier(bus, [self._listener], timeout=NOTIFIER_POLL_S)
         with _open_lock:
@@ -124,25 +192,10 @@ class Connection:
         return time.time()
 
     def _remember(self, arbitration_id: int, data: bytes) -> None:
-        now = time.monotonic()
-        with self._own_lock:
-            self._own.setdefault((arbitration_id, data), collections.deque()).append(now)
-            if len(self._own) > 4096:  # echoes that never came: forget the stale ones
-                for key in [k for k, q in self._own.items() if now - q[-1] > ECHO_WINDOW_S]:
-                    del self._own[key]
+        self._echoes.sent((arbitration_id, data), time.monotonic())
 
     def _is_own(self, msg: can.Message) -> bool:
-        key = (msg.arbitration_id, bytes(msg.data))
-        now = time.monotonic()
-        with self._own_lock:
-            sent = self._own.get(key)
-            while sent and now - sent[0] > ECHO_WINDOW_S:
-                sent.popleft()
-            if not sent:
-                self._own.pop(key, None)
-                return False
-            sent.popleft()
-            return True
+        return self._echoes.is_echo((msg.arbitration_id, bytes(msg.data)), time.monotonic())
 
     def get(self, timeout: float | None) -> object:
         """The next inbound item (a can.Message, an Exception, a posted callable), or None."""

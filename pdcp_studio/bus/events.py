@@ -73,6 +73,23 @@ class PlanApplied:
 
 
 @dataclass(frozen=True)
+class TerminalsUnconnected:
+    """Start-up or the duty cycle left terminal channels unconnected because the
+    prosthesis's policy has autoconfigure off (issue 17); ``why`` says so in words."""
+
+    refs: tuple[ChannelRef, ...]
+    why: str
+
+
+@dataclass(frozen=True)
+class TransactionDone:
+    """A change of the change road finished (applied, failed or rolled back): ``result`` is
+    the ``TransactionResult`` (bus/transaction.py)."""
+
+    result: Any
+
+
+@dataclass(frozen=True)
 class ChannelValue:
     """A data frame on a link: the output ``ref`` sent ``value`` (decoded by its type)."""
 
@@ -92,7 +109,7 @@ class Progress:
 
 Event = (
     DeviceJoined | DeviceLeft | LinkMade | LinkRemoved | FrameSeen | BusError | PlanApplied
-    | ChannelValue | Progress
+    | ChannelValue | Progress | TerminalsUnconnected | TransactionDone
 )
 
 

@@ -405,7 +405,7 @@ def _known(host: Any, key: DeviceKey) -> DeviceKey:
 
 # -- opening --------------------------------------------------------------------------------
 def _arbitrator_options(options: dict[str, Any]) -> dict[str, Any]:
-    names = ("memory", "profile_layer", "pace_s", "response_timeout", "retries",
+    names = ("memory", "profile_layer", "autoconfigure", "pace_s", "response_timeout", "retries",
              "startup_quiet_s", "duty_quiet_s", "node_ids", "frame_events", "channel_events",
              "reset_on_start")
     return {n: options.pop(n) for n in names if n in options}

@@ -1,4 +1,5 @@
-"""``pdcp-studio arbitrator --bus can:IFACE:CHANNEL [--memory FILE] [--host-serial PORT]``.
+"""``pdcp-studio arbitrator --bus can:IFACE:CHANNEL [--memory FILE] [--host-serial PORT]
+[--no-autoconfigure]``.
 
 A headless bus arbitrator for a real (or a multicast) bus: it binds and sets up the devices,
 runs start-up with its memory and the hot-swap duty cycle, and logs joins, leaves, links and
@@ -16,6 +17,8 @@ import threading
 import time
 from typing import Any
 
+from pdcp_studio.cli import options
+
 
 def add_subparser(subparsers: Any) -> None:
     parser = subparsers.add_parser(
@@ -32,9 +35,13 @@ def add_subparser(subparsers: Any) -> None:
                              "pseudo-terminal)")
     parser.add_argument("--no-profile-layer", action="store_true",
                         help="bind and set up only; no start-up or duty cycle")
-    parser.add_argument("--seconds", type=float, metavar="N",
+    parser.add_argument("--no-autoconfigure", action="store_true",
+                        help="start-up and the duty cycle implement the stored configuration "
+                             "and find replacements but never autoconfigure (kept in memory; "
+                             "without the flag the stored policy holds)")
+    parser.add_argument("--seconds", type=options.SECONDS, metavar="N",
                         help="stop after N seconds instead of waiting for Ctrl-C")
-    parser.add_argument("--startup-quiet", type=float, metavar="S",
+    parser.add_argument("--startup-quiet", type=options.WAIT_SECONDS, metavar="S",
                         help="seconds without bind requests before start-up runs")
     parser.set_defaults(func=run)
 
@@ -53,6 +60,8 @@ def describe(event: Any) -> str | None:
         return f"link removed {event.link}"
     if isinstance(event, ev.BusError):
         return f"error {event.message}"
+    if isinstance(event, ev.TerminalsUnconnected):
+        return f"policy {event.why}"
     if isinstance(event, ev.PlanApplied):
         plan = event.plan
         lines = [f"plan {plan.mode}: {len(plan.added)} added, {len(plan.removed)} removed, "
@@ -98,6 +107,8 @@ def run(args: argparse.Namespace) -> int:
 
     options: dict[str, Any] = {"memory": args.memory, "name": "arbitrator",
                                "profile_layer": not args.no_profile_layer}
+    if args.no_autoconfigure:
+        options["autoconfigure"] = False
     if args.startup_quiet is not None:
         options["startup_quiet_s"] = args.startup_quiet
     stop = threading.Event()
@@ -118,6 +129,9 @@ def run(args: argparse.Namespace) -> int:
             print(f"host link on {where}", flush=True)
         print(f"arbitrator on {spec.url}" + (f", memory {args.memory}" if args.memory else ""),
               flush=True)
+        if not arbitrator.read_policy().autoconfigure:
+            print("policy: autoconfigure off (start-up and the duty cycle link nothing new)",
+                  flush=True)
         deadline = None if args.seconds is None else time.monotonic() + args.seconds
         while not stop.is_set():
             if deadline is not None and time.monotonic() >= deadline:

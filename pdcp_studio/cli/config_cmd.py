@@ -4,8 +4,8 @@
 document on stdout); ``encode JSON -o FILE`` writes one from that JSON, atomically.
 ``-`` reads standard input. The bus actions (``config read`` / ``config write``) live in
 ``pdcp_studio.cli.config_bus``, which registers them through
-``add_bus_commands(config_subparsers)`` when that module exists; it is imported while the
-parser is built, so it too must keep heavy imports (python-can) inside its ``run``.
+``add_bus_commands(config_subparsers)``; it is imported while the parser is built, so it
+too must keep heavy imports (python-can) inside its ``run``.
 
 Errors: a file that does not decode or validate, and an input file that cannot be read,
 are bad input (exit 2) with one stderr line naming the file, ``offset N`` and the reason.
@@ -15,12 +15,15 @@ A failure to write the output is exit 1 (an ``OSError``, handled by the dispatch
 from __future__ import annotations
 
 import argparse
-import importlib
-import sys
-from pathlib import Path
 from typing import Any
 
-BUS_MODULE = "pdcp_studio.cli.config_bus"
+from pdcp_studio.cli import options
+
+#: The JSON ``config encode`` reads holds at most this many bytes: the largest collection the
+#: codec accepts (16,384 links), as ``decode --json`` prints it, fits with room to spare.
+MAX_JSON_BYTES = 16 * 1024 * 1024
+#: … nested at most this deep (the format itself needs 6 levels).
+MAX_JSON_DEPTH = 16
 
 
 def add_subparser(subparsers: Any) -> None:
@@ -38,37 +41,27 @@ def add_subparser(subparsers: Any) -> None:
 
     encode = actions.add_parser("encode", help="write a stored-configuration file from JSON")
     encode.add_argument("json_file", metavar="JSON", help="JSON as `decode --json` prints it")
-    encode.add_argument("-o", "--output", required=True, metavar="FILE", help="the .pdcfg")
+    encode.add_argument("-o", "--output", required=True, type=options.file_name,
+                        metavar="FILE", help="the .pdcfg")
     encode.set_defaults(func=run_encode)
 
-    add_bus_commands(actions)
+    from pdcp_studio.cli import config_bus
+
+    config_bus.add_bus_commands(actions)
 
 
-def add_bus_commands(actions: Any) -> None:
-    """Let ``config_bus`` add ``read`` and ``write`` if this build has it."""
-    try:
-        module = importlib.import_module(BUS_MODULE)
-    except ModuleNotFoundError as err:
-        if err.name == BUS_MODULE:
-            return  # not built into this version
-        raise
-    module.add_bus_commands(actions)
-
-
-def _read_input(path: str, binary: bool, limit: int = -1) -> Any:
-    """The input file (or stdin), at most ``limit`` bytes; an unreadable file is bad input."""
+def _read_input(path: str, limit: int, what: str, *, refuse: bool = True) -> bytes:
+    """The input file (or stdin), at most ``limit`` bytes; beyond it bad input naming the
+    file (``refuse``) or the first ``limit`` bytes for a reader that refuses them itself."""
     from pdcp_studio.cli.main import BadInput
+    from pdcp_studio.storage.bounded_input import InputError, read_capped, read_prefix
 
     try:
-        if path == "-":
-            return sys.stdin.buffer.read(limit) if binary else sys.stdin.read()
-        if binary:
-            with open(path, "rb") as handle:
-                return handle.read(limit)
-        return Path(path).read_text(encoding="utf-8")
-    except (OSError, UnicodeDecodeError) as err:
-        reason = err.strerror if isinstance(err, OSError) and err.strerror else str(err)
-        raise BadInput(f"{path}: cannot read: {reason}") from err
+        return read_capped(path, limit, what) if refuse else read_prefix(path, limit)
+    except InputError as err:
+        raise BadInput(f"{path}: {err}") from None
+    except OSError as err:
+        raise BadInput(f"{path}: cannot read: {err.strerror or err}") from err
 
 
 def run_decode(args: argparse.Namespace) -> int:
@@ -80,7 +73,8 @@ def run_decode(args: argparse.Namespace) -> int:
     from pdcp_studio.storage import config_codec
 
     # One byte over the limit is enough for the codec to refuse a huge file.
-    data = _read_input(args.file, binary=True, limit=config_codec.MAX_INPUT_BYTES + 1)
+    data = _read_input(args.file, config_codec.MAX_INPUT_BYTES + 1, "a stored configuration",
+                       refuse=False)
     try:
         decoded = config_codec.decode(data)
     except ConfigFormatError as err:
@@ -124,20 +118,17 @@ def _channel_text(ch: Any) -> str:
 
 def run_encode(args: argparse.Namespace) -> int:
     """Validate the JSON and write the byte file atomically."""
-    import json
-
     from pdcp_studio.cli.main import BadInput
     from pdcp_studio.errors import ConfigFormatError
     from pdcp_studio.storage import config_codec
     from pdcp_studio.storage.atomic import atomic_write_bytes
+    from pdcp_studio.storage.bounded_input import InputError, loads_json
 
-    text = _read_input(args.json_file, binary=False)
+    data = _read_input(args.json_file, MAX_JSON_BYTES, "configuration JSON")
     try:
-        doc = json.loads(text)
-    except json.JSONDecodeError as err:
-        raise BadInput(
-            f"{args.json_file}: line {err.lineno} column {err.colno}: {err.msg}"
-        ) from err
+        doc = loads_json(data, max_depth=MAX_JSON_DEPTH)
+    except InputError as err:
+        raise BadInput(f"{args.json_file}: {err}") from None
     try:
         collection = config_codec.from_json(doc)
         data = config_codec.dumps(collection)

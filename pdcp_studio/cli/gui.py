@@ -7,6 +7,8 @@ not load is bad input (exit 2, naming where); a screenshot that cannot be made i
 from __future__ import annotations
 
 import argparse
+import os
+import sys
 import time
 
 from pdcp_studio.cli.main import BadInput
@@ -54,6 +56,14 @@ def run(args: argparse.Namespace) -> int:
             parse_bus_url(args.bus)
         except BusUrlError as err:
             raise BadInput(str(err)) from err
+    from pdcp_studio.app import qt_prereqs
+
+    why = qt_prereqs.problem(screenshot=bool(args.screenshot))
+    if why is not None:
+        print(f"pdcp-studio: {why}", file=sys.stderr)
+        return 1
+    if args.screenshot and qt_prereqs.needs_offscreen():
+        os.environ["QT_QPA_PLATFORM"] = "offscreen"  # no window here: render off screen
     from pdcp_studio.app.application import run_app
 
     return run_app(args.file, args.bus, args.screenshot, size=size, started=_STARTED)

@@ -26,11 +26,14 @@ COMMAND_MODULES = (
     "listing",
     "plan",
     "apply",
+    "policy",
+    "history",
     "check",
     "scan",
     "sim",
     "arbitrator",
     "monitor",
+    "doctor",
 )
 
 EXIT_OK = 0
@@ -50,13 +53,7 @@ def build_parser() -> argparse.ArgumentParser:
     parser.add_argument("--version", action="version", version=f"pdcp-studio {__version__}")
     subparsers = parser.add_subparsers(dest="command", metavar="COMMAND")
     for name in COMMAND_MODULES:
-        try:
-            module = importlib.import_module(f"pdcp_studio.cli.{name}")
-        except ModuleNotFoundError as err:
-            if err.name == f"pdcp_studio.cli.{name}":
-                continue  # command not built into this version
-            raise
-        module.add_subparser(subparsers)
+        importlib.import_module(f"pdcp_studio.cli.{name}").add_subparser(subparsers)
     return parser
 
 

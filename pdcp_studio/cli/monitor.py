@@ -17,6 +17,7 @@ from collections.abc import Callable, Iterator
 from contextlib import ExitStack, closing
 from typing import Any
 
+from pdcp_studio.cli import options
 from pdcp_studio.cli.main import BadInput
 
 #: How often a live loop wakes up to check its deadline.
@@ -35,7 +36,8 @@ def add_subparser(subparsers: argparse._SubParsersAction) -> None:
     source.add_argument("--replay", metavar="FILE",
                         help="a capture (.asc .blf .csv .log .trc .db, optionally .gz)")
     p.add_argument("--log", metavar="FILE", help="also write every frame to this capture")
-    p.add_argument("--seconds", type=float, metavar="N", help="stop after N seconds (live)")
+    p.add_argument("--seconds", type=options.SECONDS, metavar="N",
+                   help="stop after N seconds (live)")
     p.add_argument("--filter", action="append", default=[], metavar="KEY=VALUE",
                    help=FILTER_HELP)
     p.add_argument("--json", action="store_true", help="one JSON list of decoded frames")

@@ -16,7 +16,6 @@ from __future__ import annotations
 
 import argparse
 import json
-from pathlib import Path
 from typing import TYPE_CHECKING
 
 from pdcp_studio.cli.main import BadInput
@@ -41,10 +40,12 @@ MODE_HELP = (
 )
 
 
-def add_mode_arguments(p: argparse.ArgumentParser) -> None:
-    """The arguments ``plan`` and ``apply`` share."""
+def add_mode_arguments(p: argparse.ArgumentParser, *, source_required: bool = True) -> None:
+    """The arguments ``plan`` and ``apply`` share (``apply`` takes ``--bus`` instead of
+    ``--system`` too, so there ``--system`` is not required)."""
     p.add_argument("mode", choices=MODE_NAMES, metavar="MODE", help=MODE_HELP)
-    p.add_argument("--system", required=True, metavar="FILE", help="a pdcp-system/1 file")
+    p.add_argument("--system", required=source_required, metavar="FILE",
+                   help="a pdcp-system/1 file")
     p.add_argument("--config", metavar="CFG",
                    help="the stored configuration: .pdcfg bytes, `config decode --json` JSON, "
                         "or a pdcp-system/1 file whose links are the configuration")
@@ -68,21 +69,25 @@ def load_system(path: str) -> System:
 
 def load_config(path: str) -> ConfigCollection:
     """Stored configurations from bytes, their decode JSON, or a system file's links."""
+    from pdcp_studio.cli.config_cmd import MAX_JSON_BYTES, MAX_JSON_DEPTH
     from pdcp_studio.errors import ConfigFormatError, SystemFileError
     from pdcp_studio.model.configuration import ConfigCollection
     from pdcp_studio.storage import config_codec
+    from pdcp_studio.storage.bounded_input import InputError, loads_json, read_capped
 
     try:
-        data = Path(path).read_bytes()
+        data = read_capped(path, MAX_JSON_BYTES, "a configuration")
+    except InputError as err:
+        raise BadInput(f"{path}: {err}") from None
     except OSError as err:
         raise BadInput(f"{path}: cannot read: {err.strerror or err}") from err
     try:
         if data.lstrip()[:1] != b"{":
             return config_codec.loads(data)
         try:
-            doc = json.loads(data)
-        except (json.JSONDecodeError, UnicodeDecodeError) as err:
-            raise BadInput(f"{path}: not valid JSON: {err}") from err
+            doc = loads_json(data, max_depth=MAX_JSON_DEPTH)
+        except InputError as err:
+            raise BadInput(f"{path}: {err}") from None
         if isinstance(doc, dict) and doc.get("format") == "pdcp-system/1":
             from pdcp_studio.engine import configuration_from_system
             from pdcp_studio.storage.system_file import from_json
@@ -93,14 +98,22 @@ def load_config(path: str) -> ConfigCollection:
         raise BadInput(f"{path}: {err}") from err
 
 
+#: A profile-tree file holds at most this many bytes and this many levels of nesting.
+MAX_TREE_BYTES = 1024 * 1024
+MAX_TREE_DEPTH = 64
+
+
 def load_tree(path: str | None) -> ProfileTree | None:
     if not path:
         return None
     from pdcp_studio.errors import ProfileError
     from pdcp_studio.model.profile_tree import ProfileTree
+    from pdcp_studio.storage.bounded_input import loads_json, read_capped
 
     try:
-        return ProfileTree.from_json(json.loads(Path(path).read_bytes()), where=f"{path}: ")
+        doc = loads_json(read_capped(path, MAX_TREE_BYTES, "a profile tree"),
+                         max_depth=MAX_TREE_DEPTH)
+        return ProfileTree.from_json(doc, where=f"{path}: ")
     except OSError as err:
         raise BadInput(f"{path}: cannot read: {err.strerror or err}") from err
     except (ValueError, ProfileError) as err:

@@ -13,6 +13,8 @@ import argparse
 import sys
 from typing import Any
 
+from pdcp_studio.cli import options
+
 #: Seconds a can: bus gets to bind its devices and run start-up before the scan.
 DEFAULT_SETTLE_S = 3.0
 
@@ -27,7 +29,8 @@ def add_subparser(subparsers: argparse._SubParsersAction) -> None:
                    help="the arbitrator's stored-configuration file (can: and sim: buses)")
     p.add_argument("--window", type=int, default=8, metavar="N",
                    help="devices read at the same time (default 8)")
-    p.add_argument("--settle", type=float, default=DEFAULT_SETTLE_S, metavar="SECONDS",
+    p.add_argument("--settle", type=options.WAIT_SECONDS, default=DEFAULT_SETTLE_S,
+                   metavar="SECONDS",
                    help="time a can: bus gets to bind and start up (default 3)")
     p.set_defaults(func=run)
 
@@ -123,8 +126,8 @@ def run(args: argparse.Namespace) -> int:
     from pdcp_studio.cli.main import BadInput
     from pdcp_studio.storage import system_file
 
-    if args.window < 1:
-        raise BadInput(f"--window {args.window}: must be at least 1")
+    if not 1 <= args.window <= 254:
+        raise BadInput(f"--window {args.window}: must be 1…254 (devices read at the same time)")
     session = open_bus_session(args.bus, memory=args.memory, settle=args.settle,
                                scan_window=args.window)
     try:

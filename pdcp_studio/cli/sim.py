@@ -14,6 +14,8 @@ import argparse
 import sys
 import time
 
+from pdcp_studio.cli import options
+
 
 def add_subparser(subparsers: argparse._SubParsersAction) -> None:
     p = subparsers.add_parser("sim", help="built-in simulated prostheses",
@@ -33,8 +35,9 @@ def add_subparser(subparsers: argparse._SubParsersAction) -> None:
     dv = actions.add_parser("devices", help="run only the simulated devices on a CAN bus")
     dv.add_argument("name", metavar="NAME|FILE", help="a built-in prosthesis or a system file")
     dv.add_argument("--bus", required=True, metavar="URL", help="can:INTERFACE:CHANNEL")
-    dv.add_argument("--seconds", type=float, metavar="N", help="stop after N seconds")
-    dv.add_argument("--rate", type=float, metavar="HZ", help="data rate of enabled outputs")
+    dv.add_argument("--seconds", type=options.SECONDS, metavar="N", help="stop after N seconds")
+    dv.add_argument("--rate", type=options.RATE_HZ, metavar="HZ",
+                    help="data rate of enabled outputs")
     dv.set_defaults(func=run_devices)
 
 

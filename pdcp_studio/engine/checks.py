@@ -42,8 +42,9 @@ class Finding:
         return f"{self.severity.value:7} {self.code}: {self.message}"
 
 
-def check_system(system: System) -> list[Finding]:
-    """Every finding, errors first, then by code and channels."""
+def check_system(system: System, *, autoconfigure: bool = True) -> list[Finding]:
+    """Every finding, errors first, then by code and channels. ``autoconfigure`` False (the
+    prosthesis's policy, issue 17) says so on each unconnected terminal channel."""
     layer = ProfileLayer(system, "check")
     out: list[Finding] = []
     add = out.append
@@ -109,6 +110,11 @@ def check_system(system: System) -> list[Finding]:
     for ref in layer.unconnected_terminals():
         found = layer.find_output_for(ref)
         tp = prof.fmt(layer.channels[ref].terminal_profile)
+        if not autoconfigure:
+            add(Finding(Severity.WARNING, "terminal-unconnected",
+                        f"terminal channel {ref} ({tp}) not connected — autoconfigure is off "
+                        "on this prosthesis", (ref,)))
+            continue
         if found is None:
             why = layer.why_no_output(ref)
         else:

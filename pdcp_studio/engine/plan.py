@@ -263,6 +263,32 @@ class Plan:
             _sync_channels(system, a.link)
 
 
+def set_links(system: System, links: list[Link] | set[Link]) -> tuple[list[Link], list[Link]]:
+    """Bring ``system`` to exactly ``links``: the ONE offline apply path (issue 8).
+
+    Removes the links not wanted, adds the new ones, and keeps every touched input's
+    redundant source fields and both ends' Data Transfer Enabled in step — exactly what
+    ``Plan.apply`` and the arbitrator on a live bus do — so the app (plans, undo, link
+    edits) and the CLI produce the same system for the same operation. Returns
+    (added, removed). ModelError for a link the model refuses (nothing is changed then).
+    """
+    wanted = set(links)
+    current = set(system.links)
+    added, removed = sorted(wanted - current), sorted(current - wanted)
+    trial = system.copy()
+    for link in removed:
+        trial.remove_link(link)
+    for link in added:
+        trial.add_link(link)  # raises ModelError before the real system is touched
+    for link in removed:
+        system.remove_link(link)
+        _sync_channels(system, link)
+    for link in added:
+        system.add_link(link, check=False)
+        _sync_channels(system, link)
+    return added, removed
+
+
 def _sync_channels(system: System, link: Link) -> None:
     """Mirror the links into the input's source fields and both ends' enabled flags."""
     inp = system.channel(link.input)

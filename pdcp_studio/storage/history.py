@@ -98,6 +98,7 @@ def canonical(body: dict[str, Any]) -> str:
 
 
 def entry_hash(entry_id: int, previous_hash: str, body_json: str) -> str:
+    """SHA-256 over the id, the previous entry's hash and the canonical JSON body."""
     data = f"{entry_id}\n{previous_hash}\n{body_json}".encode()
     return hashlib.sha256(data).hexdigest()
 
@@ -149,7 +150,7 @@ class History:
     def append(self, body: dict[str, Any]) -> int:
         """Append one entry (its fields without ``id``); returns its id."""
         body = {k: v for k, v in body.items() if k not in ("id", "hash", "previous_hash")}
-        text = canonical(body)
+        text = json.dumps(body, ensure_ascii=False)  # stored as given; hashed canonically
         try:
             self._db.execute("BEGIN IMMEDIATE")
             try:
@@ -157,7 +158,7 @@ class History:
                     "SELECT id, hash FROM entries ORDER BY id DESC LIMIT 1").fetchone()
                 last_id, last_hash = row if row else (0, GENESIS)
                 new_id = last_id + 1
-                digest = entry_hash(new_id, last_hash, text)
+                digest = entry_hash(new_id, last_hash, canonical(body))
                 self._db.execute("INSERT INTO entries (id, previous_hash, hash, body) "
                                  "VALUES (?, ?, ?, ?)", (new_id, last_hash, digest, text))
                 self._db.execute("INSERT OR REPLACE INTO head (one, last_id, last_hash) "
@@ -209,7 +210,11 @@ class History:
                 return VerifyReport(False, len(rows), entry_id,
                                     f"entry {entry_id}: its previous hash does not match "
                                     f"entry {entry_id - 1} (an entry was deleted or edited)")
-            if entry_hash(entry_id, prev, body) != digest:
+            try:
+                content = canonical(json.loads(body))
+            except ValueError:
+                content = body
+            if entry_hash(entry_id, prev, content) != digest:
                 return VerifyReport(False, len(rows), entry_id,
                                     f"entry {entry_id} was edited: its hash does not match "
                                     "its content")

@@ -1,8 +1,13 @@
 """System files (``pdcp-system/1``, contracts §1): a whole bus as JSON.
 
 The loader validates everything and names the JSON path of the first problem
-(``devices[2].channels[0].profile``). The writer writes type, profile and terminal
-profile as ``"0x%04X"`` strings and everything else as integers, atomically.
+(``devices[2].channels[0].profile``). It is bounded by what it reads (contracts §1): a system
+file holds at most ``MAX_FILE_BYTES`` bytes (counted as read, so pipes and devices too),
+``MAX_DEPTH`` levels of nesting, ``MAX_DEVICES`` devices (a bus has 254 node IDs and every
+device holds one), ``MAX_CHANNELS`` channels and ``MAX_LINKS`` links in all. The limits keep the
+largest accepted file within the app's targets (``benchmarks/system_limits.py``).
+The writer writes type, profile and terminal profile as ``"0x%04X"`` strings and everything
+else as integers, atomically.
 """
 
 from __future__ import annotations
@@ -14,10 +19,20 @@ from typing import Any
 from pdcp_studio.errors import ModelError, SystemFileError
 from pdcp_studio.model.refs import ChannelRef, Direction
 from pdcp_studio.model.system import NO_SOURCE, Channel, Device, Link, SourceInfo, System
+from pdcp_studio.storage.bounded_input import InputError, loads_json, read_capped
 from pdcp_studio.storage.json_number import parse_number
 
 FORMAT = "pdcp-system/1"
-MAX_FILE_BYTES = 16 * 1024 * 1024
+#: A system file holds at most this many bytes (2 MiB).
+MAX_FILE_BYTES = 2 * 1024 * 1024
+#: … nested at most this deep (the format itself needs 5 levels).
+MAX_DEPTH = 16
+#: … at most this many devices, present or missing (a bus has 254 node IDs).
+MAX_DEVICES = 254
+#: … at most this many channels, all devices together.
+MAX_CHANNELS = 2048
+#: … at most this many links.
+MAX_LINKS = 2048
 
 
 # -- reading ---------------------------------------------------------------------
@@ -38,6 +53,17 @@ def _obj(value: Any, path: str) -> dict:
 def _list(value: Any, path: str) -> list:
     if not isinstance(value, list):
         raise SystemFileError("expected a list", path)
+    return value
+
+
+def _profile(d: dict, path: str) -> int:
+    """A channel's profile: required, and never the null profile (reference §1)."""
+    if "profile" not in d:
+        raise SystemFileError("missing 'profile'", path)
+    value = _int(d["profile"], f"{path}.profile", 0, 0xFFFF)
+    if value == 0:
+        raise SystemFileError("the null profile 0x0000 is not a channel profile",
+                              f"{path}.profile")
     return value
 
 
@@ -103,7 +129,7 @@ def _channel(doc: Any, path: str) -> Channel:
         index=_int(d["index"], f"{path}.index", 1, 255),
         direction=Direction(direction),
         type=_int(d.get("type", 0x5000), f"{path}.type", 0, 0xFFFF),
-        profile=_int(d.get("profile", 0), f"{path}.profile", 0, 0xFFFF),
+        profile=_profile(d, path),
         terminal_profile=_int(d.get("terminal_profile", 0), f"{path}.terminal_profile", 0, 0xFFFF),
         required_inputs=_indices(d.get("required_inputs", []), f"{path}.required_inputs"),
         desired_inputs=_indices(d.get("desired_inputs", []), f"{path}.desired_inputs"),
@@ -146,9 +172,10 @@ def _device(doc: Any, path: str) -> Device:
     )
     for i, ch_doc in enumerate(_list(d.get("channels", []), f"{path}.channels")):
         cpath = f"{path}.channels[{i}]"
+        index = _obj(ch_doc, cpath).get("index")
+        if index is not None and _int(index, f"{cpath}.index", 1, 255) in device.channels:
+            raise SystemFileError(f"duplicate channel index {index}", f"{cpath}.index")
         ch = _channel(ch_doc, cpath)
-        if ch.index in device.channels:
-            raise SystemFileError(f"duplicate channel index {ch.index}", f"{cpath}.index")
         device.channels[ch.index] = ch
     for i, ch in enumerate(device.channels.values()):
         for field in ("required_inputs", "desired_inputs"):
@@ -168,13 +195,26 @@ def from_json(doc: Any) -> System:
     if d.get("format") != FORMAT:
         raise SystemFileError(f"unknown format {d.get('format')!r} (expected {FORMAT!r})", "format")
     system = System()
-    for i, dev_doc in enumerate(_list(d.get("devices", []), "devices")):
+    devices = _list(d.get("devices", []), "devices")
+    if len(devices) > MAX_DEVICES:
+        raise SystemFileError(f"{len(devices)} devices; a system file holds at most "
+                              f"{MAX_DEVICES}", "devices")
+    channels = 0
+    for i, dev_doc in enumerate(devices):
         device = _device(dev_doc, f"devices[{i}]")
+        channels += len(device.channels)
+        if channels > MAX_CHANNELS:
+            raise SystemFileError(f"more than {MAX_CHANNELS} channels in all; a system file "
+                                  f"holds at most {MAX_CHANNELS}", f"devices[{i}].channels")
         if device.key in system.devices:
             raise SystemFileError(f"duplicate device {device.key}", f"devices[{i}]")
         system.add_device(device)
     seen: set[Link] = set()
-    for i, link_doc in enumerate(_list(d.get("links", []), "links")):
+    links = _list(d.get("links", []), "links")
+    if len(links) > MAX_LINKS:
+        raise SystemFileError(f"{len(links)} links; a system file holds at most {MAX_LINKS}",
+                              "links")
+    for i, link_doc in enumerate(links):
         path = f"links[{i}]"
         ld = _obj(link_doc, path)
         if "output" not in ld or "input" not in ld:
@@ -197,34 +237,38 @@ def from_json(doc: Any) -> System:
     return system
 
 
+def parse_json(data: str | bytes) -> Any:
+    """The JSON document of a system file, within the depth limit and with no key twice."""
+    if len(data) > MAX_FILE_BYTES:
+        raise SystemFileError(f"larger than {MAX_FILE_BYTES:,} bytes, the limit for a system file")
+    try:
+        return loads_json(data, max_depth=MAX_DEPTH)
+    except InputError as err:
+        raise SystemFileError(err.reason, err.path) from None
+
+
 def loads(text: str | bytes, name: str = "<string>") -> System:
+    """A System from system-file text; SystemFileError names ``name``, the JSON path, why."""
     try:
-        doc = json.loads(text)
-    except (json.JSONDecodeError, UnicodeDecodeError) as err:
-        raise SystemFileError(f"{name}: not valid JSON: {err}") from err
-    try:
-        return from_json(doc)
+        return from_json(parse_json(text))
     except SystemFileError as err:
-        raise SystemFileError(f"{name}: {err.reason}", err.path) from err
+        where = f"{name}: {err.path}" if err.path else name
+        raise SystemFileError(f"{where}: {err.reason}") from err
+
+
+def read_path(path: str | Path) -> bytes:
+    """A system file's bytes (``-``: standard input), at most ``MAX_FILE_BYTES``."""
+    try:
+        return read_capped(path, MAX_FILE_BYTES, "a system file")
+    except InputError as err:
+        raise SystemFileError(f"{path}: {err.reason}") from None
+    except OSError as err:
+        raise SystemFileError(f"{path}: cannot read: {err.strerror or err}") from err
 
 
 def load_path(path: str | Path) -> System:
-    path = Path(path)
-    try:
-        size = path.stat().st_size
-        if size > MAX_FILE_BYTES:
-            raise SystemFileError(f"{path}: {size} bytes is larger than {MAX_FILE_BYTES}")
-        data = path.read_bytes()
-    except OSError as err:
-        raise SystemFileError(f"{path}: cannot read: {err.strerror or err}") from err
-    try:
-        doc = json.loads(data)
-    except (json.JSONDecodeError, UnicodeDecodeError) as err:
-        raise SystemFileError(f"{path}: not valid JSON: {err}") from err
-    try:
-        return from_json(doc)
-    except SystemFileError as err:
-        raise SystemFileError(f"{path}: {err.path}: {err.reason}") from err
+    """Read and validate a system file; SystemFileError names the file, the JSON path, why."""
+    return loads(read_path(path), str(path))
 
 
 # -- writing ---------------------------------------------------------------------

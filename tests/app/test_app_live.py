@@ -173,16 +173,6 @@ def test_failed_default_connection_falls_back_offline(window, monkeypatch, qtbot
     assert "no virtual bus here" in window.statusBar().currentMessage()
 
 
-def _real_sim_available() -> bool:
-    try:
-        import pdcp_studio.bus.arbitrator
-        import pdcp_studio.bus.session  # noqa: F401
-    except ImportError:
-        return False
-    return True
-
-
-@pytest.mark.skipif(not _real_sim_available(), reason="bus layer not built yet")
 def test_real_simulated_prosthesis_hot_swap(window, qtbot):
     with qtbot.waitSignal(window.ready, timeout=20000):
         window.connect_bus("sim:transradial")

@@ -200,7 +200,7 @@ def test_history_restore_is_a_previewed_transaction(live, qtbot):
     with History.open() as archive:
         entries = archive.entries()
         assert archive.verify().ok
-    assert entries[-1]["action"] == "restore history entry 1"
+    assert entries[-1]["action"] == "history restore 1"  # as the CLI's restore names it
     # The project follows the prosthesis: nothing is left pending.
     qtbot.waitUntil(lambda: not doc.system.has_link(HAND_LINK), timeout=5000)
     qtbot.waitUntil(lambda: not live.pending_panel.changes, timeout=5000)

@@ -6,12 +6,12 @@ import sys
 import threading
 
 import can
-from test_arbitrator_rig import load, no_bus_left_open  # noqa: F401
 
 from pdcp_studio.bus.device_host import DeviceHost
 from pdcp_studio.bus.device_sim import SimulatedDevice
 from pdcp_studio.bus.urls import unique_virtual_channel
 from pdcp_studio.cli.main import main
+from tests.bus.test_arbitrator_rig import load
 
 
 def test_runs_headless_and_logs_joins_plans_and_leaves(capsys, tmp_path):

@@ -8,7 +8,6 @@ import threading
 import pytest
 
 from pdcp_studio.bus import events as ev
-from pdcp_studio.bus.connection import open_connections
 from pdcp_studio.bus.device_host import DeviceHost
 from pdcp_studio.bus.device_sim import SimulatedDevice
 from pdcp_studio.bus.session import (
@@ -34,12 +33,6 @@ D4, D5, D6 = DeviceKey(2, 2, 4), DeviceKey(2, 2, 5), DeviceKey(2, 2, 6)
 TEST2 = [Link(ChannelRef(2, 2, 4, 1), ChannelRef(2, 2, 5, 2)),
          Link(ChannelRef(2, 2, 5, 3), ChannelRef(2, 2, 6, 1)),
          Link(ChannelRef(2, 2, 5, 5), ChannelRef(2, 2, 6, 2))]
-
-
-@pytest.fixture(autouse=True)
-def _no_bus_left_open():
-    yield
-    assert not open_connections(), "a test left a bus open"
 
 
 @pytest.fixture

@@ -23,7 +23,6 @@ TEST2_LINKS = [
 ]
 
 
-pytestmark = pytest.mark.usefixtures("no_bus_left_open")
 
 
 def _check_contract(doc: dict) -> None:
