@@ -36,7 +36,7 @@ from pdcp_studio.app.workers import Worker
 from pdcp_studio.model.refs import DeviceKey
 from pdcp_studio.model.system import Link
 
-COLUMNS = ("#", "Time (UTC)", "Operator", "Patient", "Bus", "Action", "Outcome", "Links")
+COLUMNS = ("#", "Time (UTC)", "Action", "Outcome", "Operator", "Patient", "Links", "Bus")
 THIS, ALL = "this", "all"
 FAILED_COLOUR = QColor(250, 215, 215)
 
@@ -158,10 +158,11 @@ class HistoryPanel(QWidget):
         self.table.setSelectionBehavior(QTableWidget.SelectionBehavior.SelectRows)
         self.table.verticalHeader().setVisible(False)
         self.table.setAlternatingRowColors(True)
+        self.table.setWordWrap(False)
         header = self.table.horizontalHeader()
         for col in range(len(COLUMNS)):
             header.setSectionResizeMode(col, QHeaderView.ResizeMode.ResizeToContents)
-        header.setSectionResizeMode(5, QHeaderView.ResizeMode.Stretch)
+        header.setStretchLastSection(True)
         self.table.itemSelectionChanged.connect(self._show_selection)
         self.details = QPlainTextEdit()
         self.details.setReadOnly(True)
@@ -184,8 +185,9 @@ class HistoryPanel(QWidget):
         split = QSplitter(Qt.Orientation.Horizontal)
         split.addWidget(self.table)
         split.addWidget(self.details)
-        split.setStretchFactor(0, 3)
+        split.setStretchFactor(0, 5)
         split.setStretchFactor(1, 2)
+        split.setSizes([860, 260])
         box = QVBoxLayout(self)
         box.setContentsMargins(6, 6, 6, 6)
         box.addLayout(bar)
@@ -236,8 +238,8 @@ class HistoryPanel(QWidget):
         for row, e in enumerate(self.shown):
             before, after = len(e.get("links_before") or ()), len(e.get("links_after") or ())
             cells = [str(e["id"]), str(e.get("time", "")).replace("T", " ").rstrip("Z"),
-                     e.get("operator") or "", e.get("patient") or "", e.get("bus") or "",
-                     e.get("action") or "", outcome_text(e), f"{before} → {after}"]
+                     e.get("action") or "", outcome_text(e), e.get("operator") or "",
+                     e.get("patient") or "", f"{before} → {after}", e.get("bus") or ""]
             failed = (e.get("outcome") or {}).get("status") in ("failed", "rolled_back")
             for col, text in enumerate(cells):
                 item = QTableWidgetItem(text)

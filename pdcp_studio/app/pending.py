@@ -154,13 +154,13 @@ def parameter_write(project: System, change: PendingChange) -> Any:
 
 
 def change_for(changes: list[PendingChange], project: System,
-               action: str = WRITE_ACTION) -> Any:
+               action: str = WRITE_ACTION, reason: str = "staged in PDCP Studio") -> Any:
     """The transaction's :class:`~pdcp_studio.bus.transaction.Change` for these pending
     changes: link removals, then additions (with their reasons), then parameter writes
     (type and profile share one parameter: written once)."""
     from pdcp_studio.bus.transaction import Change, LinkAction
 
-    links = [LinkAction(c.kind, c.link, c.reason or "staged in PDCP Studio")
+    links = [LinkAction(c.kind, c.link, c.reason or reason)
              for c in changes if c.kind in (ADD, REMOVE) and c.link is not None]
     writes, seen = [], set()
     for c in changes:

@@ -147,8 +147,8 @@ class TransactionFlow(QObject):
         if not back:
             stack.setIndex(cmd.first_index)
             return
-        change = pending.change_for(back, cmd.bus_before,
-                                    action=f"undo {cmd.text().lower()}")
+        change = pending.change_for(back, cmd.bus_before, action=f"undo {cmd.text().lower()}",
+                                    reason=f"undo: as before “{cmd.text()}”")
 
         def done(result: Any) -> None:
             if result.ok and stack.index() > cmd.first_index:
