@@ -82,6 +82,22 @@ def test_live_edits_are_staged_then_written_in_one_transaction(live, qtbot):
     assert session.get_parameter(HAND, 2, 2).split(b"\0")[0] == b"Pinch grip"
     live.pending_panel.patient.setText("Clinic ref 42")
     live.pending_panel.patient.editingFinished.emit()
+    # Drag the link back: one undo step; the project equals the prosthesis there again, so
+    # the removal is no longer pending (nothing drawn, nothing listed, nothing sent).
+    scene = live.scene
+    out, inp = scene.port(HAND_LINK.output), scene.port(HAND_LINK.input)
+    scene.begin_link_drag(out, out.scenePos())
+    assert scene.end_link_drag(inp.scenePos()) == HAND_LINK
+    assert doc.undo_stack.count() == 3 and not scene.link_items[HAND_LINK].pending
+    assert not scene.unwritten_items
+    qtbot.waitUntil(lambda: [c.kind for c in live.pending_panel.changes]
+                    == [pending.PARAMETER], timeout=3000)
+    live.act_undo.trigger()
+    assert not doc.system.has_link(HAND_LINK) and doc.undo_stack.index() == 2
+    # A plan is staged too (Apply on a live bus): autoconfigure would relink the hand.
+    plan = live.preview_plan("autoconfigure")
+    assert [a.link for a in plan.added] == [HAND_LINK]
+    live.plan_panel.discard()
 
     result = _write(live, qtbot)
     assert result.written, result.summary()
@@ -92,7 +108,7 @@ def test_live_edits_are_staged_then_written_in_one_transaction(live, qtbot):
     qtbot.waitUntil(lambda: HAND_LINK not in doc.bus_system.links, timeout=5000)
     qtbot.waitUntil(lambda: not live.pending_panel.changes, timeout=5000)
     # One undo step more: the write itself.
-    assert doc.undo_stack.count() == 3 and "Write to prosthesis" in doc.undo_stack.undoText()
+    assert doc.undo_stack.index() == 3 and "Write to prosthesis" in doc.undo_stack.undoText()
     with History.open() as archive:
         [entry] = archive.entries()
     assert entry["operator"] == "Test Prosthetist" and entry["patient"] == "Clinic ref 42"
@@ -126,9 +142,14 @@ def test_undo_of_a_written_change_is_a_new_transaction(live, qtbot):
     with History.open() as archive:
         assert [e["action"] for e in archive.entries()] == [
             "write to prosthesis", "undo write to prosthesis (1 change(s))"]
-    # Redo writes it again (a transaction too).
-    result = _write(live, qtbot, lambda: (live.act_redo.trigger(), live.act_redo.trigger()))
+    # Redo: first the edit (staged again, drawn as a pending removal), then the write —
+    # a transaction again.
+    live.act_redo.trigger()
+    assert [i.link for i in live.scene.unwritten_items] == [HAND_LINK]
+    assert HAND_LINK in _bus_links(live)
+    result = _write(live, qtbot, lambda: live.act_redo.trigger())
     assert result.written and HAND_LINK not in _bus_links(live)
+    assert doc.undo_stack.index() == 2
 
 
 def test_opening_a_file_while_connected_asks_and_can_compare_instead(live, qtbot):
