@@ -162,8 +162,11 @@ class MainWindow(MenusMixin, FileHandlingMixin, ExportMixin, BusMixin, RecoveryM
     def _update_title(self) -> None:
         """The document, then the connection (the project and its target), then the app."""
         state = self.live.state_text()
-        where = "" if state == "offline" else f" — {state}"
-        self.setWindowTitle(f"{self.doc.title}[*]{where} — PDCP Studio")
+        if self.doc.path is None and self.doc.session is not None:  # the bus is the document
+            self.setWindowTitle(f"{state[:1].upper()}{state[1:]}[*] — PDCP Studio")
+        else:
+            where = "" if state == "offline" else f" — {state}"
+            self.setWindowTitle(f"{self.doc.title}[*]{where} — PDCP Studio")
         self.setWindowModified(self.doc.is_dirty)
 
     def _update_mode(self) -> None:

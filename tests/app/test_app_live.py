@@ -113,7 +113,7 @@ def test_connect_hot_swap_and_live_edits_with_fake_session(window, fake, qtbot):
     doc = window.doc
     assert window.live.is_live and doc.session is window.live.bridge
     assert window.mode_label.text() == "● Live on sim:fake"
-    assert "live on sim:fake" in window.windowTitle()
+    assert "live on sim:fake" in window.windowTitle().lower()
     assert len(doc.system.links) == 5
     assert window.plan_panel.apply_button.text() == "Stage for the prosthesis"
     # Unplug the hand: its card shows it missing, its links are drawn as missing.
