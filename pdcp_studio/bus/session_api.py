@@ -178,8 +178,10 @@ def run_transaction(session: Any, change: Change, *, operator: str | None = None
     ``confirm(preview)`` returns True to go on; None means the caller has already confirmed
     (``--yes``). A declined or empty change writes and records nothing. Every change that
     reached the arbitrator is recorded (applied, failed or rolled back) in ``history`` (the
-    user's archive when None) unless ``record`` is False; a record that cannot be written is
-    said in the result's notes and step ``record``, the prosthesis keeps the change.
+    user's archive when None) unless ``record`` is False: it is announced before the write
+    (``History.begin``) and recorded after (``History.finish``), so a PC that dies in between
+    leaves an ``interrupted`` entry, never none. An archive that cannot be written stops the
+    change before anything is written (step ``record``).
     """
     try:
         preview = preview_change(session, change)
@@ -200,30 +202,47 @@ def run_transaction(session: Any, change: Change, *, operator: str | None = None
         return TransactionResult(Status.DECLINED, change.action, "confirm", "cancelled",
                                  preview.links_before, preview.links_before,
                                  devices=preview.devices)
-    result = session.carry_out(change, progress, cancel)
-    if not result.devices:
-        result.devices = preview.devices
-    if record:
-        try:
-            from pdcp_studio.storage.history import History, entry_from_result
+    if not record:
+        result = session.carry_out(change, progress, cancel)
+        if not result.devices:
+            result.devices = preview.devices
+        return result
+    from pdcp_studio.storage.history import History, entry_from_result, interrupted
 
+    bus = getattr(session, "url", "")
+    archive = history if history is not None else History.open()
+    try:
+        announced = TransactionResult(
+            Status.FAILED, change.action, links_before=preview.links_before,
+            config_crc_before=config_crc(preview.config_before), interlock="unknown",
+            devices=preview.devices, policy_before=preview.policy_before)
+        try:
+            token = archive.begin(interrupted(entry_from_result(
+                announced, change, bus=bus, operator=operator, patient=patient)))
+        except Exception as err:  # no record, no change: a clinic must be able to say
+            return TransactionResult(Status.FAILED, change.action, "record",
+                                     f"the fitting history cannot be written ({err}); "
+                                     "nothing was written to the prosthesis",
+                                     preview.links_before, preview.links_before,
+                                     devices=preview.devices)
+        result = session.carry_out(change, progress, cancel)
+        if not result.devices:
+            result.devices = preview.devices
+        try:
             try:
                 after = session.read_configuration()
             except Exception:  # the record still says what happened, without the contents
                 after = None
-            archive = history if history is not None else History.open()
-            try:
-                entry = entry_from_result(result, change, bus=getattr(session, "url", ""),
-                                          operator=operator, patient=patient,
-                                          configuration_after=after)
-                result.history_id = archive.append(entry)
-            finally:
-                if history is None:
-                    archive.close()
-        except Exception as err:  # the change stands; say so
+            entry = entry_from_result(result, change, bus=bus, operator=operator,
+                                      patient=patient, configuration_after=after)
+            result.history_id = archive.finish(token, entry)
+        except Exception as err:  # the change stands; its announcement is recovered later
             result.notes.append(f"not recorded in the fitting history: {err}")
             if result.ok:
                 result.step, result.reason = "record", f"not recorded: {err}"
+    finally:
+        if history is None:
+            archive.close()
     return result
 
 
