@@ -271,9 +271,11 @@ class HostLinkSession(TransactingMixin):
         """The engine's plan on the arbitrator's system (and its memory unless ``config``)."""
         from pdcp_studio.engine import plan_for, plan_on_bus
 
+        autoconfigure = self.read_policy().autoconfigure
         if config is not None:
-            return plan_for(mode, self.system(), config)
-        return plan_on_bus(mode, self.system(), self.read_configuration())
+            return plan_for(mode, self.system(), config, autoconfigure=autoconfigure)
+        return plan_on_bus(mode, self.system(), self.read_configuration(),
+                           autoconfigure=autoconfigure)
 
     # -- the change road (issue 8): kept apart, the host-link rewrite carries it over ----
     def carry_out(self, change: Change, progress: Callable[[int, int, str], None] | None = None,

@@ -286,8 +286,13 @@ class HostLinkServer:
         return json.dumps(self._plan(payload).to_json()).encode()
 
     def _apply_plan(self, payload: bytes) -> bytes:
+        """The plan as one transaction of the change road (interlock, verify, restore)."""
+        from pdcp_studio.bus.transaction import Change
+
         plan = self._plan(payload)
-        self.arbitrator.apply_plan(plan)
+        result = self.arbitrator.transact(Change.from_plan(plan))
+        if not result.written:
+            raise PdcpError(result.summary())
         return json.dumps(plan.to_json()).encode()
 
     def _reset_device(self, payload: bytes) -> bytes:

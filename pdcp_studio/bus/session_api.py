@@ -21,6 +21,8 @@ from typing import TYPE_CHECKING, Any, Protocol, runtime_checkable
 
 from pdcp_studio.bus.transaction import (
     Change,
+    LinkAction,
+    ParameterWrite,
     Policy,
     Status,
     TransactionResult,
@@ -280,6 +282,35 @@ class TransactingMixin:
         if not result.written:
             raise ConfigVerifyError(f"{self.url or 'bus'}: {result.summary()}")
         return self.read_configuration()
+
+    # single edits: each one is a (small, unrecorded) transaction with its interlock
+    def add_link(self, link: Link) -> None:
+        """Make one link as a transaction; ModelError when the bus refuses it as it is."""
+        self._single(Change(f"add link {link}", links=[LinkAction("add", link)]))
+
+    def remove_link(self, link: Link) -> None:
+        """Remove one link as a transaction (ModelError if there is no such link)."""
+        if link not in self.system().links:
+            from pdcp_studio.errors import ModelError
+
+            raise ModelError(f"link {link} is not in the system")
+        self._single(Change(f"remove link {link}", links=[LinkAction("remove", link)]))
+
+    def set_parameter(self, key: DeviceKey, param: int, channel: int, value: bytes, *,
+                      timeout: float | None = None) -> None:
+        """Write one parameter as a transaction (interlock, read back, restore)."""
+        self._single(Change(f"set parameter 0x{param:02X} of {key}",
+                            parameters=[ParameterWrite(DeviceKey(*key), param, channel,
+                                                       bytes(value))]))
+
+    def _single(self, change: Change) -> TransactionResult:
+        from pdcp_studio.errors import ModelError, TransportError
+
+        result = self.carry_out(change)
+        if not result.written:
+            error = ModelError if result.step == "preview" else TransportError
+            raise error(result.summary())
+        return result
 
     def save_configuration(self) -> ConfigCollection:
         """Store the current links as the arbitrator's configuration (verified)."""
