@@ -1,6 +1,6 @@
 """``history list|show|restore|verify``: the fitting history (reference §5, contracts §2).
 
-The archive is ``$PDCP_STUDIO_HISTORY`` when set, else ``history.sqlite3`` in the user's data
+The archive is ``$PDCP_STUDIO_HISTORY`` when set, else ``history.sqlite`` in the user's data
 folder. ``restore ID --bus URL`` is a new, previewed transaction that puts back the links, the
 stored configuration and the policy that entry ID left on the prosthesis; it is written only
 with ``--yes``. ``verify`` exits 0 when the hash chain is intact and 1 naming the first entry

@@ -24,8 +24,9 @@ between the write and the record leaves the pending row; the next ``recover`` (r
 never forgets a change that may have reached the prosthesis. Rows of a process still running
 are left alone.
 
-The path is ``$PDCP_STUDIO_HISTORY`` when set, else ``history.sqlite3`` in the user's data
-folder (platformdirs). The operator is ``$PDCP_STUDIO_OPERATOR`` when set, else the login name.
+The path is ``$PDCP_STUDIO_HISTORY`` when set, else ``history.sqlite`` in the user's data
+folder (platformdirs, ``pdcp_studio.paths.history_path``). The operator is
+``$PDCP_STUDIO_OPERATOR`` when set, else the login name.
 """
 
 from __future__ import annotations
@@ -47,7 +48,6 @@ if TYPE_CHECKING:
 
 ENV_PATH = "PDCP_STUDIO_HISTORY"
 ENV_OPERATOR = "PDCP_STUDIO_OPERATOR"
-FILE_NAME = "history.sqlite3"
 GENESIS = "0" * 64
 #: Seconds an append waits for another process's write to finish.
 BUSY_TIMEOUT_S = 15.0
@@ -81,13 +81,11 @@ class HistoryError(PdcpError):
 
 
 def default_path() -> Path:
-    """``$PDCP_STUDIO_HISTORY``, else ``history.sqlite3`` in the user's data folder."""
-    env = os.environ.get(ENV_PATH)
-    if env:
-        return Path(env)
-    import platformdirs
+    """``$PDCP_STUDIO_HISTORY``, else the archive in the user's data folder — the one path
+    ``doctor`` shows too (``pdcp_studio.paths.history_path``)."""
+    from pdcp_studio.paths import history_path
 
-    return Path(platformdirs.user_data_dir("pdcp-studio", appauthor=False)) / FILE_NAME
+    return history_path()
 
 
 def default_operator() -> str:
