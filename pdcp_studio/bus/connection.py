@@ -160,7 +160,8 @@ class Connection:
         self._send_lock = threading.Lock()
         self._last_send = 0.0
         self._closed = False
-        self.drop_own = (type(bus).__name__ in _ECHOING) if drop_own is None else drop_own
+        kind = getattr(bus, "inner_type", type(bus).__name__)  # a ReopeningBus: the real one
+        self.drop_own = (kind in _ECHOING) if drop_own is None else drop_own
         self._echoes = EchoFilter()
         self._listener = _Enqueue(self.inbound)
         self._notifier = can.Notifier(bus, [self._listener], timeout=NOTIFIER_POLL_S)

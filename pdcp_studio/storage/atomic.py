@@ -65,7 +65,7 @@ def remove_stale_temps(target: Path, now: float | None = None) -> list[Path]:
     """
     now = time.time() if now is None else now
     pattern = _temp_pattern(target.name)
-    removed = []
+    removed: list[Path] = []
     try:
         entries = list(os.scandir(target.parent))
     except OSError:
