@@ -13,6 +13,7 @@ turns them into its own error type and adds the file's name.
 
 from __future__ import annotations
 
+import errno
 import itertools
 import json
 import os
@@ -47,7 +48,10 @@ def read_prefix(source: str | os.PathLike[str] | BinaryIO, size: int) -> bytes:
     """The first ``size`` bytes at most of a file (``"-"``: standard input), whatever it is."""
     if isinstance(source, (str, os.PathLike)):
         if os.fspath(source) == STDIN:
-            return read_prefix(sys.stdin.buffer, size)
+            stdin = getattr(sys.stdin, "buffer", None)
+            if stdin is None:  # no console, or a host that replaced it
+                raise OSError(errno.EBADF, "standard input is not available", STDIN)
+            return read_prefix(stdin, size)
         with open(source, "rb") as handle:
             return read_prefix(handle, size)
     return source.read(size)
