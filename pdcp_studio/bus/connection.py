@@ -20,7 +20,7 @@ import logging
 import queue
 import threading
 import time
-from typing import TYPE_CHECKING
+from typing import TYPE_CHECKING, Any
 
 from pdcp_studio.errors import TransportError
 
@@ -66,7 +66,7 @@ class _Enqueue:
     A consumer that falls behind a flood must not let the queue take all memory: beyond
     ``INBOUND_MAX`` waiting frames, new frames are dropped and counted (``dropped``)."""
 
-    def __init__(self, target: queue.SimpleQueue) -> None:
+    def __init__(self, target: queue.SimpleQueue[Any]) -> None:
         self._target = target
         self.errors = 0
         self.dropped = 0
@@ -164,7 +164,7 @@ class Connection:
         self.bus = bus
         self.name = name
         self.pace_s = pace_s
-        self.inbound: queue.SimpleQueue = queue.SimpleQueue()
+        self.inbound: queue.SimpleQueue[Any] = queue.SimpleQueue()
         self.sent = 0
         self.received = 0
         self._send_lock = threading.Lock()
