@@ -12,6 +12,7 @@ import logging
 import random
 import resource
 import struct
+import threading
 import time
 
 import can
@@ -208,3 +209,42 @@ def test_bulk_transfers_that_lie_about_their_size_fail_alone_and_fast():
         # The others are not affected: requests answered, links intact.
         assert arb.get_parameter(key(5), P.DEVICE_CHANNEL_COUNT) == b"\x05"
         assert set(links) <= set(arb.system().links)
+
+
+class _Gate:
+    """Stands between the Notifier and the arbitrator's queue; while ``held`` it blocks the
+    Notifier's thread, as a stalled process does (frames wait in the driver, unseen)."""
+
+    def __init__(self, target) -> None:
+        self.target = target
+        self.held = threading.Event()
+
+    def put(self, item) -> None:
+        while self.held.is_set():
+            time.sleep(0.001)
+        self.target.put(item)
+
+    def qsize(self) -> int:
+        return self.target.qsize()
+
+
+def test_a_stalled_arbitrator_process_does_not_take_its_own_pause_for_silent_devices():
+    """A loaded clinic PC can stop the arbitrator's process for longer than three beacons;
+    when it runs again the beacons are still in the driver's buffer: no device has left."""
+    with Rig("appendix-d", data_rate_hz=0) as rig:  # beacons every 50 ms: gone after 175 ms
+        rig.settle()
+        arb = rig.arb
+        present = set(arb.devices_present())
+        gate = _Gate(arb.conn._listener._target)
+        arb.conn._listener._target = gate
+
+        def stall() -> None:  # the dispatch thread and the Notifier both stop for 0.6 s
+            gate.held.set()
+            time.sleep(0.6)
+            gate.held.clear()
+
+        for _ in range(3):
+            arb.conn.post(stall)
+            time.sleep(1.0)
+        assert set(arb.devices_present()) == present
+        assert not rig.of(ev.DeviceLeft)
