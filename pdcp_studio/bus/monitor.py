@@ -475,8 +475,8 @@ class FrameDecoder:
             if links and isinstance(self.links, dict):
                 for link in links:
                     self.links[_node(link["node_id"])] = (
-                        ChannelRef(**link["output"]),
-                        tuple(ChannelRef(**r) for r in link["inputs"]))
+                        _ref_from(link["output"]),
+                        tuple(_ref_from(r) for r in link["inputs"]))
         except (AttributeError, KeyError, TypeError, ValueError) as err:
             raise ValueError(f"{where}: {err}") from err
         self._changed()
@@ -672,6 +672,10 @@ class FrameDecoder:
 
 def _ref_json(ref: ChannelRef | str) -> Any:
     return ref.as_json() if isinstance(ref, ChannelRef) else ref
+
+
+def _ref_from(doc: Any) -> ChannelRef | str:
+    return doc if isinstance(doc, str) else ChannelRef(**doc)
 
 
 def _node(value: Any) -> int:
