@@ -28,7 +28,7 @@ from pdcp_studio.model import parameters as P
 from pdcp_studio.model.refs import ChannelRef, DeviceKey, Direction
 from pdcp_studio.protocol import messages as M
 from pdcp_studio.protocol.bulk import BulkReassembler, packet_count
-from pdcp_studio.protocol.codes import ResponseCode
+from pdcp_studio.protocol.codes import FunctionCode, ResponseCode
 from pdcp_studio.protocol.identifier import Mode
 
 TO_BA, FROM_BA, CHANNEL_DATA = "device→BA", "BA→device", "channel data"
@@ -253,6 +253,7 @@ class FrameDecoder:
         self._pending: dict[tuple[int, int], int] = {}
         #: Device node IDs heard beaconing or answering (at most 254).
         self.heard: set[int] = set()
+        self._beaconed: set[int] = set()
 
     def _changed(self) -> None:
         """What was learned changed: cached link texts are stale."""
@@ -361,6 +362,11 @@ class FrameDecoder:
         """Count frames that fit PDCP in context: a response to a request seen before it."""
         code = msg.CODE
         node = msg.node_id
+        if code == FunctionCode.BEACON:  # a node beaconing again fits (devices beacon)
+            if node in self._beaconed:
+                self.stats.in_context += 1
+            elif len(self._beaconed) < 512:
+                self._beaconed.add(node)
         if msg.mode is Mode.DEVICE and code != 0x01 and node:
             self.heard.add(node)
         if code < 0x80:
@@ -662,6 +668,8 @@ class FrameDecoder:
         if complete:
             del self._bulk[msg.node_id, msg.mode]
             value = r.result()
+            if len(self.bulk_values) >= CACHE_SIZE:
+                self.bulk_values.clear()
             self.bulk_values[msg.node_id, chan, param] = value
             direction = self.directions.get((msg.node_id, chan))
             spec = P.find_parameter(param, chan, direction)

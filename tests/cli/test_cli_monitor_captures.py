@@ -365,3 +365,12 @@ def test_passive_monitor_never_transmits_and_learns_the_node_map(capsys):
     assert all("1/10/4#1 → 2/2/5#2" in line for line in lines[-3:])
     assert "0 errors" in err
     assert heard == frames  # only the sender's frames: the monitor sent nothing
+
+
+def test_a_pdcp_bus_of_beacons_only_is_not_called_foreign(tmp_path, capsys):
+    path = tmp_path / "beacons.asc"
+    write_capture(path, [M.Beacon(n).encode() for _ in range(30) for n in (3, 4, 5)])
+    assert main(["monitor", "--replay", str(path)]) == 0
+    out, err = capsys.readouterr()
+    assert "not PDCP" not in out + err and "0 errors" in err
+    assert out.count("Device Beacon") == 90
