@@ -774,7 +774,7 @@ def _writer_for(target: Path, file: Path) -> Any:
             raise ValueError(f"the file type {real} is incompatible with gzip")
         cls = _get_logger_for_suffix(real)
         binary = issubclass(cls, BinaryIOMessageWriter)
-        return cls(file=gzip.open(file, "wb" if binary else "wt"))
+        return cls(file=gzip.open(file, "wb" if binary else "wt"))  # type: ignore[arg-type]
     return _get_logger_for_suffix(suffixes[-1] if suffixes else "")(file=str(file))
 
 
@@ -841,6 +841,12 @@ class Recorder:
             raise CaptureError(self.path, f"cannot write this capture: {err}") from err
         except OSError as err:
             raise CaptureWriteError(self.path, f"cannot write: {err.strerror or err}") from err
+        if rotate_bytes and not callable(getattr(self._writer, "file_size", None)):
+            self.abandon()
+            with contextlib.suppress(OSError):
+                self.partial.unlink()
+            raise CaptureError(self.path, "this format cannot rotate (.asc, .blf, .csv, .log "
+                               "and .trc can)")
 
     def write_message(self, msg: Any) -> None:
         try:
