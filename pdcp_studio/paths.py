@@ -1,32 +1,85 @@
-"""Where the shipped resources (profile trees, example systems, icons) live.
+"""Where PDCP Studio's files are: the shipped resources and the user's own data.
 
-A source checkout or editable install has ``resources/`` beside the package; a frozen
-desktop build has it under ``sys._MEIPASS``; a wheel installs it as data files under
-``<prefix>/share/pdcp-studio``.
+The shipped resources (profile trees, example systems, stored configurations, icons) are
+package data of :mod:`pdcp_studio.resources` — in the source tree that package is the
+top-level ``resources/`` folder, which ``pdcp_studio/resources`` links to. They are read
+through :mod:`importlib.resources`, so a source checkout, an editable install, a wheel, a
+``pip install --user`` and the frozen desktop build all find them the same way.
+
+What a user adds (their own and their vendors' profile trees and catalogues) and what the
+app keeps (the fitting history) live in the user's data folder (``platformdirs``: on Linux
+``$XDG_DATA_HOME/pdcp-studio``, usually ``~/.local/share/pdcp-studio``), beside — never
+inside — the shipped resources, which an installation may not let anyone write.
 """
 
 from __future__ import annotations
 
-import sys
+import os
 from functools import cache
+from importlib import resources
 from pathlib import Path
+
+APP_NAME = "pdcp-studio"
+RESOURCES_PACKAGE = "pdcp_studio.resources"
+HISTORY_ENV = "PDCP_STUDIO_HISTORY"
 
 
 @cache
 def resources_dir() -> Path:
-    candidates = [Path(__file__).resolve().parent.parent / "resources"]
-    if hasattr(sys, "_MEIPASS"):
-        candidates.insert(0, Path(sys._MEIPASS) / "resources")
-    candidates.append(Path(sys.prefix) / "share" / "pdcp-studio")
-    for c in candidates:
-        if (c / "systems").is_dir():
-            return c
-    raise FileNotFoundError("PDCP Studio's resources folder is missing from this installation")
+    """The shipped resources folder (a real directory in every supported install)."""
+    try:
+        root = resources.files(RESOURCES_PACKAGE)
+    except ModuleNotFoundError:
+        root = None
+    if root is not None:
+        path = Path(str(root))
+        if (path / "systems").is_dir():
+            return path
+    raise FileNotFoundError(
+        "PDCP Studio's resources (pdcp_studio/resources: example systems, profile trees) "
+        "are missing from this installation; reinstall PDCP Studio")
 
 
 def systems_dir() -> Path:
+    """Shipped example systems (the built-in simulated prostheses)."""
     return resources_dir() / "systems"
 
 
 def profiles_dir() -> Path:
+    """Shipped profile trees."""
     return resources_dir() / "profiles"
+
+
+def configs_dir() -> Path:
+    """Shipped stored-configuration examples (``.pdcfg``)."""
+    return resources_dir() / "configs"
+
+
+def icon_path() -> Path:
+    """The application icon (SVG)."""
+    return resources_dir() / "icons" / "pdcp-studio.svg"
+
+
+def user_data_dir() -> Path:
+    """The user's data folder for PDCP Studio (not created here)."""
+    import platformdirs
+
+    return platformdirs.user_data_path(APP_NAME, appauthor=False)
+
+
+def user_profiles_dir() -> Path:
+    """Where a user's and their vendors' profile trees go (``*.json``, merged after the
+    shipped ones)."""
+    return user_data_dir() / "profiles"
+
+
+def user_catalogs_dir() -> Path:
+    """Where a user's device catalogues go (beside their profile trees)."""
+    return user_data_dir() / "catalogs"
+
+
+def history_path() -> Path:
+    """The fitting-history archive: ``$PDCP_STUDIO_HISTORY`` when set, else
+    ``history.sqlite`` in the user's data folder (contracts §2)."""
+    env = os.environ.get(HISTORY_ENV)
+    return Path(env) if env else user_data_dir() / "history.sqlite"

@@ -1,16 +1,39 @@
-"""Shared test set-up: Qt runs headless; paths to the shipped resources."""
+"""Shared test set-up: Qt runs headless; paths to the shipped resources; no test leaves a
+bus open."""
 
 from __future__ import annotations
 
+import atexit
 import os
+import shutil
+import tempfile
 from pathlib import Path
 
 import pytest
 
 os.environ.setdefault("QT_QPA_PLATFORM", "offscreen")
+# The user's own data and settings (profile trees, recent files, window layout, autosaves)
+# are never read or written by a test run: a private home for both, per run.
+_HOME = tempfile.mkdtemp(prefix="pdcp-studio-tests-")
+os.environ["XDG_DATA_HOME"] = os.path.join(_HOME, "data")
+os.environ["XDG_CONFIG_HOME"] = os.path.join(_HOME, "config")
+atexit.register(shutil.rmtree, _HOME, True)
 
 ROOT = Path(__file__).resolve().parent.parent
 RESOURCES = ROOT / "resources"
+
+
+@pytest.fixture(autouse=True)
+def no_bus_left_open():
+    """Fails a test that leaves a bus connection open (style §6): every test, every layer.
+
+    Connections already open when the test starts (a module-scoped rig) are not its own."""
+    from pdcp_studio.bus.connection import open_connections
+
+    before = set(open_connections())
+    yield
+    left = [c.name for c in open_connections() if c not in before]
+    assert not left, f"a test left a bus open: {left}"
 
 
 @pytest.fixture
@@ -97,3 +120,14 @@ def multicast_url():
     yield make
     for hold in held:
         hold.close()
+
+
+@pytest.fixture(autouse=True)
+def _private_fitting_history(tmp_path_factory, monkeypatch):
+    """Every test records its transactions in an archive of its own, never the user's."""
+    import os
+
+    if "PDCP_STUDIO_HISTORY" not in os.environ or os.environ.get("PDCP_STUDIO_TEST_KEEP") != "1":
+        path = tmp_path_factory.mktemp("history") / "history.sqlite3"
+        monkeypatch.setenv("PDCP_STUDIO_HISTORY", str(path))
+    monkeypatch.setenv("PDCP_STUDIO_OPERATOR", "test prosthetist")

@@ -12,8 +12,6 @@ from typing import Any
 
 from PySide6.QtCore import Qt
 
-from pdcp_studio.app.window_support import DEFAULT_BUS, optional_module
-
 log = logging.getLogger("pdcp_studio.app.main_window")  # the name it always logged under
 
 
@@ -21,8 +19,9 @@ class BusMixin:
     """Bus docks (made once per window, fed by each new bridge) and bus commands."""
 
     def ask_connect(self) -> None:
-        mod = optional_module("connect_dialog")
-        url = mod.ConnectDialog.get_url(self) if mod is not None else DEFAULT_BUS
+        from pdcp_studio.app.connect_dialog import ConnectDialog
+
+        url = ConnectDialog.get_url(self)
         if url and self.maybe_save():
             self.connect_bus(url)
 
@@ -36,42 +35,90 @@ class BusMixin:
 
     def _attach_bus_docks(self, bridge: Any) -> None:
         """Monitor, live plot and simulator panel for a new bridge (made once, reused)."""
-        monitor = optional_module("monitor_dock")
-        if monitor is not None:
-            dock = self._leaf_docks.get("monitor")
-            if dock is None:
-                dock = monitor.MonitorDock(self)
-                self.addDockWidget(Qt.DockWidgetArea.BottomDockWidgetArea, dock)
-                self.tabifyDockWidget(self.plan_dock, dock)
-                self.plan_dock.raise_()
-                self.view_menu.addAction(dock.toggleViewAction())
-                self._leaf_docks["monitor"] = dock
-            bridge.frameSeen.connect(dock.add_frames)
-        plot_mod = optional_module("live_plot")
-        if plot_mod is not None:
-            dock = self._leaf_docks.get("plot")
-            if dock is None:
-                plot = plot_mod.LivePlot()
-                dock = self._dock("Live plot", "LivePlotDock", plot,
-                                  Qt.DockWidgetArea.BottomDockWidgetArea)
-                self.tabifyDockWidget(self.plan_dock, dock)
-                self.plan_dock.raise_()
-                self.view_menu.addAction(dock.toggleViewAction())
-                self._leaf_docks["plot"] = dock
-                self.doc.selectionChanged.connect(self._plot_selection)
-            bridge.channelValues.connect(dock.widget().add_values)
-        sim = optional_module("sim_panel")
-        if sim is not None and bridge.is_sim:
+        from pdcp_studio.app import live_plot, monitor_dock, sim_panel
+
+        dock = self._leaf_docks.get("monitor")
+        if dock is None:
+            dock = monitor_dock.MonitorDock(self)
+            self.addDockWidget(Qt.DockWidgetArea.BottomDockWidgetArea, dock)
+            self.tabifyDockWidget(self.plan_dock, dock)
+            self.plan_dock.raise_()
+            self.view_menu.addAction(dock.toggleViewAction())
+            self._leaf_docks["monitor"] = dock
+        bridge.frameSeen.connect(dock.add_frames)
+        dock = self._leaf_docks.get("plot")
+        if dock is None:
+            plot = live_plot.LivePlot()
+            dock = self._dock("Live plot", "LivePlotDock", plot,
+                              Qt.DockWidgetArea.BottomDockWidgetArea)
+            self.tabifyDockWidget(self.plan_dock, dock)
+            self.plan_dock.raise_()
+            self.view_menu.addAction(dock.toggleViewAction())
+            self._leaf_docks["plot"] = dock
+            self.doc.selectionChanged.connect(self._plot_selection)
+        bridge.channelValues.connect(dock.widget().add_values)
+        if bridge.is_sim:
             old = self._leaf_docks.pop("sim", None)
             if old is not None:
                 old.close()
                 old.deleteLater()
-            panel = sim.SimPanel(bridge)
+            panel = sim_panel.SimPanel(bridge)
             dock = self._dock("Simulator", "SimDock", panel,
                               Qt.DockWidgetArea.RightDockWidgetArea)
             self.tabifyDockWidget(self.inspector_dock, dock)
             self.inspector_dock.raise_()
             self._leaf_docks["sim"] = dock
+
+    def _session_started(self, bridge: Any) -> None:
+        """A new session is on screen: the bus panels start afresh on it (no frames, values
+        or node map of the previous session), and plans get its stored configuration."""
+        system = self.doc.system
+        monitor = self._leaf_docks.get("monitor")
+        if monitor is not None and hasattr(monitor, "reset_for_session"):
+            monitor.reset_for_session(system)
+        plot = self._leaf_docks.get("plot")
+        if plot is not None:
+            plot.widget().set_channel(None)
+        bridge.simChanged.connect(lambda _what: (self.live.refresh(),
+                                                 self.reread_configuration()))
+        bridge.configurationWritten.connect(lambda _c: self.reread_configuration())
+        self.reread_configuration()
+
+    def _bus_seen(self, system: Any) -> None:
+        """After any bus event: the monitor names frames by the bus's node IDs as they are
+        now (a hot-swapped device may have a new one); the plot drops a channel that left."""
+        monitor = self._leaf_docks.get("monitor")
+        if monitor is not None and hasattr(monitor, "reset_for_session"):
+            monitor.reset_for_session(system, keep_frames=True)
+        plot = self._leaf_docks.get("plot")
+        if plot is not None:
+            ref = plot.widget().ref
+            if ref is not None and system.channel(ref) is None:
+                plot.widget().set_channel(None)
+
+    def _detach_bus_docks(self) -> None:
+        """The session ended: no panel may keep acting on it (the simulator's goes)."""
+        old = self._leaf_docks.pop("sim", None)
+        if old is not None:
+            old.close()
+            old.deleteLater()
+        plot = self._leaf_docks.get("plot")
+        if plot is not None:
+            plot.widget().set_channel(None)
+
+    def reread_configuration(self) -> None:
+        """Read the arbitrator's stored configuration again (after connecting, every write
+        and every bus event that may change it): previews always use the current one."""
+        bridge = self.live.bridge
+        if bridge is None:
+            return
+        session = bridge.session
+        bridge.run(lambda _p, _c: session.read_configuration(), "Read configuration",
+                   lambda c, b=bridge: self._stored_configuration_seen(b, c))
+
+    def _stored_configuration_seen(self, bridge: Any, collection: Any) -> None:
+        if bridge is self.live.bridge and self.doc.session is bridge:
+            self.doc.config = collection
 
     def read_configuration(self) -> None:
         """Ask the arbitrator for its stored configuration (on the bridge's worker)."""
@@ -111,19 +158,35 @@ class BusMixin:
                 dock.widget().set_channel(obj, str(obj))
 
     def show_compare(self) -> None:
-        mod = optional_module("compare_dialog")
-        if mod is None:
-            self.error_box("Compare", "this build has no compare dialog")
-            return
+        from pdcp_studio.app import compare_dialog as mod
+
         dialog = mod.CompareDialog(self.doc.system, bridge=self.live.bridge, parent=self)
-        if self.doc.config is not None and hasattr(mod, "sources_of_collection"):
-            dialog.set_file_sources(mod.sources_of_collection(self.doc.title, self.doc.config))
+        if self.doc.config is not None:
+            dialog.set_file_sources(mod.sources_of_collection(self.doc.title, self.doc.config),
+                                    self.doc.config)
         dialog.show()
 
+    def compare_with_prosthesis(self, path: Any) -> Any:
+        """Compare a file's links with the prosthesis (on screen and its arbitrator's stored
+        configuration), staying connected; returns the dialog."""
+        from pdcp_studio.app import compare_dialog as mod
+
+        dialog = mod.CompareDialog(self.doc.system, bridge=self.live.bridge, parent=self)
+        dialog.load_file(path)
+        if self.live.bridge is not None:
+            dialog.read_arbitrator()
+        dialog.show()
+        self.compare_dialog = dialog
+        return dialog
+
     def ask_write_configuration(self) -> None:
-        mod = optional_module("write_config_dialog")
-        if mod is None or self.live.bridge is None:
+        from pdcp_studio.app import write_config_dialog as mod
+
+        if self.live.bridge is None:
             self.error_box("Write configuration", "connect to a bus first")
             return
         dialog = mod.WriteConfigDialog.for_system(self.live.bridge, self.doc.system, self)
+        # Whatever came of it, plans must use what the arbitrator stores now.
+        dialog.verified.connect(lambda _ok, _msg: self.reread_configuration())
+        dialog.verified.connect(lambda _ok, _msg: self.history_panel.refresh())
         dialog.show()

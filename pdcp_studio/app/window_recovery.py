@@ -1,7 +1,7 @@
 """Crash recovery for the main window: autosaving the document and offering it back.
 
-Kept apart from :mod:`main_window`; the autosaver and the dialog themselves are the
-optional :mod:`pdcp_studio.app.recovery`.
+Kept apart from :mod:`main_window`; the autosaver and the dialog themselves are in
+:mod:`pdcp_studio.app.recovery`.
 """
 
 from __future__ import annotations
@@ -9,7 +9,6 @@ from __future__ import annotations
 from typing import Any
 
 from pdcp_studio.app import files
-from pdcp_studio.app.window_support import optional_module
 from pdcp_studio.errors import PdcpError
 
 
@@ -17,9 +16,8 @@ class RecoveryMixin:
     """Autosave while editing; after a crash, offer and restore what was autosaved."""
 
     def _start_autosave(self, recovery: Any) -> None:
-        mod = optional_module("recovery")
-        if mod is None:
-            return
+        from pdcp_studio.app import recovery as mod
+
         doc = self.doc
         self.autosaver = mod.Autosaver(
             recovery, lambda: str(doc.path) if doc.path else "untitled",
@@ -30,8 +28,9 @@ class RecoveryMixin:
 
     def offer_recovery(self) -> bool:
         """After a crash: offer the autosaved documents; True if one was restored."""
-        mod = optional_module("recovery")
-        if mod is None or self.recovery is None:
+        from pdcp_studio.app import recovery as mod
+
+        if self.recovery is None:
             return False
         pending = self.recovery.pending()
         if not pending:

@@ -14,7 +14,8 @@ from collections.abc import Callable
 from typing import TYPE_CHECKING, Any
 
 from pdcp_studio.bus import events as ev
-from pdcp_studio.errors import PdcpError, TransportError
+from pdcp_studio.bus.transaction import Status, TransactionResult
+from pdcp_studio.errors import PdcpError
 from pdcp_studio.model.configuration import ConfigCollection
 from pdcp_studio.model.refs import ChannelRef
 
@@ -29,24 +30,27 @@ class ProfileMixin:
 
     # -- plans ----------------------------------------------------------------------------
     def apply_plan(self, plan: Plan, progress: Callable[[int, int, str], Any] | None = None,
-                   cancel: threading.Event | None = None) -> None:
-        """Carry out an engine plan's actions on the bus, in order; log it.
+                   cancel: threading.Event | None = None) -> TransactionResult:
+        """Carry out an engine plan's actions on the bus, in order, with no interlock (the
+        profile layer's own start-up and duty cycle); log it and return what came of it.
 
-        An action that fails on the wire is reported and skipped, the others go on; the
-        failures are raised together at the end (TransportError). ``cancel`` stops between
-        actions (noted in the plan).
+        An action that fails on the wire is reported and skipped, the others go on (status
+        ``failed``, reason naming them). ``cancel`` stops between actions. Changes a person
+        asks for go through :meth:`transact` instead (interlock, verify, all or nothing).
         """
         from pdcp_studio.engine.plan import Op
 
         failures: list[str] = []
+        cancelled = ""
         with self._plan_lock:
             with self._lock:
                 self._plan_running += 1
+                before = self._system.links
             try:
                 total = len(plan.actions)
                 for done, action in enumerate(plan.actions):
                     if cancel is not None and cancel.is_set():
-                        plan.notes.append(f"cancelled after {done} of {total} actions")
+                        cancelled = f"cancelled after {done} of {total} actions"
                         break
                     if progress is not None:
                         progress(done, total, f"{action.op.value} {action.link}")
@@ -78,10 +82,16 @@ class ProfileMixin:
             finally:
                 with self._lock:
                     self._plan_running -= 1
+                    after = self._system.links
         self._emit(ev.PlanApplied(plan))
-        if failures:
-            raise TransportError(f"plan {plan.mode}: {len(failures)} action(s) failed: "
-                                 + "; ".join(failures[:5]))
+        result = TransactionResult(Status.APPLIED, f"apply {plan.mode}", links_before=before,
+                                   links_after=after, verified=False, interlock="not used")
+        if failures or cancelled:
+            result.status, result.step = Status.FAILED, "write"
+            result.reason = "; ".join(([cancelled] if cancelled else [])
+                                      + ([f"{len(failures)} action(s) failed: "
+                                          + "; ".join(failures[:5])] if failures else []))
+        return result
 
     def run_startup(self) -> Plan:
         """Listing 4.1 / 5.1 with the memory's configuration (or the devices' own)."""
@@ -99,9 +109,11 @@ class ProfileMixin:
                 self._error(f"stored configuration unreadable, starting up from the devices' "
                             f"own source fields: {err}", "plan")
                 stored = ConfigCollection([])
-            plan = plan_on_bus("startup", self.system(), stored)
+            autoconfigure = self._policy_for_plans()
+            plan = plan_on_bus("startup", self.system(), stored, autoconfigure=autoconfigure)
             try:
                 self.apply_plan(plan)
+                self._report_policy(plan, autoconfigure)
                 # What the stored configuration names and the bus lacks is shown as missing.
                 stored_cfg = plan.configuration if plan.configuration_source == "stored" else None
                 with self._lock:
@@ -113,6 +125,15 @@ class ProfileMixin:
                     self._last_present = self._present_refs()
         return plan
 
+    def _policy_for_plans(self) -> bool:
+        """The stored autoconfigure policy; the thesis's default (on) when the memory cannot
+        be read — start-up already said so once, and an unreadable memory must not leave the
+        prosthesis unlinked."""
+        try:
+            return self.read_policy().autoconfigure
+        except (OSError, PdcpError):
+            return True
+
     def run_duty_cycle(self) -> Plan:
         """Listing 4.2: replacements for channels that left, then autoconfigure."""
         from pdcp_studio.engine import plan_duty_cycle
@@ -122,14 +143,31 @@ class ProfileMixin:
                 self._duty_needed = False
                 before = set(self._last_present)
             snapshot = self.system()
-            plan = plan_duty_cycle(snapshot, before)
+            autoconfigure = self._policy_for_plans()
+            plan = plan_duty_cycle(snapshot, before, autoconfigure=autoconfigure)
             try:
                 if plan.actions:
                     self.apply_plan(plan)
+                self._report_policy(plan, autoconfigure)
             finally:
                 with self._lock:
                     self._last_present = self._present_refs()
         return plan
+
+    def _report_policy(self, plan: Plan, autoconfigure: bool) -> None:
+        """With autoconfigure off, say which terminal channels were left unconnected."""
+        if autoconfigure:
+            return
+        from pdcp_studio.engine.layer import ProfileLayer
+        from pdcp_studio.engine.procedures import AUTOCONFIGURE_OFF
+
+        refs = tuple(ProfileLayer(self.system(), "policy").unconnected_terminals())
+        if refs:
+            log.info("%s: %d terminal channel(s) not connected: %s", self.name, len(refs),
+                     AUTOCONFIGURE_OFF)
+            self._emit(ev.TerminalsUnconnected(
+                refs, f"{len(refs)} terminal channel(s) not connected — {AUTOCONFIGURE_OFF}: "
+                + ", ".join(str(r) for r in refs)))
 
     def _present_refs(self) -> set[ChannelRef]:
         return {ref for ref, _ in self._system.channels() if self._system.is_present(ref)}
@@ -142,8 +180,8 @@ class ProfileMixin:
         while not self._stop.is_set():
             self._wake.wait(0.02)
             self._wake.clear()
-            if self._stop.is_set() or not self.profile_layer:
-                continue
+            if self._stop.is_set() or not self.profile_layer or not self._claim.may_write:
+                continue  # (listening, or another arbitrator is on the bus)
             now = time.monotonic()
             try:
                 if not self._startup_done:

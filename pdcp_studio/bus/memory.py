@@ -36,8 +36,11 @@ log = logging.getLogger(__name__)
 
 MAGIC = b"PDCM"
 FORMAT_VERSION = 1
-# magic, format version, reserved, generation, payload length, CRC-32 (generation..payload)
+# magic, format version, policy flags, generation, payload length, CRC-32 (generation..payload,
+# and the flags when any is set — so a memory without flags reads as before)
 _HEADER = struct.Struct("<4sHHQII")
+#: Policy flag: start-up and the duty cycle never autoconfigure (issue 17, ``--no-autoconfigure``).
+FLAG_NO_AUTOCONFIGURE = 0x0001
 HEADER_SIZE = _HEADER.size
 #: Room for the largest collection the codec accepts.
 SLOT_CAPACITY = config_codec.MAX_INPUT_BYTES
@@ -111,8 +114,9 @@ class _RamBackend:
         self.image = bytearray(image)
 
 
-def _crc(generation: int, payload: bytes) -> int:
-    return zlib.crc32(struct.pack("<QI", generation, len(payload)) + payload)
+def _crc(generation: int, payload: bytes, flags: int = 0) -> int:
+    extra = struct.pack("<H", flags) if flags else b""
+    return zlib.crc32(struct.pack("<QI", generation, len(payload)) + payload + extra)
 
 
 class MemoryStore:
@@ -140,23 +144,28 @@ class MemoryStore:
 
     def _slot(self, slot: int) -> tuple[int, bytes] | str | None:
         """(generation, payload) if valid; None if blank; a reason string if damaged."""
+        got = self._slot_flags(slot)
+        return got[:2] if isinstance(got, tuple) else got
+
+    def _slot_flags(self, slot: int) -> tuple[int, bytes, int] | str | None:
+        """(generation, payload, flags) if valid; None if blank; a reason if damaged."""
         head = self._backend.read(self._offset(slot), HEADER_SIZE)
         if len(head) < HEADER_SIZE or head[:4] != MAGIC:
             blank = not head.strip(b"\0") or not head.strip(b"\xff")
             return None if blank else "no slot header"
-        _, version, _, generation, length, crc = _HEADER.unpack(head)
+        _, version, flags, generation, length, crc = _HEADER.unpack(head)
         if version != FORMAT_VERSION:
             return f"unknown format version {version}"
         if length > self.capacity:
             return f"length {length} exceeds the slot capacity {self.capacity}"
         payload = self._backend.read(self._offset(slot) + HEADER_SIZE, length)
-        if len(payload) != length or _crc(generation, payload) != crc:
+        if len(payload) != length or _crc(generation, payload, flags) != crc:
             return f"checksum mismatch (generation {generation})"
         try:
             config_codec.loads(payload)
         except ConfigFormatError as err:
             return f"configuration does not decode: {err}"
-        return generation, payload
+        return generation, payload, flags
 
     def _scan(self) -> tuple[int | None, int, bytes | None, list[str]]:
         """(slot of the newest valid copy, its generation, its payload, damage notes)."""
@@ -216,54 +225,79 @@ class MemoryStore:
         return config_codec.loads(payload) if payload is not None else ConfigCollection()
 
     def write(self, configs: ConfigCollection) -> int:
-        """Store ``configs`` in the older slot; returns the new generation.
-
-        The written slot is read back and checked before this returns.
-        """
+        """Store ``configs`` in the older slot (the policy is kept); returns the new
+        generation. The written slot is read back and checked before this returns."""
         payload = config_codec.dumps(configs)
         if len(payload) > self.capacity:
             raise MemoryStoreError(f"the configuration takes {len(payload)} bytes; the memory "
-                               f"holds {self.capacity} per slot")
+                                   f"holds {self.capacity} per slot")
         with self._lock:
-            slot, generation, _, _ = self._scan()
-            new_generation = generation + 1 if generation >= 0 else 1
-            if slot is None:
-                legacy = self._legacy()
-                if legacy is not None:  # convert atomically: the plain file becomes slot A
-                    image = self._image(1, legacy) + self._image_pad(legacy)
-                    image += self._image(2, payload)
-                    self._backend.replace(image)
-                    self._check(1, 2, payload)
-                    return 2
-                if self._slot(0) == "no slot header":  # not ours: never write over it
-                    raise MemoryStoreError(f"{self.path} is neither an arbitrator memory nor a "
-                                           "stored configuration; refusing to overwrite it")
-            target = 1 if slot == 0 else 0
-            base = self._offset(target)
-            for start in range(0, len(payload), CHUNK):
-                self._backend.write(base + HEADER_SIZE + start, payload[start:start + CHUNK])
-                self._step("payload")
-            self._backend.sync()
-            self._step("payload synced")
-            head = _HEADER.pack(MAGIC, FORMAT_VERSION, 0, new_generation, len(payload),
-                                _crc(new_generation, payload))
-            half = HEADER_SIZE // 2
-            self._backend.write(base, head[:half])
-            self._step("header half")
-            self._backend.write(base + half, head[half:])
-            self._backend.sync()
-            self._step("header synced")
-            self._check(target, new_generation, payload)
-            return new_generation
+            return self._write_locked(payload, None)
+
+    def read_policy(self) -> dict[str, bool]:
+        """The profile-layer policy stored beside the configuration (issue 17)."""
+        with self._lock:
+            flags = self._flags()
+        return {"autoconfigure": not flags & FLAG_NO_AUTOCONFIGURE}
+
+    def write_policy(self, policy: dict[str, bool]) -> int:
+        """Store the policy with the current configuration (a safe two-slot write)."""
+        with self._lock:
+            flags = self._flags() & ~FLAG_NO_AUTOCONFIGURE
+            if not policy.get("autoconfigure", True):
+                flags |= FLAG_NO_AUTOCONFIGURE
+            _, _, payload, _ = self._scan()
+            if payload is None:
+                payload = self._legacy() or config_codec.dumps(ConfigCollection())
+            return self._write_locked(payload, flags)
+
+    def _flags(self) -> int:
+        slot, _, _, _ = self._scan()
+        got = self._slot_flags(slot) if slot is not None else None
+        return got[2] if isinstance(got, tuple) else 0
+
+    def _write_locked(self, payload: bytes, flags: int | None) -> int:
+        slot, generation, _, _ = self._scan()
+        if flags is None:
+            flags = self._flags()
+        new_generation = generation + 1 if generation >= 0 else 1
+        if slot is None:
+            legacy = self._legacy()
+            if legacy is not None:  # convert atomically: the plain file becomes slot A
+                image = self._image(1, legacy) + self._image_pad(legacy)
+                image += self._image(2, payload, flags)
+                self._backend.replace(image)
+                self._check(1, 2, payload)
+                return 2
+            if self._slot(0) == "no slot header":  # not ours: never write over it
+                raise MemoryStoreError(f"{self.path} is neither an arbitrator memory nor a "
+                                       "stored configuration; refusing to overwrite it")
+        target = 1 if slot == 0 else 0
+        base = self._offset(target)
+        for start in range(0, len(payload), CHUNK):
+            self._backend.write(base + HEADER_SIZE + start, payload[start:start + CHUNK])
+            self._step("payload")
+        self._backend.sync()
+        self._step("payload synced")
+        head = _HEADER.pack(MAGIC, FORMAT_VERSION, flags, new_generation, len(payload),
+                            _crc(new_generation, payload, flags))
+        half = HEADER_SIZE // 2
+        self._backend.write(base, head[:half])
+        self._step("header half")
+        self._backend.write(base + half, head[half:])
+        self._backend.sync()
+        self._step("header synced")
+        self._check(target, new_generation, payload)
+        return new_generation
 
     def erase(self) -> int:
         """Store an empty collection (itself a safe, two-slot write); returns its generation."""
         return self.write(ConfigCollection())
 
     # -- helpers --------------------------------------------------------------------------
-    def _image(self, generation: int, payload: bytes) -> bytes:
-        return _HEADER.pack(MAGIC, FORMAT_VERSION, 0, generation, len(payload),
-                            _crc(generation, payload)) + payload
+    def _image(self, generation: int, payload: bytes, flags: int = 0) -> bytes:
+        return _HEADER.pack(MAGIC, FORMAT_VERSION, flags, generation, len(payload),
+                            _crc(generation, payload, flags)) + payload
 
     def _image_pad(self, payload: bytes) -> bytes:
         return bytes(self.capacity - len(payload))

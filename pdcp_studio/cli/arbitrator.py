@@ -1,4 +1,5 @@
-"""``pdcp-studio arbitrator --bus can:IFACE:CHANNEL [--memory FILE] [--host-serial PORT]``.
+"""``pdcp-studio arbitrator --bus can:IFACE:CHANNEL [--memory FILE] [--host-serial PORT]
+[--no-autoconfigure]``.
 
 A headless bus arbitrator for a real (or a multicast) bus: it binds and sets up the devices,
 runs start-up with its memory and the hot-swap duty cycle, and logs joins, leaves, links and
@@ -34,6 +35,10 @@ def add_subparser(subparsers: Any) -> None:
                              "pseudo-terminal)")
     parser.add_argument("--no-profile-layer", action="store_true",
                         help="bind and set up only; no start-up or duty cycle")
+    parser.add_argument("--no-autoconfigure", action="store_true",
+                        help="start-up and the duty cycle implement the stored configuration "
+                             "and find replacements but never autoconfigure (kept in memory; "
+                             "without the flag the stored policy holds)")
     parser.add_argument("--seconds", type=options.SECONDS, metavar="N",
                         help="stop after N seconds instead of waiting for Ctrl-C")
     parser.add_argument("--startup-quiet", type=options.WAIT_SECONDS, metavar="S",
@@ -55,6 +60,10 @@ def describe(event: Any) -> str | None:
         return f"link removed {event.link}"
     if isinstance(event, ev.BusError):
         return f"error {event.message}"
+    if isinstance(event, ev.BusState):  # a yield is the error line on stderr instead
+        return None if event.state == "yielded" else f"{event.state}: {event.message}"
+    if isinstance(event, ev.TerminalsUnconnected):
+        return f"policy {event.why}"
     if isinstance(event, ev.PlanApplied):
         plan = event.plan
         lines = [f"plan {plan.mode}: {len(plan.added)} added, {len(plan.removed)} removed, "
@@ -65,13 +74,10 @@ def describe(event: Any) -> str | None:
 
 
 def run(args: argparse.Namespace) -> int:
-    from pdcp_studio.bus.urls import BusUrlError, open_spec, parse_bus_url
-    from pdcp_studio.cli.main import EXIT_BAD_INPUT, BadInput
+    from pdcp_studio.bus.urls import check_bus_url
+    from pdcp_studio.cli.main import EXIT_BAD_INPUT, EXIT_FAILURE, BadInput
 
-    try:
-        spec = parse_bus_url(args.bus)
-    except BusUrlError as err:
-        raise BadInput(str(err)) from err
+    spec = check_bus_url(args.bus)  # BusUrlError: exit 2, as from every command
     if spec.kind != "can":
         raise BadInput(f"--bus {args.bus}: the arbitrator runs on a can: bus "
                        "(can:INTERFACE:CHANNEL[@BITRATE])")
@@ -98,20 +104,28 @@ def run(args: argparse.Namespace) -> int:
         if text is not None:
             lines.put(text)
 
+    from pdcp_studio.bus.arb_claim import LISTEN_S
+
     options: dict[str, Any] = {"memory": args.memory, "name": "arbitrator",
-                               "profile_layer": not args.no_profile_layer}
+                               "profile_layer": not args.no_profile_layer,
+                               "listen_s": LISTEN_S}
+    if args.no_autoconfigure:
+        options["autoconfigure"] = False
     if args.startup_quiet is not None:
         options["startup_quiet_s"] = args.startup_quiet
     stop = threading.Event()
     main_thread = threading.current_thread() is threading.main_thread()
     previous = signal.signal(signal.SIGTERM, lambda *_: stop.set()) if main_thread else None
-    bus = open_spec(spec)
+    from pdcp_studio.bus.reopen import open_reopening
+
+    bus = open_reopening(spec)  # a pulled adapter is reopened; the outage is said once
     try:
         arbitrator = Arbitrator(bus, **options)
     except BaseException:
         bus.shutdown()
         raise
     server = None
+    code = 0
     try:
         arbitrator.subscribe(on_event)
         if server_cls is not None:
@@ -120,8 +134,14 @@ def run(args: argparse.Namespace) -> int:
             print(f"host link on {where}", flush=True)
         print(f"arbitrator on {spec.url}" + (f", memory {args.memory}" if args.memory else ""),
               flush=True)
+        if not arbitrator.read_policy().autoconfigure:
+            print("policy: autoconfigure off (start-up and the duty cycle link nothing new)",
+                  flush=True)
         deadline = None if args.seconds is None else time.monotonic() + args.seconds
         while not stop.is_set():
+            if arbitrator.yielded:  # another arbitrator is on the bus (reference §5)
+                code = EXIT_FAILURE
+                break
             if deadline is not None and time.monotonic() >= deadline:
                 break
             try:
@@ -141,5 +161,7 @@ def run(args: argparse.Namespace) -> int:
                 print(lines.get_nowait(), flush=True)
             except queue.Empty:
                 break
+    if code:
+        print(f"pdcp-studio: error: {spec.url}: {arbitrator.bus_message}", file=sys.stderr)
     print("arbitrator stopped", flush=True)
-    return 0
+    return code

@@ -1,4 +1,6 @@
-"""``print`` and ``info``: long (appendix D style) and short listings of a system file.
+"""``print`` and ``info``: long (appendix D style) and short listings of a system file, or of
+a live bus as it is now (``--bus URL``: the scan's system with node IDs, the thesis's
+``pdcp_run print`` / ``info``).
 
 ``print`` follows the thesis implementation's printout (appendix D): counts, then
 each device, input channel, output channel and channel link. Object addresses of
@@ -13,18 +15,32 @@ from pdcp_studio.model.system import Channel, Device, System
 
 
 def add_subparser(subparsers: argparse._SubParsersAction) -> None:
-    p = subparsers.add_parser("print", help="long listing of a system (appendix D style)")
-    p.add_argument("--system", required=True, metavar="FILE", help="a pdcp-system/1 file")
-    p.set_defaults(func=run_print)
-    p = subparsers.add_parser("info", help="short listing of a system")
-    p.add_argument("--system", required=True, metavar="FILE", help="a pdcp-system/1 file")
-    p.set_defaults(func=run_info)
+    for name, helptext, func in (
+            ("print", "long listing of a system or a live bus (appendix D style)", run_print),
+            ("info", "short listing of a system or a live bus", run_info)):
+        p = subparsers.add_parser(name, help=helptext)
+        source = p.add_mutually_exclusive_group(required=True)
+        source.add_argument("--system", metavar="FILE", help="a pdcp-system/1 file")
+        source.add_argument("--bus", metavar="URL",
+                            help="a live prosthesis as it is now (the scan's system)")
+        p.add_argument("--memory", metavar="FILE",
+                       help="PDCP Studio's own arbitrator memory (sim: and can: buses)")
+        p.set_defaults(func=func)
 
 
-def _load(path: str) -> System:
+def _load(args: argparse.Namespace) -> System:
+    """The system file, or the live bus scanned (node IDs included), over any transport."""
+    if getattr(args, "bus", None):
+        from pdcp_studio.cli.scan import open_bus_session
+
+        session = open_bus_session(args.bus, memory=getattr(args, "memory", None))
+        try:
+            return session.scan()
+        finally:
+            session.close()
     from pdcp_studio.storage.system_file import load_path
 
-    return load_path(path)
+    return load_path(args.system)
 
 
 def _bitmap_value(indices: tuple[int, ...]) -> int:
@@ -158,10 +174,10 @@ def format_short(system: System) -> str:
 
 
 def run_print(args: argparse.Namespace) -> int:
-    print(format_long(_load(args.system)), end="")
+    print(format_long(_load(args)), end="")
     return 0
 
 
 def run_info(args: argparse.Namespace) -> int:
-    print(format_short(_load(args.system)), end="")
+    print(format_short(_load(args)), end="")
     return 0

@@ -40,10 +40,12 @@ MODE_HELP = (
 )
 
 
-def add_mode_arguments(p: argparse.ArgumentParser) -> None:
-    """The arguments ``plan`` and ``apply`` share."""
+def add_mode_arguments(p: argparse.ArgumentParser, *, source_required: bool = True) -> None:
+    """The arguments ``plan`` and ``apply`` share (``apply`` takes ``--bus`` instead of
+    ``--system`` too, so there ``--system`` is not required)."""
     p.add_argument("mode", choices=MODE_NAMES, metavar="MODE", help=MODE_HELP)
-    p.add_argument("--system", required=True, metavar="FILE", help="a pdcp-system/1 file")
+    p.add_argument("--system", required=source_required, metavar="FILE",
+                   help="a pdcp-system/1 file")
     p.add_argument("--config", metavar="CFG",
                    help="the stored configuration: .pdcfg bytes, `config decode --json` JSON, "
                         "or a pdcp-system/1 file whose links are the configuration")

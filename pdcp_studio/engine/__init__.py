@@ -29,6 +29,7 @@ from pdcp_studio.engine.plan import (
     Refusal,
     Rejection,
     Rule,
+    set_links,
 )
 from pdcp_studio.engine.procedures import (
     choose_configuration,
@@ -69,4 +70,5 @@ __all__ = [
     "plan_startup",
     "resolve_configuration",
     "retrieve_configuration",
+    "set_links",
 ]

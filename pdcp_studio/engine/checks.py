@@ -10,6 +10,7 @@ from __future__ import annotations
 from collections.abc import Callable
 from dataclasses import dataclass
 from enum import StrEnum
+from typing import Any
 
 from pdcp_studio.engine.layer import ProfileLayer
 from pdcp_studio.model import profile as prof
@@ -34,7 +35,7 @@ class Finding:
     message: str
     refs: tuple[ChannelRef, ...] = ()
 
-    def to_json(self) -> dict:
+    def to_json(self) -> dict[str, Any]:
         return {"severity": self.severity.value, "code": self.code, "message": self.message,
                 "refs": [r.as_json() for r in self.refs]}
 
@@ -42,8 +43,9 @@ class Finding:
         return f"{self.severity.value:7} {self.code}: {self.message}"
 
 
-def check_system(system: System) -> list[Finding]:
-    """Every finding, errors first, then by code and channels."""
+def check_system(system: System, *, autoconfigure: bool = True) -> list[Finding]:
+    """Every finding, errors first, then by code and channels. ``autoconfigure`` False (the
+    prosthesis's policy, issue 17) says so on each unconnected terminal channel."""
     layer = ProfileLayer(system, "check")
     out: list[Finding] = []
     add = out.append
@@ -109,6 +111,11 @@ def check_system(system: System) -> list[Finding]:
     for ref in layer.unconnected_terminals():
         found = layer.find_output_for(ref)
         tp = prof.fmt(layer.channels[ref].terminal_profile)
+        if not autoconfigure:
+            add(Finding(Severity.WARNING, "terminal-unconnected",
+                        f"terminal channel {ref} ({tp}) not connected — autoconfigure is off "
+                        "on this prosthesis", (ref,)))
+            continue
         if found is None:
             why = layer.why_no_output(ref)
         else:

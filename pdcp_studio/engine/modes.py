@@ -37,12 +37,13 @@ def _configured(layer: ProfileLayer, config: AnyConfig, *, source: str) -> Store
         plan.configuration, plan.configuration_source = cfg, "system"
         plan.configuration_reason = "no configuration given: the system's current links"
         return cfg
-    cfg, why = proc.resolve_configuration(layer.system, config)
-    if cfg is None:
+    resolved, why = proc.resolve_configuration(layer.system, config)
+    if resolved is None:
         plan.configuration_source, plan.configuration_reason = source, why
         return StoredConfiguration(index=1, links=[])
-    plan.configuration, plan.configuration_source, plan.configuration_reason = cfg, source, why
-    return cfg
+    plan.configuration, plan.configuration_source, plan.configuration_reason = \
+        resolved, source, why
+    return resolved
 
 
 def plan_implement(system: System, configuration: AnyConfig) -> Plan:
@@ -67,17 +68,19 @@ def plan_replacements(system: System, configuration: AnyConfig) -> Plan:
     return layer.finish()
 
 
-def plan_startup(system: System, stored: AnyConfig) -> Plan:
-    """Listings 4.1 / 5.1 (see ``procedures.startup``)."""
+def plan_startup(system: System, stored: AnyConfig, *, autoconfigure: bool = True) -> Plan:
+    """Listings 4.1 / 5.1 (see ``procedures.startup``); ``autoconfigure`` False is the
+    policy of issue 17 (unconnected terminal channels are noted, not linked)."""
     layer = ProfileLayer(system, "startup")
-    proc.startup(layer, stored)
+    proc.startup(layer, stored, autoconfigure_on=autoconfigure)
     return layer.finish()
 
 
-def plan_duty_cycle(system: System, previously_present: set[ChannelRef] | None = None) -> Plan:
-    """Listing 4.2, the hot-swap duty cycle."""
+def plan_duty_cycle(system: System, previously_present: set[ChannelRef] | None = None, *,
+                    autoconfigure: bool = True) -> Plan:
+    """Listing 4.2, the hot-swap duty cycle (``autoconfigure`` as for start-up)."""
     layer = ProfileLayer(system, "duty-cycle")
-    proc.duty_cycle(layer, previously_present)
+    proc.duty_cycle(layer, previously_present, autoconfigure_on=autoconfigure)
     return layer.finish()
 
 
@@ -93,8 +96,10 @@ def plan_clear(system: System) -> Plan:
     return layer.finish()
 
 
-def plan_for(mode: str, system: System, config: AnyConfig = None) -> Plan:
-    """Dispatch by mode name; ``config`` is ignored by autoconfigure, enforce and clear."""
+def plan_for(mode: str, system: System, config: AnyConfig = None, *,
+             autoconfigure: bool = True) -> Plan:
+    """Dispatch by mode name; ``config`` is ignored by autoconfigure, enforce and clear;
+    ``autoconfigure`` (the arbitrator's policy) only by startup and duty-cycle."""
     if mode == "autoconfigure":
         return plan_autoconfigure(system)
     if mode == "replacements":
@@ -102,18 +107,20 @@ def plan_for(mode: str, system: System, config: AnyConfig = None) -> Plan:
     if mode == "implement":
         return plan_implement(system, config)
     if mode == "startup":
-        return plan_startup(system, config)
+        return plan_startup(system, config, autoconfigure=autoconfigure)
     if mode == "enforce":
         return plan_enforce(system)
     if mode == "clear":
         return plan_clear(system)
     if mode == "duty-cycle":
-        return plan_duty_cycle(system, None)
+        return plan_duty_cycle(system, None, autoconfigure=autoconfigure)
     raise EngineError(f"unknown mode {mode!r} (one of {', '.join(MODES + EXTRA_MODES)})")
 
 
-def plan_on_bus(mode: str, system: System, memory: ConfigCollection) -> Plan:
-    """``plan_for`` on a live bus, with the arbitrator's stored configuration; an empty
-    memory means none is stored, so the plan works from the system's own links (start-up
-    retrieves them from the inputs' source fields)."""
-    return plan_for(mode, system, memory if memory.configurations else None)
+def plan_on_bus(mode: str, system: System, memory: ConfigCollection, *,
+                autoconfigure: bool = True) -> Plan:
+    """``plan_for`` on a live bus, with the arbitrator's stored configuration and policy; an
+    empty memory means none is stored, so the plan works from the system's own links
+    (start-up retrieves them from the inputs' source fields)."""
+    return plan_for(mode, system, memory if memory.configurations else None,
+                    autoconfigure=autoconfigure)

@@ -216,9 +216,22 @@ def autoconfigure(layer: ProfileLayer) -> None:
 
 
 # -- listings 4.1 / 5.1 and 4.2 -----------------------------------------------------------------
+AUTOCONFIGURE_OFF = "autoconfigure is off on this prosthesis"
+
+
+def report_unconnected_terminals(layer: ProfileLayer) -> None:
+    """With the policy's autoconfigure off: note each unconnected terminal channel instead
+    of linking it (issue 17)."""
+    for ref in layer.unconnected_terminals():
+        layer.note(f"terminal channel {ref} not connected — {AUTOCONFIGURE_OFF}")
+
+
 def startup(layer: ProfileLayer,
-            stored: ConfigCollection | StoredConfiguration | None) -> None:
-    """Start-up: the stored (central) configuration wins over the devices' own."""
+            stored: ConfigCollection | StoredConfiguration | None, *,
+            autoconfigure_on: bool = True) -> None:
+    """Start-up: the stored (central) configuration wins over the devices' own.
+    ``autoconfigure_on`` False (the arbitrator's policy) reports unconnected terminal
+    channels instead of autoconfiguring them."""
     cfg, why = resolve_configuration(layer.system, stored)
     plan = layer.plan
     if cfg is not None:
@@ -242,10 +255,14 @@ def startup(layer: ProfileLayer,
     if _involves_missing(layer, cfg):
         find_replacements(layer, cfg)
     if layer.unconnected_terminals():
-        autoconfigure(layer)
+        if autoconfigure_on:
+            autoconfigure(layer)
+        else:
+            report_unconnected_terminals(layer)
 
 
-def duty_cycle(layer: ProfileLayer, previously_present: set[ChannelRef] | None) -> None:
+def duty_cycle(layer: ProfileLayer, previously_present: set[ChannelRef] | None, *,
+               autoconfigure_on: bool = True) -> None:
     """Listing 4.2: replacements if channels disappeared, then autoconfigure if needed.
 
     The configuration to repair is the current links (those with a missing end are dead).
@@ -263,7 +280,10 @@ def duty_cycle(layer: ProfileLayer, previously_present: set[ChannelRef] | None) 
                    ", ".join(str(r) for r in sorted(gone)[:8]) + (" …" if len(gone) > 8 else ""))
         find_replacements(layer, cfg)
     if layer.unconnected_terminals():
-        autoconfigure(layer)
+        if autoconfigure_on:
+            autoconfigure(layer)
+        else:
+            report_unconnected_terminals(layer)
 
 
 # -- the thesis CLI's extras ----------------------------------------------------------------------

@@ -7,10 +7,10 @@ import time
 
 import can
 import pytest
-from test_arbitrator_rig import Rig, key, link, load, no_bus_left_open, ref  # noqa: F401
 
 from pdcp_studio.bus import events as ev
 from pdcp_studio.bus.arbitrator import MISSED_BEACONS, Arbitrator
+from pdcp_studio.bus.device_sim import State
 from pdcp_studio.bus.requests import DeviceRefusedError
 from pdcp_studio.engine import plan_autoconfigure, plan_startup
 from pdcp_studio.errors import ModelError, TransportError
@@ -25,6 +25,7 @@ from pdcp_studio.protocol import (
     UpdateDataChannelResponse,
     decode,
 )
+from tests.bus.test_arbitrator_rig import Rig, key, link, load, ref
 
 APPENDIX_D = [link((4, 1), (5, 2)), link((5, 3), (6, 1)), link((5, 5), (6, 2))]
 
@@ -362,8 +363,13 @@ def test_suspend_release_and_reset_device():
         assert rig.wait(fresh, 2)
         joined = len(rig.of(ev.DeviceJoined))
         node = arb.node_id_of(d6)
+        device = rig.device(d6)
+        restarts = []
+        restart = device.power_on
+        device.power_on = lambda: (restarts.append(1), restart())  # the reset's restart
         arb.reset_device(d6)  # it restarts: binds again and is set up again
-        assert rig.wait(lambda: not arb._settled(), 1) or True
+        assert rig.wait(lambda: restarts and device.state is State.BOUND, 2), \
+            "the reset device did not restart and bind again"
         rig.settle()
         assert len(rig.of(ev.DeviceJoined)) == joined  # not a new device
         assert arb.node_id_of(d6) == node
@@ -397,9 +403,10 @@ def test_apply_plan_reports_progress_logs_and_can_be_cancelled():
         from pdcp_studio.engine import plan_clear
 
         clear = plan_clear(rig.arb.system())
-        rig.arb.apply_plan(clear, cancel=cancel)
+        result = rig.arb.apply_plan(clear, cancel=cancel)
         assert rig.arb.system().links == plan.final_links
-        assert "cancelled after 0 of 3 actions" in clear.notes
+        assert result.status == "failed" and "cancelled after 0 of 3 actions" in result.reason
+        assert clear.notes == []  # the plan is not changed by carrying it out
         rig.arb.apply_plan(plan_clear(rig.arb.system()))
         assert rig.arb.system().links == []
 

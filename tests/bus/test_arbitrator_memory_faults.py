@@ -2,9 +2,8 @@
 
 from __future__ import annotations
 
-from test_arbitrator_rig import Rig, link, no_bus_left_open  # noqa: F401
-
 from pdcp_studio.bus import events as ev
+from tests.bus.test_arbitrator_rig import Rig, link
 
 
 def test_unreadable_memory_is_reported_once_and_start_up_uses_the_devices(tmp_path):

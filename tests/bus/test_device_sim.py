@@ -8,7 +8,6 @@ import time
 
 import can
 import pytest
-from test_arbitrator_rig import SYSTEMS, load, no_bus_left_open  # noqa: F401
 
 from pdcp_studio.bus.device_host import DeviceHost
 from pdcp_studio.bus.device_sim import SimulatedDevice, State
@@ -34,6 +33,7 @@ from pdcp_studio.protocol import (
     decode,
 )
 from pdcp_studio.storage import system_file
+from tests.bus.test_arbitrator_rig import SYSTEMS, load
 
 D5 = DeviceKey(2, 2, 5)
 

@@ -3,7 +3,6 @@ a lossy bus and a killed arbitrator. Each is reported and survived."""
 
 from __future__ import annotations
 
-import os
 import random
 import signal
 import subprocess
@@ -11,10 +10,10 @@ import sys
 import textwrap
 import threading
 import time
+from pathlib import Path
 
 import can
 import pytest
-from test_arbitrator_rig import Rig, key, link, load, no_bus_left_open  # noqa: F401
 
 from pdcp_studio.bus import events as ev
 from pdcp_studio.bus.device_host import DeviceHost
@@ -30,6 +29,7 @@ from pdcp_studio.model.configuration import (
     StoredLink,
 )
 from pdcp_studio.protocol import FunctionCode, make_id
+from tests.bus.test_arbitrator_rig import Rig, key, link, load
 
 APPENDIX_D = [link((4, 1), (5, 2)), link((5, 3), (6, 1)), link((5, 5), (6, 2))]
 
@@ -207,8 +207,8 @@ _WRITER = textwrap.dedent("""
     import sys, time, can
     from pdcp_studio.bus.arbitrator import Arbitrator
     from pdcp_studio.bus.memory import MemoryStore
-    sys.path.insert(0, {tests!r})
-    from test_faults import big
+    sys.path.insert(0, {root!r})
+    from tests.bus.test_faults import big
     steps = 0
     def slow(step):  # a slow memory, like an EEPROM: 1 ms per chunk
         global steps
@@ -240,7 +240,7 @@ def big(tag: int) -> ConfigCollection:
 
 
 def _kill_writer(path, mode: str, pause: float) -> None:
-    script = _WRITER.format(tests=os.path.dirname(__file__))
+    script = _WRITER.format(root=str(Path(__file__).resolve().parents[2]))
     proc = subprocess.Popen([sys.executable, "-c", script, str(path), mode],
                             stdout=subprocess.PIPE, stderr=subprocess.PIPE, text=True)
     try:

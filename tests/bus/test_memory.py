@@ -3,10 +3,10 @@
 from __future__ import annotations
 
 import logging
-import os
 import subprocess
 import sys
 import textwrap
+from pathlib import Path
 
 import pytest
 
@@ -156,8 +156,8 @@ def test_a_configuration_too_large_for_the_slot_is_refused(tmp_path):
 _CUT_SCRIPT = textwrap.dedent("""
     import os, sys
     from pdcp_studio.bus.memory import MemoryStore
-    sys.path.insert(0, {tests!r})
-    from test_memory import collection
+    sys.path.insert(0, {root!r})
+    from tests.bus.test_memory import collection
     path, cut = sys.argv[1], int(sys.argv[2])
     calls = iter(range(1000))
     def hook(step):
@@ -177,7 +177,7 @@ def test_a_process_dying_between_writes_leaves_old_or_new(tmp_path):
     probe.write_bytes(path.read_bytes())
     MemoryStore(probe, capacity=16384, step_hook=steps.append).write(collection(3, 200))
     image = path.read_bytes()
-    script = _CUT_SCRIPT.format(tests=os.path.dirname(__file__))
+    script = _CUT_SCRIPT.format(root=str(Path(__file__).resolve().parents[2]))
     for cut in (0, len(steps) // 2, len(steps) - 3, len(steps) - 2, len(steps) - 1, 999):
         path.write_bytes(image)
         done = subprocess.run([sys.executable, "-c", script, str(path), str(cut)],

@@ -10,13 +10,13 @@ import threading
 import time
 
 import pytest
-from test_arbitrator_rig import load, no_bus_left_open  # noqa: F401
 
 from pdcp_studio.bus.device_host import DeviceHost
 from pdcp_studio.bus.device_sim import SimulatedDevice, State
 from pdcp_studio.bus.urls import open_spec, parse_bus_url
 from pdcp_studio.model import parameters as P
 from pdcp_studio.model.refs import DeviceKey
+from tests.bus.test_arbitrator_rig import load
 
 GROUP = "239.74.163.2"
 

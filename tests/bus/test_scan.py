@@ -8,19 +8,12 @@ import time
 
 import pytest
 
-from pdcp_studio.bus.connection import open_connections
 from pdcp_studio.bus.scan import ScanCancelled, estimate_reads, scan
 from pdcp_studio.bus.session import open_session
 from pdcp_studio.bus.simulator import load_prosthesis
 from pdcp_studio.model import parameters as P
 from pdcp_studio.model.refs import DeviceKey
 from pdcp_studio.storage import system_file
-
-
-@pytest.fixture(autouse=True)
-def _no_bus_left_open():
-    yield
-    assert not open_connections(), "a test left a bus open"
 
 
 def _without_runtime(doc: dict) -> dict:

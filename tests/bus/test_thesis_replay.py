@@ -9,7 +9,6 @@ from __future__ import annotations
 
 import pytest
 
-from pdcp_studio.bus.connection import open_connections
 from pdcp_studio.bus.session import open_session
 from pdcp_studio.model.refs import ChannelRef
 from pdcp_studio.model.system import Link
@@ -29,12 +28,6 @@ CASES = [
     ("thesis-test4", "hot-swap", [L((5, 2), (6, 2))], None),
     ("thesis-test5", "thesis", TEST2, "retrieved"),
 ]
-
-
-@pytest.fixture(autouse=True)
-def _no_bus_left_open():
-    yield
-    assert not open_connections(), "a test left a bus open"
 
 
 @pytest.mark.parametrize("name, script, links, startup_source", CASES,

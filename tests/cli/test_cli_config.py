@@ -2,16 +2,13 @@
 
 from __future__ import annotations
 
-import argparse
 import json
 import subprocess
 import sys
-import types
 from pathlib import Path
 
 import pytest
 
-from pdcp_studio.cli import config_cmd
 from pdcp_studio.cli.main import main
 
 ROOT = Path(__file__).resolve().parents[2]
@@ -98,31 +95,6 @@ def test_bad_json_exit_2_and_no_output_file(tmp_path, capsys, text, words):
     err = capsys.readouterr().err
     assert str(source) in err and words in err
     assert not target.exists()
-
-
-def test_bus_commands_are_added_when_config_bus_exists(monkeypatch):
-    calls = []
-    fake = types.ModuleType(config_cmd.BUS_MODULE)
-    fake.add_bus_commands = lambda actions: calls.append(actions.add_parser("read"))
-    monkeypatch.setitem(sys.modules, config_cmd.BUS_MODULE, fake)
-    parser = argparse.ArgumentParser()
-    config_cmd.add_subparser(parser.add_subparsers(dest="command"))
-    assert len(calls) == 1
-    assert parser.parse_args(["config", "read"]).config_command == "read"
-
-
-def test_missing_config_bus_is_skipped_but_its_broken_imports_are_not(monkeypatch):
-    monkeypatch.setitem(sys.modules, config_cmd.BUS_MODULE, None)  # → ModuleNotFoundError
-    parser = argparse.ArgumentParser()
-    config_cmd.add_subparser(parser.add_subparsers(dest="command"))
-    assert parser.parse_args(["config", "decode", "x"]).config_command == "decode"
-
-    def broken(name):
-        raise ModuleNotFoundError("No module named 'can'", name="can")
-
-    monkeypatch.setattr(config_cmd.importlib, "import_module", broken)
-    with pytest.raises(ModuleNotFoundError):
-        config_cmd.add_bus_commands(None)
 
 
 def test_module_imports_nothing_heavy():

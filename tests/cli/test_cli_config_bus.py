@@ -4,8 +4,6 @@ from __future__ import annotations
 
 from pathlib import Path
 
-import pytest
-
 from pdcp_studio.bus.memory import MemoryStore
 from pdcp_studio.cli.main import main
 from pdcp_studio.model.configuration import (
@@ -20,7 +18,6 @@ ROOT = Path(__file__).resolve().parents[2]
 FIG410 = ROOT / "resources" / "configs" / "fig410.pdcfg"
 
 
-pytestmark = pytest.mark.usefixtures("no_bus_left_open")
 
 
 def _test2_link_file(path: Path) -> Path:

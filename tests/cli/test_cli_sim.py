@@ -7,14 +7,10 @@ import subprocess
 import sys
 import time
 
-import pytest
-
 from pdcp_studio.bus.arbitrator import Arbitrator
 from pdcp_studio.bus.urls import open_can_bus, unique_virtual_channel
 from pdcp_studio.cli.main import main
 from pdcp_studio.model.refs import DeviceKey
-
-pytestmark = pytest.mark.usefixtures("no_bus_left_open")
 
 
 def test_list_names_one_a_line(capsys):

@@ -14,8 +14,6 @@ import serial
 from pdcp_studio.bus.urls import unique_virtual_channel
 from pdcp_studio.cli.main import main
 
-pytestmark = pytest.mark.usefixtures("no_bus_left_open")
-
 
 def test_can_virtual_bus_with_nobody_on_it_scans_to_an_empty_system(capsys):
     url = f"can:virtual:{unique_virtual_channel('contract-url')}@1000000"

@@ -31,7 +31,6 @@ def _link(out: tuple[int, int], inp: tuple[int, int]) -> dict:
 TEST2_LINKS = [_link((4, 1), (5, 2)), _link((5, 3), (6, 1)), _link((5, 5), (6, 2))]
 
 
-pytestmark = pytest.mark.usefixtures("no_bus_left_open")
 
 
 def run(capsys, *argv: str) -> tuple[int, str, str]:

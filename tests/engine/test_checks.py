@@ -2,10 +2,9 @@
 
 from __future__ import annotations
 
-from engine_builders import L, dev, inp, load, out, ref, system
-
 from pdcp_studio.engine import Severity, check_system
 from pdcp_studio.model import SourceInfo
+from tests.engine.engine_builders import L, dev, inp, load, out, ref, system
 
 
 def codes(s) -> list[tuple[str, str]]:

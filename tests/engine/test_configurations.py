@@ -8,7 +8,6 @@ present, then fewest missing channels — and the plan must say which and why.
 from __future__ import annotations
 
 import pytest
-from engine_builders import L, dev, inp, out, ref, system
 
 from pdcp_studio.engine import (
     choose_configuration,
@@ -20,6 +19,7 @@ from pdcp_studio.engine import (
 )
 from pdcp_studio.errors import EngineError
 from pdcp_studio.model import ConfigCollection, StoredChannel, StoredConfiguration, StoredLink
+from tests.engine.engine_builders import L, dev, inp, out, ref, system
 
 HAND, ELBOW = 30, 31
 

@@ -6,8 +6,6 @@ Serial numbers stand for devices (VID 2, PID 2); ``L(5, 3, 6, 1)`` is SN5.O3 →
 
 from __future__ import annotations
 
-from engine_builders import L, dev, inp, out, ref, system
-
 from pdcp_studio.engine import (
     Refusal,
     Rule,
@@ -30,6 +28,7 @@ from pdcp_studio.model import (
     StoredConfiguration,
     StoredLink,
 )
+from tests.engine.engine_builders import L, dev, inp, out, ref, system
 
 
 def stored(*links: tuple[Link, int, int, int, int]) -> StoredConfiguration:

@@ -5,7 +5,6 @@ from __future__ import annotations
 import json
 
 import pytest
-from engine_builders import ROOT, L, dev, inp, load, out, ref, shuffled, system
 
 from pdcp_studio.engine import (
     Op,
@@ -20,6 +19,7 @@ from pdcp_studio.errors import EngineError
 from pdcp_studio.model import NO_SOURCE, ProfileTree
 from pdcp_studio.model.configuration import ConfigCollection
 from pdcp_studio.storage import system_file
+from tests.engine.engine_builders import ROOT, L, dev, inp, load, out, ref, shuffled, system
 
 ROOT_PROFILES = ROOT / "resources" / "profiles" / "thesis-tests.json"
 

@@ -9,7 +9,6 @@ nobody else shares. Whatever hypothesis draws, the plan must keep the reference'
 
 from __future__ import annotations
 
-from engine_builders import shuffled
 from hypothesis import HealthCheck, given, settings
 from hypothesis import strategies as st
 
@@ -32,6 +31,7 @@ from pdcp_studio.model import (
     System,
 )
 from pdcp_studio.model.profile import common_prefix_depth
+from tests.engine.engine_builders import shuffled
 
 SENSOR = [0x4220, 0x4240, 0x4222, 0x4400, 0x4620, 0x4640, 0x4800]
 SET_POINT = [0x2220, 0x2240, 0x2200, 0x2400, 0x2600, 0x2420]

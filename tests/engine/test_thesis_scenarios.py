@@ -7,8 +7,6 @@ hardware, plan again, and compare with the final configuration the thesis report
 
 from __future__ import annotations
 
-from engine_builders import L, load, ref
-
 from pdcp_studio.engine import (
     Rule,
     configuration_from_system,
@@ -20,6 +18,7 @@ from pdcp_studio.engine import (
 )
 from pdcp_studio.model import Channel, ConfigCollection, Direction, System
 from pdcp_studio.storage import config_codec
+from tests.engine.engine_builders import L, load, ref
 
 #: Appendix D's links, which autoconfigure must reproduce exactly.
 APPENDIX_D = [L(4, 1, 5, 2), L(5, 3, 6, 1), L(5, 5, 6, 2)]

@@ -67,7 +67,7 @@ def test_read_capped_counts_bytes_read_not_the_size_on_disk():
 def test_deep_nesting_is_refused_with_a_clear_error_not_a_recursion_error(tmp_path, depth):
     path = tmp_path / "deep.json"
     path.write_text('{"format": "pdcp-system/1", "devices": ' + "[" * depth + "]" * depth + "}")
-    with pytest.raises(SystemFileError, match="nested .* deeper|levels deep"):
+    with pytest.raises(SystemFileError, match=r"nested .* deeper|levels deep"):
         system_file.load_path(path)
 
 

@@ -1,0 +1,96 @@
+"""The CLI's side of the change road (reference §5), shared by every command that changes a
+prosthesis: ``apply MODE --bus``, ``config save``, ``config write``, ``policy``,
+``history restore``.
+
+The preview is printed first. Without ``--yes`` nothing is written: on a terminal (stdin and
+stdout both) the user is asked ``apply? [y/N]``; with no terminal, or with ``--json``, nobody is
+asked and the command exits 0 having written nothing. With ``--yes`` (or a "y") the session
+carries the change out as one transaction and records it in the fitting history.
+"""
+
+from __future__ import annotations
+
+import argparse
+import json
+import sys
+from collections.abc import Callable
+from typing import Any
+
+EXIT_OK = 0
+EXIT_FAILED = 1
+
+
+def add_road_arguments(p: argparse.ArgumentParser, *, json_flag: bool = True) -> None:
+    """``--yes``, ``--patient`` and (optionally) ``--json`` for a command that changes."""
+    p.add_argument("--yes", action="store_true",
+                   help="carry the change out (without it, only the preview is printed)")
+    p.add_argument("--patient", metavar="REF",
+                   help="the patient reference to record with the change (free text)")
+    if json_flag:
+        p.add_argument("--json", action="store_true",
+                       help="print one JSON document (preview and transaction result)")
+
+
+def ask(question: str) -> bool:
+    """Ask on the terminal; only when both stdin and stdout are terminals."""
+    if not (sys.stdin.isatty() and sys.stdout.isatty()):
+        return False
+    try:
+        answer = input(f"{question} [y/N] ")
+    except EOFError:
+        return False
+    return answer.strip().lower() in ("y", "yes")
+
+
+def carry_out(session: Any, change: Any, args: argparse.Namespace, *,
+              json_doc: Callable[[Any, Any], dict] | None = None,
+              quiet_preview: bool = False) -> int:
+    """Preview ``change`` on ``session``, confirm it (``--yes`` or the terminal), transact,
+    print the outcome. Returns the exit status."""
+    from pdcp_studio.bus.session_api import preview_change
+
+    want_json = bool(getattr(args, "json", False))
+    preview = preview_change(session, change)
+    if not want_json:
+        lines = preview.lines()
+        if quiet_preview:  # the caller printed the plan: add only what it does not say
+            lines = [ln for ln in lines if ln.strip().startswith(
+                ("motion interlock", "links after", "nothing to change", "autoconfigure"))]
+        for line in lines:
+            print(line)
+    if preview.empty:
+        if want_json:
+            print(json.dumps(_doc(json_doc, preview, None), indent=2))
+        else:
+            print("nothing to change: nothing written")
+        return EXIT_OK
+    go = bool(args.yes) or (not want_json and ask("apply?"))
+    if not go:
+        if want_json:
+            print(json.dumps(_doc(json_doc, preview, None), indent=2))
+        else:
+            print(f"not written to {session.url}: add --yes to carry it out", file=sys.stderr)
+        return EXIT_OK
+    result = session.transact(change, patient=getattr(args, "patient", None))
+    if want_json:
+        print(json.dumps(_doc(json_doc, preview, result), indent=2))
+    else:
+        print(result.summary())
+        if result.history_id is not None:
+            print(f"recorded as fitting history entry {result.history_id}")
+        for note in result.notes:
+            print(f"note: {note}")
+    if not result.ok:
+        if not want_json:
+            print(f"pdcp-studio: error: {result.summary()}", file=sys.stderr)
+        return EXIT_FAILED
+    return EXIT_OK
+
+
+def _doc(json_doc: Callable[[Any, Any], dict] | None, preview: Any, result: Any) -> dict:
+    doc = json_doc(preview, result) if json_doc is not None else {}
+    doc.setdefault("action", preview.change.action)
+    doc.setdefault("bus", preview.url)
+    doc["written"] = bool(result is not None and result.written)
+    doc["transaction"] = result.to_json() if result is not None else None
+    return doc

@@ -1,0 +1,156 @@
+"""``history list|show|restore|verify``: the fitting history (reference §5, contracts §2).
+
+The archive is ``$PDCP_STUDIO_HISTORY`` when set, else ``history.sqlite3`` in the user's data
+folder. ``restore ID --bus URL`` is a new, previewed transaction that puts back the links, the
+stored configuration and the policy that entry ID left on the prosthesis; it is written only
+with ``--yes``. ``verify`` exits 0 when the hash chain is intact and 1 naming the first entry
+that is not.
+"""
+
+from __future__ import annotations
+
+import argparse
+import json
+from typing import Any
+
+from pdcp_studio.cli.main import BadInput
+
+
+def add_subparser(subparsers: argparse._SubParsersAction) -> None:
+    p = subparsers.add_parser("history", help="the fitting history of changes to prostheses",
+                              description=__doc__.split("\n\n")[0])
+    actions = p.add_subparsers(dest="history_command", metavar="ACTION", required=True)
+    lst = actions.add_parser("list", help="every recorded change, oldest first")
+    lst.add_argument("--json", action="store_true", help="print the contract's JSON document")
+    lst.set_defaults(func=run_list)
+    show = actions.add_parser("show", help="one entry in full")
+    show.add_argument("id", type=int, metavar="ID")
+    show.add_argument("--json", action="store_true", help="print the entry as JSON")
+    show.set_defaults(func=run_show)
+    restore = actions.add_parser("restore", help="put back what an entry left (a new "
+                                                  "previewed transaction)")
+    restore.add_argument("id", type=int, metavar="ID")
+    restore.add_argument("--bus", required=True, metavar="URL", help="the prosthesis")
+    restore.add_argument("--memory", metavar="FILE",
+                         help="PDCP Studio's own arbitrator memory (sim: and can: buses)")
+    from pdcp_studio.cli.change_road import add_road_arguments
+
+    add_road_arguments(restore)
+    restore.set_defaults(func=run_restore)
+    verify = actions.add_parser("verify", help="check the hash chain (exit 1 if broken)")
+    verify.set_defaults(func=run_verify)
+
+
+def _open() -> Any:
+    from pdcp_studio.storage.history import History
+
+    return History.open()
+
+
+def _entry(history: Any, entry_id: int) -> dict:
+    entry = history.get(entry_id)
+    if entry is None:
+        raise BadInput(f"history: no entry {entry_id} in {history.path}")
+    return entry
+
+
+def _line(e: dict) -> str:
+    outcome = (e.get("outcome") or {}).get("status", "")
+    return (f"{e['id']:>4}  {e['time']}  {e['operator']}  {e['action']}  on {e['bus']}  "
+            f"{len(e['links_before'])}→{len(e['links_after'])} link(s)  "
+            f"{'verified' if e['verified'] else 'not verified'}  {outcome}  "
+            f"interlock: {e['interlock'] or 'none'}"
+            + (f"  patient: {e['patient']}" if e.get("patient") else ""))
+
+
+def run_list(args: argparse.Namespace) -> int:
+    from pdcp_studio.storage.history import list_json
+
+    with _open() as history:
+        entries = history.entries()
+    if args.json:
+        print(json.dumps({"entries": [list_json(e) for e in entries]}, indent=2))
+        return 0
+    if not entries:
+        print("the fitting history is empty")
+    for e in entries:
+        print(_line(e))
+    return 0
+
+
+def _links_text(links: list[dict]) -> list[str]:
+    def ref(d: dict) -> str:
+        return f"{d['vid']}/{d['pid']}/{d['serial']}#{d['index']}"
+
+    return [f"    {ref(lk['output'])} → {ref(lk['input'])}" for lk in links] or ["    none"]
+
+
+def run_show(args: argparse.Namespace) -> int:
+    with _open() as history:
+        e = _entry(history, args.id)
+    if args.json:
+        print(json.dumps(e, indent=2))
+        return 0
+    outcome = e.get("outcome") or {}
+    print(_line(e))
+    print(f"  outcome: {outcome.get('status', '')}"
+          + (f" at step {outcome['step']}: {outcome['reason']}" if outcome.get("reason") else ""))
+    print("  devices: " + ", ".join(f"{d['vid']}/{d['pid']}/{d['serial']}"
+                                    for d in e["devices"]))
+    print(f"  stored configuration CRC: {e['config_crc_before']} → {e['config_crc_after']}")
+    print("  links before:")
+    print("\n".join(_links_text(e["links_before"])))
+    print("  links after:")
+    print("\n".join(_links_text(e["links_after"])))
+    actions = (e.get("plan") or {}).get("actions", [])
+    if actions:
+        print("  plan:")
+        for a in actions:
+            lk = {"output": a["output"], "input": a["input"]}
+            print(f"    {a['op']}{_links_text([lk])[0][3:]}  ({a.get('reason', '')})")
+    print(f"  hash: {e['hash']}")
+    return 0
+
+
+def restore_change(entry: dict, links_now: list) -> Any:
+    """The Change that puts back what ``entry`` left: its links after, the stored
+    configuration read after it, its policy after."""
+    from pdcp_studio.bus.transaction import Change, Policy, link_from_json
+    from pdcp_studio.storage import config_codec
+
+    after = [link_from_json(d) for d in entry["links_after"]]
+    change = Change.links_to(links_now, after, f"history restore {entry['id']}",
+                             reason=f"as after fitting history entry {entry['id']}")
+    cfg = entry.get("configuration_after")
+    if cfg is not None:
+        change.configuration = config_codec.from_json(cfg)
+    if entry.get("policy_after") is not None:
+        change.policy = Policy.from_json(entry["policy_after"])
+    return change
+
+
+def run_restore(args: argparse.Namespace) -> int:
+    from pdcp_studio.cli.change_road import carry_out
+    from pdcp_studio.cli.scan import open_bus_session
+
+    with _open() as history:
+        entry = _entry(history, args.id)
+    session = open_bus_session(args.bus, memory=args.memory)
+    try:
+        change = restore_change(entry, session.system().links)
+        return carry_out(session, change, args)
+    finally:
+        session.close()
+
+
+def run_verify(args: argparse.Namespace) -> int:
+    with _open() as history:
+        report = history.verify()
+        path = history.path
+    if report.ok:
+        print(f"{path}: {report.entries} entr{'y' if report.entries == 1 else 'ies'}, "
+              "the chain is intact")
+        return 0
+    print(f"pdcp-studio: {path}: entry {report.first_bad} is not intact: {report.reason}",
+          file=__import__("sys").stderr)
+    return 1

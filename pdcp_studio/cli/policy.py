@@ -1,0 +1,54 @@
+"""``policy --bus URL [--autoconfigure on|off] [--yes] [--json]``: the arbitrator's
+profile-layer policy (issue 17, contracts §2).
+
+Shows whether start-up and the duty cycle may autoconfigure unconnected terminal channels on
+their own (``{"autoconfigure": true, …}``). Changing it is a transaction of the change road
+(reference §5): previewed, written only with ``--yes``, read back, recorded in the fitting
+history.
+"""
+
+from __future__ import annotations
+
+import argparse
+import json
+
+
+def add_subparser(subparsers: argparse._SubParsersAction) -> None:
+    p = subparsers.add_parser("policy", help="show or change a live arbitrator's "
+                                             "profile-layer policy",
+                              description=__doc__.split("\n\n")[0])
+    p.add_argument("--bus", required=True, metavar="URL", help="the prosthesis (contracts §3)")
+    p.add_argument("--autoconfigure", choices=("on", "off"),
+                   help="may start-up and the duty cycle autoconfigure on their own?")
+    p.add_argument("--memory", metavar="FILE",
+                   help="PDCP Studio's own arbitrator memory (sim: and can: buses)")
+    from pdcp_studio.cli.change_road import add_road_arguments
+
+    add_road_arguments(p)
+    p.set_defaults(func=run)
+
+
+def run(args: argparse.Namespace) -> int:
+    from pdcp_studio.bus.transaction import Change, Policy
+    from pdcp_studio.cli.change_road import carry_out
+    from pdcp_studio.cli.scan import open_bus_session
+
+    session = open_bus_session(args.bus, memory=args.memory)
+    try:
+        current = session.read_policy()
+        if args.autoconfigure is None:
+            if args.json:
+                print(json.dumps({**current.to_json(), "bus": args.bus}, indent=2))
+            else:
+                print(f"{args.bus}: autoconfigure: {'on' if current.autoconfigure else 'off'}")
+            return 0
+        wanted = Policy(autoconfigure=args.autoconfigure == "on")
+        change = Change(f"policy autoconfigure {args.autoconfigure}", policy=wanted)
+
+        def doc(_preview: object, result: object) -> dict:
+            now = getattr(result, "policy_after", None) or current
+            return {**now.to_json(), "bus": args.bus}
+
+        return carry_out(session, change, args, json_doc=doc)
+    finally:
+        session.close()

@@ -1,0 +1,1 @@
+"""Installation tests: the package as users get it (wheel, prefix install, README)."""
