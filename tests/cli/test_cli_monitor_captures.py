@@ -62,6 +62,17 @@ def run_cli(*args: str, stdout=subprocess.PIPE, timeout: float = 120):
                           env=dict(os.environ, PYTHONPATH=str(ROOT)), check=False)
 
 
+def _vm_hwm_mb(pid: int) -> float:
+    try:
+        with open(f"/proc/{pid}/status") as status:
+            for line in status:
+                if line.startswith("VmHWM:"):
+                    return int(line.split()[1]) / 1024
+    except OSError:
+        pass
+    return 0.0
+
+
 # -- streaming --json -------------------------------------------------------------------------
 
 
@@ -83,10 +94,12 @@ def test_json_streams_one_document_with_flat_memory(tmp_path):
         proc = subprocess.Popen([sys.executable, "-m", "pdcp_studio", "monitor", "--replay",
                                  str(path), "--json"], cwd=ROOT, stdout=handle,
                                 stderr=subprocess.PIPE, env=dict(os.environ, PYTHONPATH=str(ROOT)))
+        peak_mb = 0.0
+        while proc.poll() is None:  # the child's own high-water mark (VmHWM): ru_maxrss
+            peak_mb = max(peak_mb, _vm_hwm_mb(proc.pid))  # would count this process too
+            time.sleep(0.05)
         proc.stderr.read()
-        _, status, usage = os.wait4(proc.pid, 0)
-    assert os.waitstatus_to_exitcode(status) == 0
-    peak_mb = usage.ru_maxrss / 1024
+    assert proc.returncode == 0
     assert peak_mb < 120, f"peak RSS {peak_mb:.0f} MB"
     records = json.loads(out.read_text())
     assert len(records) == len(frames)
@@ -105,13 +118,17 @@ def test_kill_at_random_moments_keeps_the_previous_capture(tmp_path):
     write_capture(target, pdcp_frames(30, seed=2))
     before = target.read_bytes()
     rng = random.Random(15)
-    killed = 0
+    killed = partials = 0
     for _ in range(6):
         proc = subprocess.Popen([sys.executable, "-m", "pdcp_studio", "monitor", "--replay",
                                  str(source), "--log", str(target)], cwd=ROOT,
                                 stdout=subprocess.DEVNULL, stderr=subprocess.DEVNULL,
                                 env=dict(os.environ, PYTHONPATH=str(ROOT)))
-        time.sleep(rng.uniform(0.3, 2.0))
+        partial = tmp_path / "capture.asc.partial"
+        deadline = time.monotonic() + 60
+        while not partial.exists() and proc.poll() is None and time.monotonic() < deadline:
+            time.sleep(0.01)  # writing has started: kill at a random moment from now
+        time.sleep(rng.uniform(0.0, 1.0))
         if proc.poll() is None:
             proc.send_signal(signal.SIGKILL)
             killed += 1
@@ -121,8 +138,10 @@ def test_kill_at_random_moments_keeps_the_previous_capture(tmp_path):
             write_capture(target, pdcp_frames(30, seed=2))
         else:
             assert target.read_bytes() == before, "the previous capture was changed"
-            assert (tmp_path / "capture.asc.partial").exists()
+            partials += partial.exists()  # unless killed before it started writing
+            partial.unlink(missing_ok=True)
     assert killed, "no run was interrupted: the kill times are too late"
+    assert partials, "no interrupted capture was left under the .partial name"
 
 
 def test_full_disk_leaves_the_previous_capture_and_names_the_target(tmp_path, monkeypatch,
