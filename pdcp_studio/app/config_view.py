@@ -448,12 +448,11 @@ class ConfigWindow(QMainWindow):
                           else DeviceCatalogue())
         self.config_list.blockSignals(True)
         self.config_list.clear()
-        for cfg in doc.collection.configurations:
-            n = len(cfg.links)
-            text = self.tr("Configuration %1 · %2 link(s)").replace("%1", str(cfg.index)) \
-                .replace("%2", str(n))
+        for each in doc.collection.configurations:
+            text = self.tr("Configuration %1 · %2 link(s)").replace("%1", str(each.index)) \
+                .replace("%2", str(len(each.links)))
             item = QListWidgetItem(text)
-            problems = [f for f in check_configuration(cfg) if f.severity.value == "error"]
+            problems = [f for f in check_configuration(each) if f.severity.value == "error"]
             if problems:
                 item.setToolTip(self.tr("%1 problem(s) found").replace("%1", str(len(problems))))
                 item.setForeground(Qt.GlobalColor.darkRed)
