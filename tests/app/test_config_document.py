@@ -270,3 +270,34 @@ def test_a_configuration_drawn_alone_has_no_device_data_to_complain_about():
         assert not ch.terminal_profile and not ch.required_inputs
     assert all(d.label.startswith("unknown device (") for d in system.devices.values())
     assert len(system.links) == 5
+
+
+def test_fit_follows_the_live_bus(make_window, qtbot):
+    """Fitted to the simulated transradial prosthesis on its bus: the hook's configuration
+    is repaired with the hand; when the hand is unplugged the fit says so."""
+    main = make_window()
+    with qtbot.waitSignal(main.ready, timeout=20000):
+        main.connect_bus("sim:transradial")
+    assert main.live.is_live, main.statusBar().currentMessage()
+    window = _open(main, ROOT / "resources" / "configs" / "transradial-hand-and-hook.pdcfg")
+    try:
+        assert "the live bus sim:transradial" in window.fit_label.text()
+        assert window.side.currentIndex() == 1  # nothing to report: the fit is shown
+        window.config_list.setCurrentRow(1)
+        qtbot.waitUntil(lambda: window.fit is not None and window.fit.index == 2,
+                        timeout=5000)
+        assert [lf.whole for lf in window.fit.links] == [True, True, False, False]
+        assert "2641/769/301#1" in window.fit.links[2].summary()  # the hand stands in
+        assert window.fit.chosen_index == 1
+        labels = {card.device.label for card in window.scene.cards.values()}
+        control = main.doc.system.devices[DeviceKey(2641, 513, 201)]
+        assert control.label in labels and not control.label.startswith("unknown")
+        assert "unknown device (2641/770/302)" in labels
+        hand = DeviceKey(2641, 769, 301)
+        main.live.bridge.unplug(hand)
+        qtbot.waitUntil(lambda: window.fit is not None and not window.fit.links[2].actions,
+                        timeout=10000)
+        assert "no replacement found" in window.fit.links[2].summary()
+    finally:
+        _close(window)
+        main.live.disconnect_bus()
