@@ -211,6 +211,8 @@ def test_checks_name_the_links_and_selecting_a_finding_selects_them(main_window,
         assert first.text().startswith("Error: input 2/2/6#2 is given 2 sources")
         window._on_finding(first)
         assert window.selected_links() == [0, 1]
+        window.select_links([1])
+        assert window.graph_doc.selection.output == b.ref  # highlighted in the graph
         # Unknown devices are named plainly with their numbers.
         labels = {card.device.label for card in window.scene.cards.values()}
         assert "unknown device (2/2/6)" in labels
@@ -301,3 +303,31 @@ def test_fit_follows_the_live_bus(make_window, qtbot):
     finally:
         _close(window)
         main.live.disconnect_bus()
+
+
+def test_add_link_and_channel_dialogs(qtbot):
+    from pdcp_studio.app.config_view import AddLinkDialog, ChannelDialog
+
+    out = StoredChannel(3, 2641, 513, 201, 0x9000, 0x2220)
+    inp = StoredChannel(1, 2641, 770, 302, 0x9300, 0x2220)
+    dialog = AddLinkDialog([("control unit, channel 3", out)], [("hook, channel 1", inp)])
+    qtbot.addWidget(dialog)
+    dialog.output.pick.setCurrentIndex(1)
+    dialog.input.pick.setCurrentIndex(1)
+    assert dialog.ends() == (out, inp)
+    dialog.input.type_edit.setText("0x1FFFF")
+    dialog.accept()
+    assert dialog.result() == 0 and "0 to 0xFFFF" in dialog.error.text()
+    dialog.input.type_edit.setText("0x9300")
+    dialog.input.spins["serial"].setValue(201)
+    dialog.input.spins["pid"].setValue(513)
+    dialog.input.spins["index"].setValue(3)
+    dialog.accept()
+    assert "two different channels" in dialog.error.text()
+    edit = ChannelDialog("channel", out)
+    qtbot.addWidget(edit)
+    assert edit.values() == (0x9000, 0x2220)
+    edit.profile_edit.setText("8720")
+    assert edit.values() == (0x9000, 8720)
+    edit.type_edit.setText("nine")
+    assert edit.values() is None
