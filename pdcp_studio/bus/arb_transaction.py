@@ -30,6 +30,7 @@ import threading
 from collections.abc import Callable
 from typing import Any
 
+from pdcp_studio.bus import events as ev
 from pdcp_studio.bus.transaction import (
     INTERLOCK_MS,
     INTERLOCK_RENEW_S,
@@ -109,6 +110,7 @@ class TransactionMixin:
                 with self._lock:
                     self._plan_running -= 1
         log.info("%s: transaction %s: %s", self.name, change.action, result.summary())
+        self._emit(ev.TransactionDone(result))
         return result
 
     def _transact(self, change: Change, progress: ProgressFn | None,
@@ -357,7 +359,8 @@ def _check_change(system: System, change: Change) -> str:
         elif a.op == "remove" and trial.has_link(a.link):
             trial.remove_link(a.link)
     for p in change.parameters:
-        if system.device(p.device) is None or not system.device(p.device).present:
+        device = system.device(p.device)
+        if device is None or not device.present:
             return f"device {p.device} is not on the bus"
     return ""
 

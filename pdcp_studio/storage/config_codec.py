@@ -491,7 +491,7 @@ def to_json(collection: ConfigCollection) -> dict[str, Any]:
         for cfg in collection.configurations]}, collection.unknown)
 
 
-def _json_int(doc: dict, key: str, path: str, hi: int = 0xFFFF, lo: int = 0,
+def _json_int(doc: dict[str, Any], key: str, path: str, hi: int = 0xFFFF, lo: int = 0,
               default: int | None = None, required: bool = True) -> Any:
     """An integer or ``"0x…"`` string within lo…hi; ``default`` when absent."""
     value, where = doc.get(key), f"{path}.{key}"
@@ -505,12 +505,13 @@ def _json_int(doc: dict, key: str, path: str, hi: int = 0xFFFF, lo: int = 0,
         raise _Err(f"{where}: {err}") from None
 
 
-def _json_list(doc: Any, key: str, path: str) -> list:
+def _json_list(doc: Any, key: str, path: str) -> list[Any]:
     if not isinstance(doc, dict):
         raise _Err(f"{path or 'document'}: expected an object")
     if not isinstance(doc.get(key), list):
         raise _Err(f"{path + '.' if path else ''}{key}: expected a list")
-    return doc[key]
+    found: list[Any] = doc[key]
+    return found
 
 
 def unknown_from_json(doc: dict, path: str) -> Unknown:
