@@ -90,8 +90,9 @@ class HostLinkSession(TransactingMixin):
 
     def __init__(self, port: Any, *, url: str = "", baudrate: int = 128_000,
                  reply_timeout: float | None = None, monitor: bool = True,
-                 **link_options: Any) -> None:
+                 transact_timeout: float = TRANSACT_TIMEOUT_S, **link_options: Any) -> None:
         self.url = url
+        self.transact_timeout = transact_timeout
         self._subs = ev.Subscribers(url or "host link")
         self._cache = _Cache()
         self._monitor = monitor
@@ -493,7 +494,7 @@ class HostLinkSession(TransactingMixin):
                 progress(len(chunks), len(chunks) + 1, f"{change.action}: the arbitrator "
                                                        "carries it out")
             length, crc = hm.CONFIG_INFO.unpack(self.request(Req.TRANSACT_RUN,
-                                                             timeout=TRANSACT_TIMEOUT_S))
+                                                             timeout=self.transact_timeout))
         except HostLinkError as err:
             return TransactionResult(TxnStatus.FAILED, change.action, "write",
                                      f"the arbitrator refused the change: {err}")
@@ -545,7 +546,8 @@ class HostLinkSession(TransactingMixin):
 
 
 #: Options of other session kinds (memory, scan window, …) that mean nothing over a host link.
-_SESSION_OPTIONS = ("reply_timeout", "settle_timeout", "monitor", "ack_timeout", "max_attempts")
+_SESSION_OPTIONS = ("reply_timeout", "settle_timeout", "monitor", "ack_timeout", "max_attempts",
+                    "transact_timeout")
 
 
 def open_hostlink_session(spec: Any, **options: Any) -> HostLinkSession:

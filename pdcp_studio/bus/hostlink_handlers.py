@@ -290,8 +290,10 @@ class Handlers:
         from pdcp_studio.storage import config_codec
 
         raw = getattr(self.arb.memory, "read_bytes", None)
-        data = raw() if raw is not None else None
-        return bytes(data) if data is not None else config_codec.dumps(self.arb.read_memory())
+        if raw is None:
+            return config_codec.dumps(self.arb.read_memory())
+        data = raw()
+        return bytes(data) if data is not None else b""  # nothing stored: 0 bytes
 
     def config_info(self, body: bytes) -> bytes:
         self._exact(body, 0, "CONFIG_INFO")

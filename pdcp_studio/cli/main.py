@@ -33,6 +33,7 @@ COMMAND_MODULES = (
     "sim",
     "arbitrator",
     "monitor",
+    "hostlink_test",
     "doctor",
 )
 
