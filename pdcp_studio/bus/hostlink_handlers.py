@@ -35,7 +35,7 @@ from pdcp_studio.protocol.hostlink_messages import Req, Status
 log = logging.getLogger(__name__)
 
 #: Largest parameter value moved over the link (the arbitrator's value buffer).
-MAX_VALUE = 1024
+MAX_VALUE = 512
 #: Largest stored configuration accepted (the memory's slot).
 MAX_CONFIG = 8192
 #: Largest change accepted by TRANSACT (links, parameters, a configuration).

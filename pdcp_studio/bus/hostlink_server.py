@@ -31,7 +31,7 @@ from pdcp_studio.protocol.hostlink_link import LinkEndpoint
 log = logging.getLogger(__name__)
 
 #: Events kept while the PC is slow to acknowledge; beyond this they are counted as lost.
-EVENT_QUEUE = 32
+EVENT_QUEUE = 16
 
 
 class HostLinkServer:
