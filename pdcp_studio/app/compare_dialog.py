@@ -14,10 +14,15 @@ Public API
 
 Pure helpers (no widgets): ``links_of_system``, ``links_of_configuration``,
 ``sources_of_collection``, ``load_file_sources(path)``, ``compare(sources)``.
+
+When a stored configuration is known on both sides (a ``.pdcfg`` and the arbitrator's), the
+summary also says how they differ record by record — with the one configuration diff
+(:mod:`pdcp_studio.model.config_diff`) that ``config diff`` and the write dialog use.
 """
 
 from __future__ import annotations
 
+import html
 import threading
 from collections.abc import Sequence
 from pathlib import Path
@@ -85,8 +90,11 @@ def links_of_system(system: System) -> frozenset[Link]:
 
 
 def links_of_configuration(cfg: StoredConfiguration) -> frozenset[Link]:
-    """A stored configuration's links as output → input references (types are not compared)."""
-    return frozenset(Link(sl.output.ref, sl.input.ref) for sl in cfg.links)
+    """A stored configuration's links as output → input references (types are not compared;
+    the records are, by :func:`~pdcp_studio.model.config_diff.diff_configurations`)."""
+    from pdcp_studio.model.config_diff import link_ends
+
+    return frozenset(Link(out, inp) for out, inp in link_ends(ConfigCollection([cfg])))
 
 
 def sources_of_collection(name: str, collection: ConfigCollection | None) -> list[LinkSource]:
@@ -101,14 +109,20 @@ def sources_of_collection(name: str, collection: ConfigCollection | None) -> lis
 
 def load_file_sources(path: str | Path) -> list[LinkSource]:
     """Read a ``.pdcfg`` (config_codec) or a system file; errors name the file and where."""
+    return load_file(path)[0]
+
+
+def load_file(path: str | Path) -> tuple[list[LinkSource], ConfigCollection | None]:
+    """The file's sources, and its stored configuration when it is a ``.pdcfg``."""
     path = Path(path)
     if path.suffix.lower() == ".pdcfg":
         from pdcp_studio.storage import config_codec
 
-        return sources_of_collection(path.name, config_codec.load_path(path))
+        collection = config_codec.load_path(path)
+        return sources_of_collection(path.name, collection), collection
     from pdcp_studio.storage import system_file
 
-    return [LinkSource(path.name, links_of_system(system_file.load_path(path)))]
+    return [LinkSource(path.name, links_of_system(system_file.load_path(path)))], None
 
 
 def compare(sources: Sequence[LinkSource]) -> list[CompareRow]:
@@ -143,6 +157,9 @@ class CompareDialog(QDialog):
         self.bridge = bridge
         self.file_sources: list[LinkSource] = []
         self.arbitrator_sources: list[LinkSource] = []
+        #: The stored configurations behind the file and arbitrator columns (when known).
+        self.file_collection: ConfigCollection | None = None
+        self.arbitrator_collection: ConfigCollection | None = None
         self._rows: list[CompareRow] = []
         self._workers: set[Worker] = set()
 
@@ -189,14 +206,20 @@ class CompareDialog(QDialog):
         self.system = system
         self.refresh()
 
-    def set_file_sources(self, sources: list[LinkSource]) -> None:
-        """Use these sources as the file's columns."""
+    def set_file_sources(self, sources: list[LinkSource],
+                         collection: ConfigCollection | None = None) -> None:
+        """Use these sources as the file's columns (``collection``: its stored configuration)."""
         self.file_sources = list(sources)
+        self.file_collection = collection
         self.refresh()
+
+    def _file_loaded(self, loaded: tuple) -> None:
+        self.set_file_sources(*loaded)
 
     def set_arbitrator(self, collection: ConfigCollection | None) -> None:
         """Show a stored configuration read from the arbitrator (None: it stores none)."""
         self.arbitrator_sources = sources_of_collection(ARBITRATOR, collection)
+        self.arbitrator_collection = collection
         self.refresh()
 
     def _track(self, worker: Worker) -> Worker:
@@ -207,11 +230,11 @@ class CompareDialog(QDialog):
         """Read a system file or ``.pdcfg`` on a worker; the table follows when it is read."""
         self.summary.setText(f"Reading {Path(path).name}…")
 
-        def work(_p: Any, _c: threading.Event) -> list[LinkSource]:
-            return load_file_sources(path)
+        def work(_p: Any, _c: threading.Event) -> tuple:
+            return load_file(path)
 
         worker = Worker(work, f"Read {path}")
-        worker.finished.connect(self.set_file_sources)  # bound slots only: Qt drops them
+        worker.finished.connect(self._file_loaded)  # bound slots only: Qt drops them
         worker.failed.connect(self._file_failed)  # if the dialog is deleted meanwhile
         return self._track(worker).start()
 
@@ -291,5 +314,13 @@ class CompareDialog(QDialog):
             status = row.status(names)
             counts[status] = counts.get(status, 0) + 1
         parts = [f"{n} {status}" for status, n in sorted(counts.items())]
-        self.summary.setText(f"{len(self._rows)} link(s): " + (", ".join(parts) or "none"))
+        text = f"{len(self._rows)} link(s): " + (", ".join(parts) or "none")
+        if self.file_collection is not None and self.arbitrator_collection is not None:
+            from pdcp_studio.model.config_diff import diff_configurations
+
+            name = self.file_sources[0].name.split(" #")[0] if self.file_sources else "file"
+            diff = diff_configurations(self.file_collection, self.arbitrator_collection)
+            text += ("<br>Stored configurations, record by record: "
+                     + html.escape(diff.describe(name, ARBITRATOR)))
+        self.summary.setText(text)
         self.compared.emit()

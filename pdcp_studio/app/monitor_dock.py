@@ -378,6 +378,16 @@ class MonitorDock(QDockWidget):
                 self.channel_nodes.add(ch.node_id)
                 self._link_map[ch.node_id] = (ref, tuple(system.inputs_fed_by(ref)))
 
+    def reset_for_session(self, system: Any, *, keep_frames: bool = False) -> None:
+        """Follow the bus this dock shows: forget the node map (node IDs are reassigned
+        after a reset or hot-swap) and learn ``system``'s; a new session (``keep_frames``
+        False) also starts with no frames, so two sessions' frames are never mixed."""
+        if not keep_frames:
+            self.clear()
+        self.channel_nodes.clear()
+        self._link_map.clear()
+        self.set_system(system)
+
     def shown_rows(self) -> list[Row]:
         """The rows the table shows now (filtered; frozen while paused)."""
         return list(self.model.rows)

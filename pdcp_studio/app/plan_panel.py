@@ -3,8 +3,11 @@
 The engine computes a :class:`~pdcp_studio.engine.plan.Plan` from a copy-free read of the
 document's system; the panel lists its actions in order (op, both channels with profile
 names, rule, reason, similarity and its breakdown) and what was tried and refused, while
-the graph draws the links to add and to remove. Nothing changes until Apply: offline the
-plan becomes one undo step; on a live bus it goes to the session through the bridge.
+the graph draws the links to add and to remove. Nothing changes until Apply, which makes
+the plan one undo step — on a live bus a staged change, written to the prosthesis by Write
+to prosthesis as one transaction. On a live bus plans take the arbitrator's stored
+configuration as last read (re-read after every write), and a shown preview is computed
+again whenever the bus changes, so it never describes a bus that is gone.
 """
 
 from __future__ import annotations
@@ -90,6 +93,7 @@ class PlanPanel(QWidget):
         row.addWidget(self.apply_button)
         box.addLayout(row)
         doc.previewChanged.connect(self._on_preview_changed)
+        doc.busChanged.connect(self._on_bus_changed)
         self._update_buttons()
 
     # -- computing ------------------------------------------------------------------
@@ -99,16 +103,26 @@ class PlanPanel(QWidget):
 
     def preview(self, mode: str) -> Any:
         """Compute ``mode``'s plan and show it (graph and list); returns it or None."""
-        from pdcp_studio.engine import plan_for
+        from pdcp_studio.engine import plan_for, plan_on_bus
 
+        config = self.configuration()
         try:
-            plan = plan_for(mode, self.doc.system, self.configuration())
+            if self.doc.session is not None and config is not None:
+                plan = plan_on_bus(mode, self.doc.system, config)  # the arbitrator's memory
+            else:
+                plan = plan_for(mode, self.doc.system, config)
         except (PdcpError, ValueError) as err:
             self.statusMessage.emit(f"{dict(OPERATIONS).get(mode, mode)}: {err}")
             self.summary.setText(f"<span style='color:#b91c1c'>Cannot plan: {err}</span>")
             return None
         self.doc.set_preview(plan)
         return plan
+
+    def _on_bus_changed(self) -> None:
+        """The bus is not what the preview was computed on: compute it again."""
+        plan = self.plan
+        if plan is not None:
+            self.preview(plan.mode)
 
     @property
     def plan(self) -> Any:
@@ -124,7 +138,11 @@ class PlanPanel(QWidget):
         self.discard_button.setEnabled(has)
         self.apply_button.setEnabled(has and bool(self.plan.actions))
         live = self.doc.session is not None
-        self.apply_button.setText("Apply to the bus" if live else "Apply")
+        self.apply_button.setText(self.tr("Stage for the prosthesis") if live else
+                                  self.tr("Apply"))
+        self.apply_button.setToolTip(self.tr(
+            "Add the plan to the pending changes; Write to prosthesis writes them in one "
+            "transaction") if live else self.tr("Apply the plan (one undo step)"))
 
     # -- showing --------------------------------------------------------------------
     def _ref_text(self, plan: Any, ref: ChannelRef) -> str:
@@ -209,17 +227,17 @@ class PlanPanel(QWidget):
             self.statusMessage.emit("Plan discarded: nothing changed")
 
     def apply(self) -> bool:
-        """Offline: one undo step. Live: sent to the bus through the session bridge."""
+        """One undo step; on a live bus a staged change (Write to prosthesis writes it)."""
         plan = self.plan
         if plan is None or not plan.actions:
             return False
-        bridge = self.doc.session
         self.doc.set_preview(None)
-        if bridge is not None and hasattr(bridge, "apply_plan"):
-            bridge.apply_plan(plan)
-            self.statusMessage.emit(f"Applying {plan.mode} on the bus…")
+        commands.push_plan(self.doc, plan)
+        if self.doc.session is not None:
+            self.statusMessage.emit(self.tr(
+                "Staged {0}: {1} to add, {2} to remove — Write to prosthesis writes them "
+                "(Undo unstages)").format(plan.mode, len(plan.added), len(plan.removed)))
         else:
-            commands.push_plan(self.doc, plan)
             self.statusMessage.emit(f"Applied {plan.mode}: {len(plan.added)} added, "
                                     f"{len(plan.removed)} removed (Undo reverts it)")
         self.applied.emit(plan)

@@ -69,6 +69,57 @@ class BusMixin:
             self.inspector_dock.raise_()
             self._leaf_docks["sim"] = dock
 
+    def _session_started(self, bridge: Any) -> None:
+        """A new session is on screen: the bus panels start afresh on it (no frames, values
+        or node map of the previous session), and plans get its stored configuration."""
+        system = self.doc.system
+        monitor = self._leaf_docks.get("monitor")
+        if monitor is not None and hasattr(monitor, "reset_for_session"):
+            monitor.reset_for_session(system)
+        plot = self._leaf_docks.get("plot")
+        if plot is not None:
+            plot.widget().set_channel(None)
+        bridge.simChanged.connect(lambda _what: (self.live.refresh(),
+                                                 self.reread_configuration()))
+        bridge.configurationWritten.connect(lambda _c: self.reread_configuration())
+        self.reread_configuration()
+
+    def _bus_seen(self, system: Any) -> None:
+        """After any bus event: the monitor names frames by the bus's node IDs as they are
+        now (a hot-swapped device may have a new one); the plot drops a channel that left."""
+        monitor = self._leaf_docks.get("monitor")
+        if monitor is not None and hasattr(monitor, "reset_for_session"):
+            monitor.reset_for_session(system, keep_frames=True)
+        plot = self._leaf_docks.get("plot")
+        if plot is not None:
+            ref = plot.widget().ref
+            if ref is not None and system.channel(ref) is None:
+                plot.widget().set_channel(None)
+
+    def _detach_bus_docks(self) -> None:
+        """The session ended: no panel may keep acting on it (the simulator's goes)."""
+        old = self._leaf_docks.pop("sim", None)
+        if old is not None:
+            old.close()
+            old.deleteLater()
+        plot = self._leaf_docks.get("plot")
+        if plot is not None:
+            plot.widget().set_channel(None)
+
+    def reread_configuration(self) -> None:
+        """Read the arbitrator's stored configuration again (after connecting, every write
+        and every bus event that may change it): previews always use the current one."""
+        bridge = self.live.bridge
+        if bridge is None:
+            return
+        session = bridge.session
+        bridge.run(lambda _p, _c: session.read_configuration(), "Read configuration",
+                   lambda c, b=bridge: self._stored_configuration_seen(b, c))
+
+    def _stored_configuration_seen(self, bridge: Any, collection: Any) -> None:
+        if bridge is self.live.bridge and self.doc.session is bridge:
+            self.doc.config = collection
+
     def read_configuration(self) -> None:
         """Ask the arbitrator for its stored configuration (on the bridge's worker)."""
         bridge = self.live.bridge
@@ -111,8 +162,22 @@ class BusMixin:
 
         dialog = mod.CompareDialog(self.doc.system, bridge=self.live.bridge, parent=self)
         if self.doc.config is not None:
-            dialog.set_file_sources(mod.sources_of_collection(self.doc.title, self.doc.config))
+            dialog.set_file_sources(mod.sources_of_collection(self.doc.title, self.doc.config),
+                                    self.doc.config)
         dialog.show()
+
+    def compare_with_prosthesis(self, path: Any) -> Any:
+        """Compare a file's links with the prosthesis (on screen and its arbitrator's stored
+        configuration), staying connected; returns the dialog."""
+        from pdcp_studio.app import compare_dialog as mod
+
+        dialog = mod.CompareDialog(self.doc.system, bridge=self.live.bridge, parent=self)
+        dialog.load_file(path)
+        if self.live.bridge is not None:
+            dialog.read_arbitrator()
+        dialog.show()
+        self.compare_dialog = dialog
+        return dialog
 
     def ask_write_configuration(self) -> None:
         from pdcp_studio.app import write_config_dialog as mod
@@ -121,4 +186,7 @@ class BusMixin:
             self.error_box("Write configuration", "connect to a bus first")
             return
         dialog = mod.WriteConfigDialog.for_system(self.live.bridge, self.doc.system, self)
+        # Whatever came of it, plans must use what the arbitrator stores now.
+        dialog.verified.connect(lambda _ok, _msg: self.reread_configuration())
+        dialog.verified.connect(lambda _ok, _msg: self.history_panel.refresh())
         dialog.show()

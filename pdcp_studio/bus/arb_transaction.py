@@ -359,7 +359,8 @@ def _check_change(system: System, change: Change) -> str:
         elif a.op == "remove" and trial.has_link(a.link):
             trial.remove_link(a.link)
     for p in change.parameters:
-        if system.device(p.device) is None or not system.device(p.device).present:
+        device = system.device(p.device)
+        if device is None or not device.present:
             return f"device {p.device} is not on the bus"
     return ""
 

@@ -39,6 +39,8 @@ class BusScene(QGraphicsScene):
         self.cards: dict[DeviceKey, DeviceItem] = {}
         self.link_items: dict[Link, LinkItem] = {}
         self.preview_items: list[LinkItem] = []
+        #: Ghosts of links on the prosthesis that the project removes (pending removals).
+        self.unwritten_items: list[LinkItem] = []
         self.states = SystemStates()
         self.flow_phase = 0.0
         self._live: dict[ChannelRef, float] = {}
@@ -59,6 +61,7 @@ class BusScene(QGraphicsScene):
         doc.positionChanged.connect(self._on_position_changed)
         doc.selectionChanged.connect(self._on_doc_selection)
         doc.previewChanged.connect(self._on_preview)
+        doc.busChanged.connect(self._on_bus_changed)
         self.selectionChanged.connect(self._on_qt_selection)
         self._states_timer = QTimer(self)
         self._states_timer.setSingleShot(True)
@@ -76,6 +79,7 @@ class BusScene(QGraphicsScene):
             self.cards.clear()
             self.link_items.clear()
             self.preview_items.clear()
+            self.unwritten_items.clear()
             system = self.doc.system
             self.states = compute_states(system)
             placed = layout.place(system, self.doc.positions)
@@ -87,6 +91,7 @@ class BusScene(QGraphicsScene):
                 self.cards[key] = card
             for link in system.links:
                 self._add_link_item(link)
+            self._show_unwritten()
             self._apply_states()
             self._show_preview(self.doc.preview_plan)
             self._select_items(self.doc.selection)
@@ -120,7 +125,29 @@ class BusScene(QGraphicsScene):
         for link in current - self.link_items.keys():
             self._add_link_item(link)
         self.states = compute_states(self.doc.system)
+        self._show_unwritten()
         self._apply_states()
+
+    def _on_bus_changed(self) -> None:
+        self._show_unwritten()
+        self._apply_states()
+
+    def _show_unwritten(self) -> None:
+        """Ghost links: on the prosthesis, removed in the project (not yet written)."""
+        for item in self.unwritten_items:
+            item.detach()
+            self.removeItem(item)
+        self.unwritten_items.clear()
+        bus = self.doc.bus_system
+        if bus is None:
+            return
+        for link in sorted(set(bus.links) - set(self.doc.system.links)):
+            if self.port(link.output) is None or self.port(link.input) is None:
+                continue
+            item = LinkItem(self, link, "unwritten")
+            item.setToolTip(f"Pending removal (still on the prosthesis): {link}")
+            self.addItem(item)
+            self.unwritten_items.append(item)
 
     def _on_device_changed(self, key: DeviceKey) -> None:
         device = self.doc.system.device(key)
@@ -163,7 +190,10 @@ class BusScene(QGraphicsScene):
                 port.unmet = ref in st.unmet_required
             card.refresh()
         dim = bool(self.preview_items)
+        bus = self.doc.bus_system
+        on_bus = set(bus.links) if bus is not None else None
         for link, item in self.link_items.items():
+            item.pending = on_bus is not None and link not in on_bus
             item.conflict = link in st.conflict_links
             item.missing = link in st.missing_links
             item.live = link.output in live

@@ -49,6 +49,9 @@ LINK_LIVE = QColor("#0ea5e9")
 LINK_MISSING = QColor("#a3abb5")
 PREVIEW_ADD = QColor("#16a34a")
 PREVIEW_REMOVE = QColor("#dc2626")
+#: A staged change not yet written to the prosthesis (pending add; pending removal ghost).
+PENDING = QColor("#9333ea")
+PENDING_REMOVE = QColor("#c084fc")
 DRAG_OK = QColor("#2563eb")
 DRAG_BAD = QColor("#dc2626")
 

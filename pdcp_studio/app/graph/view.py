@@ -30,7 +30,8 @@ FIT_MARGIN = 30.0
 FIT_MAX_ZOOM = 1.3
 
 
-#: The legend's rows: (kind, colour, label). Kinds: "role" swatch, "line"/"dash" link.
+#: The legend's rows: (kind, colour, label). Kinds: "role" swatch, "ring" port,
+#: "line"/"dash"/"dashdot"/"dot" link.
 LEGEND = (
     (("role", style.ROLE_COLOURS["sensor"], "Sensor"),
      ("role", style.ROLE_COLOURS["control"], "Control"),
@@ -43,6 +44,8 @@ LEGEND = (
      ("line", style.LINK_CONFLICT, "Sole-access conflict"),
      ("dash", style.PREVIEW_ADD, "Plan adds"),
      ("dash", style.PREVIEW_REMOVE, "Plan removes")),
+    (("dashdot", style.PENDING, "Pending: to write"),
+     ("dot", style.PENDING_REMOVE, "Pending: to remove from the prosthesis")),
 )
 
 
@@ -89,6 +92,10 @@ class Legend(QWidget):
                     pen = QPen(colour, 2.2)
                     if kind == "dash":
                         pen.setStyle(Qt.PenStyle.DashLine)
+                    elif kind == "dashdot":
+                        pen.setStyle(Qt.PenStyle.DashDotLine)
+                    elif kind == "dot":
+                        pen.setStyle(Qt.PenStyle.DotLine)
                     p.setPen(pen)
                     p.drawLine(QPointF(x, y), QPointF(x + 18, y))
                 p.setPen(style.TEXT)
