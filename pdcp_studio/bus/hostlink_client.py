@@ -23,6 +23,7 @@ from dataclasses import dataclass
 from typing import Any
 
 from pdcp_studio.bus import events as ev
+from pdcp_studio.bus import hostlink_records as hr
 from pdcp_studio.bus.hostlink_conn import (
     HostLinkConnection,
     HostLinkError,
@@ -161,19 +162,19 @@ class HostLinkSession(TransactingMixin):
         cache = self._cache
         try:
             if code == Event.DEVICE_JOINED:
-                key = hm.unpack_key(body)
+                key = hr.unpack_key(body)
                 with cache.lock:
                     cache.stale.add(key)
                     cache.links_stale = True
                 self._emit(ev.DeviceJoined(key))
             elif code == Event.DEVICE_LEFT:
-                key = hm.unpack_key(body)
+                key = hr.unpack_key(body)
                 with cache.lock:
                     cache.stale.add(key)
                     cache.links_stale = True
                 self._emit(ev.DeviceLeft(key))
             elif code in (Event.LINK_MADE, Event.LINK_REMOVED):
-                link, _ = hm.unpack_link_event(body)
+                link, _ = hr.unpack_link_event(body)
                 with cache.lock:
                     cache.stale.update((link.output.device, link.input.device))
                     cache.links_stale = True
@@ -236,27 +237,27 @@ class HostLinkSession(TransactingMixin):
     # -- reading the tables --------------------
     def _fetch_device(self, key: DeviceKey) -> Device:
         """GET_DEVICE (its parameters and the first channels), GET_CHANNELS for the rest."""
-        body = self.request(Req.GET_DEVICE, hm.pack_key(key))
-        device, count, used = hm.unpack_device_info(key, body)
-        channels, nxt = hm.unpack_channel_page(body[used:])
+        body = self.request(Req.GET_DEVICE, hr.pack_key(key))
+        device, count, used = hr.unpack_device_info(key, body)
+        channels, nxt = hr.unpack_channel_page(body[used:])
         while True:
             for ch in channels:
                 device.add_channel(ch)
             if len(device.channels) >= count or (channels and not nxt):
                 return device
             start = nxt
-            channels, nxt = hm.unpack_channel_page(
-                self.request(Req.GET_CHANNELS, hm.pack_key(key) + bytes([start])))
+            channels, nxt = hr.unpack_channel_page(
+                self.request(Req.GET_CHANNELS, hr.pack_key(key) + bytes([start])))
             if not channels:
                 return device
 
-    def _fetch_rows(self) -> list[hm.DeviceRow]:
-        rows: list[hm.DeviceRow] = []
+    def _fetch_rows(self) -> list[hr.DeviceRow]:
+        rows: list[hr.DeviceRow] = []
         while True:
             body = self.request(Req.LIST_DEVICES, struct.pack("<H", len(rows)))
             hm.need(body, 4, "LIST_DEVICES reply")
             total, _ = struct.unpack_from("<HH", body)
-            page = hm.unpack_device_rows(body[4:])
+            page = hr.unpack_device_rows(body[4:])
             rows += page
             if len(rows) >= total or not page:
                 return rows
@@ -268,7 +269,7 @@ class HostLinkSession(TransactingMixin):
             hm.need(body, 4, "LIST_LINKS reply")
             total, _ = struct.unpack_from("<HH", body)
             rest = body[4:]
-            page = [hm.unpack_link(rest, off) for off in range(0, len(rest), 2 * hm.REF.size)]
+            page = [hr.unpack_link(rest, off) for off in range(0, len(rest), 2 * hm.REF.size)]
             links += page
             if len(links) >= total or not page:
                 return links
@@ -400,11 +401,11 @@ class HostLinkSession(TransactingMixin):
             self._cache.stale.add(key)
 
     def add_link(self, link: Link) -> None:
-        self.request(Req.ADD_LINK, hm.pack_link(link))
+        self.request(Req.ADD_LINK, hr.pack_link(link))
         self._links_changed(link)
 
     def remove_link(self, link: Link) -> None:
-        self.request(Req.REMOVE_LINK, hm.pack_link(link))
+        self.request(Req.REMOVE_LINK, hr.pack_link(link))
         self._links_changed(link)
 
     def _links_changed(self, link: Link) -> None:
@@ -413,13 +414,13 @@ class HostLinkSession(TransactingMixin):
             self._cache.stale.update((link.output.device, link.input.device))
 
     def suspend(self, key: DeviceKey, ms: int = 0) -> None:
-        self.request(Req.SUSPEND, hm.pack_key(DeviceKey(*key)) + struct.pack("<H", ms))
+        self.request(Req.SUSPEND, hr.pack_key(DeviceKey(*key)) + struct.pack("<H", ms))
 
     def release(self, key: DeviceKey) -> None:
-        self.request(Req.RELEASE, hm.pack_key(DeviceKey(*key)))
+        self.request(Req.RELEASE, hr.pack_key(DeviceKey(*key)))
 
     def reset_device(self, key: DeviceKey) -> None:
-        self.request(Req.RESET_DEVICE, hm.pack_key(DeviceKey(*key)))
+        self.request(Req.RESET_DEVICE, hr.pack_key(DeviceKey(*key)))
 
     # -- the stored configuration --------------------
     def read_configuration_bytes(self) -> bytes:

@@ -18,6 +18,7 @@ from collections.abc import Callable
 from dataclasses import dataclass, field
 from typing import Any
 
+from pdcp_studio.bus import hostlink_records as hr
 from pdcp_studio.bus.hostlink_port import read_available
 from pdcp_studio.protocol import hostlink_messages as hm
 from pdcp_studio.protocol.crc import crc16_ccitt_false
@@ -151,7 +152,7 @@ class Suite:
 
     def __init__(self, port: Any) -> None:
         self.link = RawLink(port)
-        self.device: hm.DeviceRow | None = None
+        self.device: hr.DeviceRow | None = None
 
     # -- the handshake ---------------------------------------------------------------------
     def case_hello(self) -> None:
@@ -278,13 +279,13 @@ class Suite:
         body = expect(*self.link.request(Req.LIST_DEVICES, b"\x00\x00"), Status.OK,
                       "LIST_DEVICES")
         total, start = struct.unpack_from("<HH", body)
-        rows = hm.unpack_device_rows(body[4:])
+        rows = hr.unpack_device_rows(body[4:])
         if start != 0 or len(rows) > total:
             raise CaseFailed(f"LIST_DEVICES: start {start}, {len(rows)} rows of {total}")
         present = [r for r in rows if r.present and r.node_id]
         self.device = present[0] if present else None
 
-    def _need_device(self) -> hm.DeviceRow:
+    def _need_device(self) -> hr.DeviceRow:
         if self.device is None:
             self.case_list_devices()
         if self.device is None:
@@ -294,19 +295,19 @@ class Suite:
     def case_get_device(self) -> None:
         row = self._need_device()
         self.link.hello()
-        body = expect(*self.link.request(Req.GET_DEVICE, hm.pack_key(row.key)), Status.OK,
+        body = expect(*self.link.request(Req.GET_DEVICE, hr.pack_key(row.key)), Status.OK,
                       "GET_DEVICE")
-        _, count, used = hm.unpack_device_info(row.key, body)
-        hm.unpack_channel_page(body[used:])
+        _, count, used = hr.unpack_device_info(row.key, body)
+        hr.unpack_channel_page(body[used:])
         if count != row.channels:
             raise CaseFailed(f"GET_DEVICE: {count} channels, LIST_DEVICES said {row.channels}")
 
     def case_get_channels(self) -> None:
         row = self._need_device()
         self.link.hello()
-        body = expect(*self.link.request(Req.GET_CHANNELS, hm.pack_key(row.key) + b"\x00"),
+        body = expect(*self.link.request(Req.GET_CHANNELS, hr.pack_key(row.key) + b"\x00"),
                       Status.OK, "GET_CHANNELS")
-        channels, _ = hm.unpack_channel_page(body)
+        channels, _ = hr.unpack_channel_page(body)
         if row.channels and not channels:
             raise CaseFailed("GET_CHANNELS from 0 returned no channel")
 
@@ -339,9 +340,9 @@ class Suite:
     def case_suspend_release(self) -> None:
         row = self._need_device()
         self.link.hello()
-        expect(*self.link.request(Req.SUSPEND, hm.pack_key(row.key) + struct.pack("<H", 200),
+        expect(*self.link.request(Req.SUSPEND, hr.pack_key(row.key) + struct.pack("<H", 200),
                                   3.0), Status.OK, "SUSPEND for 200 ms")
-        expect(*self.link.request(Req.RELEASE, hm.pack_key(row.key), 3.0), Status.OK,
+        expect(*self.link.request(Req.RELEASE, hr.pack_key(row.key), 3.0), Status.OK,
                "RELEASE")
 
     def case_config_read(self) -> None:

@@ -8,6 +8,7 @@ from __future__ import annotations
 
 import struct
 
+from pdcp_studio.bus import hostlink_records as hr
 from pdcp_studio.bus.hostlink_change import encode_change, encode_result
 from pdcp_studio.bus.transaction import Change, LinkAction, Policy, TransactionResult
 from pdcp_studio.bus.transaction import Status as TxnStatus
@@ -64,7 +65,7 @@ def _fail(code: int, status: Status, why: str) -> bytes:
 
 def messages() -> list[tuple[str, bytes]]:
     """(label, message) for every request with its reply, and every event."""
-    key = hm.pack_key(EMG)
+    key = hr.pack_key(EMG)
     param = hm.PARAM.pack(*EMG, 0, 10)
     cfg = _config()
     change = encode_change(Change("apply", [LinkAction("add", LINK, "")],
@@ -73,8 +74,8 @@ def messages() -> list[tuple[str, bytes]]:
                                              None, None, True, "held 1 device", [EMG],
                                              [EMG, HAND]))
     dev = _device()
-    info = hm.pack_device_info(dev)
-    page, _ = hm.pack_channel_page([_input()], 0)
+    info = hr.pack_device_info(dev)
+    page, _ = hr.pack_channel_page([_input()], 0)
     return [
         ("HELLO request", bytes([Req.HELLO, hm.VERSION]) + b"\xff\xff"),
         ("HELLO reply", _ok(Req.HELLO, hm.HELLO.pack(2, 0x000F, 255) + b"arb 1.0")),
@@ -83,24 +84,24 @@ def messages() -> list[tuple[str, bytes]]:
         ("STATUS reply", _ok(Req.STATUS, hm.STATUS.pack(0x03, 4, 5, 17, 0))),
         ("LIST_DEVICES request", bytes([Req.LIST_DEVICES]) + struct.pack("<H", 0)),
         ("LIST_DEVICES reply", _ok(Req.LIST_DEVICES, struct.pack("<HH", 1, 0)
-                                   + hm.pack_device_row(dev))),
+                                   + hr.pack_device_row(dev))),
         ("GET_DEVICE request", bytes([Req.GET_DEVICE]) + key),
-        ("GET_DEVICE reply", _ok(Req.GET_DEVICE, info + hm.pack_channel_page(
+        ("GET_DEVICE reply", _ok(Req.GET_DEVICE, info + hr.pack_channel_page(
             list(dev.channels.values()), 0, room=hm.MAX_BODY - 1 - len(info))[0])),
-        ("GET_CHANNELS request", bytes([Req.GET_CHANNELS]) + hm.pack_key(HAND) + b"\x00"),
+        ("GET_CHANNELS request", bytes([Req.GET_CHANNELS]) + hr.pack_key(HAND) + b"\x00"),
         ("GET_CHANNELS reply", _ok(Req.GET_CHANNELS, page)),
         ("LIST_LINKS request", bytes([Req.LIST_LINKS]) + struct.pack("<H", 0)),
         ("LIST_LINKS reply", _ok(Req.LIST_LINKS, struct.pack("<HH", 1, 0)
-                                 + hm.pack_link(LINK))),
+                                 + hr.pack_link(LINK))),
         ("GET_PARAM request", bytes([Req.GET_PARAM]) + param + b"\x00\x00"),
         ("GET_PARAM reply", _ok(Req.GET_PARAM, hm.SPAN.pack(0, 2) + b"\x64\x00")),
         ("SET_PARAM request", bytes([Req.SET_PARAM]) + param + hm.SPAN.pack(0, 2)
          + b"\x96\x00"),
         ("SET_PARAM reply", _ok(Req.SET_PARAM, struct.pack("<HB", 2, 1))),
         ("SET_PARAM managed", _fail(Req.SET_PARAM, Status.MANAGED, "node IDs are mine")),
-        ("ADD_LINK request", bytes([Req.ADD_LINK]) + hm.pack_link(LINK)),
+        ("ADD_LINK request", bytes([Req.ADD_LINK]) + hr.pack_link(LINK)),
         ("ADD_LINK reply", _ok(Req.ADD_LINK)),
-        ("REMOVE_LINK request", bytes([Req.REMOVE_LINK]) + hm.pack_link(LINK)),
+        ("REMOVE_LINK request", bytes([Req.REMOVE_LINK]) + hr.pack_link(LINK)),
         ("REMOVE_LINK reply", _ok(Req.REMOVE_LINK)),
         ("SUSPEND request", bytes([Req.SUSPEND]) + key + struct.pack("<H", 2000)),
         ("SUSPEND reply", _ok(Req.SUSPEND)),
@@ -142,8 +143,8 @@ def messages() -> list[tuple[str, bytes]]:
         ("unknown request", _fail(0x3E, Status.UNKNOWN_REQUEST, "unknown request 0x3E")),
         ("DEVICE_JOINED event", bytes([Event.DEVICE_JOINED]) + key + b"\x01"),
         ("DEVICE_LEFT event", bytes([Event.DEVICE_LEFT]) + key),
-        ("LINK_MADE event", bytes([Event.LINK_MADE]) + hm.pack_link_event(LINK, 5)),
-        ("LINK_REMOVED event", bytes([Event.LINK_REMOVED]) + hm.pack_link_event(LINK, None)),
+        ("LINK_MADE event", bytes([Event.LINK_MADE]) + hr.pack_link_event(LINK, 5)),
+        ("LINK_REMOVED event", bytes([Event.LINK_REMOVED]) + hr.pack_link_event(LINK, None)),
         ("OTHER_ARBITRATOR event", bytes([Event.OTHER_ARBITRATOR]) + b"another arbitrator"),
         ("BUS_ERROR event", bytes([Event.BUS_ERROR, 4]) + b"node IDs exhausted"),
         ("FRAMES event", hm.pack_frames([hm.WireFrame(1000, 0x30A, b"\x00\x01")], 0)),
