@@ -230,3 +230,10 @@ def test_the_monitor_gets_protocol_frames_and_channel_counts(rig, relay):
 def test_a_port_that_does_not_exist_names_itself():
     with pytest.raises(TransportError, match="/dev/pdcp-no-such-port"):
         open_hostlink_session(parse_bus_url("serial:/dev/pdcp-no-such-port"))
+
+
+def test_the_serial_session_is_a_bus_session(session):
+    from pdcp_studio.bus.session_api import BusSession
+
+    assert isinstance(session, BusSession)
+    assert not session.closed

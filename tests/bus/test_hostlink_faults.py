@@ -309,3 +309,75 @@ def test_an_arbitrator_killed_during_a_configuration_write_keeps_old_or_new(tmp_
         zygote.wait(10)
         zygote.stdout.close()
     assert outcomes["old"] and outcomes["new"], outcomes
+
+
+class _Bridge:
+    """Copies bytes between two pty masters (the cable between two adapters)."""
+
+    def __init__(self, a: int, b: int) -> None:
+        self.fds = [a, b]
+        self.stop = threading.Event()
+        self.thread = threading.Thread(target=self._run, daemon=True)
+        self.thread.start()
+
+    def _run(self) -> None:
+        import select
+
+        while not self.stop.is_set():
+            try:
+                ready, _, _ = select.select(self.fds, [], [], 0.02)
+                for fd in ready:
+                    data = os.read(fd, 512)
+                    os.write(self.fds[1] if fd == self.fds[0] else self.fds[0], data)
+            except OSError:
+                time.sleep(0.02)
+
+    def close(self) -> None:
+        self.stop.set()
+        self.thread.join(2.0)
+
+
+def _raw_pty() -> tuple[int, int, str]:
+    import tty
+
+    master, slave = os.openpty()
+    tty.setraw(slave)
+    return master, slave, os.ttyname(slave)
+
+
+def test_the_arbitrator_reopens_its_dropped_port_with_one_calm_message(rig, tmp_path, caplog):
+    from pdcp_studio.bus.hostlink_server import HostLinkServer
+
+    arbitrator, _ = rig
+    port_name = tmp_path / "ttyArb"
+    am, aslave, apath = _raw_pty()  # the arbitrator's adapter
+    bm, bslave, bpath = _raw_pty()  # the PC's adapter
+    port_name.symlink_to(apath)
+    server = HostLinkServer(arbitrator, str(port_name), name="arb link")
+    os.close(aslave)
+    bridge = _Bridge(am, bm)
+    session = HostLinkSession(bpath, url="pc", monitor=False, **FAST)
+    try:
+        assert session.status()["devices"] == 4
+        with caplog.at_level("WARNING", logger="pdcp_studio.bus.hostlink_server"):
+            bridge.close()
+            os.close(am)  # the arbitrator's adapter is pulled out
+            time.sleep(1.0)  # it tries to reopen, and fails, several times
+            cm, cslave, cpath = _raw_pty()  # plugged in again, as a new device node
+            port_name.unlink()
+            port_name.symlink_to(cpath)
+            bridge = _Bridge(cm, bm)
+            os.close(cslave)
+            assert wait_for(lambda: not server._reopener.down, 5.0)
+            assert session.status()["devices"] == 4  # greets again by itself
+        lost = [r for r in caplog.records if "lost" in r.getMessage()]
+        assert len(lost) == 1, [r.getMessage() for r in caplog.records]
+    finally:
+        session.close()
+        server.close()
+        bridge.close()
+        for fd in (bslave, bm, *bridge.fds[:1]):
+            try:
+                os.close(fd)
+            except OSError:
+                pass
