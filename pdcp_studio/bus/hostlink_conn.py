@@ -18,7 +18,12 @@ import time
 from collections.abc import Callable
 from typing import Any
 
-from pdcp_studio.bus.hostlink_port import DEFAULT_BAUD, Reopener, open_port, read_available
+from pdcp_studio.bus.hostlink_port import (
+    DEFAULT_BAUD,
+    Reopener,
+    open_port,
+    read_available,
+)
 from pdcp_studio.errors import BusTimeoutError, PdcpError, TransportError
 from pdcp_studio.protocol import hostlink_messages as hm
 from pdcp_studio.protocol.hostlink_link import LinkEndpoint
@@ -67,7 +72,8 @@ class HostLinkConnection:
         self._link_options = {k: v for k, v in (("ack_timeout", ack_timeout),
                                                 ("max_attempts", max_attempts)) if v is not None}
         self._port_name = port if isinstance(port, str) else None
-        self.port: Any = open_port(port, baudrate) if isinstance(port, str) else port
+        self.port: Any = (open_port(port, baudrate, self.where) if isinstance(port, str)
+                          else port)
         self.link = LinkEndpoint(host=True, **self._link_options)
         self.info: dict[str, Any] = {}
         self.greetings = 0
@@ -253,7 +259,7 @@ class HostLinkConnection:
         if self._stop.is_set():
             return False
         try:
-            self.port = open_port(self._port_name, self.baudrate)
+            self.port = open_port(self._port_name, self.baudrate, self.where)
         except Exception:
             return False
         with self._io:

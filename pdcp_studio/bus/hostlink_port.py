@@ -73,8 +73,9 @@ class PtyPort:
             os.close(self._slave)
 
 
-def open_port(name: str, baudrate: int = DEFAULT_BAUD) -> Any:
-    """``pty`` → a new :class:`PtyPort`; anything else → pyserial ``serial_for_url``."""
+def open_port(name: str, baudrate: int = DEFAULT_BAUD, where: str = "host link") -> Any:
+    """``pty`` → a new :class:`PtyPort`; anything else → pyserial ``serial_for_url``.
+    TransportError names ``where`` (the bus URL) and the port."""
     if name == "pty":
         return PtyPort()
     import serial
@@ -83,7 +84,7 @@ def open_port(name: str, baudrate: int = DEFAULT_BAUD) -> Any:
         return serial.serial_for_url(name, baudrate=baudrate, timeout=READ_TIMEOUT_S,
                                      write_timeout=5.0)
     except (serial.SerialException, ValueError, OSError) as err:
-        raise TransportError(f"host link: cannot open serial port {name!r}: {err}") from err
+        raise TransportError(f"{where}: cannot open serial port {name!r}: {err}") from err
 
 
 def read_available(port: Any) -> bytes:

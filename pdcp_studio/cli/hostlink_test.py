@@ -39,7 +39,7 @@ def run(args: argparse.Namespace) -> int:
         raise BadInput(f"--bus {args.bus}: hostlink-test talks to an arbitrator's host link "
                        "(serial:PORT[@BAUD])")
     try:
-        port = open_port(spec.port, spec.baud)
+        port = open_port(spec.port, spec.baud, spec.url)
     except TransportError as err:
         print(f"pdcp-studio: {err}", file=sys.stderr)
         return 1
