@@ -28,12 +28,16 @@ from pdcp_studio.errors import BusTimeoutError, PdcpError, TransportError
 from pdcp_studio.protocol import hostlink_messages as hm
 from pdcp_studio.protocol.hostlink_link import LinkEndpoint
 from pdcp_studio.protocol.hostlink_messages import Req, Status
+from pdcp_studio.protocol.hostlink_v1 import PING as V1_PING
+from pdcp_studio.protocol.hostlink_v1 import V1Sniffer, encode_v1
 
 log = logging.getLogger(__name__)
 
 #: Seconds a reply may take once the request is acknowledged (the arbitrator may be waiting
 #: on the CAN bus: a device's retries, a bulk transfer, a memory write).
 REPLY_TIMEOUT_S = 6.0
+#: Seconds to wait for a version-1 arbitrator's answer to a version-1 PING.
+V1_PROBE_S = 1.0
 
 
 class HostLinkError(PdcpError):
@@ -82,6 +86,8 @@ class HostLinkConnection:
         self._request_lock = threading.Lock()
         self._replies: queue.SimpleQueue[bytes | _Lost] = queue.SimpleQueue()
         self._waiting: int | None = None
+        self._v1 = V1Sniffer()
+        self._v1_replies: queue.SimpleQueue[tuple[int, bytes]] = queue.SimpleQueue()
         self._stop = threading.Event()
         self._reopener = Reopener(self.where, on_notice or (lambda text: log.warning(text)))
         self._thread = threading.Thread(target=self._run, name="pdcp host link", daemon=True)
@@ -116,9 +122,12 @@ class HostLinkConnection:
         with self._io:
             self.link.reset(time.monotonic())
             self._flush()
-        status, body = self._exchange(Req.HELLO, bytes([hm.VERSION]) + (0xFFFF).to_bytes(2,
-                                                                                        "little"),
-                                      self.reply_timeout)
+        try:
+            status, body = self._exchange(Req.HELLO, bytes([hm.VERSION, 0xFF, 0xFF]),
+                                          self.reply_timeout)
+        except TransportError:
+            self._probe_v1()
+            raise
         if status is Status.VERSION:
             raise VersionRefused(f"{self.where}: the arbitrator refuses host-link version "
                                  f"{hm.VERSION}: {hm.text(body)}", status)
@@ -135,6 +144,27 @@ class HostLinkConnection:
         self._greeted = True
         self.greetings += 1
         self.on_greeted(self.greetings)
+
+    def _probe_v1(self) -> None:
+        """HELLO went unanswered: is it a version-1 arbitrator? Ask it its own way."""
+        while True:
+            try:
+                self._v1_replies.get_nowait()
+            except queue.Empty:
+                break
+        with self._io:
+            try:
+                self.port.write(encode_v1(V1_PING) + b"\x00")
+            except Exception:
+                return
+        try:
+            msg_id, _ = self._v1_replies.get(timeout=V1_PROBE_S)
+        except queue.Empty:
+            return
+        if msg_id in (V1_PING + 1, V1_PING + 2):
+            raise VersionRefused(f"{self.where}: the arbitrator speaks host-link version 1; "
+                                 f"this PDCP Studio speaks version {hm.VERSION} only (update "
+                                 "the arbitrator's firmware)", Status.VERSION)
 
     # -- requests --------------------
     def request(self, code: Req, body: bytes = b"", *, timeout: float | None = None) -> bytes:
@@ -219,6 +249,9 @@ class HostLinkConnection:
                 self._lose(err)
                 continue
             now = time.monotonic()
+            if data and not self._greeted:
+                for found in self._v1.feed(data):
+                    self._v1_replies.put(found)
             with self._io:
                 delivered = self.link.receive(data, now) if data else []
                 self.link.poll(now)

@@ -27,6 +27,7 @@ from pdcp_studio.bus.hostlink_port import (
 )
 from pdcp_studio.protocol import hostlink_messages as hm
 from pdcp_studio.protocol.hostlink_link import LinkEndpoint
+from pdcp_studio.protocol.hostlink_v1 import V1Sniffer, encode_v1
 
 log = logging.getLogger(__name__)
 
@@ -55,6 +56,7 @@ class HostLinkServer:
         self._requests: queue.SimpleQueue[bytes | None] = queue.SimpleQueue()
         self._events: queue.SimpleQueue[bytes] = queue.SimpleQueue()
         self._reopener = Reopener(name, lambda text: log.warning("%s", text))
+        self._v1 = V1Sniffer()
         self._unsubscribe = arbitrator.subscribe(self._on_event)
         self._line = threading.Thread(target=self._run_line, name=f"pdcp {name} line",
                                       daemon=True)
@@ -139,6 +141,8 @@ class HostLinkServer:
                 self._lose(err)
                 continue
             now = time.monotonic()
+            if data and not self.handlers.greeted:
+                self._refuse_v1(data)
             with self._io:
                 delivered = self.link.receive(data, now) if data else []
                 self.link.poll(now)
@@ -170,6 +174,18 @@ class HostLinkServer:
         if greeted:
             for message in self.monitor.take(now, self.link.idle):
                 self.link.send(message, now)
+
+    def _refuse_v1(self, data: bytes) -> None:
+        """A version-1 PC gets a version-1 failure reply saying why (docs/host-link.md §4)."""
+        for msg_id, _ in self._v1.feed(data):
+            if 0x10 <= msg_id <= 0x37 and (msg_id - 0x10) % 3 == 0:  # a version-1 request
+                text = (f"this arbitrator speaks host-link version {hm.VERSION}, not version "
+                        "1: update PDCP Studio").encode()
+                with self._io:
+                    try:
+                        self.port.write(encode_v1(msg_id + 2, text))
+                    except Exception as err:
+                        log.debug("%s: write failed: %s", self.name, err)
 
     def _lose(self, err: object) -> None:
         self._reopener.lost(err)

@@ -381,3 +381,58 @@ def test_the_arbitrator_reopens_its_dropped_port_with_one_calm_message(rig, tmp_
                 os.close(fd)
             except OSError:
                 pass
+
+
+def test_a_version_1_pc_and_a_version_1_arbitrator_are_each_told_why(rig):
+    from pdcp_studio.protocol.hostlink_v1 import V1Sniffer, encode_v1
+
+    _, server = rig
+    # a version-1 PC pings the arbitrator: a version-1 failure reply with the reason
+    with PtyRelay(server.slave_path) as relay:
+        fd = os.open(relay.client_path, os.O_RDWR | os.O_NOCTTY)
+        try:
+            os.write(fd, encode_v1(0x10))
+            sniffer, got = V1Sniffer(), []
+            deadline = time.monotonic() + 3
+            while not got and time.monotonic() < deadline:
+                got = sniffer.feed(os.read(fd, 512))
+        finally:
+            os.close(fd)
+    assert got and got[0][0] == 0x12  # PING's failure reply
+    assert b"speaks host-link version 2, not version 1" in got[0][1]
+    # a version-1 arbitrator: it ignores HELLO but answers a version-1 PING
+    master, slave, path = _raw_pty()
+    stop = threading.Event()
+
+    def old_firmware() -> None:
+        sniffer = V1Sniffer()
+        while not stop.is_set():
+            import select
+
+            if select.select([master], [], [], 0.02)[0]:
+                for msg_id, _ in sniffer.feed(os.read(master, 512)):
+                    os.write(master, encode_v1(msg_id + 1, b'{"name": "old"}'))
+
+    thread = threading.Thread(target=old_firmware, daemon=True)
+    thread.start()
+    try:
+        with pytest.raises(VersionRefused, match="speaks host-link version 1; this PDCP Studio "
+                                                 "speaks version 2"):
+            HostLinkSession(path, url="old", monitor=False, **FAST)
+    finally:
+        stop.set()
+        thread.join(2)
+        os.close(master)
+        os.close(slave)
+
+
+def test_the_version_1_sniffer_finds_only_whole_valid_frames():
+    from pdcp_studio.protocol.hostlink_v1 import V1Sniffer, encode_v1
+
+    frame = encode_v1(0x11, b'{"v": 1}')
+    sniffer = V1Sniffer()
+    assert sniffer.feed(b"\xa5\x00\xff" + frame[:5]) == []
+    assert sniffer.feed(frame[5:]) == [(0x11, b'{"v": 1}')]
+    bad = bytearray(encode_v1(0x10))
+    bad[-1] ^= 1
+    assert V1Sniffer().feed(bytes(bad) * 3) == []
