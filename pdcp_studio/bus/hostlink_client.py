@@ -47,6 +47,8 @@ __all__ = ["ChannelCounts", "HostLinkError", "HostLinkSession", "VersionRefused"
 
 #: How long the arbitrator's system must stay the same to count as settled.
 SETTLE_POLL_S = 0.1
+#: Least seconds between two Progress events a scan sends subscribers (as bus/session.py).
+PROGRESS_EVENT_INTERVAL_S = 0.1
 #: Seconds TRANSACT_RUN may take: interlock, writes, read-back and perhaps a restore.
 TRANSACT_TIMEOUT_S = 30.0
 #: Reads of the stored configuration restarted when it changes under them.
@@ -344,13 +346,22 @@ class HostLinkSession(TransactingMixin):
     def scan(self, progress: Callable[[int, int, str], None] | None = None,
              cancel: threading.Event | None = None) -> System:
         """The arbitrator's tables: devices, channels, parameters, links (cached)."""
-        system = self._refresh(progress, cancel)
+        last = [0.0]
+
+        def report(done: int, total: int, text: str) -> None:
+            if progress is not None:
+                progress(done, total, text)
+            now = time.monotonic()
+            if done >= total or now - last[0] >= PROGRESS_EVENT_INTERVAL_S:
+                last[0] = now
+                self._emit(ev.Progress(done, total, text))
+
+        system = self._refresh(report, cancel)
         present = System([d for d in system.devices.values() if d.present])
         for link in system.links:
             if present.device(link.output.device) and present.device(link.input.device):
                 present.add_link(link, check=False)
-        if progress is not None:
-            progress(1, 1, f"{len(present.devices)} device(s), {len(present.links)} link(s)")
+        report(1, 1, f"{len(present.devices)} device(s), {len(present.links)} link(s)")
         return present
 
     def status(self) -> dict[str, Any]:

@@ -162,12 +162,12 @@ class HostLinkServer:
                 break
             if not greeted:
                 continue
-            if len(self.link._outbox) >= EVENT_QUEUE:
+            if self.link.queued >= EVENT_QUEUE:
                 self.events_lost += 1
                 self._lost_pending = True
                 continue
             self.link.send(message, now)
-        if greeted and self._lost_pending and len(self.link._outbox) < EVENT_QUEUE:
+        if greeted and self._lost_pending and self.link.queued < EVENT_QUEUE:
             self._lost_pending = False
             self.link.send(bytes([hm.Event.EVENTS_LOST]) + self.events_lost.to_bytes(2, "little"),
                            now)

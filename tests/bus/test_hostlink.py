@@ -237,3 +237,17 @@ def test_the_serial_session_is_a_bus_session(session):
 
     assert isinstance(session, BusSession)
     assert not session.closed
+
+
+def test_the_app_opens_on_a_serial_bus(rig, tmp_path):
+    import subprocess
+    import sys
+
+    _, server = rig
+    shot = tmp_path / "serial.png"
+    proc = subprocess.run([sys.executable, "-m", "pdcp_studio", "gui", "--bus",
+                           f"serial:{server.slave_path}", "--screenshot", str(shot)],
+                          capture_output=True, text=True, timeout=120,
+                          env={**os.environ, "QT_QPA_PLATFORM": "offscreen"})
+    assert proc.returncode == 0, proc.stderr[-2000:]
+    assert shot.stat().st_size > 10_000
