@@ -205,8 +205,13 @@ class HostLinkConnection:
             self.link.send(message, time.monotonic())
             self._flush()
         deadline = time.monotonic() + timeout
+        # bounded even if the line thread stalls: every send's ACK wait, then the reply's
+        hard = deadline + self.link.max_attempts * self.link.ack_timeout + 1.0
         try:
             while True:
+                if time.monotonic() > hard:
+                    raise BusTimeoutError(f"{self.where}: no reply to {name} within "
+                                          f"{hard - deadline + timeout:.1f} s")
                 left = deadline - time.monotonic()
                 try:
                     reply = self._replies.get(timeout=max(left, 0.0) if left > 0 else 0.0)

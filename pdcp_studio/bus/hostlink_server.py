@@ -31,6 +31,12 @@ from pdcp_studio.protocol.hostlink_v1 import V1Sniffer, encode_v1
 
 log = logging.getLogger(__name__)
 
+#: Requests answered from the arbitrator's tables, on the line thread (no CAN traffic, no
+#: waiting): a scan's round trips skip the hand-over to the request thread.
+_FROM_TABLES = {bytes([code]) for code in (
+    hm.Req.STATUS, hm.Req.LIST_DEVICES, hm.Req.GET_DEVICE, hm.Req.GET_CHANNELS,
+    hm.Req.LIST_LINKS, hm.Req.CONFIG_INFO, hm.Req.CONFIG_READ, hm.Req.RESULT_READ,
+    hm.Req.GET_POLICY)}
 #: Events kept while the PC is slow to acknowledge; beyond this they are counted as lost.
 EVENT_QUEUE = 16
 
@@ -141,7 +147,7 @@ class HostLinkServer:
                 self._lose(err)
                 continue
             now = time.monotonic()
-            if data and not self.handlers.greeted:
+            if data:
                 self._refuse_v1(data)
             with self._io:
                 delivered = self.link.receive(data, now) if data else []
@@ -151,7 +157,12 @@ class HostLinkServer:
                 self._push_events(now)
                 self._flush()
             for message in delivered:
-                self._requests.put(message)
+                if message[:1] in _FROM_TABLES and self._requests.empty():
+                    reply = self.handlers.handle(message)  # answered from the tables at once
+                    if reply is not None:
+                        self.post(reply)
+                else:
+                    self._requests.put(message)
 
     def _push_events(self, now: float) -> None:
         greeted = self.handlers.greeted

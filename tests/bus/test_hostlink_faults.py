@@ -5,6 +5,7 @@ from __future__ import annotations
 
 import os
 import random
+import select
 import signal
 import subprocess
 import sys
@@ -321,8 +322,6 @@ class _Bridge:
         self.thread.start()
 
     def _run(self) -> None:
-        import select
-
         while not self.stop.is_set():
             try:
                 ready, _, _ = select.select(self.fds, [], [], 0.02)
@@ -356,7 +355,7 @@ def test_the_arbitrator_reopens_its_dropped_port_with_one_calm_message(rig, tmp_
     server = HostLinkServer(arbitrator, str(port_name), name="arb link")
     os.close(aslave)
     bridge = _Bridge(am, bm)
-    session = HostLinkSession(bpath, url="pc", monitor=False, **FAST)
+    session = HostLinkSession(bpath, url="pc", monitor=False, ack_timeout=0.1, max_attempts=8)
     try:
         assert session.status()["devices"] == 4
         with caplog.at_level("WARNING", logger="pdcp_studio.bus.hostlink_server"):
@@ -395,7 +394,8 @@ def test_a_version_1_pc_and_a_version_1_arbitrator_are_each_told_why(rig):
             sniffer, got = V1Sniffer(), []
             deadline = time.monotonic() + 3
             while not got and time.monotonic() < deadline:
-                got = sniffer.feed(os.read(fd, 512))
+                if select.select([fd], [], [], 0.05)[0]:
+                    got = sniffer.feed(os.read(fd, 512))
         finally:
             os.close(fd)
     assert got and got[0][0] == 0x12  # PING's failure reply
@@ -407,8 +407,6 @@ def test_a_version_1_pc_and_a_version_1_arbitrator_are_each_told_why(rig):
     def old_firmware() -> None:
         sniffer = V1Sniffer()
         while not stop.is_set():
-            import select
-
             if select.select([master], [], [], 0.02)[0]:
                 for msg_id, _ in sniffer.feed(os.read(master, 512)):
                     os.write(master, encode_v1(msg_id + 1, b'{"name": "old"}'))
