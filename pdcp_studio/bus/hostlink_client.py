@@ -394,9 +394,10 @@ class HostLinkSession(TransactingMixin):
             if len(value) >= total or len(body) == hm.SPAN.size:
                 return bytes(value[:total])
 
-    def set_parameter(self, key: DeviceKey, param: int, channel: int, value: bytes, *,
-                      timeout: float | None = None) -> None:
-        """Write one parameter value of any length (chunks; the arbitrator writes it whole)."""
+    def write_parameter_bytes(self, key: DeviceKey, param: int, channel: int,
+                              value: bytes, *, timeout: float | None = None) -> None:
+        """SET_PARAM in chunks, outside any transaction (the protocol's primitive; the session's
+        ``set_parameter`` is a transaction, as every change to a prosthesis)."""
         key = DeviceKey(*key)
         address = hm.PARAM.pack(*key, channel, param)
         value = bytes(value)
@@ -410,19 +411,6 @@ class HostLinkSession(TransactingMixin):
                 break
         with self._cache.lock:
             self._cache.stale.add(key)
-
-    def add_link(self, link: Link) -> None:
-        self.request(Req.ADD_LINK, hr.pack_link(link))
-        self._links_changed(link)
-
-    def remove_link(self, link: Link) -> None:
-        self.request(Req.REMOVE_LINK, hr.pack_link(link))
-        self._links_changed(link)
-
-    def _links_changed(self, link: Link) -> None:
-        with self._cache.lock:
-            self._cache.links_stale = True
-            self._cache.stale.update((link.output.device, link.input.device))
 
     def suspend(self, key: DeviceKey, ms: int = 0) -> None:
         self.request(Req.SUSPEND, hr.pack_key(DeviceKey(*key)) + struct.pack("<H", ms))
