@@ -15,7 +15,6 @@ import struct
 import time
 
 import can
-from test_arbitrator_rig import Rig, key, load, no_bus_left_open  # noqa: F401
 
 from pdcp_studio.bus import events as ev
 from pdcp_studio.bus.arbitrator import ERROR_BURST
@@ -31,6 +30,7 @@ from pdcp_studio.protocol import (
     UpdateDataChannel,
     make_id,
 )
+from tests.bus.test_arbitrator_rig import Rig, key, load
 
 RATE_HZ = 4000
 #: Beacons every 200 ms (gone after 0.7 s): the flood is the test, not a loaded machine's

@@ -13,11 +13,11 @@ import time
 
 import can
 import pytest
-from test_arbitrator_rig import load
 
 from pdcp_studio.bus.connection import ECHO_MAX_PENDING, Connection, EchoFilter
 from pdcp_studio.bus.urls import unique_virtual_channel
 from pdcp_studio.model.refs import DeviceKey
+from tests.bus.test_arbitrator_rig import load
 
 
 def _echoing_connection() -> Connection:
