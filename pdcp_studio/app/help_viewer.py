@@ -32,6 +32,8 @@ VIEW_SECTIONS: dict[str, str] = {
     "DevicesDock": "devices",
     "InspectorDock": "inspector",
     "PlanDock": "plans",
+    "PendingDock": "pending",
+    "HistoryDock": "history",
     "MonitorDock": "monitor",
     "LivePlotDock": "plot",
     "SimDock": "simulator",
