@@ -28,7 +28,7 @@ class DeviceTree(QTreeWidget):
         super().__init__(parent)
         self.doc = doc
         self.setColumnCount(2)
-        self.setHeaderLabels(["Device / channel", "Profile"])
+        self.setHeaderLabels([self.tr("Device / channel"), self.tr("Profile")])
         self.setSelectionMode(QAbstractItemView.SelectionMode.SingleSelection)
         self.setUniformRowHeights(True)
         self.setMinimumWidth(290)  # device names and profile names side by side
