@@ -209,8 +209,9 @@ class SimPanel(QWidget):
 
     def _paint(self, item: QTreeWidgetItem, key: DeviceKey) -> None:
         plugged, on_bus = self.state(key)
-        item.setText(COL_PLUGGED, "on" if plugged else "off")
-        item.setText(COL_BUS, {True: "joined", False: "left", None: "—"}[on_bus])
+        item.setText(COL_PLUGGED, self.tr("on") if plugged else self.tr("off"))
+        item.setText(COL_BUS, {True: self.tr("joined"), False: self.tr("left"),
+                               None: "—"}[on_bus])
         brush = QBrush(_GONE) if not plugged else QBrush()
         for col in range(4):
             item.setForeground(col, brush)

@@ -771,14 +771,19 @@
 <context>
     <name>DeviceTree</name>
     <message>
-        <location filename="../../pdcp_studio/app/tree_panel.py" line="31" />
+        <location filename="../../pdcp_studio/app/tree_panel.py" line="32" />
         <source>Device / channel</source>
         <translation>Gerät / Kanal</translation>
     </message>
     <message>
-        <location filename="../../pdcp_studio/app/tree_panel.py" line="31" />
+        <location filename="../../pdcp_studio/app/tree_panel.py" line="32" />
         <source>Profile</source>
         <translation>Profil</translation>
+    </message>
+    <message>
+        <location filename="../../pdcp_studio/app/tree_panel.py" line="74" />
+        <source>missing</source>
+        <translation>fehlt</translation>
     </message>
 </context>
 <context>
@@ -1260,6 +1265,75 @@ Ihr Name (wird einmal erfragt):</translation>
         <location filename="../../pdcp_studio/app/inspector.py" line="552" />
         <source>Refused: {reason}</source>
         <translation>Abgelehnt: {reason}</translation>
+    </message>
+</context>
+<context>
+    <name>Legend</name>
+    <message>
+        <location filename="../../pdcp_studio/app/graph/view.py" line="38" />
+        <source>Sensor</source>
+        <extracomment>Fit never magnifies beyond this (a three-card system should not look bloated). The legend's rows: (kind, colour, label). Kinds: "role" swatch, "ring" port, "line"/"dash"/"dashdot"/"dot" link.</extracomment>
+        <translation>Sensor</translation>
+    </message>
+    <message>
+        <location filename="../../pdcp_studio/app/graph/view.py" line="39" />
+        <source>Control</source>
+        <translation>Steuerung</translation>
+    </message>
+    <message>
+        <location filename="../../pdcp_studio/app/graph/view.py" line="40" />
+        <source>Terminal device</source>
+        <translation>Endgerät</translation>
+    </message>
+    <message>
+        <location filename="../../pdcp_studio/app/graph/view.py" line="41" />
+        <source>Missing</source>
+        <translation>Fehlt</translation>
+    </message>
+    <message>
+        <location filename="../../pdcp_studio/app/graph/view.py" line="42" />
+        <source>Required input unmet</source>
+        <translation>Pflichteingang unverbunden</translation>
+    </message>
+    <message>
+        <location filename="../../pdcp_studio/app/graph/view.py" line="45" />
+        <source>Link</source>
+        <translation>Verbindung</translation>
+    </message>
+    <message>
+        <location filename="../../pdcp_studio/app/graph/view.py" line="46" />
+        <source>Data flowing</source>
+        <translation>Daten fließen</translation>
+    </message>
+    <message>
+        <location filename="../../pdcp_studio/app/graph/view.py" line="47" />
+        <source>End missing</source>
+        <translation>Ende fehlt</translation>
+    </message>
+    <message>
+        <location filename="../../pdcp_studio/app/graph/view.py" line="48" />
+        <source>Sole-access conflict</source>
+        <translation>Konflikt beim alleinigen Zugriff</translation>
+    </message>
+    <message>
+        <location filename="../../pdcp_studio/app/graph/view.py" line="49" />
+        <source>Plan adds</source>
+        <translation>Plan fügt hinzu</translation>
+    </message>
+    <message>
+        <location filename="../../pdcp_studio/app/graph/view.py" line="50" />
+        <source>Plan removes</source>
+        <translation>Plan entfernt</translation>
+    </message>
+    <message>
+        <location filename="../../pdcp_studio/app/graph/view.py" line="53" />
+        <source>Pending: to write</source>
+        <translation>Vorgemerkt: zu schreiben</translation>
+    </message>
+    <message>
+        <location filename="../../pdcp_studio/app/graph/view.py" line="57" />
+        <source>Pending: to remove from the prosthesis</source>
+        <translation>Vorgemerkt: von der Prothese zu entfernen</translation>
     </message>
 </context>
 <context>
@@ -1777,6 +1851,20 @@ Den PDCP-Bus einer aktiven Prothese ansehen und einrichten.</translation>
         <location filename="../../pdcp_studio/app/monitor_dock.py" line="513" />
         <source>Saving {save_path}: {message}</source>
         <translation>{save_path} speichern: {message}</translation>
+    </message>
+</context>
+<context>
+    <name>Pending</name>
+    <message>
+        <location filename="../../pdcp_studio/app/pending.py" line="84" />
+        <source>on</source>
+        <extracomment>Channel fields that can be staged on a live bus: field → catalog parameter ID. Device fields that can be staged on a live bus: field → catalog parameter ID. The action a written set of pending changes is recorded as.</extracomment>
+        <translation>an</translation>
+    </message>
+    <message>
+        <location filename="../../pdcp_studio/app/pending.py" line="84" />
+        <source>off</source>
+        <translation>aus</translation>
     </message>
 </context>
 <context>
@@ -2317,6 +2405,49 @@ Den PDCP-Bus einer aktiven Prothese ansehen und einrichten.</translation>
         <location filename="../../pdcp_studio/app/sim_panel.py" line="143" />
         <source>Simulator</source>
         <translation>Simulator</translation>
+    </message>
+    <message>
+        <location filename="../../pdcp_studio/app/sim_panel.py" line="212" />
+        <source>on</source>
+        <translation>an</translation>
+    </message>
+    <message>
+        <location filename="../../pdcp_studio/app/sim_panel.py" line="212" />
+        <source>off</source>
+        <translation>aus</translation>
+    </message>
+    <message>
+        <location filename="../../pdcp_studio/app/sim_panel.py" line="213" />
+        <source>joined</source>
+        <translation>beigetreten</translation>
+    </message>
+    <message>
+        <location filename="../../pdcp_studio/app/sim_panel.py" line="213" />
+        <source>left</source>
+        <translation>verlassen</translation>
+    </message>
+</context>
+<context>
+    <name>Style</name>
+    <message>
+        <location filename="../../pdcp_studio/app/graph/style.py" line="28" />
+        <source>Sensor</source>
+        <translation>Sensor</translation>
+    </message>
+    <message>
+        <location filename="../../pdcp_studio/app/graph/style.py" line="29" />
+        <source>Control</source>
+        <translation>Steuerung</translation>
+    </message>
+    <message>
+        <location filename="../../pdcp_studio/app/graph/style.py" line="30" />
+        <source>Terminal device</source>
+        <translation>Endgerät</translation>
+    </message>
+    <message>
+        <location filename="../../pdcp_studio/app/graph/style.py" line="31" />
+        <source>Missing</source>
+        <translation>Fehlt</translation>
     </message>
 </context>
 <context>
