@@ -47,6 +47,7 @@ from PySide6.QtWidgets import (
 )
 
 from pdcp_studio.app.config_document import ConfigDocument
+from pdcp_studio.app.i18n import translate
 from pdcp_studio.engine.config_checks import ConfigFinding, check_configuration
 from pdcp_studio.errors import PdcpError
 from pdcp_studio.model import profile as prof
@@ -430,7 +431,7 @@ class ConfigWindow(QMainWindow):
 
     def _update_title(self) -> None:
         self.setWindowTitle(f"{self.doc.title}[*] — " + self.tr("Stored configurations")
-                            + " — PDCP Studio")
+                            + self.tr(" — PDCP Studio"))
         self.setWindowModified(self.doc.is_dirty)
 
     def prosthesis(self) -> tuple[System | None, str]:
@@ -769,9 +770,17 @@ def open_config_window(main: Any, path: str | Path, collection: Any = None) -> C
             return None, ""
         live = getattr(main.live, "is_live", False) and main.doc.session is not None
         if live:
-            return system, _tr("the live bus %1").replace("%1", str(main.live.url))
-        name = main.doc.path.name if main.doc.path is not None else _tr("the main window")
-        return system, _tr("the prosthesis in the main window (%1)").replace("%1", name)
+            return system, translate("ConfigWindow", "the live bus %1").replace(
+                "%1", str(main.live.url)
+            )
+        name = (
+            main.doc.path.name
+            if main.doc.path is not None
+            else translate("ConfigWindow", "the main window")
+        )
+        return system, translate("ConfigWindow", "the prosthesis in the main window (%1)").replace(
+            "%1", name
+        )
 
     window = ConfigWindow(doc, source)
     window.setAttribute(Qt.WidgetAttribute.WA_DeleteOnClose, True)

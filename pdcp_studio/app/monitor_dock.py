@@ -35,6 +35,7 @@ from pathlib import Path
 from typing import Any, NamedTuple
 
 from PySide6.QtCore import (
+    QT_TRANSLATE_NOOP,
     QAbstractTableModel,
     QElapsedTimer,
     QModelIndex,
@@ -60,6 +61,7 @@ from PySide6.QtWidgets import (
     QWidget,
 )
 
+from pdcp_studio.app.i18n import translate
 from pdcp_studio.app.workers import Worker
 from pdcp_studio.protocol.codes import FunctionCode
 
@@ -70,10 +72,13 @@ REFRESH_MS = 250
 #: Rows an opened capture sends to the table at a time (the first ones at once).
 CAPTURE_CHUNK = 5000
 CHANNEL_DATA = "Channel data"
-ANY = "(any)"
+ANY = QT_TRANSLATE_NOOP("MonitorDock", "(any)")
 _ROOT = QModelIndex()  # the invisible root, shared as a default argument
 
-COLUMNS = ("Time", "ID", "Node", "Function", "Data", "Decoded")
+COLUMNS = (QT_TRANSLATE_NOOP("MonitorDock", "Time"), QT_TRANSLATE_NOOP("MonitorDock", "ID"),
+           QT_TRANSLATE_NOOP("MonitorDock", "Node"),
+           QT_TRANSLATE_NOOP("MonitorDock", "Function"),
+           QT_TRANSLATE_NOOP("MonitorDock", "Data"), QT_TRANSLATE_NOOP("MonitorDock", "Decoded"))
 _MODE_BIT = 0x100
 
 
@@ -167,7 +172,7 @@ class FrameTableModel(QAbstractTableModel):
     def headerData(self, section: int, orientation: Qt.Orientation,
                    role: int = Qt.ItemDataRole.DisplayRole) -> Any:
         if role == Qt.ItemDataRole.DisplayRole and orientation == Qt.Orientation.Horizontal:
-            return COLUMNS[section]
+            return translate("MonitorDock", COLUMNS[section])
         return None
 
     def data(self, index: QModelIndex | QPersistentModelIndex,
@@ -254,7 +259,7 @@ class MonitorDock(QDockWidget):
     loadProgress = Signal(int)  # frames of an opened capture read so far
 
     def __init__(self, parent: QWidget | None = None, capacity: int = DEFAULT_CAPACITY) -> None:
-        super().__init__("Bus monitor", parent)
+        super().__init__(translate("MonitorDock", "Bus monitor"), parent)
         self.setObjectName("MonitorDock")
         self.capacity = capacity
         self.all_rows: deque[Row] = deque(maxlen=capacity)
@@ -301,28 +306,29 @@ class MonitorDock(QDockWidget):
         header.setSectionResizeMode(QHeaderView.ResizeMode.Interactive)
 
         self.text_filter = QLineEdit()
-        self.text_filter.setPlaceholderText("Filter text or hex…")
+        self.text_filter.setPlaceholderText(self.tr("Filter text or hex…"))
         self.text_filter.setClearButtonEnabled(True)
         self.function_filter = QComboBox()
-        self.function_filter.addItems([ANY, CHANNEL_DATA,
+        self.function_filter.addItem(translate("MonitorDock", ANY), ANY)
+        self.function_filter.addItems([CHANNEL_DATA,
                                        *sorted({c.title for c in FunctionCode})])
         self.node_filter = QSpinBox()
         self.node_filter.setRange(-1, 254)
-        self.node_filter.setSpecialValueText("any node")
+        self.node_filter.setSpecialValueText(self.tr("any node"))
         self.node_filter.setValue(-1)
-        self.pause_box = QCheckBox("Pause")
-        self.autoscroll_box = QCheckBox("Autoscroll")
+        self.pause_box = QCheckBox(self.tr("Pause"))
+        self.autoscroll_box = QCheckBox(self.tr("Autoscroll"))
         self.autoscroll_box.setChecked(True)
-        self.clear_button = QPushButton("Clear")
-        self.save_button = QPushButton("Save…")
-        self.open_button = QPushButton("Open…")
-        self.open_button.setToolTip("Show a capture file (python-can log formats)")
+        self.clear_button = QPushButton(self.tr("Clear"))
+        self.save_button = QPushButton(self.tr("Save…"))
+        self.open_button = QPushButton(self.tr("Open…"))
+        self.open_button.setToolTip(self.tr("Show a capture file (python-can log formats)"))
         self.live_button = QPushButton(self.tr("Back to live"))
         self.live_button.setToolTip(self.tr("Close the capture and show the live frames again"))
         self.live_button.setVisible(False)
         self.stop_load_button = QPushButton(self.tr("Stop loading"))
         self.stop_load_button.setVisible(False)
-        self.count_label = QLabel("0 frames")
+        self.count_label = QLabel(self.tr("0 frames"))
 
         self.text_filter.textChanged.connect(lambda _t: self._refilter.start())
         self.function_filter.currentTextChanged.connect(self._filter_changed)
@@ -458,7 +464,7 @@ class MonitorDock(QDockWidget):
             w.blockSignals(True)
         try:
             self.text_filter.setText(text)
-            self.function_filter.setCurrentText(function or ANY)
+            self.function_filter.setCurrentText(function or translate("MonitorDock", ANY))
             self.node_filter.setValue(-1 if node is None else node)
         finally:
             for w in widgets:
@@ -470,7 +476,7 @@ class MonitorDock(QDockWidget):
         function = self.function_filter.currentText()
         node = self.node_filter.value()
         self._filter = FrameFilter(self.text_filter.text().strip(),
-                                   "" if function == ANY else function,
+                                   "" if self.function_filter.currentIndex() == 0 else function,
                                    None if node < 0 else node)
         rows: Iterable[Row] = self.all_rows
         if self.paused and self._held:  # held rows appear on resume, not now
@@ -483,22 +489,25 @@ class MonitorDock(QDockWidget):
 
     def _count(self) -> None:
         shown, total = self.model.rowCount() + len(self._pending_view), len(self.all_rows)
-        self.count_label.setText(f"{shown} of {total} frames" if self._filter
-                                 else f"{total} frames")
+        self.count_label.setText(
+            self.tr("{shown} of {total} frames").format(shown=shown, total=total)
+            if self._filter
+            else self.tr("{total} frames").format(total=total)
+        )
         self.countChanged.emit(shown, total)
 
     # -- saving --------------------------------------------------------------------------
     def _ask_save(self) -> None:
         path, _ = QFileDialog.getSaveFileName(
-            self, "Save frames", "capture.asc",
-            "python-can logs (*.asc *.blf *.log *.csv *.trc);;Plain text (*.txt)")
+            self, self.tr("Save frames"), "capture.asc",
+            self.tr("python-can logs (*.asc *.blf *.log *.csv *.trc);;Plain text (*.txt)"))
         if path:
             self.save(path)
 
     def _ask_open(self) -> None:
         path, _ = QFileDialog.getOpenFileName(
-            self, "Open capture", "",
-            "python-can logs (*.asc *.blf *.log *.csv *.trc *.db *.gz);;All files (*)")
+            self, self.tr("Open capture"), "",
+            self.tr("python-can logs (*.asc *.blf *.log *.csv *.trc *.db *.gz);;All files (*)"))
         if path:
             self.load_capture(path)
 
@@ -634,13 +643,21 @@ class MonitorDock(QDockWidget):
         self.stop_load_button.setVisible(False)
 
     def _load_failed(self, message: str) -> None:
-        self.error.emit(f"Reading {self._load_path}: {message}")
+        self.error.emit(
+            self.tr("Reading {load_path}: {message}").format(
+                load_path=self._load_path, message=message
+            )
+        )
 
     def _save_finished(self, _count: int) -> None:
         self.saved.emit(self._save_path)
 
     def _save_failed(self, message: str) -> None:
-        self.error.emit(f"Saving {self._save_path}: {message}")
+        self.error.emit(
+            self.tr("Saving {save_path}: {message}").format(
+                save_path=self._save_path, message=message
+            )
+        )
 
     def _save_done(self) -> None:
         self.save_button.setEnabled(True)

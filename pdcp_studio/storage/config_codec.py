@@ -128,10 +128,10 @@ class _Reader:
         self.count_off = self.cfg_off = self.link_count_off = self.link_off = -1
         self.channel_off = -1
         # Unknown records of each open declaration, as [code, value, after].
-        self.coll_unknown: list[list] = []
-        self.cfg_unknown: list[list] = []
-        self.link_unknown: list[list] = []
-        self.channel_unknown: list[list] = []
+        self.coll_unknown: list[list[int]] = []
+        self.cfg_unknown: list[list[int]] = []
+        self.link_unknown: list[list[int]] = []
+        self.channel_unknown: list[list[int]] = []
 
     def unknown(self, code: int, value: int, after: int) -> None:
         """Keep an unknown record on the innermost open declaration."""
@@ -257,7 +257,7 @@ class _Reader:
         return ConfigCollection(configurations=self.configs, unknown=kept)
 
 
-def _kept(records: list[list], last: int) -> Unknown:
+def _kept(records: list[list[int]], last: int) -> Unknown:
     """Unknown records of a closed declaration; ``after`` the declaration's last known
     record becomes ``None`` (the end), the usual place and the one edits keep."""
     return tuple(UnknownRecord(code, value, None if after == last else after)
@@ -514,7 +514,7 @@ def _json_list(doc: Any, key: str, path: str) -> list[Any]:
     return found
 
 
-def unknown_from_json(doc: dict, path: str) -> Unknown:
+def unknown_from_json(doc: dict[str, Any], path: str) -> Unknown:
     """The optional ``unknown_records`` list of an object; codes 1…16 are refused."""
     items = doc.get("unknown_records")
     if items is None:
