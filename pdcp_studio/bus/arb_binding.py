@@ -16,6 +16,11 @@ from pdcp_studio.protocol import BindRequest, BindResponse
 
 log = logging.getLogger("pdcp_studio.bus.arbitrator")  # one logger for the arbitrator
 
+#: Beacon interval assumed for presence until a newly bound device's own has been read: long
+#: enough for a device beaconing every 500 ms (the full rig's) not to be declared gone, and
+#: bound again, while it is still being set up.
+UNREAD_BEACON_INTERVAL_S = 1.0
+
 
 class BindingMixin:
     """Bind requests, node-ID grants and the channel node-ID map of the :class:`Arbitrator`."""
@@ -85,7 +90,7 @@ class BindingMixin:
             self.requests.abort(old, "the device bound again with another node ID")
         device = self._system.device(key)
         interval = (max(device.beacon_interval, 1) / 1000.0 if device is not None
-                    else DEFAULT_BEACON_INTERVAL_S)
+                    else max(DEFAULT_BEACON_INTERVAL_S, UNREAD_BEACON_INTERVAL_S))
         node = _Node(key, node_id, now, beacon_interval=interval)
         node.generation = next(self._generations)  # unique: a stale set-up never matches
         self._nodes[node_id] = node
