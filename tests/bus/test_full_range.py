@@ -69,6 +69,7 @@ def test_plans_never_use_outputs_without_a_node_id():
     for ch in cu.outputs():
         ch.node_id = None  # the pool ran out while this control unit was set up
     usable, unrouted = without_unrouted_outputs(system)
+    assert not usable.device(cu.key).outputs()
     assert unrouted == [cu.ref(i) for i in (3, 4, 5)]
     plan = plan_for("autoconfigure", system)
     assert all(a.link.output.device != cu.key for a in plan.actions)
