@@ -30,6 +30,7 @@ import threading
 from collections.abc import Callable
 from typing import Any
 
+from pdcp_studio.bus import events as ev
 from pdcp_studio.bus.transaction import (
     INTERLOCK_MS,
     INTERLOCK_RENEW_S,
@@ -92,8 +93,15 @@ class TransactionMixin:
 
     # -- the policy (issue 17) ---------------------------------------------------------
     def read_policy(self) -> Policy:
-        """The profile-layer policy kept in memory beside the stored configuration."""
-        return Policy(autoconfigure=self.memory.read_policy().get("autoconfigure", True))
+        """The profile-layer policy kept in memory beside the stored configuration; an
+        unreadable memory gives the thesis's default (autoconfigure on), as start-up
+        falls back to the devices' own configuration then."""
+        try:
+            stored = self.memory.read_policy()
+        except (OSError, PdcpError) as err:
+            log.warning("%s: policy unreadable (%s): autoconfigure on", self.name, err)
+            return Policy()
+        return Policy(autoconfigure=stored.get("autoconfigure", True))
 
     # -- transactions ------------------------------------------------------------------
     def transact(self, change: Change, progress: ProgressFn | None = None,
@@ -109,6 +117,7 @@ class TransactionMixin:
                 with self._lock:
                     self._plan_running -= 1
         log.info("%s: transaction %s: %s", self.name, change.action, result.summary())
+        self._emit(ev.TransactionDone(result))
         return result
 
     def _transact(self, change: Change, progress: ProgressFn | None,
@@ -357,7 +366,8 @@ def _check_change(system: System, change: Change) -> str:
         elif a.op == "remove" and trial.has_link(a.link):
             trial.remove_link(a.link)
     for p in change.parameters:
-        if system.device(p.device) is None or not system.device(p.device).present:
+        device = system.device(p.device)
+        if device is None or not device.present:
             return f"device {p.device} is not on the bus"
     return ""
 

@@ -136,6 +136,8 @@ class SimulatedDevice:
         self.state = State.OFF
         self.node_id = 0
         self.suspended_until: float | None = None
+        self.refuse_suspend = False  # tests: a device that refuses the motion interlock
+        self.suspensions = 0  # Suspend Device requests honoured (renewals included)
         self.received: dict[int, tuple[bytes, float]] = {}  # input index → (data, time)
         self.frames_sent = 0
         self._host: Host | None = None
@@ -375,8 +377,14 @@ class SimulatedDevice:
             self.send(BulkDataResponse(self.node_id, OK if ok else FAIL, mode=Mode.DEVICE))
 
     def _on_suspend(self, msg: Suspend) -> None:
+        """Hold the outputs' data for TimeValue ms (0: until released); a renewal restarts
+        the bound. ``refuse_suspend`` answers failure (a device that cannot stop safely)."""
+        if self.refuse_suspend:
+            self.send(SuspendResponse(self.node_id, FAIL, msg.ms))
+            return
         now = self.host.now()
         self.suspended_until = now + msg.ms / 1000.0 if msg.ms else float("inf")
+        self.suspensions += 1
         self.send(SuspendResponse(self.node_id, OK, msg.ms))
 
     def _on_release(self, msg: Release) -> None:

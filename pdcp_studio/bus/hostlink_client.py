@@ -66,6 +66,8 @@ def _event_from_json(doc: dict) -> object | None:
         return ev.LinkMade(link) if kind == "LinkMade" else ev.LinkRemoved(link)
     if kind == "BusError":
         return ev.BusError(str(doc.get("message", "")), str(doc.get("error_kind", "")))
+    if kind == "TransactionDone":
+        return ev.TransactionDone(TransactionResult.from_json(doc.get("result", {})))
     if kind == "TerminalsUnconnected":
         return ev.TerminalsUnconnected(tuple(ChannelRef(**r) for r in doc.get("refs", [])),
                                        str(doc.get("why", "")))

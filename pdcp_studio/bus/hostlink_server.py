@@ -119,6 +119,8 @@ def event_to_json(event: object) -> dict | None:
     if isinstance(event, ev.PlanApplied):
         plan = event.plan
         return {"kind": "PlanApplied", "plan": plan.to_json() if hasattr(plan, "to_json") else {}}
+    if isinstance(event, ev.TransactionDone):
+        return {"kind": "TransactionDone", "result": event.result.to_json()}
     if isinstance(event, ev.TerminalsUnconnected):
         return {"kind": "TerminalsUnconnected", "refs": [r.as_json() for r in event.refs],
                 "why": event.why}

@@ -18,6 +18,7 @@ Steps, in order (``TransactionResult.step`` names the one that failed)::
 
 from __future__ import annotations
 
+from collections.abc import Sequence
 from dataclasses import dataclass, field
 from enum import StrEnum
 from typing import TYPE_CHECKING, Any
@@ -290,7 +291,7 @@ def crc_of_bytes(data: bytes | None) -> str | None:
 
 
 def interlocked_devices(system: System, before: list[Link], after: list[Link],
-                        parameters: list[ParameterWrite] = ()) -> list[DeviceKey]:
+                        parameters: Sequence[ParameterWrite] = ()) -> list[DeviceKey]:
     """Present devices whose output channels feed a terminal channel before or after the
     change (reference §5), plus devices whose parameters are written that feed one."""
     feeders: set[DeviceKey] = set()

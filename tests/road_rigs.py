@@ -1,0 +1,86 @@
+"""Rigs for the change-road tests: a simulated thesis prosthesis reached over the host link,
+and a recorder of every frame on a simulated bus.
+
+``served(name, memory)`` runs the built-in prosthesis's devices and a real arbitrator (with its
+profile layer and memory) on one python-can virtual channel and serves the host link on a new
+pseudo-terminal; the URL ``serial:/dev/pts/N`` reaches it exactly as ``/dev/ttyUSB0`` would.
+``FrameRecorder`` listens on a virtual channel like any other node on the bus.
+"""
+
+from __future__ import annotations
+
+import contextlib
+import threading
+from collections.abc import Iterator
+from pathlib import Path
+from typing import Any
+
+import can
+
+from pdcp_studio.protocol import Message, decode
+
+
+@contextlib.contextmanager
+def served(name: str, memory: Path, **arbitrator_options: Any) -> Iterator[tuple[Any, Any, str]]:
+    """(arbitrator, device host, serial URL) of a simulated prosthesis behind a host link."""
+    from pdcp_studio.bus.arbitrator import Arbitrator
+    from pdcp_studio.bus.device_host import DeviceHost
+    from pdcp_studio.bus.device_sim import SimulatedDevice
+    from pdcp_studio.bus.hostlink_server import HostLinkServer
+    from pdcp_studio.bus.simulator import resolve_prosthesis
+    from pdcp_studio.bus.urls import unique_virtual_channel
+
+    system = resolve_prosthesis(name).load()
+    channel = unique_virtual_channel(f"road-{name}")
+    arb_bus = can.Bus(interface="virtual", channel=channel)
+    dev_bus = can.Bus(interface="virtual", channel=channel)
+    host = DeviceHost(dev_bus, [SimulatedDevice(d) for d in system.devices.values()],
+                      plugged=False)
+    arbitrator_options.setdefault("startup_quiet_s", 0.2)
+    arbitrator = Arbitrator(arb_bus, memory=memory, **arbitrator_options)
+    server = None
+    try:
+        for dev in system.devices.values():
+            if dev.present:
+                host.plug(dev.key)
+        assert arbitrator.wait_for(lambda: len(arbitrator.devices_present()) == sum(
+            d.present for d in system.devices.values()), 10.0)
+        assert arbitrator.wait_settled(10.0)
+        server = HostLinkServer(arbitrator, "pty")
+        yield arbitrator, host, f"serial:{server.slave_path}"
+    finally:
+        if server is not None:
+            server.close()
+        arbitrator.close()
+        host.close()
+        for bus in (arb_bus, dev_bus):
+            bus.shutdown()
+
+
+class FrameRecorder:
+    """Every frame on a virtual channel, decoded where it decodes (thread-safe)."""
+
+    def __init__(self, channel: str) -> None:
+        self.bus = can.Bus(interface="virtual", channel=channel)
+        self.frames: list[can.Message] = []
+        self._lock = threading.Lock()
+        self._notifier = can.Notifier(self.bus, [self._on])
+
+    def _on(self, msg: can.Message) -> None:
+        with self._lock:
+            self.frames.append(msg)
+
+    def messages(self) -> list[Message]:
+        with self._lock:
+            frames = list(self.frames)
+        out = []
+        for f in frames:
+            try:
+                out.append(decode(f.arbitration_id, bytes(f.data)))
+            except Exception:  # channel data and other undecodable frames
+                continue
+        return out
+
+    def close(self) -> None:
+        self._notifier.stop()
+        self.bus.shutdown()
