@@ -56,7 +56,11 @@ def test_gui_bad_bus_url_exits_2(tmp_path):
 
 def test_gui_unreachable_bus_exits_1_without_a_picture(tmp_path):
     out = tmp_path / "x.png"
-    r = _run("gui", "--bus", "can:nosuchinterface:x", "--screenshot", str(out))
+    r = _run("gui", "--bus", "can:kvaser:0", "--screenshot", str(out))  # no Kvaser CANlib
     assert r.returncode == 1
+    assert "Kvaser CANlib" in r.stderr.splitlines()[-1]
+    assert not out.exists()
+    r = _run("gui", "--bus", "can:nosuchinterface:x", "--screenshot", str(out))
+    assert r.returncode == 2  # not an interface python-can has: bad input (contracts §2)
     assert "nosuchinterface" in r.stderr.splitlines()[-1]
     assert not out.exists()
