@@ -187,6 +187,7 @@ def test_the_headless_arbitrator_prints_the_outage_lines():
     from pdcp_studio.cli.arbitrator import describe
 
     line = "can:slcan:/dev/x: the adapter is disconnected (EIO); reconnecting"
-    assert describe(ev.BusState("disconnected", line)) == f"disconnected: {line}"
+    assert describe(ev.BusState("disconnected", line)) == \
+        f"disconnected — reconnecting: {line}"
     assert describe(ev.BusState("reconnected", "back")) == "reconnected: back"
     assert describe(ev.BusState("yielded", "another")) is None  # said on stderr, once
