@@ -59,7 +59,7 @@ def _bus_links(window):
     return set(window.live.bridge.session.system().links)
 
 
-def test_live_edits_are_staged_then_written_in_one_transaction(live, qtbot):
+def test_live_edits_are_staged_then_written_in_one_transaction(live, qtbot, tmp_path):
     doc = live.doc
     assert HAND_LINK in _bus_links(live)
     # Delete a link (Del): staged — one undo step, drawn as a pending removal, listed.
@@ -115,6 +115,13 @@ def test_live_edits_are_staged_then_written_in_one_transaction(live, qtbot):
     assert entry["action"] == "write to prosthesis" and entry["verified"]
     qtbot.waitUntil(lambda: bool(live.history_panel.shown), timeout=5000)
     assert live.history_panel.shown[0]["patient"] == "Clinic ref 42"
+    # The fitting report of this session: who, for whom, and the change just made.
+    info = live.fitting_info()
+    assert (info.patient, info.prosthetist, info.bus) == ("Clinic ref 42", "Test Prosthetist",
+                                                         "sim:transradial")
+    assert [e["action"] for e in info.changes] == ["write to prosthesis"]
+    pdf = tmp_path / "fitting.pdf"
+    assert live.write_fitting_report(pdf) and pdf.read_bytes().startswith(b"%PDF")
 
 
 def test_undo_of_a_written_change_is_a_new_transaction(live, qtbot):
