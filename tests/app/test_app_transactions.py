@@ -249,3 +249,21 @@ def test_previews_use_the_stored_configuration_read_after_a_write(live, qtbot):
     plan = live.preview_plan("startup")
     assert plan is not None and plan.configuration_source == "stored"
     assert "no configuration" not in live.plan_panel.summary.text()
+
+
+def test_leaving_with_unwritten_changes_asks(live, qtbot):
+    live.doc.select(HAND_LINK)
+    live.act_delete.trigger()
+    qtbot.waitUntil(lambda: len(live.pending_panel.changes) == 1, timeout=3000)
+    asked = []
+    live.ask_unwritten = lambda n: asked.append(n) or False
+    live.quiet = False  # the question is only skipped for scripted, quiet windows
+    try:
+        live.act_disconnect.trigger()
+        assert asked == [1] and live.live.is_live  # kept: nothing lost
+        live.ask_unwritten = lambda n: asked.append(n) or True
+        live.act_disconnect.trigger()
+    finally:
+        live.quiet = True
+    assert asked == [1, 1] and not live.live.is_live
+    assert not live.doc.system.has_link(HAND_LINK)  # the document keeps its edits
