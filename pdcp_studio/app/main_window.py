@@ -89,6 +89,9 @@ class MainWindow(MenusMixin, FileHandlingMixin, ExportMixin, BusMixin, RecoveryM
         self.autosaver: Any = None
         if recovery is not None:
             self._start_autosave(recovery)
+        from pdcp_studio.app.window_desktop import install_desktop
+
+        install_desktop(self)  # recent files, drops, Help, shortcuts, accessible names
 
     # -- construction -----------------------------------------------------------------
     def _dock(self, title: str, name: str, widget: QWidget,

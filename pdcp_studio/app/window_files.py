@@ -24,9 +24,10 @@ class FileHandlingMixin:
 
         While connected, the connection is never dropped silently: the user chooses to
         compare the file with the prosthesis instead, to disconnect and open it, or to
-        cancel (:meth:`confirm_leave_bus`).
+        cancel (:meth:`confirm_leave_bus`). A stored configuration opens in a window of its
+        own and leaves the connection alone.
         """
-        if not self.confirm_leave_bus(Path(path)):
+        if not files.is_config_path(Path(path)) and not self.confirm_leave_bus(Path(path)):
             return False
         try:
             opened = files.open_path(path)
@@ -37,7 +38,12 @@ class FileHandlingMixin:
         return True
 
     def show_opened(self, opened: files.Opened, path: Path | None) -> None:
-        """Put a loaded file on screen (offline: ``open_path`` asked before leaving a bus)."""
+        """Put a loaded file on screen (offline: ``open_path`` asked before leaving a bus).
+
+        A stored configuration opens as its own document instead and leaves the bus alone."""
+        if opened.kind == "config" and path is not None:
+            self.show_configuration_document(opened, path)
+            return
         self.live.disconnect_bus()
         self.doc.set_system(opened.system, path, None, positions=opened.positions,
                             kind=opened.kind, config=opened.config)
@@ -48,6 +54,15 @@ class FileHandlingMixin:
                           f"{len(opened.system.links)} links{note}")
         self._loaded()
 
+    def show_configuration_document(self, opened: files.Opened, path: Path) -> None:
+        """A .pdcfg opens as its own document window (configurations, checks, fit); this
+        window stays on its prosthesis, which the configuration is fitted to."""
+        from pdcp_studio.app.config_view import open_config_window
+
+        open_config_window(self, path, opened.config)
+        self.show_message(f"Opened stored configurations {path.name} in their own window")
+        if not self.is_ready:
+            self._loaded()
     #: ``ask_leave_bus`` answers.
     LEAVE_COMPARE, LEAVE_DISCONNECT, LEAVE_CANCEL = "compare", "disconnect", "cancel"
 

@@ -16,6 +16,10 @@ from pdcp_studio.protocol import BindRequest, BindResponse
 
 log = logging.getLogger("pdcp_studio.bus.arbitrator")  # one logger for the arbitrator
 
+#: Per-device notes kept for devices that hold no node ID (refused binds, failed set-ups)
+#: are bounded: a bind flood of made-up serial numbers must not grow them without end.
+MAX_KEYS_REMEMBERED = 1024
+
 
 class BindingMixin:
     """Bind requests, node-ID grants and the channel node-ID map of the :class:`Arbitrator`."""
@@ -60,6 +64,8 @@ class BindingMixin:
                 except NodeIdExhaustedError as err:
                     self._held.pop(key, None)
                     first = key not in self._exhausted_reported
+                    if first and len(self._exhausted_reported) >= MAX_KEYS_REMEMBERED:
+                        self._exhausted_reported.clear()  # a bind flood of made-up keys
                     self._exhausted_reported.add(key)
                     exhausted = err
             if exhausted is None:

@@ -8,8 +8,10 @@ IDs out of the pool and get the device reset.
 from __future__ import annotations
 
 import logging
+import time
 
 from pdcp_studio.bus import events as ev
+from pdcp_studio.bus.arb_claim import Decision
 from pdcp_studio.bus.arb_common import (
     BEACON_WINDOW,
     BIND_HOLD_S,
@@ -22,13 +24,15 @@ from pdcp_studio.bus.arb_common import (
     _Foreign,
     _Node,
 )
-from pdcp_studio.errors import FrameError
+from pdcp_studio.errors import FrameError, PdcpError
+from pdcp_studio.model import parameters as P
 from pdcp_studio.model.refs import DeviceKey
 from pdcp_studio.model.system import Link
 from pdcp_studio.protocol import (
     Beacon,
     BindRequest,
     FunctionCode,
+    Mode,
     Reset,
     ResponseCode,
     UpdateDataChannel,
@@ -41,6 +45,104 @@ log = logging.getLogger("pdcp_studio.bus.arbitrator")  # one logger for the arbi
 
 class PresenceMixin:
     """Presence, departures, duplicate devices and foreign nodes of the :class:`Arbitrator`."""
+
+    # -- one arbitrator per bus (reference §5; the decisions are arb_claim's) ---------------
+    def _hear_claim(self, arbitration_id: int, data: bytes, now: float) -> bool:
+        """Feed a received frame to the claim; False once another arbitrator is on the bus
+        (then nothing received is ours to handle)."""
+        decision = self._claim.heard(arbitration_id, data, now)
+        if decision is not None:
+            self._claim_yielded(decision)
+        return not self._claim.yielded
+
+    # -- a pulled adapter (bus/reopen.py reopens it) ------------------------------------------
+    def _adapter_state(self, state: str, line: str) -> None:
+        """Called on the Notifier's thread: hand it to the dispatch thread."""
+        self.conn.post(lambda: self._on_adapter_state(state, line))
+
+    def _on_adapter_state(self, state: str, line: str) -> None:
+        """Disconnected: presence is not judged (nobody can be heard) and nothing is sent.
+        Reconnected: every device gets its beacon intervals to be heard again, and the links
+        are read back from the inputs and re-made where they differ."""
+        now = time.monotonic()
+        with self._lock:
+            self._disconnected = state == "disconnected"
+            if not self._disconnected:
+                for node in self._nodes.values():
+                    node.last_seen = max(node.last_seen, now)
+                self._jobs += 1
+        self._emit(ev.BusState(state, line))
+        if self._disconnected:
+            return
+        try:
+            self._pool_exec.submit(self._reread_links)
+        except RuntimeError:
+            with self._lock:
+                self._jobs -= 1
+
+    def _reread_links(self) -> None:
+        """After an outage: read each linked input's Source's Node Ids and Data Transfer
+        Enabled back; re-make the links whose input does not say what the model says."""
+        try:
+            with self._plan_lock:
+                with self._lock:
+                    links = [lk for lk in self._system.links
+                             if self._system.is_present(lk.output)
+                             and self._system.is_present(lk.input)]
+                for link in links:
+                    with self._lock:
+                        in_node = self._node_of.get(link.input.device)
+                        out_node = self._node_of.get(link.output.device)
+                        out_id = self._pool.id_of((link.output.device, link.output.index))
+                    if None in (in_node, out_node, out_id):
+                        continue
+                    try:
+                        sources = self.requests.get(in_node, P.IN_SOURCE_NODE_IDS,
+                                                    link.input.index)
+                        enabled = self.requests.get(in_node, P.CH_DATA_ENABLED,
+                                                    link.input.index)
+                        if sources != bytes([out_node, out_id]) or enabled != b"\x01":
+                            log.info("%s: link %s was lost during the outage: re-making it",
+                                     self.name, link)
+                            self._wire_add(link)
+                    except PdcpError as err:
+                        self._error(f"link {link} could not be read back after the outage: "
+                                    f"{err}", "transport")
+        finally:
+            with self._lock:
+                self._jobs -= 1
+
+    def _claim_tick(self, now: float) -> bool:
+        """End the listening when it is due, beacon when due; True while arbitrating (and
+        the adapter is there: presence is not judged while nobody can be heard)."""
+        decision = self._claim.tick(now)
+        if decision is not None:
+            self._claim_started(decision)
+        if self._claim.beacon_due(now):
+            self._send_quiet(Beacon(0, mode=Mode.ARBITRATOR))
+        return bool(self._claim.may_write) and not self._disconnected
+
+    def _claim_started(self, decision: Decision | None) -> None:
+        """The bus is ours: the start-up reset (a replaced arbitrator's devices bind again)."""
+        if decision is not None:
+            self.bus_message = decision.message
+            log.info("%s: %s", self.name, decision.message)
+            self._emit(ev.BusState("arbitrating", decision.message))
+            with self._lock:
+                self._unknown_reset.clear()  # resets skipped while listening may go now
+        if self._reset_on_claim or (decision is not None and decision.takeover):
+            self._broadcast_reset()
+
+    def _claim_yielded(self, decision: Decision) -> None:
+        """Another arbitrator is on the bus: stop writing at once and say so, once."""
+        self.bus_message = decision.message
+        log.warning("%s: %s", self.name, decision.message)
+        with self._lock:
+            nodes = list(self._nodes)
+        for node_id in nodes:
+            self.requests.abort(node_id, "another bus arbitrator is on the bus")
+        self._emit(ev.BusState("yielded", decision.message))
+        self._wake.set()
 
     # -- foreign nodes and twins ----------------------------------------------------------
     def _foreign_frame(self, node_id: int, aid: int, data: bytes, now: float) -> None:
@@ -102,9 +204,12 @@ class PresenceMixin:
             self._report_duplicate(node.key, f"node {node.node_id} answers requests twice")
         return echo
 
-    def _count_beacon(self, node: _Node, now: float) -> None:
-        """Twins bound together beacon on one node ID at twice the device's rate."""
-        if not node.set_up:
+    def _count_beacon(self, node: _Node, now: float, caught_up: bool = True) -> None:
+        """Twins bound together beacon on one node ID at twice the device's rate.
+
+        Judged only on frames handled as they come: after a backlog (a flood, a busy
+        machine) a second's beacons are handled in a moment and would look like twins."""
+        if not node.set_up or not caught_up:
             node.window_start, node.window_beacons = now, 0
             return
         node.window_beacons += 1

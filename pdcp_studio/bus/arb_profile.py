@@ -180,8 +180,8 @@ class ProfileMixin:
         while not self._stop.is_set():
             self._wake.wait(0.02)
             self._wake.clear()
-            if self._stop.is_set() or not self.profile_layer:
-                continue
+            if self._stop.is_set() or not self.profile_layer or not self._claim.may_write:
+                continue  # (listening, or another arbitrator is on the bus)
             now = time.monotonic()
             try:
                 if not self._startup_done:

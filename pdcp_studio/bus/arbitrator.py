@@ -52,6 +52,7 @@ from typing import TYPE_CHECKING, Any
 
 from pdcp_studio.bus import events as ev
 from pdcp_studio.bus.arb_binding import BindingMixin
+from pdcp_studio.bus.arb_claim import BusClaim, Phase
 from pdcp_studio.bus.arb_common import (
     _MANAGED,
     BEACON_WINDOW,
@@ -84,6 +85,7 @@ from pdcp_studio.bus.arb_profile import ProfileMixin
 from pdcp_studio.bus.arb_setup import SetupMixin
 from pdcp_studio.bus.arb_transaction import TransactionMixin
 from pdcp_studio.bus.connection import Connection
+from pdcp_studio.bus.log_limit import LimitedLog, RepeatLimiter
 from pdcp_studio.bus.memory import MemoryStore
 from pdcp_studio.bus.node_ids import NodeIdPool
 from pdcp_studio.bus.requests import RESPONSE_TIMEOUT_S, RequestEngine
@@ -112,6 +114,10 @@ if TYPE_CHECKING:
 
 log = logging.getLogger(__name__)
 
+#: Errors of one kind (undecodable frames, error frames …) told in full before the limit:
+#: then one a second, and the rest as one summary a second (``bus/log_limit.py``).
+ERROR_BURST = 8
+
 __all__ = [
     "BEACON_WINDOW",
     "BIND_HOLD_S",
@@ -138,6 +144,11 @@ __all__ = [
 ]
 
 
+#: How a summary names the errors of a kind.
+_ERROR_WORDS = {"bad_frame": "undecodable frames", "error_frame": "error frames",
+                "transport": "transport errors"}
+
+
 class Arbitrator(BindingMixin, PresenceMixin, SetupMixin, LinksMixin, ProfileMixin,
                  TransactionMixin):
     """A headless PDCP bus arbitrator on ``bus`` (which it owns and shuts down on close)."""
@@ -149,7 +160,8 @@ class Arbitrator(BindingMixin, PresenceMixin, SetupMixin, LinksMixin, ProfileMix
                  startup_max_wait_s: float = STARTUP_MAX_WAIT_S,
                  node_ids: tuple[int, int] = (NODE_ID_MIN, NODE_ID_MAX),
                  frame_events: bool = False, channel_events: bool = True,
-                 reset_on_start: bool = True, autoconfigure: bool | None = None) -> None:
+                 reset_on_start: bool = True, autoconfigure: bool | None = None,
+                 drop_own: bool | None = None, listen_s: float = 0.0) -> None:
         self.name = name
         self.profile_layer = profile_layer
         self.retries = retries
@@ -167,7 +179,12 @@ class Arbitrator(BindingMixin, PresenceMixin, SetupMixin, LinksMixin, ProfileMix
         self.error_frames = 0
         self.data_frames = 0
         self.duplicates: set[DeviceKey] = set()
-        self.conn = Connection(bus, name=name, pace_s=pace_s)
+        self.conn = Connection(bus, name=name, pace_s=pace_s, drop_own=drop_own)
+        self._errors = RepeatLimiter(burst=ERROR_BURST)
+        self._crashes = LimitedLog(log, f"{name}: ")
+        self._disconnected = False  # the adapter was pulled (a ReopeningBus says so)
+        if hasattr(bus, "on_state"):
+            bus.on_state = self._adapter_state
         self.requests = RequestEngine(self._send, response_timeout=response_timeout,
                                       retries=retries)
         self._lock = threading.RLock()
@@ -193,7 +210,6 @@ class Arbitrator(BindingMixin, PresenceMixin, SetupMixin, LinksMixin, ProfileMix
         self._stale_channels: frozenset[int] = frozenset()
         self._stale_until = 0.0
         self.stale_data_frames = 0
-        self._other_arbitrator = False
         self._epoch = 0  # bumped by reset(): stale set-ups discard their results
         self._generations = itertools.count(1)
         self._plan_running = 0
@@ -202,6 +218,13 @@ class Arbitrator(BindingMixin, PresenceMixin, SetupMixin, LinksMixin, ProfileMix
         # Without the start-up reset, devices bound by an earlier arbitrator keep their IDs:
         # hear them all (beacons) before handing any ID out; the device asking retries.
         self._listen_until = now if reset_on_start else now + FOREIGN_LISTEN_S
+        # One arbitrator per bus (reference §5, arb_claim): on a can: bus it first listens
+        # ``listen_s``; until then (and for good once another arbitrator is heard) it writes
+        # nothing, not even the start-up reset.
+        self._claim = BusClaim(now, listen_s)
+        self._listen_until = max(self._listen_until, self._claim.listen_until)
+        self._reset_on_claim = reset_on_start
+        self.bus_message = ""  # the last BusState line (why it arbitrates or not)
         self._last_bind = now
         self._last_change = now
         self._startup_done = False
@@ -222,8 +245,8 @@ class Arbitrator(BindingMixin, PresenceMixin, SetupMixin, LinksMixin, ProfileMix
         self._closed = False
         self._thread.start()
         self._profile_thread.start()
-        if reset_on_start:
-            self._broadcast_reset()
+        if self._claim.may_write:
+            self._claim_started(None)
 
     # -- lifetime -------------------------------------------------------------------------
     def __enter__(self) -> Arbitrator:
@@ -260,8 +283,20 @@ class Arbitrator(BindingMixin, PresenceMixin, SetupMixin, LinksMixin, ProfileMix
         self._subscribers.emit(event)
 
     def _error(self, message: str, kind: str = "") -> None:
+        """Log and show a bus error; repeats of one kind are limited, then summarised."""
+        told, summary = self._errors.admit(kind or message, message)
+        if summary is not None:
+            self._tell_error(summary.text(_ERROR_WORDS.get(summary.kind, "")), summary.kind)
+        if told:
+            self._tell_error(message, kind)
+
+    def _tell_error(self, message: str, kind: str) -> None:
         log.warning("%s: %s", self.name, message)
         self._emit(ev.BusError(message, kind))
+
+    def _flush_errors(self) -> None:
+        for summary in self._errors.due():
+            self._tell_error(summary.text(_ERROR_WORDS.get(summary.kind, "")), summary.kind)
 
     # -- snapshot and look-ups ------------------------------------------------------------
     def system(self) -> System:
@@ -278,6 +313,24 @@ class Arbitrator(BindingMixin, PresenceMixin, SetupMixin, LinksMixin, ProfileMix
         """The node ID an output channel sends its data with (None if it has none)."""
         with self._lock:
             return self._pool.id_of((ref.device, ref.index))
+
+    @property
+    def bus_state(self) -> str:
+        """``listening``, ``arbitrating`` or ``yielded`` (ev.BusState says when it changes)."""
+        return self._claim.phase.value
+
+    @property
+    def yielded(self) -> bool:
+        """True once another arbitrator was heard: this one writes nothing any more."""
+        return self._claim.phase is Phase.YIELDED
+
+    def wait_claimed(self, timeout: float) -> bool:
+        """Wait until listening is over; True when this arbitrator arbitrates the bus."""
+        deadline = time.monotonic() + timeout
+        while self._claim.phase is Phase.LISTENING and time.monotonic() < deadline \
+                and not self._closed:
+            time.sleep(0.01)
+        return self._claim.may_write
 
     @property
     def startup_done(self) -> bool:
@@ -376,6 +429,9 @@ class Arbitrator(BindingMixin, PresenceMixin, SetupMixin, LinksMixin, ProfileMix
 
     # -- sending --------------------------------------------------------------------------
     def _send(self, message: Message) -> None:
+        if not self._claim.may_write:
+            raise TransportError(f"{self.name}: not writing to the bus ({self.bus_state}: "
+                                 "another arbitrator is on it or it is still being heard)")
         arbitration_id, data = message.encode()
         if message.mode is Mode.ARBITRATOR and message.node_id:
             with self._lock:
@@ -387,6 +443,8 @@ class Arbitrator(BindingMixin, PresenceMixin, SetupMixin, LinksMixin, ProfileMix
             self._frame_event(arbitration_id, data, time.time())
 
     def _send_quiet(self, message: Message) -> None:
+        if not self._claim.may_write or self._disconnected:
+            return  # listening, another arbitrator on the bus, or no adapter: say nothing
         try:
             self._send(message)
         except TransportError as err:
@@ -415,13 +473,14 @@ class Arbitrator(BindingMixin, PresenceMixin, SetupMixin, LinksMixin, ProfileMix
                 elif item is not None:
                     self._on_frame(item)
                 now = time.monotonic()
-                if now >= next_tick:
+                if now >= next_tick and self._claim_tick(now):
                     next_tick = now + TICK_S
+                    self._flush_errors()
                     # Presence is judged only when every frame received so far is handled:
                     # a backlog (a busy machine) must not pass for silent devices.
                     self._tick(now, self.conn.inbound.empty())
             except Exception:  # one bad frame or bug must never stop the arbitrator
-                log.exception("%s: dispatch failed", self.name)
+                self._crashes.exception("dispatch", "dispatch failed")
 
     def _bad_frame(self, why: str) -> None:
         self.bad_frames += 1
@@ -442,6 +501,8 @@ class Arbitrator(BindingMixin, PresenceMixin, SetupMixin, LinksMixin, ProfileMix
         now = time.monotonic()
         aid = msg.arbitration_id
         node_id = aid & 0xFF
+        if not self._hear_claim(aid, data, now):
+            return  # another arbitrator is on the bus: nothing here is ours to answer
         if (not aid >> 8 & 1 and aid >> 9 != 3 and 0 < node_id <= NODE_ID_MAX
                 and node_id not in self._nodes and node_id not in self._channel_set):
             self._foreign_frame(node_id, aid, data, now)
@@ -455,12 +516,7 @@ class Arbitrator(BindingMixin, PresenceMixin, SetupMixin, LinksMixin, ProfileMix
             self._on_data(message, msg.timestamp or time.time())
             return
         if message.mode is Mode.ARBITRATOR:
-            if not self._other_arbitrator:
-                self._other_arbitrator = True
-                self._error(f"another bus arbitrator is sending ({message.CODE.label}); "
-                            "two arbitrators on one bus do not work (thesis §B.5)",
-                            "other_arbitrator")
-            return
+            return  # (the claim has already yielded)
         if isinstance(message, BindRequest):
             self._on_bind(message, now)
             return
@@ -473,7 +529,7 @@ class Arbitrator(BindingMixin, PresenceMixin, SetupMixin, LinksMixin, ProfileMix
         if node is None:  # node 0, or a device that left a moment ago
             return
         if isinstance(message, Beacon):
-            self._count_beacon(node, now)
+            self._count_beacon(node, now, self.conn.inbound.empty())
             return
         if isinstance(message, UpdateDataChannel):
             self._on_update(node, message)

@@ -39,7 +39,10 @@ SEND_TIMEOUT_S = 0.2
 #: How long a sent frame waits for its multicast echo before it is forgotten.
 ECHO_WINDOW_S = 2.0
 #: At most this many sent frames wait for their echo; beyond it the oldest is forgotten.
-ECHO_MAX_PENDING = 4096
+#: A 1 Mbit/s CAN bus carries at most ~8,000 frames/s: two seconds (the window) of them.
+ECHO_MAX_PENDING = 16384
+#: Past its deadline, get() drops at most this many of our own echoes before it returns None.
+ECHO_DRAIN_LATE = 64
 #: Interfaces that return a process's own frames to it.
 _ECHOING = ("UdpMulticastBus",)
 
@@ -157,7 +160,8 @@ class Connection:
         self._send_lock = threading.Lock()
         self._last_send = 0.0
         self._closed = False
-        self.drop_own = (type(bus).__name__ in _ECHOING) if drop_own is None else drop_own
+        kind = getattr(bus, "inner_type", type(bus).__name__)  # a ReopeningBus: the real one
+        self.drop_own = (kind in _ECHOING) if drop_own is None else drop_own
         self._echoes = EchoFilter()
         self._listener = _Enqueue(self.inbound)
         self._notifier = can.Notifier(bus, [self._listener], timeout=NOTIFIER_POLL_S)
@@ -200,6 +204,7 @@ class Connection:
     def get(self, timeout: float | None) -> object:
         """The next inbound item (a can.Message, an Exception, a posted callable), or None."""
         deadline = None if timeout is None else time.monotonic() + timeout
+        late_drops = 0
         while True:
             left = None if deadline is None else deadline - time.monotonic()
             try:
@@ -210,6 +215,11 @@ class Connection:
             if item is None or isinstance(item, Exception) or callable(item):
                 return item
             if self.drop_own and self._is_own(item):
+                if left is not None and left <= 0:
+                    late_drops += 1
+                    if late_drops >= ECHO_DRAIN_LATE:
+                        return None  # the caller's timers are due: a stream of our own
+                        # echoes must not keep it here past its deadline
                 continue
             self.received += 1
             return item

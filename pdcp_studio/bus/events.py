@@ -66,6 +66,25 @@ class BusError:
 
 
 @dataclass(frozen=True)
+class BusState:
+    """The session's hold on the bus changed; ``message`` is the one line that says so.
+
+    ``state`` is one of :data:`BUS_STATES`: ``listening`` (a ``can:`` bus is heard before
+    arbitrating), ``arbitrating`` (PDCP Studio is the bus arbitrator), ``yielded`` (another
+    arbitrator is on the bus: PDCP Studio writes nothing), ``disconnected`` (the adapter went
+    away: "disconnected — reconnecting"), ``reconnected`` (it is back; presence and links
+    are being re-read).
+    """
+
+    state: str
+    message: str
+
+
+#: The states a BusState event reports.
+BUS_STATES = ("listening", "arbitrating", "yielded", "disconnected", "reconnected")
+
+
+@dataclass(frozen=True)
 class PlanApplied:
     """The arbitrator applied a profile-layer plan (start-up, duty cycle or by request)."""
 
@@ -109,7 +128,7 @@ class Progress:
 
 Event = (
     DeviceJoined | DeviceLeft | LinkMade | LinkRemoved | FrameSeen | BusError | PlanApplied
-    | ChannelValue | Progress | TerminalsUnconnected | TransactionDone
+    | ChannelValue | Progress | TerminalsUnconnected | TransactionDone | BusState
 )
 
 

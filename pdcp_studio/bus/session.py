@@ -7,7 +7,8 @@
   the prosthesis's devices, each on its own bus object, talk in frames as on a real bus.
   Returns once the devices are bound and start-up has linked them.
 - ``can:INTERFACE:CHANNEL[@BITRATE]`` — PDCP Studio is the bus arbitrator: it binds the
-  devices it hears and runs start-up with its own memory.
+  devices it hears and runs start-up with its own memory, once it has listened and heard no
+  other arbitrator (reference §5); a pulled adapter is reopened (``Session.state``).
 - ``serial:PORT[@BAUD]`` — an arbitrator elsewhere, over its host link
   (``bus/hostlink_client.py``).
 
@@ -28,7 +29,7 @@ from typing import TYPE_CHECKING, Any
 from pdcp_studio.bus import events as ev
 from pdcp_studio.bus.session_api import TransactingMixin
 from pdcp_studio.bus.transaction import Change, Policy, TransactionResult
-from pdcp_studio.bus.urls import BusUrlError, parse_bus_url
+from pdcp_studio.bus.urls import BusUrlError, check_bus_url
 from pdcp_studio.errors import PdcpError, TransportError
 from pdcp_studio.model.configuration import ConfigCollection
 from pdcp_studio.model.refs import DeviceKey
@@ -62,7 +63,12 @@ CAN_SCAN_PACE_S = 0.0002
 PROGRESS_EVENT_INTERVAL_S = 0.1
 HOSTLINK_MODULE = "pdcp_studio.bus.hostlink_client"
 
-__all__ = ["BusUrlError", "ConfigVerifyError", "Session", "SimSession", "open_session"]
+__all__ = ["BusUrlError", "ConfigVerifyError", "OtherArbitratorError", "Session", "SimSession",
+           "open_session"]
+
+
+class OtherArbitratorError(TransportError):
+    """Another bus arbitrator is on the bus: PDCP Studio does not arbitrate there (§5)."""
 
 
 class ConfigVerifyError(TransportError):
@@ -83,7 +89,9 @@ class Session(TransactingMixin):
         self._subs = ev.Subscribers(url or "session")
         self._closed = threading.Event()
         self._close_lock = threading.Lock()
-        self._unsubscribe = arbitrator.subscribe(self._emit)
+        self._unsubscribe = arbitrator.subscribe(self._on_event)
+        self._state = "arbitrating"
+        self._state_message = ""
 
     def __enter__(self) -> Session:
         return self
@@ -109,6 +117,22 @@ class Session(TransactingMixin):
 
     def _emit(self, event: object) -> None:
         self._subs.emit(event)
+
+    def _on_event(self, event: object) -> None:
+        if isinstance(event, ev.BusState):
+            self._state, self._state_message = event.state, event.message
+        self._emit(event)
+
+    @property
+    def state(self) -> str:
+        """The hold on the bus: ``arbitrating``, ``yielded``, ``disconnected`` (shown as
+        "disconnected — reconnecting"), ``reconnected`` (see ev.BusState)."""
+        return self._state
+
+    @property
+    def state_message(self) -> str:
+        """The one line that said why the state is what it is ('' at first)."""
+        return self._state_message
 
     # -- the bus ------------------------------------------------------------------------
     def system(self) -> System:
@@ -407,7 +431,7 @@ def _known(host: Any, key: DeviceKey) -> DeviceKey:
 def _arbitrator_options(options: dict[str, Any]) -> dict[str, Any]:
     names = ("memory", "profile_layer", "autoconfigure", "pace_s", "response_timeout", "retries",
              "startup_quiet_s", "duty_quiet_s", "node_ids", "frame_events", "channel_events",
-             "reset_on_start")
+             "reset_on_start", "listen_s")
     return {n: options.pop(n) for n in names if n in options}
 
 
@@ -455,16 +479,23 @@ def open_sim_session(name: str, *, url: str = "", settle_timeout: float = SIM_SE
 
 def open_can_session(spec: Any, *, settle_timeout: float = CAN_SETTLE_TIMEOUT_S,
                      **options: Any) -> Session:
-    """PDCP Studio as the arbitrator of a python-can bus."""
+    """PDCP Studio as the arbitrator of a python-can bus, once it has listened and heard no
+    other arbitrator there (reference §5); OtherArbitratorError (one line) if it heard one."""
+    from pdcp_studio.bus.arb_claim import LISTEN_S
     from pdcp_studio.bus.arbitrator import Arbitrator
-    from pdcp_studio.bus.urls import open_spec
+    from pdcp_studio.bus.reopen import open_reopening
 
     arb_opts = _arbitrator_options(options)
     arb_opts.setdefault("frame_events", True)
+    arb_opts.setdefault("listen_s", LISTEN_S)
     options.setdefault("scan_pace_s", CAN_SCAN_PACE_S if spec.interface != "virtual" else 0.0)
-    arbitrator = Arbitrator(open_spec(spec), name=f"{spec.url} arbitrator", **arb_opts)
+    # A pulled adapter is reopened with backoff (bus/reopen.py); the session says
+    # "disconnected — reconnecting" meanwhile (ev.BusState).
+    arbitrator = Arbitrator(open_reopening(spec), name=f"{spec.url} arbitrator", **arb_opts)
     try:
         session = Session(arbitrator, url=spec.url, **options)
+        if not arbitrator.wait_claimed(arb_opts["listen_s"] + 2.0):
+            raise OtherArbitratorError(f"{spec.url}: {arbitrator.bus_message}")
     except BaseException:
         arbitrator.close()
         raise
@@ -476,10 +507,11 @@ def open_can_session(spec: Any, *, settle_timeout: float = CAN_SETTLE_TIMEOUT_S,
 def open_session(url: str, **options: Any) -> BusSession:
     """Open a bus URL (``sim:``, ``can:``, ``serial:``) as a session; see the module doc.
 
-    BusUrlError for a URL that does not parse; UnknownProsthesisError for an unknown
-    ``sim:`` name; TransportError when the bus cannot be opened.
+    BusUrlError for a URL that does not parse, names an interface python-can does not have
+    or a ``sim:`` prosthesis that does not exist, or carries options the interface refuses;
+    TransportError when the bus cannot be opened (a missing driver or adapter: the fix).
     """
-    spec = parse_bus_url(url)
+    spec = check_bus_url(url)
     if spec.kind == "sim":
         return open_sim_session(spec.name, url=url, **options)
     if spec.kind == "can":

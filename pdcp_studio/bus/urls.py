@@ -4,13 +4,18 @@
 The ``?…`` suffix (an extension of contracts §3) passes keyword options to the python-can
 interface, e.g. ``can:udp_multicast:239.74.163.2?port=43200`` so that separate test runs on
 one host do not hear each other; numbers become ints, ``true``/``false`` booleans. python-can is
-imported only inside :func:`open_can_bus`, so parsing a URL (the CLI validating ``--bus``) stays
-cheap, and a missing vendor driver fails with a TransportError naming the URL, not a traceback.
+imported only when a URL is checked or opened, so parsing one stays cheap; what python-can
+raises when a bus does not open becomes one line with the fix (``bus/can_interfaces.py``).
+
+slcan adapters: ``@BITRATE`` is the CAN bitrate (PDCP: 1000000); the serial line's speed is
+python-can's ``tty_baudrate`` option, ``can:slcan:/dev/ttyACM0@1000000?tty_baudrate=115200``
+(``docs/bus-urls.md``).
 """
 
 from __future__ import annotations
 
 import itertools
+import logging
 import os
 import re
 from dataclasses import dataclass
@@ -20,6 +25,8 @@ from pdcp_studio.errors import PdcpError, TransportError
 
 if TYPE_CHECKING:
     import can
+
+log = logging.getLogger(__name__)
 
 #: PDCP runs at 1 Mbit/s (reference §1); the host link's default baud (contracts §3).
 DEFAULT_BITRATE = 1_000_000
@@ -115,33 +122,116 @@ def unique_virtual_channel(prefix: str = "pdcp-sim") -> str:
     return f"{prefix}-{os.getpid()}-{next(_virtual_counter)}"
 
 
+def known_interfaces() -> list[str]:
+    """The interface names python-can has (its backends, plugins included), sorted."""
+    from can.interfaces import VALID_INTERFACES
+
+    return sorted(VALID_INTERFACES)
+
+
+def check_bus_url(url: str) -> BusSpec:
+    """Parse ``url`` and check what can be checked without opening it: a ``can:`` interface
+    python-can has, a ``sim:`` prosthesis that exists. BusUrlError says what was expected.
+
+    Every command that takes ``--bus`` calls this (through ``open_session`` or directly), so a
+    bad URL gives the same one line, exit 2, everywhere.
+    """
+    spec = parse_bus_url(url)
+    if spec.kind == "can":
+        from pdcp_studio.bus.can_interfaces import check_channel, unknown_interface
+
+        if spec.interface not in known_interfaces():
+            raise unknown_interface(url, spec.interface)
+        options = dict(spec.options)
+        if spec.bitrate is not None and spec.interface not in _NO_BITRATE:
+            options["bitrate"] = spec.bitrate
+        check_channel(url, spec.interface, spec.channel, options)
+    if spec.kind == "sim":
+        from pdcp_studio.bus.simulator import UnknownProsthesisError, resolve_prosthesis
+
+        try:
+            resolve_prosthesis(spec.name)
+        except UnknownProsthesisError as err:
+            raise BusUrlError(f"bus URL {url!r}: {err}") from None
+    return spec
+
+
+def bitrate_warning(spec: BusSpec) -> str:
+    """A sentence when a ``can:`` URL asks for a bitrate other than PDCP's ('' if not)."""
+    if spec.kind != "can" or spec.bitrate is None or spec.bitrate == DEFAULT_BITRATE:
+        return ""
+    if spec.interface in _NO_BITRATE:
+        return ""
+    return (f"{spec.url}: bitrate {spec.bitrate} bit/s is not PDCP's {DEFAULT_BITRATE} bit/s "
+            "(reference §1); PDCP devices will not be heard")
+
+
+#: Interfaces without a CAN bitrate of their own (simulated buses).
+_NO_BITRATE = ("virtual", "udp_multicast")
+
+
+class _Collect(logging.Handler):
+    """Keeps python-can's log records while a bus opens (its drivers log what they miss,
+    which the one-line error already says)."""
+
+    def __init__(self) -> None:
+        super().__init__()
+        self.records: list[logging.LogRecord] = []
+        self._logger = logging.getLogger("can")
+        self._propagate = True
+
+    def emit(self, record: logging.LogRecord) -> None:
+        self.records.append(record)
+
+    def __enter__(self) -> _Collect:
+        self._propagate = self._logger.propagate
+        self._logger.addHandler(self)
+        self._logger.propagate = False
+        return self
+
+    def __exit__(self, *exc: object) -> None:
+        self._logger.removeHandler(self)
+        self._logger.propagate = self._propagate
+
+
 def open_can_bus(interface: str, channel: str, *, bitrate: int | None = None,
                  url: str = "", **options: Any) -> can.BusABC:
-    """Open a python-can bus; TransportError naming the URL if the adapter or driver is missing."""
-    import can
+    """Open a python-can bus. What python-can raises becomes one line naming the URL
+    (``bus/can_interfaces.py``): BusUrlError for an interface, channel or option python-can
+    does not have or refuses; DriverMissingError or AdapterMissingError (TransportError) with
+    the fix when the driver or the adapter is missing."""
+    from pdcp_studio.bus.can_interfaces import explain_open_error
 
     shown = url or f"can:{interface}:{channel}"
     kwargs: dict[str, Any] = dict(options)
-    if bitrate is not None and interface not in ("virtual", "udp_multicast"):
+    if bitrate is not None and interface not in _NO_BITRATE:
         kwargs["bitrate"] = bitrate
-    try:
-        return can.Bus(interface=interface, channel=channel, **kwargs)
-    except NotImplementedError as err:
-        raise TransportError(
-            f"{shown}: python-can has no interface {interface!r} ({err})"
-        ) from err
-    except can.CanInterfaceNotImplementedError as err:
-        raise TransportError(
-            f"{shown}: the driver for {interface!r} is not installed or not usable: {err}"
-        ) from err
-    except (can.CanError, OSError, ValueError, ImportError) as err:
-        raise TransportError(f"{shown}: cannot open the bus: {err}") from err
+    with _Collect() as said:
+        try:
+            import can
+
+            return can.Bus(interface=interface, channel=channel, **kwargs)
+        except Exception as err:
+            error = explain_open_error(shown, interface, channel, err)
+            log.debug("%s: python-can raised", shown, exc_info=True)
+            # Drop the traceback now: it holds the half-built bus, whose destructor would
+            # otherwise complain on stderr later, outside this collector.
+            err.__traceback__ = None
+            del err
+        finally:
+            for record in said.records:  # kept for a debug log, not shown to the user
+                log.debug("python-can: %s", record.getMessage())
+    raise error
 
 
 def open_spec(spec: BusSpec, **options: Any) -> can.BusABC:
-    """Open the python-can bus of a ``can:`` spec."""
+    """Open the python-can bus of a ``can:`` spec (a warning when its bitrate is not PDCP's)."""
     if spec.kind != "can":
         raise TransportError(f"{spec.url}: not a can: bus")
+    check_bus_url(spec.url)  # what python-can would refuse: the same line as every command
+    warning = bitrate_warning(spec)
+    if warning:
+        log.warning("%s", warning)
     merged = {**dict(spec.options), **options}
     return open_can_bus(spec.interface, spec.channel, bitrate=spec.bitrate or DEFAULT_BITRATE,
                         url=spec.url, **merged)

@@ -60,6 +60,8 @@ def describe(event: Any) -> str | None:
         return f"link removed {event.link}"
     if isinstance(event, ev.BusError):
         return f"error {event.message}"
+    if isinstance(event, ev.BusState):  # a yield is the error line on stderr instead
+        return None if event.state == "yielded" else f"{event.state}: {event.message}"
     if isinstance(event, ev.TerminalsUnconnected):
         return f"policy {event.why}"
     if isinstance(event, ev.PlanApplied):
@@ -72,13 +74,10 @@ def describe(event: Any) -> str | None:
 
 
 def run(args: argparse.Namespace) -> int:
-    from pdcp_studio.bus.urls import BusUrlError, open_spec, parse_bus_url
-    from pdcp_studio.cli.main import EXIT_BAD_INPUT, BadInput
+    from pdcp_studio.bus.urls import check_bus_url
+    from pdcp_studio.cli.main import EXIT_BAD_INPUT, EXIT_FAILURE, BadInput
 
-    try:
-        spec = parse_bus_url(args.bus)
-    except BusUrlError as err:
-        raise BadInput(str(err)) from err
+    spec = check_bus_url(args.bus)  # BusUrlError: exit 2, as from every command
     if spec.kind != "can":
         raise BadInput(f"--bus {args.bus}: the arbitrator runs on a can: bus "
                        "(can:INTERFACE:CHANNEL[@BITRATE])")
@@ -105,8 +104,11 @@ def run(args: argparse.Namespace) -> int:
         if text is not None:
             lines.put(text)
 
+    from pdcp_studio.bus.arb_claim import LISTEN_S
+
     options: dict[str, Any] = {"memory": args.memory, "name": "arbitrator",
-                               "profile_layer": not args.no_profile_layer}
+                               "profile_layer": not args.no_profile_layer,
+                               "listen_s": LISTEN_S}
     if args.no_autoconfigure:
         options["autoconfigure"] = False
     if args.startup_quiet is not None:
@@ -114,13 +116,16 @@ def run(args: argparse.Namespace) -> int:
     stop = threading.Event()
     main_thread = threading.current_thread() is threading.main_thread()
     previous = signal.signal(signal.SIGTERM, lambda *_: stop.set()) if main_thread else None
-    bus = open_spec(spec)
+    from pdcp_studio.bus.reopen import open_reopening
+
+    bus = open_reopening(spec)  # a pulled adapter is reopened; the outage is said once
     try:
         arbitrator = Arbitrator(bus, **options)
     except BaseException:
         bus.shutdown()
         raise
     server = None
+    code = 0
     try:
         arbitrator.subscribe(on_event)
         if server_cls is not None:
@@ -134,6 +139,9 @@ def run(args: argparse.Namespace) -> int:
                   flush=True)
         deadline = None if args.seconds is None else time.monotonic() + args.seconds
         while not stop.is_set():
+            if arbitrator.yielded:  # another arbitrator is on the bus (reference §5)
+                code = EXIT_FAILURE
+                break
             if deadline is not None and time.monotonic() >= deadline:
                 break
             try:
@@ -153,5 +161,7 @@ def run(args: argparse.Namespace) -> int:
                 print(lines.get_nowait(), flush=True)
             except queue.Empty:
                 break
+    if code:
+        print(f"pdcp-studio: error: {spec.url}: {arbitrator.bus_message}", file=sys.stderr)
     print("arbitrator stopped", flush=True)
-    return 0
+    return code

@@ -75,13 +75,11 @@ def versions() -> dict[str, str | None]:
         except metadata.PackageNotFoundError:
             out[name] = None
     try:
-        import PySide6
-        from PySide6 import QtCore
-
-        out["PySide6"] = PySide6.__version__
-        out["qt"] = QtCore.qVersion()
-    except ImportError:
+        from pdcp_studio.app.help_viewer import qt_versions
+    except ImportError:  # Qt's own libraries missing: the display check says which
         out["qt"] = None
+    else:
+        out.update(qt_versions())
     import can
 
     out["python-can"] = can.__version__

@@ -30,6 +30,8 @@ def add_subparser(subparsers: argparse._SubParsersAction) -> None:
                    help="render the main window once loaded and laid out, save it, exit")
     p.add_argument("--size", metavar="WxH", default=None,
                    help="window size, e.g. 1400x860 (for screenshots)")
+    p.add_argument("--lang", metavar="LANG", default=argparse.SUPPRESS,
+                   help="the app's language, e.g. de or en (default: the system's)")
     p.set_defaults(func=run)
 
 
@@ -50,12 +52,9 @@ def run(args: argparse.Namespace) -> int:
         raise BadInput("give a FILE or --bus, not both")
     size = _size(args.size)
     if args.bus:
-        from pdcp_studio.bus.urls import BusUrlError, parse_bus_url
+        from pdcp_studio.bus.urls import check_bus_url
 
-        try:
-            parse_bus_url(args.bus)
-        except BusUrlError as err:
-            raise BadInput(str(err)) from err
+        check_bus_url(args.bus)  # BusUrlError: exit 2, as from every command
     from pdcp_studio.app import qt_prereqs
 
     why = qt_prereqs.problem(screenshot=bool(args.screenshot))
@@ -66,4 +65,5 @@ def run(args: argparse.Namespace) -> int:
         os.environ["QT_QPA_PLATFORM"] = "offscreen"  # no window here: render off screen
     from pdcp_studio.app.application import run_app
 
-    return run_app(args.file, args.bus, args.screenshot, size=size, started=_STARTED)
+    return run_app(args.file, args.bus, args.screenshot, size=size, started=_STARTED,
+                   lang=getattr(args, "lang", None))

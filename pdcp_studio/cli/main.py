@@ -6,7 +6,9 @@ libraries (python-can, networkx, Qt) inside ``run`` only, so a headless command
 starts fast and never loads Qt.
 
 Exit status: 0 success, 2 bad input (``BadInput``: a file that does not parse or
-validate, named with where and why), 1 any other failure.
+validate, named with where and why; ``BusUrlError``: a ``--bus`` URL that is malformed or names
+what python-can or the simulator does not have, the same line from every command), 1 any
+other failure.
 """
 
 from __future__ import annotations
@@ -17,6 +19,7 @@ import sys
 from collections.abc import Sequence
 
 from pdcp_studio import __version__
+from pdcp_studio.bus.urls import BusUrlError
 from pdcp_studio.errors import ConfigFormatError, PdcpError, SystemFileError
 
 # Order = order in --help.
@@ -51,6 +54,8 @@ def build_parser() -> argparse.ArgumentParser:
         description="See, configure and repair the PDCP bus inside a powered prosthesis.",
     )
     parser.add_argument("--version", action="version", version=f"pdcp-studio {__version__}")
+    parser.add_argument("--lang", metavar="LANG", default=None,
+                        help="the desktop app's language, e.g. de or en (default: the system's)")
     subparsers = parser.add_subparsers(dest="command", metavar="COMMAND")
     for name in COMMAND_MODULES:
         importlib.import_module(f"pdcp_studio.cli.{name}").add_subparser(subparsers)
@@ -62,13 +67,13 @@ def main(argv: Sequence[str] | None = None) -> int:
     args = parser.parse_args(argv)
     if args.command is None:
         # Bare `pdcp-studio` opens the desktop app on the simulated prosthesis.
-        args = parser.parse_args(["gui", *([] if argv is None else list(argv))])
+        args = parser.parse_args(["gui", *(["--lang", args.lang] if args.lang else [])])
         if getattr(args, "func", None) is None:
             parser.print_help()
             return EXIT_OK
     try:
         return int(args.func(args) or 0)
-    except (BadInput, ConfigFormatError, SystemFileError) as err:
+    except (BadInput, BusUrlError, ConfigFormatError, SystemFileError) as err:
         print(f"pdcp-studio: {err}", file=sys.stderr)
         return EXIT_BAD_INPUT
     except PdcpError as err:

@@ -37,16 +37,13 @@ def add_subparser(subparsers: argparse._SubParsersAction) -> None:
 
 def open_bus_session(url: str, *, memory: str | None = None, settle: float | None = None,
                      **options: Any) -> Any:
-    """``open_session`` with user errors (bad URL, unknown prosthesis) as BadInput."""
+    """``open_session`` for a command; a bad URL raises BusUrlError (exit 2, the same line
+    from every command), other user errors BadInput."""
     from pdcp_studio.bus.session import open_session
-    from pdcp_studio.bus.simulator import UnknownProsthesisError
-    from pdcp_studio.bus.urls import BusUrlError, parse_bus_url
+    from pdcp_studio.bus.urls import check_bus_url
     from pdcp_studio.cli.main import BadInput
 
-    try:
-        spec = parse_bus_url(url)
-    except BusUrlError as err:
-        raise BadInput(f"--bus: {err}") from err
+    spec = check_bus_url(url)
     if memory is not None:
         if spec.kind == "serial":
             raise BadInput(f"--memory: the arbitrator behind {url} keeps its own memory")
@@ -56,10 +53,7 @@ def open_bus_session(url: str, *, memory: str | None = None, settle: float | Non
         options["settle_timeout"] = settle
     if spec.kind != "serial":
         options.setdefault("frame_events", False)  # nobody here shows frames: skip decoding
-    try:
-        return open_session(url, **options)
-    except UnknownProsthesisError as err:
-        raise BadInput(f"--bus {url}: {err}") from err
+    return open_session(url, **options)
 
 
 def check_memory_path(path: str) -> None:

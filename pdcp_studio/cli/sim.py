@@ -95,13 +95,10 @@ def run_devices(args: argparse.Namespace) -> int:
     from pdcp_studio.bus.device_host import DeviceHost
     from pdcp_studio.bus.device_sim import SimulatedDevice
     from pdcp_studio.bus.simulator import UnknownProsthesisError, load_prosthesis
-    from pdcp_studio.bus.urls import BusUrlError, open_spec, parse_bus_url
+    from pdcp_studio.bus.urls import check_bus_url, open_spec
     from pdcp_studio.cli.main import BadInput
 
-    try:
-        spec = parse_bus_url(args.bus)
-    except BusUrlError as err:
-        raise BadInput(f"--bus: {err}") from err
+    spec = check_bus_url(args.bus)  # BusUrlError: exit 2, as from every command
     if spec.kind != "can":
         raise BadInput(f"--bus {args.bus}: sim devices runs on a can: bus "
                        "(can:INTERFACE:CHANNEL), for an arbitrator elsewhere")

@@ -72,7 +72,7 @@ def nesting_depth(data: bytes) -> int:
     return max(itertools.accumulate(map(_STEP.__getitem__, brackets), initial=0))
 
 
-class _Object(dict):
+class _Object(dict[str, Any]):
     """A parsed JSON object that remembers the first key it was given twice."""
 
     duplicate: str | None = None

@@ -15,7 +15,7 @@ from pdcp_studio.bus.session import (
     SimSession,
     open_session,
 )
-from pdcp_studio.bus.simulator import UnknownProsthesisError, load_prosthesis
+from pdcp_studio.bus.simulator import load_prosthesis
 from pdcp_studio.bus.urls import BusUrlError, open_can_bus, unique_virtual_channel
 from pdcp_studio.errors import TransportError
 from pdcp_studio.model import parameters as P
@@ -193,7 +193,7 @@ def test_reset_arbitrator_keeping_or_erasing_memory(test2):
 def test_bad_urls_and_names():
     with pytest.raises(BusUrlError):
         open_session("nonsense")
-    with pytest.raises(UnknownProsthesisError, match="thesis-test1"):
+    with pytest.raises(BusUrlError, match="thesis-test1"):  # bad input, exit 2 (contracts §2)
         open_session("sim:no-such-arm")
 
 

@@ -64,7 +64,7 @@ def test_open_virtual_and_missing_interfaces():
     spec = parse_bus_url(f"can:virtual:{unique_virtual_channel()}@500000")
     bus = open_spec(spec)  # the bitrate is not passed to the virtual interface
     bus.shutdown()
-    with pytest.raises(TransportError, match="can:nosuch:x"):
-        open_can_bus("nosuch", "x", url="can:nosuch:x")
+    with pytest.raises(BusUrlError, match=r"can:nosuch:x.*has no interface"):
+        open_can_bus("nosuch", "x", url="can:nosuch:x")  # bad input (contracts §2): exit 2
     with pytest.raises(TransportError, match="not a can: bus"):
         open_spec(parse_bus_url("sim:thesis-test1"))

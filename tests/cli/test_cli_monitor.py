@@ -112,7 +112,7 @@ def test_bad_arguments(capsys):
     assert main(["monitor", "--bus", "can:virtual", "--seconds", "1"]) == 2
     assert "can:INTERFACE:CHANNEL" in capsys.readouterr().err
     assert main(["monitor", "--bus", "can:virtual:x", "--seconds", "0"]) == 2
-    assert main(["monitor", "--bus", "can:no-such-interface:x", "--seconds", "0.1"]) == 1
+    assert main(["monitor", "--bus", "can:no-such-interface:x", "--seconds", "0.1"]) == 2
     assert "can:no-such-interface:x" in capsys.readouterr().err
     assert main(["monitor", "--bus", "tcp:somewhere", "--seconds", "0.1"]) == 2
     assert "unknown scheme" in capsys.readouterr().err

@@ -80,8 +80,10 @@ def test_scan_bad_input_is_exit_2(capsys, argv, says):
 
 
 def test_scan_missing_adapter_is_exit_1(capsys):
-    assert main(["scan", "--bus", "can:no_such_interface:can0"]) == 1
+    assert main(["scan", "--bus", "can:no_such_interface:can0"]) == 2  # not python-can's
     assert "can:no_such_interface:can0" in capsys.readouterr().err
+    assert main(["scan", "--bus", "can:kvaser:0"]) == 1  # known, driver missing: the fix
+    assert "fix: install Kvaser CANlib" in capsys.readouterr().err
 
 
 def test_scan_of_devices_in_another_process_over_udp_multicast(capsys, multicast_url):

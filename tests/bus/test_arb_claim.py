@@ -1,0 +1,218 @@
+"""One arbitrator per bus (reference §5, issue 10 item 1): the pure claim decisions, then the
+arbitrator on a virtual bus — a second arbitrator on a settled transradial bus sends nothing,
+one that appears later makes ours stop writing at once, and a replaced arbitrator's bus
+(thesis test 5) is still taken over."""
+
+from __future__ import annotations
+
+import threading
+import time
+
+import can
+import pytest
+
+from pdcp_studio.bus import events as ev
+from pdcp_studio.bus.arb_claim import ARBITRATOR_BEACON_S, LISTEN_S, BusClaim, Phase
+from pdcp_studio.bus.arbitrator import Arbitrator
+from pdcp_studio.bus.connection import open_connections
+from pdcp_studio.bus.device_host import DeviceHost
+from pdcp_studio.bus.device_sim import SimulatedDevice
+from pdcp_studio.bus.session import OtherArbitratorError, open_can_session, open_sim_session
+from pdcp_studio.bus.simulator import TEST2_LINKS, load_prosthesis
+from pdcp_studio.bus.urls import open_can_bus, parse_bus_url, unique_virtual_channel
+from pdcp_studio.cli.main import main
+from pdcp_studio.protocol import Beacon, BindRequest, GetParameter, Mode, Reset
+
+
+@pytest.fixture(autouse=True)
+def no_bus_left_open():
+    before = set(open_connections())
+    yield
+    assert not set(open_connections()) - before, "a test left a bus open"
+
+
+def frame(message):
+    return message.encode()
+
+
+# -- the pure decisions -----------------------------------------------------------------------
+def test_listening_then_arbitrating_when_nobody_else_is_heard():
+    claim = BusClaim(100.0, listen_s=1.0)
+    assert claim.phase is Phase.LISTENING and not claim.may_write
+    assert claim.listen_s >= 2 * ARBITRATOR_BEACON_S
+    assert not claim.beacon_due(100.5)  # no beacon while listening: it would be heard
+    assert claim.tick(100.99) is None
+    decision = claim.tick(101.0)
+    assert decision.phase is Phase.ARBITRATING and decision.takeover == ()
+    assert claim.may_write and claim.tick(102.0) is None
+
+
+def test_any_mode_1_frame_while_listening_means_never_arbitrate():
+    claim = BusClaim(0.0, listen_s=1.0)
+    aid, data = frame(GetParameter(7, 9, 0))  # a request from someone else's arbitrator
+    decision = claim.heard(aid, data, 0.3)
+    assert decision.phase is Phase.YIELDED and not decision.later
+    assert "another bus arbitrator" in decision.message and "0x03" in decision.message
+    assert claim.tick(5.0) is None and not claim.may_write and not claim.beacon_due(5.0)
+    assert claim.heard(*frame(Beacon(0, mode=Mode.ARBITRATOR)), 6.0) is None  # said once
+
+
+def test_an_arbitrator_appearing_later_stops_the_writing():
+    claim = BusClaim(0.0, listen_s=0.0)
+    assert claim.may_write and claim.beacon_due(0.0)
+    decision = claim.heard(*frame(Beacon(0, mode=Mode.ARBITRATOR)), 3.0)
+    assert decision.later and "stopped writing" in decision.message and not claim.may_write
+
+
+def test_devices_beaconing_unheard_of_nodes_are_a_replaced_arbitrators_bus():
+    claim = BusClaim(0.0, listen_s=1.0)
+    claim.heard(*frame(Beacon(12)), 0.2)
+    claim.heard(*frame(Beacon(5)), 0.4)
+    claim.heard(*frame(BindRequest(3, 2, 2, 4)), 0.5)  # binding: not a bound device
+    decision = claim.tick(1.0)
+    assert decision.takeover == (5, 12) and "takes it over" in decision.message
+
+
+def test_our_beacon_every_interval_never_in_a_burst():
+    claim = BusClaim(0.0, listen_s=0.0)
+    due = [t / 100 for t in range(0, 300) if claim.beacon_due(t / 100)]
+    assert due == [0.0, 0.5, 1.0, 1.5, 2.0, 2.5]
+    assert claim.beacon_due(10.0) and not claim.beacon_due(10.1)  # after a stall: one
+
+
+# -- on a bus ------------------------------------------------------------------------------------
+class Tap:
+    """Every frame on a virtual channel (a third bus object)."""
+
+    def __init__(self, channel: str) -> None:
+        self.bus = can.Bus(interface="virtual", channel=channel)
+        self.frames: list[can.Message] = []
+        self._stop = threading.Event()
+        self._thread = threading.Thread(target=self._run, daemon=True)
+        self._thread.start()
+
+    def _run(self) -> None:
+        while not self._stop.is_set():
+            msg = self.bus.recv(0.05)
+            if msg is not None:
+                self.frames.append(msg)
+
+    def close(self) -> None:
+        self._stop.set()
+        self._thread.join(2)
+        self.bus.shutdown()
+
+
+def test_a_second_arbitrator_on_a_settled_transradial_bus_sends_nothing():
+    channel = unique_virtual_channel("pdcp-claim")
+    first = open_sim_session("transradial", channel=channel)
+    tap = Tap(channel)
+    try:
+        links = first.system().links
+        sent_before = first.arbitrator.conn.sent
+        states: list[ev.BusState] = []
+        second = Arbitrator(open_can_bus("virtual", channel), name="second", listen_s=LISTEN_S)
+        second.subscribe(lambda e: states.append(e) if isinstance(e, ev.BusState) else None)
+        try:
+            assert not second.wait_claimed(LISTEN_S + 2)
+            assert second.yielded and second.bus_state == "yielded"
+            time.sleep(3.0)  # a settled bus: beacons and data; the second stays silent
+            assert second.conn.sent == 0
+        finally:
+            second.close()
+        time.sleep(0.1)
+        ours = first.arbitrator.conn.sent - sent_before
+        mode1 = [m for m in tap.frames if m.arbitration_id >> 8 & 1]
+        intrusion = len(mode1) - ours  # mode-1 frames the first arbitrator did not send
+        assert intrusion == 0, f"{intrusion} intrusion frames"
+        assert any(m.arbitration_id == 0x100 for m in mode1)  # the first one beacons
+        assert [s.state for s in states] == ["yielded"]
+        assert first.system().links == links and all(
+            d.present for d in first.system().devices.values())
+        assert first.host.bad_frames == 0  # devices take the arbitrator's beacon in stride
+    finally:
+        tap.close()
+        first.close()
+
+
+def test_a_session_and_the_cli_on_a_taken_bus_say_so_in_one_line(capsys):
+    channel = unique_virtual_channel("pdcp-claim-cli")
+    first = open_sim_session("thesis-test2", channel=channel)
+    try:
+        with pytest.raises(OtherArbitratorError, match="another bus arbitrator"):
+            open_can_session(parse_bus_url(f"can:virtual:{channel}"))
+        code = main(["arbitrator", "--bus", f"can:virtual:{channel}", "--seconds", "6"])
+        out, err = capsys.readouterr()
+        assert code == 1
+        assert err.count("\n") == 1 and "another bus arbitrator is on this bus" in err
+        assert main(["scan", "--bus", f"can:virtual:{channel}", "--json"]) == 1
+        out, err = capsys.readouterr()
+        assert out == "" and err.count("\n") == 1 and "another bus arbitrator" in err
+    finally:
+        first.close()
+
+
+def _devices(channel: str, name: str) -> DeviceHost:
+    system = load_prosthesis(name)
+    host = DeviceHost(open_can_bus("virtual", channel),
+                      [SimulatedDevice(d) for d in system.devices.values()], name="devices",
+                      plugged=False)
+    for device in system.devices.values():
+        if device.present:
+            host.plug(device.key)
+    return host
+
+
+def test_an_arbitrator_appearing_later_stops_ours_writing_at_once():
+    channel = unique_virtual_channel("pdcp-claim-later")
+    host = _devices(channel, "thesis-test2")
+    ours = Arbitrator(open_can_bus("virtual", channel), name="ours", listen_s=0.6,
+                      startup_quiet_s=0.2)
+    states: list[ev.BusState] = []
+    ours.subscribe(lambda e: states.append(e) if isinstance(e, ev.BusState) else None)
+    other = can.Bus(interface="virtual", channel=channel)
+    try:
+        assert ours.wait_claimed(3) and ours.wait_settled(10)
+        assert sorted(ours.system().links) == sorted(TEST2_LINKS)
+        other.send(can.Message(arbitration_id=0x100, data=b"\x0a", is_extended_id=False))
+        deadline = time.monotonic() + 1
+        while not ours.yielded and time.monotonic() < deadline:
+            time.sleep(0.005)
+        assert ours.yielded
+        sent = ours.conn.sent
+        with pytest.raises(Exception, match="not writing"):
+            ours.reset_device(next(iter(ours.devices_present())))
+        time.sleep(1.5)  # beacons, presence, duty cycle: nothing more is written
+        assert ours.conn.sent == sent
+        assert [s.state for s in states] == ["arbitrating", "yielded"]
+        assert "stopped writing" in states[-1].message
+    finally:
+        other.shutdown()
+        ours.close()
+        host.close()
+
+
+def test_a_replaced_arbitrators_bus_is_taken_over_thesis_test_5():
+    channel = unique_virtual_channel("pdcp-claim-takeover")
+    host = _devices(channel, "thesis-test5")
+    first = Arbitrator(open_can_bus("virtual", channel), name="first", startup_quiet_s=0.2)
+    try:
+        assert first.wait_settled(10)
+        assert sorted(first.system().links) == sorted(TEST2_LINKS)
+    finally:
+        first.close()  # the arbitrator is replaced; the devices stay bound and beaconing
+    tap = Tap(channel)
+    new = Arbitrator(open_can_bus("virtual", channel), name="new", listen_s=LISTEN_S,
+                     startup_quiet_s=0.2)
+    try:
+        assert new.wait_claimed(LISTEN_S + 2)
+        assert "takes it over" in new.bus_message
+        assert new.wait_settled(15)
+        assert sorted(new.system().links) == sorted(TEST2_LINKS)
+        resets = [m for m in tap.frames if m.arbitration_id >> 8 & 1
+                  and bytes(m.data) == Reset(0).encode()[1]]
+        assert resets  # the devices were reset and bound again
+    finally:
+        new.close()
+        tap.close()
+        host.close()
