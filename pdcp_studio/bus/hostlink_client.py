@@ -539,9 +539,11 @@ class HostLinkSession(TransactingMixin):
         """The engine's plan on the arbitrator's system (and its memory unless ``config``)."""
         from pdcp_studio.engine import plan_for, plan_on_bus
 
+        autoconfigure = self.read_policy().autoconfigure
         if config is not None:
-            return plan_for(mode, self.system(), config)
-        return plan_on_bus(mode, self.system(), self.read_configuration())
+            return plan_for(mode, self.system(), config, autoconfigure=autoconfigure)
+        return plan_on_bus(mode, self.system(), self.read_configuration(),
+                           autoconfigure=autoconfigure)
 
 
 #: Options of other session kinds (memory, scan window, …) that mean nothing over a host link.
