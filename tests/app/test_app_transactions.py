@@ -203,7 +203,7 @@ def test_a_failed_connect_offline_keeps_the_file(make_window, qtbot):
     assert window.windowTitle().startswith("transradial.json")
 
 
-def test_history_restore_is_a_previewed_transaction(live, qtbot):
+def test_history_restore_is_a_previewed_transaction(live, qtbot, tmp_path):
     doc = live.doc
     doc.select(HAND_LINK)
     live.act_delete.trigger()
@@ -229,6 +229,12 @@ def test_history_restore_is_a_previewed_transaction(live, qtbot):
         entries = archive.entries()
         assert archive.verify().ok
     assert entries[-1]["action"] == "history restore 1"  # as the CLI's restore names it
+    # The fitting report of one entry: its own patient, operator, time and change.
+    first = next(e for e in panel.all_entries() if e["id"] == 1)
+    info = live.fitting_info(first)
+    assert info.changes == [first] and info.prosthetist == "Test Prosthetist"
+    assert info.time is not None and info.time.tzinfo is not None
+    assert live.write_fitting_report(tmp_path / "entry1.pdf", entry=first)
     # The project follows the prosthesis: nothing is left pending.
     qtbot.waitUntil(lambda: not doc.system.has_link(HAND_LINK), timeout=5000)
     qtbot.waitUntil(lambda: not live.pending_panel.changes, timeout=5000)
@@ -267,3 +273,17 @@ def test_leaving_with_unwritten_changes_asks(live, qtbot):
         live.quiet = True
     assert asked == [1, 1] and not live.live.is_live
     assert not live.doc.system.has_link(HAND_LINK)  # the document keeps its edits
+
+
+def test_the_confirmation_never_writes_on_enter(qtbot):
+    from PySide6.QtCore import Qt
+
+    from pdcp_studio.app.transaction_flow import ConfirmDialog
+
+    dialog = ConfirmDialog("Write to prosthesis", ["write to prosthesis on sim:x:",
+                                                   "  - link a → b"])
+    qtbot.addWidget(dialog)
+    dialog.show()
+    assert not dialog.write_button.isDefault() and not dialog.write_button.autoDefault()
+    qtbot.keyClick(dialog, Qt.Key.Key_Return)
+    assert dialog.result() != dialog.DialogCode.Accepted
