@@ -83,9 +83,12 @@ class HistoryError(PdcpError):
 def default_path() -> Path:
     """``$PDCP_STUDIO_HISTORY``, else the archive in the user's data folder — the one path
     ``doctor`` shows too (``pdcp_studio.paths.history_path``)."""
-    from pdcp_studio.paths import history_path
+    env = os.environ.get(ENV_PATH)
+    if env:
+        return Path(env)
+    from pdcp_studio.paths import user_data_dir  # paths.history_path delegates here
 
-    return history_path()
+    return user_data_dir() / "history.sqlite"
 
 
 def default_operator() -> str:
