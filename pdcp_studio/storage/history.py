@@ -48,6 +48,8 @@ if TYPE_CHECKING:
 
 ENV_PATH = "PDCP_STUDIO_HISTORY"
 ENV_OPERATOR = "PDCP_STUDIO_OPERATOR"
+#: The archive's name in the user's data folder.
+FILE_NAME = "history.sqlite"
 GENESIS = "0" * 64
 #: Seconds an append waits for another process's write to finish.
 BUSY_TIMEOUT_S = 15.0
@@ -88,7 +90,7 @@ def default_path() -> Path:
         return Path(env)
     from pdcp_studio.paths import user_data_dir  # paths.history_path delegates here
 
-    return user_data_dir() / "history.sqlite"
+    return user_data_dir() / FILE_NAME
 
 
 def default_operator() -> str:
