@@ -22,6 +22,7 @@ from pathlib import Path
 from PySide6.QtCore import QCoreApplication, QObject, Signal
 from PySide6.QtGui import QUndoCommand, QUndoStack
 
+from pdcp_studio.app.i18n import translate
 from pdcp_studio.model import config_edit as edit
 from pdcp_studio.model.configuration import (
     ConfigCollection,
@@ -86,7 +87,11 @@ class ConfigDocument(QObject):
 
     @property
     def title(self) -> str:
-        return self.path.name if self.path is not None else _tr("untitled.pdcfg")
+        return (
+            self.path.name
+            if self.path is not None
+            else translate("ConfigDocument", "untitled.pdcfg")
+        )
 
     def configuration(self, position: int | None = None) -> StoredConfiguration | None:
         """Configuration ``position`` (default: the current one), or None."""
@@ -119,21 +124,29 @@ class ConfigDocument(QObject):
     # -- edits (each one undo step) -------------------------------------------------
     def add_configuration(self) -> None:
         after = edit.add_configuration(self.collection)
-        self._push(_tr("Add configuration"), after, len(after.configurations) - 1)
+        self._push(
+            translate("ConfigDocument", "Add configuration"), after, len(after.configurations) - 1
+        )
 
     def duplicate_configuration(self, position: int | None = None) -> None:
         pos = self.current if position is None else position
         if self.configuration(pos) is None:
             return
-        self._push(_tr("Duplicate configuration %1").replace("%1", str(pos + 1)),
-                   edit.duplicate_configuration(self.collection, pos), pos + 1)
+        self._push(
+            translate("ConfigDocument", "Duplicate configuration %1").replace("%1", str(pos + 1)),
+            edit.duplicate_configuration(self.collection, pos),
+            pos + 1,
+        )
 
     def remove_configuration(self, position: int | None = None) -> None:
         pos = self.current if position is None else position
         if self.configuration(pos) is None:
             return
-        self._push(_tr("Remove configuration %1").replace("%1", str(pos + 1)),
-                   edit.remove_configuration(self.collection, pos), pos)
+        self._push(
+            translate("ConfigDocument", "Remove configuration %1").replace("%1", str(pos + 1)),
+            edit.remove_configuration(self.collection, pos),
+            pos,
+        )
 
     def move_configuration(self, delta: int, position: int | None = None) -> None:
         """Move a configuration up (-1) or down (+1): its priority at start-up."""
@@ -141,18 +154,25 @@ class ConfigDocument(QObject):
         to = pos + delta
         if self.configuration(pos) is None or not 0 <= to < len(self.collection.configurations):
             return
-        self._push(_tr("Move configuration %1").replace("%1", str(pos + 1)),
+        self._push(translate("ConfigDocument", "Move configuration %1").replace("%1", str(pos + 1)),
                    edit.move_configuration(self.collection, pos, to), to)
 
     def add_link(self, output: StoredChannel, input: StoredChannel) -> None:
         if self.configuration() is None:
             return
-        self._push(_tr("Add link"), edit.add_link(self.collection, self.current, output, input))
+        self._push(
+            translate("ConfigDocument", "Add link"),
+            edit.add_link(self.collection, self.current, output, input),
+        )
 
     def remove_links(self, link_positions: list[int]) -> None:
         if self.configuration() is None or not link_positions:
             return
-        text = _tr("Remove link") if len(link_positions) == 1 else _tr("Remove links")
+        text = (
+            translate("ConfigDocument", "Remove link")
+            if len(link_positions) == 1
+            else translate("ConfigDocument", "Remove links")
+        )
         self._push(text, edit.remove_links(self.collection, self.current, link_positions))
 
     def set_channel(self, ref: ChannelRef, *, type: int | None = None,
@@ -162,7 +182,7 @@ class ConfigDocument(QObject):
             return
         after = edit.set_channel(self.collection, self.current, ref, type=type,
                                  profile=profile)
-        self._push(_tr("Edit channel %1").replace("%1", str(ref)), after)
+        self._push(translate("ConfigDocument", "Edit channel %1").replace("%1", str(ref)), after)
 
     # -- files ----------------------------------------------------------------------
     def save(self, path: str | Path | None = None) -> Path:

@@ -18,6 +18,7 @@ from typing import Any
 from PySide6.QtCore import QCoreApplication, QSettings
 from PySide6.QtWidgets import QInputDialog, QLineEdit, QWidget
 
+from pdcp_studio.app.i18n import translate
 from pdcp_studio.model.refs import DeviceKey
 
 ENV_OPERATOR = "PDCP_STUDIO_OPERATOR"
@@ -72,9 +73,16 @@ def set_operator(name: str, settings: QSettings | None = None) -> None:
 
 def _ask_operator(parent: QWidget | None, default: str) -> str | None:
     text, ok = QInputDialog.getText(
-        parent, _tr("Your name"),
-        _tr("Changes to a prosthesis are recorded in the fitting history with the name of "
-            "who made them.\nYour name (asked once):"), QLineEdit.EchoMode.Normal, default)
+        parent,
+        translate("Fitting", "Your name"),
+        translate(
+            "Fitting",
+            "Changes to a prosthesis are recorded in the fitting history with the name of "
+            "who made them.\nYour name (asked once):",
+        ),
+        QLineEdit.EchoMode.Normal,
+        default,
+    )
     return text if ok else None
 
 

@@ -12,7 +12,7 @@ import re
 from importlib import metadata
 from pathlib import Path
 
-from PySide6.QtCore import QCoreApplication, QLocale, Qt
+from PySide6.QtCore import QLocale, Qt
 from PySide6.QtGui import QTextCursor
 from PySide6.QtWidgets import (
     QApplication,
@@ -24,12 +24,16 @@ from PySide6.QtWidgets import (
     QWidget,
 )
 
+from pdcp_studio.app.i18n import translate
+
 #: What the user is looking at (a dock's or dialog's object/class name) → manual section key.
 VIEW_SECTIONS: dict[str, str] = {
     "GraphView": "graph",
     "DevicesDock": "devices",
     "InspectorDock": "inspector",
     "PlanDock": "plans",
+    "PendingDock": "pending",
+    "HistoryDock": "history",
     "MonitorDock": "monitor",
     "LivePlotDock": "plot",
     "SimDock": "simulator",
@@ -146,13 +150,12 @@ def versions_text() -> str:
 
 
 def show_about(parent: QWidget) -> None:
-    tr = QCoreApplication.translate
-    text = (tr("HelpViewer", "<h3>PDCP Studio</h3><p>See, configure and repair the PDCP bus "
-               "inside a powered prosthesis.</p>")
+    text = (translate("HelpViewer", "<h3>PDCP Studio</h3><p>See, configure and repair the "
+                      "PDCP bus inside a powered prosthesis.</p>")
             + "<p>" + versions_text().replace("\n", "<br>") + "</p>"
-            + tr("HelpViewer", "<p>MIT License. Help → User manual (F1) explains every "
-                 "view.</p>"))
-    QMessageBox.about(parent, tr("HelpViewer", "About PDCP Studio"), text)
+            + translate("HelpViewer", "<p>MIT License. Help → User manual (F1) explains "
+                        "every view.</p>"))
+    QMessageBox.about(parent, translate("HelpViewer", "About PDCP Studio"), text)
 
 
 def show_about_qt(parent: QWidget) -> None:

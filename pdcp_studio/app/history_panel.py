@@ -15,7 +15,7 @@ import threading
 from pathlib import Path
 from typing import Any
 
-from PySide6.QtCore import QCoreApplication, Qt, Signal
+from PySide6.QtCore import QT_TRANSLATE_NOOP, QCoreApplication, Qt, Signal
 from PySide6.QtGui import QBrush, QColor
 from PySide6.QtWidgets import (
     QComboBox,
@@ -32,11 +32,21 @@ from PySide6.QtWidgets import (
     QWidget,
 )
 
+from pdcp_studio.app.i18n import translate
 from pdcp_studio.app.workers import Worker
 from pdcp_studio.model.refs import DeviceKey
 from pdcp_studio.model.system import Link
 
-COLUMNS = ("#", "Time (UTC)", "Action", "Outcome", "Operator", "Patient", "Links", "Bus")
+COLUMNS = (
+    "#",
+    QT_TRANSLATE_NOOP("HistoryPanel", "Time (UTC)"),
+    QT_TRANSLATE_NOOP("HistoryPanel", "Action"),
+    QT_TRANSLATE_NOOP("HistoryPanel", "Outcome"),
+    QT_TRANSLATE_NOOP("HistoryPanel", "Operator"),
+    QT_TRANSLATE_NOOP("HistoryPanel", "Patient"),
+    QT_TRANSLATE_NOOP("HistoryPanel", "Links"),
+    QT_TRANSLATE_NOOP("HistoryPanel", "Bus"),
+)
 THIS, ALL = "this", "all"
 FAILED_COLOUR = QColor(250, 215, 215)
 
@@ -65,9 +75,17 @@ def outcome_text(entry: dict) -> str:
     outcome = entry.get("outcome") or {}
     status = outcome.get("status", "")
     if status == "applied":
-        return _tr("applied, verified") if entry.get("verified") else _tr("applied")
+        return (
+            translate("HistoryPanel", "applied, verified")
+            if entry.get("verified")
+            else translate("HistoryPanel", "applied")
+        )
     if status in ("failed", "rolled_back"):
-        word = _tr("rolled back") if status == "rolled_back" else _tr("failed")
+        word = (
+            translate("HistoryPanel", "rolled back")
+            if status == "rolled_back"
+            else translate("HistoryPanel", "failed")
+        )
         return f"{word} ({outcome.get('step', '')})"
     return status
 
@@ -75,18 +93,26 @@ def outcome_text(entry: dict) -> str:
 def entries_difference(a: dict, b: dict) -> list[str]:
     """How the links after entry ``a`` and after entry ``b`` differ, in plain words."""
     la, lb = set(entry_links(a)), set(entry_links(b))
-    out = [_tr("Links after #{0}: {1}; after #{2}: {3}").format(
+    out = [translate("HistoryPanel", "Links after #{0}: {1}; after #{2}: {3}").format(
         a["id"], len(la), b["id"], len(lb))]
     for link in sorted(la - lb):
-        out.append(_tr("  only after #{0}: {1}").format(a["id"], link))
+        out.append(translate("HistoryPanel", "  only after #{0}: {1}").format(a["id"], link))
     for link in sorted(lb - la):
-        out.append(_tr("  only after #{0}: {1}").format(b["id"], link))
+        out.append(translate("HistoryPanel", "  only after #{0}: {1}").format(b["id"], link))
     if la == lb:
-        out.append(_tr("  the same links"))
+        out.append(translate("HistoryPanel", "  the same links"))
     ca, cb = a.get("config_crc_after"), b.get("config_crc_after")
-    out.append(_tr("Stored configuration CRC after #{0}: {1}; after #{2}: {3}{4}").format(
-        a["id"], ca or "none", b["id"], cb or "none",
-        "" if ca != cb else _tr(" (the same)")))
+    out.append(
+        translate(
+            "HistoryPanel", "Stored configuration CRC after #{0}: {1}; after #{2}: {3}{4}"
+        ).format(
+            a["id"],
+            ca or "none",
+            b["id"],
+            cb or "none",
+            "" if ca != cb else translate("HistoryPanel", " (the same)"),
+        )
+    )
     return out
 
 
@@ -94,16 +120,16 @@ def entry_details(entry: dict) -> list[str]:
     """One entry in plain words: who, when, what, why, and how it ended."""
     plan = entry.get("plan") or {}
     outcome = entry.get("outcome") or {}
-    out = [_tr("#{0} {1} — {2}").format(entry["id"], entry.get("time", ""),
+    out = [translate("HistoryPanel", "#{0} {1} — {2}").format(entry["id"], entry.get("time", ""),
                                         entry.get("action", "")),
-           _tr("Operator: {0}    Patient: {1}    Bus: {2}").format(
+           translate("HistoryPanel", "Operator: {0}    Patient: {1}    Bus: {2}").format(
                entry.get("operator") or "—", entry.get("patient") or "—",
                entry.get("bus") or "—"),
-           _tr("Outcome: {0}{1}").format(outcome.get("status", ""),
+           translate("HistoryPanel", "Outcome: {0}{1}").format(outcome.get("status", ""),
                                           f" at {outcome['step']}: {outcome['reason']}"
                                           if outcome.get("reason") else ""),
-           _tr("Motion interlock: {0}").format(entry.get("interlock") or "—"),
-           _tr("Stored configuration CRC: {0} → {1}").format(
+           translate("HistoryPanel", "Motion interlock: {0}").format(entry.get("interlock") or "—"),
+           translate("HistoryPanel", "Stored configuration CRC: {0} → {1}").format(
                entry.get("config_crc_before") or "none", entry.get("config_crc_after")
                or "none")]
     for a in plan.get("actions", ()):
@@ -114,9 +140,18 @@ def entry_details(entry: dict) -> list[str]:
         out.append(f"  {sign} {link_from_json(a)}{why}")
     for p in plan.get("parameters", ()):
         d = p.get("device", {})
-        out.append(_tr("  parameter 0x{0:02X} of {1}/{2}/{3} channel {4} = {5}").format(
-            int(p.get("param", 0)), d.get("vid"), d.get("pid"), d.get("serial"),
-            p.get("channel"), p.get("value")))
+        out.append(
+            translate(
+                "HistoryPanel", "  parameter 0x{0:02X} of {1}/{2}/{3} channel {4} = {5}"
+            ).format(
+                int(p.get("param", 0)),
+                d.get("vid"),
+                d.get("pid"),
+                d.get("serial"),
+                p.get("channel"),
+                p.get("value"),
+            )
+        )
     for note in outcome.get("notes", ()):
         out.append(f"  note: {note}")
     return out
@@ -306,7 +341,10 @@ class HistoryPanel(QWidget):
         if len(chosen) != 1:
             return
         path, _ = QFileDialog.getSaveFileName(
-            self, self.tr("Fitting report"),
-            str(Path(self.main._last_dir()) / f"fitting-{chosen[0]['id']}.pdf"), "PDF (*.pdf)")
+            self,
+            self.tr("Fitting report"),
+            str(Path(self.main._last_dir()) / f"fitting-{chosen[0]['id']}.pdf"),
+            self.tr("PDF (*.pdf)"),
+        )
         if path:
             self.main.write_fitting_report(path, entry=chosen[0])

@@ -110,3 +110,7 @@ def uninstall(app: QCoreApplication) -> None:
         app.removeTranslator(translator)
     app._pdcp_translators = []  # type: ignore[attr-defined]
     QLocale.setDefault(QLocale(QLocale.Language.English))
+
+
+#: ``translate("Context", "text")``: Qt's translation outside a QObject (``self.tr`` inside).
+translate = QCoreApplication.translate

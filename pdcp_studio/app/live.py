@@ -104,7 +104,7 @@ class LiveController(QObject):
         worker.failed.connect(lambda msg: self._failed(url, msg))
         worker.done.connect(lambda: self.busyChanged.emit(False))
         self.connecting = worker  # kept until the next connect: its done() must still run
-        self.statusMessage.emit(f"Connecting to {url}…")
+        self.statusMessage.emit(self.tr("Connecting to {url}…").format(url=url))
         return worker.start()
 
     def _failed(self, url: str, message: str) -> None:
@@ -135,7 +135,9 @@ class LiveController(QObject):
         bridge.planApplied.connect(self._on_plan_applied)
         bridge.busEvent.connect(self._on_bus_event)
         bridge.channelValues.connect(self._on_values)
-        bridge.error.connect(lambda msg: self.statusMessage.emit(f"Bus: {msg}"))
+        bridge.error.connect(
+            lambda msg: self.statusMessage.emit(self.tr("Bus: {msg}").format(msg=msg))
+        )
         bridge.progress.connect(self.progress)
         bridge.busyChanged.connect(self.busyChanged)
         bridge.scanned.connect(self._on_snapshot)
@@ -154,7 +156,10 @@ class LiveController(QObject):
         self.snapshotTaken.emit(system)
         self.connected.emit(self.url)
         self.statusMessage.emit(
-            f"Live: {self.url} — {len(system.devices)} devices, {len(system.links)} links")
+            self.tr("Live: {url} — {n_devices} devices, {n_links} links").format(
+                url=self.url, n_devices=len(system.devices), n_links=len(system.links)
+            )
+        )
 
     def _close_bridge(self) -> bool:
         bridge, self.bridge = self.bridge, None
@@ -180,13 +185,15 @@ class LiveController(QObject):
     def state_text(self) -> str:
         """The connection in a few words, for the status bar and the window title."""
         if self.state == CONNECTING:
-            where = f"live on {self.url}, " if self.bridge is not None else ""
-            return f"{where}connecting to {self.connecting_url}…"
+            if self.bridge is not None:
+                return self.tr("live on {0}, connecting to {1}…").format(
+                    self.url, self.connecting_url)
+            return self.tr("connecting to {0}…").format(self.connecting_url)
         if self.state == LIVE:
-            return f"live on {self.url}"
+            return self.tr("live on {0}").format(self.url)
         if self.state == DISCONNECTED:
-            return f"disconnected from {self.last_url}"
-        return "offline"
+            return self.tr("disconnected from {0}").format(self.last_url)
+        return self.tr("offline")
 
     # -- following the bus ----------------------------------------------------------
     def refresh(self) -> None:
@@ -224,19 +231,21 @@ class LiveController(QObject):
 
     def _on_joined(self, key: Any) -> None:
         self.doc.set_present(key, True)
-        self.statusMessage.emit(f"Device {key} joined the bus")
+        self.statusMessage.emit(self.tr("Device {key} joined the bus").format(key=key))
         self.refresh()
 
     def _on_left(self, key: Any) -> None:
         self.doc.set_present(key, False)
         device = self.doc.system.device(key)
-        self.statusMessage.emit(f"{device.label if device else key} left the bus")
+        self.statusMessage.emit(
+            self.tr("{v0} left the bus").format(v0=device.label if device else key)
+        )
         self.refresh()
 
     def _on_plan_applied(self, plan: Any) -> None:
         mode = getattr(plan, "mode", None) or (plan.get("mode") if isinstance(plan, dict)
                                                 else "plan")
-        self.statusMessage.emit(f"The bus applied {mode}")
+        self.statusMessage.emit(self.tr("The bus applied {mode}").format(mode=mode))
         self.refresh()
 
     def _on_values(self, values: list) -> None:

@@ -69,7 +69,7 @@ class MainWindow(MenusMixin, FileHandlingMixin, ExportMixin, BusMixin, RecoveryM
                  recovery: Any = None) -> None:
         super().__init__(parent)
         self.doc = doc if doc is not None else Document()
-        self.setWindowTitle("PDCP Studio")
+        self.setWindowTitle(self.tr("PDCP Studio"))
         self.resize(1360, 820)
         self.scene = BusScene(self.doc, self)
         self.view = GraphView(self.scene, self)
@@ -109,11 +109,11 @@ class MainWindow(MenusMixin, FileHandlingMixin, ExportMixin, BusMixin, RecoveryM
         self.tree = DeviceTree(self.doc)
         self.inspector = Inspector(self.doc)
         self.plan_panel = PlanPanel(self.doc)
-        self.tree_dock = self._dock("Devices", "DevicesDock", self.tree,
+        self.tree_dock = self._dock(self.tr("Devices"), "DevicesDock", self.tree,
                                     Qt.DockWidgetArea.LeftDockWidgetArea)
-        self.inspector_dock = self._dock("Inspector", "InspectorDock", self.inspector,
+        self.inspector_dock = self._dock(self.tr("Inspector"), "InspectorDock", self.inspector,
                                          Qt.DockWidgetArea.RightDockWidgetArea)
-        self.plan_dock = self._dock("Plan", "PlanDock", self.plan_panel,
+        self.plan_dock = self._dock(self.tr("Plan"), "PlanDock", self.plan_panel,
                                     Qt.DockWidgetArea.BottomDockWidgetArea)
         self._docks_sized = False
 
@@ -128,7 +128,7 @@ class MainWindow(MenusMixin, FileHandlingMixin, ExportMixin, BusMixin, RecoveryM
 
     def _build_status(self) -> None:
         bar = self.statusBar()
-        self.mode_label = QLabel("Offline")
+        self.mode_label = QLabel(self.tr("Offline"))
         self.mode_label.setContentsMargins(6, 0, 6, 0)
         self.progress = QProgressBar()
         self.progress.setMaximumWidth(180)
@@ -166,10 +166,14 @@ class MainWindow(MenusMixin, FileHandlingMixin, ExportMixin, BusMixin, RecoveryM
         """The document, then the connection (the project and its target), then the app."""
         state = self.live.state_text()
         if self.doc.path is None and self.doc.session is not None:  # the bus is the document
-            self.setWindowTitle(f"{state[:1].upper()}{state[1:]}[*] — PDCP Studio")
+            self.setWindowTitle(
+                self.tr("{v0}{v1}[*] — PDCP Studio").format(v0=state[:1].upper(), v1=state[1:])
+            )
         else:
-            where = "" if state == "offline" else f" — {state}"
-            self.setWindowTitle(f"{self.doc.title}[*]{where} — PDCP Studio")
+            where = "" if state == self.live.tr("offline") else f" — {state}"
+            self.setWindowTitle(
+                self.tr("{title}[*]{where} — PDCP Studio").format(title=self.doc.title, where=where)
+            )
         self.setWindowModified(self.doc.is_dirty)
 
     def _update_mode(self) -> None:
@@ -255,7 +259,7 @@ class MainWindow(MenusMixin, FileHandlingMixin, ExportMixin, BusMixin, RecoveryM
             self.open_offline_default(f"the simulated prosthesis did not start ({message})")
             return
         where = "" if message.startswith(url) else f"{url}: "
-        self.error_box("Cannot connect", f"{where}{message}")
+        self.error_box(self.tr("Cannot connect"), f"{where}{message}")
         self._update_mode()
         if not self._is_ready:
             self._loaded()
@@ -272,7 +276,12 @@ class MainWindow(MenusMixin, FileHandlingMixin, ExportMixin, BusMixin, RecoveryM
         self.doc.set_system(system, None, None, positions={})
         self._update_mode()
         self._loaded()
-        self.show_message(f"Offline: {why}. Showing the shipped {OFFLINE_SYSTEM}.", 0)
+        self.show_message(
+            self.tr("Offline: {why}. Showing the shipped {OFFLINE_SYSTEM}.").format(
+                why=why, OFFLINE_SYSTEM=OFFLINE_SYSTEM
+            ),
+            0,
+        )
 
     def error_box(self, title: str, text: str) -> None:
         """Tell the user; in the status bar too, so scripted runs leave a trace."""
@@ -314,9 +323,9 @@ class MainWindow(MenusMixin, FileHandlingMixin, ExportMixin, BusMixin, RecoveryM
     def about(self) -> None:
         from pdcp_studio import __version__
 
-        QMessageBox.about(self, "About PDCP Studio",
-                          f"PDCP Studio {__version__}\nSee and configure the PDCP bus "
-                          "inside a powered prosthesis.")
+        QMessageBox.about(self, self.tr("About PDCP Studio"),
+                          self.tr("PDCP Studio {version__}\nSee and configure the PDCP bus "
+                                  "inside a powered prosthesis.").format(version__=__version__))
 
     # -- closing ----------------------------------------------------------------------
     def closeEvent(self, event: QCloseEvent) -> None:

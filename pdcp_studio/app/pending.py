@@ -16,6 +16,7 @@ from __future__ import annotations
 from dataclasses import dataclass
 from typing import Any
 
+from pdcp_studio.app.i18n import translate
 from pdcp_studio.model import parameters as params
 from pdcp_studio.model.refs import ChannelRef, DeviceKey
 from pdcp_studio.model.system import Link, System
@@ -80,7 +81,7 @@ def _end(system: System | None, ref: ChannelRef) -> str:
 
 def _value(value: Any) -> str:
     if isinstance(value, bool):
-        return "on" if value else "off"
+        return translate("Pending", "on") if value else translate("Pending", "off")
     if isinstance(value, str):
         return f"“{value}”"
     if isinstance(value, tuple):

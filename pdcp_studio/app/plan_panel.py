@@ -14,7 +14,7 @@ from __future__ import annotations
 
 from typing import Any
 
-from PySide6.QtCore import Qt, Signal
+from PySide6.QtCore import QT_TRANSLATE_NOOP, Qt, Signal
 from PySide6.QtGui import QBrush
 from PySide6.QtWidgets import (
     QHBoxLayout,
@@ -30,16 +30,17 @@ from PySide6.QtWidgets import (
 from pdcp_studio.app import commands
 from pdcp_studio.app.document import Document
 from pdcp_studio.app.graph import style
+from pdcp_studio.app.i18n import translate
 from pdcp_studio.errors import PdcpError
 from pdcp_studio.model import profile as prof
 from pdcp_studio.model.refs import ChannelRef
 
 #: The operations offered, in menu order: (engine mode, menu text).
 OPERATIONS = (
-    ("autoconfigure", "Autoconfigure"),
-    ("replacements", "Find replacements"),
-    ("startup", "Start-up"),
-    ("enforce", "Enforce sole access"),
+    ("autoconfigure", QT_TRANSLATE_NOOP("PlanPanel", "Autoconfigure")),
+    ("replacements", QT_TRANSLATE_NOOP("PlanPanel", "Find replacements")),
+    ("startup", QT_TRANSLATE_NOOP("PlanPanel", "Start-up")),
+    ("enforce", QT_TRANSLATE_NOOP("PlanPanel", "Enforce sole access")),
 )
 LINK_ROLE = Qt.ItemDataRole.UserRole
 
@@ -59,20 +60,24 @@ class PlanPanel(QWidget):
         buttons = QHBoxLayout()
         self.mode_buttons: dict[str, QPushButton] = {}
         for mode, text in OPERATIONS:
-            b = QPushButton(text)
-            b.setToolTip(f"Preview what {text.lower()} would change")
+            b = QPushButton(translate("PlanPanel", text))
+            b.setToolTip(
+                self.tr("Preview what {v0} would change").format(v0=translate("PlanPanel", text))
+            )
             b.clicked.connect(lambda _c=False, m=mode: self.preview(m))
             buttons.addWidget(b)
             self.mode_buttons[mode] = b
         buttons.addStretch(1)
         box.addLayout(buttons)
-        self.summary = QLabel("No plan previewed. Choose an operation to see what it would "
-                              "change before anything changes.")
+        self.summary = QLabel(self.tr("No plan previewed. Choose an operation to see what it would "
+                              "change before anything changes."))
         self.summary.setWordWrap(True)
         box.addWidget(self.summary)
         self.actions_view = QTreeWidget()
         self.actions_view.setColumnCount(4)
-        self.actions_view.setHeaderLabels(["Action", "Output → input", "Rule", "Similarity"])
+        self.actions_view.setHeaderLabels(
+            [self.tr("Action"), self.tr("Output → input"), self.tr("Rule"), self.tr("Similarity")]
+        )
         self.actions_view.setUniformRowHeights(False)
         header = self.actions_view.header()
         header.setStretchLastSection(False)
@@ -84,8 +89,8 @@ class PlanPanel(QWidget):
         box.addWidget(self.actions_view, 1)
         row = QHBoxLayout()
         row.addStretch(1)
-        self.discard_button = QPushButton("Discard")
-        self.apply_button = QPushButton("Apply")
+        self.discard_button = QPushButton(self.tr("Discard"))
+        self.apply_button = QPushButton(self.tr("Apply"))
         self.apply_button.setDefault(True)
         self.discard_button.clicked.connect(self.discard)
         self.apply_button.clicked.connect(self.apply)
@@ -112,8 +117,11 @@ class PlanPanel(QWidget):
             else:
                 plan = plan_for(mode, self.doc.system, config)
         except (PdcpError, ValueError) as err:
-            self.statusMessage.emit(f"{dict(OPERATIONS).get(mode, mode)}: {err}")
-            self.summary.setText(f"<span style='color:#b91c1c'>Cannot plan: {err}</span>")
+            self.statusMessage.emit(
+                f"{translate('PlanPanel', dict(OPERATIONS).get(mode, mode))}: {err}")
+            self.summary.setText(
+                self.tr("<span style='color:#b91c1c'>Cannot plan: {err}</span>").format(err=err)
+            )
             return None
         self.doc.set_preview(plan)
         return plan
@@ -159,12 +167,13 @@ class PlanPanel(QWidget):
         view = self.actions_view
         view.clear()
         if plan is None:
-            self.summary.setText("No plan previewed. Choose an operation to see what it "
-                                 "would change before anything changes.")
+            self.summary.setText(self.tr("No plan previewed. Choose an operation to see what it "
+                                 "would change before anything changes."))
             return
-        title = dict(OPERATIONS).get(plan.mode, plan.mode)
-        text = (f"<b>{title}</b>: add {len(plan.added)}, remove {len(plan.removed)} "
-                f"({len(plan.links_before)} links before, {len(plan.final_links)} after)")
+        title = translate("PlanPanel", dict(OPERATIONS).get(plan.mode, plan.mode))
+        text = self.tr("<b>{0}</b>: add {1}, remove {2} ({3} links before, {4} after)").format(
+            title, len(plan.added), len(plan.removed), len(plan.links_before),
+            len(plan.final_links))
         if plan.configuration_reason:
             text += f"<br>Configuration ({plan.configuration_source}): " \
                     f"{plan.configuration_reason}"
@@ -224,7 +233,7 @@ class PlanPanel(QWidget):
     def discard(self) -> None:
         if self.plan is not None:
             self.doc.set_preview(None)
-            self.statusMessage.emit("Plan discarded: nothing changed")
+            self.statusMessage.emit(self.tr("Plan discarded: nothing changed"))
 
     def apply(self) -> bool:
         """One undo step; on a live bus a staged change (Write to prosthesis writes it)."""
@@ -238,7 +247,10 @@ class PlanPanel(QWidget):
                 "Staged {0}: {1} to add, {2} to remove — Write to prosthesis writes them "
                 "(Undo unstages)").format(plan.mode, len(plan.added), len(plan.removed)))
         else:
-            self.statusMessage.emit(f"Applied {plan.mode}: {len(plan.added)} added, "
-                                    f"{len(plan.removed)} removed (Undo reverts it)")
+            self.statusMessage.emit(
+                self.tr(
+                    "Applied {mode}: {n_added} added, {n_removed} removed (Undo reverts it)"
+                ).format(mode=plan.mode, n_added=len(plan.added), n_removed=len(plan.removed))
+            )
         self.applied.emit(plan)
         return True

@@ -31,7 +31,7 @@ class BusMixin:
             self._attach_bus_docks(bridge)
         except Exception as err:
             log.exception("bus docks")
-            self.show_message(f"Some bus panels are unavailable: {err}")
+            self.show_message(self.tr("Some bus panels are unavailable: {err}").format(err=err))
 
     def _attach_bus_docks(self, bridge: Any) -> None:
         """Monitor, live plot and simulator panel for a new bridge (made once, reused)."""
@@ -49,7 +49,7 @@ class BusMixin:
         dock = self._leaf_docks.get("plot")
         if dock is None:
             plot = live_plot.LivePlot()
-            dock = self._dock("Live plot", "LivePlotDock", plot,
+            dock = self._dock(self.tr("Live plot"), "LivePlotDock", plot,
                               Qt.DockWidgetArea.BottomDockWidgetArea)
             self.tabifyDockWidget(self.plan_dock, dock)
             self.plan_dock.raise_()
@@ -63,7 +63,7 @@ class BusMixin:
                 old.close()
                 old.deleteLater()
             panel = sim_panel.SimPanel(bridge)
-            dock = self._dock("Simulator", "SimDock", panel,
+            dock = self._dock(self.tr("Simulator"), "SimDock", panel,
                               Qt.DockWidgetArea.RightDockWidgetArea)
             self.tabifyDockWidget(self.inspector_dock, dock)
             self.inspector_dock.raise_()
@@ -131,7 +131,7 @@ class BusMixin:
         """Ask the arbitrator for its stored configuration (on the bridge's worker)."""
         bridge = self.live.bridge
         if bridge is None:
-            self.show_message("Read configuration: connect to a bus first")
+            self.show_message(self.tr("Read configuration: connect to a bus first"))
             return
         bridge.run(lambda _p, _c: bridge.session.read_configuration(),
                    "Read configuration", self._configuration_read)
@@ -140,15 +140,16 @@ class BusMixin:
         self.doc.config = collection
         n = len(getattr(collection, "configurations", []))
         links = sum(len(c.links) for c in getattr(collection, "configurations", []))
-        self.show_message(f"Read the arbitrator's stored configuration: {n} configuration(s), "
-                          f"{links} links — Find replacements and Start-up now use it")
+        self.show_message(self.tr("Read the arbitrator's stored configuration: {n} "
+                                  "configuration(s), {links} links — Find replacements and "
+                                  "Start-up now use it").format(n=n, links=links))
 
     def cancel_bus_work(self) -> None:
         if self.live.connecting is not None and self.live.connecting.is_running:
             self.live.connecting.cancel()
         if self.live.bridge is not None:
             self.live.bridge.cancel_all()
-        self.show_message("Cancelling…")
+        self.show_message(self.tr("Cancelling…"))
 
     def _plot_selection(self, obj: object) -> None:
         from pdcp_studio.model.refs import ChannelRef
@@ -190,7 +191,7 @@ class BusMixin:
         from pdcp_studio.app import write_config_dialog as mod
 
         if self.live.bridge is None:
-            self.error_box("Write configuration", "connect to a bus first")
+            self.error_box(self.tr("Write configuration"), self.tr("connect to a bus first"))
             return
         dialog = mod.WriteConfigDialog.for_system(self.live.bridge, self.doc.system, self)
         # Whatever came of it, plans must use what the arbitrator stores now.

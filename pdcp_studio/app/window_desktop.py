@@ -40,6 +40,7 @@ from PySide6.QtWidgets import (
 )
 
 from pdcp_studio.app import help_viewer
+from pdcp_studio.app.i18n import translate
 from pdcp_studio.app.recent_files import RecentFiles, RecentMenu
 
 #: What a dropped file is, by suffix.
@@ -85,10 +86,10 @@ def _buddy_label(widget: QWidget) -> str:
 
 def _qt_part_name(widget: QWidget) -> str:
     """Names for the buttons Qt adds itself (menu bar and toolbar overflow)."""
-    tr = QApplication.translate
-    return {"qt_menubar_ext_button": tr("Desktop", "More menus"),
-            "qt_toolbar_ext_button": tr("Desktop", "More tools"),
-            "qt_tableview_cornerbutton": tr("Desktop", "Select all")}.get(widget.objectName(), "")
+    names = {"qt_menubar_ext_button": translate("Desktop", "More menus"),
+             "qt_toolbar_ext_button": translate("Desktop", "More tools"),
+             "qt_tableview_cornerbutton": translate("Desktop", "Select all")}
+    return names.get(widget.objectName(), "")
 
 
 def _headers(view: QAbstractItemView) -> str:
@@ -183,7 +184,7 @@ def open_dropped(window: Any, path: Path) -> bool:
         dock.show()
         dock.raise_()
         dock.load_capture(path)
-        window.show_message(QApplication.translate("Desktop", "Opening capture {name}…")
+        window.show_message(translate("Desktop", "Opening capture {name}…")
                             .format(name=path.name))
         return True
     if not window.maybe_save():
@@ -245,9 +246,9 @@ def _steady_toolbar(window: Any, toolbar: QToolBar) -> None:
     tooltip), so the buttons after them never move."""
     style = window.style()
     for action, text, icon, key in (
-            (window.act_undo, QApplication.translate("Desktop", "Undo"),
+            (window.act_undo, translate("Desktop", "Undo"),
              QStyle.StandardPixmap.SP_ArrowBack, "ToolbarUndo"),
-            (window.act_redo, QApplication.translate("Desktop", "Redo"),
+            (window.act_redo, translate("Desktop", "Redo"),
              QStyle.StandardPixmap.SP_ArrowForward, "ToolbarRedo")):
         if action not in toolbar.actions():
             continue
@@ -279,19 +280,18 @@ def _shortcuts(window: Any) -> None:
 
 
 def _help_menu(window: Any) -> None:
-    tr = QApplication.translate
     menu = next((a.menu() for a in window.menuBar().actions()
                  if a.menu() is not None and window.act_about in a.menu().actions()), None)
     if menu is None:
-        menu = window.menuBar().addMenu(tr("Desktop", "&Help"))
+        menu = window.menuBar().addMenu(translate("Desktop", "&Help"))
     window.help_menu = menu
-    window.act_manual = QAction(tr("Desktop", "User &manual"), window)
+    window.act_manual = QAction(translate("Desktop", "User &manual"), window)
     window.act_manual.setShortcut(QKeySequence(QKeySequence.StandardKey.HelpContents))
     window.act_manual.setShortcutContext(Qt.ShortcutContext.ApplicationShortcut)
-    window.act_manual.setStatusTip(tr("Desktop", "The manual, at the part about what you "
+    window.act_manual.setStatusTip(translate("Desktop", "The manual, at the part about what you "
                                                  "are looking at"))
     window.act_manual.triggered.connect(lambda _c=False: open_manual_here(window))
-    window.act_about_qt = QAction(tr("Desktop", "About &Qt"), window)
+    window.act_about_qt = QAction(translate("Desktop", "About &Qt"), window)
     window.act_about_qt.triggered.connect(lambda _c=False: help_viewer.show_about_qt(window))
     window.act_about.triggered.disconnect()
     window.act_about.triggered.connect(lambda _c=False: help_viewer.show_about(window))
@@ -342,8 +342,8 @@ def install_desktop(window: QMainWindow) -> None:
     w._desktop_filter = _DesktopFilter(w)
     w.installEventFilter(w._desktop_filter)
     w.view.viewport().installEventFilter(w._desktop_filter)
-    w.view.setAccessibleName(QApplication.translate("Desktop", "Bus graph"))
-    w.view.setAccessibleDescription(QApplication.translate(
+    w.view.setAccessibleName(translate("Desktop", "Bus graph"))
+    w.view.setAccessibleDescription(translate(
         "Desktop", "The devices of the bus and the links between their channels"))
     name_controls(window)
     w.live.bridgeReady.connect(lambda _b: QTimer.singleShot(0, lambda: _restore_docks(w)))

@@ -64,19 +64,19 @@ class ExportMixin:
             raise OSError(f"{path}: could not write the image")
 
     def ask_export(self, kind: str) -> None:
-        path, _ = QFileDialog.getSaveFileName(self, "Export graph",
+        path, _ = QFileDialog.getSaveFileName(self, self.tr("Export graph"),
                                               str(Path(self._last_dir()) / f"bus.{kind}"),
                                               f"{kind.upper()} (*.{kind})")
         if path:
             try:
                 self.export_graph(path)
-                self.show_message(f"Exported {path}")
+                self.show_message(self.tr("Exported {path}").format(path=path))
             except OSError as err:
-                self.error_box("Cannot export", str(err))
+                self.error_box(self.tr("Cannot export"), str(err))
 
     def ask_report(self) -> None:
-        path, _ = QFileDialog.getSaveFileName(self, "Fitting report",
+        path, _ = QFileDialog.getSaveFileName(self, self.tr("Fitting report"),
                                               str(Path(self._last_dir()) / "fitting.pdf"),
-                                              "PDF (*.pdf)")
+                                              self.tr("PDF (*.pdf)"))
         if path:
             self.write_fitting_report(path)  # patient, prosthetist, this session's changes

@@ -32,7 +32,7 @@ class FileHandlingMixin:
         try:
             opened = files.open_path(path)
         except (PdcpError, OSError) as err:
-            self.error_box("Cannot open", str(err))
+            self.error_box(self.tr("Cannot open"), str(err))
             return False
         self.show_opened(opened, Path(path))
         return True
@@ -49,9 +49,15 @@ class FileHandlingMixin:
                             kind=opened.kind, config=opened.config)
         what = "configuration" if opened.kind == "config" else "system"
         note = f" ({opened.note})" if opened.note else ""
-        self.show_message(f"Opened {what} {path.name if path else ''}: "
-                          f"{len(opened.system.devices)} devices, "
-                          f"{len(opened.system.links)} links{note}")
+        self.show_message(
+            self.tr("Opened {what} {v1}: {n_devices} devices, {n_links} links{note}").format(
+                what=what,
+                v1=path.name if path else "",
+                n_devices=len(opened.system.devices),
+                n_links=len(opened.system.links),
+                note=note,
+            )
+        )
         self._loaded()
 
     def show_configuration_document(self, opened: files.Opened, path: Path) -> None:
@@ -60,7 +66,11 @@ class FileHandlingMixin:
         from pdcp_studio.app.config_view import open_config_window
 
         open_config_window(self, path, opened.config)
-        self.show_message(f"Opened stored configurations {path.name} in their own window")
+        self.show_message(
+            self.tr("Opened stored configurations {name} in their own window").format(
+                name=path.name
+            )
+        )
         if not self.is_ready:
             self._loaded()
     #: ``ask_leave_bus`` answers.
@@ -109,7 +119,7 @@ class FileHandlingMixin:
     def ask_open(self) -> None:
         if not self.maybe_save():
             return
-        path, _ = QFileDialog.getOpenFileName(self, "Open", self._last_dir(), FILE_FILTERS)
+        path, _ = QFileDialog.getOpenFileName(self, self.tr("Open"), self._last_dir(), FILE_FILTERS)
         if path:
             self._remember_dir(path)
             self.open_path(path)
@@ -122,7 +132,7 @@ class FileHandlingMixin:
     def ask_save_as(self) -> bool:
         start = str(self.doc.path) if self.doc.path else str(Path(self._last_dir())
                                                              / "system.json")
-        path, _ = QFileDialog.getSaveFileName(self, "Save as", start, FILE_FILTERS)
+        path, _ = QFileDialog.getSaveFileName(self, self.tr("Save as"), start, FILE_FILTERS)
         if not path:
             return False
         self._remember_dir(path)
@@ -137,11 +147,11 @@ class FileHandlingMixin:
             else:
                 files.save_system(self.doc.system, path, self.doc.positions)
         except (PdcpError, OSError, ValueError) as err:
-            self.error_box("Cannot save", f"{path}: {err}")
+            self.error_box(self.tr("Cannot save"), f"{path}: {err}")
             return False
         self.doc.kind = "config" if files.is_config_path(path) else "system"
         self.doc.mark_saved(path)
-        self.show_message(f"Saved {path}")
+        self.show_message(self.tr("Saved {path}").format(path=path))
         return True
 
     def maybe_save(self) -> bool:
@@ -157,8 +167,12 @@ class FileHandlingMixin:
         """Save, Discard or Cancel (tests replace this method)."""
         SB = QMessageBox.StandardButton
         return QMessageBox.question(
-            self, "Unsaved changes", f"Save the changes to {self.doc.title}?",
-            SB.Save | SB.Discard | SB.Cancel, SB.Save)
+            self,
+            self.tr("Unsaved changes"),
+            self.tr("Save the changes to {title}?").format(title=self.doc.title),
+            SB.Save | SB.Discard | SB.Cancel,
+            SB.Save,
+        )
 
     def _last_dir(self) -> str:
         return str(QSettings().value("files/last_dir", str(Path.home())))

@@ -15,6 +15,7 @@ from PySide6.QtGui import QAction, QKeySequence
 
 from pdcp_studio.app import commands, fitting, pending
 from pdcp_studio.app.history_panel import HistoryPanel
+from pdcp_studio.app.i18n import translate
 from pdcp_studio.app.pending_panel import PendingPanel
 from pdcp_studio.app.transaction_flow import TransactionFlow
 
@@ -30,12 +31,12 @@ class TransactionsMixin:
     def _build_transactions(self) -> None:
         self.flow = TransactionFlow(self)
         self.pending_panel = PendingPanel(self.doc)
-        self.pending_dock = self._dock(_tr("Pending changes"), "PendingDock",
+        self.pending_dock = self._dock(translate("MainWindow", "Pending changes"), "PendingDock",
                                        self.pending_panel,
                                        Qt.DockWidgetArea.BottomDockWidgetArea)
         self.tabifyDockWidget(self.plan_dock, self.pending_dock)
         self.history_panel = HistoryPanel(self)
-        self.history_dock = self._dock(_tr("Fitting history"), "HistoryDock",
+        self.history_dock = self._dock(translate("MainWindow", "Fitting history"), "HistoryDock",
                                        self.history_panel,
                                        Qt.DockWidgetArea.BottomDockWidgetArea)
         self.tabifyDockWidget(self.plan_dock, self.history_dock)
@@ -46,17 +47,23 @@ class TransactionsMixin:
         self.flow.finished.connect(lambda _r: self.history_panel.refresh())
         self.live.sessionStarted.connect(lambda _b: self._load_patient_reference())
 
-        self.act_write_pending = QAction(_tr("&Write to prosthesis…"), self)
+        self.act_write_pending = QAction(translate("MainWindow", "&Write to prosthesis…"), self)
         self.act_write_pending.setShortcut(QKeySequence("Ctrl+Shift+W"))
-        self.act_write_pending.setStatusTip(_tr("Show the pending changes' difference and "
-                                                "write them in one transaction"))
+        self.act_write_pending.setStatusTip(
+            translate(
+                "MainWindow",
+                "Show the pending changes' difference and write them in one transaction",
+            )
+        )
         self.act_write_pending.triggered.connect(lambda _c=False: self.write_pending())
-        self.act_discard_pending = QAction(_tr("&Discard pending changes"), self)
+        self.act_discard_pending = QAction(
+            translate("MainWindow", "&Discard pending changes"), self
+        )
         self.act_discard_pending.triggered.connect(lambda _c=False: self.discard_pending())
         self.act_disconnect.triggered.disconnect()
         self.act_disconnect.triggered.connect(lambda _c=False: self.disconnect_asking())
         self.act_history = self.history_dock.toggleViewAction()
-        self.act_history.setText(_tr("Fitting &history"))
+        self.act_history.setText(translate("MainWindow", "Fitting &history"))
         first = self.bus_menu.actions()[0] if self.bus_menu.actions() else None
         self.bus_menu.insertAction(first, self.act_write_pending)
         self.bus_menu.insertAction(first, self.act_discard_pending)
@@ -92,7 +99,9 @@ class TransactionsMixin:
         if not changes:
             return 0
         stack = doc.undo_stack
-        stack.beginMacro(_tr("Discard {0} pending change(s)").format(len(changes)))
+        stack.beginMacro(
+            translate("MainWindow", "Discard {0} pending change(s)").format(len(changes))
+        )
         try:
             links = [c for c in changes if c.link is not None]
             if links:
@@ -100,7 +109,7 @@ class TransactionsMixin:
                     doc, [commands._action(pending.ADD if c.kind == pending.REMOVE
                                            else pending.REMOVE, c.link,
                                            "as on the prosthesis") for c in links],
-                    _tr("Links as on the prosthesis")))
+                    translate("MainWindow", "Links as on the prosthesis")))
             for c in changes:
                 if c.kind != pending.PARAMETER or c.key is None:
                     continue
@@ -110,8 +119,13 @@ class TransactionsMixin:
                     stack.push(commands.SetDeviceFieldCommand(doc, c.key, c.field, c.old))
         finally:
             stack.endMacro()
-        self.show_message(_tr("Discarded {0} pending change(s): the project is as the "
-                              "prosthesis (Undo brings them back)").format(len(changes)))
+        self.show_message(
+            translate(
+                "MainWindow",
+                "Discarded {0} pending change(s): the project is as the "
+                "prosthesis (Undo brings them back)",
+            ).format(len(changes))
+        )
         return len(changes)
 
     def confirm_unwritten(self) -> bool:
@@ -184,9 +198,9 @@ class TransactionsMixin:
                                 fitting=self.fitting_info(entry),
                                 collection=self.doc.config if self.live.is_live else None)
         except (PdcpError, OSError) as err:
-            self.error_box(_tr("Cannot write the report"), str(err))
+            self.error_box(translate("MainWindow", "Cannot write the report"), str(err))
             return False
-        self.show_message(_tr("Wrote the fitting report {0}").format(path))
+        self.show_message(translate("MainWindow", "Wrote the fitting report {0}").format(path))
         return True
 
     # -- who and for whom ----------------------------------------------------------------

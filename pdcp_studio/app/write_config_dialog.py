@@ -77,7 +77,7 @@ class WriteConfigDialog(QDialog):
     def __init__(self, bridge: Any, collection: ConfigCollection, *,
                  system: System | None = None, parent: QWidget | None = None) -> None:
         super().__init__(parent)
-        self.setWindowTitle("Write configuration to the arbitrator")
+        self.setWindowTitle(self.tr("Write configuration to the arbitrator"))
         self.resize(820, 460)
         self.bridge = bridge
         self.collection = collection
@@ -92,7 +92,9 @@ class WriteConfigDialog(QDialog):
         self.message = QLabel()
         self.message.setWordWrap(True)
         self.table = QTableWidget(0, 4)
-        self.table.setHorizontalHeaderLabels(["Configuration", "Change", "Output", "Input"])
+        self.table.setHorizontalHeaderLabels(
+            [self.tr("Configuration"), self.tr("Change"), self.tr("Output"), self.tr("Input")]
+        )
         self.table.setEditTriggers(QTableWidget.EditTrigger.NoEditTriggers)
         self.table.verticalHeader().setVisible(False)
         self.table.setWordWrap(False)
@@ -104,7 +106,7 @@ class WriteConfigDialog(QDialog):
         self.result = QLabel()
         self.result.setWordWrap(True)
         self.buttons = QDialogButtonBox()
-        self.write_button = QPushButton("Write to arbitrator")
+        self.write_button = QPushButton(self.tr("Write to arbitrator"))
         self.write_button.setAutoDefault(False)
         self.write_button.setDefault(False)
         self.buttons.addButton(self.write_button, QDialogButtonBox.ButtonRole.ActionRole)
@@ -132,13 +134,13 @@ class WriteConfigDialog(QDialog):
         self.state = state
         self.write_button.setEnabled(state == READY)
         done = state in (VERIFIED, MISMATCH, FAILED)
-        self.close_button.setText("Close" if done else "Cancel")
+        self.close_button.setText(self.tr("Close") if done else self.tr("Cancel"))
         self.stateChanged.emit(state)
 
     def start(self) -> None:
         """Read the arbitrator's current configuration to show the diff."""
         self._set_state(READING)
-        self.message.setText("Reading the arbitrator's stored configuration…")
+        self.message.setText(self.tr("Reading the arbitrator's stored configuration…"))
         worker = self.bridge.read_configuration()
         if worker is None:
             self._fail("the bus connection is closed")
@@ -166,8 +168,12 @@ class WriteConfigDialog(QDialog):
             change = (f"Writing adds {count[ADDED]} link(s), removes {count[REMOVED]}"
                       + (f", changes the records of {count[CHANGED]}" if count[CHANGED] else "")
                       + f" and keeps {count[KEPT]}.")
-        self.message.setText(f"{head} {change} The stored configuration decides the links "
-                             "the prosthesis makes at its next start-up.")
+        self.message.setText(
+            self.tr(
+                "{head} {change} The stored configuration decides the links "
+                "the prosthesis makes at its next start-up."
+            ).format(head=head, change=change)
+        )
         self._set_state(READY)
 
     def _show_diff(self) -> None:
@@ -193,7 +199,7 @@ class WriteConfigDialog(QDialog):
         if self.state != READY:
             return None
         self._set_state(WRITING)
-        self.result.setText("Writing…")
+        self.result.setText(self.tr("Writing…"))
         change = Change("config write", configuration=self.collection)
         operator = fitting.operator_name(self)
         parent = self.parent()
@@ -218,9 +224,12 @@ class WriteConfigDialog(QDialog):
             self._read_back()
         elif getattr(result.status, "value", "") == "rolled_back" and result.step == "verify":
             self._set_state(MISMATCH)
-            self.result.setText(f"<b style='color:#b00000'>Verification failed:</b> "
-                                f"{result.reason}. The arbitrator keeps its previous "
-                                "configuration.")
+            self.result.setText(
+                self.tr(
+                    "<b style='color:#b00000'>Verification failed:</b> {reason}. "
+                    "The arbitrator keeps its previous configuration."
+                ).format(reason=result.reason)
+            )
             self.verified.emit(False, result.reason)
         elif result.ok:  # nothing to change: the arbitrator holds it already
             self._read_back()
@@ -243,7 +252,7 @@ class WriteConfigDialog(QDialog):
         """The transaction verified its own read-back already; read once more,
         independently."""
         self._set_state(VERIFYING)
-        self.result.setText("Written. Reading back to verify…")
+        self.result.setText(self.tr("Written. Reading back to verify…"))
         worker = self.bridge.read_configuration()
         if worker is None:
             self._fail("the bus connection closed before the read-back")
@@ -266,15 +275,21 @@ class WriteConfigDialog(QDialog):
             message = diff.describe("written", "read back")
         self._set_state(VERIFIED if ok else MISMATCH)
         if ok:
-            self.result.setText(f"<b>Verified:</b> {message}.")
+            self.result.setText(self.tr("<b>Verified:</b> {message}.").format(message=message))
         else:
-            self.result.setText(f"<b style='color:#b00000'>Verification failed:</b> {message}. "
-                                "Do not rely on the stored configuration; write it again.")
+            self.result.setText(
+                self.tr(
+                    "<b style='color:#b00000'>Verification failed:</b> {message}. "
+                    "Do not rely on the stored configuration; write it again."
+                ).format(message=message)
+            )
         self.verified.emit(ok, message)
 
     def _fail(self, message: str) -> None:
         self._set_state(FAILED)
-        self.result.setText(f"<b style='color:#b00000'>Failed:</b> {message}")
+        self.result.setText(
+            self.tr("<b style='color:#b00000'>Failed:</b> {message}").format(message=message)
+        )
         self.verified.emit(False, message)
 
     def reject(self) -> None:

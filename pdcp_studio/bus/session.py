@@ -434,6 +434,8 @@ def open_sim_session(name: str, *, url: str = "", settle_timeout: float = SIM_SE
 
     entry = resolve_prosthesis(name)
     system = entry.load()
+    if data_rate_hz is None:
+        data_rate_hz = entry.data_rate_hz
     arb_opts = _arbitrator_options(options)
     arb_opts.setdefault("startup_quiet_s", SIM_STARTUP_QUIET_S)
     arb_opts.setdefault("frame_events", True)

@@ -138,9 +138,11 @@ def restore_change(entry: dict, links_now: list) -> Any:
 
 
 def run_restore(args: argparse.Namespace) -> int:
+    from pdcp_studio.bus.urls import check_bus_url
     from pdcp_studio.cli.change_road import carry_out
     from pdcp_studio.cli.scan import open_bus_session
 
+    check_bus_url(args.bus)  # a bad --bus is the same line from every command, checked first
     with _open() as history:
         entry = _entry(history, args.id)
     session = open_bus_session(args.bus, memory=args.memory)

@@ -13,6 +13,7 @@ is a terminal channel connected) belongs to fitting the configuration to a prost
 from __future__ import annotations
 
 from dataclasses import dataclass
+from typing import Any
 
 from pdcp_studio.engine.checks import Severity
 from pdcp_studio.engine.similarity import determine_similarity
@@ -38,7 +39,7 @@ class ConfigFinding:
     links: tuple[int, ...] = ()
     refs: tuple[ChannelRef, ...] = ()
 
-    def to_json(self) -> dict:
+    def to_json(self) -> dict[str, Any]:
         return {"severity": self.severity.value, "code": self.code, "message": self.message,
                 "links": list(self.links), "refs": [r.as_json() for r in self.refs]}
 

@@ -15,7 +15,11 @@ innermost open declaration (collection, configuration, link, input or output cha
 ``UnknownRecord`` in file order, with ``after`` = the known record of that declaration it
 followed (``None`` when no known record of the declaration follows it). The writer puts it
 back right after that record, so decode → encode of a valid file gives the same records,
-only the checksum added or recomputed (and, as before, known values in code order).
+only the checksum added or recomputed (and, as before, known values in code order). The
+contract JSON carries each record as ``{"code", "value"}`` on its object, in file order, and
+nothing more: through JSON a record keeps its declaration and order and is written at the
+end of that declaration's own records, where writers append (``from_json`` also takes an
+optional ``"after": CODE`` to pin it elsewhere).
 
 Decisions (reference §3 plus the ones it leaves open):
 - Extension code 16 = checksum: CRC-16/CCITT-FALSE of every byte before it, immediately
@@ -124,10 +128,10 @@ class _Reader:
         self.count_off = self.cfg_off = self.link_count_off = self.link_off = -1
         self.channel_off = -1
         # Unknown records of each open declaration, as [code, value, after].
-        self.coll_unknown: list[list] = []
-        self.cfg_unknown: list[list] = []
-        self.link_unknown: list[list] = []
-        self.channel_unknown: list[list] = []
+        self.coll_unknown: list[list[int]] = []
+        self.cfg_unknown: list[list[int]] = []
+        self.link_unknown: list[list[int]] = []
+        self.channel_unknown: list[list[int]] = []
 
     def unknown(self, code: int, value: int, after: int) -> None:
         """Keep an unknown record on the innermost open declaration."""
@@ -253,7 +257,7 @@ class _Reader:
         return ConfigCollection(configurations=self.configs, unknown=kept)
 
 
-def _kept(records: list[list], last: int) -> Unknown:
+def _kept(records: list[list[int]], last: int) -> Unknown:
     """Unknown records of a closed declaration; ``after`` the declaration's last known
     record becomes ``None`` (the end), the usual place and the one edits keep."""
     return tuple(UnknownRecord(code, value, None if after == last else after)
@@ -462,15 +466,8 @@ def channel_to_json(ch: StoredChannel) -> dict[str, Any]:
 
 
 def unknown_to_json(records: Unknown) -> list[dict[str, int]]:
-    """``[{"code": 32, "value": 4660}, …]``; ``"after"`` only for a record that sat
-    before another known record of its declaration (rare: writers append)."""
-    out = []
-    for rec in records:
-        item = {"code": rec.code, "value": rec.value}
-        if rec.after is not None:
-            item["after"] = rec.after
-        out.append(item)
-    return out
+    """``[{"code": 32, "value": 4660}, …]`` in file order (contracts §2)."""
+    return [{"code": rec.code, "value": rec.value} for rec in records]
 
 
 def _with_unknown(doc: dict[str, Any], records: Unknown) -> dict[str, Any]:
@@ -517,7 +514,7 @@ def _json_list(doc: Any, key: str, path: str) -> list[Any]:
     return found
 
 
-def unknown_from_json(doc: dict, path: str) -> Unknown:
+def unknown_from_json(doc: dict[str, Any], path: str) -> Unknown:
     """The optional ``unknown_records`` list of an object; codes 1…16 are refused."""
     items = doc.get("unknown_records")
     if items is None:

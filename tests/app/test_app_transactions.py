@@ -140,7 +140,12 @@ def test_undo_of_a_written_change_is_a_new_transaction(live, qtbot):
     assert HAND_LINK not in _bus_links(live) and doc.undo_stack.index() == 2
     # Confirmed: the prosthesis gets the link back, and the project steps back over the edit.
     seen = []
-    live.flow.confirm = lambda title, preview: seen.append((title, preview)) or True
+
+    def confirm(title, preview):  # the operator says yes, and we keep what was shown
+        seen.append((title, preview))
+        return True
+
+    live.flow.confirm = confirm
     result = _write(live, qtbot, lambda: live.act_undo.trigger())
     assert result.written, result.summary()
     assert seen and seen[0][0].startswith("Undo on the prosthesis")

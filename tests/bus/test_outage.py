@@ -14,7 +14,6 @@ import can
 import pytest
 
 from pdcp_studio.bus import events as ev
-from pdcp_studio.bus.connection import open_connections
 from pdcp_studio.bus.device_host import DeviceHost
 from pdcp_studio.bus.device_sim import SimulatedDevice
 from pdcp_studio.bus.outage import BACKOFF_S, Outage
@@ -23,13 +22,6 @@ from pdcp_studio.bus.session import open_session
 from pdcp_studio.bus.simulator import TEST2_LINKS, load_prosthesis
 from pdcp_studio.bus.urls import unique_virtual_channel
 from tests.bus.slcan_rig import SlcanAdapter
-
-
-@pytest.fixture(autouse=True)
-def no_bus_left_open():
-    before = set(open_connections())
-    yield
-    assert not set(open_connections()) - before, "a test left a bus open"
 
 
 # -- the pure decisions -----------------------------------------------------------------------
@@ -181,3 +173,13 @@ def test_a_pulled_slcan_adapter_is_said_once_reopened_and_its_links_re_read(tmp_
         session.close()
         host.close()
         adapter.close()
+
+
+def test_the_headless_arbitrator_prints_the_outage_lines():
+    from pdcp_studio.cli.arbitrator import describe
+
+    line = "can:slcan:/dev/x: the adapter is disconnected (EIO); reconnecting"
+    assert describe(ev.BusState("disconnected", line)) == \
+        f"disconnected — reconnecting: {line}"
+    assert describe(ev.BusState("reconnected", "back")) == "reconnected: back"
+    assert describe(ev.BusState("yielded", "another")) is None  # said on stderr, once

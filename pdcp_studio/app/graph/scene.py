@@ -149,7 +149,9 @@ class BusScene(QGraphicsScene):
             if self.port(link.output) is None or self.port(link.input) is None:
                 continue
             item = LinkItem(self, link, "unwritten")
-            item.setToolTip(f"Pending removal (still on the prosthesis): {link}")
+            item.setToolTip(
+                self.tr("Pending removal (still on the prosthesis): {link}").format(link=link)
+            )
             self.addItem(item)
             self.unwritten_items.append(item)
 
@@ -349,7 +351,7 @@ class BusScene(QGraphicsScene):
             links.append(self.doc.selection)
         n = commands.push_remove_links(self.doc, links)
         if n:
-            self.statusMessage.emit(f"Removed {n} link{'s' * (n != 1)}")
+            self.statusMessage.emit(self.tr("Removed {n} link{v1}").format(n=n, v1='s' * (n != 1)))
         return n
 
     # -- gestures: drawing a link ---------------------------------------------------
@@ -359,7 +361,9 @@ class BusScene(QGraphicsScene):
         self.addItem(self._drag)
         self._drag.follow(pos)
         what = "an input" if port.is_output else "an output"
-        self.statusMessage.emit(f"Drag from {port.ref} to {what} to link them")
+        self.statusMessage.emit(
+            self.tr("Drag from {ref} to {what} to link them").format(ref=port.ref, what=what)
+        )
 
     def port_at(self, pos: QPointF) -> PortItem | None:
         r = style.PORT_RADIUS + 4
@@ -403,18 +407,22 @@ class BusScene(QGraphicsScene):
         target = self.port_at(pos)
         if target is None or target is start:
             self.last_link_result = (None, "no target port")
-            self.statusMessage.emit("Link cancelled: release over a port to link")
+            self.statusMessage.emit(self.tr("Link cancelled: release over a port to link"))
             return None
         a, b = self._ends(start, target)
         reason = link_refusal(self.doc.system, a, b)
         if reason:
             self.last_link_result = (None, reason)
-            self.statusMessage.emit(f"Cannot link {a} → {b}: {reason}")
+            self.statusMessage.emit(
+                self.tr("Cannot link {a} → {b}: {reason}").format(a=a, b=b, reason=reason)
+            )
             return None
         link = Link(a, b)
         commands.push_add_link(self.doc, link)
         self.last_link_result = (link, "")
-        self.statusMessage.emit(f"Linked {self._describe(a)} → {self._describe(b)}")
+        self.statusMessage.emit(
+            self.tr("Linked {v0} → {v1}").format(v0=self._describe(a), v1=self._describe(b))
+        )
         return link
 
     def _cancel_drag(self) -> None:
