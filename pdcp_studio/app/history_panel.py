@@ -330,9 +330,13 @@ class HistoryPanel(QWidget):
             self.main.error_box(self.tr("Restore"), self.tr("connect to the prosthesis "
                                                               "first"))
             return False
-        from pdcp_studio.cli.history import restore_change  # the CLI's own: one restore
+        from pdcp_studio.bus.transaction import NotRestorable, restore_change
 
-        change = restore_change(entry, list(bus.links))
+        try:
+            change = restore_change(entry, list(bus.links))  # the CLI's restore too
+        except NotRestorable as err:
+            self.main.error_box(self.tr("Restore"), str(err))
+            return False
         return bool(self.main.flow.run(
             change, self.tr("Restore history entry {0}").format(entry["id"])))
 
