@@ -48,8 +48,6 @@ if TYPE_CHECKING:
 
 ENV_PATH = "PDCP_STUDIO_HISTORY"
 ENV_OPERATOR = "PDCP_STUDIO_OPERATOR"
-#: The archive's name in the user's data folder.
-FILE_NAME = "history.sqlite"
 GENESIS = "0" * 64
 #: Seconds an append waits for another process's write to finish.
 BUSY_TIMEOUT_S = 15.0
@@ -85,12 +83,9 @@ class HistoryError(PdcpError):
 def default_path() -> Path:
     """``$PDCP_STUDIO_HISTORY``, else the archive in the user's data folder — the one path
     ``doctor`` shows too (``pdcp_studio.paths.history_path``)."""
-    env = os.environ.get(ENV_PATH)
-    if env:
-        return Path(env)
-    from pdcp_studio.paths import user_data_dir  # paths.history_path delegates here
+    from pdcp_studio.paths import history_path
 
-    return user_data_dir() / FILE_NAME
+    return history_path()
 
 
 def default_operator() -> str:
