@@ -14,14 +14,12 @@ inside — the shipped resources, which an installation may not let anyone write
 
 from __future__ import annotations
 
-import os
 from functools import cache
 from importlib import resources
 from pathlib import Path
 
 APP_NAME = "pdcp-studio"
 RESOURCES_PACKAGE = "pdcp_studio.resources"
-HISTORY_ENV = "PDCP_STUDIO_HISTORY"
 
 
 @cache
@@ -79,7 +77,8 @@ def user_catalogs_dir() -> Path:
 
 
 def history_path() -> Path:
-    """The fitting-history archive: ``$PDCP_STUDIO_HISTORY`` when set, else
-    ``history.sqlite`` in the user's data folder (contracts §2)."""
-    env = os.environ.get(HISTORY_ENV)
-    return Path(env) if env else user_data_dir() / "history.sqlite"
+    """The fitting-history archive: ``$PDCP_STUDIO_HISTORY`` when set, else a file in the
+    user's data folder (contracts §2; :func:`pdcp_studio.storage.history.default_path`)."""
+    from pdcp_studio.storage.history import default_path
+
+    return default_path()

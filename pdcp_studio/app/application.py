@@ -23,7 +23,7 @@ SETTLE_MS = 150
 
 def run_app(path: str | Path | None = None, bus: str | None = None,
             screenshot: str | Path | None = None, *, size: tuple[int, int] | None = None,
-            started: float | None = None) -> int:
+            started: float | None = None, lang: str | None = None) -> int:
     """Run the app until its window closes; returns the exit status.
 
     ``path`` is opened before the window appears so a bad file fails like any CLI input
@@ -46,13 +46,23 @@ def run_app(path: str | Path | None = None, bus: str | None = None,
     app.setApplicationName("PDCP Studio")
     app.setOrganizationName("PDCP Studio")
     app.setApplicationDisplayName("PDCP Studio")
+    app.setDesktopFileName("pdcp-studio")  # matches packaging/pdcp-studio.desktop
+    from pdcp_studio.app import i18n
+
+    i18n.install(app, lang)  # the system's language, or --lang
     _set_icon(app)
 
     from pdcp_studio.app.main_window import DEFAULT_BUS, MainWindow
+    from pdcp_studio.app.smoke import SMOKE_ENV
 
-    scripted = screenshot is not None or bool(os.environ.get(PROBE_ENV))
+    smoke_report = os.environ.get(SMOKE_ENV)
+    scripted = screenshot is not None or bool(os.environ.get(PROBE_ENV)) or bool(smoke_report)
     window = MainWindow(recovery=None if scripted else _recovery())
     window.quiet = scripted
+    if not scripted:
+        from pdcp_studio.app.window_desktop import remember_layout
+
+        remember_layout(window)  # last session's size and docks; saved again on close
     if size is not None:
         window.resize(*size)
     status = {"code": 0}
@@ -62,7 +72,10 @@ def run_app(path: str | Path | None = None, bus: str | None = None,
         bridge = window.live.bridge
         if window.progress.isVisible() and (bridge is None or not bridge.busy):
             window.progress.hide()  # the last job's bar, hidden a moment later anyway
-        image = window.grab()
+        # A .pdcfg opens in its own window (app/config_view.py): that is what was asked for.
+        target = (getattr(window, "config_windows", None) or [window])[-1]
+        target.view.fit_all()
+        image = target.grab()
         if status["code"]:
             pass  # what was asked for is not on screen: no picture of an empty window
         elif not image.save(str(screenshot), "PNG"):
@@ -72,7 +85,17 @@ def run_app(path: str | Path | None = None, bus: str | None = None,
         window.close()
         app.quit()
 
+    def smoke() -> None:
+        from pdcp_studio.app import smoke as smoke_mod
+
+        status["code"] = smoke_mod.run(window, str(smoke_report))
+        window.doc.mark_saved()
+        window.close()
+        app.quit()
+
     def on_ready() -> None:
+        if smoke_report:
+            QTimer.singleShot(SETTLE_MS, smoke)
         if os.environ.get(PROBE_ENV):
             QTimer.singleShot(0, probe)
         if screenshot is not None:
@@ -116,7 +139,7 @@ def run_app(path: str | Path | None = None, bus: str | None = None,
         # The graph's layout needs networkx (~0.3 s to import): load it while the bus
         # connects on its worker, not after the bus has answered.
         QTimer.singleShot(0, _preload_layout)
-    if screenshot is not None or os.environ.get(PROBE_ENV):
+    if screenshot is not None or os.environ.get(PROBE_ENV) or smoke_report:
         QTimer.singleShot(SCREENSHOT_TIMEOUT_MS, give_up)
     code = app.exec()
     window.live.disconnect_bus()

@@ -14,16 +14,21 @@ Public API
 
 Pure helpers (no widgets): ``links_of_system``, ``links_of_configuration``,
 ``sources_of_collection``, ``load_file_sources(path)``, ``compare(sources)``.
+
+When a stored configuration is known on both sides (a ``.pdcfg`` and the arbitrator's), the
+summary also says how they differ record by record — with the one configuration diff
+(:mod:`pdcp_studio.model.config_diff`) that ``config diff`` and the write dialog use.
 """
 
 from __future__ import annotations
 
+import html
 import threading
 from collections.abc import Sequence
 from pathlib import Path
 from typing import Any, NamedTuple
 
-from PySide6.QtCore import Qt, Signal
+from PySide6.QtCore import QT_TRANSLATE_NOOP, Qt, Signal
 from PySide6.QtGui import QBrush, QColor
 from PySide6.QtWidgets import (
     QCheckBox,
@@ -40,12 +45,13 @@ from PySide6.QtWidgets import (
     QWidget,
 )
 
+from pdcp_studio.app.i18n import translate
 from pdcp_studio.app.workers import Worker
 from pdcp_studio.model.configuration import ConfigCollection, StoredConfiguration
 from pdcp_studio.model.refs import ChannelRef
 from pdcp_studio.model.system import Link, System
 
-ON_SCREEN = "On screen"
+ON_SCREEN = QT_TRANSLATE_NOOP("CompareDialog", "On screen")
 ARBITRATOR = "Arbitrator"
 ONLY_COLOUR = QColor(255, 236, 200)
 TICK = "✓"
@@ -68,10 +74,12 @@ class CompareRow(NamedTuple):
         """Where this link is, in words: ``in all``, ``only in X``, ``in X and Y``."""
         where = [n for n, p in zip(names, self.present, strict=True) if p]
         if len(where) == len(names):
-            return "in all" if len(names) > 1 else "present"
+            return (translate("CompareDialog", "in all") if len(names) > 1
+                    else translate("CompareDialog", "present"))
         if len(where) == 1:
-            return f"only in {where[0]}"
-        return "in " + " and ".join(where)
+            return translate("CompareDialog", "only in {0}").format(where[0])
+        return translate("CompareDialog", "in {0}").format(
+            translate("CompareDialog", " and ").join(where))
 
     @property
     def everywhere(self) -> bool:
@@ -85,8 +93,11 @@ def links_of_system(system: System) -> frozenset[Link]:
 
 
 def links_of_configuration(cfg: StoredConfiguration) -> frozenset[Link]:
-    """A stored configuration's links as output → input references (types are not compared)."""
-    return frozenset(Link(sl.output.ref, sl.input.ref) for sl in cfg.links)
+    """A stored configuration's links as output → input references (types are not compared;
+    the records are, by :func:`~pdcp_studio.model.config_diff.diff_configurations`)."""
+    from pdcp_studio.model.config_diff import link_ends
+
+    return frozenset(Link(out, inp) for out, inp in link_ends(ConfigCollection([cfg])))
 
 
 def sources_of_collection(name: str, collection: ConfigCollection | None) -> list[LinkSource]:
@@ -101,14 +112,20 @@ def sources_of_collection(name: str, collection: ConfigCollection | None) -> lis
 
 def load_file_sources(path: str | Path) -> list[LinkSource]:
     """Read a ``.pdcfg`` (config_codec) or a system file; errors name the file and where."""
+    return load_file(path)[0]
+
+
+def load_file(path: str | Path) -> tuple[list[LinkSource], ConfigCollection | None]:
+    """The file's sources, and its stored configuration when it is a ``.pdcfg``."""
     path = Path(path)
     if path.suffix.lower() == ".pdcfg":
         from pdcp_studio.storage import config_codec
 
-        return sources_of_collection(path.name, config_codec.load_path(path))
+        collection = config_codec.load_path(path)
+        return sources_of_collection(path.name, collection), collection
     from pdcp_studio.storage import system_file
 
-    return [LinkSource(path.name, links_of_system(system_file.load_path(path)))]
+    return [LinkSource(path.name, links_of_system(system_file.load_path(path)))], None
 
 
 def compare(sources: Sequence[LinkSource]) -> list[CompareRow]:
@@ -137,12 +154,15 @@ class CompareDialog(QDialog):
     def __init__(self, system: System, *, bridge: Any = None,
                  parent: QWidget | None = None) -> None:
         super().__init__(parent)
-        self.setWindowTitle("Compare configurations")
+        self.setWindowTitle(self.tr("Compare configurations"))
         self.resize(860, 480)
         self.system = system
         self.bridge = bridge
         self.file_sources: list[LinkSource] = []
         self.arbitrator_sources: list[LinkSource] = []
+        #: The stored configurations behind the file and arbitrator columns (when known).
+        self.file_collection: ConfigCollection | None = None
+        self.arbitrator_collection: ConfigCollection | None = None
         self._rows: list[CompareRow] = []
         self._workers: set[Worker] = set()
 
@@ -154,14 +174,14 @@ class CompareDialog(QDialog):
         self.table.setTextElideMode(Qt.TextElideMode.ElideMiddle)  # keep the keys visible
         self.summary = QLabel()
         self.summary.setWordWrap(True)
-        self.open_button = QPushButton("Open file…")
+        self.open_button = QPushButton(self.tr("Open file…"))
         self.open_button.clicked.connect(self._ask_file)
-        self.read_button = QPushButton("Read arbitrator")
+        self.read_button = QPushButton(self.tr("Read arbitrator"))
         self.read_button.clicked.connect(self.read_arbitrator)
         self.read_button.setEnabled(bridge is not None)
         if bridge is None:
-            self.read_button.setToolTip("Connect to a bus to read its arbitrator")
-        self.diff_only = QCheckBox("Differences only")
+            self.read_button.setToolTip(self.tr("Connect to a bus to read its arbitrator"))
+        self.diff_only = QCheckBox(self.tr("Differences only"))
         self.diff_only.toggled.connect(lambda _on: self._fill())
         buttons = QDialogButtonBox(QDialogButtonBox.StandardButton.Close)
         buttons.rejected.connect(self.reject)
@@ -175,28 +195,39 @@ class CompareDialog(QDialog):
         layout.addWidget(self.table)
         layout.addWidget(self.summary)
         layout.addWidget(buttons)
-        self.error.connect(lambda msg: self.summary.setText(f"<b>Error:</b> {msg}"))
+        self.error.connect(
+            lambda msg: self.summary.setText(self.tr("<b>Error:</b> {msg}").format(msg=msg))
+        )
         self.refresh()
 
     # -- sources ---------------------------------------------------------------------------
     def sources(self) -> list[LinkSource]:
         """The compared sources in column order: on screen, file, arbitrator."""
-        return [LinkSource(ON_SCREEN, links_of_system(self.system)), *self.file_sources,
-                *self.arbitrator_sources]
+        return [
+            LinkSource(translate("CompareDialog", ON_SCREEN), links_of_system(self.system)),
+            *self.file_sources,
+            *self.arbitrator_sources,
+        ]
 
     def set_system(self, system: System) -> None:
         """Compare another on-screen system."""
         self.system = system
         self.refresh()
 
-    def set_file_sources(self, sources: list[LinkSource]) -> None:
-        """Use these sources as the file's columns."""
+    def set_file_sources(self, sources: list[LinkSource],
+                         collection: ConfigCollection | None = None) -> None:
+        """Use these sources as the file's columns (``collection``: its stored configuration)."""
         self.file_sources = list(sources)
+        self.file_collection = collection
         self.refresh()
+
+    def _file_loaded(self, loaded: tuple) -> None:
+        self.set_file_sources(*loaded)
 
     def set_arbitrator(self, collection: ConfigCollection | None) -> None:
         """Show a stored configuration read from the arbitrator (None: it stores none)."""
         self.arbitrator_sources = sources_of_collection(ARBITRATOR, collection)
+        self.arbitrator_collection = collection
         self.refresh()
 
     def _track(self, worker: Worker) -> Worker:
@@ -205,13 +236,13 @@ class CompareDialog(QDialog):
 
     def load_file(self, path: str | Path) -> Worker:
         """Read a system file or ``.pdcfg`` on a worker; the table follows when it is read."""
-        self.summary.setText(f"Reading {Path(path).name}…")
+        self.summary.setText(self.tr("Reading {name}…").format(name=Path(path).name))
 
-        def work(_p: Any, _c: threading.Event) -> list[LinkSource]:
-            return load_file_sources(path)
+        def work(_p: Any, _c: threading.Event) -> tuple:
+            return load_file(path)
 
         worker = Worker(work, f"Read {path}")
-        worker.finished.connect(self.set_file_sources)  # bound slots only: Qt drops them
+        worker.finished.connect(self._file_loaded)  # bound slots only: Qt drops them
         worker.failed.connect(self._file_failed)  # if the dialog is deleted meanwhile
         return self._track(worker).start()
 
@@ -221,28 +252,28 @@ class CompareDialog(QDialog):
     def read_arbitrator(self) -> Worker | None:
         """Read the arbitrator's stored configuration through the bridge."""
         if self.bridge is None:
-            self.error.emit("Not connected to a bus: there is no arbitrator to read")
+            self.error.emit(self.tr("Not connected to a bus: there is no arbitrator to read"))
             return None
         worker = self.bridge.read_configuration()
         if worker is None:
             return None
         self.read_button.setEnabled(False)
-        self.summary.setText("Reading the arbitrator's stored configuration…")
+        self.summary.setText(self.tr("Reading the arbitrator's stored configuration…"))
         worker.finished.connect(self.set_arbitrator)
         worker.failed.connect(self._read_failed)
         worker.done.connect(self._read_done)
         return self._track(worker)
 
     def _read_failed(self, message: str) -> None:
-        self.error.emit(f"Reading the arbitrator: {message}")
+        self.error.emit(self.tr("Reading the arbitrator: {message}").format(message=message))
 
     def _read_done(self) -> None:
         self.read_button.setEnabled(self.bridge is not None)
 
     def _ask_file(self) -> None:
         path, _ = QFileDialog.getOpenFileName(
-            self, "Compare with a file", "",
-            "Configurations and systems (*.pdcfg *.json);;All files (*)")
+            self, self.tr("Compare with a file"), "",
+            self.tr("Configurations and systems (*.pdcfg *.json);;All files (*)"))
         if path:
             self.load_file(path)
 
@@ -266,7 +297,9 @@ class CompareDialog(QDialog):
         shown = [r for r in self._rows if not (self.diff_only.isChecked() and r.everywhere)]
         self.table.clear()
         self.table.setColumnCount(3 + len(names))
-        self.table.setHorizontalHeaderLabels(["Output", "Input", *names, "Status"])
+        self.table.setHorizontalHeaderLabels(
+            [self.tr("Output"), self.tr("Input"), *names, self.tr("Status")]
+        )
         self.table.setRowCount(len(shown))
         for i, row in enumerate(shown):
             cells = [ref_label(self.system, row.link.output),
@@ -291,5 +324,14 @@ class CompareDialog(QDialog):
             status = row.status(names)
             counts[status] = counts.get(status, 0) + 1
         parts = [f"{n} {status}" for status, n in sorted(counts.items())]
-        self.summary.setText(f"{len(self._rows)} link(s): " + (", ".join(parts) or "none"))
+        text = self.tr("{0} link(s): {1}").format(len(self._rows),
+                                                  ", ".join(parts) or self.tr("none"))
+        if self.file_collection is not None and self.arbitrator_collection is not None:
+            from pdcp_studio.model.config_diff import diff_configurations
+
+            name = self.file_sources[0].name.split(" #")[0] if self.file_sources else "file"
+            diff = diff_configurations(self.file_collection, self.arbitrator_collection)
+            text += ("<br>Stored configurations, record by record: "
+                     + html.escape(diff.describe(name, ARBITRATOR)))
+        self.summary.setText(text)
         self.compared.emit()

@@ -25,7 +25,7 @@ import threading
 from collections.abc import Callable
 from typing import Any, ClassVar
 
-from PySide6.QtCore import QSettings, Qt, Signal
+from PySide6.QtCore import QT_TRANSLATE_NOOP, QSettings, Qt, Signal
 from PySide6.QtWidgets import (
     QComboBox,
     QDialog,
@@ -39,6 +39,7 @@ from PySide6.QtWidgets import (
     QWidget,
 )
 
+from pdcp_studio.app.i18n import translate
 from pdcp_studio.app.workers import Worker
 
 log = logging.getLogger(__name__)
@@ -119,7 +120,7 @@ class BusPage(QWidget):
 
 class SimPage(BusPage):
     kind = "sim"
-    title = "Simulated prosthesis"
+    title = QT_TRANSLATE_NOOP("ConnectDialog", "Simulated prosthesis")
 
     def __init__(self, parent: QWidget | None = None) -> None:
         super().__init__(parent)
@@ -129,7 +130,7 @@ class SimPage(BusPage):
         self.description.setWordWrap(True)
         self.list.currentRowChanged.connect(self._selected)
         layout = QVBoxLayout(self)
-        layout.addWidget(QLabel("A built-in prosthesis on an in-process virtual bus:"))
+        layout.addWidget(QLabel(self.tr("A built-in prosthesis on an in-process virtual bus:")))
         layout.addWidget(self.list)
         layout.addWidget(self.description)
         self.set_url(f"sim:{DEFAULT_SIM}")
@@ -162,7 +163,7 @@ class _DetectingPage(BusPage):
         super().__init__(parent)
         self.status = QLabel("")
         self.status.setWordWrap(True)
-        self.detect_button = QPushButton("Detect")
+        self.detect_button = QPushButton(self.tr("Detect"))
         self.detect_button.clicked.connect(self.detect)
         self._worker: Worker | None = None
 
@@ -175,7 +176,7 @@ class _DetectingPage(BusPage):
     def detect(self) -> Worker:
         """Probe in the background; the result fills the fields and emits ``detected``."""
         self.detect_button.setEnabled(False)
-        self.status.setText("Detecting…")
+        self.status.setText(self.tr("Detecting…"))
         self._worker = worker = Worker(self._probe(), f"Detect {self.kind}")
         worker.finished.connect(self._show)
         worker.failed.connect(self._failed)  # bound slots: dropped if the page is gone
@@ -183,7 +184,7 @@ class _DetectingPage(BusPage):
         return worker.start()
 
     def _failed(self, message: str) -> None:
-        self.status.setText(f"Detection failed: {message}")
+        self.status.setText(self.tr("Detection failed: {message}").format(message=message))
 
     def _detect_done(self) -> None:
         self.detect_button.setEnabled(True)
@@ -197,7 +198,7 @@ class _DetectingPage(BusPage):
 
 class CanPage(_DetectingPage):
     kind = "can"
-    title = "CAN interface"
+    title = QT_TRANSLATE_NOOP("ConnectDialog", "CAN interface")
 
     def __init__(self, parent: QWidget | None = None) -> None:
         super().__init__(parent)
@@ -207,7 +208,7 @@ class CanPage(_DetectingPage):
         self.channel.setEditable(True)
         self.bitrate = QComboBox()
         self.bitrate.setEditable(True)
-        self.bitrate.addItem("(interface default)", None)
+        self.bitrate.addItem(self.tr("(interface default)"), None)
         for rate in CAN_BITRATES:
             self.bitrate.addItem(f"{rate}", rate)
         self.bitrate.setCurrentText(str(DEFAULT_BITRATE))  # PDCP runs at 1 Mbit/s
@@ -216,9 +217,9 @@ class CanPage(_DetectingPage):
         self._configs: list[dict] = []
         self.interface.currentTextChanged.connect(lambda _t: self._suggest_channels())
         form = QFormLayout(self)
-        form.addRow("Interface", self.interface)
-        form.addRow("Channel", self.channel)
-        form.addRow("Bitrate (bit/s)", self.bitrate)
+        form.addRow(self.tr("Interface"), self.interface)
+        form.addRow(self.tr("Channel"), self.channel)
+        form.addRow(self.tr("Bitrate (bit/s)"), self.bitrate)
         form.addRow(self.detect_button, self.status)
         self.set_url("can:socketcan:can0")
 
@@ -228,7 +229,11 @@ class CanPage(_DetectingPage):
     def _show(self, configs: list[dict]) -> None:
         self._configs = [c for c in configs if c.get("interface") and c.get("channel")]
         kinds = sorted({str(c["interface"]) for c in self._configs})
-        self.status.setText(f"Found: {', '.join(kinds)}" if kinds else "No CAN interface found")
+        self.status.setText(
+            self.tr("Found: {v0}").format(v0=", ".join(kinds))
+            if kinds
+            else self.tr("No CAN interface found")
+        )
         if self._configs and self.interface.currentText() not in kinds:
             self.interface.setCurrentText(kinds[0])
         self._suggest_channels()
@@ -269,13 +274,13 @@ class CanPage(_DetectingPage):
 
 class SerialPage(_DetectingPage):
     kind = "serial"
-    title = "Serial host link"
+    title = QT_TRANSLATE_NOOP("ConnectDialog", "Serial host link")
 
     def __init__(self, parent: QWidget | None = None) -> None:
         super().__init__(parent)
         self.port = QComboBox()
         self.port.setEditable(True)
-        self.port.lineEdit().setPlaceholderText("/dev/ttyUSB0, COM3 or socket://host:port")
+        self.port.lineEdit().setPlaceholderText(self.tr("/dev/ttyUSB0, COM3 or socket://host:port"))
         self.baud = QComboBox()
         self.baud.setEditable(True)
         self.baud.addItems([str(b) for b in SERIAL_BAUDS])
@@ -283,9 +288,9 @@ class SerialPage(_DetectingPage):
         for w in (self.port, self.baud):
             w.currentTextChanged.connect(lambda _t: self.changed.emit())
         form = QFormLayout(self)
-        form.addRow(QLabel("A hardware arbitrator's host link:"))
-        form.addRow("Port", self.port)
-        form.addRow("Baud", self.baud)
+        form.addRow(QLabel(self.tr("A hardware arbitrator's host link:")))
+        form.addRow(self.tr("Port"), self.port)
+        form.addRow(self.tr("Baud"), self.baud)
         form.addRow(self.detect_button, self.status)
 
     def _probe(self) -> Callable[[Any, threading.Event], Any]:
@@ -298,7 +303,11 @@ class SerialPage(_DetectingPage):
             self.port.addItem(device)
             self.port.setItemData(self.port.count() - 1, description)
         self.port.setCurrentText(current or (ports[0][0] if ports else ""))
-        self.status.setText(f"{len(ports)} port(s) found" if ports else "No serial port found")
+        self.status.setText(
+            self.tr("{n_ports} port(s) found").format(n_ports=len(ports))
+            if ports
+            else self.tr("No serial port found")
+        )
 
     def url(self) -> str | None:
         port = self.port.currentText().strip()
@@ -331,7 +340,7 @@ class ConnectDialog(QDialog):
     def __init__(self, parent: QWidget | None = None, settings: QSettings | None = None,
                  initial_url: str | None = None) -> None:
         super().__init__(parent)
-        self.setWindowTitle("Connect to a bus")
+        self.setWindowTitle(self.tr("Connect to a bus"))
         self.setMinimumWidth(520)
         self._settings = settings if settings is not None else QSettings()
         self.tabs = QTabWidget()
@@ -340,13 +349,13 @@ class ConnectDialog(QDialog):
             page = page_type()
             page.changed.connect(self._changed)
             self.pages[page.kind] = page
-            self.tabs.addTab(page, page.title)
+            self.tabs.addTab(page, translate("ConnectDialog", page.title))
         self.tabs.currentChanged.connect(lambda _i: self._changed())
         self.url_label = QLabel()
         self.url_label.setTextInteractionFlags(Qt.TextInteractionFlag.TextSelectableByMouse)
         self.buttons = QDialogButtonBox(QDialogButtonBox.StandardButton.Ok
                                         | QDialogButtonBox.StandardButton.Cancel)
-        self.buttons.button(QDialogButtonBox.StandardButton.Ok).setText("Connect")
+        self.buttons.button(QDialogButtonBox.StandardButton.Ok).setText(self.tr("Connect"))
         self.buttons.accepted.connect(self.accept)
         self.buttons.rejected.connect(self.reject)
         layout = QVBoxLayout(self)
@@ -390,7 +399,7 @@ class ConnectDialog(QDialog):
 
     def _changed(self) -> None:
         url, shown = self._checked()
-        self.url_label.setText(f"URL: {shown}")
+        self.url_label.setText(self.tr("URL: {shown}").format(shown=shown))
         self.buttons.button(QDialogButtonBox.StandardButton.Ok).setEnabled(url is not None)
         self.urlChanged.emit(url or "")
 

@@ -15,10 +15,12 @@ Signals
     ``positionChanged(key)``   a device card's remembered position changed
     ``pathChanged(path)``      the file behind the document changed (Path or None)
     ``sessionChanged(obj)``    a live session was bound (or None: offline)
+    ``busChanged()``           the prosthesis was seen anew (``bus_system``; pending changes)
 """
 
 from __future__ import annotations
 
+import copy
 import json
 import logging
 from collections.abc import Iterable
@@ -48,6 +50,15 @@ CHANNEL_FIELDS = frozenset({
     "type", "profile", "terminal_profile", "required_inputs", "desired_inputs",
     "descriptor", "source", "node_id", "data_enabled",
 })
+#: Fields the bus owns: on a live bus they always follow the prosthesis.
+BUS_CHANNEL_FIELDS = ("node_id",)
+BUS_DEVICE_FIELDS = ("present", "node_id", "fw_version", "hw_version", "device_type",
+                     "device_profile", "ean_low", "ean_high")
+#: Fields a user may stage on a live bus: they follow the prosthesis unless changed here.
+#: (The inputs' source fields are merged the same way: a staged link changes them here.)
+WRITABLE_CHANNEL_FIELDS = ("type", "profile", "terminal_profile", "required_inputs",
+                           "desired_inputs", "descriptor", "data_enabled", "source")
+WRITABLE_DEVICE_FIELDS = ("descriptor", "beacon_interval", "ack_timeout", "bind_timeout")
 #: Device fields an edit may change (``Device`` dataclass attributes).
 DEVICE_FIELDS = frozenset({
     "name", "present", "descriptor", "node_id", "beacon_interval", "ack_timeout",
@@ -96,6 +107,7 @@ class Document(QObject):
     positionChanged = Signal(object)
     pathChanged = Signal(object)
     sessionChanged = Signal(object)
+    busChanged = Signal()
 
     def __init__(self, system: System | None = None, *, tree: ProfileTree | None = None,
                  parent: QObject | None = None) -> None:
@@ -112,6 +124,11 @@ class Document(QObject):
         self.kind = "system"
         #: The stored configuration plans use (an opened .pdcfg, or one read from a bus).
         self.config: Any = None
+        #: The prosthesis as last seen (live only): what the project's edits are staged
+        #: against. None offline.
+        self.bus_system: System | None = None
+        #: Why a link was staged (a plan's reason, "linked by hand"): for the pending list.
+        self.link_reasons: dict[Link, str] = {}
         self._selection: Selection = None
         self._extra_dirty = False
         self._was_dirty = False
@@ -131,6 +148,7 @@ class Document(QObject):
         self.kind, self.config = kind, config
         session_changed = session is not self.session
         self.session = session
+        self.bus_system = system.copy() if session is not None else None
         self.preview_plan = None
         self._selection = None
         if positions is not None:
@@ -147,42 +165,60 @@ class Document(QObject):
         self._emit_dirty()
 
     def sync_live(self, snapshot: System) -> None:
-        """Follow the live bus: presence, node IDs, new devices and the links.
+        """Follow the live bus: a three-way merge of the prosthesis into the project.
 
-        Devices the snapshot lacks stay, marked missing (their card shows it); devices it
-        has keep their objects (so local parameter edits survive) with presence and node
-        IDs updated. Not an undo step: the bus changed, not the user.
+        ``bus_system`` is the prosthesis as last seen. What the bus owns (presence, node IDs,
+        the inputs' source fields, versions) always follows the snapshot; a link or a
+        writable field follows it unless the user changed it here since (a staged change,
+        kept). Devices the snapshot lacks stay, marked missing; devices it has keep their
+        objects (so the inspector and the undo commands keep pointing at them). Not an undo
+        step: the bus changed, not the user.
         """
-        system = self.system
+        system, base = self.system, self.bus_system or System()
         added = False
+        changed_channels: list[ChannelRef] = []
+        changed_devices: list[DeviceKey] = []
         for key, device in snapshot.devices.items():
             mine = system.devices.get(key)
             if mine is None:
-                system.add_device(device)
+                system.add_device(copy.deepcopy(device))
                 added = True
                 continue
-            changed = mine.present != device.present or mine.node_id != device.node_id
-            mine.present, mine.node_id = device.present, device.node_id
+            old = base.devices.get(key)
+            if _merge_fields(mine, device, old, BUS_DEVICE_FIELDS, WRITABLE_DEVICE_FIELDS):
+                changed_devices.append(key)
             for index, ch in device.channels.items():
                 own = mine.channels.get(index)
-                if own is not None and own.node_id != ch.node_id:
-                    own.node_id = ch.node_id
-            if changed and not added:
-                self.deviceChanged.emit(key)
+                if own is None:
+                    continue
+                was = old.channels.get(index) if old is not None else None
+                if _merge_fields(own, ch, was, BUS_CHANNEL_FIELDS, WRITABLE_CHANNEL_FIELDS):
+                    changed_channels.append(ChannelRef(*key, index))
         for key, mine in system.devices.items():
             if key not in snapshot.devices and mine.present:
                 mine.present = False
-                if not added:
-                    self.deviceChanged.emit(key)
-        links = [lk for lk in snapshot.links
+                changed_devices.append(key)
+        # Links: the bus's, plus the links staged here, minus the ones removed here.
+        base_links, mine_links = set(base.links), set(system.links)
+        staged_add, staged_remove = mine_links - base_links, base_links - mine_links
+        merged = (set(snapshot.links) | staged_add) - staged_remove
+        links = [lk for lk in sorted(merged)
                  if system.channel(lk.output) is not None and system.channel(lk.input)]
+        self.bus_system = snapshot.copy()
         if added:
             system.clear_links()
             for link in links:
                 system.add_link(link, check=False)
             self.systemReset.emit()
-        elif set(links) != set(system.links):
+            self.busChanged.emit()
+            return
+        for key in dict.fromkeys(changed_devices):
+            self.deviceChanged.emit(key)
+        for ref in changed_channels:
+            self.channelChanged.emit(ref)
+        if set(links) != mine_links:
             self.set_links(links)
+        self.busChanged.emit()
 
     def set_present(self, key: DeviceKey, present: bool) -> None:
         """A device joined or left the live bus (not an undo step)."""
@@ -195,7 +231,10 @@ class Document(QObject):
         """Bind or unbind a live session without touching the system."""
         if session is not self.session:
             self.session = session
+            if session is None:
+                self.bus_system = None
             self.sessionChanged.emit(session)
+            self.busChanged.emit()
 
     def set_path(self, path: Path | str | None) -> None:
         self.path = Path(path) if path is not None else None
@@ -300,6 +339,48 @@ class Document(QObject):
             self.select(None)
         self.linksChanged.emit()
 
+    def links_state(self, links: Iterable[Link]) -> tuple[list[Link], dict[ChannelRef, Any]]:
+        """The links and the link-kept fields (source, Data Transfer Enabled) of every end
+        of ``links`` — what :meth:`restore_links_state` puts back (an undo)."""
+        refs = {r for lk in links for r in (lk.output, lk.input)}
+        fields = {}
+        for ref in refs:
+            ch = self.system.channel(ref)
+            if ch is not None:
+                fields[ref] = (ch.source, ch.data_enabled)
+        return list(self.system.links), fields
+
+    def restore_links_state(self, state: tuple[list[Link], dict[ChannelRef, Any]]) -> None:
+        """Put links back (through the one apply path), then the link-kept fields exactly
+        as they were (an undo restores a file's own values too)."""
+        from pdcp_studio.engine import set_links
+
+        links, fields = state
+        set_links(self.system, links)
+        for ref, (source, enabled) in fields.items():
+            ch = self.system.channel(ref)
+            if ch is not None:
+                ch.source, ch.data_enabled = source, enabled
+        self._links_done(fields)
+
+    def apply_plan_actions(self, plan: Any) -> None:
+        """Carry a plan's actions out with the engine's ONE offline apply path
+        (``engine.set_links``: links, the inputs' source fields, Data Transfer Enabled — the
+        system the CLI's ``apply`` writes for the same plan)."""
+        from pdcp_studio.engine import set_links
+
+        set_links(self.system, _after(self.system.links, plan.actions))
+        for a in plan.actions:
+            self.link_reasons[a.link] = a.reason
+        self._links_done({r for a in plan.actions for r in (a.link.output, a.link.input)})
+
+    def _links_done(self, refs: Iterable[ChannelRef]) -> None:
+        if isinstance(self._selection, Link) and not self.system.has_link(self._selection):
+            self.select(None)
+        self.linksChanged.emit()
+        for ref in refs:
+            self.channelChanged.emit(ref)
+
     def set_channel_field(self, ref: ChannelRef, name: str, value: Any) -> None:
         if name not in CHANNEL_FIELDS:
             raise ModelError(f"channel field {name!r} cannot be edited")
@@ -338,6 +419,34 @@ class Document(QObject):
     def copy_channel(self, ref: ChannelRef, **changes: Any) -> Channel:
         """A changed copy of a channel (for computing an edit without applying it)."""
         return replace(self.channel(ref), **changes)
+
+
+def _after(links: Iterable[Link], actions: Iterable[Any]) -> list[Link]:
+    """The links once ``actions`` (add/remove, in order) are carried out on ``links``."""
+    out = set(links)
+    for a in actions:
+        (out.add if getattr(a.op, "value", a.op) == "add" else out.discard)(a.link)
+    return sorted(out)
+
+
+def _merge_fields(mine: Any, theirs: Any, base: Any, owned: Iterable[str],
+                  writable: Iterable[str]) -> bool:
+    """Three-way merge of one device or channel's fields; True if any changed here."""
+    changed = False
+    for name in owned:
+        value = getattr(theirs, name)
+        if getattr(mine, name) != value:
+            setattr(mine, name, value)
+            changed = True
+    for name in writable:
+        value = getattr(theirs, name)
+        current = getattr(mine, name)
+        if current == value:
+            continue
+        if base is None or current == getattr(base, name):  # not staged here: follow the bus
+            setattr(mine, name, value)
+            changed = True
+    return changed
 
 
 def _device_of(obj: Selection) -> DeviceKey | None:

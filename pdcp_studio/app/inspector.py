@@ -161,8 +161,8 @@ class Inspector(QScrollArea):
 
     def _grid(self, box: QVBoxLayout) -> QGridLayout:
         if self.doc.session is not None:
-            note = QLabel("Live bus: an edit here is written to the device at once "
-                          "(and written back by Undo).")
+            note = QLabel(self.tr("Live bus: an edit here is written to the device at once "
+                          "(and written back by Undo)."))
             note.setWordWrap(True)
             note.setStyleSheet("color: #b45309;")
             box.addWidget(note)
@@ -171,7 +171,7 @@ class Inspector(QScrollArea):
         grid.setVerticalSpacing(3)
         grid.setColumnStretch(1, 1)
         for col, text in enumerate(("Parameter", "Value")):
-            h = QLabel(f"<b>{text}</b>")
+            h = QLabel(self.tr("<b>{text}</b>").format(text=text))
             grid.addWidget(h, 0, col)
         box.addLayout(grid)
         return grid
@@ -184,9 +184,15 @@ class Inspector(QScrollArea):
             meta = " · ".join(x for x in (spec.unit if spec else "",
                                            spec.layout if spec else "PDCP Studio only") if x)
         title = spec.name if spec else name
-        label = QLabel(f"{title}<br><span style='color:#66707b; font-size:small'>{meta}</span>"
-                       if title else f"<span style='color:#66707b; font-size:small'>{meta}"
-                                     "</span>")
+        label = QLabel(
+            self.tr("{title}<br><span style='color:#66707b; font-size:small'>{meta}</span>").format(
+                title=title, meta=meta
+            )
+            if title
+            else self.tr("<span style='color:#66707b; font-size:small'>{meta}</span>").format(
+                meta=meta
+            )
+        )
         label.setWordWrap(True)
         label.setMinimumWidth(90)
         label.setMaximumWidth(130)
@@ -212,19 +218,24 @@ class Inspector(QScrollArea):
 
         system = self.doc.system
         missing = sum(1 for d in system.devices.values() if not d.present)
-        where = (f"live: {getattr(self.doc.session, 'url', '') or 'bus'}"
+        where = (self.tr("live: {0}").format(getattr(self.doc.session, 'url', '') or 'bus')
                  if self.doc.session is not None else self.doc.title)
-        self._title(box, "System", f"{len(system.devices)} devices"
-                    + (f" ({missing} missing)" if missing else "")
-                    + f", {len(system.links)} links · {where}")
-        hint = QLabel("Select a device, channel or link on the graph or in the tree to see "
-                      "and edit its parameters.")
+        self._title(box, self.tr("System"), self.tr("{0} devices").format(len(system.devices))
+                    + (self.tr(" ({0} missing)").format(missing) if missing else "")
+                    + self.tr(", {0} links · {1}").format(len(system.links), where))
+        hint = QLabel(self.tr("Select a device, channel or link on the graph or in the tree to see "
+                      "and edit its parameters."))
         hint.setWordWrap(True)
         hint.setStyleSheet(DIM_STYLE)
         box.addWidget(hint)
         findings = check_system(system) if system.devices else []
-        box.addWidget(QLabel(f"<b>Checks</b> — {len(findings) or 'no'} finding"
-                             f"{'s' * (len(findings) != 1)}"))
+        box.addWidget(
+            QLabel(
+                self.tr("<b>Checks</b> — {v0} finding{v1}").format(
+                    v0=len(findings) or "no", v1="s" * (len(findings) != 1)
+                )
+            )
+        )
         lst = QListWidget()
         lst.setWordWrap(True)
         colours = {"error": "#b91c1c", "warning": "#b45309", "info": "#475569"}
@@ -251,7 +262,7 @@ class Inspector(QScrollArea):
         self._title(box, d.label, f"Device {d.vid}/{d.pid}/{d.serial}{state}")
         grid = self._grid(box)
         name = QLineEdit(d.name)
-        name.setPlaceholderText("a name for this device (not sent to it)")
+        name.setPlaceholderText(self.tr("a name for this device (not sent to it)"))
         name.editingFinished.connect(
             lambda w=name: self._commit_device(d.key, "name", w.text().strip(), None, "name"))
         self._row(grid, None, "Name (PDCP Studio)", "name", name)
@@ -288,7 +299,7 @@ class Inspector(QScrollArea):
         nullable = spec.id in (params.DEVICE_NODE_ID, params.OUT_NODE_ID) and spec.layout == "u8"
         spin.setRange(-1 if nullable else 0, top)
         if nullable:
-            spin.setSpecialValueText("not assigned")
+            spin.setSpecialValueText(self.tr("not assigned"))
         spin.setValue(-1 if value is None else int(value))
         if spec.unit:
             spin.setSuffix(f" {spec.unit}")
@@ -318,7 +329,7 @@ class Inspector(QScrollArea):
             self._row(grid, None, "Profile", "profile",
                       self._profile_editor(ref, "profile", ch.profile, allow_null=False),
                       meta="parameter 1, bytes 2–3")
-            self.editors["profile"].setToolTip("the profile (bytes 2–3 of parameter 1)")
+            self.editors["profile"].setToolTip(self.tr("the profile (bytes 2–3 of parameter 1)"))
         elif pid == params.CH_DESCRIPTOR:
             edit = QLineEdit(ch.descriptor)
             edit.editingFinished.connect(
@@ -328,7 +339,7 @@ class Inspector(QScrollArea):
             self._row(grid, spec, spec.name, "transfer_type", _selectable(
                 f"{ch.direction.transfer_type} ({ch.direction.value})"))
         elif pid == params.CH_DATA_ENABLED:
-            box = QCheckBox("enabled")
+            box = QCheckBox(self.tr("enabled"))
             box.setChecked(ch.data_enabled)
             box.toggled.connect(
                 lambda on: self._commit_channel(ref, "data_enabled", bool(on), None))
@@ -399,13 +410,13 @@ class Inspector(QScrollArea):
         pres = QComboBox()
         pres.addItems([f"{i} (≈{h})" for i, h in enumerate(PRESCALER_HINTS)])
         pres.setCurrentIndex(ct.prescaler)
-        sole = QCheckBox("sole access")
+        sole = QCheckBox(self.tr("sole access"))
         sole.setChecked(ct.sole_access)
-        term = QCheckBox("terminal")
+        term = QCheckBox(self.tr("terminal"))
         term.setChecked(ct.terminal)
         if ch.is_output:
-            sole.setToolTip("sole access is a property of input channels")
-            term.setToolTip("terminal is a property of input channels")
+            sole.setToolTip(self.tr("sole access is a property of input channels"))
+            term.setToolTip(self.tr("terminal is a property of input channels"))
         for combo in (size, dtype, mode, pres):
             combo.setSizeAdjustPolicy(
                 QComboBox.SizeAdjustPolicy.AdjustToMinimumContentsLengthWithIcon)
@@ -462,7 +473,9 @@ class Inspector(QScrollArea):
         current = next((t for t, v in items.items() if v == value), None)
         combo.setCurrentText(current if current is not None else prof.fmt(value))
         combo.lineEdit().setCursorPosition(0)  # the start of the name, not its tail
-        combo.lineEdit().setToolTip("choose a profile of the named tree or type one in hex")
+        combo.lineEdit().setToolTip(
+            self.tr("choose a profile of the named tree or type one in hex")
+        )
 
         def commit() -> None:
             if self._building:
@@ -508,7 +521,9 @@ class Inspector(QScrollArea):
 
     # -- links ----------------------------------------------------------------------
     def _build_link(self, box: QVBoxLayout, link: Link) -> None:
-        self._title(box, "Link", f"{self._describe(link.output)}\n→ {self._describe(link.input)}")
+        self._title(
+            box, self.tr("Link"), f"{self._describe(link.output)}\n→ {self._describe(link.input)}"
+        )
         out = self.doc.system.channel(link.output)
         inp = self.doc.system.channel(link.input)
         if out is not None and inp is not None:
@@ -517,7 +532,7 @@ class Inspector(QScrollArea):
             sim = determine_similarity(out.type, out.profile, inp.type, inp.profile)
             box.addWidget(_selectable(f"Similarity {sim.describe()}"))
         row = QHBoxLayout()
-        delete = QPushButton("Delete link")
+        delete = QPushButton(self.tr("Delete link"))
         delete.clicked.connect(lambda: self._delete_link(link))
         row.addWidget(delete)
         row.addStretch(1)
@@ -526,15 +541,15 @@ class Inspector(QScrollArea):
 
     def _delete_link(self, link: Link) -> None:
         if commands.push_remove_links(self.doc, [link]):
-            self.statusMessage.emit(f"Removed link {link}")
+            self.statusMessage.emit(self.tr("Removed link {link}").format(link=link))
 
     # -- committing -----------------------------------------------------------------
     def _refuse(self, field: str, reason: str) -> None:
         label = self.errors.get(field)
         if label is not None:
-            label.setText(f"Refused: {reason}")
+            label.setText(self.tr("Refused: {reason}").format(reason=reason))
             label.show()
-        self.statusMessage.emit(f"Refused: {reason}")
+        self.statusMessage.emit(self.tr("Refused: {reason}").format(reason=reason))
 
     def _validate(self, spec: params.ParameterSpec | None, value: Any) -> str | None:
         if spec is None or value is None:

@@ -5,6 +5,10 @@ progress; the session's events arrive through :class:`SessionBridge` signals and
 document in step — a device that leaves is marked missing at once, and every change asks
 the session for a fresh snapshot (one request in flight, coalesced), merged by
 :meth:`Document.sync_live`. Data frames light up the links they flow on.
+
+The connection is a state of its own (``state``: offline, connecting, live, disconnected;
+``stateChanged``), shown by the window at all times. Connecting to another bus keeps the
+session you have until the new one answers: a failed Connect changes nothing.
 """
 
 from __future__ import annotations
@@ -18,6 +22,9 @@ from pdcp_studio.app.document import Document
 from pdcp_studio.app.workers import Worker
 
 log = logging.getLogger(__name__)
+
+#: The connection's states (``LiveController.state``).
+OFFLINE, CONNECTING, LIVE, DISCONNECTED = "offline", "connecting", "live", "disconnected"
 
 
 def open_session_blocking(url: str, progress: Any = None, cancel: Any = None) -> Any:
@@ -35,6 +42,12 @@ class LiveController(QObject):
     connected = Signal(str)  # url — the document now shows the bus
     failed = Signal(str, str)  # url, message
     disconnected = Signal()
+    #: The connection's state changed (``OFFLINE``, ``CONNECTING``, ``LIVE``, ``DISCONNECTED``).
+    stateChanged = Signal(str)
+    #: A new session's bridge replaced the old one and its first snapshot is on screen.
+    sessionStarted = Signal(object)
+    #: The bus as it is now (a snapshot merged into the document), after any bus event.
+    snapshotTaken = Signal(object)
     statusMessage = Signal(str)
     progress = Signal(int, int, str)
     busyChanged = Signal(bool)
@@ -46,6 +59,11 @@ class LiveController(QObject):
         self.doc = doc
         self.bridge: Any = None
         self.url = ""
+        #: The URL being connected to (while ``state`` is ``CONNECTING``).
+        self.connecting_url = ""
+        self.state = OFFLINE
+        #: The last connection's URL (shown while ``DISCONNECTED``).
+        self.last_url = ""
         self.connecting: Worker | None = None
         self._refreshing = False
         self._again = False
@@ -57,58 +75,125 @@ class LiveController(QObject):
         return self.bridge is not None
 
     # -- connecting -----------------------------------------------------------------
+    def _set_state(self, state: str) -> None:
+        if state != self.state:
+            self.state = state
+            self.stateChanged.emit(state)
+
     def connect_bus(self, url: str) -> Worker:
-        """Open ``url`` on a worker; ``connected`` or ``failed`` follows."""
-        self.disconnect_bus()
-        self.url = url
+        """Open ``url`` on a worker; ``connected`` or ``failed`` follows.
+
+        The current session (if any) stays until the new one has opened: a failed Connect
+        leaves the window as it was.
+        """
+        if self.connecting is not None and self.connecting.is_running:
+            self.connecting.cancel()  # its session, if it still opens, is closed unused
+        self.connecting_url = url
+        self._set_state(CONNECTING)
         self.busyChanged.emit(True)
-        worker = Worker(lambda p, c: open_session_blocking(url, p, c), f"Connect {url}")
+
+        def work(p: Any, cancel: Any) -> Any:
+            session = open_session_blocking(url, p, cancel)
+            if cancel.is_set():  # superseded by another Connect: nobody will use it
+                session.close()
+            return session
+
+        worker = Worker(work, f"Connect {url}")
         worker.progress.connect(self.progress)
-        worker.finished.connect(self._opened)
+        worker.finished.connect(lambda session: self._opened(url, session))
         worker.failed.connect(lambda msg: self._failed(url, msg))
         worker.done.connect(lambda: self.busyChanged.emit(False))
         self.connecting = worker  # kept until the next connect: its done() must still run
-        self.statusMessage.emit(f"Connecting to {url}…")
+        self.statusMessage.emit(self.tr("Connecting to {url}…").format(url=url))
         return worker.start()
 
     def _failed(self, url: str, message: str) -> None:
+        if url != self.connecting_url:
+            return  # an older attempt, superseded
+        self.connecting_url = ""
+        self._set_state(LIVE if self.bridge is not None else
+                        DISCONNECTED if self.last_url else OFFLINE)
         self.failed.emit(url, message)
 
-    def _opened(self, session: Any) -> None:
+    def _opened(self, url: str, session: Any) -> None:
         from pdcp_studio.app.session_bridge import SessionBridge
 
-        bridge = SessionBridge(session, self, url=self.url)
+        if url != self.connecting_url:  # superseded meanwhile
+            try:
+                session.close()
+            except Exception:
+                log.warning("closing a superseded session failed", exc_info=True)
+            return
+        self._close_bridge()  # the old session goes only now that the new one is open
+        self.url = url
+        bridge = SessionBridge(session, self, url=url)
         self.bridge = bridge
         bridge.deviceJoined.connect(self._on_joined)
         bridge.deviceLeft.connect(self._on_left)
         bridge.linkMade.connect(lambda _l: self.refresh())
         bridge.linkRemoved.connect(lambda _l: self.refresh())
         bridge.planApplied.connect(self._on_plan_applied)
+        bridge.busEvent.connect(self._on_bus_event)
         bridge.channelValues.connect(self._on_values)
-        bridge.error.connect(lambda msg: self.statusMessage.emit(f"Bus: {msg}"))
+        bridge.error.connect(
+            lambda msg: self.statusMessage.emit(self.tr("Bus: {msg}").format(msg=msg))
+        )
         bridge.progress.connect(self.progress)
         bridge.busyChanged.connect(self.busyChanged)
         bridge.scanned.connect(self._on_snapshot)
         self.bridgeReady.emit(bridge)
-        bridge.run(lambda _p, _c: session.system(), "Read the bus", self._first_snapshot)
+        bridge.run(lambda _p, _c: session.system(), "Read the bus",
+                   lambda system: self._first_snapshot(bridge, system))
 
-    def _first_snapshot(self, system: Any) -> None:
+    def _first_snapshot(self, bridge: Any, system: Any) -> None:
+        if bridge is not self.bridge:
+            return
+        self.connecting_url = ""
         self.doc.set_system(system, None, self.bridge, positions={})
+        self.last_url = self.url
+        self._set_state(LIVE)
+        self.sessionStarted.emit(bridge)
+        self.snapshotTaken.emit(system)
         self.connected.emit(self.url)
         self.statusMessage.emit(
-            f"Live: {self.url} — {len(system.devices)} devices, {len(system.links)} links")
+            self.tr("Live: {url} — {n_devices} devices, {n_links} links").format(
+                url=self.url, n_devices=len(system.devices), n_links=len(system.links)
+            )
+        )
+
+    def _close_bridge(self) -> bool:
+        bridge, self.bridge = self.bridge, None
+        if bridge is None:
+            return False
+        bridge.close(wait_ms=2000)
+        if self.doc.session is bridge:
+            self.doc.set_session(None)
+        return True
 
     def disconnect_bus(self) -> None:
         """Close the session (off the GUI thread, bounded wait); the system stays on screen."""
         if self.connecting is not None and self.connecting.is_running:
             self.connecting.cancel()
-        bridge, self.bridge = self.bridge, None
-        if bridge is None:
+        self.connecting_url = ""
+        if not self._close_bridge():
+            if self.state == CONNECTING:
+                self._set_state(DISCONNECTED if self.last_url else OFFLINE)
             return
-        bridge.close(wait_ms=2000)
-        if self.doc.session is bridge:
-            self.doc.set_session(None)
+        self._set_state(DISCONNECTED)
         self.disconnected.emit()
+
+    def state_text(self) -> str:
+        """The connection in a few words, for the status bar and the window title."""
+        if self.state == CONNECTING:
+            if self.bridge is not None:
+                return self.tr("live on {0}, connecting to {1}…").format(
+                    self.url, self.connecting_url)
+            return self.tr("connecting to {0}…").format(self.connecting_url)
+        if self.state == LIVE:
+            return self.tr("live on {0}").format(self.url)
+        if self.state == DISCONNECTED:
+            return self.tr("disconnected from {0}").format(self.last_url)
+        return self.tr("offline")
 
     # -- following the bus ----------------------------------------------------------
     def refresh(self) -> None:
@@ -135,22 +220,32 @@ class LiveController(QObject):
     def _on_snapshot(self, system: Any) -> None:
         if self.bridge is not None and self.doc.session is self.bridge:
             self.doc.sync_live(system)
+            self.snapshotTaken.emit(system)
+
+    def _on_bus_event(self, event: Any) -> None:
+        """Any other event that may change the bus (an arbitrator reset, a stored
+        configuration implemented): look at the bus again."""
+        if type(event).__name__ not in ("DeviceJoined", "DeviceLeft", "LinkMade",
+                                        "LinkRemoved", "PlanApplied", "BusError"):
+            self.refresh()
 
     def _on_joined(self, key: Any) -> None:
         self.doc.set_present(key, True)
-        self.statusMessage.emit(f"Device {key} joined the bus")
+        self.statusMessage.emit(self.tr("Device {key} joined the bus").format(key=key))
         self.refresh()
 
     def _on_left(self, key: Any) -> None:
         self.doc.set_present(key, False)
         device = self.doc.system.device(key)
-        self.statusMessage.emit(f"{device.label if device else key} left the bus")
+        self.statusMessage.emit(
+            self.tr("{v0} left the bus").format(v0=device.label if device else key)
+        )
         self.refresh()
 
     def _on_plan_applied(self, plan: Any) -> None:
         mode = getattr(plan, "mode", None) or (plan.get("mode") if isinstance(plan, dict)
                                                 else "plan")
-        self.statusMessage.emit(f"The bus applied {mode}")
+        self.statusMessage.emit(self.tr("The bus applied {mode}").format(mode=mode))
         self.refresh()
 
     def _on_values(self, values: list) -> None:

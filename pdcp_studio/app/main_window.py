@@ -10,7 +10,8 @@ This module builds the window (docks, status bar, signal wiring) and follows the
 from loading to closing; the rest of :class:`MainWindow` comes from mixins, one job each:
 :mod:`window_menus` (actions, menus, toolbar), :mod:`window_files` (open, save),
 :mod:`window_export` (PNG/SVG, report), :mod:`window_bus` (live-bus docks and commands),
-:mod:`window_recovery` (autosave, crash recovery); shared names are in
+:mod:`window_recovery` (autosave, crash recovery), :mod:`window_transactions` (pending
+changes, Write to prosthesis, fitting history); shared names are in
 :mod:`window_support`.
 """
 
@@ -48,6 +49,7 @@ from pdcp_studio.app.window_support import (
     FILE_FILTERS,
     OFFLINE_SYSTEM,
 )
+from pdcp_studio.app.window_transactions import TransactionsMixin
 from pdcp_studio.model.system import System
 
 __all__ = ["DEFAULT_BUS", "FILE_FILTERS", "OFFLINE_SYSTEM", "MainWindow",
@@ -57,7 +59,7 @@ log = logging.getLogger(__name__)
 
 
 class MainWindow(MenusMixin, FileHandlingMixin, ExportMixin, BusMixin, RecoveryMixin,
-                 QMainWindow):
+                 TransactionsMixin, QMainWindow):
     """PDCP Studio's window on one document."""
 
     #: The first system is on screen and laid out (a file, a bus, or the offline fallback).
@@ -67,7 +69,7 @@ class MainWindow(MenusMixin, FileHandlingMixin, ExportMixin, BusMixin, RecoveryM
                  recovery: Any = None) -> None:
         super().__init__(parent)
         self.doc = doc if doc is not None else Document()
-        self.setWindowTitle("PDCP Studio")
+        self.setWindowTitle(self.tr("PDCP Studio"))
         self.resize(1360, 820)
         self.scene = BusScene(self.doc, self)
         self.view = GraphView(self.scene, self)
@@ -80,12 +82,16 @@ class MainWindow(MenusMixin, FileHandlingMixin, ExportMixin, BusMixin, RecoveryM
         self._build_status()
         self._build_actions()
         self._build_menus()
+        self._build_transactions()
         self._connect()
         self._update_title()
         self.recovery = recovery
         self.autosaver: Any = None
         if recovery is not None:
             self._start_autosave(recovery)
+        from pdcp_studio.app.window_desktop import install_desktop
+
+        install_desktop(self)  # recent files, drops, Help, shortcuts, accessible names
 
     # -- construction -----------------------------------------------------------------
     def _dock(self, title: str, name: str, widget: QWidget,
@@ -103,11 +109,11 @@ class MainWindow(MenusMixin, FileHandlingMixin, ExportMixin, BusMixin, RecoveryM
         self.tree = DeviceTree(self.doc)
         self.inspector = Inspector(self.doc)
         self.plan_panel = PlanPanel(self.doc)
-        self.tree_dock = self._dock("Devices", "DevicesDock", self.tree,
+        self.tree_dock = self._dock(self.tr("Devices"), "DevicesDock", self.tree,
                                     Qt.DockWidgetArea.LeftDockWidgetArea)
-        self.inspector_dock = self._dock("Inspector", "InspectorDock", self.inspector,
+        self.inspector_dock = self._dock(self.tr("Inspector"), "InspectorDock", self.inspector,
                                          Qt.DockWidgetArea.RightDockWidgetArea)
-        self.plan_dock = self._dock("Plan", "PlanDock", self.plan_panel,
+        self.plan_dock = self._dock(self.tr("Plan"), "PlanDock", self.plan_panel,
                                     Qt.DockWidgetArea.BottomDockWidgetArea)
         self._docks_sized = False
 
@@ -122,7 +128,7 @@ class MainWindow(MenusMixin, FileHandlingMixin, ExportMixin, BusMixin, RecoveryM
 
     def _build_status(self) -> None:
         bar = self.statusBar()
-        self.mode_label = QLabel("Offline")
+        self.mode_label = QLabel(self.tr("Offline"))
         self.mode_label.setContentsMargins(6, 0, 6, 0)
         self.progress = QProgressBar()
         self.progress.setMaximumWidth(180)
@@ -148,19 +154,51 @@ class MainWindow(MenusMixin, FileHandlingMixin, ExportMixin, BusMixin, RecoveryM
         self.live.connected.connect(self._on_connected)
         self.live.failed.connect(self._on_connect_failed)
         self.live.disconnected.connect(self._update_mode)
+        self.live.disconnected.connect(self._detach_bus_docks)
+        self.live.stateChanged.connect(lambda _s: self._update_mode())
         self.live.bridgeReady.connect(self._attach_bus_docks_safely)
+        self.live.sessionStarted.connect(self._session_started)
+        self.live.snapshotTaken.connect(self._bus_seen)
         self._update_mode()
 
     # -- title, status ----------------------------------------------------------------
     def _update_title(self) -> None:
-        self.setWindowTitle(f"{self.doc.title}[*] — PDCP Studio")
+        """The document, then the connection (the project and its target), then the app."""
+        state = self.live.state_text()
+        if self.doc.path is None and self.doc.session is not None:  # the bus is the document
+            self.setWindowTitle(
+                self.tr("{v0}{v1}[*] — PDCP Studio").format(v0=state[:1].upper(), v1=state[1:])
+            )
+        else:
+            where = "" if state == self.live.tr("offline") else f" — {state}"
+            self.setWindowTitle(
+                self.tr("{title}[*]{where} — PDCP Studio").format(title=self.doc.title, where=where)
+            )
         self.setWindowModified(self.doc.is_dirty)
 
     def _update_mode(self) -> None:
+        from pdcp_studio.app import live as live_mod
+
         live = self.live.is_live and self.doc.session is self.live.bridge
-        self.mode_label.setText(f"Live: {self.live.url}" if live else "Offline")
-        self.mode_label.setStyleSheet("color: #0b7a4b; font-weight: bold;" if live else
-                                      "color: #66707b;")
+        state = self.live.state
+        if state == live_mod.CONNECTING:
+            text = (self.tr("● Live on {0} — connecting to {1}…") if live else
+                    self.tr("Connecting to {1}…")).format(self.live.url,
+                                                          self.live.connecting_url)
+        elif state == live_mod.LIVE and live:
+            text = self.tr("● Live on {0}").format(self.live.url)
+        elif state == live_mod.DISCONNECTED:
+            text = self.tr("Disconnected from {0}").format(self.live.last_url)
+        else:
+            text = self.tr("Offline")
+        self.mode_label.setText(text)
+        colour = {live_mod.LIVE: "color: #0b7a4b; font-weight: bold;",
+                  live_mod.CONNECTING: "color: #8a5a00;",
+                  live_mod.DISCONNECTED: "color: #b91c1c;"}.get(state, "color: #66707b;")
+        self.mode_label.setStyleSheet(colour)
+        self.mode_label.setToolTip(self.tr("The prosthesis this window is connected to "
+                                           "(the document is the project, the prosthesis "
+                                           "the target)"))
         for a in (self.act_disconnect, self.act_scan, self.act_write, self.act_read_config):
             a.setEnabled(live)
         self.plan_panel._update_buttons()
@@ -221,7 +259,7 @@ class MainWindow(MenusMixin, FileHandlingMixin, ExportMixin, BusMixin, RecoveryM
             self.open_offline_default(f"the simulated prosthesis did not start ({message})")
             return
         where = "" if message.startswith(url) else f"{url}: "
-        self.error_box("Cannot connect", f"{where}{message}")
+        self.error_box(self.tr("Cannot connect"), f"{where}{message}")
         self._update_mode()
         if not self._is_ready:
             self._loaded()
@@ -238,7 +276,12 @@ class MainWindow(MenusMixin, FileHandlingMixin, ExportMixin, BusMixin, RecoveryM
         self.doc.set_system(system, None, None, positions={})
         self._update_mode()
         self._loaded()
-        self.show_message(f"Offline: {why}. Showing the shipped {OFFLINE_SYSTEM}.", 0)
+        self.show_message(
+            self.tr("Offline: {why}. Showing the shipped {OFFLINE_SYSTEM}.").format(
+                why=why, OFFLINE_SYSTEM=OFFLINE_SYSTEM
+            ),
+            0,
+        )
 
     def error_box(self, title: str, text: str) -> None:
         """Tell the user; in the status bar too, so scripted runs leave a trace."""
@@ -280,9 +323,9 @@ class MainWindow(MenusMixin, FileHandlingMixin, ExportMixin, BusMixin, RecoveryM
     def about(self) -> None:
         from pdcp_studio import __version__
 
-        QMessageBox.about(self, "About PDCP Studio",
-                          f"PDCP Studio {__version__}\nSee and configure the PDCP bus "
-                          "inside a powered prosthesis.")
+        QMessageBox.about(self, self.tr("About PDCP Studio"),
+                          self.tr("PDCP Studio {version__}\nSee and configure the PDCP bus "
+                                  "inside a powered prosthesis.").format(version__=__version__))
 
     # -- closing ----------------------------------------------------------------------
     def closeEvent(self, event: QCloseEvent) -> None:

@@ -3,15 +3,18 @@
 The engine computes a :class:`~pdcp_studio.engine.plan.Plan` from a copy-free read of the
 document's system; the panel lists its actions in order (op, both channels with profile
 names, rule, reason, similarity and its breakdown) and what was tried and refused, while
-the graph draws the links to add and to remove. Nothing changes until Apply: offline the
-plan becomes one undo step; on a live bus it goes to the session through the bridge.
+the graph draws the links to add and to remove. Nothing changes until Apply, which makes
+the plan one undo step — on a live bus a staged change, written to the prosthesis by Write
+to prosthesis as one transaction. On a live bus plans take the arbitrator's stored
+configuration as last read (re-read after every write), and a shown preview is computed
+again whenever the bus changes, so it never describes a bus that is gone.
 """
 
 from __future__ import annotations
 
 from typing import Any
 
-from PySide6.QtCore import Qt, Signal
+from PySide6.QtCore import QT_TRANSLATE_NOOP, Qt, Signal
 from PySide6.QtGui import QBrush
 from PySide6.QtWidgets import (
     QHBoxLayout,
@@ -27,16 +30,17 @@ from PySide6.QtWidgets import (
 from pdcp_studio.app import commands
 from pdcp_studio.app.document import Document
 from pdcp_studio.app.graph import style
+from pdcp_studio.app.i18n import translate
 from pdcp_studio.errors import PdcpError
 from pdcp_studio.model import profile as prof
 from pdcp_studio.model.refs import ChannelRef
 
 #: The operations offered, in menu order: (engine mode, menu text).
 OPERATIONS = (
-    ("autoconfigure", "Autoconfigure"),
-    ("replacements", "Find replacements"),
-    ("startup", "Start-up"),
-    ("enforce", "Enforce sole access"),
+    ("autoconfigure", QT_TRANSLATE_NOOP("PlanPanel", "Autoconfigure")),
+    ("replacements", QT_TRANSLATE_NOOP("PlanPanel", "Find replacements")),
+    ("startup", QT_TRANSLATE_NOOP("PlanPanel", "Start-up")),
+    ("enforce", QT_TRANSLATE_NOOP("PlanPanel", "Enforce sole access")),
 )
 LINK_ROLE = Qt.ItemDataRole.UserRole
 
@@ -56,20 +60,24 @@ class PlanPanel(QWidget):
         buttons = QHBoxLayout()
         self.mode_buttons: dict[str, QPushButton] = {}
         for mode, text in OPERATIONS:
-            b = QPushButton(text)
-            b.setToolTip(f"Preview what {text.lower()} would change")
+            b = QPushButton(translate("PlanPanel", text))
+            b.setToolTip(
+                self.tr("Preview what {v0} would change").format(v0=translate("PlanPanel", text))
+            )
             b.clicked.connect(lambda _c=False, m=mode: self.preview(m))
             buttons.addWidget(b)
             self.mode_buttons[mode] = b
         buttons.addStretch(1)
         box.addLayout(buttons)
-        self.summary = QLabel("No plan previewed. Choose an operation to see what it would "
-                              "change before anything changes.")
+        self.summary = QLabel(self.tr("No plan previewed. Choose an operation to see what it would "
+                              "change before anything changes."))
         self.summary.setWordWrap(True)
         box.addWidget(self.summary)
         self.actions_view = QTreeWidget()
         self.actions_view.setColumnCount(4)
-        self.actions_view.setHeaderLabels(["Action", "Output → input", "Rule", "Similarity"])
+        self.actions_view.setHeaderLabels(
+            [self.tr("Action"), self.tr("Output → input"), self.tr("Rule"), self.tr("Similarity")]
+        )
         self.actions_view.setUniformRowHeights(False)
         header = self.actions_view.header()
         header.setStretchLastSection(False)
@@ -81,8 +89,8 @@ class PlanPanel(QWidget):
         box.addWidget(self.actions_view, 1)
         row = QHBoxLayout()
         row.addStretch(1)
-        self.discard_button = QPushButton("Discard")
-        self.apply_button = QPushButton("Apply")
+        self.discard_button = QPushButton(self.tr("Discard"))
+        self.apply_button = QPushButton(self.tr("Apply"))
         self.apply_button.setDefault(True)
         self.discard_button.clicked.connect(self.discard)
         self.apply_button.clicked.connect(self.apply)
@@ -90,6 +98,7 @@ class PlanPanel(QWidget):
         row.addWidget(self.apply_button)
         box.addLayout(row)
         doc.previewChanged.connect(self._on_preview_changed)
+        doc.busChanged.connect(self._on_bus_changed)
         self._update_buttons()
 
     # -- computing ------------------------------------------------------------------
@@ -99,16 +108,29 @@ class PlanPanel(QWidget):
 
     def preview(self, mode: str) -> Any:
         """Compute ``mode``'s plan and show it (graph and list); returns it or None."""
-        from pdcp_studio.engine import plan_for
+        from pdcp_studio.engine import plan_for, plan_on_bus
 
+        config = self.configuration()
         try:
-            plan = plan_for(mode, self.doc.system, self.configuration())
+            if self.doc.session is not None and config is not None:
+                plan = plan_on_bus(mode, self.doc.system, config)  # the arbitrator's memory
+            else:
+                plan = plan_for(mode, self.doc.system, config)
         except (PdcpError, ValueError) as err:
-            self.statusMessage.emit(f"{dict(OPERATIONS).get(mode, mode)}: {err}")
-            self.summary.setText(f"<span style='color:#b91c1c'>Cannot plan: {err}</span>")
+            self.statusMessage.emit(
+                f"{translate('PlanPanel', dict(OPERATIONS).get(mode, mode))}: {err}")
+            self.summary.setText(
+                self.tr("<span style='color:#b91c1c'>Cannot plan: {err}</span>").format(err=err)
+            )
             return None
         self.doc.set_preview(plan)
         return plan
+
+    def _on_bus_changed(self) -> None:
+        """The bus is not what the preview was computed on: compute it again."""
+        plan = self.plan
+        if plan is not None:
+            self.preview(plan.mode)
 
     @property
     def plan(self) -> Any:
@@ -124,7 +146,11 @@ class PlanPanel(QWidget):
         self.discard_button.setEnabled(has)
         self.apply_button.setEnabled(has and bool(self.plan.actions))
         live = self.doc.session is not None
-        self.apply_button.setText("Apply to the bus" if live else "Apply")
+        self.apply_button.setText(self.tr("Stage for the prosthesis") if live else
+                                  self.tr("Apply"))
+        self.apply_button.setToolTip(self.tr(
+            "Add the plan to the pending changes; Write to prosthesis writes them in one "
+            "transaction") if live else self.tr("Apply the plan (one undo step)"))
 
     # -- showing --------------------------------------------------------------------
     def _ref_text(self, plan: Any, ref: ChannelRef) -> str:
@@ -141,12 +167,13 @@ class PlanPanel(QWidget):
         view = self.actions_view
         view.clear()
         if plan is None:
-            self.summary.setText("No plan previewed. Choose an operation to see what it "
-                                 "would change before anything changes.")
+            self.summary.setText(self.tr("No plan previewed. Choose an operation to see what it "
+                                 "would change before anything changes."))
             return
-        title = dict(OPERATIONS).get(plan.mode, plan.mode)
-        text = (f"<b>{title}</b>: add {len(plan.added)}, remove {len(plan.removed)} "
-                f"({len(plan.links_before)} links before, {len(plan.final_links)} after)")
+        title = translate("PlanPanel", dict(OPERATIONS).get(plan.mode, plan.mode))
+        text = self.tr("<b>{0}</b>: add {1}, remove {2} ({3} links before, {4} after)").format(
+            title, len(plan.added), len(plan.removed), len(plan.links_before),
+            len(plan.final_links))
         if plan.configuration_reason:
             text += f"<br>Configuration ({plan.configuration_source}): " \
                     f"{plan.configuration_reason}"
@@ -206,21 +233,24 @@ class PlanPanel(QWidget):
     def discard(self) -> None:
         if self.plan is not None:
             self.doc.set_preview(None)
-            self.statusMessage.emit("Plan discarded: nothing changed")
+            self.statusMessage.emit(self.tr("Plan discarded: nothing changed"))
 
     def apply(self) -> bool:
-        """Offline: one undo step. Live: sent to the bus through the session bridge."""
+        """One undo step; on a live bus a staged change (Write to prosthesis writes it)."""
         plan = self.plan
         if plan is None or not plan.actions:
             return False
-        bridge = self.doc.session
         self.doc.set_preview(None)
-        if bridge is not None and hasattr(bridge, "apply_plan"):
-            bridge.apply_plan(plan)
-            self.statusMessage.emit(f"Applying {plan.mode} on the bus…")
+        commands.push_plan(self.doc, plan)
+        if self.doc.session is not None:
+            self.statusMessage.emit(self.tr(
+                "Staged {0}: {1} to add, {2} to remove — Write to prosthesis writes them "
+                "(Undo unstages)").format(plan.mode, len(plan.added), len(plan.removed)))
         else:
-            commands.push_plan(self.doc, plan)
-            self.statusMessage.emit(f"Applied {plan.mode}: {len(plan.added)} added, "
-                                    f"{len(plan.removed)} removed (Undo reverts it)")
+            self.statusMessage.emit(
+                self.tr(
+                    "Applied {mode}: {n_added} added, {n_removed} removed (Undo reverts it)"
+                ).format(mode=plan.mode, n_added=len(plan.added), n_removed=len(plan.removed))
+            )
         self.applied.emit(plan)
         return True

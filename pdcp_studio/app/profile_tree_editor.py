@@ -127,7 +127,7 @@ class ProfileTreeEditor(QWidget):
         self.path = Path(path) if path else None
         self.undo_stack = QUndoStack(self)
         self.view = QTreeWidget()
-        self.view.setHeaderLabels(["Name", "Component", "Profile", ""])
+        self.view.setHeaderLabels([self.tr("Name"), self.tr("Component"), self.tr("Profile"), ""])
         self.view.setColumnWidth(COL_NAME, 220)
         self.view.setEditTriggers(QTreeWidget.EditTrigger.DoubleClicked
                                   | QTreeWidget.EditTrigger.EditKeyPressed)
@@ -145,22 +145,24 @@ class ProfileTreeEditor(QWidget):
 
     def _actions(self) -> None:
         tb = self.toolbar
-        tb.addAction("Add root", lambda: self._start_edit(self.add_child(prof.NULL_PROFILE)))
-        tb.addAction("Add child", lambda: self._start_edit(self.add_child(
+        tb.addAction(
+            self.tr("Add root"), lambda: self._start_edit(self.add_child(prof.NULL_PROFILE))
+        )
+        tb.addAction(self.tr("Add child"), lambda: self._start_edit(self.add_child(
             self.selected_profile() or prof.NULL_PROFILE)))
-        tb.addAction("Remove", lambda: self.selected_profile() and self.remove(
+        tb.addAction(self.tr("Remove"), lambda: self.selected_profile() and self.remove(
             self.selected_profile() or 0))
         tb.addSeparator()
-        undo = self.undo_stack.createUndoAction(self, "Undo")
+        undo = self.undo_stack.createUndoAction(self, self.tr("Undo"))
         undo.setShortcut("Ctrl+Z")
-        redo = self.undo_stack.createRedoAction(self, "Redo")
+        redo = self.undo_stack.createRedoAction(self, self.tr("Redo"))
         redo.setShortcut("Ctrl+Shift+Z")
         tb.addAction(undo)
         tb.addAction(redo)
         tb.addSeparator()
-        tb.addAction("Open…", self._ask_open)
-        tb.addAction("Save", lambda: self._ask_save(self.path))
-        tb.addAction("Save as…", lambda: self._ask_save(None))
+        tb.addAction(self.tr("Open…"), self._ask_open)
+        tb.addAction(self.tr("Save"), lambda: self._ask_save(self.path))
+        tb.addAction(self.tr("Save as…"), lambda: self._ask_save(None))
 
     # -- state ----------------------------------------------------------------------
     @property
@@ -217,11 +219,15 @@ class ProfileTreeEditor(QWidget):
         try:
             siblings = self.tree.children_of(parent_profile)
         except ProfileError as err:
-            self.error.emit(f"Add: {err}")
+            self.error.emit(self.tr("Add: {err}").format(err=err))
             return None
         comp = component if component is not None else free_component(siblings)
         if comp is None:
-            self.error.emit(f"Add: {self.tree.name_of(parent_profile)} has no free component")
+            self.error.emit(
+                self.tr("Add: {v0} has no free component").format(
+                    v0=self.tree.name_of(parent_profile)
+                )
+            )
             return None
         new: list[int] = []
 
@@ -313,8 +319,10 @@ class ProfileTreeEditor(QWidget):
         if select:
             self.select(select)
         title = self.tree.name + (" •" if self.dirty else "")
-        self.status.setText(f"{title} — {len(items)} node(s)"
-                            + (f" — {self.path}" if self.path else ""))
+        self.status.setText(
+            self.tr("{title} — {n_items} node(s)").format(title=title, n_items=len(items))
+            + (f" — {self.path}" if self.path else "")
+        )
 
     def _fill(self, item: QTreeWidgetItem, value: int, node: ProfileNode) -> None:
         item.setData(COL_NAME, PROFILE_ROLE, value)
@@ -343,12 +351,14 @@ class ProfileTreeEditor(QWidget):
             if text:
                 ok = self.rename(profile, text)
             else:
-                self.error.emit("Rename: a profile node needs a name")
+                self.error.emit(self.tr("Rename: a profile node needs a name"))
         elif column == COL_COMPONENT:
             try:
                 comp = int(text, 16)  # "5", "0x5", "A"
             except ValueError:
-                self.error.emit(f"Renumber: {text!r} is not a hex digit 1…F")
+                self.error.emit(
+                    self.tr("Renumber: {text!r} is not a hex digit 1…F").format(text=text)
+                )
             else:
                 ok = self.renumber(profile, comp) is not None
         if not ok:
@@ -365,12 +375,14 @@ class ProfileTreeEditor(QWidget):
         """Save to ``path`` (or the current path) atomically; marks the stack clean."""
         target = Path(path) if path else self.path
         if target is None:
-            self.error.emit("Save: no file name given")
+            self.error.emit(self.tr("Save: no file name given"))
             return None
         try:
             save_tree(self.tree, target)
         except OSError as err:
-            self.error.emit(f"Save {target}: {err.strerror or err}")
+            self.error.emit(
+                self.tr("Save {target}: {v1}").format(target=target, v1=err.strerror or err)
+            )
             return None
         self.path = target
         self.undo_stack.setClean()
@@ -389,16 +401,20 @@ class ProfileTreeEditor(QWidget):
         return True
 
     def _ask_open(self) -> None:
-        path, _ = QFileDialog.getOpenFileName(self, "Open profile tree",
-                                              str(self.path or ""), "Profile trees (*.json)")
+        path, _ = QFileDialog.getOpenFileName(
+            self,
+            self.tr("Open profile tree"),
+            str(self.path or ""),
+            self.tr("Profile trees (*.json)"),
+        )
         if path:
             self.load(path)
 
     def _ask_save(self, path: Path | None) -> None:
         if path is None:
-            name, _ = QFileDialog.getSaveFileName(self, "Save profile tree",
+            name, _ = QFileDialog.getSaveFileName(self, self.tr("Save profile tree"),
                                                   str(self.path or default_save_path(self.tree)),
-                                                  "Profile trees (*.json)")
+                                                  self.tr("Profile trees (*.json)"))
             path = Path(name) if name else None
         if path is not None:
             self.save(path)
@@ -410,7 +426,7 @@ class ProfileTreeDialog(QDialog):
     def __init__(self, tree: ProfileTree | None = None, path: str | Path | None = None,
                  parent: QWidget | None = None) -> None:
         super().__init__(parent)
-        self.setWindowTitle("Profile tree")
+        self.setWindowTitle(self.tr("Profile tree"))
         self.resize(560, 480)
         self.editor = ProfileTreeEditor(tree, path, self)
         buttons = QDialogButtonBox(QDialogButtonBox.StandardButton.Close)
@@ -426,6 +442,6 @@ class ProfileTreeDialog(QDialog):
 
     def confirm_discard(self) -> bool:
         """Ask before unsaved edits are dropped (patch in tests: it is modal)."""
-        answer = QMessageBox.question(self, "Unsaved profile tree",
-                                      "Discard the unsaved changes to the profile tree?")
+        answer = QMessageBox.question(self, self.tr("Unsaved profile tree"),
+                                      self.tr("Discard the unsaved changes to the profile tree?"))
         return answer == QMessageBox.StandardButton.Yes

@@ -59,11 +59,19 @@ CLI_HINT = ("the command-line tools work without it (pdcp-studio --help), and "
 
 
 def _loads(soname: str) -> bool:
-    try:
-        ctypes.CDLL(soname)
-    except OSError:
-        return False
-    return True
+    """Whether the dynamic loader finds ``soname`` — in a frozen build first beside the
+    program, where the build bundles what it could."""
+    bundled = getattr(sys, "_MEIPASS", None)
+    names = [os.path.join(bundled, soname)] if bundled else []
+    for name in [*names, soname]:
+        if bundled and name != soname and not os.path.exists(name):
+            continue
+        try:
+            ctypes.CDLL(name)
+        except OSError:
+            continue
+        return True
+    return False
 
 
 def missing(libraries: Mapping[str, str], loads: Callable[[str], bool] = _loads

@@ -207,7 +207,7 @@ class Autosaver(QObject):
             name, text = self._name_fn(), self._text_fn()
             path = self._path_fn() if self._path_fn else None
         except Exception as err:  # a model that cannot serialise must not break editing
-            self.error.emit(f"Autosave: {err}")
+            self.error.emit(self.tr("Autosave: {err}").format(err=err))
             return None
         if self._saved_name is not None and self._saved_name != name:
             self.recovery.discard(self._saved_name)  # the document was renamed
@@ -220,7 +220,9 @@ class Autosaver(QObject):
 
         worker = Worker(work, "Autosave")
         worker.finished.connect(lambda file: self._written(file, name, generation))
-        worker.failed.connect(lambda msg: self.error.emit(f"Autosave: {msg}"))
+        worker.failed.connect(
+            lambda msg: self.error.emit(self.tr("Autosave: {msg}").format(msg=msg))
+        )
         self._worker = worker
         return worker.start()
 
@@ -261,7 +263,7 @@ class RecoveryDialog(QDialog):
 
     def __init__(self, entries: Iterable[RecoveryEntry], parent: QWidget | None = None) -> None:
         super().__init__(parent)
-        self.setWindowTitle("Recover unsaved work")
+        self.setWindowTitle(self.tr("Recover unsaved work"))
         self.entries = list(entries)
         self.list = QListWidget()
         for entry in self.entries:
@@ -271,15 +273,20 @@ class RecoveryDialog(QDialog):
             item.setToolTip(entry.path or entry.name)
             self.list.addItem(item)
         buttons = QDialogButtonBox()
-        self.restore_button = buttons.addButton("Restore",
+        self.restore_button = buttons.addButton(self.tr("Restore"),
                                                 QDialogButtonBox.ButtonRole.AcceptRole)
-        self.discard_button = buttons.addButton("Discard all",
+        self.discard_button = buttons.addButton(self.tr("Discard all"),
                                                 QDialogButtonBox.ButtonRole.RejectRole)
         buttons.accepted.connect(self.accept)
         buttons.rejected.connect(self.reject)
         layout = QVBoxLayout(self)
-        layout.addWidget(QLabel("PDCP Studio did not close cleanly. These unsaved documents "
-                                "were autosaved:"))
+        layout.addWidget(
+            QLabel(
+                self.tr(
+                    "PDCP Studio did not close cleanly. These unsaved documents were autosaved:"
+                )
+            )
+        )
         layout.addWidget(self.list)
         layout.addWidget(buttons)
 

@@ -11,8 +11,11 @@ Public API
 The prosthetist files it with the patient's records, so it names every device by
 VID/PID/serial, every link with its profile names, and the CRC-16 checksum the stored
 configuration carries (the value ``pdcp-studio config decode`` verifies), so a later
-reading of the arbitrator can be matched against the paper. Patient and prosthesis fields
-are blank lines to fill in by hand.
+reading of the arbitrator can be matched against the paper. With a :class:`FittingInfo`
+(``fitting=``) the report fills in the patient reference, the prosthetist and the time of
+the session, lists the changes made in this session (from the fitting history) and the
+findings of the checks; devices carry their firmware and hardware versions, and links to a
+missing device are marked as such. Without one, those fields are blank lines to fill in.
 
 The page is an HTML ``QTextDocument`` laid out at 96 dpi and drawn on a ``QPdfWriter``
 through a scaled painter; if the content is taller than the page it is scaled down to fit,
@@ -23,6 +26,7 @@ from __future__ import annotations
 
 import datetime as _dt
 import html
+from dataclasses import dataclass, field
 from pathlib import Path
 from typing import Any
 
@@ -49,6 +53,52 @@ PDF_DPI = 300
 GRAPH_MAX_HEIGHT_FRACTION = 0.38  # of the page: leaves room for the tables
 _GRAPH_URL = QUrl("pdcp-report:graph")
 _app: QGuiApplication | None = None
+
+
+@dataclass
+class FittingInfo:
+    """Who, for whom, when and what: the session's part of a fitting report.
+
+    ``changes`` are fitting-history entries (dicts as ``History.entries`` returns them), in
+    the order they were made; ``time`` is UTC."""
+
+    patient: str = ""
+    prosthetist: str = ""
+    time: _dt.datetime | None = None
+    bus: str = ""
+    changes: list[dict] = field(default_factory=list)
+
+
+def _version(value: int) -> str:
+    return f"{value >> 8}.{value & 0xFF}" if value else "—"
+
+
+def _change_rows(changes: list[dict]) -> str:
+    rows = []
+    for e in changes:
+        outcome = e.get("outcome") or {}
+        status = outcome.get("status", "")
+        word = {"applied": "applied, verified" if e.get("verified") else "applied",
+                "rolled_back": "rolled back", "failed": "failed"}.get(status, status)
+        actions = (e.get("plan") or {}).get("actions") or []
+        adds = sum(1 for a in actions if a.get("op") == "add")
+        removes = len(actions) - adds
+        params = len((e.get("plan") or {}).get("parameters") or [])
+        what = f"+{adds} / −{removes} link(s)" + (f", {params} parameter(s)" if params else "")
+        rows.append(f"<tr><td>{_e(e.get('id', ''))}</td>"
+                    f"<td>{_e(str(e.get('time', '')).replace('T', ' ').rstrip('Z'))}</td>"
+                    f"<td>{_e(e.get('action', ''))}</td><td>{_e(what)}</td>"
+                    f"<td>{_e(word)}</td><td>{_e(e.get('operator') or '')}</td></tr>")
+    return "".join(rows) or "<tr><td colspan=6><i>no change was made in this session</i></td></tr>"
+
+
+def _finding_rows(system: System) -> str:
+    from pdcp_studio.engine import check_system
+
+    findings = check_system(system) if system.devices else []
+    rows = [f"<tr><td>{_e(f.severity.value)}</td><td>{_e(f.message)}</td></tr>"
+            for f in findings]
+    return "".join(rows) or "<tr><td colspan=2><i>every check passed</i></td></tr>"
 
 
 def configuration_checksum(system: System, collection: ConfigCollection | None = None) -> int:
@@ -89,10 +139,11 @@ def _device_rows(system: System, per_row: int) -> str:
     for d in system.devices.values():
         state = " <i>(missing)</i>" if not d.present else ""
         cells.append(f"<td>{_e(d.label)}{state}</td><td>0x{d.vid:04X}</td>"
-                     f"<td>0x{d.pid:04X}</td><td>{d.serial}</td>")
+                     f"<td>0x{d.pid:04X}</td><td>{d.serial}</td>"
+                     f"<td>{_version(d.fw_version)}</td><td>{_version(d.hw_version)}</td>")
     if not cells:
-        return "<tr><td colspan=4><i>no devices</i></td></tr>"
-    cells += ["<td></td>" * 4] * (-len(cells) % per_row)
+        return "<tr><td colspan=6><i>no devices</i></td></tr>"
+    cells += ["<td></td>" * 6] * (-len(cells) % per_row)
     return "".join("<tr>" + "".join(cells[i:i + per_row]) + "</tr>"
                    for i in range(0, len(cells), per_row))
 
@@ -100,7 +151,7 @@ def _device_rows(system: System, per_row: int) -> str:
 def report_html(system: System, tree: ProfileTree, *, title: str = DEFAULT_TITLE,
                 date: _dt.date | None = None, graph_size: QSizeF | None = None,
                 checksum: int | None = None, compact: bool = False,
-                stored_note: str = "") -> str:
+                stored_note: str = "", fitting: FittingInfo | None = None) -> str:
     """The report's HTML (for tests and previews); ``graph_size`` adds the graph image.
 
     ``compact`` (for big systems) puts three devices on a row and one line per link.
@@ -108,16 +159,42 @@ def report_html(system: System, tree: ProfileTree, *, title: str = DEFAULT_TITLE
     date = date or _dt.date.today()
     blank = "_" * 38
     per_row = 3 if compact else 1
-    heads = "<th>Name</th><th>VID</th><th>PID</th><th>Serial</th>"
+    heads = ("<th>Name</th><th>VID</th><th>PID</th><th>Serial</th><th>FW</th>"
+             "<th>HW</th>")
     if not compact:
-        heads = ("<th width=52%>Name</th><th width=16%>VID</th><th width=16%>PID</th>"
-                 "<th width=16%>Serial</th>")
+        heads = ("<th width=40%>Name</th><th width=12%>VID</th><th width=12%>PID</th>"
+                 "<th width=12%>Serial</th><th width=12%>Firmware</th>"
+                 "<th width=12%>Hardware</th>")
     devices = f"<tr>{heads * per_row}</tr>{_device_rows(system, per_row)}"
+
+    def missing(lk: Any) -> str:
+        gone = [system.device(r.device) for r in (lk.output, lk.input)]
+        if any(d is None or not d.present for d in gone):
+            return " <i style='color:#b00000'>(to a missing device)</i>"
+        return ""
+
     links = "".join(
         f"<tr><td>{i}</td><td>{_end(system, tree, lk.output, compact)}</td><td>→</td>"
-        f"<td>{_end(system, tree, lk.input, compact)}</td></tr>"
+        f"<td>{_end(system, tree, lk.input, compact)}{missing(lk)}</td></tr>"
         for i, lk in enumerate(system.links, 1)
     ) or "<tr><td colspan=4><i>no links</i></td></tr>"
+    info = fitting
+    when = date.isoformat()
+    patient = prosthetist = prosthesis = blank
+    session_html = ""
+    if info is not None:
+        if info.time is not None:
+            when = info.time.strftime("%Y-%m-%d %H:%M UTC")
+        patient = _e(info.patient) or blank
+        prosthetist = _e(info.prosthetist) or blank
+        prosthesis = _e(info.bus) or blank
+        session_html = (
+            f"<h2>Changes made in this session ({len(info.changes)})</h2>"
+            "<table class=grid width=100%><tr><th>#</th><th>Time (UTC)</th><th>Action</th>"
+            "<th>Change</th><th>Outcome</th><th>By</th></tr>"
+            f"{_change_rows(info.changes)}</table>")
+    findings = ("<h2>Checks</h2><table class=grid width=100%><tr><th width=12%>Finding</th>"
+                f"<th>What</th></tr>{_finding_rows(system)}</table>")
     crc = "—" if checksum is None else f"0x{checksum:04X}"
     graph = ""
     if graph_size is not None:
@@ -134,10 +211,10 @@ def report_html(system: System, tree: ProfileTree, *, title: str = DEFAULT_TITLE
  .hex {{ color: #555; font-family: 'DejaVu Sans Mono', monospace; }}
 </style>
 <h1>{_e(title)}</h1>
-<p>Date: {date.isoformat()}</p>
+<p>Date: {when}</p>
 <table cellpadding=3>
- <tr><td>Patient:</td><td>{blank}</td><td>Prosthesis:</td><td>{blank}</td></tr>
- <tr><td>Prosthetist:</td><td>{blank}</td><td>Signature:</td><td>{blank}</td></tr>
+ <tr><td>Patient:</td><td>{patient}</td><td>Prosthesis:</td><td>{prosthesis}</td></tr>
+ <tr><td>Prosthetist:</td><td>{prosthetist}</td><td>Signature:</td><td>{blank}</td></tr>
 </table>
 <h2>Devices ({len(system.devices)})</h2>
 <table class=grid width=100%>{devices}</table>
@@ -148,6 +225,8 @@ def report_html(system: System, tree: ProfileTree, *, title: str = DEFAULT_TITLE
 </table>
 <h2>Stored configuration</h2>
 <p>Checksum (CRC-16/CCITT-FALSE): <b class=hex>{crc}</b>{stored_note}</p>
+{session_html}
+{findings}
 {graph}
 <p style='color:#777; font-size:7pt'>Generated by PDCP Studio.</p>
 """
@@ -163,7 +242,8 @@ def _ensure_gui_app() -> None:
 def write_report(path: str | Path, system: System, tree: ProfileTree,
                  graph_image: QImage | None = None, title: str = DEFAULT_TITLE, *,
                  date: _dt.date | None = None,
-                 collection: ConfigCollection | None = None) -> Path:
+                 collection: ConfigCollection | None = None,
+                 fitting: FittingInfo | None = None) -> Path:
     """Write the one-page A4 PDF report to ``path``; returns the path.
 
     The checksum is that of ``collection`` (e.g. the arbitrator's stored configuration) or,
@@ -203,7 +283,8 @@ def write_report(path: str | Path, system: System, tree: ProfileTree,
     doc.setTextWidth(page_w)
     for compact in (False, True):
         doc.setHtml(report_html(system, tree, title=title, date=date, graph_size=graph_size,
-                                checksum=checksum, compact=compact, stored_note=note))
+                                checksum=checksum, compact=compact, stored_note=note,
+                                fitting=fitting))
         if doc.size().height() <= page_h:
             break
     height = doc.size().height()

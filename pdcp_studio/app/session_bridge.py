@@ -166,7 +166,11 @@ class SessionBridge(QObject):
         Returns the worker (to cancel it or connect more) or None once closed.
         """
         if self._closed:
-            self.error.emit(f"{description}: the bus connection is closed")
+            self.error.emit(
+                self.tr("{description}: the bus connection is closed").format(
+                    description=description
+                )
+            )
             return None
         worker = Worker(fn, description)
         worker.progress.connect(self.progress)
@@ -216,7 +220,9 @@ class SessionBridge(QObject):
     # -- simulator controls ------------------------------------------------------------
     def _sim(self, what: str, call: Callable[[], Any]) -> Worker | None:
         if not self.is_sim:
-            self.error.emit(f"{what}: only a simulated bus has simulator controls")
+            self.error.emit(
+                self.tr("{what}: only a simulated bus has simulator controls").format(what=what)
+            )
             return None
         return self.run(lambda p, c: call(), what, lambda _r: self.simChanged.emit(what))
 
@@ -251,7 +257,11 @@ class SessionBridge(QObject):
     def run_script(self, name: str) -> Worker | None:
         """Run a simulator script with progress and cancel; ``scriptFinished(result)``."""
         if not self.is_sim:
-            self.error.emit(f"Script {name}: only a simulated bus has simulator controls")
+            self.error.emit(
+                self.tr("Script {name}: only a simulated bus has simulator controls").format(
+                    name=name
+                )
+            )
             return None
 
         def done(result: Any) -> None:

@@ -56,27 +56,35 @@ class SimPanel(QWidget):
         self._on_bus: dict[DeviceKey, bool] = {}
 
         self.tree = QTreeWidget()
-        self.tree.setHeaderLabels(["Device", "VID/PID/SN", "Power", "On bus"])
+        self.tree.setHeaderLabels(
+            [self.tr("Device"), self.tr("VID/PID/SN"), self.tr("Power"), self.tr("On bus")]
+        )
         self.tree.setRootIsDecorated(False)
         for col, width in ((COL_NAME, 140), (COL_KEY, 100), (COL_PLUGGED, 45)):
             self.tree.setColumnWidth(col, width)
         self.tree.currentItemChanged.connect(lambda *_: self._update_buttons())
 
-        self.plug_button = QPushButton("Plug in")
-        self.unplug_button = QPushButton("Unplug")
+        self.plug_button = QPushButton(self.tr("Plug in"))
+        self.unplug_button = QPushButton(self.tr("Unplug"))
         self.replace_combo = QComboBox()
-        self.replace_combo.setToolTip("An unplugged simulated device to put in its place")
-        self.replace_button = QPushButton("Replace by")
-        self.reset_keep_button = QPushButton("Reset arbitrator")
-        self.reset_keep_button.setToolTip("Restart the arbitrator; its stored configuration "
-                                          "is kept, start-up recalls it")
-        self.reset_erase_button = QPushButton("Reset, erase memory")
-        self.reset_erase_button.setToolTip("A replaced arbitrator: start-up rebuilds the links "
-                                           "from what the devices store")
-        self.save_button = QPushButton("Store links")
-        self.save_button.setToolTip("Store the current links as the arbitrator's configuration")
+        self.replace_combo.setToolTip(self.tr("An unplugged simulated device to put in its place"))
+        self.replace_button = QPushButton(self.tr("Replace by"))
+        self.reset_keep_button = QPushButton(self.tr("Reset arbitrator"))
+        self.reset_keep_button.setToolTip(
+            self.tr("Restart the arbitrator; its stored configuration is kept, start-up recalls it")
+        )
+        self.reset_erase_button = QPushButton(self.tr("Reset, erase memory"))
+        self.reset_erase_button.setToolTip(
+            self.tr(
+                "A replaced arbitrator: start-up rebuilds the links from what the devices store"
+            )
+        )
+        self.save_button = QPushButton(self.tr("Store links"))
+        self.save_button.setToolTip(
+            self.tr("Store the current links as the arbitrator's configuration")
+        )
         self.script_combo = QComboBox()
-        self.script_button = QPushButton("Run script")
+        self.script_button = QPushButton(self.tr("Run script"))
         self.script_info = QLabel()
         self.script_info.setWordWrap(True)
         self.log = QListWidget()
@@ -92,18 +100,18 @@ class SimPanel(QWidget):
         self.script_button.clicked.connect(lambda: self.run_script(self.script_combo.currentText()))
         self.script_combo.currentTextChanged.connect(self._describe_script)
 
-        devices = QGroupBox("Devices")
+        devices = QGroupBox(self.tr("Devices"))
         grid = QGridLayout(devices)
         grid.addWidget(self.tree, 0, 0, 1, 4)
         grid.addWidget(self.plug_button, 1, 0)
         grid.addWidget(self.unplug_button, 1, 1)
         grid.addWidget(self.replace_button, 1, 2)
         grid.addWidget(self.replace_combo, 1, 3)
-        arbitrator = QGroupBox("Arbitrator")
+        arbitrator = QGroupBox(self.tr("Arbitrator"))
         row = QHBoxLayout(arbitrator)
         for w in (self.reset_keep_button, self.reset_erase_button, self.save_button):
             row.addWidget(w)
-        scripts = QGroupBox("Scripted events")
+        scripts = QGroupBox(self.tr("Scripted events"))
         col = QVBoxLayout(scripts)
         line = QHBoxLayout()
         line.addWidget(self.script_combo, 1)
@@ -115,7 +123,7 @@ class SimPanel(QWidget):
         layout.addWidget(devices, 3)
         layout.addWidget(arbitrator)
         layout.addWidget(scripts)
-        layout.addWidget(QLabel("Events"))
+        layout.addWidget(QLabel(self.tr("Events")))
         layout.addWidget(self.log, 2)
 
         # Bound methods only: Qt drops them with the panel, which may go before the bridge.
@@ -132,7 +140,7 @@ class SimPanel(QWidget):
 
     def as_dock(self, parent: QWidget | None = None) -> QDockWidget:
         """This panel in a dock widget titled "Simulator"."""
-        dock = QDockWidget("Simulator", parent)
+        dock = QDockWidget(self.tr("Simulator"), parent)
         dock.setObjectName("SimulatorDock")
         dock.setWidget(self)
         return dock
@@ -201,8 +209,9 @@ class SimPanel(QWidget):
 
     def _paint(self, item: QTreeWidgetItem, key: DeviceKey) -> None:
         plugged, on_bus = self.state(key)
-        item.setText(COL_PLUGGED, "on" if plugged else "off")
-        item.setText(COL_BUS, {True: "joined", False: "left", None: "—"}[on_bus])
+        item.setText(COL_PLUGGED, self.tr("on") if plugged else self.tr("off"))
+        item.setText(COL_BUS, {True: self.tr("joined"), False: self.tr("left"),
+                               None: "—"}[on_bus])
         brush = QBrush(_GONE) if not plugged else QBrush()
         for col in range(4):
             item.setForeground(col, brush)

@@ -14,6 +14,7 @@ from PySide6.QtWidgets import QAbstractItemView, QHeaderView, QTreeWidget, QTree
 from pdcp_studio.app.document import Document
 from pdcp_studio.app.graph import style
 from pdcp_studio.app.graph.analysis import ROLE_LAYER, device_role
+from pdcp_studio.app.i18n import translate
 from pdcp_studio.model import profile as prof
 from pdcp_studio.model.refs import ChannelRef, DeviceKey
 from pdcp_studio.model.system import Link
@@ -28,7 +29,7 @@ class DeviceTree(QTreeWidget):
         super().__init__(parent)
         self.doc = doc
         self.setColumnCount(2)
-        self.setHeaderLabels(["Device / channel", "Profile"])
+        self.setHeaderLabels([self.tr("Device / channel"), self.tr("Profile")])
         self.setSelectionMode(QAbstractItemView.SelectionMode.SingleSelection)
         self.setUniformRowHeights(True)
         self.setMinimumWidth(290)  # device names and profile names side by side
@@ -70,8 +71,8 @@ class DeviceTree(QTreeWidget):
     def _device_row(self, key: DeviceKey) -> QTreeWidgetItem:
         device = self.doc.system.devices[key]
         role = device_role(device)
-        item = QTreeWidgetItem([device.label, "missing" if not device.present
-                                else style.ROLE_LABELS[role]])
+        item = QTreeWidgetItem([device.label, self.tr("missing") if not device.present
+                                else translate("Style", style.ROLE_LABELS[role])])
         item.setData(0, ROLE, key)
         item.setToolTip(0, f"VID {device.vid} · PID {device.pid} · serial {device.serial}")
         colour = style.MISSING_TEXT if not device.present else style.ROLE_COLOURS[role]

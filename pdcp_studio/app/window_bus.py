@@ -31,7 +31,7 @@ class BusMixin:
             self._attach_bus_docks(bridge)
         except Exception as err:
             log.exception("bus docks")
-            self.show_message(f"Some bus panels are unavailable: {err}")
+            self.show_message(self.tr("Some bus panels are unavailable: {err}").format(err=err))
 
     def _attach_bus_docks(self, bridge: Any) -> None:
         """Monitor, live plot and simulator panel for a new bridge (made once, reused)."""
@@ -49,7 +49,7 @@ class BusMixin:
         dock = self._leaf_docks.get("plot")
         if dock is None:
             plot = live_plot.LivePlot()
-            dock = self._dock("Live plot", "LivePlotDock", plot,
+            dock = self._dock(self.tr("Live plot"), "LivePlotDock", plot,
                               Qt.DockWidgetArea.BottomDockWidgetArea)
             self.tabifyDockWidget(self.plan_dock, dock)
             self.plan_dock.raise_()
@@ -63,17 +63,68 @@ class BusMixin:
                 old.close()
                 old.deleteLater()
             panel = sim_panel.SimPanel(bridge)
-            dock = self._dock("Simulator", "SimDock", panel,
+            dock = self._dock(self.tr("Simulator"), "SimDock", panel,
                               Qt.DockWidgetArea.RightDockWidgetArea)
             self.tabifyDockWidget(self.inspector_dock, dock)
             self.inspector_dock.raise_()
             self._leaf_docks["sim"] = dock
 
+    def _session_started(self, bridge: Any) -> None:
+        """A new session is on screen: the bus panels start afresh on it (no frames, values
+        or node map of the previous session), and plans get its stored configuration."""
+        system = self.doc.system
+        monitor = self._leaf_docks.get("monitor")
+        if monitor is not None and hasattr(monitor, "reset_for_session"):
+            monitor.reset_for_session(system)
+        plot = self._leaf_docks.get("plot")
+        if plot is not None:
+            plot.widget().set_channel(None)
+        bridge.simChanged.connect(lambda _what: (self.live.refresh(),
+                                                 self.reread_configuration()))
+        bridge.configurationWritten.connect(lambda _c: self.reread_configuration())
+        self.reread_configuration()
+
+    def _bus_seen(self, system: Any) -> None:
+        """After any bus event: the monitor names frames by the bus's node IDs as they are
+        now (a hot-swapped device may have a new one); the plot drops a channel that left."""
+        monitor = self._leaf_docks.get("monitor")
+        if monitor is not None and hasattr(monitor, "reset_for_session"):
+            monitor.reset_for_session(system, keep_frames=True)
+        plot = self._leaf_docks.get("plot")
+        if plot is not None:
+            ref = plot.widget().ref
+            if ref is not None and system.channel(ref) is None:
+                plot.widget().set_channel(None)
+
+    def _detach_bus_docks(self) -> None:
+        """The session ended: no panel may keep acting on it (the simulator's goes)."""
+        old = self._leaf_docks.pop("sim", None)
+        if old is not None:
+            old.close()
+            old.deleteLater()
+        plot = self._leaf_docks.get("plot")
+        if plot is not None:
+            plot.widget().set_channel(None)
+
+    def reread_configuration(self) -> None:
+        """Read the arbitrator's stored configuration again (after connecting, every write
+        and every bus event that may change it): previews always use the current one."""
+        bridge = self.live.bridge
+        if bridge is None:
+            return
+        session = bridge.session
+        bridge.run(lambda _p, _c: session.read_configuration(), "Read configuration",
+                   lambda c, b=bridge: self._stored_configuration_seen(b, c))
+
+    def _stored_configuration_seen(self, bridge: Any, collection: Any) -> None:
+        if bridge is self.live.bridge and self.doc.session is bridge:
+            self.doc.config = collection
+
     def read_configuration(self) -> None:
         """Ask the arbitrator for its stored configuration (on the bridge's worker)."""
         bridge = self.live.bridge
         if bridge is None:
-            self.show_message("Read configuration: connect to a bus first")
+            self.show_message(self.tr("Read configuration: connect to a bus first"))
             return
         bridge.run(lambda _p, _c: bridge.session.read_configuration(),
                    "Read configuration", self._configuration_read)
@@ -82,15 +133,16 @@ class BusMixin:
         self.doc.config = collection
         n = len(getattr(collection, "configurations", []))
         links = sum(len(c.links) for c in getattr(collection, "configurations", []))
-        self.show_message(f"Read the arbitrator's stored configuration: {n} configuration(s), "
-                          f"{links} links — Find replacements and Start-up now use it")
+        self.show_message(self.tr("Read the arbitrator's stored configuration: {n} "
+                                  "configuration(s), {links} links — Find replacements and "
+                                  "Start-up now use it").format(n=n, links=links))
 
     def cancel_bus_work(self) -> None:
         if self.live.connecting is not None and self.live.connecting.is_running:
             self.live.connecting.cancel()
         if self.live.bridge is not None:
             self.live.bridge.cancel_all()
-        self.show_message("Cancelling…")
+        self.show_message(self.tr("Cancelling…"))
 
     def _plot_selection(self, obj: object) -> None:
         from pdcp_studio.model.refs import ChannelRef
@@ -111,14 +163,31 @@ class BusMixin:
 
         dialog = mod.CompareDialog(self.doc.system, bridge=self.live.bridge, parent=self)
         if self.doc.config is not None:
-            dialog.set_file_sources(mod.sources_of_collection(self.doc.title, self.doc.config))
+            dialog.set_file_sources(mod.sources_of_collection(self.doc.title, self.doc.config),
+                                    self.doc.config)
         dialog.show()
+
+    def compare_with_prosthesis(self, path: Any) -> Any:
+        """Compare a file's links with the prosthesis (on screen and its arbitrator's stored
+        configuration), staying connected; returns the dialog."""
+        from pdcp_studio.app import compare_dialog as mod
+
+        dialog = mod.CompareDialog(self.doc.system, bridge=self.live.bridge, parent=self)
+        dialog.load_file(path)
+        if self.live.bridge is not None:
+            dialog.read_arbitrator()
+        dialog.show()
+        self.compare_dialog = dialog
+        return dialog
 
     def ask_write_configuration(self) -> None:
         from pdcp_studio.app import write_config_dialog as mod
 
         if self.live.bridge is None:
-            self.error_box("Write configuration", "connect to a bus first")
+            self.error_box(self.tr("Write configuration"), self.tr("connect to a bus first"))
             return
         dialog = mod.WriteConfigDialog.for_system(self.live.bridge, self.doc.system, self)
+        # Whatever came of it, plans must use what the arbitrator stores now.
+        dialog.verified.connect(lambda _ok, _msg: self.reread_configuration())
+        dialog.verified.connect(lambda _ok, _msg: self.history_panel.refresh())
         dialog.show()

@@ -11,8 +11,6 @@ from pathlib import Path
 from PySide6.QtGui import QImage, QPainter
 from PySide6.QtWidgets import QFileDialog, QGraphicsItem
 
-from pdcp_studio.errors import PdcpError
-
 
 class ExportMixin:
     """Graph image, PNG/SVG export and the PDF report of :class:`MainWindow`."""
@@ -66,25 +64,19 @@ class ExportMixin:
             raise OSError(f"{path}: could not write the image")
 
     def ask_export(self, kind: str) -> None:
-        path, _ = QFileDialog.getSaveFileName(self, "Export graph",
+        path, _ = QFileDialog.getSaveFileName(self, self.tr("Export graph"),
                                               str(Path(self._last_dir()) / f"bus.{kind}"),
                                               f"{kind.upper()} (*.{kind})")
         if path:
             try:
                 self.export_graph(path)
-                self.show_message(f"Exported {path}")
+                self.show_message(self.tr("Exported {path}").format(path=path))
             except OSError as err:
-                self.error_box("Cannot export", str(err))
+                self.error_box(self.tr("Cannot export"), str(err))
 
     def ask_report(self) -> None:
-        from pdcp_studio.app import report
-
-        path, _ = QFileDialog.getSaveFileName(self, "Fitting report",
+        path, _ = QFileDialog.getSaveFileName(self, self.tr("Fitting report"),
                                               str(Path(self._last_dir()) / "fitting.pdf"),
-                                              "PDF (*.pdf)")
+                                              self.tr("PDF (*.pdf)"))
         if path:
-            try:
-                report.write_report(path, self.doc.system, self.doc.tree, self.graph_image())
-                self.show_message(f"Wrote the fitting report {path}")
-            except (PdcpError, OSError) as err:
-                self.error_box("Cannot write the report", str(err))
+            self.write_fitting_report(path)  # patient, prosthetist, this session's changes

@@ -10,6 +10,7 @@ from typing import Any
 
 from PySide6.QtGui import QAction, QKeySequence
 
+from pdcp_studio.app.i18n import translate
 from pdcp_studio.app.plan_panel import OPERATIONS
 from pdcp_studio.app.window_support import DEFAULT_BUS
 
@@ -28,57 +29,75 @@ class MenusMixin:
 
     def _build_actions(self) -> None:
         K = QKeySequence.StandardKey
-        self.act_open = self._action("&Open…", self.ask_open, K.Open,
-                                     "Open a system file (.json) or a configuration (.pdcfg)")
-        self.act_save = self._action("&Save", self.save, K.Save)
-        self.act_save_as = self._action("Save &As…", self.ask_save_as, K.SaveAs)
-        self.act_export_png = self._action("Export graph as &PNG…",
+        self.act_open = self._action(
+            self.tr("&Open…"),
+            self.ask_open,
+            K.Open,
+            self.tr("Open a system file (.json) or a configuration (.pdcfg)"),
+        )
+        self.act_save = self._action(self.tr("&Save"), self.save, K.Save)
+        self.act_save_as = self._action(self.tr("Save &As…"), self.ask_save_as, K.SaveAs)
+        self.act_export_png = self._action(self.tr("Export graph as &PNG…"),
                                            lambda: self.ask_export("png"))
-        self.act_export_svg = self._action("Export graph as S&VG…",
+        self.act_export_svg = self._action(self.tr("Export graph as S&VG…"),
                                            lambda: self.ask_export("svg"))
-        self.act_report = self._action("Fitting &report (PDF)…", self.ask_report)
-        self.act_quit = self._action("&Quit", self.close, K.Quit)
-        self.act_undo = self.doc.undo_stack.createUndoAction(self, "&Undo")
+        self.act_report = self._action(self.tr("Fitting &report (PDF)…"), self.ask_report)
+        self.act_quit = self._action(self.tr("&Quit"), self.close, K.Quit)
+        self.act_undo = self.doc.undo_stack.createUndoAction(self, self.tr("&Undo"))
         self.act_undo.setShortcut(QKeySequence(K.Undo))
-        self.act_redo = self.doc.undo_stack.createRedoAction(self, "&Redo")
+        self.act_redo = self.doc.undo_stack.createRedoAction(self, self.tr("&Redo"))
         self.act_redo.setShortcut(QKeySequence(K.Redo))
-        self.act_delete = self._action("&Delete link", self.scene.delete_selected,
-                                       K.Delete, "Remove the selected links")
-        self.act_fit = self._action("&Fit to window", self.view.fit_all, "Ctrl+0")
-        self.act_zoom_in = self._action("Zoom &in", lambda: self.view.zoom_by(1.25), K.ZoomIn)
-        self.act_zoom_out = self._action("Zoom &out", lambda: self.view.zoom_by(0.8), K.ZoomOut)
-        self.act_legend = self._action("Show &legend", lambda: self.view.set_legend_visible(
-            self.act_legend.isChecked()))
+        self.act_delete = self._action(self.tr("&Delete link"), self.scene.delete_selected,
+                                       K.Delete, self.tr("Remove the selected links"))
+        self.act_fit = self._action(self.tr("&Fit to window"), self.view.fit_all, "Ctrl+0")
+        self.act_zoom_in = self._action(
+            self.tr("Zoom &in"), lambda: self.view.zoom_by(1.25), K.ZoomIn
+        )
+        self.act_zoom_out = self._action(
+            self.tr("Zoom &out"), lambda: self.view.zoom_by(0.8), K.ZoomOut
+        )
+        self.act_legend = self._action(
+            self.tr("Show &legend"),
+            lambda: self.view.set_legend_visible(self.act_legend.isChecked()),
+        )
         self.act_legend.setCheckable(True)
         self.act_legend.setChecked(True)
-        self.act_arrange = self._action("&Arrange in layers", self.arrange,
-                                        tip="Lay the cards out again: sensors → control → "
-                                            "terminal devices (one undo step)")
+        self.act_arrange = self._action(self.tr("&Arrange in layers"), self.arrange,
+                                        tip=self.tr("Lay the cards out again: sensors → control → "
+                                            "terminal devices (one undo step)"))
         self.plan_actions = {
-            mode: self._action(f"{text}…", lambda m=mode: self.preview_plan(m))
+            mode: self._action(translate("PlanPanel", text) + "…",
+                               lambda m=mode: self.preview_plan(m))
             for mode, text in OPERATIONS}
-        self.act_connect = self._action("&Connect…", self.ask_connect,
-                                        tip="Connect to a simulated prosthesis or a CAN bus")
+        self.act_connect = self._action(
+            self.tr("&Connect…"),
+            self.ask_connect,
+            tip=self.tr("Connect to a simulated prosthesis or a CAN bus"),
+        )
         self.act_connect_sim = self._action(
-            "Open the &simulated prosthesis",
+            self.tr("Open the &simulated prosthesis"),
             lambda: self.maybe_save() and self.connect_bus(DEFAULT_BUS))
-        self.act_disconnect = self._action("&Disconnect", self.live.disconnect_bus)
-        self.act_scan = self._action("&Scan the bus", self.live.scan)
+        self.act_disconnect = self._action(self.tr("&Disconnect"), self.live.disconnect_bus)
+        self.act_scan = self._action(self.tr("&Scan the bus"), self.live.scan)
         self.act_read_config = self._action(
-            "&Read the stored configuration", self.read_configuration,
-            tip="Read the arbitrator's stored configuration; plans that take a "
-                "configuration (Find replacements, Start-up) then use it")
-        self.act_cancel = self._action("Ca&ncel bus work", self.cancel_bus_work, None,
-                                       "Cancel what the bus is doing for you (scan, apply…)")
-        self.act_compare = self._action("Co&mpare configurations…", self.show_compare)
-        self.act_write = self._action("&Write configuration to the arbitrator…",
+            self.tr("&Read the stored configuration"), self.read_configuration,
+            tip=self.tr("Read the arbitrator's stored configuration; plans that take a "
+                "configuration (Find replacements, Start-up) then use it"))
+        self.act_cancel = self._action(
+            self.tr("Ca&ncel bus work"),
+            self.cancel_bus_work,
+            None,
+            self.tr("Cancel what the bus is doing for you (scan, apply…)"),
+        )
+        self.act_compare = self._action(self.tr("Co&mpare configurations…"), self.show_compare)
+        self.act_write = self._action(self.tr("&Write configuration to the arbitrator…"),
                                       self.ask_write_configuration)
-        self.act_profiles = self._action("&Profile tree…", self.show_profile_tree)
-        self.act_about = self._action("&About PDCP Studio", self.about)
+        self.act_profiles = self._action(self.tr("&Profile tree…"), self.show_profile_tree)
+        self.act_about = self._action(self.tr("&About PDCP Studio"), self.about)
 
     def _build_menus(self) -> None:
         mb = self.menuBar()
-        m = mb.addMenu("&File")
+        m = mb.addMenu(self.tr("&File"))
         for a in (self.act_open, self.act_save, self.act_save_as):
             m.addAction(a)
         m.addSeparator()
@@ -86,31 +105,31 @@ class MenusMixin:
             m.addAction(a)
         m.addSeparator()
         m.addAction(self.act_quit)
-        m = mb.addMenu("&Edit")
+        m = mb.addMenu(self.tr("&Edit"))
         for a in (self.act_undo, self.act_redo):
             m.addAction(a)
         m.addSeparator()
         m.addAction(self.act_delete)
         m.addSeparator()
         m.addAction(self.act_profiles)
-        self.view_menu = m = mb.addMenu("&View")
+        self.view_menu = m = mb.addMenu(self.tr("&View"))
         for a in (self.act_fit, self.act_zoom_in, self.act_zoom_out, self.act_arrange,
                   self.act_legend):
             m.addAction(a)
         m.addSeparator()
         for dock in (self.tree_dock, self.inspector_dock, self.plan_dock):
             m.addAction(dock.toggleViewAction())
-        m = mb.addMenu("&Plan")
+        m = mb.addMenu(self.tr("&Plan"))
         for a in self.plan_actions.values():
             m.addAction(a)
-        self.bus_menu = m = mb.addMenu("&Bus")
+        self.bus_menu = m = mb.addMenu(self.tr("&Bus"))
         for a in (self.act_connect, self.act_connect_sim, self.act_disconnect, self.act_scan,
                   self.act_read_config, self.act_cancel):
             m.addAction(a)
         m.addSeparator()
         m.addAction(self.act_compare)
         m.addAction(self.act_write)
-        mb.addMenu("&Help").addAction(self.act_about)
+        mb.addMenu(self.tr("&Help")).addAction(self.act_about)
         tb = self.addToolBar("Main")
         tb.setObjectName("MainToolBar")
         tb.setMovable(False)

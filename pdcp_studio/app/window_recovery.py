@@ -49,10 +49,10 @@ class RecoveryMixin:
         try:
             opened = files.loads_system(entry.text, entry.name)
         except PdcpError as err:
-            self.error_box("Cannot recover", str(err))
+            self.error_box(self.tr("Cannot recover"), str(err))
             return False
         self.doc.set_system(opened.system, entry.path, None, dirty=True,
                             positions=opened.positions)
         self._loaded()
-        self.show_message(f"Recovered unsaved work: {entry.title}")
+        self.show_message(self.tr("Recovered unsaved work: {title}").format(title=entry.title))
         return True

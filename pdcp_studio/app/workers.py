@@ -27,6 +27,7 @@ from typing import Any
 from PySide6.QtCore import QObject, QRunnable, Qt, QThreadPool, Signal
 from PySide6.QtWidgets import QProgressDialog, QWidget
 
+from pdcp_studio.app.i18n import translate
 from pdcp_studio.errors import PdcpError
 
 log = logging.getLogger(__name__)
@@ -219,7 +220,7 @@ def run_with_progress(parent: QWidget | None, title: str, fn: WorkFn, *,
         dialog.deleteLater()
 
     def on_cancel() -> None:
-        dialog.setLabelText("Cancelling…")
+        dialog.setLabelText(translate("workers", "Cancelling…"))
         worker.cancel()
 
     worker.progress.connect(on_progress)

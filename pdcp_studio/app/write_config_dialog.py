@@ -5,22 +5,21 @@ Public API
     ``SessionBridge``; ``collection`` the ``ConfigCollection`` to write (for the on-screen
     system: ``WriteConfigDialog.for_system(bridge, system)``); ``system`` only names devices.
     Opening it reads the arbitrator's current configuration (``start()``, called by the
-    constructor) and lists, per configuration, the links the write adds, removes and keeps.
-    The Write button is never the default button (Enter does not write) and is enabled only
-    once the current configuration was read. ``write()`` writes, then reads back and compares.
+    constructor) and lists, per configuration, the links the write adds, removes, changes
+    and keeps — the one configuration diff (:mod:`pdcp_studio.model.config_diff`), as the
+    CLI's ``config diff`` says it. The Write button is never the default button (Enter does
+    not write) and is enabled only once the current configuration was read. ``write()``
+    runs one transaction (``session.transact``: write, read back, restore on mismatch,
+    record in the fitting history), then reads back once more and compares.
     Properties: ``state`` (one of ``READING``, ``READY``, ``WRITING``, ``VERIFYING``,
-    ``VERIFIED``, ``MISMATCH``, ``FAILED``), ``diffs`` (``list[ConfigDiff]``), ``stored``.
-    Signals: ``stateChanged(str)``, ``verified(bool ok, str message)``.
-
-Pure helpers: ``diff_collections(stored, new) -> list[ConfigDiff]`` and
-``verify_collection(written, read_back) -> (ok, message)`` (links, their indices, and the
-type and profile of both ends must match, configuration by configuration in index order;
-the indices themselves and the order of links may differ).
+    ``VERIFIED``, ``MISMATCH``, ``FAILED``), ``diff`` (``ConfigDiff``), ``stored``,
+    ``result`` (the ``TransactionResult``). Signals: ``stateChanged(str)``,
+    ``verified(bool ok, str message)``.
 """
 
 from __future__ import annotations
 
-from typing import Any, NamedTuple
+from typing import Any
 
 from PySide6.QtCore import Qt, Signal
 from PySide6.QtGui import QBrush, QColor
@@ -36,73 +35,37 @@ from PySide6.QtWidgets import (
     QWidget,
 )
 
-from pdcp_studio.app.compare_dialog import links_of_configuration, ref_label
+from pdcp_studio.app.compare_dialog import ref_label
 from pdcp_studio.app.workers import Worker
-from pdcp_studio.model.configuration import ConfigCollection, StoredChannel
+from pdcp_studio.model.config_diff import ConfigDiff, diff_configurations
+from pdcp_studio.model.configuration import ConfigCollection
 from pdcp_studio.model.system import Link, System
 
 READING, READY, WRITING, VERIFYING = "reading", "ready", "writing", "verifying"
 VERIFIED, MISMATCH, FAILED = "verified", "mismatch", "failed"
-ADDED, REMOVED, KEPT = "add", "remove", "keep"
-_COLOURS = {ADDED: QColor(205, 240, 205), REMOVED: QColor(250, 210, 210)}
+ADDED, REMOVED, CHANGED, KEPT = "add", "remove", "change", "keep"
+_COLOURS = {ADDED: QColor(205, 240, 205), REMOVED: QColor(250, 210, 210),
+            CHANGED: QColor(255, 236, 200)}
 
 
-class ConfigDiff(NamedTuple):
-    """What writing changes in one configuration (by index)."""
-
-    index: int
-    added: tuple[Link, ...]
-    removed: tuple[Link, ...]
-    kept: tuple[Link, ...]
-
-    @property
-    def changed(self) -> bool:
-        """True when writing adds or removes a link here."""
-        return bool(self.added or self.removed)
-
-
-def _by_index(collection: ConfigCollection | None) -> dict[int, frozenset[Link]]:
-    if collection is None:
-        return {}
-    return {c.index: links_of_configuration(c) for c in collection.configurations}
-
-
-def diff_collections(stored: ConfigCollection | None, new: ConfigCollection) -> list[ConfigDiff]:
-    """Per configuration index (of either side), the links added, removed and kept."""
-    old, fresh = _by_index(stored), _by_index(new)
-    out = []
-    for index in sorted(old.keys() | fresh.keys()):
-        a, b = old.get(index, frozenset()), fresh.get(index, frozenset())
-        out.append(ConfigDiff(index, tuple(sorted(b - a)), tuple(sorted(a - b)),
-                              tuple(sorted(a & b))))
-    return out
-
-
-def _ends(ch: StoredChannel) -> tuple[int, int, int, int, int, int]:
-    return (ch.vid, ch.pid, ch.serial, ch.index, ch.type, ch.profile)
-
-
-def verify_collection(written: ConfigCollection,
-                      read_back: ConfigCollection | None) -> tuple[bool, str]:
-    """Does the arbitrator now hold what was written? Returns (ok, a message saying why)."""
-    if read_back is None:
-        return False, "the arbitrator reports no stored configuration after the write"
-
-    def summary(c: ConfigCollection) -> list[frozenset[tuple[Any, ...]]]:
-        # By contents, in index order: the codec may renumber indices that are not 1…n.
-        return [frozenset((_ends(sl.output), _ends(sl.input)) for sl in cfg.links)
-                for cfg in sorted(c.configurations, key=lambda cfg: cfg.index)]
-
-    want, got = summary(written), summary(read_back)
-    if len(want) != len(got):
-        return False, f"{len(want)} configuration(s) written, {len(got)} read back"
-    for n, (w, g) in enumerate(zip(want, got, strict=True), 1):
-        missing, extra = w - g, g - w
-        if missing or extra:
-            return False, (f"configuration {n}: {len(missing)} link(s) missing and "
-                           f"{len(extra)} unexpected after reading back")
-    total = sum(len(w) for w in want)
-    return True, f"read back {total} link(s) in {len(want)} configuration(s): identical"
+def diff_rows(diff: ConfigDiff, new: ConfigCollection) -> list[tuple[int, str, Link]]:
+    """The diff as rows (configuration index, change, link): removals, additions, changed
+    records, then the links the write keeps as they are."""
+    rows: list[tuple[int, str, Link]] = []
+    for c in diff.configurations:
+        touched = set()
+        for kind, links in ((REMOVED, c.only_in_a), (ADDED, c.only_in_b)):
+            for sl in links:
+                rows.append((c.index, kind, Link(sl.output.ref, sl.input.ref)))
+                touched.add((sl.output.ref, sl.input.ref))
+        for ch in c.changed:
+            rows.append((c.index, CHANGED, Link(*ch.ends)))
+            touched.add(ch.ends)
+        cfg = next((x for x in new.configurations if x.index == c.index), None)
+        for sl in (cfg.links if cfg is not None else []):
+            if (sl.output.ref, sl.input.ref) not in touched:
+                rows.append((c.index, KEPT, Link(sl.output.ref, sl.input.ref)))
+    return rows
 
 
 class WriteConfigDialog(QDialog):
@@ -114,20 +77,24 @@ class WriteConfigDialog(QDialog):
     def __init__(self, bridge: Any, collection: ConfigCollection, *,
                  system: System | None = None, parent: QWidget | None = None) -> None:
         super().__init__(parent)
-        self.setWindowTitle("Write configuration to the arbitrator")
+        self.setWindowTitle(self.tr("Write configuration to the arbitrator"))
         self.resize(820, 460)
         self.bridge = bridge
         self.collection = collection
         self.system = system
         self.stored: ConfigCollection | None = None
-        self.diffs: list[ConfigDiff] = []
+        self.diff = ConfigDiff()
+        self.rows: list[tuple[int, str, Link]] = []
+        self.transaction: Any = None
         self.state = ""
         self._worker: Worker | None = None
 
         self.message = QLabel()
         self.message.setWordWrap(True)
         self.table = QTableWidget(0, 4)
-        self.table.setHorizontalHeaderLabels(["Configuration", "Change", "Output", "Input"])
+        self.table.setHorizontalHeaderLabels(
+            [self.tr("Configuration"), self.tr("Change"), self.tr("Output"), self.tr("Input")]
+        )
         self.table.setEditTriggers(QTableWidget.EditTrigger.NoEditTriggers)
         self.table.verticalHeader().setVisible(False)
         self.table.setWordWrap(False)
@@ -139,7 +106,7 @@ class WriteConfigDialog(QDialog):
         self.result = QLabel()
         self.result.setWordWrap(True)
         self.buttons = QDialogButtonBox()
-        self.write_button = QPushButton("Write to arbitrator")
+        self.write_button = QPushButton(self.tr("Write to arbitrator"))
         self.write_button.setAutoDefault(False)
         self.write_button.setDefault(False)
         self.buttons.addButton(self.write_button, QDialogButtonBox.ButtonRole.ActionRole)
@@ -167,13 +134,13 @@ class WriteConfigDialog(QDialog):
         self.state = state
         self.write_button.setEnabled(state == READY)
         done = state in (VERIFIED, MISMATCH, FAILED)
-        self.close_button.setText("Close" if done else "Cancel")
+        self.close_button.setText(self.tr("Close") if done else self.tr("Cancel"))
         self.stateChanged.emit(state)
 
     def start(self) -> None:
         """Read the arbitrator's current configuration to show the diff."""
         self._set_state(READING)
-        self.message.setText("Reading the arbitrator's stored configuration…")
+        self.message.setText(self.tr("Reading the arbitrator's stored configuration…"))
         worker = self.bridge.read_configuration()
         if worker is None:
             self._fail("the bus connection is closed")
@@ -186,28 +153,33 @@ class WriteConfigDialog(QDialog):
 
     def _on_read(self, stored: ConfigCollection | None) -> None:
         self.stored = stored
-        self.diffs = diff_collections(stored, self.collection)
+        self.diff = diff_configurations(stored or ConfigCollection(), self.collection)
+        self.rows = diff_rows(self.diff, self.collection)
         self._show_diff()
-        added = sum(len(d.added) for d in self.diffs)
-        removed = sum(len(d.removed) for d in self.diffs)
-        kept = sum(len(d.kept) for d in self.diffs)
+        count = {k: sum(1 for _i, kind, _l in self.rows if kind == k)
+                 for k in (ADDED, REMOVED, CHANGED, KEPT)}
         if stored is None or not stored.configurations:
             head = "The arbitrator stores no configuration yet."
         else:
             head = f"The arbitrator stores {len(stored.configurations)} configuration(s)."
-        change = (f"Writing adds {added} link(s), removes {removed} and keeps {kept}."
-                  if added or removed else f"Writing changes nothing ({kept} link(s) kept).")
-        self.message.setText(f"{head} {change} The stored configuration decides the links "
-                             "the prosthesis makes at its next start-up.")
+        if self.diff.equal:
+            change = f"Writing changes nothing ({count[KEPT]} link(s) kept)."
+        else:
+            change = (f"Writing adds {count[ADDED]} link(s), removes {count[REMOVED]}"
+                      + (f", changes the records of {count[CHANGED]}" if count[CHANGED] else "")
+                      + f" and keeps {count[KEPT]}.")
+        self.message.setText(
+            self.tr(
+                "{head} {change} The stored configuration decides the links "
+                "the prosthesis makes at its next start-up."
+            ).format(head=head, change=change)
+        )
         self._set_state(READY)
 
     def _show_diff(self) -> None:
-        rows = [(d.index, kind, link) for d in self.diffs
-                for kind, links in ((REMOVED, d.removed), (ADDED, d.added), (KEPT, d.kept))
-                for link in links]
-        self.table.setRowCount(len(rows))
-        words = {ADDED: "+ add", REMOVED: "− remove", KEPT: "keep"}
-        for i, (index, kind, link) in enumerate(rows):
+        self.table.setRowCount(len(self.rows))
+        words = {ADDED: "+ add", REMOVED: "− remove", CHANGED: "≠ records", KEPT: "keep"}
+        for i, (index, kind, link) in enumerate(self.rows):
             cells = (str(index), words[kind], ref_label(self.system, link.output),
                      ref_label(self.system, link.input))
             for col, text in enumerate(cells):
@@ -219,20 +191,50 @@ class WriteConfigDialog(QDialog):
                 self.table.setItem(i, col, item)
 
     def write(self) -> Worker | None:
-        """Write the configuration (only once the diff is shown), then verify it."""
+        """Write the configuration (only once the diff is shown) as one transaction, recorded
+        in the fitting history; then read back once more and compare."""
+        from pdcp_studio.app import fitting
+        from pdcp_studio.bus.transaction import Change
+
         if self.state != READY:
             return None
         self._set_state(WRITING)
-        self.result.setText("Writing…")
-        worker = self.bridge.write_configuration(self.collection)
+        self.result.setText(self.tr("Writing…"))
+        change = Change("config write", configuration=self.collection)
+        operator = fitting.operator_name(self)
+        parent = self.parent()
+        patient = parent.patient_reference() if hasattr(parent, "patient_reference") else ""
+        session = getattr(self.bridge, "session", None)
+        worker = self.bridge.run(
+            lambda p, c: session.transact(change, operator=operator or None,
+                                          patient=patient or None, progress=p, cancel=c),
+            "Write configuration")
         if worker is None:
             self._fail("the bus connection is closed")
             return None
         self._worker = worker
-        worker.finished.connect(self._read_back)
+        worker.finished.connect(self._written)
         worker.failed.connect(self._write_failed)
         worker.cancelled.connect(self._cancelled)
         return worker
+
+    def _written(self, result: Any) -> None:
+        self.transaction = result
+        if result.written:
+            self._read_back()
+        elif getattr(result.status, "value", "") == "rolled_back" and result.step == "verify":
+            self._set_state(MISMATCH)
+            self.result.setText(
+                self.tr(
+                    "<b style='color:#b00000'>Verification failed:</b> {reason}. "
+                    "The arbitrator keeps its previous configuration."
+                ).format(reason=result.reason)
+            )
+            self.verified.emit(False, result.reason)
+        elif result.ok:  # nothing to change: the arbitrator holds it already
+            self._read_back()
+        else:
+            self._fail(f"writing failed: {result.reason}")
 
     def _read_failed(self, message: str) -> None:
         self._fail(f"reading the arbitrator failed: {message}")
@@ -247,9 +249,10 @@ class WriteConfigDialog(QDialog):
         self._fail(f"cancelled while {self.state}")
 
     def _read_back(self, _session_result: Any = None) -> None:
-        """The session verified its own read-back already; read once more, independently."""
+        """The transaction verified its own read-back already; read once more,
+        independently."""
         self._set_state(VERIFYING)
-        self.result.setText("Written. Reading back to verify…")
+        self.result.setText(self.tr("Written. Reading back to verify…"))
         worker = self.bridge.read_configuration()
         if worker is None:
             self._fail("the bus connection closed before the read-back")
@@ -260,18 +263,33 @@ class WriteConfigDialog(QDialog):
         worker.cancelled.connect(self._cancelled)  # else stuck in VERIFYING: no Close
 
     def _on_read_back(self, read_back: ConfigCollection | None) -> None:
-        ok, message = verify_collection(self.collection, read_back)
+        diff = diff_configurations(self.collection, read_back or ConfigCollection())
+        ok = diff.equal and read_back is not None
+        if read_back is None:
+            message = "the arbitrator reports no stored configuration after the write"
+        elif ok:
+            n = sum(len(c.links) for c in read_back.configurations)
+            message = (f"read back {n} link(s) in {len(read_back.configurations)} "
+                       "configuration(s): identical")
+        else:
+            message = diff.describe("written", "read back")
         self._set_state(VERIFIED if ok else MISMATCH)
         if ok:
-            self.result.setText(f"<b>Verified:</b> {message}.")
+            self.result.setText(self.tr("<b>Verified:</b> {message}.").format(message=message))
         else:
-            self.result.setText(f"<b style='color:#b00000'>Verification failed:</b> {message}. "
-                                "Do not rely on the stored configuration; write it again.")
+            self.result.setText(
+                self.tr(
+                    "<b style='color:#b00000'>Verification failed:</b> {message}. "
+                    "Do not rely on the stored configuration; write it again."
+                ).format(message=message)
+            )
         self.verified.emit(ok, message)
 
     def _fail(self, message: str) -> None:
         self._set_state(FAILED)
-        self.result.setText(f"<b style='color:#b00000'>Failed:</b> {message}")
+        self.result.setText(
+            self.tr("<b style='color:#b00000'>Failed:</b> {message}").format(message=message)
+        )
         self.verified.emit(False, message)
 
     def reject(self) -> None:

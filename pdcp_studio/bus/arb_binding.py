@@ -16,6 +16,9 @@ from pdcp_studio.protocol import BindRequest, BindResponse
 
 log = logging.getLogger("pdcp_studio.bus.arbitrator")  # one logger for the arbitrator
 
+#: Per-device notes kept for devices that hold no node ID (refused binds, failed set-ups)
+#: are bounded: a bind flood of made-up serial numbers must not grow them without end.
+MAX_KEYS_REMEMBERED = 1024
 #: Beacon interval assumed for presence until a newly bound device's own has been read: long
 #: enough for a device beaconing every 500 ms (the full rig's) not to be declared gone, and
 #: bound again, while it is still being set up.
@@ -65,6 +68,8 @@ class BindingMixin:
                 except NodeIdExhaustedError as err:
                     self._held.pop(key, None)
                     first = key not in self._exhausted_reported
+                    if first and len(self._exhausted_reported) >= MAX_KEYS_REMEMBERED:
+                        self._exhausted_reported.clear()  # a bind flood of made-up keys
                     self._exhausted_reported.add(key)
                     exhausted = err
             if exhausted is None:

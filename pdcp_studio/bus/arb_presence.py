@@ -204,9 +204,12 @@ class PresenceMixin:
             self._report_duplicate(node.key, f"node {node.node_id} answers requests twice")
         return echo
 
-    def _count_beacon(self, node: _Node, now: float) -> None:
-        """Twins bound together beacon on one node ID at twice the device's rate."""
-        if not node.set_up:
+    def _count_beacon(self, node: _Node, now: float, caught_up: bool = True) -> None:
+        """Twins bound together beacon on one node ID at twice the device's rate.
+
+        Judged only on frames handled as they come: after a backlog (a flood, a busy
+        machine) a second's beacons are handled in a moment and would look like twins."""
+        if not node.set_up or not caught_up:
             node.window_start, node.window_beacons = now, 0
             return
         node.window_beacons += 1

@@ -109,7 +109,7 @@ class ProfileMixin:
                 self._error(f"stored configuration unreadable, starting up from the devices' "
                             f"own source fields: {err}", "plan")
                 stored = ConfigCollection([])
-            autoconfigure = self.read_policy().autoconfigure
+            autoconfigure = self._policy_for_plans()
             plan = plan_on_bus("startup", self.system(), stored, autoconfigure=autoconfigure)
             try:
                 self.apply_plan(plan)
@@ -125,6 +125,15 @@ class ProfileMixin:
                     self._last_present = self._present_refs()
         return plan
 
+    def _policy_for_plans(self) -> bool:
+        """The stored autoconfigure policy; the thesis's default (on) when the memory cannot
+        be read — start-up already said so once, and an unreadable memory must not leave the
+        prosthesis unlinked."""
+        try:
+            return self.read_policy().autoconfigure
+        except (OSError, PdcpError):
+            return True
+
     def run_duty_cycle(self) -> Plan:
         """Listing 4.2: replacements for channels that left, then autoconfigure."""
         from pdcp_studio.engine import plan_duty_cycle
@@ -134,7 +143,7 @@ class ProfileMixin:
                 self._duty_needed = False
                 before = set(self._last_present)
             snapshot = self.system()
-            autoconfigure = self.read_policy().autoconfigure
+            autoconfigure = self._policy_for_plans()
             plan = plan_duty_cycle(snapshot, before, autoconfigure=autoconfigure)
             try:
                 if plan.actions:

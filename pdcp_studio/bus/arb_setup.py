@@ -11,6 +11,7 @@ import logging
 import time
 
 from pdcp_studio.bus import events as ev
+from pdcp_studio.bus.arb_binding import MAX_KEYS_REMEMBERED
 from pdcp_studio.bus.arb_common import (
     _CHANNEL_PARAMS,
     _DEVICE_PARAMS,
@@ -41,12 +42,18 @@ class SetupMixin:
 
     def _setup_job(self, key: DeviceKey, node_id: int, generation: int, epoch: int) -> None:
         try:
+            if not self._current(key, node_id, generation, epoch):
+                return  # it left (or bound again) while queued: a bind flood of made-up
+                # devices must not keep a real one waiting behind their timeouts
             device = self._read_device(key, node_id)
             if self._current(key, node_id, generation, epoch):
                 self._commit(key, node_id, generation, epoch, device)
         except PdcpError as err:
             if self._current(key, node_id, generation, epoch) and not self._stop.is_set():
                 with self._lock:
+                    if (key not in self._setup_failures
+                            and len(self._setup_failures) >= MAX_KEYS_REMEMBERED):
+                        del self._setup_failures[next(iter(self._setup_failures))]  # oldest
                     failures = self._setup_failures[key] = self._setup_failures.get(key, 0) + 1
                 again = failures < SETUP_ATTEMPTS
                 self._error(f"set-up of device {key} (node {node_id}) failed: {err}"

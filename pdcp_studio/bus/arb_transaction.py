@@ -133,8 +133,8 @@ class TransactionMixin:
             policy_before=policy_before, policy_after=policy_before,
             devices=sorted(k for k, d in system.devices.items() if d.present))
         problem = _check_change(system, change)
-        if problem:
-            result.step, result.reason = "write", f"{problem}; nothing was written"
+        if problem:  # the change does not fit the bus as it is now
+            result.step, result.reason = "preview", f"{problem}; nothing was written"
             return result
         held = interlocked_devices(system, before, after, change.parameters) \
             if change.moves else []

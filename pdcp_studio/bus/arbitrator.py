@@ -85,6 +85,7 @@ from pdcp_studio.bus.arb_profile import ProfileMixin
 from pdcp_studio.bus.arb_setup import SetupMixin
 from pdcp_studio.bus.arb_transaction import TransactionMixin
 from pdcp_studio.bus.connection import Connection
+from pdcp_studio.bus.log_limit import LimitedLog, RepeatLimiter
 from pdcp_studio.bus.memory import MemoryStore
 from pdcp_studio.bus.node_ids import NodeIdPool
 from pdcp_studio.bus.requests import RESPONSE_TIMEOUT_S, RequestEngine
@@ -113,6 +114,10 @@ if TYPE_CHECKING:
 
 log = logging.getLogger(__name__)
 
+#: Errors of one kind (undecodable frames, error frames …) told in full before the limit:
+#: then one a second, and the rest as one summary a second (``bus/log_limit.py``).
+ERROR_BURST = 8
+
 __all__ = [
     "BEACON_WINDOW",
     "BIND_HOLD_S",
@@ -139,6 +144,17 @@ __all__ = [
 ]
 
 
+#: A dispatch loop that did not come round for this long was stalled (it runs every TICK_S)…
+STALL_S = 0.15
+#: … and then waits this long before judging presence: the frames received meanwhile may still
+#: sit in the driver's or the socket's buffer, unseen, and silence would be misread.
+STALL_GRACE_S = 0.3
+
+#: How a summary names the errors of a kind.
+_ERROR_WORDS = {"bad_frame": "undecodable frames", "error_frame": "error frames",
+                "transport": "transport errors"}
+
+
 class Arbitrator(BindingMixin, PresenceMixin, SetupMixin, LinksMixin, ProfileMixin,
                  TransactionMixin):
     """A headless PDCP bus arbitrator on ``bus`` (which it owns and shuts down on close)."""
@@ -151,7 +167,7 @@ class Arbitrator(BindingMixin, PresenceMixin, SetupMixin, LinksMixin, ProfileMix
                  node_ids: tuple[int, int] = (NODE_ID_MIN, NODE_ID_MAX),
                  frame_events: bool = False, channel_events: bool = True,
                  reset_on_start: bool = True, autoconfigure: bool | None = None,
-                 listen_s: float = 0.0) -> None:
+                 drop_own: bool | None = None, listen_s: float = 0.0) -> None:
         self.name = name
         self.profile_layer = profile_layer
         self.retries = retries
@@ -169,7 +185,9 @@ class Arbitrator(BindingMixin, PresenceMixin, SetupMixin, LinksMixin, ProfileMix
         self.error_frames = 0
         self.data_frames = 0
         self.duplicates: set[DeviceKey] = set()
-        self.conn = Connection(bus, name=name, pace_s=pace_s)
+        self.conn = Connection(bus, name=name, pace_s=pace_s, drop_own=drop_own)
+        self._errors = RepeatLimiter(burst=ERROR_BURST)
+        self._crashes = LimitedLog(log, f"{name}: ")
         self._disconnected = False  # the adapter was pulled (a ReopeningBus says so)
         if hasattr(bus, "on_state"):
             bus.on_state = self._adapter_state
@@ -271,8 +289,20 @@ class Arbitrator(BindingMixin, PresenceMixin, SetupMixin, LinksMixin, ProfileMix
         self._subscribers.emit(event)
 
     def _error(self, message: str, kind: str = "") -> None:
+        """Log and show a bus error; repeats of one kind are limited, then summarised."""
+        told, summary = self._errors.admit(kind or message, message)
+        if summary is not None:
+            self._tell_error(summary.text(_ERROR_WORDS.get(summary.kind, "")), summary.kind)
+        if told:
+            self._tell_error(message, kind)
+
+    def _tell_error(self, message: str, kind: str) -> None:
         log.warning("%s: %s", self.name, message)
         self._emit(ev.BusError(message, kind))
+
+    def _flush_errors(self) -> None:
+        for summary in self._errors.due():
+            self._tell_error(summary.text(_ERROR_WORDS.get(summary.kind, "")), summary.kind)
 
     # -- snapshot and look-ups ------------------------------------------------------------
     def system(self) -> System:
@@ -437,6 +467,8 @@ class Arbitrator(BindingMixin, PresenceMixin, SetupMixin, LinksMixin, ProfileMix
     # -- the dispatch thread --------------------------------------------------------------
     def _run(self) -> None:
         next_tick = 0.0
+        last = time.monotonic()
+        hold_until = 0.0
         while not self._stop.is_set():
             item = self.conn.get(TICK_S)
             if self._stop.is_set():
@@ -449,13 +481,17 @@ class Arbitrator(BindingMixin, PresenceMixin, SetupMixin, LinksMixin, ProfileMix
                 elif item is not None:
                     self._on_frame(item)
                 now = time.monotonic()
+                if now - last > STALL_S:  # this process did not run (a loaded PC, a pause):
+                    hold_until = now + STALL_GRACE_S  # frames may still wait in the driver
+                last = now
                 if now >= next_tick and self._claim_tick(now):
                     next_tick = now + TICK_S
+                    self._flush_errors()
                     # Presence is judged only when every frame received so far is handled:
                     # a backlog (a busy machine) must not pass for silent devices.
-                    self._tick(now, self.conn.inbound.empty())
+                    self._tick(now, self.conn.inbound.empty() and now >= hold_until)
             except Exception:  # one bad frame or bug must never stop the arbitrator
-                log.exception("%s: dispatch failed", self.name)
+                self._crashes.exception("dispatch", "dispatch failed")
 
     def _bad_frame(self, why: str) -> None:
         self.bad_frames += 1
@@ -504,7 +540,7 @@ class Arbitrator(BindingMixin, PresenceMixin, SetupMixin, LinksMixin, ProfileMix
         if node is None:  # node 0, or a device that left a moment ago
             return
         if isinstance(message, Beacon):
-            self._count_beacon(node, now)
+            self._count_beacon(node, now, self.conn.inbound.empty())
             return
         if isinstance(message, UpdateDataChannel):
             self._on_update(node, message)

@@ -20,7 +20,7 @@ import logging
 import queue
 import threading
 import time
-from typing import TYPE_CHECKING
+from typing import TYPE_CHECKING, Any
 
 from pdcp_studio.errors import TransportError
 
@@ -39,7 +39,13 @@ SEND_TIMEOUT_S = 0.2
 #: How long a sent frame waits for its multicast echo before it is forgotten.
 ECHO_WINDOW_S = 2.0
 #: At most this many sent frames wait for their echo; beyond it the oldest is forgotten.
-ECHO_MAX_PENDING = 4096
+#: A 1 Mbit/s CAN bus carries at most ~8,000 frames/s: two seconds (the window) of them.
+ECHO_MAX_PENDING = 16384
+#: Past its deadline, get() drops at most this many of our own echoes before it returns None.
+ECHO_DRAIN_LATE = 64
+#: At most this many received frames wait for the consumer (a flood it cannot keep up with
+#: is dropped and counted beyond it: about 30 MB of frames, 8 s of a full 1 Mbit/s bus).
+INBOUND_MAX = 65536
 #: Interfaces that return a process's own frames to it.
 _ECHOING = ("UdpMulticastBus",)
 
@@ -55,13 +61,20 @@ def open_connections() -> list[Connection]:
 
 
 class _Enqueue:
-    """The Notifier listener: put the frame on the queue, nothing else, never raise."""
+    """The Notifier listener: put the frame on the queue, nothing else, never raise.
 
-    def __init__(self, target: queue.SimpleQueue) -> None:
+    A consumer that falls behind a flood must not let the queue take all memory: beyond
+    ``INBOUND_MAX`` waiting frames, new frames are dropped and counted (``dropped``)."""
+
+    def __init__(self, target: queue.SimpleQueue[Any]) -> None:
         self._target = target
         self.errors = 0
+        self.dropped = 0
 
     def __call__(self, msg: can.Message) -> None:
+        if self._target.qsize() >= INBOUND_MAX:
+            self.dropped += 1
+            return
         self._target.put(msg)
 
     def on_error(self, exc: Exception) -> None:  # python-can calls this on a reader error
@@ -151,7 +164,7 @@ class Connection:
         self.bus = bus
         self.name = name
         self.pace_s = pace_s
-        self.inbound: queue.SimpleQueue = queue.SimpleQueue()
+        self.inbound: queue.SimpleQueue[Any] = queue.SimpleQueue()
         self.sent = 0
         self.received = 0
         self._send_lock = threading.Lock()
@@ -168,6 +181,11 @@ class Connection:
     @property
     def closed(self) -> bool:
         return self._closed
+
+    @property
+    def dropped(self) -> int:
+        """Frames dropped because the consumer was ``INBOUND_MAX`` frames behind."""
+        return self._listener.dropped
 
     def send(self, arbitration_id: int, data: bytes) -> float:
         """Send one base frame; returns its timestamp. TransportError if the bus refuses it."""
@@ -201,6 +219,7 @@ class Connection:
     def get(self, timeout: float | None) -> object:
         """The next inbound item (a can.Message, an Exception, a posted callable), or None."""
         deadline = None if timeout is None else time.monotonic() + timeout
+        late_drops = 0
         while True:
             left = None if deadline is None else deadline - time.monotonic()
             try:
@@ -211,6 +230,11 @@ class Connection:
             if item is None or isinstance(item, Exception) or callable(item):
                 return item
             if self.drop_own and self._is_own(item):
+                if left is not None and left <= 0:
+                    late_drops += 1
+                    if late_drops >= ECHO_DRAIN_LATE:
+                        return None  # the caller's timers are due: a stream of our own
+                        # echoes must not keep it here past its deadline
                 continue
             self.received += 1
             return item

@@ -18,6 +18,7 @@ from typing import TYPE_CHECKING, TypeVar
 
 from pdcp_studio.bus.connection import Connection
 from pdcp_studio.bus.device_sim import SimulatedDevice, State
+from pdcp_studio.bus.log_limit import LimitedLog
 from pdcp_studio.errors import BusTimeoutError, FrameError, TransportError
 from pdcp_studio.model.refs import DeviceKey
 from pdcp_studio.protocol import BindResponse, ChannelData, Message, decode
@@ -38,10 +39,14 @@ class DeviceHost:
     """Drives ``SimulatedDevice``s on a python-can bus. Close it (or use ``with``)."""
 
     def __init__(self, bus: can.BusABC, devices: Iterable[SimulatedDevice] = (), *,
-                 name: str = "devices", plugged: bool = True) -> None:
-        self.conn = Connection(bus, name=name)
+                 name: str = "devices", plugged: bool = True,
+                 drop_own: bool | None = None) -> None:
+        self.conn = Connection(bus, name=name, drop_own=drop_own)
         self.name = name
         self.bad_frames = 0
+        self.failures = 0
+        #: Repeated driver errors and device failures: told once, then summarised each second.
+        self._log = LimitedLog(log, f"{name}: ")
         self._devices: dict[DeviceKey, SimulatedDevice] = {}
         self._timers: list[tuple[float, int, Callable[[], None]]] = []
         self._seq = itertools.count()
@@ -175,10 +180,11 @@ class DeviceHost:
                 self._guard(fn)
             wait = IDLE_WAKE_S if not self._timers else min(IDLE_WAKE_S, self._timers[0][0] - now)
             item = self.conn.get(max(0.0, wait))
+            self._log.flush()
             if item is None or self._stop:
                 continue
             if isinstance(item, Exception):
-                log.warning("%s: the bus reported %s", self.name, item)
+                self._log.warning("transport", "the bus reported %s", item)
             elif callable(item):
                 self._guard(item)
             else:
@@ -188,7 +194,8 @@ class DeviceHost:
         try:
             fn()
         except Exception:  # one device's bug must not stop the others
-            log.exception("%s: a simulated device failed", self.name)
+            self.failures += 1
+            self._log.exception("device", "a simulated device failed")
 
     def _on_frame(self, msg: can.Message) -> None:
         if msg.is_extended_id or msg.is_error_frame or msg.is_remote_frame:

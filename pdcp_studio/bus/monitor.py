@@ -12,7 +12,10 @@ python-can is imported inside the capture functions only, so importing this modu
 
 from __future__ import annotations
 
+import contextlib
 import copy
+import json
+import os
 from collections import Counter
 from collections.abc import Iterator, Mapping, Sequence
 from dataclasses import dataclass, field
@@ -25,16 +28,30 @@ from pdcp_studio.model import parameters as P
 from pdcp_studio.model.refs import ChannelRef, DeviceKey, Direction
 from pdcp_studio.protocol import messages as M
 from pdcp_studio.protocol.bulk import BulkReassembler, packet_count
-from pdcp_studio.protocol.codes import ResponseCode
-from pdcp_studio.protocol.identifier import Mode, split_id
+from pdcp_studio.protocol.codes import FunctionCode, ResponseCode
+from pdcp_studio.protocol.identifier import Mode
 
 TO_BA, FROM_BA, CHANNEL_DATA = "device→BA", "BA→device", "channel data"
 UNDECODABLE = "undecodable"
+UNATTRIBUTED = "unattributed"
 #: node ID → (output channel, the inputs linked to it); the caller may keep updating it.
 LinkMap = Mapping[int, tuple[ChannelRef, Sequence[ChannelRef]]]
 #: Capture formats python-can 4.6 both writes and reads without extra packages (``.gz`` too).
 CAPTURE_SUFFIXES = (".asc", ".blf", ".csv", ".log", ".trc", ".db")
+_FAILURE = ResponseCode.FAILURE.title
 _NO_SOURCE = (0, 0xFF)  # a Source's Node Ids byte that means "not connected"
+#: Per-ID statistics key extended identifiers above every base one.
+EXTENDED_KEY = 1 << 29
+NOT_PDCP = "not PDCP"
+#: Frames a capture needs, none of them PDCP's, before it is called ``not PDCP``.
+NOT_PDCP_MIN_FRAMES = 20
+#: Decoded messages and descriptions kept for frames seen again (cleared when full).
+CACHE_SIZE = 8192
+NODE_MAP_FORMAT = "pdcp-studio-node-map/1"
+#: A capture's node map is saved beside it as ``<capture>`` + this suffix.
+NODE_MAP_SUFFIX = ".nodemap.json"
+#: A capture being written (or interrupted) is named ``<capture>`` + this suffix.
+PARTIAL_SUFFIX = ".partial"
 
 
 class CaptureError(PdcpError):
@@ -45,9 +62,17 @@ class CaptureError(PdcpError):
         super().__init__(f"{path}: {reason}")
 
 
-@dataclass(frozen=True)
+class CaptureWriteError(CaptureError):
+    """A capture could not be written (full disk, …): a failure (exit 1), not bad input."""
+
+
+@dataclass(slots=True)
 class DecodedFrame:
-    """One frame as the monitor shows it; ``line`` is the text, ``as_json()`` the record."""
+    """One frame as the monitor shows it; ``line`` is the text, ``as_json()`` the record.
+
+    Treat it as read-only (it is not frozen only because a frozen dataclass costs a
+    monitor of a saturated bus several microseconds per frame).
+    """
 
     timestamp: float
     time: float  # seconds since the decoder's first frame
@@ -62,6 +87,8 @@ class DecodedFrame:
     response: str | None = None  # the response code's name
     link: tuple[ChannelRef | str, tuple[ChannelRef | str, ...]] | None = None
     message: Any = field(default=None, compare=False, repr=False)
+    #: The line without its time, when the decoder composed it already.
+    head: str = field(default="", compare=False, repr=False)
 
     @property
     def who(self) -> str:
@@ -73,6 +100,8 @@ class DecodedFrame:
 
     @property
     def line(self) -> str:
+        if self.head:
+            return f"{self.time:11.6f}  {self.head}"
         prio = "P?" if self.priority is None else f"P{self.priority}"
         text = f"{self.time:11.6f}  {prio}  {self.who} {self.function}"
         return f"{text}  {self.fields}" if self.fields else text
@@ -94,9 +123,19 @@ class DecodedFrame:
                 "text": self.line}
 
 
+#: Identifiers the per-ID statistics follow one by one; frames of any others are counted
+#: together (a base bus has 2,048 identifiers, extended frames could bring 2^29).
+MAX_TRACKED_IDS = 4096
+
+
 @dataclass
 class MonitorStats:
-    """Frames by function, errors and the bus time they took (for a bus-load estimate)."""
+    """Frames by function and by identifier, errors, and the bus time they took.
+
+    Every structure is bounded whatever the number of frames: counters by function name
+    (a fixed vocabulary plus one entry per undecodable reason kind), per-ID entries up to
+    ``MAX_TRACKED_IDS`` (``other_ids`` counts the rest).
+    """
 
     frames: int = 0
     by_function: Counter[str] = field(default_factory=Counter)
@@ -104,25 +143,78 @@ class MonitorStats:
     failures: int = 0  # responses with code 0 (failure)
     bulk_errors: int = 0
     meter: BusTimeMeter = field(default_factory=BusTimeMeter)
+    #: arbitration ID (extended ones + 0x20000000) → [count, first time, last time, last data]
+    by_id: dict[int, list[Any]] = field(default_factory=dict)
+    other_ids: int = 0
+    #: Frames that fit PDCP in context (a response to its request, a completed bulk packet,
+    #: channel data of a known output): what tells a PDCP bus from another one.
+    in_context: int = 0
 
     @property
     def errors(self) -> int:
         return self.undecodable + self.failures + self.bulk_errors
 
+    def note_id(self, key: int, timestamp: float, data: bytes) -> None:
+        entry = self.by_id.get(key)
+        if entry is not None:
+            entry[0] += 1
+            entry[2] = timestamp
+            entry[3] = data
+        elif len(self.by_id) < MAX_TRACKED_IDS:
+            self.by_id[key] = [1, timestamp, timestamp, data]
+        else:
+            self.other_ids += 1
+
+    def id_stats(self) -> list[dict[str, Any]]:
+        """Per identifier: count, mean period in seconds (None below two frames), last data."""
+        rows = []
+        for key, (count, first, last, data) in sorted(self.by_id.items()):
+            extended = key >= EXTENDED_KEY
+            rows.append({"arbitration_id": key - EXTENDED_KEY if extended else key,
+                         "extended": extended, "count": count,
+                         "period_s": (last - first) / (count - 1) if count > 1 else None,
+                         "last_data": data.hex()})
+        return rows
+
+    def verdict(self) -> str | None:
+        """``not PDCP`` when plenty of frames came and none of them fitted PDCP in context."""
+        if self.by_function.get(NOT_PDCP) or (
+                self.frames >= NOT_PDCP_MIN_FRAMES and self.in_context == 0):
+            return NOT_PDCP
+        return None
+
     def as_json(self, elapsed_s: float | None = None) -> dict[str, Any]:
         return {"frames": self.frames, "by_function": dict(self.by_function.most_common()),
                 "undecodable": self.undecodable, "failures": self.failures,
                 "bulk_errors": self.bulk_errors, "bus_time_us": round(self.meter.bus_time_us, 1),
-                "bus_load": self.meter.load(elapsed_s)}
+                "bus_load": self.meter.load(elapsed_s), "verdict": self.verdict(),
+                "ids": self.id_stats(), "other_ids": self.other_ids}
 
-    def summary(self, elapsed_s: float | None = None) -> str:
+    def summary(self, elapsed_s: float | None = None, top_ids: int = 12) -> str:
         load = self.meter.load(elapsed_s)
         span = self.meter.span_s if elapsed_s is None else elapsed_s
-        lines = [f"{self.frames} frames, {self.errors} errors ({self.undecodable} undecodable, "
-                 f"{self.failures} failure responses, {self.bulk_errors} bulk faults)",
-                 f"bus time {self.meter.bus_time_us / 1000:.3f} ms over {span:.3f} s"
+        if self.verdict() == NOT_PDCP:
+            head = (f"{self.frames} frames, {NOT_PDCP}: no frame fits PDCP's protocol "
+                    "(a capture of another bus?), so none is counted as an error")
+        else:
+            head = (f"{self.frames} frames, {self.errors} errors ({self.undecodable} "
+                    f"undecodable, {self.failures} failure responses, {self.bulk_errors} "
+                    "bulk faults)")
+        lines = [head, f"bus time {self.meter.bus_time_us / 1000:.3f} ms over {span:.3f} s"
                  + ("" if load is None else f" (bus load {100 * load:.2f} %)")]
         lines += [f"  {n:7d}  {name}" for name, n in self.by_function.most_common()]
+        busiest = sorted(self.id_stats(), key=lambda r: -r["count"])[:top_ids]
+        if busiest:
+            lines.append(f"busiest of {len(self.by_id)} identifiers"
+                         + (f" (+{self.other_ids} frames of others)" if self.other_ids else "")
+                         + ": count, mean period, last data")
+        for row in busiest:
+            ident = (f"{row['arbitration_id']:08X}" if row["extended"]
+                     else f"{row['arbitration_id']:03X}")
+            period = ("-" if row["period_s"] is None
+                      else f"{row['period_s'] * 1000:.3f} ms")
+            lines.append(f"  {ident:>8}  {row['count']:7d}  {period:>12}  "
+                         f"{row['last_data'].upper() or '(empty)'}")
         return "\n".join(lines)
 
 
@@ -133,8 +225,15 @@ class FrameDecoder:
     what the decoder learned, and the caller may update it at any time.
     """
 
-    def __init__(self, links: LinkMap | None = None) -> None:
+    def __init__(self, links: LinkMap | None = None, *, passive: bool = False) -> None:
         self.links: LinkMap = links if links is not None else {}
+        #: A monitor that joined a running bus: frames from nodes it has not seen bind and
+        #: that fit no function are "unattributed" (likely channel data), not errors.
+        self.passive = passive
+        #: Set when the traffic is known not to be PDCP's: frames are shown raw, no errors.
+        self.foreign = False
+        #: Count bus time (off for a decoder that only probes a capture).
+        self.meter_on = True
         self.stats = MonitorStats()
         self.devices: dict[int, DeviceKey] = {}  # device node ID → identity
         self.outputs: dict[int, tuple[int, int]] = {}  # channel node → (device node, index)
@@ -144,6 +243,21 @@ class FrameDecoder:
         self._partial: dict[int, dict[str, int]] = {}
         self._bulk: dict[tuple[int, Mode], tuple[int, int, BulkReassembler]] = {}  # param, chan
         self._t0: float | None = None
+        # Caches for a saturated bus: decoded messages (or the reason they do not decode) by
+        # frame; the link and its text by channel node, valid while ``_version`` (bumped by
+        # every change to what was learned) and the caller's entry are the same.
+        self._messages: dict[tuple[int, bytes], Any] = {}
+        self._link_cache: dict[int, tuple[Any, ...]] = {}
+        self._version = 0
+        # Requests seen and not yet answered: (node, response code) → count (bounded).
+        self._pending: dict[tuple[int, int], int] = {}
+        #: Device node IDs heard beaconing or answering (at most 254).
+        self.heard: set[int] = set()
+        self._beaconed: set[int] = set()
+
+    def _changed(self) -> None:
+        """What was learned changed: cached link texts are stale."""
+        self._version += 1
 
     @property
     def channel_node_ids(self) -> frozenset[int]:
@@ -152,7 +266,32 @@ class FrameDecoder:
     # -- entry points -----------------------------------------------------------------------
 
     def decode_message(self, msg: Any) -> DecodedFrame:
-        """Decode a ``can.Message`` (or anything with its attributes)."""
+        """Decode a ``can.Message`` (or anything with its attributes).
+
+        Channel data of a known output (most of a busy bus) is handled here inline: on a
+        saturated bus every call and attribute lookup per frame counts.
+        """
+        arbitration_id = msg.arbitration_id
+        node = arbitration_id & 0xFF
+        if (arbitration_id < 0x600 and not arbitration_id & 0x100 and not self.foreign
+                and self._t0 is not None and not msg.is_extended_id
+                and not msg.is_remote_frame and not msg.is_error_frame
+                and (node in self.links or node in self.outputs)):
+            data = bytes(msg.data)
+            timestamp = msg.timestamp or 0.0
+            if len(data) <= 8:
+                stats = self.stats
+                stats.frames += 1
+                if self.meter_on:
+                    stats.meter.add_base(arbitration_id, data, timestamp)
+                entry = stats.by_id.get(arbitration_id)
+                if entry is not None:
+                    entry[0] += 1
+                    entry[2] = timestamp
+                    entry[3] = data
+                else:
+                    stats.note_id(arbitration_id, timestamp, data)
+                return self._channel_data(arbitration_id, node, data, timestamp)
         return self.decode(msg.arbitration_id, bytes(msg.data), msg.timestamp or 0.0,
                            is_extended_id=bool(getattr(msg, "is_extended_id", False)),
                            is_remote_frame=bool(getattr(msg, "is_remote_frame", False)),
@@ -162,38 +301,191 @@ class FrameDecoder:
                is_extended_id: bool = False, is_remote_frame: bool = False,
                is_error_frame: bool = False) -> DecodedFrame:
         """One frame → one line; never raises on what a bus can deliver."""
-        data = bytes(data)
+        if type(data) is not bytes:
+            data = bytes(data)
         if self._t0 is None:
             self._t0 = timestamp
+        stats = self.stats
+        stats.frames += 1
+        if is_extended_id or is_error_frame or is_remote_frame or not 0 <= arbitration_id <= 0x7FF:
+            return self._odd_frame(arbitration_id, data, timestamp, is_extended_id,
+                                   is_remote_frame, is_error_frame)
+        if len(data) <= 8:
+            if self.meter_on:
+                stats.meter.add_base(arbitration_id, data, timestamp)
+        entry = stats.by_id.get(arbitration_id)
+        if entry is not None:
+            entry[0] += 1
+            entry[2] = timestamp
+            entry[3] = data
+        else:
+            stats.note_id(arbitration_id, timestamp, data)
+        node = arbitration_id & 0xFF
+        if self.foreign:
+            return self._raw(arbitration_id, data, timestamp)
+        if (arbitration_id < 0x600 and not arbitration_id & 0x100 and len(data) <= 8
+                and (node in self.links or node in self.outputs)):
+            return self._channel_data(arbitration_id, node, data, timestamp)
         base = {"timestamp": timestamp, "time": timestamp - self._t0,
                 "arbitration_id": arbitration_id, "data": data}
-        self.stats.frames += 1
-        if not (is_extended_id or is_error_frame):
+        key = (arbitration_id, data)
+        msg = self._messages.get(key)
+        if msg is None:
             try:
-                self.stats.meter.add(arbitration_id, data, timestamp)
-            except ValueError:
-                pass  # not a classical base frame: no bus time to add
-        reason = ("error frame" if is_error_frame else
-                  "extended 29-bit identifier (PDCP uses 11-bit base frames)" if is_extended_id
-                  else "remote frame (PDCP sends none)" if is_remote_frame else None)
-        try:
-            if reason:
-                raise FrameError(reason)
-            ident = split_id(arbitration_id)
-            base.update(priority=int(ident.priority), node_id=ident.node_id)
-            msg = M.decode(arbitration_id, data, channel_node_ids=self.channel_node_ids)
-        except FrameError as err:
-            return self._undecodable(base, str(err))
+                msg = M.decode(arbitration_id, data)
+            except FrameError as err:
+                msg = str(err)
+            if len(self._messages) >= CACHE_SIZE:
+                self._messages.clear()
+            self._messages[key] = msg
+        if isinstance(msg, str):
+            if node <= 254:
+                base.update(priority=arbitration_id >> 9, node_id=node)
+                if (self.passive and arbitration_id < 0x600 and not arbitration_id & 0x100
+                        and node not in self.devices and node not in self.heard):
+                    return self._unattributed(base)
+            return self._undecodable(base, msg)
+        self._context(msg)
+        base.update(priority=arbitration_id >> 9, node_id=node)
         try:
             frame = self._describe(msg, base)
         except Exception as err:  # a bug here must not stop a monitor: show the frame raw
             return self._undecodable(base, f"{type(err).__name__}: {err}")
-        self.stats.by_function[frame.function] += 1
-        if frame.response == ResponseCode.FAILURE.title:
-            self.stats.failures += 1
+        stats.by_function[frame.function] += 1
+        if frame.response == _FAILURE:
+            stats.failures += 1
         if frame.error:
-            self.stats.bulk_errors += 1
+            stats.bulk_errors += 1
         return frame
+
+    def _context(self, msg: Any) -> None:
+        """Count frames that fit PDCP in context: a response to a request seen before it."""
+        code = msg.CODE
+        node = msg.node_id
+        if code == FunctionCode.BEACON:  # a node beaconing again fits (devices beacon)
+            if node in self._beaconed:
+                self.stats.in_context += 1
+            elif len(self._beaconed) < 512:
+                self._beaconed.add(node)
+        if msg.mode is Mode.DEVICE and code != 0x01 and node:
+            self.heard.add(node)
+        if code < 0x80:
+            if msg.mode is Mode.ARBITRATOR or code == 0x01:
+                key = (node, code | 0x80)
+                if len(self._pending) >= CACHE_SIZE:
+                    self._pending.clear()
+                self._pending[key] = self._pending.get(key, 0) + 1
+            return
+        key = (node, code)
+        pending = self._pending.get(key)
+        if pending:
+            self.stats.in_context += 1
+            if pending == 1:
+                del self._pending[key]
+            else:
+                self._pending[key] = pending - 1
+
+    def _raw(self, arbitration_id: int, data: bytes, timestamp: float) -> DecodedFrame:
+        """A frame of a bus that is not PDCP's: shown as it is, counted, not an error."""
+        self.stats.by_function[NOT_PDCP] += 1
+        return DecodedFrame(timestamp, timestamp - (self._t0 or 0.0), arbitration_id, data,
+                            "", None, None, NOT_PDCP,
+                            f"[{arbitration_id:03X}] {data.hex(' ').upper() or '(empty)'}")
+
+    def _unattributed(self, base: dict[str, Any]) -> DecodedFrame:
+        """A passive monitor's frame from a node it has not learned: likely channel data."""
+        self.stats.by_function[UNATTRIBUTED] += 1
+        raw = f"[{base['arbitration_id']:03X}] {base['data'].hex(' ').upper() or '(empty)'}"
+        return DecodedFrame(**{"direction": "", "priority": None, "node_id": None, **base},
+                            function=UNATTRIBUTED, fields=raw)
+
+    def _odd_frame(self, arbitration_id: int, data: bytes, timestamp: float, extended: bool,
+                   remote: bool, error: bool) -> DecodedFrame:
+        """Error, remote, extended or out-of-range frames: counted, never PDCP."""
+        if not (extended or error) and 0 <= arbitration_id <= 0x7FF and len(data) <= 8:
+            self.stats.meter.add(arbitration_id, data, timestamp)
+        if not error:
+            self.stats.note_id(arbitration_id + (EXTENDED_KEY if extended else 0),
+                               timestamp, data)
+        if self.foreign:
+            return self._raw(arbitration_id, data, timestamp)
+        reason = ("error frame" if error else
+                  "extended 29-bit identifier (PDCP uses 11-bit base frames)" if extended
+                  else "remote frame (PDCP sends none)" if remote
+                  else f"arbitration ID 0x{arbitration_id:X} is not an 11-bit base identifier")
+        base = {"timestamp": timestamp, "time": timestamp - (self._t0 or 0.0),
+                "arbitration_id": arbitration_id, "data": data}
+        if not (extended or error) and 0 <= arbitration_id <= 0x7FF \
+                and arbitration_id & 0xFF <= 254:
+            base.update(priority=arbitration_id >> 9, node_id=arbitration_id & 0xFF)
+        return self._undecodable(base, reason)
+
+    def _channel_data(self, arbitration_id: int, node: int, data: bytes,
+                      timestamp: float) -> DecodedFrame:
+        given = self.links.get(node)
+        cached = self._link_cache.get(arbitration_id)  # by identifier: the line shows priority
+        if cached is None or cached[0] != self._version or cached[1] is not given:
+            link = self._link(node)
+            ins = ", ".join(map(str, link[1])) or "no input known"
+            text = f"{link[0]} → {ins}  "
+            cached = (self._version, given, link, text,
+                      f"P{arbitration_id >> 9}  #{node} data Channel data  {text}")
+            if len(self._link_cache) >= CACHE_SIZE:
+                self._link_cache.clear()
+            self._link_cache[arbitration_id] = cached
+        stats = self.stats
+        stats.by_function["Channel data"] += 1
+        stats.in_context += 1
+        hex_data = data.hex(" ").upper() or "(empty)"
+        return DecodedFrame(timestamp, timestamp - self._t0, arbitration_id, data,  # type: ignore[operator]
+                            CHANNEL_DATA, arbitration_id >> 9, node, "Channel data",
+                            cached[3] + hex_data, None, None, cached[2], None,
+                            cached[4] + hex_data)
+
+    # -- the node map, saved beside a capture ---------------------------------------------------
+
+    def node_map(self) -> dict[str, Any]:
+        """What the decoder knows of the bus (given links and what it learned), as JSON."""
+        links = [{"node_id": node, "output": _ref_json(out), "inputs": [_ref_json(r) for r in ins]}
+                 for node, (out, ins) in sorted(self.links.items())]
+        return {
+            "format": NODE_MAP_FORMAT,
+            "devices": [{"node_id": n, "vid": k.vid, "pid": k.pid, "serial": k.serial}
+                        for n, k in sorted(self.devices.items())],
+            "outputs": [{"node_id": c, "device_node": d, "index": i}
+                        for c, (d, i) in sorted(self.outputs.items())],
+            "inputs": [{"node_id": c, "device_node": d, "index": i}
+                       for c, ins in sorted(self.inputs.items()) for d, i in sorted(ins)],
+            "directions": [{"device_node": d, "index": i, "direction": str(v)}
+                           for (d, i), v in sorted(self.directions.items())],
+            "links": links,
+        }
+
+    def load_node_map(self, doc: Any, where: str = "node map") -> None:
+        """Start from a saved node map (``node_map()``); ValueError names what is wrong."""
+        try:
+            if doc.get("format") != NODE_MAP_FORMAT:
+                raise ValueError(f"format is {doc.get('format')!r}, not {NODE_MAP_FORMAT!r}")
+            for d in doc.get("devices", []):
+                self.devices[_node(d["node_id"])] = DeviceKey(int(d["vid"]), int(d["pid"]),
+                                                             int(d["serial"]))
+            for o in doc.get("outputs", []):
+                self.outputs[_node(o["node_id"])] = (_node(o["device_node"]), int(o["index"]))
+            for i in doc.get("inputs", []):
+                self.inputs.setdefault(_node(i["node_id"]), set()).add(
+                    (_node(i["device_node"]), int(i["index"])))
+            for d in doc.get("directions", []):
+                self.directions[_node(d["device_node"]), int(d["index"])] = Direction(
+                    d["direction"])
+            links = doc.get("links", [])
+            if links and isinstance(self.links, dict):
+                for link in links:
+                    self.links[_node(link["node_id"])] = (
+                        _ref_from(link["output"]),
+                        tuple(_ref_from(r) for r in link["inputs"]))
+        except (AttributeError, KeyError, TypeError, ValueError) as err:
+            raise ValueError(f"{where}: {err}") from err
+        self._changed()
 
     # -- describing -------------------------------------------------------------------------
 
@@ -264,6 +556,7 @@ class FrameDecoder:
 
     def _bound(self, node: int, key: DeviceKey) -> None:
         """A device holds ``node`` now: forget its old node and any channel that used ``node``."""
+        self._changed()
         for old in [n for n, k in self.devices.items() if k == key and n != node]:
             self._forget_device(old)
         self._forget_device(node)
@@ -271,6 +564,7 @@ class FrameDecoder:
         self.devices[node] = key
 
     def _forget_device(self, node: int) -> None:
+        self._changed()
         self.devices.pop(node, None)
         for chan_node in [c for c, (d, _) in self.outputs.items() if d == node]:
             del self.outputs[chan_node]
@@ -282,6 +576,7 @@ class FrameDecoder:
         """The device at ``old`` was given node ID ``new``: its channels keep their node IDs."""
         if new == old or new in _NO_SOURCE:
             return
+        self._changed()
         self._bound(new, self.devices.pop(old))
         self.outputs = {c: (new if d == old else d, i) for c, (d, i) in self.outputs.items()}
         self.inputs = {c: {(new if d == old else d, i) for d, i in ins}
@@ -333,11 +628,13 @@ class FrameDecoder:
         elif param == P.CH_TRANSFER_TYPE and len(value) == 1 and value[0] in (1, 2):
             self.directions[node, chan] = Direction.from_transfer_type(value[0])
         elif param == P.OUT_NODE_ID and direction is Direction.OUTPUT and len(value) == 1:
+            self._changed()
             for chan_node in [c for c, owner in self.outputs.items() if owner == (node, chan)]:
                 del self.outputs[chan_node]
             if value[0] not in _NO_SOURCE and value[0] not in self.devices:
                 self.outputs[value[0]] = (node, chan)
         elif param == P.IN_SOURCE_NODE_IDS and len(value) == 2:
+            self._changed()
             for listeners in self.inputs.values():
                 listeners.discard((node, chan))
             if value[1] not in _NO_SOURCE:
@@ -360,6 +657,7 @@ class FrameDecoder:
             parts.append(f"packet {msg.packet_id}  {hex_data}  (no transfer announced)")
             return None
         param, chan, r = transfer
+        self.stats.in_context += 1
         parts.append(f"packet {msg.packet_id}/{packet_count(r.expected_size)}  {hex_data}")
         try:
             complete = r.add(msg.packet_id, msg.data)
@@ -370,12 +668,67 @@ class FrameDecoder:
         if complete:
             del self._bulk[msg.node_id, msg.mode]
             value = r.result()
+            if len(self.bulk_values) >= CACHE_SIZE:
+                self.bulk_values.clear()
             self.bulk_values[msg.node_id, chan, param] = value
             direction = self.directions.get((msg.node_id, chan))
             spec = P.find_parameter(param, chan, direction)
             name = P.parameter_name(param, chan, direction)
             parts.append(f"complete: {name} chan {chan} = {P.render_value(spec, value)}")
         return None
+
+
+def _ref_json(ref: ChannelRef | str) -> Any:
+    return ref.as_json() if isinstance(ref, ChannelRef) else ref
+
+
+def _ref_from(doc: Any) -> ChannelRef | str:
+    return doc if isinstance(doc, str) else ChannelRef(**doc)
+
+
+def _node(value: Any) -> int:
+    node = int(value)
+    if not 1 <= node <= 254:
+        raise ValueError(f"node ID {node} is out of range (1–254)")
+    return node
+
+
+_json_str = json.encoder.encode_basestring_ascii  # type: ignore[attr-defined]
+
+
+def frame_json(frame: DecodedFrame) -> str:
+    """``json.dumps(frame.as_json())`` without building the dict (a monitor's hot path)."""
+    link = frame.link
+    link_text = "null" if link is None else json.dumps(
+        {"output": _ref_json(link[0]), "inputs": [_ref_json(r) for r in link[1]]})
+    return (f'{{"timestamp": {frame.timestamp!r}, "time": {round(frame.time, 6)!r}, '
+            f'"arbitration_id": {frame.arbitration_id}, "data": "{frame.data.hex()}", '
+            f'"direction": {_json_str(frame.direction)}, '
+            f'"priority": {"null" if frame.priority is None else frame.priority}, '
+            f'"node_id": {"null" if frame.node_id is None else frame.node_id}, '
+            f'"function": {_json_str(frame.function)}, "fields": {_json_str(frame.fields)}, '
+            f'"response": {"null" if frame.response is None else _json_str(frame.response)}, '
+            f'"error": {"null" if frame.error is None else _json_str(frame.error)}, '
+            f'"link": {link_text}, "text": {_json_str(frame.line)}}}')
+
+
+class JsonFrameWriter:
+    """Writes one JSON list of frames as they come: memory stays flat for any length.
+
+    Nothing is written before the first frame (so a command that fails first prints
+    nothing); ``close()`` ends the list — also after a failure, so stdout stays one JSON
+    document.
+    """
+
+    def __init__(self, stream: Any) -> None:
+        self.stream, self.count = stream, 0
+
+    def write(self, frame: DecodedFrame) -> None:
+        self.stream.write(("[\n" if self.count == 0 else ",\n") + frame_json(frame))
+        self.count += 1
+
+    def close(self) -> None:
+        self.stream.write("\n]\n" if self.count else "[]\n")
 
 
 # -- captures --------------------------------------------------------------------------------
@@ -406,24 +759,105 @@ def _loggable(msg: Any, fallback: str | int | None) -> Any:
     return safe
 
 
-class Recorder:
-    """Writes frames to a capture; ``can.Logger`` picks the format from the suffix.
+def _writer_for(target: Path, file: Path) -> Any:
+    """python-can's writer for ``target``'s format, writing to ``file`` (another name)."""
+    import gzip
 
-    Use as a context manager, or call ``close()``: binary formats are complete only then.
+    from can.io.generic import BinaryIOMessageWriter
+    from can.io.logger import _get_logger_for_suffix, _update_writer_plugins
+
+    _update_writer_plugins()
+    suffixes = [x.lower() for x in target.suffixes]
+    if suffixes[-1:] == [".gz"]:
+        real = suffixes[-2] if len(suffixes) >= 2 else ""
+        if real in (".blf", ".db"):
+            raise ValueError(f"the file type {real} is incompatible with gzip")
+        cls = _get_logger_for_suffix(real)
+        binary = issubclass(cls, BinaryIOMessageWriter)
+        return cls(file=gzip.open(file, "wb" if binary else "wt"))  # type: ignore[arg-type]
+    return _get_logger_for_suffix(suffixes[-1] if suffixes else "")(file=str(file))
+
+
+def _fsync(path: Path) -> None:
+    with contextlib.suppress(OSError):
+        fd = os.open(path, os.O_RDONLY)
+        try:
+            os.fsync(fd)
+        finally:
+            os.close(fd)
+
+
+def write_node_map(capture: str | Path, node_map: dict[str, Any]) -> Path:
+    """Save ``node_map`` atomically beside ``capture``; returns the sidecar's path."""
+    from pdcp_studio.storage.atomic import atomic_write_text
+
+    path = Path(str(capture) + NODE_MAP_SUFFIX)
+    atomic_write_text(path, json.dumps(node_map, indent=1) + "\n")
+    return path
+
+
+def read_node_map(capture: str | Path) -> dict[str, Any] | None:
+    """The node map saved beside ``capture``, or None; CaptureError if it is unreadable."""
+    path = Path(str(capture) + NODE_MAP_SUFFIX)
+    if not path.is_file():
+        return None
+    try:
+        with path.open("rb") as handle:
+            raw = handle.read((1 << 20) + 1)
+        if len(raw) > 1 << 20:
+            raise ValueError("larger than 1 MiB")
+        doc = json.loads(raw)
+        if not isinstance(doc, dict):
+            raise ValueError("not a JSON object")
+        return doc
+    except (OSError, ValueError) as err:
+        raise CaptureError(path, f"not a readable node map ({err})") from err
+
+
+class Recorder:
+    """Writes frames to a capture; the format comes from the target's suffix (python-can).
+
+    The frames go to ``<target>.partial`` and the target is replaced only when the capture
+    is complete and closed (``close()``, or leaving the ``with`` block without an error):
+    a capture that is killed, or fails on a full disk, leaves the previous target as it
+    was and the partial one clearly named. Errors name the target. With ``rotate_bytes``
+    the capture rotates as python-can's ``SizedRotatingLogger`` does (each finished part
+    renamed with a timestamp and count). ``node_map`` (a callable returning the decoder's
+    ``node_map()``) is saved beside every finished file, so a replay decodes it as it was.
     """
 
-    def __init__(self, path: str | Path, channel: str | int | None = None) -> None:
-        import can
-
+    def __init__(self, path: str | Path, channel: str | int | None = None, *,
+                 rotate_bytes: int = 0, node_map: Any = None) -> None:
         self.path, self.channel, self.frames = Path(path), channel, 0
+        self.partial = Path(str(self.path) + PARTIAL_SUFFIX)
+        self.rotate_bytes, self.node_map = rotate_bytes, node_map
+        self.parts: list[Path] = []  # finished rotated parts
+        self._closed = False
+        if self.path.is_dir():
+            raise CaptureError(self.path, "is a folder, not a capture file")
         try:
-            self._writer = can.Logger(str(self.path))
-        except (ValueError, ImportError, NotImplementedError, OSError) as err:
+            self._writer = _writer_for(self.path, self.partial)
+        except (ValueError, ImportError, NotImplementedError) as err:
             raise CaptureError(self.path, f"cannot write this capture: {err}") from err
+        except OSError as err:
+            raise CaptureWriteError(self.path, f"cannot write: {err.strerror or err}") from err
+        if rotate_bytes and not callable(getattr(self._writer, "file_size", None)):
+            self.abandon()
+            with contextlib.suppress(OSError):
+                self.partial.unlink()
+            raise CaptureError(self.path, "this format cannot rotate (.asc, .blf, .csv, .log "
+                               "and .trc can)")
 
     def write_message(self, msg: Any) -> None:
-        self._writer.on_message_received(_loggable(msg, self.channel))
-        self.frames += 1
+        try:
+            self._writer.on_message_received(_loggable(msg, self.channel))
+            self.frames += 1
+            if self.rotate_bytes and self.frames % 256 == 0:
+                size = self._writer.file_size()
+                if size is not None and size >= self.rotate_bytes:
+                    self._rotate()
+        except OSError as err:
+            self._fail(err)
 
     def write(self, arbitration_id: int, data: bytes, timestamp: float | None = None) -> None:
         import time
@@ -435,14 +869,60 @@ class Recorder:
             arbitration_id=arbitration_id, data=bytes(data), is_extended_id=False,
             channel=self.channel))
 
-    def close(self) -> None:
+    def _fail(self, err: OSError) -> None:
+        with contextlib.suppress(Exception):
+            self._writer.stop()
+        self._closed = True
+        raise CaptureWriteError(self.path, f"capture not written ({err.strerror or err}); the "
+                           f"frames so far are in {self.partial.name}, the previous file is "
+                           "unchanged") from err
+
+    def _finish(self, target: Path) -> None:
+        """Close the partial file and put it in place as ``target`` (with its node map)."""
         self._writer.stop()
+        _fsync(self.partial)
+        os.replace(self.partial, target)
+        if self.node_map is not None:
+            write_node_map(target, self.node_map())
+
+    def _rotate(self) -> None:
+        from datetime import datetime
+
+        stem = self.path.name.split(".")[0]
+        suffix = "".join(self.path.suffixes[-2:]) if self.path.suffix == ".gz" \
+            else self.path.suffix
+        part = self.path.with_name(
+            f"{stem}_{datetime.now():%Y-%m-%dT%H%M%S}_#{len(self.parts) + 1:03}{suffix}")
+        self._finish(part)
+        self.parts.append(part)
+        self._writer = _writer_for(self.path, self.partial)
+
+    def close(self) -> None:
+        if self._closed:
+            return
+        self._closed = True
+        try:
+            self._finish(self.path)
+        except OSError as err:
+            raise CaptureWriteError(self.path, f"capture not written ({err.strerror or err}); the "
+                               f"frames are in {self.partial.name}, the previous file is "
+                               "unchanged") from err
+
+    def abandon(self) -> None:
+        """Stop without replacing the target: the frames stay in the ``.partial`` file."""
+        if not self._closed:
+            self._closed = True
+            with contextlib.suppress(Exception):
+                self._writer.stop()
 
     def __enter__(self) -> Recorder:
         return self
 
-    def __exit__(self, *exc: object) -> None:
-        self.close()
+    def __exit__(self, exc_type: object, *exc: object) -> None:
+        if exc_type is None or exc_type in (KeyboardInterrupt, GeneratorExit):
+            self.close()
+        else:
+            self.abandon()
 
 
 def read_capture(path: str | Path) -> Iterator[Any]:
@@ -454,6 +934,9 @@ def read_capture(path: str | Path) -> Iterator[Any]:
         raise CaptureError(path, "is a folder, not a capture file")
     if not path.is_file():
         raise CaptureError(path, "no such file")
+    if path.name.endswith(PARTIAL_SUFFIX):
+        raise CaptureError(path, "an interrupted capture (never completed, it may end "
+                           "anywhere); rename it to read what it holds")
     # ASC stores times relative to its header; ask for absolute ones like the other formats.
     kwargs = {"relative_timestamp": False} if ".asc" in path.suffixes[-2:] else {}
     try:

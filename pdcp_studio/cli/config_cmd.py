@@ -2,6 +2,8 @@
 
 ``decode FILE [--json]`` lists a ``.pdcfg`` file (``--json``: the contract JSON, one
 document on stdout); ``encode JSON -o FILE`` writes one from that JSON, atomically.
+``diff A B [--json]`` or ``diff A --bus URL`` compares two stored configurations (the
+one diff of :mod:`pdcp_studio.model.config_diff`): exit 0 when equal, 3 when they differ.
 ``-`` reads standard input. The bus actions (``config read`` / ``config write``) live in
 ``pdcp_studio.cli.config_bus``, which registers them through
 ``add_bus_commands(config_subparsers)``; it is imported while the parser is built, so it
@@ -45,6 +47,17 @@ def add_subparser(subparsers: Any) -> None:
                         metavar="FILE", help="the .pdcfg")
     encode.set_defaults(func=run_encode)
 
+    diff = actions.add_parser(
+        "diff", help="compare two stored configurations (exit 3 when they differ)",
+        description="Compare two .pdcfg files, or a file with the stored configuration of the "
+                    "arbitrator on a bus. Exit 0 when equal, 3 when they differ.")
+    diff.add_argument("a", metavar="A", help="a .pdcfg file")
+    diff.add_argument("b", metavar="B", nargs="?", help="a second .pdcfg file")
+    diff.add_argument("--bus", metavar="URL", help="compare A with this bus's stored configuration")
+    diff.add_argument("--memory", metavar="FILE", help="PDCP Studio's own arbitrator memory")
+    diff.add_argument("--json", action="store_true", help="print the difference as JSON")
+    diff.set_defaults(func=run_diff)
+
     from pdcp_studio.cli import config_bus
 
     config_bus.add_bus_commands(actions)
@@ -62,6 +75,60 @@ def _read_input(path: str, limit: int, what: str, *, refuse: bool = True) -> byt
         raise BadInput(f"{path}: {err}") from None
     except OSError as err:
         raise BadInput(f"{path}: cannot read: {err.strerror or err}") from err
+
+
+#: ``config diff``'s exit status when the configurations differ (contracts §2).
+DIFFER = 3
+
+
+def _load_collection(path: str) -> Any:
+    """A ``.pdcfg`` file (or stdin) as a collection; a bad one is bad input with its offset."""
+    from pdcp_studio.cli.main import BadInput
+    from pdcp_studio.errors import ConfigFormatError
+    from pdcp_studio.storage import config_codec
+
+    data = _read_input(path, config_codec.MAX_INPUT_BYTES + 1, "a stored configuration",
+                       refuse=False)
+    try:
+        return config_codec.loads(data)
+    except ConfigFormatError as err:
+        raise BadInput(f"{path}: offset {err.offset}: {err.reason}") from err
+
+
+def run_diff(args: argparse.Namespace) -> int:
+    """Compare A with B or with the bus's stored configuration; 0 equal, 3 different."""
+    import json
+
+    from pdcp_studio.cli.main import BadInput
+    from pdcp_studio.model.config_diff import diff_configurations
+
+    if (args.b is None) == (args.bus is None):
+        raise BadInput("config diff: give either a second file B or --bus URL (not both)")
+    if args.memory and args.bus is None:
+        raise BadInput("config diff: --memory needs --bus")
+    a = _load_collection(args.a)
+    if args.b is not None:
+        b, b_name = _load_collection(args.b), args.b
+    else:
+        from pdcp_studio.cli.scan import open_bus_session
+
+        session = open_bus_session(args.bus, memory=args.memory)
+        try:
+            b = session.read_configuration()
+        finally:
+            session.close()
+        b_name = f"the arbitrator on {args.bus}"
+    diff = diff_configurations(a, b)
+    if args.json:
+        print(json.dumps(diff.to_json(), indent=2))
+    elif diff.equal:
+        print(f"{args.a} and {b_name} store the same configurations "
+              f"({len(a.configurations)} configuration(s), "
+              f"{sum(len(c.links) for c in a.configurations)} link(s))")
+    else:
+        for line in diff.lines(args.a, b_name):
+            print(line)
+    return 0 if diff.equal else DIFFER
 
 
 def run_decode(args: argparse.Namespace) -> int:
@@ -95,16 +162,25 @@ def format_listing(name: str, decoded: Any) -> list[str]:
     lines = [f"{name}: {len(configs)} configuration(s), {links} link(s), {decoded.size} bytes, "
              f"{checksum}"]
     if decoded.unknown_records:
-        lines.append(f"  {decoded.unknown_records} record(s) with unknown codes skipped")
+        lines.append(f"  {decoded.unknown_records} record(s) with unknown codes kept")
+    if decoded.collection.unknown:
+        lines.append(f"  collection: {_unknown_text(decoded.collection.unknown)}")
     if decoded.trailing_bytes:
         lines.append(f"  {decoded.trailing_bytes} byte(s) after End ignored")
     for cfg in configs:
-        lines.append(f"configuration {cfg.index}: {len(cfg.links)} link(s)")
+        extra = f"; {_unknown_text(cfg.unknown)}" if cfg.unknown else ""
+        lines.append(f"configuration {cfg.index}: {len(cfg.links)} link(s){extra}")
         for link in cfg.links:
-            lines.append(f"  link {link.index}: output {_channel_text(link.output)}")
+            extra = f"  ({_unknown_text(link.unknown)})" if link.unknown else ""
+            lines.append(f"  link {link.index}: output {_channel_text(link.output)}{extra}")
             pad = " " * len(f"link {link.index}")
             lines.append(f"  {pad}→ input  {_channel_text(link.input)}")
     return lines
+
+
+def _unknown_text(records: Any) -> str:
+    """``unknown records: code 32 = 0x1234, …`` (kept and written back as they are)."""
+    return "unknown records: " + ", ".join(f"code {r.code} = 0x{r.value:04X}" for r in records)
 
 
 def _channel_text(ch: Any) -> str:
@@ -113,6 +189,8 @@ def _channel_text(ch: Any) -> str:
         text += f"  owner type {ch.owner_type}"
     if ch.owner_profile is not None:
         text += f"  owner profile {ch.owner_profile}"
+    if ch.unknown:
+        text += f"  {_unknown_text(ch.unknown)}"
     return text
 
 

@@ -24,33 +24,6 @@ from collections.abc import Callable
 from importlib import metadata
 from typing import Any
 
-#: What installs each python-can interface's driver or package when it is missing.
-DRIVER_FIX: dict[str, str] = {
-    "canalystii": "pip install canalystii",
-    "cantact": "pip install cantact",
-    "etas": "install ETAS BOA (Windows)",
-    "gs_usb": "pip install gs_usb, and libusb (sudo apt-get install libusb-1.0-0)",
-    "iscan": "install the IS-CAN driver (iscandrv) from Ingenieurbüro Schneider",
-    "ixxat": "install the IXXAT VCI 4 driver (Windows)",
-    "kvaser": "install Kvaser CANlib (Kvaser Drivers for Windows, or linuxcan on Linux)",
-    "neousys": "install the Neousys WDT_DIO driver",
-    "neovi": "pip install python-ics, and Intrepid's drivers",
-    "nican": "install NI-CAN (Windows)",
-    "nixnet": "install NI-XNET and pip install nixnet (Windows)",
-    "pcan": "install PEAK's PCAN-Basic (libpcanbasic on Linux, PCANBasic.dll on Windows)",
-    "robotell": "pip install pyserial",
-    "seeedstudio": "pip install pyserial",
-    "serial": "pip install pyserial",
-    "slcan": "pip install pyserial",
-    "socketcan": "load SocketCAN in the kernel: sudo modprobe can can_raw (Linux only)",
-    "socketcand": "nothing to install here: run socketcand on the host with the adapter",
-    "systec": "install SYSTEC's USB-CANmodul driver (Windows)",
-    "udp_multicast": "pip install msgpack",
-    "usb2can": "install 8devices' usb2can driver and pip install pywin32 (Windows)",
-    "vector": "install Vector's XL Driver Library (Windows)",
-    "virtual": "reinstall python-can",
-}
-
 #: Packages whose versions the report gives (distribution names).
 VERSIONED = ("pdcp-studio", "PySide6-Essentials", "PySide6", "shiboken6", "python-can",
              "pyserial", "networkx", "platformdirs", "msgpack")
@@ -75,13 +48,11 @@ def versions() -> dict[str, str | None]:
         except metadata.PackageNotFoundError:
             out[name] = None
     try:
-        import PySide6
-        from PySide6 import QtCore
-
-        out["PySide6"] = PySide6.__version__
-        out["qt"] = QtCore.qVersion()
-    except ImportError:
+        from pdcp_studio.app.help_viewer import qt_versions
+    except ImportError:  # Qt's own libraries missing: the display check says which
         out["qt"] = None
+    else:
+        out.update(qt_versions())
     import can
 
     out["python-can"] = can.__version__
@@ -203,6 +174,8 @@ def can_interfaces() -> dict[str, dict[str, Any]]:
 
 
 def _interface(name: str, module: str) -> dict[str, Any]:
+    from pdcp_studio.bus.can_interfaces import driver_fix
+
     if name in WINDOWS_ONLY and sys.platform != "win32":
         why: str | None = "this driver exists for Windows only"
     else:
@@ -214,7 +187,7 @@ def _interface(name: str, module: str) -> dict[str, Any]:
     entry: dict[str, Any] = {"driver": why is None}
     if why is not None:
         entry["why"] = why
-        entry["fix"] = DRIVER_FIX.get(name, f"install the driver for {name}")
+        entry["fix"] = driver_fix(name)
     return entry
 
 

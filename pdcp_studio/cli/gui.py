@@ -30,6 +30,8 @@ def add_subparser(subparsers: argparse._SubParsersAction) -> None:
                    help="render the main window once loaded and laid out, save it, exit")
     p.add_argument("--size", metavar="WxH", default=None,
                    help="window size, e.g. 1400x860 (for screenshots)")
+    p.add_argument("--lang", metavar="LANG", default=argparse.SUPPRESS,
+                   help="the app's language, e.g. de or en (default: the system's)")
     p.set_defaults(func=run)
 
 
@@ -63,4 +65,5 @@ def run(args: argparse.Namespace) -> int:
         os.environ["QT_QPA_PLATFORM"] = "offscreen"  # no window here: render off screen
     from pdcp_studio.app.application import run_app
 
-    return run_app(args.file, args.bus, args.screenshot, size=size, started=_STARTED)
+    return run_app(args.file, args.bus, args.screenshot, size=size, started=_STARTED,
+                   lang=getattr(args, "lang", None))

@@ -36,6 +36,7 @@ COMMAND_MODULES = (
     "sim",
     "arbitrator",
     "monitor",
+    "hostlink_test",
     "doctor",
 )
 
@@ -54,6 +55,8 @@ def build_parser() -> argparse.ArgumentParser:
         description="See, configure and repair the PDCP bus inside a powered prosthesis.",
     )
     parser.add_argument("--version", action="version", version=f"pdcp-studio {__version__}")
+    parser.add_argument("--lang", metavar="LANG", default=None,
+                        help="the desktop app's language, e.g. de or en (default: the system's)")
     subparsers = parser.add_subparsers(dest="command", metavar="COMMAND")
     for name in COMMAND_MODULES:
         importlib.import_module(f"pdcp_studio.cli.{name}").add_subparser(subparsers)
@@ -65,7 +68,7 @@ def main(argv: Sequence[str] | None = None) -> int:
     args = parser.parse_args(argv)
     if args.command is None:
         # Bare `pdcp-studio` opens the desktop app on the simulated prosthesis.
-        args = parser.parse_args(["gui", *([] if argv is None else list(argv))])
+        args = parser.parse_args(["gui", *(["--lang", args.lang] if args.lang else [])])
         if getattr(args, "func", None) is None:
             parser.print_help()
             return EXIT_OK

@@ -9,7 +9,7 @@ capture to another format. The statistics go to stderr, so stdout holds only fra
 from __future__ import annotations
 
 import argparse
-import json
+import contextlib
 import queue
 import sys
 import time
@@ -26,6 +26,15 @@ FILTER_HELP = (
     "show only matching frames (repeatable, all must match): node=N[,N…], "
     "function=TEXT (part of the name) or function=0xNN, direction=to-ba|from-ba|data, errors"
 )
+ROTATE_MB = options.number(low=0.0, high=1e6, low_open=True, what="size (MB)")
+#: Frames a replay reads ahead to tell a PDCP capture from another bus's.
+PROBE_FRAMES = 2000
+#: python-can options that make an interface listen only (it never acknowledges nor sends).
+LISTEN_ONLY: dict[str, dict[str, Any]] = {
+    "slcan": {"listen_only": True},
+    "vector": {"listen_only": True},
+    "kvaser": {"driver_mode": False},  # canlib's DRIVER_MODE_SILENT
+}
 _DIRECTIONS = {"to-ba": "device→BA", "from-ba": "BA→device", "data": "channel data"}
 
 
@@ -35,7 +44,13 @@ def add_subparser(subparsers: argparse._SubParsersAction) -> None:
     source.add_argument("--bus", metavar="URL", help="sim:NAME, can:INTERFACE:CHANNEL[@BITRATE] …")
     source.add_argument("--replay", metavar="FILE",
                         help="a capture (.asc .blf .csv .log .trc .db, optionally .gz)")
-    p.add_argument("--log", metavar="FILE", help="also write every frame to this capture")
+    p.add_argument("--log", metavar="FILE", type=options.file_name,
+                   help="also write every frame to this capture (replaced only once complete; "
+                        "its node map is saved beside it)")
+    p.add_argument("--rotate-mb", type=ROTATE_MB, metavar="N",
+                   help="with --log: start a new file every N MB (python-can's rotation)")
+    p.add_argument("--system", metavar="FILE",
+                   help="a system file with node IDs: names the links of channel data")
     p.add_argument("--seconds", type=options.SECONDS, metavar="N",
                    help="stop after N seconds (live)")
     p.add_argument("--filter", action="append", default=[], metavar="KEY=VALUE",
@@ -75,16 +90,59 @@ def make_filter(specs: list[str]) -> Callable[[Any], bool]:
     return lambda frame: all(test(frame) for test in tests)
 
 
-def _can_frames(spec: Any, stop: Callable[[], bool]) -> Iterator[tuple[float, int, bytes, Any]]:
-    """Frames of a python-can bus, opened only to listen (the monitor never sends)."""
+def _listen_only(spec: Any) -> dict[str, Any]:
+    if spec.interface == "pcan":
+        import can
+
+        return {"state": can.BusState.PASSIVE}
+    return dict(LISTEN_ONLY.get(spec.interface, {}))
+
+
+class _ListenOnly:
+    """A python-can bus the monitor can only read: sending raises (it never transmits)."""
+
+    def __init__(self, bus: Any) -> None:
+        self._bus = bus
+
+    def recv(self, timeout: float) -> Any:
+        return self._bus.recv(timeout=timeout)
+
+    def send(self, *_args: Any, **_kw: Any) -> None:
+        raise RuntimeError("the monitor never transmits")
+
+    def shutdown(self) -> None:
+        self._bus.shutdown()
+
+
+#: Kernel receive buffer asked for a socket-based bus (capped by the system's maximum): a
+#: saturated bus must not lose frames while the monitor waits for a core.
+RECEIVE_BUFFER = 4 << 20
+
+
+def _enlarge_receive_buffer(bus: Any) -> None:
+    """Best effort for python-can's udp_multicast bus (a datagram socket): the default
+    ~200 KB holds only a few dozen milliseconds of a saturated bus."""
+    import socket
+
+    sock = getattr(getattr(bus, "_multicast", None), "_socket", None)
+    if sock is not None:
+        with contextlib.suppress(OSError):
+            sock.setsockopt(socket.SOL_SOCKET, socket.SO_RCVBUF, RECEIVE_BUFFER)
+
+
+def _can_frames(spec: Any, stop: Callable[[], bool]) -> Iterator[Any]:
+    """Frames of a python-can bus, opened only to listen (listen-only where the interface
+    has it; the monitor never sends)."""
     from pdcp_studio.bus.urls import open_spec
 
-    bus = open_spec(spec)  # TransportError (exit 1) names the URL when the adapter is missing
+    raw = open_spec(spec, **_listen_only(spec))  # TransportError names the URL
+    _enlarge_receive_buffer(raw)
+    bus = _ListenOnly(raw)
+    yield None  # open: the listening time starts now
     try:
         while not stop():
             msg = bus.recv(timeout=POLL_S)
-            if msg is not None:
-                yield msg.timestamp, msg.arbitration_id, bytes(msg.data), msg
+            yield msg  # None: a quiet poll, so the caller can flush and check the deadline
     finally:
         bus.shutdown()
 
@@ -99,12 +157,14 @@ def learn_links(links: dict, system: Any) -> None:
 
 
 def _session_frames(url: str, stop: Callable[[], bool],
-                    links: dict | None = None) -> Iterator[tuple[float, int, bytes, Any]]:
+                    links: dict | None = None) -> Iterator[Any]:
     """Frames a bus session reports (sim:, serial:): its FrameSeen events.
 
     ``links`` (the decoder's link map) is kept current from the session's system, re-read
     whenever a device or link comes or goes.
     """
+    import can
+
     from pdcp_studio.bus.events import DeviceJoined, DeviceLeft, FrameSeen, LinkMade, LinkRemoved
 
     try:
@@ -122,43 +182,89 @@ def _session_frames(url: str, stop: Callable[[], bool],
             lambda ev: seen.put(ev) if isinstance(ev, wanted) else None)
         if links is not None:
             learn_links(links, session.system())
+        yield None  # open: the listening time starts now
         while not stop():
             try:
                 ev = seen.get(timeout=POLL_S)
             except queue.Empty:
+                yield None
                 continue
             if not isinstance(ev, FrameSeen):
                 if links is not None:
                     learn_links(links, session.system())
                 continue
-            yield ev.timestamp, ev.arbitration_id, bytes(ev.data), None
+            yield can.Message(timestamp=ev.timestamp, arbitration_id=ev.arbitration_id,
+                              data=bytes(ev.data), is_extended_id=False)
     finally:
         session.close()
 
 
-def _replay_frames(path: str) -> Iterator[tuple[float, int, bytes, Any]]:
-    from pdcp_studio.bus.monitor import read_capture
+def _probe_foreign(head: list[Any], decoder: Any) -> bool:
+    """True when the first frames of a capture hold nothing that fits PDCP in context."""
+    from pdcp_studio.bus.monitor import NOT_PDCP_MIN_FRAMES, FrameDecoder
 
-    for msg in read_capture(path):
-        yield msg.timestamp, msg.arbitration_id, bytes(msg.data), msg
+    probe = FrameDecoder(dict(decoder.links))
+    probe.meter_on = False
+    probe.load_node_map(decoder.node_map())
+    for msg in head:
+        probe.decode(msg.arbitration_id, msg.data, msg.timestamp or 0.0,
+                     is_extended_id=msg.is_extended_id, is_remote_frame=msg.is_remote_frame,
+                     is_error_frame=msg.is_error_frame)
+    return len(head) >= NOT_PDCP_MIN_FRAMES and probe.stats.in_context == 0
+
+
+def _replay_frames(path: str, decoder: Any) -> Iterator[Any]:
+    """A capture's frames; its saved node map loaded, and foreign traffic recognised."""
+    import itertools
+
+    from pdcp_studio.bus.monitor import read_capture, read_node_map
+
+    node_map = read_node_map(path)
+    if node_map is not None:
+        try:
+            decoder.load_node_map(node_map, f"{path}.nodemap.json")
+        except ValueError as err:
+            raise BadInput(str(err)) from err
+    frames = read_capture(path)
+    head = list(itertools.islice(frames, PROBE_FRAMES))
+    decoder.foreign = _probe_foreign(head, decoder)
+    yield from head
+    yield from frames
+
+
+def _load_system_links(links: dict, path: str) -> None:
+    from pdcp_studio.storage.system_file import load_path
+
+    learn_links(links, load_path(path))
 
 
 def run(args: argparse.Namespace) -> int:
-    from pdcp_studio.bus.monitor import CaptureError, FrameDecoder, Recorder
+    from pdcp_studio.bus.monitor import (
+        CaptureError,
+        CaptureWriteError,
+        FrameDecoder,
+        JsonFrameWriter,
+        Recorder,
+    )
 
-    show = make_filter(args.filter)
+    show = make_filter(args.filter) if args.filter else None
     if args.seconds is not None and args.seconds <= 0:
         raise BadInput(f"--seconds {args.seconds}: must be positive")
+    if args.rotate_mb is not None and not args.log:
+        raise BadInput("--rotate-mb: only with --log FILE")
     links: dict = {}
+    live = not args.replay
     decoder = FrameDecoder(links)
-    shown: list[dict[str, Any]] = []
-    started = time.monotonic()
+    if args.system:
+        _load_system_links(links, args.system)
+    clock = {"started": time.monotonic(), "open": False}
 
     def stop() -> bool:
-        return args.seconds is not None and time.monotonic() - started >= args.seconds
+        elapsed = time.monotonic() - clock["started"]
+        return args.seconds is not None and elapsed >= args.seconds
 
     if args.replay:
-        frames = _replay_frames(args.replay)
+        frames: Iterator[Any] = _replay_frames(args.replay, decoder)
     else:
         from pdcp_studio.bus.urls import BusUrlError, parse_bus_url
 
@@ -166,36 +272,95 @@ def run(args: argparse.Namespace) -> int:
             spec = parse_bus_url(args.bus)
         except BusUrlError as err:
             raise BadInput(str(err)) from err
-        frames = (_can_frames(spec, stop) if spec.kind == "can"
-                  else _session_frames(args.bus, stop, links))
+        if spec.kind == "can":
+            decoder.passive = True  # it joins a running bus and learns from what it hears
+            frames = _can_frames(spec, stop)
+        else:
+            frames = _session_frames(args.bus, stop, links)
+    out = sys.stdout
+    json_out = JsonFrameWriter(out) if args.json else None
+    limiter = UndecodableLog(sys.stderr) if live else None
+    decode = decoder.decode_message
     try:
         with ExitStack() as stack:
             stack.enter_context(closing(frames))  # shuts a live bus down on any exit
-            recorder = stack.enter_context(Recorder(args.log)) if args.log else None
+            recorder = stack.enter_context(Recorder(
+                args.log, rotate_bytes=int((args.rotate_mb or 0) * 1e6),
+                node_map=decoder.node_map)) if args.log else None
+            lines: list[str] = []
             try:
-                for timestamp, arbitration_id, data, msg in frames:
-                    if recorder is not None:
-                        if msg is not None:
-                            recorder.write_message(msg)
-                        else:
-                            recorder.write(arbitration_id, data, timestamp)
-                    frame = (decoder.decode_message(msg) if msg is not None
-                             else decoder.decode(arbitration_id, data, timestamp))
-                    if not show(frame):
+                for msg in frames:
+                    if msg is None:  # a quiet moment on a live bus (or the bus just opened)
+                        if not clock["open"]:
+                            clock.update(started=time.monotonic(), open=True)
+                        if lines:
+                            out.write("\n".join(lines) + "\n")
+                            lines.clear()
+                        out.flush()
+                        if limiter is not None:
+                            limiter.tick()
                         continue
-                    if args.json:
-                        shown.append(frame.as_json())
+                    if recorder is not None:
+                        recorder.write_message(msg)
+                    frame = decode(msg)
+                    if limiter is not None and frame.error is not None:
+                        limiter.note(frame)
+                    if show is not None and not show(frame):
+                        continue
+                    if json_out is not None:
+                        json_out.write(frame)
                     else:
-                        print(frame.line, flush=True)
+                        lines.append(frame.line)
+                        if len(lines) >= 512:
+                            out.write("\n".join(lines) + "\n")
+                            lines.clear()
+                            if live:
+                                out.flush()
             except KeyboardInterrupt:
                 pass  # Ctrl-C is how a live monitor ends; the capture is still closed
+            if lines:
+                out.write("\n".join(lines) + "\n")
     except CaptureError as err:
+        if json_out is not None and json_out.count:
+            json_out.close()  # stdout stays one JSON document
+        if isinstance(err, CaptureWriteError):
+            raise  # a failure (exit 1) naming the capture, not bad input
         raise BadInput(str(err)) from err
-    if args.json:
-        json.dump(shown, sys.stdout, indent=1, ensure_ascii=False)
-        sys.stdout.write("\n")
-    elapsed = None if args.replay else time.monotonic() - started
+    if json_out is not None:
+        json_out.close()
+    out.flush()
+    if limiter is not None:
+        limiter.tick(final=True)
+    elapsed = None if args.replay else time.monotonic() - clock["started"]
     print(decoder.stats.summary(elapsed), file=sys.stderr)
     if args.log:
         print(f"wrote {args.log}", file=sys.stderr)
     return 0
+
+
+class UndecodableLog:
+    """Undecodable frames on stderr: the first of each reason, then a count at most once a
+    second (a hostile bus at 4 kHz writes a line a second, not 4,000). The trace and the
+    statistics still show and count every frame."""
+
+    def __init__(self, stream: Any, interval_s: float = 1.0) -> None:
+        self.stream, self.interval_s = stream, interval_s
+        self.reasons: set[str] = set()
+        self.unreported = 0
+        self.last = time.monotonic()
+
+    def note(self, frame: Any) -> None:
+        reason = frame.error.split(":")[0]
+        if reason not in self.reasons and len(self.reasons) < 64:
+            self.reasons.add(reason)
+            print(f"undecodable frame {frame.fields}: {frame.error}", file=self.stream)
+        else:
+            self.unreported += 1
+            self.tick()
+
+    def tick(self, final: bool = False) -> None:
+        now = time.monotonic()
+        if self.unreported and (final or now - self.last >= self.interval_s):
+            print(f"{self.unreported} more undecodable frames", file=self.stream)
+            self.unreported = 0
+            self.last = now

@@ -10,6 +10,7 @@ from __future__ import annotations
 from collections.abc import Callable
 from dataclasses import dataclass
 from enum import StrEnum
+from typing import Any
 
 from pdcp_studio.engine.layer import ProfileLayer
 from pdcp_studio.model import profile as prof
@@ -34,7 +35,7 @@ class Finding:
     message: str
     refs: tuple[ChannelRef, ...] = ()
 
-    def to_json(self) -> dict:
+    def to_json(self) -> dict[str, Any]:
         return {"severity": self.severity.value, "code": self.code, "message": self.message,
                 "refs": [r.as_json() for r in self.refs]}
 

@@ -67,12 +67,13 @@ def _configured(layer: ProfileLayer, config: AnyConfig, *, source: str) -> Store
         plan.configuration, plan.configuration_source = cfg, "system"
         plan.configuration_reason = "no configuration given: the system's current links"
         return cfg
-    cfg, why = proc.resolve_configuration(layer.system, config)
-    if cfg is None:
+    resolved, why = proc.resolve_configuration(layer.system, config)
+    if resolved is None:
         plan.configuration_source, plan.configuration_reason = source, why
         return StoredConfiguration(index=1, links=[])
-    plan.configuration, plan.configuration_source, plan.configuration_reason = cfg, source, why
-    return cfg
+    plan.configuration, plan.configuration_source, plan.configuration_reason = \
+        resolved, source, why
+    return resolved
 
 
 def plan_implement(system: System, configuration: AnyConfig) -> Plan:

@@ -11,7 +11,7 @@ from __future__ import annotations
 
 from dataclasses import dataclass, field
 from enum import StrEnum
-from typing import TYPE_CHECKING, NamedTuple
+from typing import TYPE_CHECKING, Any, NamedTuple
 
 from pdcp_studio.engine.similarity import Similarity
 from pdcp_studio.errors import EngineError, ModelError
@@ -75,11 +75,11 @@ class Refusal(StrEnum):
     NOT_INPUT = "not_input"  # a required/desired index that is not an input channel
 
 
-def _ref_json(ref: ChannelRef | None) -> dict | None:
+def _ref_json(ref: ChannelRef | None) -> dict[str, Any] | None:
     return ref.as_json() if ref is not None else None
 
 
-def _cause_json(cause: Link | ChannelRef | None) -> dict | None:
+def _cause_json(cause: Link | ChannelRef | None) -> dict[str, Any] | None:
     if cause is None:
         return None
     if isinstance(cause, Link):
@@ -99,7 +99,7 @@ class Action:
     cause: Link | ChannelRef | None = None
     depth: int = 0  # recursion depth inside intelligently_connect (0 = top level)
 
-    def to_json(self) -> dict:
+    def to_json(self) -> dict[str, Any]:
         return {
             "op": self.op.value,
             "output": self.link.output.as_json(),
@@ -133,7 +133,7 @@ class Rejection:
     reason: str
     rolled_back: tuple[Link, ...] = ()
 
-    def to_json(self) -> dict:
+    def to_json(self) -> dict[str, Any]:
         a = self.attempt
         return {
             "kind": self.kind.value,
@@ -202,10 +202,10 @@ class Plan:
         return sorted(final - current), sorted(current - final)
 
     # -- rendering -----------------------------------------------------------------
-    def to_json(self) -> dict:
+    def to_json(self) -> dict[str, Any]:
         """The contract's ``plan --json`` document (contracts §2) plus explanations."""
         final = self.final_links
-        doc: dict = {
+        doc: dict[str, Any] = {
             "mode": self.mode,
             "actions": [a.to_json() for a in self.actions],
             "links": [lk.as_json() for lk in final],

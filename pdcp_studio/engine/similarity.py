@@ -9,7 +9,7 @@ breaks ties between equally deep profile matches. Keeping the breakdown lets a p
 from __future__ import annotations
 
 from dataclasses import dataclass
-from typing import Protocol
+from typing import Any, Protocol
 
 from pdcp_studio.model.channel_type import (
     BYTE_SIZE_MASK,
@@ -61,7 +61,7 @@ class Similarity:
                 parts.append(f"{name} ({score})")
         return f"{self.total} = " + " + ".join(parts)
 
-    def as_json(self) -> dict:
+    def as_json(self) -> dict[str, Any]:
         return {
             "total": self.total,
             "profile_depth": self.profile_depth,
@@ -92,7 +92,7 @@ def _type_profile(x: int | Typed | tuple[int, int], name: str) -> tuple[int, int
     if isinstance(x, tuple) and len(x) == 2:
         return int(x[0]), int(x[1])
     if hasattr(x, "type") and hasattr(x, "profile"):
-        return int(x.type), int(x.profile)  # type: ignore[union-attr]
+        return int(x.type), int(x.profile)
     raise TypeError(f"determine_similarity: {name} must be a channel or a (type, profile) pair")
 
 

@@ -9,6 +9,7 @@ from __future__ import annotations
 
 from dataclasses import dataclass
 from enum import IntEnum
+from typing import Any
 
 BYTE_SIZE_MASK = 0xC000
 DATA_TYPE_MASK = 0x3000
@@ -125,7 +126,7 @@ class ChannelType:
 
     def replace(self, **changes: object) -> ChannelType:
         """A copy with some fields changed (same keywords as :meth:`build`)."""
-        fields = {
+        fields: dict[str, Any] = {
             "bits": self.bits,
             "data_type": self.data_type,
             "control_mode": self.control_mode,
@@ -135,7 +136,7 @@ class ChannelType:
             "unused": self.unused,
         }
         fields.update(changes)
-        return ChannelType.build(**fields)  # type: ignore[arg-type]
+        return ChannelType.build(**fields)
 
     def describe(self) -> str:
         flags = [f"{self.bits}-bit {self.data_type.label}", self.control_mode.label]

@@ -2,6 +2,11 @@
 
 These are plain values. The byte codec lives in ``pdcp_studio.storage.config_codec``;
 the profile layer (``pdcp_studio.engine``) reads them.
+
+Every declaration (the collection, a configuration, a link, a channel) carries the
+records of codes PDCP Studio does not know, in file order, as ``unknown`` (reference §3,
+"unknown codes are kept"): a file from newer firmware survives being opened, edited and
+saved here.
 """
 
 from __future__ import annotations
@@ -9,6 +14,23 @@ from __future__ import annotations
 from dataclasses import dataclass, field
 
 from pdcp_studio.model.refs import ChannelRef
+
+
+@dataclass(frozen=True)
+class UnknownRecord:
+    """A record whose code this program does not know, kept to be written back in place.
+
+    ``after`` is the code of the known record it followed inside its declaration (0: before
+    the collection's first record); ``None`` means after all of the declaration's own
+    records, where a newer writer usually appends, and where an edited record lands.
+    """
+
+    code: int
+    value: int
+    after: int | None = None
+
+
+Unknown = tuple[UnknownRecord, ...]
 
 
 @dataclass(frozen=True)
@@ -23,6 +45,7 @@ class StoredChannel:
     profile: int = 0
     owner_type: int | None = None
     owner_profile: int | None = None
+    unknown: Unknown = ()
 
     @property
     def ref(self) -> ChannelRef:
@@ -36,6 +59,7 @@ class StoredLink:
     input: StoredChannel
     output: StoredChannel
     index: int = 0
+    unknown: Unknown = ()
 
 
 @dataclass
@@ -44,6 +68,7 @@ class StoredConfiguration:
 
     index: int = 1
     links: list[StoredLink] = field(default_factory=list)
+    unknown: Unknown = ()
 
 
 @dataclass
@@ -51,3 +76,4 @@ class ConfigCollection:
     """What an arbitrator stores: one or more configurations."""
 
     configurations: list[StoredConfiguration] = field(default_factory=list)
+    unknown: Unknown = ()

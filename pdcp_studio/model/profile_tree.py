@@ -8,6 +8,7 @@ vendor trees; several trees merge into one lookup. Pure: file I/O is in
 from __future__ import annotations
 
 from dataclasses import dataclass, field
+from typing import Any
 
 from pdcp_studio.errors import ProfileError
 from pdcp_studio.model import profile as prof
@@ -165,9 +166,9 @@ class ProfileTree:
         return result
 
     # -- JSON -------------------------------------------------------------------
-    def to_json(self) -> dict:
-        def node_json(n: ProfileNode) -> dict:
-            d: dict = {"name": n.name, "component": f"0x{n.component:X}"}
+    def to_json(self) -> dict[str, Any]:
+        def node_json(n: ProfileNode) -> dict[str, Any]:
+            d: dict[str, Any] = {"name": n.name, "component": f"0x{n.component:X}"}
             if n.description:
                 d["description"] = n.description
             if n.children:

@@ -3,7 +3,7 @@
 from __future__ import annotations
 
 from enum import StrEnum
-from typing import NamedTuple
+from typing import Any, NamedTuple
 
 
 class DeviceKey(NamedTuple):
@@ -23,13 +23,13 @@ class ChannelRef(NamedTuple):
     vid: int
     pid: int
     serial: int
-    index: int
+    index: int  # type: ignore[assignment]  # the channel index; shadows tuple.index on purpose
 
     @property
     def device(self) -> DeviceKey:
         return DeviceKey(self.vid, self.pid, self.serial)
 
-    def as_json(self) -> dict:
+    def as_json(self) -> dict[str, Any]:
         return {"vid": self.vid, "pid": self.pid, "serial": self.serial, "index": self.index}
 
     def __str__(self) -> str:

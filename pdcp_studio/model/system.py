@@ -11,6 +11,7 @@ from __future__ import annotations
 import copy as _copy
 from collections.abc import Iterable, Iterator
 from dataclasses import dataclass, field
+from typing import Any
 
 from pdcp_studio.errors import ModelError
 from pdcp_studio.model import profile as prof
@@ -142,7 +143,7 @@ class Link:
     output: ChannelRef
     input: ChannelRef
 
-    def as_json(self) -> dict:
+    def as_json(self) -> dict[str, Any]:
         return {"output": self.output.as_json(), "input": self.input.as_json()}
 
     def __str__(self) -> str:

@@ -1,15 +1,17 @@
-"""The arbitrator's host link: framed request/response messages over a serial line.
+"""Host link 2, the frame layer: COBS-delimited binary frames with a sequence number and a CRC.
 
-The thesis's hardware arbitrator exposed a UART "Bus Arbitrator API" (thesis §5.2.1):
-a message ID, a length and a variable payload; the host always initiates; IDs come
-in threes — request *n*, success *n + 1*, failure *n + 2*. Its documentation is not
-public, so PDCP Studio defines its own framing in that shape (docs/host-link.md):
+A frame on the line (docs/host-link.md §2) is the COBS encoding of
 
-    0xA5 | message id (u8) | length (u16 LE) | payload | CRC-16/CCITT-FALSE (u16 LE)
+    kind (u8) | seq (u8) | len (u8) | payload (len bytes, ≤ 255) | CRC-16/CCITT-FALSE (u16 BE)
 
-The CRC covers id, length and payload. ``FrameReader`` resynchronises on the next
-0xA5 after garbage or a bad CRC, so a glitch on the line costs one message, not the link.
-Pure: no I/O.
+followed by one 0x00 delimiter. COBS (Consistent Overhead Byte Stuffing) removes every zero
+from the frame, so a reader that meets garbage or a flipped bit resynchronises at the next
+0x00: a glitch costs one frame, never the link, and the longest frame on the line is
+263 bytes. The CRC (poly 0x1021, init 0xFFFF — the stored configuration's checksum) covers
+kind, seq, len and payload.
+
+Pure: no I/O, no clocks. The link state machine is in ``hostlink_link``; the messages carried
+in DATA payloads are in ``hostlink_messages``.
 """
 
 from __future__ import annotations
@@ -21,139 +23,150 @@ from enum import IntEnum
 from pdcp_studio.errors import FrameError
 from pdcp_studio.protocol.crc import crc16_ccitt_false
 
-SYNC = 0xA5
-MAX_PAYLOAD = 60_000
-# header after SYNC: message id, payload length
-_HEADER = struct.Struct("<BH")
-_CRC = struct.Struct("<H")
+__all__ = ["MAX_PAYLOAD", "MAX_WIRE", "Frame", "FrameReader", "Kind", "cobs_decode",
+           "cobs_encode", "crc16_ccitt_false"]
+
+#: Largest DATA payload (one message: code byte + up to 254 bytes of body).
+MAX_PAYLOAD = 255
+# kind, seq, len
+_HEADER = struct.Struct(">BBB")
+# CRC-16/CCITT-FALSE over header + payload, big-endian
+_CRC = struct.Struct(">H")
+#: Largest unencoded frame: header + payload + CRC.
+MAX_RAW = _HEADER.size + MAX_PAYLOAD + _CRC.size
+#: Largest frame on the line: COBS adds one byte per 254 (2 here) plus the 0x00 delimiter.
+MAX_WIRE = MAX_RAW + (MAX_RAW + 253) // 254 + 1
+DELIMITER = 0x00
 
 
-class HostCommand(IntEnum):
-    """Request IDs; ``+1`` is the success reply and ``+2`` the failure reply."""
+class Kind(IntEnum):
+    """What a frame is; only DATA carries a payload."""
 
-    PING = 0x10  # → payload: JSON {"name", "version"}
-    GET_SYSTEM = 0x13  # → JSON pdcp-system/1 with node IDs
-    GET_PARAMETER = 0x16  # vid pid serial (u16 ×3) chan param → value bytes
-    SET_PARAMETER = 0x19  # vid pid serial chan param value → value read back
-    ADD_LINK = 0x1C  # output ref, input ref (u16 ×3 + u8 each)
-    REMOVE_LINK = 0x1F  # output ref, input ref
-    READ_CONFIGURATION = 0x22  # → stored-configuration bytes
-    WRITE_CONFIGURATION = 0x25  # stored-configuration bytes → bytes read back
-    POLL_EVENTS = 0x28  # → JSON list of events since the last poll
-    PREVIEW_PLAN = 0x2B  # mode (ASCII) → JSON plan
-    APPLY_PLAN = 0x2E  # mode (ASCII) → JSON plan applied
-    RESET_DEVICE = 0x31  # vid pid serial
-    # The change road (issue 8): one transaction carried out by the arbitrator.
-    TRANSACT = 0x34  # JSON Change → JSON TransactionResult
-    READ_POLICY = 0x37  # → JSON {"autoconfigure": bool}
+    DATA = 0x01  # a message; the receiver answers ACK (or NAK)
+    ACK = 0x02  # seq = the DATA frame received
+    NAK = 0x03  # seq = the DATA frame expected next: "resend it now"
+    RESET = 0x04  # seq 0: both directions start again at seq 0 (sent by the host)
 
 
-def reply_ok(command: int) -> int:
-    return command + 1
+def cobs_encode(data: bytes) -> bytes:
+    """COBS: no 0x00 in the result; one code byte per run of up to 254 non-zero bytes."""
+    out = bytearray()
+    block = bytearray()
+    for byte in data:
+        if byte == 0:
+            out.append(len(block) + 1)
+            out += block
+            block.clear()
+        else:
+            block.append(byte)
+            if len(block) == 254:
+                out.append(255)
+                out += block
+                block.clear()
+    out.append(len(block) + 1)
+    out += block
+    return bytes(out)
 
 
-def reply_fail(command: int) -> int:
-    return command + 2
+def cobs_decode(data: bytes) -> bytes:
+    """Undo :func:`cobs_encode`; FrameError when a code byte points past the end or is 0."""
+    out = bytearray()
+    i, n = 0, len(data)
+    while i < n:
+        code = data[i]
+        if code == 0:
+            raise FrameError(f"COBS: a zero byte at {i} inside a frame")
+        end = i + code
+        if end > n:
+            raise FrameError(f"COBS: code {code} at {i} runs past the frame's {n} bytes")
+        out += data[i + 1:end]
+        i = end
+        if code != 255 and i < n:
+            out.append(0)
+    return bytes(out)
 
 
 @dataclass(frozen=True)
-class HostMessage:
-    msg_id: int
+class Frame:
+    kind: Kind
+    seq: int
     payload: bytes = b""
 
     def encode(self) -> bytes:
-        if not 0 <= self.msg_id <= 0xFF:
-            raise FrameError(f"host-link message id {self.msg_id} is not a byte")
+        """The frame as it goes on the line, delimiter included."""
+        if not 0 <= self.seq <= 0xFF:
+            raise FrameError(f"host-link sequence number {self.seq} is not a byte")
         if len(self.payload) > MAX_PAYLOAD:
             raise FrameError(f"host-link payload of {len(self.payload)} bytes > {MAX_PAYLOAD}")
-        body = _HEADER.pack(self.msg_id, len(self.payload)) + self.payload
-        return bytes([SYNC]) + body + _CRC.pack(crc16_ccitt_false(body))
+        raw = _HEADER.pack(self.kind, self.seq, len(self.payload)) + bytes(self.payload)
+        return cobs_encode(raw + _CRC.pack(crc16_ccitt_false(raw))) + b"\x00"
+
+
+def parse_frame(encoded: bytes) -> Frame:
+    """One frame from the bytes between two delimiters; FrameError says why not."""
+    if len(encoded) > MAX_WIRE - 1:
+        raise FrameError(f"oversize frame: {len(encoded)} bytes > {MAX_WIRE - 1}")
+    raw = cobs_decode(encoded)
+    if len(raw) < _HEADER.size + _CRC.size:
+        raise FrameError(f"short frame: {len(raw)} bytes")
+    body, (crc,) = raw[:-_CRC.size], _CRC.unpack_from(raw, len(raw) - _CRC.size)
+    if crc != crc16_ccitt_false(body):
+        raise FrameError(f"bad CRC 0x{crc:04X} (computed 0x{crc16_ccitt_false(body):04X})")
+    kind, seq, length = _HEADER.unpack_from(body)
+    if length != len(body) - _HEADER.size:
+        raise FrameError(f"length byte {length} but {len(body) - _HEADER.size} payload bytes")
+    try:
+        return Frame(Kind(kind), seq, bytes(body[_HEADER.size:]))
+    except ValueError as err:
+        raise FrameError(f"unknown frame kind 0x{kind:02X}") from err
 
 
 class FrameReader:
-    """Incremental decoder: feed bytes as they arrive, collect whole messages.
+    """Incremental decoder: feed bytes as they arrive, get whole frames.
 
-    ``errors`` counts frames dropped for a bad CRC, an oversize length or garbage.
+    Bytes are collected up to the next 0x00; a run longer than the largest frame is dropped
+    at once (bounded memory, as on the microcontroller). ``errors`` counts dropped frames
+    and ``last_error`` says why the last one was dropped.
     """
 
     def __init__(self) -> None:
         self._buf = bytearray()
+        self._overflow = False
         self.errors = 0
         self.last_error = ""
 
-    def feed(self, data: bytes) -> list[HostMessage]:
-        self._buf += data
-        out: list[HostMessage] = []
+    def feed(self, data: bytes) -> list[Frame | FrameError]:
+        """Whole frames in ``data`` (with what came before); a dropped one as its FrameError."""
+        out: list[Frame | FrameError] = []
+        start = 0
         while True:
-            start = self._buf.find(SYNC)
-            if start < 0:
-                if self._buf:
-                    self._note(f"{len(self._buf)} bytes of garbage before a sync byte")
-                self._buf.clear()
+            end = data.find(b"\x00", start)
+            if end < 0:
+                self._take(data[start:])
                 return out
-            if start:
-                self._note(f"{start} bytes of garbage before a sync byte")
-                del self._buf[:start]
-            if len(self._buf) < 1 + _HEADER.size:
-                return out
-            msg_id, length = _HEADER.unpack_from(self._buf, 1)
-            if length > MAX_PAYLOAD:
-                self._note(f"length {length} > {MAX_PAYLOAD}")
-                del self._buf[:1]
-                continue
-            total = 1 + _HEADER.size + length + _CRC.size
-            if len(self._buf) < total:
-                return out
-            body = bytes(self._buf[1 : total - _CRC.size])
-            (crc,) = _CRC.unpack_from(self._buf, total - _CRC.size)
-            if crc != crc16_ccitt_false(body):
-                self._note(f"bad CRC on message 0x{msg_id:02X}")
-                del self._buf[:1]
-                continue
-            out.append(HostMessage(msg_id, body[_HEADER.size :]))
-            del self._buf[:total]
+            self._take(data[start:end])
+            start = end + 1
+            if self._overflow:
+                out.append(self._note(FrameError(f"oversize frame: more than {MAX_WIRE - 1} "
+                                                 "bytes before a delimiter")))
+            elif self._buf:
+                try:
+                    out.append(parse_frame(bytes(self._buf)))
+                except FrameError as err:
+                    out.append(self._note(err))
+            self._buf.clear()
+            self._overflow = False
 
-    def _note(self, reason: str) -> None:
+    def _take(self, chunk: bytes) -> None:
+        if self._overflow or not chunk:
+            return
+        if len(self._buf) + len(chunk) > MAX_WIRE - 1:
+            self._overflow = True
+            self._buf.clear()
+        else:
+            self._buf += chunk
+
+    def _note(self, err: FrameError) -> FrameError:
         self.errors += 1
-        self.last_error = reason
-
-
-# -- payload helpers ---------------------------------------------------------------
-# device key: vid, pid, serial
-_KEY = struct.Struct("<HHH")
-# channel reference: vid, pid, serial, index
-_REF = struct.Struct("<HHHB")
-# parameter address: vid, pid, serial, channel index, parameter id
-_PARAM = struct.Struct("<HHHBB")
-
-
-def pack_key(vid: int, pid: int, serial: int) -> bytes:
-    return _KEY.pack(vid, pid, serial)
-
-
-def unpack_key(payload: bytes) -> tuple[int, int, int]:
-    if len(payload) != _KEY.size:
-        raise FrameError(f"a device key is {_KEY.size} bytes, not {len(payload)}")
-    return _KEY.unpack(payload)
-
-
-def pack_link(output: tuple[int, int, int, int], input_: tuple[int, int, int, int]) -> bytes:
-    return _REF.pack(*output) + _REF.pack(*input_)
-
-
-def unpack_link(payload: bytes) -> tuple[tuple[int, ...], tuple[int, ...]]:
-    if len(payload) != 2 * _REF.size:
-        raise FrameError(f"a link is {2 * _REF.size} bytes, not {len(payload)}")
-    return _REF.unpack_from(payload, 0), _REF.unpack_from(payload, _REF.size)
-
-
-def pack_param(
-    vid: int, pid: int, serial: int, channel: int, param: int, value: bytes = b""
-) -> bytes:
-    return _PARAM.pack(vid, pid, serial, channel, param) + value
-
-
-def unpack_param(payload: bytes) -> tuple[tuple[int, int, int, int, int], bytes]:
-    if len(payload) < _PARAM.size:
-        raise FrameError(f"a parameter address is {_PARAM.size} bytes, got {len(payload)}")
-    return _PARAM.unpack_from(payload, 0), bytes(payload[_PARAM.size :])
+        self.last_error = str(err)
+        return err

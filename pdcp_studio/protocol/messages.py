@@ -94,7 +94,7 @@ class _FunctionMessage:
         put = object.__setattr__
         put(self, "priority", _enum_field(where, "priority", self.priority, Priority, range(4)))
         if self.MODE is None:
-            put(self, "mode", _enum_field(where, "mode", self.mode, Mode, range(2)))
+            put(self, "mode", _enum_field(where, "mode", self.mode, Mode, range(2)))  # type: ignore[attr-defined]
         binding = self.CODE is FunctionCode.BIND_REQUEST
         if binding != (self.priority is Priority.BINDING):
             raise FrameError(
@@ -153,7 +153,7 @@ class _FunctionMessage:
             kwargs[cls._TAIL] = data[cls._HEAD.size:]
         if cls.MODE is None:
             kwargs["mode"] = ident.mode
-        return cls(node_id=ident.node_id, priority=ident.priority, **kwargs)  # type: ignore[arg-type]
+        return cls(node_id=ident.node_id, priority=ident.priority, **kwargs)
 
 
 class _OneSided(_FunctionMessage):
@@ -462,7 +462,7 @@ def describe(message: Message, direction: Direction | str | None = None) -> str:
     node = "all" if message.node_id == 0 and message.mode is Mode.ARBITRATOR else message.node_id
     head = f"{message.CODE.label} {arrow} node {node}"
     parts: list[str] = []
-    values = {f.name: getattr(message, f.name) for f in fields(message)}  # type: ignore[arg-type]
+    values = {f.name: getattr(message, f.name) for f in fields(message)}
     if "code" in values:
         parts.append(values["code"].title)
     if isinstance(message, BindRequest | BindResponse):

@@ -8,7 +8,18 @@ come from erased flash or a hostile file). Loading comes in three tiers: ``loads
 Format: 3-byte records, a code (u8) and a value (u16, little-endian). Declarations follow
 the thesis: a configuration runs from code 2 to the next 2 or End (15); a link from 4 to
 the next 4, 2 or 15; an input channel from 5 to 6, 4, 2 or 15; an output channel from 6 to
-5, 4, 2 or 15. Unknown codes (0 and 17…255) are skipped anywhere.
+5, 4, 2 or 15. Unknown codes (0 and 17…255) are allowed anywhere a declaration is open.
+
+Unknown codes are kept, not dropped (reference §3): each unknown record is attached to the
+innermost open declaration (collection, configuration, link, input or output channel) as an
+``UnknownRecord`` in file order, with ``after`` = the known record of that declaration it
+followed (``None`` when no known record of the declaration follows it). The writer puts it
+back right after that record, so decode → encode of a valid file gives the same records,
+only the checksum added or recomputed (and, as before, known values in code order). The
+contract JSON carries each record as ``{"code", "value"}`` on its object, in file order, and
+nothing more: through JSON a record keeps its declaration and order and is written at the
+end of that declaration's own records, where writers append (``from_json`` also takes an
+optional ``"after": CODE`` to pin it elsewhere).
 
 Decisions (reference §3 plus the ones it leaves open):
 - Extension code 16 = checksum: CRC-16/CCITT-FALSE of every byte before it, immediately
@@ -46,6 +57,8 @@ from pdcp_studio.model.configuration import (
     StoredChannel,
     StoredConfiguration,
     StoredLink,
+    Unknown,
+    UnknownRecord,
 )
 from pdcp_studio.protocol.crc import crc16_ccitt_false
 from pdcp_studio.storage.json_number import parse_number
@@ -89,7 +102,7 @@ class Decoded:
     checksum: int | None  # the verified stored checksum, None in a thesis-era file
     end_offset: int  # byte offset of the End record
     size: int  # length of the input
-    unknown_records: int  # records skipped because their code is unknown
+    unknown_records: int  # records kept because their code is unknown
 
     @property
     def trailing_bytes(self) -> int:
@@ -114,13 +127,30 @@ class _Reader:
         self.channel_code = 0
         self.count_off = self.cfg_off = self.link_count_off = self.link_off = -1
         self.channel_off = -1
+        # Unknown records of each open declaration, as [code, value, after].
+        self.coll_unknown: list[list[int]] = []
+        self.cfg_unknown: list[list[int]] = []
+        self.link_unknown: list[list[int]] = []
+        self.channel_unknown: list[list[int]] = []
+
+    def unknown(self, code: int, value: int, after: int) -> None:
+        """Keep an unknown record on the innermost open declaration."""
+        if self.channel is not None:
+            target = self.channel_unknown
+        elif self.link_index is not None:
+            target = self.link_unknown
+        elif self.cfg is not None:
+            target = self.cfg_unknown
+        else:
+            target = self.coll_unknown
+        target.append([code, value, after])
 
     def where(self) -> str:
         kind = "input" if self.channel_code == INPUT_CHANNEL else "output"
         assert self.cfg is not None
         return f"{kind} channel of link {self.link_index} in configuration {self.cfg.index}"
 
-    def close_channel(self) -> None:
+    def close_channel(self, last: int) -> None:
         ch = self.channel
         if ch is None:
             return
@@ -130,11 +160,12 @@ class _Reader:
                 raise _Err(f"{self.where()} has no {missing}", self.channel_off)
         self.ends[self.channel_code] = StoredChannel(
             index=ch[9], vid=ch[10], pid=ch[11], serial=ch[12],  # type: ignore[arg-type]
-            type=ch[7] or 0, profile=ch[8] or 0, owner_type=ch[13], owner_profile=ch[14])
-        self.channel = None
+            type=ch[7] or 0, profile=ch[8] or 0, owner_type=ch[13], owner_profile=ch[14],
+            unknown=_kept(self.channel_unknown, last) if self.channel_unknown else ())
+        self.channel, self.channel_unknown = None, []
 
-    def close_link(self) -> None:
-        self.close_channel()
+    def close_link(self, last: int) -> None:
+        self.close_channel(last)
         if self.link_index is None:
             return
         assert self.cfg is not None
@@ -142,12 +173,13 @@ class _Reader:
         for code, kind in ((INPUT_CHANNEL, "input"), (OUTPUT_CHANNEL, "output")):
             if code not in self.ends:
                 raise _Err(f"{where} has no {kind} channel (code {code})", self.link_off)
-        link = StoredLink(self.ends[INPUT_CHANNEL], self.ends[OUTPUT_CHANNEL], self.link_index)
+        link = StoredLink(self.ends[INPUT_CHANNEL], self.ends[OUTPUT_CHANNEL], self.link_index,
+                          _kept(self.link_unknown, LINK) if self.link_unknown else ())
         self.cfg.links.append(link)
-        self.link_index = None
+        self.link_index, self.link_unknown = None, []
 
-    def close_configuration(self) -> None:
-        self.close_link()
+    def close_configuration(self, last: int) -> None:
+        self.close_link(last)
         cfg = self.cfg
         if cfg is None:
             return
@@ -156,15 +188,20 @@ class _Reader:
         if self.link_count != len(cfg.links):
             raise _Err(f"# of links of configuration {cfg.index} says {self.link_count}, "
                       f"but {len(cfg.links)} follow", self.link_count_off)
+        if self.cfg_unknown:
+            cfg.unknown = _kept(self.cfg_unknown, COUNT_LINKS)
         self.configs.append(cfg)
-        self.cfg = None
+        self.cfg, self.cfg_unknown = None, []
 
-    def structural(self, code: int, value: int, offset: int) -> None:
-        """Handle codes 1–6: open and close declarations, check counts and indices."""
+    def structural(self, code: int, value: int, offset: int, last: int) -> None:
+        """Handle codes 1–6: open and close declarations, check counts and indices.
+
+        ``last`` is the code of the last known record before this one.
+        """
         if code == CONFIGURATION:
             if self.count is None:
                 raise _Err("Configuration before the # of configurations (code 1)", offset)
-            self.close_configuration()
+            self.close_configuration(last)
             if value < 1 or value in self.config_indices:
                 problem = "counts from 1" if value < 1 else "is a duplicate"
                 raise _Err(f"configuration index {value} {problem}", offset)
@@ -179,7 +216,7 @@ class _Reader:
             where = f"configuration {self.cfg.index}"
             if self.link_count is None:
                 raise _Err(f"Channel link before the # of links (code 3) of {where}", offset)
-            self.close_link()
+            self.close_link(last)
             if value < 1 or value in self.link_indices:
                 problem = "counts from 1" if value < 1 else "is a duplicate"
                 raise _Err(f"link index {value} in {where} {problem}", offset)
@@ -192,7 +229,7 @@ class _Reader:
             kind = "input" if code == INPUT_CHANNEL else "output"
             if self.link_index is None:
                 raise _Err(f"{kind} channel declaration outside a channel link", offset)
-            self.close_channel()
+            self.close_channel(last)
             if code in self.ends:
                 raise _Err(f"second {kind} channel in link {self.link_index}", offset)
             self.channel, self.channel_code, self.channel_off = [None] * 15, code, offset
@@ -209,14 +246,22 @@ class _Reader:
                 raise _Err(f"{value} configurations exceed the limit {MAX_CONFIGURATIONS}", offset)
             self.count, self.count_off = value, offset
 
-    def end(self, offset: int) -> ConfigCollection:
+    def end(self, offset: int, last: int) -> ConfigCollection:
         if self.count is None:
             raise _Err("End before the # of configurations (code 1)", offset)
-        self.close_configuration()
+        self.close_configuration(last)
         if self.count != len(self.configs):
             raise _Err(f"# of configurations says {self.count}, but {len(self.configs)} follow",
                       self.count_off)
-        return ConfigCollection(configurations=self.configs)
+        kept = _kept(self.coll_unknown, COUNT_CONFIGURATIONS) if self.coll_unknown else ()
+        return ConfigCollection(configurations=self.configs, unknown=kept)
+
+
+def _kept(records: list[list[int]], last: int) -> Unknown:
+    """Unknown records of a closed declaration; ``after`` the declaration's last known
+    record becomes ``None`` (the end), the usual place and the one edits keep."""
+    return tuple(UnknownRecord(code, value, None if after == last else after)
+                 for code, value, after in records)
 
 
 def decode(data: bytes | bytearray | memoryview) -> Decoded:
@@ -230,6 +275,7 @@ def decode(data: bytes | bytearray | memoryview) -> Decoded:
     channel: list[int | None] | None = None
     checksum: int | None = None
     unknown = 0
+    last = 0  # the code of the last known record (0: none yet)
     offset = -RECORD_SIZE
     for code, value in _RECORD.iter_unpack(view[:whole]):
         offset += RECORD_SIZE
@@ -241,11 +287,13 @@ def decode(data: bytes | bytearray | memoryview) -> Decoded:
             if code == CHANNEL_INDEX and not 1 <= value <= 255:
                 raise _Err(f"channel index {value} is out of range 1…255", offset)
             channel[code] = value
+            last = code
         elif code <= OUTPUT_CHANNEL and code:
-            reader.structural(code, value, offset)
+            reader.structural(code, value, offset, last)
             channel = reader.channel
+            last = code
         elif code == END:
-            return Decoded(reader.end(offset), checksum, offset, size, unknown)
+            return Decoded(reader.end(offset, last), checksum, offset, size, unknown)
         elif code == CHECKSUM:
             computed = crc16_ccitt_false(view[:offset])
             if value != computed:
@@ -257,6 +305,7 @@ def decode(data: bytes | bytearray | memoryview) -> Decoded:
             checksum = value
         else:
             unknown += 1
+            reader.unknown(code, value, last)
     if size % RECORD_SIZE:
         raise _Err(f"truncated record: {size % RECORD_SIZE} byte(s) left and no End", whole)
     raise _Err("missing End record (code 15)", whole)
@@ -298,8 +347,51 @@ def _check_channel(ch: StoredChannel, path: str) -> None:
             raise ConfigFormatError(f"{path}.{name}: {value!r} is out of range {lo}…{hi}")
 
 
+def _check_unknown(records: Unknown, path: str) -> None:
+    """Unknown records must keep unknown codes, or they would change the structure."""
+    for i, rec in enumerate(records):
+        where = f"{path}.unknown_records[{i}]"
+        for name, hi in (("code", 255), ("value", 0xFFFF)):
+            value = getattr(rec, name)
+            if isinstance(value, bool) or not isinstance(value, int) or not 0 <= value <= hi:
+                raise ConfigFormatError(f"{where}.{name}: {value!r} is out of range 0…{hi}")
+        if 1 <= rec.code <= CHECKSUM:
+            raise ConfigFormatError(f"{where}.code: {rec.code} is a known code "
+                                    f"({CODE_NAMES[rec.code]}), not an unknown record")
+        after = rec.after
+        if after is not None and (isinstance(after, bool) or not isinstance(after, int)
+                                  or not 0 <= after <= 255):
+            raise ConfigFormatError(f"{where}.after: {after!r} is out of range 0…255")
+
+
+def _put_with_unknown(out: bytearray, known: list[tuple[int, int]], unknown: Unknown,
+                      path: str, first: int) -> None:
+    """A declaration's known records in order, each unknown one after the record it
+    followed (``after``; ``None``: at the end). ``first`` is the lowest place an unknown
+    record may take, so that it can never slip into the previous declaration."""
+    _check_unknown(unknown, path)
+    end = 1 << 16
+    placed = [(code, 0, code, value) for code, value in known]
+    placed += [(end if rec.after is None else max(rec.after, first), 1, rec.code, rec.value)
+               for rec in unknown]
+    placed.sort(key=lambda item: (item[0], item[1]))  # stable: file order among equals
+    for _, _, code, value in placed:
+        out += _RECORD.pack(code, value)
+
+
 def _put_channel(out: bytearray, code: int, ch: StoredChannel, path: str) -> None:
     owner_type, owner_profile = ch.owner_type, ch.owner_profile
+    if ch.unknown:
+        _check_channel(ch, path)
+        known = [(code, 0), (CHANNEL_TYPE, ch.type), (CHANNEL_PROFILE, ch.profile),
+                 (CHANNEL_INDEX, ch.index), (OWNER_VID, ch.vid), (OWNER_PID, ch.pid),
+                 (OWNER_SERIAL, ch.serial)]
+        if owner_type is not None:
+            known.append((OWNER_TYPE, owner_type))
+        if owner_profile is not None:
+            known.append((OWNER_PROFILE, owner_profile))
+        _put_with_unknown(out, known, ch.unknown, path, code)
+        return
     if not 1 <= ch.index <= 255 or owner_type is not None or owner_profile is not None:
         _check_channel(ch, path)  # slow path: full validation
     try:
@@ -324,14 +416,23 @@ def dumps(collection: ConfigCollection) -> bytes:
     total = sum(len(cfg.links) for cfg in configs)
     if total > MAX_LINKS:
         raise ConfigFormatError(f"configurations: {total} links exceed the limit of {MAX_LINKS}")
-    out = bytearray(_RECORD.pack(COUNT_CONFIGURATIONS, len(configs)))
+    out = bytearray()
+    _put_with_unknown(out, [(COUNT_CONFIGURATIONS, len(configs))], collection.unknown,
+                      "collection", 0)
     config_indices = _indices([cfg.index for cfg in configs])
     for cpos, (cfg, cidx) in enumerate(zip(configs, config_indices, strict=True)):
-        out += _TWO_RECORDS.pack(CONFIGURATION, cidx, COUNT_LINKS, len(cfg.links))
+        if cfg.unknown:
+            _put_with_unknown(out, [(CONFIGURATION, cidx), (COUNT_LINKS, len(cfg.links))],
+                              cfg.unknown, f"configurations[{cpos}]", CONFIGURATION)
+        else:
+            out += _TWO_RECORDS.pack(CONFIGURATION, cidx, COUNT_LINKS, len(cfg.links))
         link_indices = _indices([link.index for link in cfg.links])
         for lpos, (link, lidx) in enumerate(zip(cfg.links, link_indices, strict=True)):
-            out += _RECORD.pack(LINK, lidx)
             path = f"configurations[{cpos}].links[{lpos}]"
+            if link.unknown:
+                _put_with_unknown(out, [(LINK, lidx)], link.unknown, path, LINK)
+            else:
+                out += _RECORD.pack(LINK, lidx)
             _put_channel(out, INPUT_CHANNEL, link.input, f"{path}.input")
             _put_channel(out, OUTPUT_CHANNEL, link.output, f"{path}.output")
     out += _RECORD.pack(CHECKSUM, crc16_ccitt_false(out))
@@ -361,19 +462,36 @@ def channel_to_json(ch: StoredChannel) -> dict[str, Any]:
         doc["owner_type"] = ch.owner_type
     if ch.owner_profile is not None:
         doc["owner_profile"] = ch.owner_profile
+    return _with_unknown(doc, ch.unknown)
+
+
+def unknown_to_json(records: Unknown) -> list[dict[str, int]]:
+    """``[{"code": 32, "value": 4660}, …]`` in file order (contracts §2)."""
+    return [{"code": rec.code, "value": rec.value} for rec in records]
+
+
+def _with_unknown(doc: dict[str, Any], records: Unknown) -> dict[str, Any]:
+    if records:
+        doc["unknown_records"] = unknown_to_json(records)
     return doc
 
 
+def link_to_json(link: StoredLink) -> dict[str, Any]:
+    """One link object of the contract JSON."""
+    return _with_unknown({"index": link.index, "input": channel_to_json(link.input),
+                          "output": channel_to_json(link.output)}, link.unknown)
+
+
 def to_json(collection: ConfigCollection) -> dict[str, Any]:
-    """The contract JSON of ``config decode --json`` (indices as stored)."""
-    return {"configurations": [
-        {"index": cfg.index, "links": [
-            {"index": link.index, "input": channel_to_json(link.input),
-             "output": channel_to_json(link.output)} for link in cfg.links]}
-        for cfg in collection.configurations]}
+    """The contract JSON of ``config decode --json`` (indices as stored); unknown records
+    as ``unknown_records`` on the object they belong to, only where there are some."""
+    return _with_unknown({"configurations": [
+        _with_unknown({"index": cfg.index, "links": [link_to_json(link) for link in cfg.links]},
+                      cfg.unknown)
+        for cfg in collection.configurations]}, collection.unknown)
 
 
-def _json_int(doc: dict, key: str, path: str, hi: int = 0xFFFF, lo: int = 0,
+def _json_int(doc: dict[str, Any], key: str, path: str, hi: int = 0xFFFF, lo: int = 0,
               default: int | None = None, required: bool = True) -> Any:
     """An integer or ``"0x…"`` string within lo…hi; ``default`` when absent."""
     value, where = doc.get(key), f"{path}.{key}"
@@ -387,12 +505,35 @@ def _json_int(doc: dict, key: str, path: str, hi: int = 0xFFFF, lo: int = 0,
         raise _Err(f"{where}: {err}") from None
 
 
-def _json_list(doc: Any, key: str, path: str) -> list:
+def _json_list(doc: Any, key: str, path: str) -> list[Any]:
     if not isinstance(doc, dict):
         raise _Err(f"{path or 'document'}: expected an object")
     if not isinstance(doc.get(key), list):
         raise _Err(f"{path + '.' if path else ''}{key}: expected a list")
-    return doc[key]
+    found: list[Any] = doc[key]
+    return found
+
+
+def unknown_from_json(doc: dict[str, Any], path: str) -> Unknown:
+    """The optional ``unknown_records`` list of an object; codes 1…16 are refused."""
+    items = doc.get("unknown_records")
+    if items is None:
+        return ()
+    where = f"{path + '.' if path else ''}unknown_records"
+    if not isinstance(items, list):
+        raise _Err(f"{where}: expected a list")
+    records = []
+    for i, item in enumerate(items):
+        ipath = f"{where}[{i}]"
+        if not isinstance(item, dict):
+            raise _Err(f"{ipath}: expected an object")
+        code = _json_int(item, "code", ipath, hi=255)
+        if 1 <= code <= CHECKSUM:
+            raise _Err(f"{ipath}.code: {code} is a known code ({CODE_NAMES[code]}), "
+                       "not an unknown record")
+        records.append(UnknownRecord(code, _json_int(item, "value", ipath),
+                                     _json_int(item, "after", ipath, hi=255, required=False)))
+    return tuple(records)
 
 
 def channel_from_json(doc: Any, path: str) -> StoredChannel:
@@ -405,7 +546,8 @@ def channel_from_json(doc: Any, path: str) -> StoredChannel:
         type=_json_int(doc, "type", path, default=0),
         profile=_json_int(doc, "profile", path, default=0),
         owner_type=_json_int(doc, "owner_type", path, required=False),
-        owner_profile=_json_int(doc, "owner_profile", path, required=False))
+        owner_profile=_json_int(doc, "owner_profile", path, required=False),
+        unknown=unknown_from_json(doc, path))
 
 
 def from_json(doc: Any) -> ConfigCollection:
@@ -424,7 +566,9 @@ def from_json(doc: Any) -> ConfigCollection:
             links.append(StoredLink(
                 input=channel_from_json(ldoc.get("input"), f"{lpath}.input"),
                 output=channel_from_json(ldoc.get("output"), f"{lpath}.output"),
-                index=_json_int(ldoc, "index", lpath, lo=1, default=lpos + 1)))
+                index=_json_int(ldoc, "index", lpath, lo=1, default=lpos + 1),
+                unknown=unknown_from_json(ldoc, lpath)))
         index = _json_int(cdoc, "index", cpath, lo=1, default=cpos + 1)
-        configs.append(StoredConfiguration(index=index, links=links))
-    return ConfigCollection(configurations=configs)
+        configs.append(StoredConfiguration(index=index, links=links,
+                                           unknown=unknown_from_json(cdoc, cpath)))
+    return ConfigCollection(configurations=configs, unknown=unknown_from_json(doc, ""))

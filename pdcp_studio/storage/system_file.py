@@ -44,19 +44,19 @@ def _int(value: Any, path: str, lo: int, hi: int) -> int:
         raise SystemFileError(str(err), path) from None
 
 
-def _obj(value: Any, path: str) -> dict:
+def _obj(value: Any, path: str) -> dict[str, Any]:
     if not isinstance(value, dict):
         raise SystemFileError("expected an object", path)
     return value
 
 
-def _list(value: Any, path: str) -> list:
+def _list(value: Any, path: str) -> list[Any]:
     if not isinstance(value, list):
         raise SystemFileError("expected a list", path)
     return value
 
 
-def _profile(d: dict, path: str) -> int:
+def _profile(d: dict[str, Any], path: str) -> int:
     """A channel's profile: required, and never the null profile (reference §1)."""
     if "profile" not in d:
         raise SystemFileError("missing 'profile'", path)
@@ -67,7 +67,7 @@ def _profile(d: dict, path: str) -> int:
     return value
 
 
-def _str(d: dict, key: str, path: str) -> str:
+def _str(d: dict[str, Any], key: str, path: str) -> str:
     """An optional string field (default empty), else SystemFileError at ``path.key``."""
     value = d.get(key, "")
     if not isinstance(value, str):
@@ -75,7 +75,7 @@ def _str(d: dict, key: str, path: str) -> str:
     return value
 
 
-def _bool(d: dict, key: str, path: str, default: bool) -> bool:
+def _bool(d: dict[str, Any], key: str, path: str, default: bool) -> bool:
     value = d.get(key, default)
     if not isinstance(value, bool):
         raise SystemFileError("expected true or false", f"{path}.{key}")
@@ -160,6 +160,8 @@ def _device(doc: Any, path: str) -> Device:
         if key not in d:
             raise SystemFileError(f"missing {key!r}", path)
     present = _bool(d, "present", path, True)
+    ints: dict[str, Any] = {k: _int(d[k], f"{path}.{k}", 0, hi)
+                            for k, hi in _DEVICE_INTS.items() if k in d}
     device = Device(
         vid=_int(d["vid"], f"{path}.vid", 0, 0xFFFF),
         pid=_int(d["pid"], f"{path}.pid", 0, 0xFFFF),
@@ -168,7 +170,7 @@ def _device(doc: Any, path: str) -> Device:
         present=present,
         node_id=_int(d["node_id"], f"{path}.node_id", 1, 254) if "node_id" in d else None,
         descriptor=_str(d, "descriptor", path),
-        **{k: _int(d[k], f"{path}.{k}", 0, hi) for k, hi in _DEVICE_INTS.items() if k in d},
+        **ints,
     )
     for i, ch_doc in enumerate(_list(d.get("channels", []), f"{path}.channels")):
         cpath = f"{path}.channels[{i}]"
@@ -276,7 +278,7 @@ def _hex(v: int) -> str:
     return f"0x{v:04X}"
 
 
-def channel_to_json(ch: Channel, *, node_ids: bool = True) -> dict:
+def channel_to_json(ch: Channel, *, node_ids: bool = True) -> dict[str, Any]:
     d: dict[str, Any] = {"index": ch.index, "direction": ch.direction.value,
                          "type": _hex(ch.type), "profile": _hex(ch.profile)}
     if ch.is_input:
@@ -297,7 +299,7 @@ def channel_to_json(ch: Channel, *, node_ids: bool = True) -> dict:
     return d
 
 
-def to_json(system: System, *, node_ids: bool = True) -> dict:
+def to_json(system: System, *, node_ids: bool = True) -> dict[str, Any]:
     """The ``pdcp-system/1`` document; ``node_ids`` adds the node IDs a bus gave."""
     devices = []
     for dev in system.devices.values():

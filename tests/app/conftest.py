@@ -9,6 +9,20 @@ import pytest
 os.environ.setdefault("QT_QPA_PLATFORM", "offscreen")
 
 
+@pytest.fixture(autouse=True)
+def fitting_environment(tmp_path, monkeypatch):
+    """Every app test records into its own fitting history, as a named operator, with its
+    own settings: nothing is asked, nothing reaches the user's files."""
+    from PySide6.QtCore import QSettings
+
+    monkeypatch.setenv("PDCP_STUDIO_HISTORY", str(tmp_path / "history.sqlite3"))
+    monkeypatch.setenv("PDCP_STUDIO_OPERATOR", "Test Prosthetist")
+    QSettings.setDefaultFormat(QSettings.Format.IniFormat)
+    QSettings.setPath(QSettings.Format.IniFormat, QSettings.Scope.UserScope,
+                      str(tmp_path / "settings"))
+    return tmp_path
+
+
 @pytest.fixture
 def make_window(qtbot):
     """``make_window(path=None, size=None)``: a quiet, shown MainWindow (``path`` opened);

@@ -55,6 +55,11 @@ class FakeSession:
     def system(self):
         return self._system.copy()
 
+    def read_configuration(self):
+        from pdcp_studio.model.configuration import ConfigCollection
+
+        return ConfigCollection([])
+
     def scan(self, progress=None, cancel=None):
         return self._system.copy()
 
@@ -107,9 +112,10 @@ def test_connect_hot_swap_and_live_edits_with_fake_session(window, fake, qtbot):
         window.connect_bus("sim:fake")
     doc = window.doc
     assert window.live.is_live and doc.session is window.live.bridge
-    assert window.mode_label.text() == "Live: sim:fake"
+    assert window.mode_label.text() == "● Live on sim:fake"
+    assert "live on sim:fake" in window.windowTitle().lower()
     assert len(doc.system.links) == 5
-    assert window.plan_panel.apply_button.text() == "Apply to the bus"
+    assert window.plan_panel.apply_button.text() == "Stage for the prosthesis"
     # Unplug the hand: its card shows it missing, its links are drawn as missing.
     fake.unplug(HAND)
     qtbot.waitUntil(lambda: not window.scene.cards[HAND].device.present, timeout=3000)
@@ -119,42 +125,38 @@ def test_connect_hot_swap_and_live_edits_with_fake_session(window, fake, qtbot):
                for lk in window.scene.states.missing_links)
     fake.plug(HAND)
     qtbot.waitUntil(lambda: window.scene.cards[HAND].device.present, timeout=3000)
-    # A link deleted by hand on a live bus goes to the session as a plan, not the undo stack.
+    # A link deleted by hand on a live bus is staged: one undo step, nothing sent.
     link = Link(ChannelRef(*CONTROL, 3), ChannelRef(*HAND, 1))
     doc.select(link)
     window.act_delete.trigger()
-    qtbot.waitUntil(lambda: bool(fake.applied), timeout=3000)
-    assert [(a.op.value, a.link) for a in fake.applied[-1].actions] == [("remove", link)]
-    qtbot.waitUntil(lambda: not doc.system.has_link(link), timeout=3000)
-    assert doc.undo_stack.count() == 0
-    # A plan applied on a live bus goes through the bridge too.
+    assert not doc.system.has_link(link) and doc.undo_stack.count() == 1
+    assert fake.applied == [] and doc.bus_system.has_link(link)
+    # A plan on a live bus is staged too (one more undo step).
     plan = window.preview_plan("autoconfigure")
     assert [a.link for a in plan.added] == [link]
     window.plan_panel.apply()
-    qtbot.waitUntil(lambda: doc.system.has_link(link), timeout=3000)
-    assert fake.applied[-1] is plan
-    # A parameter edit is written to the device; Undo writes the old value back.
+    assert doc.system.has_link(link) and doc.undo_stack.count() == 2 and fake.applied == []
+    # A parameter edit is staged; Undo unstages it; nothing reaches the bus.
     ref = ChannelRef(*HAND, 2)
     doc.select(ref)
     window.inspector.editors["descriptor"].setText("Pinch")
     window.inspector.editors["descriptor"].editingFinished.emit()
-    qtbot.waitUntil(lambda: len(fake.written) == 1, timeout=3000)
-    assert fake.written[0] == (HAND, 2, 2, b"Pinch\0")
+    assert doc.channel(ref).descriptor == "Pinch" and doc.undo_stack.count() == 3
     window.act_undo.trigger()
-    qtbot.waitUntil(lambda: len(fake.written) == 2, timeout=3000)
-    assert fake.written[1] == (HAND, 2, 2, b"Pinch grip\0")
+    assert doc.channel(ref).descriptor == "Pinch grip"
+    assert fake.written == []
     doc.select(ChannelRef(*CONTROL, 3))
     spin = window.inspector.editors["node_id"]
     spin.setValue(9)
     spin.editingFinished.emit()
     assert "assigned by the arbitrator" in window.inspector.errors["node_id"].text()
-    assert len(fake.written) == 2
+    assert fake.written == []
     # Data on a link lights it up.
     fake.send_data(ChannelRef(*FLEXOR, 1))
     qtbot.waitUntil(lambda: ChannelRef(*FLEXOR, 1) in window.scene.live_outputs(), timeout=3000)
     window.live.disconnect_bus()
     assert fake.closed or window.live.bridge is None
-    assert window.mode_label.text() == "Offline"
+    assert window.mode_label.text() == "Disconnected from sim:fake"
 
 
 def test_failed_default_connection_falls_back_offline(window, monkeypatch, qtbot):
@@ -185,17 +187,19 @@ def test_real_simulated_prosthesis_hot_swap(window, qtbot):
     assert "missing" in window.tree.row_for(hand).text(1)
     bridge.plug(hand)
     qtbot.waitUntil(lambda: window.scene.cards[hand].device.present, timeout=10000)
-    # A parameter edit reaches the device: read it back over the bus.
+    # A parameter edit is staged: the device keeps its value until it is written.
     doc.select(ChannelRef(*hand, 2))
     window.inspector.editors["descriptor"].setText("Pinch motor")
     window.inspector.editors["descriptor"].editingFinished.emit()
     qtbot.waitUntil(lambda: not bridge.busy, timeout=10000)
     back = bridge.session.get_parameter(hand, 2, 2)
-    assert back.split(b"\0")[0] == b"Pinch motor"
+    assert back.split(b"\0")[0] == b"Pinch grip"
+    assert doc.channel(ChannelRef(*hand, 2)).descriptor == "Pinch motor"
     # The arbitrator's stored configuration becomes the one plans use.
     window.read_configuration()
-    qtbot.waitUntil(lambda: window.doc.config is not None, timeout=10000)
-    assert "stored configuration" in window.statusBar().currentMessage()
+    qtbot.waitUntil(lambda: "stored configuration" in window.statusBar().currentMessage(),
+                    timeout=10000)
+    assert window.doc.config is not None
     plan = window.preview_plan("startup")
     assert plan is not None, window.statusBar().currentMessage()
     window.live.disconnect_bus()

@@ -43,10 +43,15 @@ def test_open_shows_every_device_and_channel(window):
 
 
 def test_open_configuration_file(window):
+    # A .pdcfg opens as its own document (app/config_view.py, issue 12); this window stays
+    # on its prosthesis and plans against the opened configurations.
+    links = set(window.doc.system.links)
     assert window.open_path(ROOT / "resources" / "configs" / "fig410.pdcfg")
-    assert window.doc.kind == "config"
+    (cfg_window,) = window.config_windows
+    assert cfg_window.config_list.count() == 2 and len(cfg_window.scene.link_items) == 1
     assert window.doc.config is not None and len(window.doc.config.configurations) == 2
-    assert len(window.scene.link_items) == len(window.doc.system.links) == 1
+    assert window.doc.kind == "system" and set(window.doc.system.links) == links
+    cfg_window.close()
 
 
 def test_open_bad_file_is_refused(window, tmp_path):

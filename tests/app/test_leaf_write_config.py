@@ -8,11 +8,7 @@ import pytest
 from pdcp_studio.app import write_config_dialog as wcd
 from pdcp_studio.app.compare_dialog import CompareDialog
 from pdcp_studio.app.session_bridge import SessionBridge
-from pdcp_studio.app.write_config_dialog import (
-    WriteConfigDialog,
-    diff_collections,
-    verify_collection,
-)
+from pdcp_studio.app.write_config_dialog import WriteConfigDialog, diff_rows
 from pdcp_studio.bus.session import open_session
 from pdcp_studio.engine import configuration_from_system
 from pdcp_studio.model.configuration import ConfigCollection, StoredConfiguration
@@ -106,23 +102,20 @@ def test_compare_dialog_reads_the_arbitrator(qtbot, bridge):
 
 
 # -- the pure parts ------------------------------------------------------------------------
-def test_diff_and_verify_by_configuration(systems_dir):
+def test_the_dialog_lists_the_one_configuration_diff(systems_dir):
+    from pdcp_studio.model.config_diff import diff_configurations
     from pdcp_studio.storage import system_file
 
     system = system_file.load_path(systems_dir / "appendix-d.json")
     full = configuration_from_system(system)
     two = StoredConfiguration(1, full.links[:2])
     stored = ConfigCollection([two, StoredConfiguration(2, full.links[2:])])
-    [d1, d2] = diff_collections(stored, ConfigCollection([full]))
-    assert (len(d1.added), len(d1.removed), len(d1.kept)) == (1, 0, 2)
-    assert (len(d2.added), len(d2.removed), len(d2.kept)) == (0, 1, 0) and d2.changed
-    assert verify_collection(ConfigCollection([full]), ConfigCollection([full]))[0]
-    ok, message = verify_collection(ConfigCollection([full]), ConfigCollection([two]))
-    assert not ok and "1 link(s) missing" in message
-    assert not verify_collection(ConfigCollection([full]), None)[0]
-    # Indices may be renumbered by the codec: contents in index order are what count.
-    renumbered = ConfigCollection([StoredConfiguration(7, list(reversed(full.links)))])
-    assert verify_collection(ConfigCollection([full]), renumbered)[0]
+    new = ConfigCollection([full])
+    rows = diff_rows(diff_configurations(stored, new), new)
+    by_index = {i: sorted(kind for j, kind, _l in rows if j == i) for i in (1, 2)}
+    assert by_index[1] == ["add", "keep", "keep"]  # configuration 1 gains one link
+    assert by_index[2] == ["remove"]  # configuration 2 is not written again
+    assert not diff_configurations(new, ConfigCollection([two])).equal
 
 
 def test_a_refused_write_and_a_mismatching_read_back_are_shown(qtbot, bridge):

@@ -9,6 +9,8 @@ get a stuff bit after every fifth: 6 stuff bits, 34 + 6 + 13 = 53 bits.
 
 from __future__ import annotations
 
+import random
+
 import pytest
 from hypothesis import given, settings
 from hypothesis import strategies as st
@@ -107,3 +109,40 @@ def test_meter_adds_frames_and_reports_load():
     assert worst.bits == worst_case_bits(3) + worst_case_bits(5) >= 2 * expected / 10
     meter.reset()
     assert meter.bits == meter.frames == 0 and meter.load() is None
+
+
+# -- the table-driven counts against the bit-by-bit definition ----------------------------------
+
+
+def plain_bits(arbitration_id: int, data: bytes) -> int:
+    stream = frame_bitstream(arbitration_id, data)
+    return len(stream) + stuff_bit_count(stream) + 13
+
+
+@settings(max_examples=600, deadline=None)
+@given(st.integers(0, 0x7FF), st.binary(max_size=8))
+def test_table_driven_length_equals_bit_by_bit(arbitration_id, data):
+    assert frame_bits(arbitration_id, data) == plain_bits(arbitration_id, data)
+
+
+def test_extremes_that_stuff_most_and_least():
+    # Runs of equal bits across byte and chunk boundaries, every length, both identifiers.
+    patterns = [b"\x00", b"\xff", b"\x0f", b"\xf0", b"\x1f", b"\xf8", b"\x55", b"\xaa"]
+    for arbitration_id in (0, 1, 0x3E0, 0x41F, 0x7FF):
+        for n in range(9):
+            for p in patterns:
+                data = (p * 8)[:n]
+                assert frame_bits(arbitration_id, data) == plain_bits(arbitration_id, data)
+
+
+def test_meter_batches_equal_bit_by_bit_over_many_random_frames():
+    rng = random.Random(16)
+    frames = [(rng.randrange(0x800), rng.randbytes(rng.randint(0, 8))) for _ in range(10_000)]
+    meter = BusTimeMeter()
+    for arbitration_id, data in frames:  # more than two batches, the last one partial
+        meter.add(arbitration_id, data)
+    assert meter.frames == len(frames)
+    assert meter.bits == sum(plain_bits(a, d) for a, d in frames)
+    with pytest.raises(ValueError):
+        meter.add(0x800, b"")
+    assert meter.frames == len(frames)  # a refused frame is not counted

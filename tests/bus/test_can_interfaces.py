@@ -20,7 +20,6 @@ from pdcp_studio.bus.can_interfaces import (
     DriverMissingError,
     explain_open_error,
 )
-from pdcp_studio.bus.connection import open_connections
 from pdcp_studio.bus.urls import (
     BusUrlError,
     bitrate_warning,
@@ -31,13 +30,6 @@ from pdcp_studio.bus.urls import (
     parse_bus_url,
 )
 from pdcp_studio.cli.main import main
-
-
-@pytest.fixture(autouse=True)
-def no_bus_left_open():
-    before = set(open_connections())
-    yield
-    assert not set(open_connections()) - before, "a test left a bus open"
 
 #: (what python-can raised, the exception PDCP Studio raises, words the line must carry)
 INJECTED = [

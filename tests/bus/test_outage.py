@@ -14,7 +14,6 @@ import can
 import pytest
 
 from pdcp_studio.bus import events as ev
-from pdcp_studio.bus.connection import open_connections
 from pdcp_studio.bus.device_host import DeviceHost
 from pdcp_studio.bus.device_sim import SimulatedDevice
 from pdcp_studio.bus.outage import BACKOFF_S, Outage
@@ -23,13 +22,6 @@ from pdcp_studio.bus.session import open_session
 from pdcp_studio.bus.simulator import TEST2_LINKS, load_prosthesis
 from pdcp_studio.bus.urls import unique_virtual_channel
 from tests.bus.slcan_rig import SlcanAdapter
-
-
-@pytest.fixture(autouse=True)
-def no_bus_left_open():
-    before = set(open_connections())
-    yield
-    assert not set(open_connections()) - before, "a test left a bus open"
 
 
 # -- the pure decisions -----------------------------------------------------------------------

@@ -17,6 +17,7 @@ from pdcp_studio.model.configuration import (
     StoredChannel,
     StoredConfiguration,
     StoredLink,
+    UnknownRecord,
 )
 from pdcp_studio.storage import config_codec as cc
 
@@ -32,11 +33,18 @@ def _generated() -> bytes:
         return StoredChannel(index=rng.randint(1, 255), vid=rng.randint(0, 9),
                              pid=rng.randint(0, 9), serial=rng.randint(0, 99),
                              type=rng.getrandbits(16), profile=rng.getrandbits(16),
-                             owner_type=rng.choice([None, 1]), owner_profile=None)
+                             owner_type=rng.choice([None, 1]), owner_profile=None,
+                             unknown=unknown())
+
+    def unknown() -> tuple[UnknownRecord, ...]:
+        return tuple(UnknownRecord(rng.choice((0, 17, 0x20, 255)), rng.getrandbits(16),
+                                   rng.choice((None, None, 7, 9)))
+                     for _ in range(rng.choice((0, 0, 1, 2))))
 
     return cc.dumps(ConfigCollection([
-        StoredConfiguration(i, [StoredLink(channel(), channel()) for _ in range(i + 1)])
-        for i in range(1, 4)]))
+        StoredConfiguration(i, [StoredLink(channel(), channel(), unknown=unknown())
+                                for _ in range(i + 1)], unknown=unknown())
+        for i in range(1, 4)], unknown=unknown()))
 
 
 def _seeds() -> list[bytes]:
@@ -51,7 +59,7 @@ def _mutate(rng: random.Random, data: bytes) -> bytes:
     buf = bytearray(data)
     for _ in range(rng.choice((1, 1, 1, 2, 3))):
         records = len(buf) // 3
-        kind = rng.randrange(8)
+        kind = rng.randrange(9)
         if kind == 0 and buf:  # bit flip
             i = rng.randrange(len(buf))
             buf[i] ^= 1 << rng.randrange(8)
@@ -76,7 +84,16 @@ def _mutate(rng: random.Random, data: bytes) -> bytes:
         elif kind == 7 and records:  # a value set to an edge value
             i = 3 * rng.randrange(records) + 1
             buf[i:i + 2] = rng.choice((0, 1, 255, 256, 0xFFFF)).to_bytes(2, "little")
+        elif kind == 8:  # an unknown record inserted at a record boundary
+            i = 3 * rng.randrange(records + 1)
+            buf[i:i] = cc._RECORD.pack(rng.choice((0, 17, 0x20, 255)), rng.getrandbits(16))
     return bytes(buf)
+
+
+def _unknown_records(data: bytes, end_offset: int) -> list[tuple[int, int]]:
+    """The records before End whose codes the format does not define, in file order."""
+    pairs = cc._RECORD.iter_unpack(data[:end_offset])
+    return [(code, value) for code, value in pairs if not 1 <= code <= cc.CHECKSUM]
 
 
 def _repair_checksum(data: bytes) -> bytes:
@@ -96,15 +113,19 @@ def test_mutated_encodings_only_raise_config_format_error():
         if rng.random() < 0.5:
             data = _repair_checksum(data)
         try:
-            coll = cc.loads(data)
+            found = cc.decode(data)
         except ConfigFormatError as err:
             assert 0 <= err.offset <= len(data), (err, data.hex())
             assert err.reason
             refused += 1
         else:
             decoded += 1
-            again = cc.dumps(coll)
+            again = cc.dumps(found.collection)
             assert cc.dumps(cc.loads(again)) == again
+            # Every unknown record survives, in order (the writer keeps them in place).
+            kept = _unknown_records(data, found.end_offset)
+            assert len(kept) == found.unknown_records
+            assert _unknown_records(again, len(again) - 3) == kept, data.hex()
     assert decoded + refused == MUTANTS
     # Both outcomes must be common, or the mutations are not probing the format.
     assert decoded > MUTANTS // 50 and refused > MUTANTS // 2

@@ -14,18 +14,24 @@ from pdcp_studio.model.configuration import (
     StoredChannel,
     StoredConfiguration,
     StoredLink,
+    UnknownRecord,
 )
 from pdcp_studio.storage import config_codec as cc
 
 u16 = st.integers(0, 0xFFFF)
+# Records of codes this program does not know, at the end of any declaration (reference §3).
+unknown = st.lists(st.builds(UnknownRecord, code=st.sampled_from([0, 17, 0x20, 255]),
+                             value=u16), max_size=2).map(tuple)
 channels = st.builds(
     StoredChannel, index=st.integers(1, 255), vid=u16, pid=u16, serial=u16, type=u16,
-    profile=u16, owner_type=st.none() | u16, owner_profile=st.none() | u16,
+    profile=u16, owner_type=st.none() | u16, owner_profile=st.none() | u16, unknown=unknown,
 )
-links = st.builds(StoredLink, input=channels, output=channels, index=st.integers(0, 8))
+links = st.builds(StoredLink, input=channels, output=channels, index=st.integers(0, 8),
+                  unknown=unknown)
 configurations = st.builds(StoredConfiguration, index=st.integers(0, 6),
-                           links=st.lists(links, max_size=6))
-collections = st.builds(ConfigCollection, configurations=st.lists(configurations, max_size=5))
+                           links=st.lists(links, max_size=6), unknown=unknown)
+collections = st.builds(ConfigCollection, configurations=st.lists(configurations, max_size=5),
+                        unknown=unknown)
 
 
 def canonical(coll: ConfigCollection) -> ConfigCollection:
@@ -37,10 +43,10 @@ def canonical(coll: ConfigCollection) -> ConfigCollection:
     configs = []
     for cfg, cidx in zip(coll.configurations, fix([c.index for c in coll.configurations]),
                          strict=True):
-        renumbered = [StoredLink(lk.input, lk.output, i)
+        renumbered = [StoredLink(lk.input, lk.output, i, lk.unknown)
                       for lk, i in zip(cfg.links, fix([lk.index for lk in cfg.links]), strict=True)]
-        configs.append(StoredConfiguration(cidx, renumbered))
-    return ConfigCollection(configs)
+        configs.append(StoredConfiguration(cidx, renumbered, cfg.unknown))
+    return ConfigCollection(configs, coll.unknown)
 
 
 @settings(max_examples=200, deadline=None)
@@ -54,10 +60,11 @@ def test_bytes_round_trip(coll):
 
 
 # JSON indices count from 1 (from_json refuses 0) but need not be unique or consecutive.
-json_links = st.builds(StoredLink, input=channels, output=channels, index=st.integers(1, 0xFFFF))
+json_links = st.builds(StoredLink, input=channels, output=channels, index=st.integers(1, 0xFFFF),
+                       unknown=unknown)
 json_collections = st.builds(ConfigCollection, configurations=st.lists(st.builds(
-    StoredConfiguration, index=st.integers(1, 0xFFFF), links=st.lists(json_links, max_size=5)),
-    max_size=4))
+    StoredConfiguration, index=st.integers(1, 0xFFFF), links=st.lists(json_links, max_size=5),
+    unknown=unknown), max_size=4), unknown=unknown)
 
 
 @settings(max_examples=200, deadline=None)

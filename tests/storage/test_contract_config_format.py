@@ -130,3 +130,43 @@ def test_encode_onto_a_directory_fails_with_1_naming_it_and_leaves_no_temporary(
     out, err = capsys.readouterr()
     assert out == "" and str(target) in err and ".tmp" not in err
     assert sorted(p.name for p in tmp_path.iterdir()) == ["c.json", "out"]
+
+
+def test_unknown_records_appear_on_their_object_and_encode_writes_them_back(tmp_path, capsys):
+    """Contracts §2: ``"unknown_records": [{"code": 32, "value": 4660}, …]`` on the object
+    they belong to, in file order; ``config encode`` writes them back in the same place."""
+    body = _records((1, 1), (0x21, 1), (2, 1), (3, 1), (0x22, 2), (4, 1), (0x23, 3),
+                    *_channel(5), (0x20, 4660), (0x20, 4661), *_channel(6), (0x24, 5),
+                    (15, 0))
+    code, out, _ = _decode(tmp_path, capsys, body)
+    assert code == 0
+    doc = json.loads(out)
+    cfg = doc["configurations"][0]
+    link = cfg["links"][0]
+    assert doc["unknown_records"] == [{"code": 0x21, "value": 1}]
+    assert cfg["unknown_records"] == [{"code": 0x22, "value": 2}]
+    assert link["unknown_records"] == [{"code": 0x23, "value": 3}]
+    assert link["input"]["unknown_records"] == [{"code": 32, "value": 4660},
+                                                {"code": 32, "value": 4661}]
+    assert link["output"]["unknown_records"] == [{"code": 0x24, "value": 5}]
+    src, dst = tmp_path / "c.json", tmp_path / "again.pdcfg"
+    src.write_text(out)
+    assert main(["config", "encode", str(src), "-o", str(dst)]) == 0
+    head = body[:-3]
+    expected = head + _records((16, config_codec.crc16_ccitt_false(head)), (15, 0))
+    assert dst.read_bytes() == expected  # the same records, only the checksum added
+    capsys.readouterr()
+    assert main(["config", "decode", str(dst)]) == 0
+    listing = capsys.readouterr().out
+    assert "6 record(s) with unknown codes kept" in listing
+    assert "code 32 = 0x1234, code 32 = 0x1235" in listing
+
+
+def test_encode_refuses_a_known_code_as_an_unknown_record(tmp_path, capsys):
+    doc = {"configurations": [], "unknown_records": [{"code": 15, "value": 0}]}
+    src = tmp_path / "c.json"
+    src.write_text(json.dumps(doc))
+    assert main(["config", "encode", str(src), "-o", str(tmp_path / "x.pdcfg")]) == 2
+    err = capsys.readouterr().err
+    assert "unknown_records[0].code: 15 is a known code (End)" in err
+    assert not (tmp_path / "x.pdcfg").exists()

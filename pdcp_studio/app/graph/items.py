@@ -25,6 +25,7 @@ from PySide6.QtWidgets import (
 
 from pdcp_studio.app.graph import style
 from pdcp_studio.app.graph.layout import card_height
+from pdcp_studio.app.i18n import translate
 from pdcp_studio.model import profile as prof
 from pdcp_studio.model.refs import ChannelRef
 from pdcp_studio.model.system import Channel, Device
@@ -268,7 +269,7 @@ class DeviceItem(QGraphicsRectItem):
         p.drawText(QRectF(11, 6, w - 20 - badge, 18), Qt.AlignmentFlag.AlignVCenter, name)
         p.setFont(small_f)
         p.setPen(dim)
-        role = "Missing" if missing else style.ROLE_LABELS[self.role]
+        role = translate("Style", style.MISSING_LABEL if missing else style.ROLE_LABELS[self.role])
         p.drawText(QRectF(11, 22, w - 20, 14), Qt.AlignmentFlag.AlignVCenter,
                    f"{role}  ·  {d.vid}/{d.pid}/{d.serial}")
         if self.problems:

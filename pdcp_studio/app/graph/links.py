@@ -6,7 +6,9 @@ Python waits for the GIL, which the bus threads hold often) keep big systems fas
 the GUI responsive during a scan; ``shape()`` is a cached wide stroke so a 2-pixel curve
 is still easy to click (used for hit tests only).
 Kinds: ``link`` (in the system), ``add`` / ``remove`` (a previewed plan, dashed green /
-red), ``drag`` (the rubber link while the user drags from a port).
+red), ``unwritten`` (on the prosthesis, removed in the project: a pending removal, dotted
+violet), ``drag`` (the rubber link while the user drags from a port). A ``link`` that is
+``pending`` (in the project, not yet on the prosthesis) is drawn dash-dotted violet.
 """
 
 from __future__ import annotations
@@ -49,6 +51,8 @@ class LinkItem(QGraphicsPathItem):
         self.conflict = False
         self.missing = False
         self.live = False
+        #: In the project but not yet written to the prosthesis (a staged link).
+        self.pending = False
         self._shape = QPainterPath()
         if kind == "link":
             self.setFlag(QGraphicsItem.GraphicsItemFlag.ItemIsSelectable, True)
@@ -98,10 +102,14 @@ class LinkItem(QGraphicsPathItem):
             pen = QPen(style.PREVIEW_ADD, style.PREVIEW_WIDTH, Qt.PenStyle.DashLine)
         elif self.kind == "remove":
             pen = QPen(style.PREVIEW_REMOVE, style.PREVIEW_WIDTH, Qt.PenStyle.DashLine)
+        elif self.kind == "unwritten":
+            pen = QPen(style.PENDING_REMOVE, style.PREVIEW_WIDTH, Qt.PenStyle.DotLine)
         elif self.isSelected():
             pen = QPen(style.LINK_SELECTED, style.LINK_WIDTH_SELECTED)
         elif self.conflict:
             pen = QPen(style.LINK_CONFLICT, style.LINK_WIDTH + 0.6)
+        elif self.pending:
+            pen = QPen(style.PENDING, style.PREVIEW_WIDTH, Qt.PenStyle.DashDotLine)
         elif self.missing:
             pen = QPen(style.LINK_MISSING, style.LINK_WIDTH, Qt.PenStyle.DashLine)
         elif self.live:

@@ -39,6 +39,8 @@ class BusScene(QGraphicsScene):
         self.cards: dict[DeviceKey, DeviceItem] = {}
         self.link_items: dict[Link, LinkItem] = {}
         self.preview_items: list[LinkItem] = []
+        #: Ghosts of links on the prosthesis that the project removes (pending removals).
+        self.unwritten_items: list[LinkItem] = []
         self.states = SystemStates()
         self.flow_phase = 0.0
         self._live: dict[ChannelRef, float] = {}
@@ -59,6 +61,7 @@ class BusScene(QGraphicsScene):
         doc.positionChanged.connect(self._on_position_changed)
         doc.selectionChanged.connect(self._on_doc_selection)
         doc.previewChanged.connect(self._on_preview)
+        doc.busChanged.connect(self._on_bus_changed)
         self.selectionChanged.connect(self._on_qt_selection)
         self._states_timer = QTimer(self)
         self._states_timer.setSingleShot(True)
@@ -76,6 +79,7 @@ class BusScene(QGraphicsScene):
             self.cards.clear()
             self.link_items.clear()
             self.preview_items.clear()
+            self.unwritten_items.clear()
             system = self.doc.system
             self.states = compute_states(system)
             placed = layout.place(system, self.doc.positions)
@@ -87,6 +91,7 @@ class BusScene(QGraphicsScene):
                 self.cards[key] = card
             for link in system.links:
                 self._add_link_item(link)
+            self._show_unwritten()
             self._apply_states()
             self._show_preview(self.doc.preview_plan)
             self._select_items(self.doc.selection)
@@ -120,7 +125,31 @@ class BusScene(QGraphicsScene):
         for link in current - self.link_items.keys():
             self._add_link_item(link)
         self.states = compute_states(self.doc.system)
+        self._show_unwritten()
         self._apply_states()
+
+    def _on_bus_changed(self) -> None:
+        self._show_unwritten()
+        self._apply_states()
+
+    def _show_unwritten(self) -> None:
+        """Ghost links: on the prosthesis, removed in the project (not yet written)."""
+        for item in self.unwritten_items:
+            item.detach()
+            self.removeItem(item)
+        self.unwritten_items.clear()
+        bus = self.doc.bus_system
+        if bus is None:
+            return
+        for link in sorted(set(bus.links) - set(self.doc.system.links)):
+            if self.port(link.output) is None or self.port(link.input) is None:
+                continue
+            item = LinkItem(self, link, "unwritten")
+            item.setToolTip(
+                self.tr("Pending removal (still on the prosthesis): {link}").format(link=link)
+            )
+            self.addItem(item)
+            self.unwritten_items.append(item)
 
     def _on_device_changed(self, key: DeviceKey) -> None:
         device = self.doc.system.device(key)
@@ -163,7 +192,10 @@ class BusScene(QGraphicsScene):
                 port.unmet = ref in st.unmet_required
             card.refresh()
         dim = bool(self.preview_items)
+        bus = self.doc.bus_system
+        on_bus = set(bus.links) if bus is not None else None
         for link, item in self.link_items.items():
+            item.pending = on_bus is not None and link not in on_bus
             item.conflict = link in st.conflict_links
             item.missing = link in st.missing_links
             item.live = link.output in live
@@ -298,7 +330,7 @@ class BusScene(QGraphicsScene):
             links.append(self.doc.selection)
         n = commands.push_remove_links(self.doc, links)
         if n:
-            self.statusMessage.emit(f"Removed {n} link{'s' * (n != 1)}")
+            self.statusMessage.emit(self.tr("Removed {n} link{v1}").format(n=n, v1='s' * (n != 1)))
         return n
 
     # -- gestures: drawing a link ---------------------------------------------------
@@ -308,7 +340,9 @@ class BusScene(QGraphicsScene):
         self.addItem(self._drag)
         self._drag.follow(pos)
         what = "an input" if port.is_output else "an output"
-        self.statusMessage.emit(f"Drag from {port.ref} to {what} to link them")
+        self.statusMessage.emit(
+            self.tr("Drag from {ref} to {what} to link them").format(ref=port.ref, what=what)
+        )
 
     def port_at(self, pos: QPointF) -> PortItem | None:
         r = style.PORT_RADIUS + 4
@@ -352,18 +386,22 @@ class BusScene(QGraphicsScene):
         target = self.port_at(pos)
         if target is None or target is start:
             self.last_link_result = (None, "no target port")
-            self.statusMessage.emit("Link cancelled: release over a port to link")
+            self.statusMessage.emit(self.tr("Link cancelled: release over a port to link"))
             return None
         a, b = self._ends(start, target)
         reason = link_refusal(self.doc.system, a, b)
         if reason:
             self.last_link_result = (None, reason)
-            self.statusMessage.emit(f"Cannot link {a} → {b}: {reason}")
+            self.statusMessage.emit(
+                self.tr("Cannot link {a} → {b}: {reason}").format(a=a, b=b, reason=reason)
+            )
             return None
         link = Link(a, b)
         commands.push_add_link(self.doc, link)
         self.last_link_result = (link, "")
-        self.statusMessage.emit(f"Linked {self._describe(a)} → {self._describe(b)}")
+        self.statusMessage.emit(
+            self.tr("Linked {v0} → {v1}").format(v0=self._describe(a), v1=self._describe(b))
+        )
         return link
 
     def _cancel_drag(self) -> None:

@@ -6,6 +6,7 @@ Calm colours: roles tint the card header only; states use a few saturated accent
 
 from __future__ import annotations
 
+from PySide6.QtCore import QT_TRANSLATE_NOOP
 from PySide6.QtGui import QColor, QFont
 
 # -- geometry (scene units = pixels at 100 % zoom) ---------------------------------------
@@ -24,7 +25,10 @@ ROLE_COLOURS = {
     "control": QColor("#7a5cb8"),
     "terminal": QColor("#2f9a7a"),
 }
-ROLE_LABELS = {"sensor": "Sensor", "control": "Control", "terminal": "Terminal device"}
+ROLE_LABELS = {"sensor": QT_TRANSLATE_NOOP("Style", "Sensor"),
+               "control": QT_TRANSLATE_NOOP("Style", "Control"),
+               "terminal": QT_TRANSLATE_NOOP("Style", "Terminal device")}
+MISSING_LABEL = QT_TRANSLATE_NOOP("Style", "Missing")
 
 CARD_FILL = QColor("#ffffff")
 CARD_BORDER = QColor("#b9c0ca")
@@ -49,6 +53,9 @@ LINK_LIVE = QColor("#0ea5e9")
 LINK_MISSING = QColor("#a3abb5")
 PREVIEW_ADD = QColor("#16a34a")
 PREVIEW_REMOVE = QColor("#dc2626")
+#: A staged change not yet written to the prosthesis (pending add; pending removal ghost).
+PENDING = QColor("#9333ea")
+PENDING_REMOVE = QColor("#c084fc")
 DRAG_OK = QColor("#2563eb")
 DRAG_BAD = QColor("#dc2626")
 

@@ -6,7 +6,7 @@ devices); rubber-band selection on empty space, a card drag moves it, a port dra
 
 from __future__ import annotations
 
-from PySide6.QtCore import QPoint, QPointF, QRectF, QSize, Qt
+from PySide6.QtCore import QT_TRANSLATE_NOOP, QPoint, QPointF, QRectF, QSize, Qt
 from PySide6.QtGui import (
     QColor,
     QFontMetricsF,
@@ -21,6 +21,7 @@ from PySide6.QtWidgets import QGraphicsView, QWidget
 
 from pdcp_studio.app.graph import style
 from pdcp_studio.app.graph.scene import BusScene
+from pdcp_studio.app.i18n import translate
 
 MIN_ZOOM = 0.1
 MAX_ZOOM = 4.0
@@ -30,19 +31,32 @@ FIT_MARGIN = 30.0
 FIT_MAX_ZOOM = 1.3
 
 
-#: The legend's rows: (kind, colour, label). Kinds: "role" swatch, "line"/"dash" link.
+#: The legend's rows: (kind, colour, label). Kinds: "role" swatch, "ring" port,
+#: "line"/"dash"/"dashdot"/"dot" link.
 LEGEND = (
-    (("role", style.ROLE_COLOURS["sensor"], "Sensor"),
-     ("role", style.ROLE_COLOURS["control"], "Control"),
-     ("role", style.ROLE_COLOURS["terminal"], "Terminal device"),
-     ("role", style.MISSING_TEXT, "Missing"),
-     ("ring", style.ERROR, "Required input unmet")),
-    (("line", style.LINK, "Link"),
-     ("dash", style.LINK_LIVE, "Data flowing"),
-     ("dash", style.LINK_MISSING, "End missing"),
-     ("line", style.LINK_CONFLICT, "Sole-access conflict"),
-     ("dash", style.PREVIEW_ADD, "Plan adds"),
-     ("dash", style.PREVIEW_REMOVE, "Plan removes")),
+    (
+        ("role", style.ROLE_COLOURS["sensor"], QT_TRANSLATE_NOOP("Legend", "Sensor")),
+        ("role", style.ROLE_COLOURS["control"], QT_TRANSLATE_NOOP("Legend", "Control")),
+        ("role", style.ROLE_COLOURS["terminal"], QT_TRANSLATE_NOOP("Legend", "Terminal device")),
+        ("role", style.MISSING_TEXT, QT_TRANSLATE_NOOP("Legend", "Missing")),
+        ("ring", style.ERROR, QT_TRANSLATE_NOOP("Legend", "Required input unmet")),
+    ),
+    (
+        ("line", style.LINK, QT_TRANSLATE_NOOP("Legend", "Link")),
+        ("dash", style.LINK_LIVE, QT_TRANSLATE_NOOP("Legend", "Data flowing")),
+        ("dash", style.LINK_MISSING, QT_TRANSLATE_NOOP("Legend", "End missing")),
+        ("line", style.LINK_CONFLICT, QT_TRANSLATE_NOOP("Legend", "Sole-access conflict")),
+        ("dash", style.PREVIEW_ADD, QT_TRANSLATE_NOOP("Legend", "Plan adds")),
+        ("dash", style.PREVIEW_REMOVE, QT_TRANSLATE_NOOP("Legend", "Plan removes")),
+    ),
+    (
+        ("dashdot", style.PENDING, QT_TRANSLATE_NOOP("Legend", "Pending: to write")),
+        (
+            "dot",
+            style.PENDING_REMOVE,
+            QT_TRANSLATE_NOOP("Legend", "Pending: to remove from the prosthesis"),
+        ),
+    ),
 )
 
 
@@ -60,7 +74,7 @@ class Legend(QWidget):
         self._metrics = QFontMetricsF(self.font())
 
     def _width(self, row: tuple) -> float:
-        return sum(24 + self._metrics.horizontalAdvance(label) + self.GAP
+        return sum(24 + self._metrics.horizontalAdvance(translate("Legend", label)) + self.GAP
                    for _k, _c, label in row) - self.GAP
 
     def sizeHint(self) -> QSize:
@@ -76,7 +90,8 @@ class Legend(QWidget):
         for r, row in enumerate(LEGEND):
             y = self.PAD + r * self.ROW + self.ROW / 2
             x = self.PAD
-            for kind, colour, label in row:
+            for kind, colour, source in row:
+                label = translate("Legend", source)
                 if kind == "role":
                     p.setPen(Qt.PenStyle.NoPen)
                     p.setBrush(colour)
@@ -89,6 +104,10 @@ class Legend(QWidget):
                     pen = QPen(colour, 2.2)
                     if kind == "dash":
                         pen.setStyle(Qt.PenStyle.DashLine)
+                    elif kind == "dashdot":
+                        pen.setStyle(Qt.PenStyle.DashDotLine)
+                    elif kind == "dot":
+                        pen.setStyle(Qt.PenStyle.DotLine)
                     p.setPen(pen)
                     p.drawLine(QPointF(x, y), QPointF(x + 18, y))
                 p.setPen(style.TEXT)

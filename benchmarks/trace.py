@@ -1,0 +1,360 @@
+"""The trace against a saturated bus (issue 16): replay speed and memory on a large capture.
+
+Generates (once, cached in the temp folder) a capture of mixed PDCP traffic — binding and
+set-up of a known node map (Channel Node Id, Source's Node Ids), parameter reads, beacons,
+channel data of every output, and some garbage (module-specific codes, extended identifiers,
+random bytes) — at about 8,000 frames/s of capture time, in ASC and BLF. Prints for each format:
+
+- python-can's reader alone (``can.LogReader`` over the file, nothing else): the anchor;
+- ``pdcp-studio monitor --replay FILE`` (frames to /dev/null, its summary shown);
+- the same with a filter that matches nothing, and with ``--json`` to /dev/null;
+
+each with wall time, frames per second, the ratio to the reader alone (target ≤ 2×) and peak
+RSS (target < 150 MB, whatever the length). The bus time the monitor reports must equal the
+exact figure computed here bit by bit (bus/bustime.py's plain bit-stream path). The bus bound:
+a 1 Mbit/s CAN bus carries at most ~8,000 8-byte (≈ 11,000 4-byte) frames a second.
+
+Run: ``python benchmarks/trace.py [--frames N] [--formats asc,blf]``.
+"""
+
+from __future__ import annotations
+
+import argparse
+import os
+import random
+import re
+import subprocess
+import sys
+import tempfile
+import time
+from pathlib import Path
+
+ROOT = Path(__file__).resolve().parents[1]
+sys.path.insert(0, str(ROOT))
+
+FRAMES = 1_000_000
+RATE_HZ = 8_000  # capture time: about a saturated 1 Mbit/s bus
+TARGET_RATIO = 2.0
+TARGET_RSS_MB = 150
+#: Frames per second a 1 Mbit/s bus carries at most, 8-byte frames (worst-case stuffing).
+BUS_BOUND_8 = 1_000_000 // 135
+BUS_BOUND_4 = 1_000_000 // 95
+
+
+def node_map():
+    """Eight devices, each with one or two outputs; every output feeds one input elsewhere.
+
+    Returns (devices, outputs): devices = [(node, vid, pid, serial, n_outputs)], outputs =
+    [(channel node, device node, channel index, listener device node, listener channel)].
+    """
+    devices, outputs = [], []
+    next_channel_node = 100
+    for k in range(8):
+        devices.append((10 + k, 0x0A0 + k, 0x10 + k % 3, 1000 + k, 1 + k % 2))
+    for node, _vid, _pid, _sn, n_out in devices:
+        for index in range(1, n_out + 1):
+            listener = devices[(node - 10 + 1) % len(devices)][0]
+            outputs.append((next_channel_node, node, index, listener, 10 + index))
+            next_channel_node += 1
+    return devices, outputs
+
+
+def traffic(n: int, seed: int = 16):
+    """``n`` frames (arbitration_id, data, is_extended) of a session on the node map."""
+    from pdcp_studio.model import parameters as P
+    from pdcp_studio.protocol import messages as M
+    from pdcp_studio.protocol.codes import ResponseCode
+
+    ok = ResponseCode.SUCCESS
+    rng = random.Random(seed)
+    devices, outputs = node_map()
+    setup: list = []
+    for node, vid, pid, sn, _ in devices:
+        setup += [M.BindRequest(node, vid, pid, sn), M.BindResponse(node, node, vid, pid, sn)]
+        setup += [M.GetParameter(node, P.DEVICE_VID_PID, 0),
+                  M.GetParameterResponse(node, ok, P.DEVICE_VID_PID, 0,
+                                         vid.to_bytes(2, "little") + pid.to_bytes(2, "little")),
+                  M.GetParameter(node, P.DEVICE_SERIAL, 0),
+                  M.GetParameterResponse(node, ok, P.DEVICE_SERIAL, 0, sn.to_bytes(2, "little"))]
+    for chan_node, dev, index, listener, lchan in outputs:
+        setup += [M.GetParameter(dev, P.CH_TRANSFER_TYPE, index),
+                  M.GetParameterResponse(dev, ok, P.CH_TRANSFER_TYPE, index, b"\x02"),
+                  M.SetParameter(dev, P.OUT_NODE_ID, index, bytes([chan_node])),
+                  M.SetParameterResponse(dev, ok, P.OUT_NODE_ID, index, bytes([chan_node])),
+                  M.SetParameter(listener, P.IN_SOURCE_NODE_IDS, lchan, bytes([dev, chan_node])),
+                  M.SetParameterResponse(listener, ok, P.IN_SOURCE_NODE_IDS, lchan,
+                                         bytes([dev, chan_node])),
+                  M.SetParameter(dev, P.CH_DATA_ENABLED, index, b"\x01"),
+                  M.SetParameterResponse(dev, ok, P.CH_DATA_ENABLED, index, b"\x01")]
+    frames = [(*m.encode(), False) for m in setup]
+    reads = [(P.DEVICE_VID_PID, 0), (P.DEVICE_SERIAL, 0), (P.CH_TRANSFER_TYPE, 1),
+             (P.DEVICE_BEACON_INTERVAL, 0)]
+    phase = [rng.random() * 6.28 for _ in outputs]
+    import math
+
+    t = 0
+    while len(frames) < n:
+        t += 1
+        roll = rng.random()
+        if roll < 0.86:  # channel data: a 12-bit EMG-like sample pair per output
+            k = t % len(outputs)
+            chan_node = outputs[k][0]
+            level = int(2048 + 1500 * math.sin(t / 400 + phase[k])) + rng.randint(-40, 40)
+            data = level.to_bytes(2, "little") + (4095 - level).to_bytes(2, "little")
+            data = data * (1 + t % 2)  # 4- and 8-byte frames
+            frames.append((make_data_id(chan_node), data, False))
+        elif roll < 0.91:
+            node = devices[t % len(devices)][0]
+            frames.append((*M.Beacon(node).encode(), False))
+        elif roll < 0.98:
+            node, vid, pid, sn, _ = devices[t % len(devices)]
+            param, chan = reads[t % len(reads)]
+            frames.append((*M.GetParameter(node, param, chan).encode(), False))
+            value = {P.DEVICE_VID_PID: vid.to_bytes(2, "little") + pid.to_bytes(2, "little"),
+                     P.DEVICE_SERIAL: sn.to_bytes(2, "little"),
+                     P.CH_TRANSFER_TYPE: b"\x02"}.get(param, b"\xe8\x03")
+            frames.append((*M.GetParameterResponse(node, ok, param, chan, value).encode(),
+                           False))
+        elif roll < 0.99:  # a module-specific function code
+            node = devices[t % len(devices)][0]
+            frames.append((0x200 | node, bytes([0x50, t & 0xFF]), False))
+        elif roll < 0.995:  # random base frame
+            frames.append((rng.randrange(0x800), rng.randbytes(rng.randint(0, 8)), False))
+        else:  # a 29-bit identifier
+            frames.append((rng.randrange(1 << 29), rng.randbytes(8), True))
+    return frames[:n]
+
+
+def make_data_id(chan_node: int) -> int:
+    from pdcp_studio.protocol.identifier import make_id
+
+    return make_id(1, 0, chan_node)
+
+
+def exact_bus_bits(frames) -> int:
+    """The bus bits of the base frames, by the plain bit-stream computation (memoised)."""
+    from pdcp_studio.bus import bustime
+
+    memo: dict = {}
+    total = 0
+    for arbitration_id, data, extended in frames:
+        if extended:
+            continue
+        key = (arbitration_id, data)
+        bits = memo.get(key)
+        if bits is None:
+            stream = bustime.frame_bitstream(arbitration_id, data)
+            bits = memo[key] = len(stream) + bustime.stuff_bit_count(stream) + bustime.TRAILER_BITS
+        total += bits
+    return total
+
+
+def write_capture(path: Path, frames) -> None:
+    import can
+
+    t0 = 1_700_000_000.0
+    with can.Logger(str(path)) as logger:
+        for i, (arbitration_id, data, extended) in enumerate(frames):
+            logger.on_message_received(can.Message(
+                timestamp=t0 + i / RATE_HZ, arbitration_id=arbitration_id, data=data,
+                is_extended_id=extended, channel=0))
+
+
+def _peak_rss_mb(pid: int) -> float:
+    """The child's own peak RSS (VmHWM) in MB, 0 once it is gone.
+
+    Not ``ru_maxrss``: on Linux that keeps the high-water mark of the memory the child
+    had before ``exec`` — this benchmark's own, with its million frames in memory.
+    """
+    try:
+        with open(f"/proc/{pid}/status") as status:
+            for line in status:
+                if line.startswith("VmHWM:"):
+                    return int(line.split()[1]) / 1024
+    except OSError:
+        pass
+    return 0.0
+
+
+def timed(cmd: list[str], stdout=subprocess.DEVNULL) -> tuple[float, float, str, float]:
+    """Wall seconds, peak RSS in MB, stderr and CPU seconds (user + system) of one child.
+
+    On a shared machine wall time follows the load of the moment; CPU time much less, so
+    the ratios are printed for both."""
+    import threading
+
+    t0 = time.perf_counter()
+    proc = subprocess.Popen(cmd, stdout=stdout, stderr=subprocess.PIPE, text=True,
+                            env=dict(os.environ, PYTHONPATH=str(ROOT)))
+    peak = [0.0]
+    done = threading.Event()
+
+    def watch() -> None:
+        while not done.is_set():
+            peak[0] = max(peak[0], _peak_rss_mb(proc.pid))
+            done.wait(0.05)
+
+    watcher = threading.Thread(target=watch, daemon=True)
+    watcher.start()
+    err = proc.stderr.read()
+    _, status, usage = os.wait4(proc.pid, 0)
+    proc.returncode = os.waitstatus_to_exitcode(status)
+    wall = time.perf_counter() - t0
+    done.set()
+    watcher.join()
+    if proc.returncode != 0:
+        raise SystemExit(f"{' '.join(cmd)} exited {proc.returncode}: {err[-2000:]}")
+    return wall, peak[0], err, usage.ru_utime + usage.ru_stime
+
+
+READER = ("import can, sys\n"
+          "p = sys.argv[1]\n"
+          "kw = {'relative_timestamp': False} if p.endswith('.asc') else {}\n"
+          "n = 0\n"
+          "for m in can.LogReader(p, **kw):\n"
+          "    n += 1\n"
+          "print(n)\n")
+
+
+COUNTER = ("import can, sys, time\n"
+           "bus = can.Bus(interface='udp_multicast', channel=sys.argv[1])\n"
+           "print('ready', flush=True)\n"
+           "n, last = 0, None\n"
+           "while True:\n"
+           "    m = bus.recv(0.2)\n"
+           "    if m is not None:\n"
+           "        if m.arbitration_id != int(sys.argv[2]):\n"
+           "            n += 1; last = time.monotonic()\n"
+           "    elif last is not None and time.monotonic() - last > 2.0:\n"
+           "        break\n"
+           "print(n)\n")
+#: A beacon from a node the traffic does not use: pings until the monitor shows it.
+PING_NODE = 253
+
+
+def live(seconds: float, rate: int) -> None:
+    """Frames played onto a cross-process bus (python-can udp_multicast on loopback) at
+    ``rate``: ``monitor --bus`` must count every frame an independent counter counts, and
+    its CPU is measured (target ≤ 30 % of a core). The monitor shows only the pings that
+    tell the sender it is listening (``--filter node=253``), so its output costs nothing."""
+    import threading
+
+    import can
+
+    from pdcp_studio.protocol import messages as M
+
+    ping_id, ping_data = M.Beacon(PING_NODE).encode()
+    group = f"239.74.163.{random.randrange(10, 250)}"
+    env = dict(os.environ, PYTHONPATH=str(ROOT))
+    counter = subprocess.Popen([sys.executable, "-c", COUNTER, group, str(ping_id)],
+                               stdout=subprocess.PIPE, text=True, env=env)
+    listen = seconds + 30
+    monitor = subprocess.Popen(
+        [sys.executable, "-m", "pdcp_studio", "monitor", "--bus", f"can:udp_multicast:{group}",
+         "--seconds", str(listen), "--filter", f"node={PING_NODE}"],
+        stdout=subprocess.PIPE, stderr=subprocess.PIPE, text=True, env=env)
+    assert counter.stdout.readline().strip() == "ready"
+    bus = can.Bus(interface="udp_multicast", channel=group)
+    shown: list[str] = []
+    reader = threading.Thread(target=lambda: shown.extend(monitor.stdout), daemon=True)
+    reader.start()
+    while not shown:  # ping until the monitor listens
+        bus.send(can.Message(arbitration_id=ping_id, data=ping_data, is_extended_id=False))
+        time.sleep(0.1)
+    time.sleep(0.5)
+    frames = traffic(int(seconds * rate))
+    t0 = time.perf_counter()
+    for i, (arbitration_id, data, extended) in enumerate(frames):
+        due = t0 + i / rate
+        while time.perf_counter() < due:
+            time.sleep(0.0005)
+        bus.send(can.Message(arbitration_id=arbitration_id, data=data, is_extended_id=extended))
+    sent_s = time.perf_counter() - t0
+    pings = len(shown)
+    bus.send(can.Message(arbitration_id=ping_id, data=ping_data, is_extended_id=False))
+    deadline = time.monotonic() + 300
+    while len(shown) == pings and time.monotonic() < deadline:
+        time.sleep(0.05)  # the end marker: every frame before it has been decoded
+    drained_s = time.perf_counter() - t0
+    counted = int(counter.communicate(timeout=60)[0].strip())
+    monitor.send_signal(2)  # Ctrl-C: the monitor ends and prints its summary
+    err = monitor.stderr.read()
+    _, _, usage = os.wait4(monitor.pid, 0)
+    reader.join(5)
+    bus.shutdown()
+    match = re.search(r"^(\d+) frames", err, re.MULTILINE)
+    if match is None:
+        raise SystemExit(f"monitor --bus failed: {err[-2000:]}")
+    seen = int(match.group(1)) - len(shown)
+    cpu = usage.ru_utime + usage.ru_stime
+    print(f"[live] {len(frames):,} frames sent in {sent_s:.2f} s ({len(frames) / sent_s:,.0f} "
+          f"frames/s; bus bound {BUS_BOUND_8:,}–{BUS_BOUND_4:,}): independent counter "
+          f"{counted:,}, monitor --bus {seen:,} — {'equal' if seen == counted else 'DIFFERENT'}"
+          f"; monitor CPU {cpu:.2f} s = {100 * cpu / sent_s:.0f} % of a core over the sending "
+          f"time (its start-up included; target ≤ 30 %); it had decoded the last frame "
+          f"{drained_s - sent_s:.2f} s after it was sent")
+
+
+def main() -> None:
+    parser = argparse.ArgumentParser(description=__doc__.split("\n")[0])
+    parser.add_argument("--frames", type=int, default=FRAMES)
+    parser.add_argument("--formats", default="asc,blf")
+    parser.add_argument("--live-seconds", type=float, default=10.0,
+                        help="length of the live case (0: skip it)")
+    parser.add_argument("--live-rate", type=int, default=RATE_HZ)
+    args = parser.parse_args()
+    cache = Path(tempfile.gettempdir()) / "pdcp-trace-bench"
+    cache.mkdir(exist_ok=True)
+    t0 = time.perf_counter()
+    frames = traffic(args.frames)
+    exact_file = cache / f"mixed-{args.frames}-v1.bits"
+    if exact_file.exists():
+        exact = int(exact_file.read_text())
+    else:
+        exact = exact_bus_bits(frames)
+        exact_file.write_text(str(exact))
+    print(f"{len(frames):,} frames of mixed PDCP traffic at {RATE_HZ:,} frames/s of capture "
+          f"time; exact bus time {exact / 1000:.3f} ms (bit by bit, {time.perf_counter() - t0:.1f} s"
+          f"); bus bound {BUS_BOUND_8:,} 8-byte / {BUS_BOUND_4:,} 4-byte frames/s at 1 Mbit/s")
+    python = sys.executable
+    n = len(frames)
+    for fmt in filter(None, args.formats.split(",")):
+        path = cache / f"mixed-{args.frames}-v1.{fmt}"
+        if not path.exists():
+            t1 = time.perf_counter()
+            partial = path.with_name(path.name + ".tmp." + fmt)
+            write_capture(partial, frames)
+            partial.replace(path)
+            print(f"[{fmt}] wrote {path} in {time.perf_counter() - t1:.1f} s")
+        size = path.stat().st_size / 1e6
+        wall, rss, _, cpu = timed([python, "-c", READER, str(path)])
+        anchor, anchor_cpu = wall, cpu
+        print(f"[{fmt}] {size:.0f} MB — python-can reader alone: {wall:.2f} s ({cpu:.2f} s CPU), "
+              f"{len(frames) / wall:,.0f} frames/s, peak RSS {rss:.0f} MB")
+        monitor = [python, "-m", "pdcp_studio", "monitor", "--replay", str(path)]
+        cases = [("monitor --replay", monitor),
+                 ("--filter node=254 (matches nothing)", [*monitor, "--filter", "node=254"]),
+                 ("--json", [*monitor, "--json"])]
+        for label, cmd in cases:
+            wall, rss, err, cpu = timed(cmd)
+            ratio, cpu_ratio = wall / anchor, cpu / anchor_cpu
+            verdict = ("ok" if min(ratio, cpu_ratio) <= TARGET_RATIO and rss < TARGET_RSS_MB
+                       else "MISSES TARGET")
+            print(f"[{fmt}] {label}: {wall:.2f} s ({cpu:.2f} s CPU), {n / wall:,.0f} frames/s, "
+                  f"{ratio:.2f}× the reader's wall time, {cpu_ratio:.2f}× its CPU time (target "
+                  f"≤ {TARGET_RATIO}×), peak RSS {rss:.0f} MB (target < {TARGET_RSS_MB} MB) — "
+                  f"{verdict}")
+            if label == "monitor --replay":
+                print("    summary: " + "\n    ".join(err.strip().splitlines()[:4]))
+            match = re.search(r"bus time ([\d.]+) ms", err)
+            if match is None or abs(float(match.group(1)) * 1000 - exact) > 0.5:
+                raise SystemExit(f"[{fmt}] bus time {match and match.group(1)} ms ≠ exact "
+                                 f"{exact / 1000:.3f} ms")
+        print(f"[{fmt}] bus time of the capture equals the exact bit-by-bit figure "
+              f"({exact / 1000:.3f} ms)")
+    if args.live_seconds:
+        live(args.live_seconds, args.live_rate)
+
+
+if __name__ == "__main__":
+    main()

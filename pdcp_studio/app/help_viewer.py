@@ -1,0 +1,176 @@
+"""Help: the user manual for prosthetists (``docs/manual.md``, shipped as
+``resources/manual/<language>.md``) shown in the app, and About with versions.
+
+F1 opens the manual at the section for what the user is looking at (:func:`section_for`):
+the graph, a dock, or the dialog in front.
+"""
+
+from __future__ import annotations
+
+import platform
+import re
+from importlib import metadata
+from pathlib import Path
+
+from PySide6.QtCore import QLocale, Qt
+from PySide6.QtGui import QTextCursor
+from PySide6.QtWidgets import (
+    QApplication,
+    QDialog,
+    QDialogButtonBox,
+    QMessageBox,
+    QTextBrowser,
+    QVBoxLayout,
+    QWidget,
+)
+
+from pdcp_studio.app.i18n import translate
+
+#: What the user is looking at (a dock's or dialog's object/class name) → manual section key.
+VIEW_SECTIONS: dict[str, str] = {
+    "GraphView": "graph",
+    "DevicesDock": "devices",
+    "InspectorDock": "inspector",
+    "PlanDock": "plans",
+    "PendingDock": "pending",
+    "HistoryDock": "history",
+    "MonitorDock": "monitor",
+    "LivePlotDock": "plot",
+    "SimDock": "simulator",
+    "ConnectDialog": "connect",
+    "CompareDialog": "compare",
+    "WriteConfigDialog": "write",
+    "ProfileTreeDialog": "profiles",
+    "RecoveryDialog": "recovery",
+}
+
+
+def manual_path(language: str | None = None) -> Path:
+    """The manual in ``language`` (``de``, ``en``…), else in English."""
+    from pdcp_studio.paths import resources_dir
+
+    folder = resources_dir() / "manual"
+    lang = (language or QLocale().name()).split("_")[0]
+    chosen = folder / f"{lang}.md"
+    return chosen if chosen.is_file() else folder / "en.md"
+
+
+def sections(text: str) -> dict[str, str]:
+    """Section key → heading text, from the manual's ``<!-- section: KEY -->`` markers (each
+    on the line before its heading)."""
+    found: dict[str, str] = {}
+    for key, heading in re.findall(r"<!-- section: (\w+) -->\s*\n#+\s*(.+)", text):
+        found[key] = heading.strip()
+    return found
+
+
+def section_for(widget: QWidget | None) -> str:
+    """The manual section for ``widget`` (the focus widget or the window in front)."""
+    while widget is not None:
+        for name in (widget.objectName(), type(widget).__name__):
+            if name in VIEW_SECTIONS:
+                return VIEW_SECTIONS[name]
+        widget = widget.parentWidget()
+    return "start"
+
+
+class HelpViewer(QDialog):
+    """The manual in a browser pane; :meth:`show_section` scrolls to one section."""
+
+    def __init__(self, parent: QWidget | None = None, language: str | None = None) -> None:
+        super().__init__(parent)
+        self.setObjectName("HelpViewer")
+        self.setWindowTitle(self.tr("PDCP Studio — User manual"))
+        self.resize(820, 760)
+        self.browser = QTextBrowser(self)
+        self.browser.setOpenExternalLinks(True)
+        self.browser.setAccessibleName(self.tr("User manual"))
+        self.browser.setAccessibleDescription(
+            self.tr("The user manual for prosthetists; F1 opens the part for the current view"))
+        self.path = manual_path(language)
+        self.text = self.path.read_text("utf-8")
+        self.browser.setMarkdown(re.sub(r"<!-- section: \w+ -->\n", "", self.text))
+        self.headings = sections(self.text)
+        buttons = QDialogButtonBox(QDialogButtonBox.StandardButton.Close, self)
+        buttons.rejected.connect(self.close)
+        layout = QVBoxLayout(self)
+        layout.addWidget(self.browser)
+        layout.addWidget(buttons)
+
+    def show_section(self, key: str) -> bool:
+        """Scroll so that section ``key``'s heading is at the top; False if there is none."""
+        heading = self.headings.get(key)
+        if heading is None:
+            return False
+        doc = self.browser.document()
+        block = doc.begin()
+        while block.isValid():
+            if block.text().strip() == heading and block.blockFormat().headingLevel():
+                cursor = QTextCursor(block)
+                bar = self.browser.verticalScrollBar()
+                bar.setValue(bar.maximum())  # then back up: the heading ends at the top
+                self.browser.setTextCursor(cursor)
+                self.browser.ensureCursorVisible()
+                return True
+            block = block.next()
+        return False
+
+    def current_heading(self) -> str:
+        """The heading of the section shown at the top (for tests)."""
+        cursor = self.browser.cursorForPosition(self.browser.viewport().rect().topLeft())
+        block = cursor.block()
+        while block.isValid() and not block.blockFormat().headingLevel():
+            block = block.previous()
+        return block.text() if block.isValid() else ""
+
+
+def qt_versions() -> dict[str, str]:
+    """The Qt and PySide6 this program runs on."""
+    from PySide6 import __version__ as pyside_version
+    from PySide6.QtCore import qVersion
+
+    return {"PySide6": pyside_version, "qt": qVersion()}
+
+
+def versions_text() -> str:
+    """PDCP Studio's and its parts' versions, one a line (About, and support requests)."""
+    from PySide6 import __version__ as pyside_version
+    from PySide6.QtCore import qVersion
+
+    from pdcp_studio import __version__
+
+    parts = [("PDCP Studio", __version__), ("Python", platform.python_version()),
+             ("Qt", qVersion()), ("PySide6", pyside_version)]
+    for name in ("python-can", "pyserial", "networkx"):
+        try:
+            parts.append((name, metadata.version(name)))
+        except metadata.PackageNotFoundError:
+            parts.append((name, "?"))
+    return "\n".join(f"{name} {version}" for name, version in parts)
+
+
+def show_about(parent: QWidget) -> None:
+    text = (translate("HelpViewer", "<h3>PDCP Studio</h3><p>See, configure and repair the "
+                      "PDCP bus inside a powered prosthesis.</p>")
+            + "<p>" + versions_text().replace("\n", "<br>") + "</p>"
+            + translate("HelpViewer", "<p>MIT License. Help → User manual (F1) explains "
+                        "every view.</p>"))
+    QMessageBox.about(parent, translate("HelpViewer", "About PDCP Studio"), text)
+
+
+def show_about_qt(parent: QWidget) -> None:
+    QApplication.aboutQt()
+
+
+def open_manual(parent: QWidget, key: str = "start") -> HelpViewer:
+    """Show the manual (one viewer per parent window) at section ``key``."""
+    viewer = getattr(parent, "_help_viewer", None)
+    if viewer is None:
+        viewer = HelpViewer(parent)
+        viewer.setAttribute(Qt.WidgetAttribute.WA_DeleteOnClose, False)
+        parent._help_viewer = viewer  # type: ignore[attr-defined]
+    viewer.show()
+    viewer.raise_()
+    viewer.activateWindow()
+    viewer.show_section(key)
+    return viewer

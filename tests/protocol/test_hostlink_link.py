@@ -1,0 +1,119 @@
+"""The link state machine: two endpoints wired through a lossy line, time passed by hand."""
+
+from __future__ import annotations
+
+from pdcp_studio.protocol.hostlink_link import LinkEndpoint
+
+
+class Line:
+    """Host ↔ arbitrator with a hook that may drop or damage what one side writes."""
+
+    def __init__(self, **options):
+        self.host = LinkEndpoint(host=True, **options)
+        self.arb = LinkEndpoint(host=False, **options)
+        self.now = 0.0
+        self.got = {"host": [], "arb": []}
+        self.spoil = None  # spoil(sender, bytes) -> bytes
+
+    def step(self, dt: float = 0.01, rounds: int = 1) -> None:
+        for _ in range(rounds):
+            self.now += dt
+            for name, src, dst in (("host", self.host, self.arb), ("arb", self.arb, self.host)):
+                src.poll(self.now)
+                data = src.take_output()
+                if self.spoil is not None:
+                    data = self.spoil(name, data)
+                if data:
+                    other = "arb" if name == "host" else "host"
+                    self.got[other] += dst.receive(data, self.now)
+
+
+def test_messages_arrive_in_order_once():
+    line = Line()
+    for n in range(5):
+        line.host.send(bytes([n]), line.now)
+    line.step(rounds=20)
+    assert line.got["arb"] == [bytes([n]) for n in range(5)]
+    assert line.host.stats.retransmits == 0
+
+
+def test_a_lost_data_frame_is_sent_again_and_only_it():
+    line = Line(ack_timeout=0.05)
+    dropped = []
+
+    def drop_first(sender, data):
+        if sender == "host" and data and not dropped:
+            dropped.append(data)
+            return b""
+        return data
+
+    line.spoil = drop_first
+    line.host.send(b"\x01a", line.now)
+    line.host.send(b"\x01b", line.now)
+    line.step(rounds=30)
+    assert line.got["arb"] == [b"\x01a", b"\x01b"]
+    assert line.host.stats.retransmits == 1
+
+
+def test_a_lost_ack_never_delivers_a_request_twice():
+    line = Line(ack_timeout=0.05)
+    lost = []
+
+    def drop_first_ack(sender, data):
+        if sender == "arb" and data and not lost:
+            lost.append(data)
+            return b""
+        return data
+
+    line.spoil = drop_first_ack
+    line.host.send(b"\x09add-link", line.now)
+    line.step(rounds=30)
+    assert line.got["arb"] == [b"\x09add-link"]
+    assert line.arb.stats.duplicates == 1
+
+
+def test_a_damaged_frame_gets_a_nak_and_a_retransmission_before_the_timeout():
+    line = Line(ack_timeout=10.0)
+    damaged = []
+
+    def flip(sender, data):
+        if sender == "host" and data and not damaged:
+            damaged.append(data)
+            data = bytearray(data)
+            data[3] ^= 0x40
+        return bytes(data)
+
+    line.spoil = flip
+    line.host.send(b"\x05hello", line.now)
+    line.step(rounds=5)
+    assert line.got["arb"] == [b"\x05hello"]
+    assert line.arb.stats.naks_sent == 1 and line.host.stats.retransmits == 1
+
+
+def test_no_answer_at_all_gives_up_after_the_bounded_attempts():
+    line = Line(ack_timeout=0.05, max_attempts=4)
+    line.spoil = lambda sender, data: b"" if sender == "host" else data
+    line.host.send(b"\x02", line.now)
+    line.step(dt=0.02, rounds=40)
+    assert line.host.take_failed() == [b"\x02"]
+    assert line.host.stats.sent_frames == 4
+
+
+def test_a_restarted_peer_is_resynchronised_by_the_host():
+    line = Line()
+    for n in range(3):
+        line.host.send(bytes([n]), line.now)
+    line.step(rounds=10)
+    line.arb = LinkEndpoint(host=False)  # the arbitrator rebooted: it expects seq 0
+    line.host.send(b"\x07after", line.now)
+    line.step(rounds=10)
+    assert line.got["arb"][-1] == b"\x07after"
+    assert line.host.stats.resets == 1
+
+
+def test_sequence_numbers_wrap():
+    line = Line()
+    for n in range(300):
+        line.host.send(n.to_bytes(2, "little"), line.now)
+        line.step(rounds=3)
+    assert line.got["arb"] == [n.to_bytes(2, "little") for n in range(300)]
