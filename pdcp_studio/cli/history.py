@@ -118,23 +118,14 @@ def run_show(args: argparse.Namespace) -> int:
 
 
 def restore_change(entry: dict, links_now: list) -> Any:
-    """The Change that puts back what ``entry`` left: its links after, the stored
-    configuration read after it, its policy after."""
-    from pdcp_studio.bus.transaction import Change, Policy, link_from_json
-    from pdcp_studio.storage import config_codec
+    """bus.transaction.restore_change, with an interrupted entry as bad input."""
+    from pdcp_studio.bus.transaction import NotRestorable
+    from pdcp_studio.bus.transaction import restore_change as change_for
 
-    if entry["links_after"] is None:
-        raise BadInput(f"history: entry {entry['id']} was interrupted; what it left is not "
-                       "known (restore the entry before it)")
-    after = [link_from_json(d) for d in entry["links_after"]]
-    change = Change.links_to(links_now, after, f"history restore {entry['id']}",
-                             reason=f"as after fitting history entry {entry['id']}")
-    cfg = entry.get("configuration_after")
-    if cfg is not None:
-        change.configuration = config_codec.from_json(cfg)
-    if entry.get("policy_after") is not None:
-        change.policy = Policy.from_json(entry["policy_after"])
-    return change
+    try:
+        return change_for(entry, links_now)
+    except NotRestorable as err:
+        raise BadInput(str(err)) from err
 
 
 def run_restore(args: argparse.Namespace) -> int:
