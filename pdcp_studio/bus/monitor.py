@@ -721,11 +721,28 @@ def _node(value: Any) -> int:
 _json_str = json.encoder.encode_basestring_ascii  # type: ignore[attr-defined]
 
 
-def frame_json(frame: DecodedFrame) -> str:
-    """``json.dumps(frame.as_json())`` without building the dict (a monitor's hot path)."""
+def _link_json(link: Any) -> str:
+    return json.dumps({"output": _ref_json(link[0]), "inputs": [_ref_json(r) for r in link[1]]})
+
+
+def frame_json(frame: DecodedFrame, links: dict[int, tuple[Any, str]] | None = None) -> str:
+    """``json.dumps(frame.as_json())`` without building the dict (a monitor's hot path).
+
+    ``links`` (a dict the caller keeps) remembers the JSON of link objects already seen:
+    the decoder hands out the same link object for every frame of an output.
+    """
     link = frame.link
-    link_text = "null" if link is None else json.dumps(
-        {"output": _ref_json(link[0]), "inputs": [_ref_json(r) for r in link[1]]})
+    if link is None:
+        link_text = "null"
+    elif links is None:
+        link_text = _link_json(link)
+    else:
+        known = links.get(id(link))
+        if known is None or known[0] is not link:
+            if len(links) >= CACHE_SIZE:
+                links.clear()
+            known = links[id(link)] = (link, _link_json(link))
+        link_text = known[1]
     return (f'{{"timestamp": {frame.timestamp!r}, "time": {round(frame.time, 6)!r}, '
             f'"arbitration_id": {frame.arbitration_id}, "data": "{frame.data.hex()}", '
             f'"direction": {_json_str(frame.direction)}, '
@@ -747,9 +764,11 @@ class JsonFrameWriter:
 
     def __init__(self, stream: Any) -> None:
         self.stream, self.count = stream, 0
+        self._links: dict[int, tuple[Any, str]] = {}
 
     def write(self, frame: DecodedFrame) -> None:
-        self.stream.write(("[\n" if self.count == 0 else ",\n") + frame_json(frame))
+        self.stream.write(("[\n" if self.count == 0 else ",\n")
+                          + frame_json(frame, self._links))
         self.count += 1
 
     def close(self) -> None:
