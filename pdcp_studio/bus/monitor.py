@@ -20,7 +20,7 @@ from collections import Counter
 from collections.abc import Iterator, Mapping, Sequence
 from dataclasses import dataclass, field
 from pathlib import Path
-from typing import Any
+from typing import Any, NamedTuple
 
 from pdcp_studio.bus.bustime import BusTimeMeter
 from pdcp_studio.errors import FrameError, PdcpError
@@ -62,16 +62,20 @@ class CaptureError(PdcpError):
         super().__init__(f"{path}: {reason}")
 
 
+#: Messages whose line depends on more than what the decoder learned (bulk packets follow a
+#: transfer) or that teach it something every time (binds): never described from a cache.
+_UNCACHED = (M.BulkData, M.BindRequest, M.BindResponse)
+_new_frame = tuple.__new__  # builds a DecodedFrame from a full tuple, skipping __new__'s keywords
+
+
 class CaptureWriteError(CaptureError):
     """A capture could not be written (full disk, …): a failure (exit 1), not bad input."""
 
 
-@dataclass(slots=True)
-class DecodedFrame:
+class DecodedFrame(NamedTuple):
     """One frame as the monitor shows it; ``line`` is the text, ``as_json()`` the record.
 
-    Treat it as read-only (it is not frozen only because a frozen dataclass costs a
-    monitor of a saturated bus several microseconds per frame).
+    A named tuple: immutable, and cheap to build for every frame of a saturated bus.
     """
 
     timestamp: float
@@ -86,9 +90,9 @@ class DecodedFrame:
     error: str | None = None  # why it is undecodable, or a bulk-transfer fault
     response: str | None = None  # the response code's name
     link: tuple[ChannelRef | str, tuple[ChannelRef | str, ...]] | None = None
-    message: Any = field(default=None, compare=False, repr=False)
+    message: Any = None
     #: The line without its time, when the decoder composed it already.
-    head: str = field(default="", compare=False, repr=False)
+    head: str = ""
 
     @property
     def who(self) -> str:
@@ -247,6 +251,7 @@ class FrameDecoder:
         # frame; the link and its text by channel node, valid while ``_version`` (bumped by
         # every change to what was learned) and the caller's entry are the same.
         self._messages: dict[tuple[int, bytes], Any] = {}
+        self._described: dict[tuple[int, bytes], tuple[Any, ...]] = {}
         self._link_cache: dict[int, tuple[Any, ...]] = {}
         self._version = 0
         # Requests seen and not yet answered: (node, response code) → count (bounded).
@@ -347,10 +352,26 @@ class FrameDecoder:
             return self._undecodable(base, msg)
         self._context(msg)
         base.update(priority=arbitration_id >> 9, node_id=node)
-        try:
-            frame = self._describe(msg, base)
-        except Exception as err:  # a bug here must not stop a monitor: show the frame raw
-            return self._undecodable(base, f"{type(err).__name__}: {err}")
+        # A frame seen before while the decoder knew exactly what it knows now reads the
+        # same: reuse its text, still learning from it (bulk packets always go through).
+        version = self._version
+        seen = self._described.get(key)
+        if seen is not None and seen[0] == version and seen[1] is msg:
+            if seen[3] is not None:  # a parameter frame: learn as _describe does
+                self._track(msg, self._direction(node, msg.channel, msg.param, seen[3]))
+            frame = _new_frame(DecodedFrame, (timestamp, base["time"], arbitration_id, data,
+                                              *seen[2], msg, ""))
+        else:
+            try:
+                frame = self._describe(msg, base)
+            except Exception as err:  # a bug here must not stop a monitor: show it raw
+                return self._undecodable(base, f"{type(err).__name__}: {err}")
+            if (version == self._version and frame.error is None
+                    and not isinstance(msg, _UNCACHED)):
+                if len(self._described) >= CACHE_SIZE:
+                    self._described.clear()
+                value = getattr(msg, "value", b"") if hasattr(msg, "param") else None
+                self._described[key] = (version, msg, frame[4:12], value)
         stats.by_function[frame.function] += 1
         if frame.response == _FAILURE:
             stats.failures += 1
@@ -437,10 +458,10 @@ class FrameDecoder:
         stats.by_function["Channel data"] += 1
         stats.in_context += 1
         hex_data = data.hex(" ").upper() or "(empty)"
-        return DecodedFrame(timestamp, timestamp - self._t0, arbitration_id, data,  # type: ignore[operator]
-                            CHANNEL_DATA, arbitration_id >> 9, node, "Channel data",
-                            cached[3] + hex_data, None, None, cached[2], None,
-                            cached[4] + hex_data)
+        return _new_frame(DecodedFrame, (  # type: ignore[arg-type]
+            timestamp, timestamp - self._t0, arbitration_id, data,  # type: ignore[operator]
+            CHANNEL_DATA, arbitration_id >> 9, node, "Channel data", cached[3] + hex_data,
+            None, None, cached[2], None, cached[4] + hex_data))
 
     # -- the node map, saved beside a capture ---------------------------------------------------
 
@@ -618,15 +639,19 @@ class FrameDecoder:
 
     def _learn(self, node: int, chan: int, param: int, value: bytes,
                direction: Direction | None) -> None:
-        if direction is not None:
+        if direction is not None and self.directions.get((node, chan)) is not direction:
             self.directions[node, chan] = direction
+            self._changed()
         if chan == 0:
             if param == P.DEVICE_NODE_ID and len(value) == 1 and node in self.devices:
                 self._moved(node, value[0])
             elif param in (P.DEVICE_VID_PID, P.DEVICE_SERIAL):
                 self._learn_identity(node, param, value)
         elif param == P.CH_TRANSFER_TYPE and len(value) == 1 and value[0] in (1, 2):
-            self.directions[node, chan] = Direction.from_transfer_type(value[0])
+            learned = Direction.from_transfer_type(value[0])
+            if self.directions.get((node, chan)) is not learned:
+                self.directions[node, chan] = learned
+                self._changed()
         elif param == P.OUT_NODE_ID and direction is Direction.OUTPUT and len(value) == 1:
             self._changed()
             for chan_node in [c for c, owner in self.outputs.items() if owner == (node, chan)]:
@@ -696,11 +721,28 @@ def _node(value: Any) -> int:
 _json_str = json.encoder.encode_basestring_ascii  # type: ignore[attr-defined]
 
 
-def frame_json(frame: DecodedFrame) -> str:
-    """``json.dumps(frame.as_json())`` without building the dict (a monitor's hot path)."""
+def _link_json(link: Any) -> str:
+    return json.dumps({"output": _ref_json(link[0]), "inputs": [_ref_json(r) for r in link[1]]})
+
+
+def frame_json(frame: DecodedFrame, links: dict[int, tuple[Any, str]] | None = None) -> str:
+    """``json.dumps(frame.as_json())`` without building the dict (a monitor's hot path).
+
+    ``links`` (a dict the caller keeps) remembers the JSON of link objects already seen:
+    the decoder hands out the same link object for every frame of an output.
+    """
     link = frame.link
-    link_text = "null" if link is None else json.dumps(
-        {"output": _ref_json(link[0]), "inputs": [_ref_json(r) for r in link[1]]})
+    if link is None:
+        link_text = "null"
+    elif links is None:
+        link_text = _link_json(link)
+    else:
+        known = links.get(id(link))
+        if known is None or known[0] is not link:
+            if len(links) >= CACHE_SIZE:
+                links.clear()
+            known = links[id(link)] = (link, _link_json(link))
+        link_text = known[1]
     return (f'{{"timestamp": {frame.timestamp!r}, "time": {round(frame.time, 6)!r}, '
             f'"arbitration_id": {frame.arbitration_id}, "data": "{frame.data.hex()}", '
             f'"direction": {_json_str(frame.direction)}, '
@@ -722,9 +764,11 @@ class JsonFrameWriter:
 
     def __init__(self, stream: Any) -> None:
         self.stream, self.count = stream, 0
+        self._links: dict[int, tuple[Any, str]] = {}
 
     def write(self, frame: DecodedFrame) -> None:
-        self.stream.write(("[\n" if self.count == 0 else ",\n") + frame_json(frame))
+        self.stream.write(("[\n" if self.count == 0 else ",\n")
+                          + frame_json(frame, self._links))
         self.count += 1
 
     def close(self) -> None:

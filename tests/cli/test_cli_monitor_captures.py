@@ -393,3 +393,10 @@ def test_a_pdcp_bus_of_beacons_only_is_not_called_foreign(tmp_path, capsys):
     out, err = capsys.readouterr()
     assert "not PDCP" not in out + err and "0 errors" in err
     assert out.count("Device Beacon") == 90
+
+
+def test_frame_json_with_remembered_links_is_the_same():
+    decoder, links = FrameDecoder(), {}
+    for msg in list(read_capture(CAPTURE)) * 2:
+        frame = decoder.decode_message(msg)
+        assert frame_json(frame, links) == frame_json(frame)
