@@ -1201,6 +1201,11 @@ Ihr Name (wird einmal erfragt):</translation>
         <translation>&lt;b&gt;Prüfungen&lt;/b&gt; — {v0} Befund(e)</translation>
     </message>
     <message>
+        <location filename="../../pdcp_studio/app/inspector.py" line="235" />
+        <source>no</source>
+        <translation>keine</translation>
+    </message>
+    <message>
         <location filename="../../pdcp_studio/app/inspector.py" line="265" />
         <source>a name for this device (not sent to it)</source>
         <translation>ein Name für dieses Gerät (wird nicht übertragen)</translation>
