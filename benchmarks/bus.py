@@ -1,6 +1,9 @@
-"""Benchmark: scan of the 32-device ``large`` rig on the in-process virtual bus.
+"""Benchmark: start-up and scan of the ``large`` (32 devices) and ``full`` (every node ID 1–254:
+93 devices, 161 outputs) rigs on the in-process virtual bus.
 
-Prints, for one scan after the rig has started up and settled:
+Prints, for start-up (binding, set-up and the start-up plan, from power-on until settled): its
+frames' bus time at 1 Mbit/s against the bit-level bound for the same exchange (every distinct
+frame once: no retries, no stuff bits). Then, for one scan after the rig has settled:
 
 - parameter reads, and frames exchanged per read (the scan's request/response and bulk
   frames; target ≤ 2.1: little beyond one request and one response);
@@ -13,7 +16,7 @@ Prints, for one scan after the rig has started up and settled:
 
 A tap (a third bus object on the same virtual channel) sees every frame; the scan's own
 frames are those to or from a device node ID with a transaction function code. Run:
-``python benchmarks/bus.py [--window N] [--repeat N]``.
+``python benchmarks/bus.py [--rig large|full] [--window N] [--repeat N]``.
 """
 
 from __future__ import annotations
@@ -29,6 +32,9 @@ from pdcp_studio.protocol import packetize
 
 #: Function codes of scan transactions (get, bulk get, bulk data and their responses).
 SCAN_CODES = {0x03, 0x83, 0x0C, 0x8C, 0x0E, 0x8E}
+#: Function codes of start-up transactions: binding, set-up reads and writes, resets, bulk
+#: transfers and Update Data Channel, with their responses (not beacons, not channel data).
+STARTUP_CODES = SCAN_CODES | {0x01, 0x81, 0x04, 0x84, 0x0B, 0x8B, 0x0D, 0x8D, 0x0F, 0x8F}
 TARGET_FRAMES_PER_READ = 2.1
 TARGET_WALL_S = 2.0
 
@@ -76,16 +82,38 @@ class Tap:
         self.conn.close()
 
 
-def run(window: int, repeat: int) -> dict:
+def startup_figures(frames: list, system) -> dict:
+    """Bus time of the start-up's transaction frames against the bit-level bound."""
+    channel_ids = {c.node_id for d in system.devices.values() for c in d.outputs() if c.node_id}
+    ours = [m for m in frames if m.data and m.data[0] in STARTUP_CODES
+            and not (not m.arbitration_id >> 8 & 1 and m.arbitration_id >> 9 != 3
+                     and (m.arbitration_id & 0xFF) in channel_ids)]
+    exact, worst = BusTimeMeter(), BusTimeMeter(worst_case=True)
+    for m in ours:
+        exact.add(m.arbitration_id, bytes(m.data))
+        worst.add(m.arbitration_id, bytes(m.data))
+    distinct = {(m.arbitration_id, bytes(m.data)) for m in ours}
+    bound = sum(_bits_unstuffed(len(data)) for _, data in distinct)
+    return {"startup_frames": len(ours), "startup_distinct": len(distinct),
+            "startup_bus_s": exact.bus_time_s, "startup_worst_s": worst.bus_time_s,
+            "startup_bound_s": bound / BITRATE, "startup_all_frames": len(frames)}
+
+
+def run(window: int, repeat: int, rig: str = "large") -> dict:
     from pdcp_studio.bus import scan as scan_mod
     from pdcp_studio.bus.session import open_sim_session
     from pdcp_studio.bus.urls import unique_virtual_channel
 
     channel = unique_virtual_channel("pdcp-bench")
+    tap = Tap(channel)  # on the channel before power-on: it sees the whole start-up
     t0 = time.perf_counter()
-    session = open_sim_session("large", channel=channel, settle_timeout=30.0)
+    try:
+        session = open_sim_session(rig, channel=channel, settle_timeout=120.0)
+    except BaseException:
+        tap.close()
+        raise
     startup_s = time.perf_counter() - t0
-    tap = Tap(channel)
+    first = startup_figures(tap.drain(), session.system())
     results = []
     try:
         for _ in range(repeat):
@@ -124,6 +152,9 @@ def run(window: int, repeat: int) -> dict:
         tap.close()
         session.close()
     best = min(results, key=lambda r: r["wall_s"])
+    best.update(first)
+    best["node_ids"] = sum(1 for d in system.devices.values() if d.node_id) + sum(
+        1 for d in system.devices.values() for c in d.outputs() if c.node_id)
     best["startup_s"] = startup_s
     best["runs"] = [r["wall_s"] for r in results]
     return best
@@ -133,11 +164,19 @@ def main(argv: list[str] | None = None) -> int:
     parser = argparse.ArgumentParser(description=__doc__.splitlines()[0])
     parser.add_argument("--window", type=int, default=8, help="devices read at once")
     parser.add_argument("--repeat", type=int, default=3, help="scans; the fastest is shown")
+    parser.add_argument("--rig", default="large", choices=("large", "full"),
+                        help="the built-in rig (full: every node ID 1–254)")
     args = parser.parse_args(argv)
-    r = run(args.window, args.repeat)
+    r = run(args.window, args.repeat, args.rig)
     per_read = r["tap_frames"] / r["reads"]
-    print(f"large rig: {r['devices']} devices, {r['links']} links "
-          f"(start-up and settle {r['startup_s']:.2f} s)")
+    print(f"{args.rig} rig: {r['devices']} devices, {r['links']} links, {r['node_ids']} node IDs "
+          f"in use (start-up and settle {r['startup_s']:.2f} s wall on the virtual bus)")
+    print(f"start-up: {r['startup_frames']} transaction frames ({r['startup_distinct']} distinct); "
+          f"bus time at 1 Mbit/s {r['startup_bus_s'] * 1e3:.1f} ms with the real stuff bits, "
+          f"{r['startup_worst_s'] * 1e3:.1f} ms worst case; lower bound "
+          f"{r['startup_bound_s'] * 1e3:.1f} ms (ratio "
+          f"{r['startup_bus_s'] / r['startup_bound_s']:.2f}); beacons and channel data "
+          f"meanwhile: {r['startup_all_frames'] - r['startup_frames']} frames")
     print(f"scan: {r['reads']} parameter reads ({r['bulk_reads']} by bulk transfer), "
           f"window {args.window}, retries {r['retries']}, timeouts {r['timeouts']}")
     print(f"frames per parameter read: {per_read:.3f} ({r['tap_frames']} frames seen on the "

@@ -24,6 +24,7 @@ import tempfile
 import time
 from pathlib import Path
 
+from pdcp_studio.bus import hostlink_records as hr
 from pdcp_studio.bus.hostlink_client import HostLinkSession
 from pdcp_studio.bus.hostlink_relay import NoisyLine, PtyRelay
 from pdcp_studio.bus.hostlink_server import HostLinkServer
@@ -48,8 +49,8 @@ def content_bytes(system: System) -> int:
     """The tables' content: the records a scan must move, without any framing."""
     total = hm.DEVICE_ROW.size * len(system.devices) + 2 * hm.REF.size * len(system.links)
     for device in system.devices.values():
-        total += len(hm.pack_device_info(device))
-        total += sum(len(hm.pack_channel(ch)) for ch in device.channels.values())
+        total += len(hr.pack_device_info(device))
+        total += sum(len(hr.pack_channel(ch)) for ch in device.channels.values())
     return total
 
 

@@ -14,6 +14,7 @@ inside — the shipped resources, which an installation may not let anyone write
 
 from __future__ import annotations
 
+import os
 from functools import cache
 from importlib import resources
 from pathlib import Path
@@ -78,7 +79,7 @@ def user_catalogs_dir() -> Path:
 
 def history_path() -> Path:
     """The fitting-history archive: ``$PDCP_STUDIO_HISTORY`` when set, else a file in the
-    user's data folder (contracts §2; :func:`pdcp_studio.storage.history.default_path`)."""
-    from pdcp_studio.storage.history import default_path
-
-    return default_path()
+    ``history.sqlite`` in the user's data folder (contracts §2); the archive
+    (``storage/history.py``) and ``doctor`` both ask here."""
+    env = os.environ.get("PDCP_STUDIO_HISTORY")
+    return Path(env) if env else user_data_dir() / "history.sqlite"

@@ -301,6 +301,7 @@ class ConfigWindow(QMainWindow):
         self.links.verticalHeader().hide()
         self.links.horizontalHeader().setStretchLastSection(True)
         self.links.itemSelectionChanged.connect(self._update_buttons)
+        self.links.itemSelectionChanged.connect(self._show_selected_in_graph)
         self.links.cellDoubleClicked.connect(self._on_double_click)
         self.btn_add_link = QPushButton(self.tr("Add link…"))
         self.btn_del_link = QPushButton(self.tr("Remove link"))
@@ -449,12 +450,11 @@ class ConfigWindow(QMainWindow):
                           else DeviceCatalogue())
         self.config_list.blockSignals(True)
         self.config_list.clear()
-        for cfg in doc.collection.configurations:
-            n = len(cfg.links)
-            text = self.tr("Configuration %1 · %2 link(s)").replace("%1", str(cfg.index)) \
-                .replace("%2", str(n))
+        for each in doc.collection.configurations:
+            text = self.tr("Configuration %1 · %2 link(s)").replace("%1", str(each.index)) \
+                .replace("%2", str(len(each.links)))
             item = QListWidgetItem(text)
-            problems = [f for f in check_configuration(cfg) if f.severity.value == "error"]
+            problems = [f for f in check_configuration(each) if f.severity.value == "error"]
             if problems:
                 item.setToolTip(self.tr("%1 problem(s) found").replace("%1", str(len(problems))))
                 item.setForeground(Qt.GlobalColor.darkRed)
@@ -642,6 +642,17 @@ class ConfigWindow(QMainWindow):
         self.btn_del_link.setEnabled(bool(selected))
         self.btn_edit_out.setEnabled(len(selected) == 1)
         self.btn_edit_in.setEnabled(len(selected) == 1)
+
+    def _show_selected_in_graph(self) -> None:
+        """The link picked in the list is highlighted in the graph."""
+        cfg = self.doc.configuration()
+        rows = self.selected_links()
+        if cfg is None or len(rows) != 1 or rows[0] >= len(cfg.links):
+            self.graph_doc.select(None)
+            return
+        sl = cfg.links[rows[0]]
+        link = Link(sl.output.ref, sl.input.ref)
+        self.graph_doc.select(link if self.graph_doc.system.has_link(link) else None)
 
     def remove_selected_links(self) -> None:
         self.doc.remove_links(self.selected_links())

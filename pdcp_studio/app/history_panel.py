@@ -166,14 +166,15 @@ def read_history(_progress: Any = None, _cancel: threading.Event | None = None) 
 
 
 class HistoryPanel(QWidget):
-    """The fitting history (see the module docstring). ``window`` gives ``doc``, ``flow``,
-    ``live``, ``error_box``, ``show_message``."""
+    """The fitting history (see the module docstring). ``window`` (kept as ``main``: a
+    widget's ``window()`` must stay Qt's) gives ``doc``, ``flow``, ``live``, ``error_box``,
+    ``show_message``."""
 
     loaded = Signal()
 
     def __init__(self, window: Any, parent: QWidget | None = None) -> None:
         super().__init__(parent)
-        self.window = window
+        self.main = window
         self._entries: list[dict] = []
         self.shown: list[dict] = []
         self.verify_report: Any = None
@@ -260,7 +261,7 @@ class HistoryPanel(QWidget):
         return list(self._entries)
 
     def _prosthesis(self) -> set[DeviceKey]:
-        bus = self.window.doc.bus_system
+        bus = self.main.doc.bus_system
         return set(bus.devices) if bus is not None else set()
 
     def _fill(self) -> None:
@@ -313,7 +314,7 @@ class HistoryPanel(QWidget):
 
     def _update_buttons(self) -> None:
         one = len(self.selected()) == 1
-        live = self.window.live.bridge is not None and self.window.doc.bus_system is not None
+        live = self.main.live.bridge is not None and self.main.doc.bus_system is not None
         self.restore_button.setEnabled(one and live)
         self.report_button.setEnabled(one)
 
@@ -324,15 +325,19 @@ class HistoryPanel(QWidget):
         if len(chosen) != 1:
             return False
         entry = chosen[0]
-        bus = self.window.doc.bus_system
+        bus = self.main.doc.bus_system
         if bus is None:
-            self.window.error_box(self.tr("Restore"), self.tr("connect to the prosthesis "
+            self.main.error_box(self.tr("Restore"), self.tr("connect to the prosthesis "
                                                               "first"))
             return False
-        from pdcp_studio.cli.history import restore_change  # the CLI's own: one restore
+        from pdcp_studio.bus.transaction import NotRestorable, restore_change
 
-        change = restore_change(entry, list(bus.links))
-        return bool(self.window.flow.run(
+        try:
+            change = restore_change(entry, list(bus.links))  # the CLI's restore too
+        except NotRestorable as err:
+            self.main.error_box(self.tr("Restore"), str(err))
+            return False
+        return bool(self.main.flow.run(
             change, self.tr("Restore history entry {0}").format(entry["id"])))
 
     def ask_report(self) -> None:
@@ -342,8 +347,8 @@ class HistoryPanel(QWidget):
         path, _ = QFileDialog.getSaveFileName(
             self,
             self.tr("Fitting report"),
-            str(Path(self.window._last_dir()) / f"fitting-{chosen[0]['id']}.pdf"),
+            str(Path(self.main._last_dir()) / f"fitting-{chosen[0]['id']}.pdf"),
             self.tr("PDF (*.pdf)"),
         )
         if path:
-            self.window.write_fitting_report(path, entry=chosen[0])
+            self.main.write_fitting_report(path, entry=chosen[0])

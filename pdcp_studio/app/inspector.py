@@ -161,8 +161,9 @@ class Inspector(QScrollArea):
 
     def _grid(self, box: QVBoxLayout) -> QGridLayout:
         if self.doc.session is not None:
-            note = QLabel(self.tr("Live bus: an edit here is written to the device at once "
-                          "(and written back by Undo)."))
+            note = QLabel(self.tr("Live bus: an edit here is a pending change (one undo "
+                                  "step); Write to prosthesis writes the pending changes "
+                                  "in one transaction."))
             note.setWordWrap(True)
             note.setStyleSheet("color: #b45309;")
             box.addWidget(note)

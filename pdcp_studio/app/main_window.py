@@ -329,7 +329,7 @@ class MainWindow(MenusMixin, FileHandlingMixin, ExportMixin, BusMixin, RecoveryM
 
     # -- closing ----------------------------------------------------------------------
     def closeEvent(self, event: QCloseEvent) -> None:
-        if not self.maybe_save():
+        if not self.confirm_unwritten() or not self.maybe_save():
             event.ignore()
             return
         self.live.disconnect_bus()

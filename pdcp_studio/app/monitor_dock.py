@@ -27,6 +27,7 @@ on; without them the dock stays empty (the rest of the app is unaffected).
 
 from __future__ import annotations
 
+import queue
 import threading
 from collections import deque
 from collections.abc import Iterable, Sequence
@@ -36,6 +37,7 @@ from typing import Any, NamedTuple
 from PySide6.QtCore import (
     QT_TRANSLATE_NOOP,
     QAbstractTableModel,
+    QElapsedTimer,
     QModelIndex,
     QPersistentModelIndex,
     Qt,
@@ -64,6 +66,11 @@ from pdcp_studio.app.workers import Worker
 from pdcp_studio.protocol.codes import FunctionCode
 
 DEFAULT_CAPACITY = 100_000
+#: A visible table takes new rows at most this often: painting it costs the GUI thread
+#: milliseconds, and a saturated bus brings a batch every few milliseconds.
+REFRESH_MS = 250
+#: Rows an opened capture sends to the table at a time (the first ones at once).
+CAPTURE_CHUNK = 5000
 CHANNEL_DATA = "Channel data"
 ANY = QT_TRANSLATE_NOOP("MonitorDock", "(any)")
 _ROOT = QModelIndex()  # the invisible root, shared as a default argument
@@ -220,9 +227,10 @@ class FrameTableModel(QAbstractTableModel):
         self.replace(())
 
 
-def save_frames(path: str | Path, rows: Sequence[Row]) -> int:
+def save_frames(path: str | Path, rows: Sequence[Row], links: dict | None = None) -> int:
     """Write frames to ``path``: a python-can capture chosen by extension (.asc, .blf, .log,
-    .csv, .trc — the bus monitor's Recorder), or decoded text for ``.txt``. Returns the count."""
+    .csv, .trc — the bus monitor's Recorder, replaced only once complete, with the node map
+    of ``links`` saved beside it), or decoded text for ``.txt``. Returns the count."""
     path = Path(path)
     if path.suffix.lower() == ".txt":
         t0 = rows[0].timestamp if rows else 0.0
@@ -232,9 +240,10 @@ def save_frames(path: str | Path, rows: Sequence[Row]) -> int:
                           f"{r.data.hex(' ').upper():23}  {r.function}  "
                           f"{_decoded(r.text)}".rstrip() + "\n")
         return len(rows)
-    from pdcp_studio.bus.monitor import Recorder  # python-can loads only here
+    from pdcp_studio.bus.monitor import FrameDecoder, Recorder  # python-can loads only here
 
-    with Recorder(path) as recorder:
+    node_map = FrameDecoder(dict(links or {})).node_map
+    with Recorder(path, node_map=node_map) as recorder:
         for r in rows:
             recorder.write(r.arbitration_id, r.data, r.timestamp)
     return len(rows)
@@ -247,6 +256,7 @@ class MonitorDock(QDockWidget):
     loaded = Signal(str)
     error = Signal(str)
     countChanged = Signal(int, int)
+    loadProgress = Signal(int)  # frames of an opened capture read so far
 
     def __init__(self, parent: QWidget | None = None, capacity: int = DEFAULT_CAPACITY) -> None:
         super().__init__(translate("MonitorDock", "Bus monitor"), parent)
@@ -262,6 +272,21 @@ class MonitorDock(QDockWidget):
         self.channel_nodes: set[int] = set()
         self._link_map: dict[int, tuple[Any, tuple[Any, ...]]] = {}  # for opened captures
         self.model = FrameTableModel(capacity, self)
+        self._pending_view: list[Row] = []  # filtered rows not yet in the table
+        self._view_clock = QElapsedTimer()
+        self._view_clock.start()
+        self._view_timer = QTimer(self)
+        self._view_timer.setSingleShot(True)
+        self._view_timer.timeout.connect(self._flush_view)
+        #: While a capture is open the table shows it, apart from the live frames, which
+        #: keep being recorded in ``live_rows`` and come back with ``show_live()``.
+        self.capture_path: str | None = None
+        self.capture_total = 0
+        self.live_rows: deque[Row] = deque(maxlen=capacity)
+        self._capture_chunks: queue.SimpleQueue[list[Row]] = queue.SimpleQueue()
+        self._capture_timer = QTimer(self)
+        self._capture_timer.setInterval(40)
+        self._capture_timer.timeout.connect(self._take_capture_chunks)
         self._refilter = QTimer(self)  # typing in the filter: refilter once it pauses
         self._refilter.setSingleShot(True)
         self._refilter.setInterval(150)
@@ -298,6 +323,11 @@ class MonitorDock(QDockWidget):
         self.save_button = QPushButton(self.tr("Save…"))
         self.open_button = QPushButton(self.tr("Open…"))
         self.open_button.setToolTip(self.tr("Show a capture file (python-can log formats)"))
+        self.live_button = QPushButton(self.tr("Back to live"))
+        self.live_button.setToolTip(self.tr("Close the capture and show the live frames again"))
+        self.live_button.setVisible(False)
+        self.stop_load_button = QPushButton(self.tr("Stop loading"))
+        self.stop_load_button.setVisible(False)
         self.count_label = QLabel(self.tr("0 frames"))
 
         self.text_filter.textChanged.connect(lambda _t: self._refilter.start())
@@ -307,6 +337,8 @@ class MonitorDock(QDockWidget):
         self.clear_button.clicked.connect(self.clear)
         self.save_button.clicked.connect(self._ask_save)
         self.open_button.clicked.connect(self._ask_open)
+        self.live_button.clicked.connect(self.show_live)
+        self.stop_load_button.clicked.connect(self.cancel_load)
 
         # Long function names must not make the dock (and so the window) wide.
         self.function_filter.setSizeAdjustPolicy(
@@ -320,7 +352,8 @@ class MonitorDock(QDockWidget):
         for w in (self.pause_box, self.autoscroll_box, self.count_label):
             actions.addWidget(w)
         actions.addStretch(1)
-        for w in (self.clear_button, self.open_button, self.save_button):
+        for w in (self.stop_load_button, self.live_button, self.clear_button, self.open_button,
+                  self.save_button):
             actions.addWidget(w)
         body = QWidget()
         layout = QVBoxLayout(body)
@@ -346,6 +379,12 @@ class MonitorDock(QDockWidget):
             if r.function == CHANNEL_DATA and r.node not in nodes:
                 nodes.add(r.node)
                 self._link_map.setdefault(r.node, (f"node {r.node}", ()))
+        if self.capture_path is not None:  # a capture is shown: keep live frames apart
+            self.live_rows.extend(rows)
+            return
+        self._add_rows(rows)
+
+    def _add_rows(self, rows: list[Row]) -> None:
         self.all_rows.extend(rows)
         if self.paused:
             self._held.extend(rows)
@@ -356,8 +395,26 @@ class MonitorDock(QDockWidget):
 
     def _show(self, rows: list[Row]) -> None:
         shown = [r for r in rows if self._filter.matches(r)] if self._filter else rows
-        self.model.append(shown)
-        if shown and self.autoscroll_box.isChecked():
+        if not shown:
+            return
+        self._pending_view.extend(shown)
+        if len(self._pending_view) > self.capacity:
+            del self._pending_view[:-self.capacity]
+        wait = REFRESH_MS - self._view_clock.elapsed()
+        if not self.view.isVisible() or wait <= 0:
+            self._flush_view()
+        elif not self._view_timer.isActive():
+            self._view_timer.start(max(1, wait))
+
+    def _flush_view(self) -> None:
+        """Put the rows that came since the last refresh into the table, in one insert."""
+        self._view_timer.stop()
+        self._view_clock.restart()
+        if not self._pending_view:
+            return
+        rows, self._pending_view = self._pending_view, []
+        self.model.append(rows)
+        if self.autoscroll_box.isChecked():
             self.view.scrollToBottom()
 
     def set_paused(self, paused: bool) -> None:
@@ -373,6 +430,7 @@ class MonitorDock(QDockWidget):
     def clear(self) -> None:
         self.all_rows.clear()
         self._held.clear()
+        self._pending_view.clear()
         self.model.clear()
         self._count()
 
@@ -396,6 +454,7 @@ class MonitorDock(QDockWidget):
 
     def shown_rows(self) -> list[Row]:
         """The rows the table shows now (filtered; frozen while paused)."""
+        self._flush_view()
         return list(self.model.rows)
 
     def set_filter(self, text: str = "", function: str = "", node: int | None = None) -> None:
@@ -422,13 +481,14 @@ class MonitorDock(QDockWidget):
         rows: Iterable[Row] = self.all_rows
         if self.paused and self._held:  # held rows appear on resume, not now
             rows = list(self.all_rows)[:max(0, len(self.all_rows) - len(self._held))]
+        self._pending_view.clear()
         self.model.replace(r for r in rows if self._filter.matches(r))
         if self.autoscroll_box.isChecked():
             self.view.scrollToBottom()
         self._count()
 
     def _count(self) -> None:
-        shown, total = self.model.rowCount(), len(self.all_rows)
+        shown, total = self.model.rowCount() + len(self._pending_view), len(self.all_rows)
         self.count_label.setText(
             self.tr("{shown} of {total} frames").format(shown=shown, total=total)
             if self._filter
@@ -454,10 +514,11 @@ class MonitorDock(QDockWidget):
     def save(self, path: str | Path) -> Worker:
         """Save every recorded frame on a worker; ``saved(path)`` or ``error`` follows."""
         rows = list(self.all_rows)
+        links = dict(self._link_map)
         self.save_button.setEnabled(False)
 
         def work(_progress: Any, _cancel: threading.Event) -> int:
-            return save_frames(path, rows)
+            return save_frames(path, rows, links)
 
         worker = Worker(work, "Save frames")
         self._save_path = str(path)
@@ -468,35 +529,118 @@ class MonitorDock(QDockWidget):
         return worker.start()
 
     def load_capture(self, path: str | Path) -> Worker:
-        """Show a capture (any python-can log format) instead of the live frames: read and
-        decoded on a worker (``bus.monitor.replay``), then shown; ``loaded(path)`` or
-        ``error`` follows. Live frames keep arriving unless the dock is paused."""
+        """Show a capture (any python-can log format) apart from the live frames.
+
+        Read and decoded on a worker (``bus.monitor.replay``, with the node map saved beside
+        the capture when there is one); the first rows appear at once, the rest in chunks
+        as they are read, with ``loadProgress(frames)``; ``cancel_load()`` stops it. Live
+        frames keep being recorded in ``live_rows`` and return with ``show_live()``. The
+        table holds the first ``capacity`` frames of the capture (all are counted);
+        ``loaded(path)`` or ``error`` follows.
+        """
         from pdcp_studio.bus.events import FrameSeen
 
+        self.cancel_load()
         links = dict(self._link_map)  # a capture may start after the set-up that names them
+        chunks: queue.SimpleQueue[list[Row]] = queue.SimpleQueue()
+        self._capture_chunks = chunks
+        capacity = self.capacity
 
-        def work(_progress: Any, cancel: threading.Event) -> list[FrameSeen]:
-            from pdcp_studio.bus.monitor import FrameDecoder, replay
+        def work(progress: Any, cancel: threading.Event) -> int:
+            from pdcp_studio.bus.monitor import FrameDecoder, read_node_map, replay
 
-            frames = []
-            for decoded in replay(path, FrameDecoder(links)):
+            decoder = FrameDecoder(links)
+            node_map = read_node_map(path)
+            if node_map is not None:
+                decoder.load_node_map(node_map, f"{path}.nodemap.json")
+            chunk: list[Row] = []
+            count = 0
+            size = 200  # the first rows go to the table at once
+            for decoded in replay(path, decoder):
                 if cancel.is_set():
                     break
-                frames.append(FrameSeen(decoded.timestamp, decoded.arbitration_id,
-                                        decoded.data, decoded.line))
-            return frames
+                count += 1
+                if count > capacity:
+                    if count % CAPTURE_CHUNK == 0:
+                        progress(count, 0, "")
+                    continue  # counted (the total is shown), not kept
+                chunk.append(make_row(FrameSeen(decoded.timestamp, decoded.arbitration_id,
+                                                decoded.data, decoded.line)))
+                if len(chunk) >= size:
+                    chunks.put(chunk)
+                    chunk, size = [], CAPTURE_CHUNK
+                    progress(count, 0, "")
+            if chunk:
+                chunks.put(chunk)
+            progress(count, 0, "")
+            return count
 
+        self._enter_capture(str(path))
         worker = Worker(work, "Load capture")
         self._load_path = str(path)
+        worker.progress.connect(self._capture_progress)
         worker.finished.connect(self._capture_loaded)
         worker.failed.connect(self._load_failed)
+        worker.done.connect(self._capture_done)
         self._load_worker = worker
+        self.stop_load_button.setVisible(True)
+        self._capture_timer.start()
         return worker.start()
 
-    def _capture_loaded(self, frames: list[Any]) -> None:
+    def cancel_load(self) -> None:
+        """Stop reading an opened capture (what was read stays shown)."""
+        if self._load_worker is not None and self._load_worker.is_running:
+            self._load_worker.cancel()
+
+    def show_live(self) -> None:
+        """Close the opened capture: the table shows the live frames again."""
+        self.cancel_load()
+        self._capture_timer.stop()
+        self.capture_path = None
+        self.live_button.setVisible(False)
+        self.stop_load_button.setVisible(False)
+        self.setWindowTitle(self.tr("Bus monitor"))
+        live, self.live_rows = list(self.live_rows), deque(maxlen=self.capacity)
         self.clear()
-        self.add_frames(frames)
+        self.model.t0 = None
+        self._add_rows(live)
+
+    def _enter_capture(self, path: str) -> None:
+        if self.capture_path is None:
+            self.live_rows = deque(self.all_rows, maxlen=self.capacity)
+        self.capture_path = path
+        self.capture_total = 0
+        self.clear()
+        self.model.t0 = None
+        self.live_button.setVisible(True)
+        self.setWindowTitle(self.tr("Bus monitor — capture %1").replace("%1", Path(path).name))
+
+    def _take_capture_chunks(self, limit: int = 4) -> None:
+        """Move what the worker decoded into the table, a few chunks per timer tick."""
+        for _ in range(limit):
+            try:
+                chunk = self._capture_chunks.get_nowait()
+            except queue.Empty:
+                return
+            self._add_rows(chunk)
+
+    def _capture_progress(self, done: int, _total: int, _text: str) -> None:
+        self.count_label.setText(self.tr("%1 frames read").replace("%1", f"{done:,}"))
+        self.loadProgress.emit(done)
+
+    def _capture_loaded(self, total: int) -> None:
+        self._take_capture_chunks(limit=1 << 30)
+        self._flush_view()
+        self.capture_total = total
+        if total > self.capacity:
+            self.count_label.setText(self.tr("first %1 of %2 frames").replace(
+                "%1", f"{self.capacity:,}").replace("%2", f"{total:,}"))
         self.loaded.emit(self._load_path)
+
+    def _capture_done(self) -> None:
+        self._capture_timer.stop()
+        self._take_capture_chunks(limit=1 << 30)
+        self.stop_load_button.setVisible(False)
 
     def _load_failed(self, message: str) -> None:
         self.error.emit(

@@ -49,7 +49,7 @@ class PlanPanel(QWidget):
     """The previewed plan of the document, with Apply and Discard."""
 
     statusMessage = Signal(str)
-    #: A plan was applied (offline: pushed on the undo stack; live: sent to the bus).
+    #: A plan was applied: one undo step (on a live bus a staged change).
     applied = Signal(object)
 
     def __init__(self, doc: Document, parent: QWidget | None = None) -> None:

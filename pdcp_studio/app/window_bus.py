@@ -82,7 +82,14 @@ class BusMixin:
         bridge.simChanged.connect(lambda _what: (self.live.refresh(),
                                                  self.reread_configuration()))
         bridge.configurationWritten.connect(lambda _c: self.reread_configuration())
+        # Any transaction on this prosthesis (ours, or the arbitrator's own over the host
+        # link) may have changed the stored configuration: previews must use the new one.
+        bridge.busEvent.connect(self._bus_event)
         self.reread_configuration()
+
+    def _bus_event(self, event: Any) -> None:
+        if type(event).__name__ == "TransactionDone":
+            self.reread_configuration()
 
     def _bus_seen(self, system: Any) -> None:
         """After any bus event: the monitor names frames by the bus's node IDs as they are

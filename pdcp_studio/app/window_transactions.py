@@ -60,6 +60,8 @@ class TransactionsMixin:
             translate("MainWindow", "&Discard pending changes"), self
         )
         self.act_discard_pending.triggered.connect(lambda _c=False: self.discard_pending())
+        self.act_disconnect.triggered.disconnect()
+        self.act_disconnect.triggered.connect(lambda _c=False: self.disconnect_asking())
         self.act_history = self.history_dock.toggleViewAction()
         self.act_history.setText(translate("MainWindow", "Fitting &history"))
         first = self.bus_menu.actions()[0] if self.bus_menu.actions() else None
@@ -125,6 +127,31 @@ class TransactionsMixin:
             ).format(len(changes))
         )
         return len(changes)
+
+    def confirm_unwritten(self) -> bool:
+        """Before leaving a live prosthesis (closing, disconnecting): True when no pending
+        change would be lost unwritten, or the user chose to leave them."""
+        n = len(self.pending_panel.changes) if self.doc.bus_system is not None else 0
+        if not n or getattr(self, "quiet", False):
+            return True
+        return self.ask_unwritten(n)
+
+    def ask_unwritten(self, n: int) -> bool:
+        """Leave with ``n`` pending changes not written? (tests replace this method)"""
+        from PySide6.QtWidgets import QMessageBox
+
+        SB = QMessageBox.StandardButton
+        answer = QMessageBox.warning(
+            self, _tr("Pending changes"),
+            _tr("{0} change(s) were not written to the prosthesis. Leave it without them?\n"
+                "(Write to prosthesis writes them; the document keeps them either way.)")
+            .format(n), SB.Discard | SB.Cancel, SB.Cancel)
+        return answer == SB.Discard
+
+    def disconnect_asking(self) -> None:
+        """Bus ▸ Disconnect: asks first when pending changes were not written."""
+        if self.confirm_unwritten():
+            self.live.disconnect_bus()
 
     # -- the fitting report ---------------------------------------------------------------
     def _note_session_start(self) -> None:

@@ -19,6 +19,10 @@ log = logging.getLogger("pdcp_studio.bus.arbitrator")  # one logger for the arbi
 #: Per-device notes kept for devices that hold no node ID (refused binds, failed set-ups)
 #: are bounded: a bind flood of made-up serial numbers must not grow them without end.
 MAX_KEYS_REMEMBERED = 1024
+#: Beacon interval assumed for presence until a newly bound device's own has been read: long
+#: enough for a device beaconing every 500 ms (the full rig's) not to be declared gone, and
+#: bound again, while it is still being set up.
+UNREAD_BEACON_INTERVAL_S = 1.0
 
 
 class BindingMixin:
@@ -91,7 +95,7 @@ class BindingMixin:
             self.requests.abort(old, "the device bound again with another node ID")
         device = self._system.device(key)
         interval = (max(device.beacon_interval, 1) / 1000.0 if device is not None
-                    else DEFAULT_BEACON_INTERVAL_S)
+                    else max(DEFAULT_BEACON_INTERVAL_S, UNREAD_BEACON_INTERVAL_S))
         node = _Node(key, node_id, now, beacon_interval=interval)
         node.generation = next(self._generations)  # unique: a stale set-up never matches
         self._nodes[node_id] = node

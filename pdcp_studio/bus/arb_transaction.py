@@ -93,8 +93,15 @@ class TransactionMixin:
 
     # -- the policy (issue 17) ---------------------------------------------------------
     def read_policy(self) -> Policy:
-        """The profile-layer policy kept in memory beside the stored configuration."""
-        return Policy(autoconfigure=self.memory.read_policy().get("autoconfigure", True))
+        """The profile-layer policy kept in memory beside the stored configuration; an
+        unreadable memory gives the thesis's default (autoconfigure on), as start-up
+        falls back to the devices' own configuration then."""
+        try:
+            stored = self.memory.read_policy()
+        except (OSError, PdcpError) as err:
+            log.warning("%s: policy unreadable (%s): autoconfigure on", self.name, err)
+            return Policy()
+        return Policy(autoconfigure=stored.get("autoconfigure", True))
 
     # -- transactions ------------------------------------------------------------------
     def transact(self, change: Change, progress: ProgressFn | None = None,
@@ -126,8 +133,8 @@ class TransactionMixin:
             policy_before=policy_before, policy_after=policy_before,
             devices=sorted(k for k, d in system.devices.items() if d.present))
         problem = _check_change(system, change)
-        if problem:
-            result.step, result.reason = "write", f"{problem}; nothing was written"
+        if problem:  # the change does not fit the bus as it is now
+            result.step, result.reason = "preview", f"{problem}; nothing was written"
             return result
         held = interlocked_devices(system, before, after, change.parameters) \
             if change.moves else []

@@ -144,6 +144,12 @@ __all__ = [
 ]
 
 
+#: A dispatch loop that did not come round for this long was stalled (it runs every TICK_S)…
+STALL_S = 0.15
+#: … and then waits this long before judging presence: the frames received meanwhile may still
+#: sit in the driver's or the socket's buffer, unseen, and silence would be misread.
+STALL_GRACE_S = 0.3
+
 #: How a summary names the errors of a kind.
 _ERROR_WORDS = {"bad_frame": "undecodable frames", "error_frame": "error frames",
                 "transport": "transport errors"}
@@ -461,6 +467,8 @@ class Arbitrator(BindingMixin, PresenceMixin, SetupMixin, LinksMixin, ProfileMix
     # -- the dispatch thread --------------------------------------------------------------
     def _run(self) -> None:
         next_tick = 0.0
+        last = time.monotonic()
+        hold_until = 0.0
         while not self._stop.is_set():
             item = self.conn.get(TICK_S)
             if self._stop.is_set():
@@ -473,12 +481,15 @@ class Arbitrator(BindingMixin, PresenceMixin, SetupMixin, LinksMixin, ProfileMix
                 elif item is not None:
                     self._on_frame(item)
                 now = time.monotonic()
+                if now - last > STALL_S:  # this process did not run (a loaded PC, a pause):
+                    hold_until = now + STALL_GRACE_S  # frames may still wait in the driver
+                last = now
                 if now >= next_tick and self._claim_tick(now):
                     next_tick = now + TICK_S
                     self._flush_errors()
                     # Presence is judged only when every frame received so far is handled:
                     # a backlog (a busy machine) must not pass for silent devices.
-                    self._tick(now, self.conn.inbound.empty())
+                    self._tick(now, self.conn.inbound.empty() and now >= hold_until)
             except Exception:  # one bad frame or bug must never stop the arbitrator
                 self._crashes.exception("dispatch", "dispatch failed")
 

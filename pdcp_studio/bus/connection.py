@@ -20,7 +20,7 @@ import logging
 import queue
 import threading
 import time
-from typing import TYPE_CHECKING
+from typing import TYPE_CHECKING, Any
 
 from pdcp_studio.errors import TransportError
 
@@ -43,6 +43,9 @@ ECHO_WINDOW_S = 2.0
 ECHO_MAX_PENDING = 16384
 #: Past its deadline, get() drops at most this many of our own echoes before it returns None.
 ECHO_DRAIN_LATE = 64
+#: At most this many received frames wait for the consumer (a flood it cannot keep up with
+#: is dropped and counted beyond it: about 30 MB of frames, 8 s of a full 1 Mbit/s bus).
+INBOUND_MAX = 65536
 #: Interfaces that return a process's own frames to it.
 _ECHOING = ("UdpMulticastBus",)
 
@@ -58,13 +61,20 @@ def open_connections() -> list[Connection]:
 
 
 class _Enqueue:
-    """The Notifier listener: put the frame on the queue, nothing else, never raise."""
+    """The Notifier listener: put the frame on the queue, nothing else, never raise.
 
-    def __init__(self, target: queue.SimpleQueue) -> None:
+    A consumer that falls behind a flood must not let the queue take all memory: beyond
+    ``INBOUND_MAX`` waiting frames, new frames are dropped and counted (``dropped``)."""
+
+    def __init__(self, target: queue.SimpleQueue[Any]) -> None:
         self._target = target
         self.errors = 0
+        self.dropped = 0
 
     def __call__(self, msg: can.Message) -> None:
+        if self._target.qsize() >= INBOUND_MAX:
+            self.dropped += 1
+            return
         self._target.put(msg)
 
     def on_error(self, exc: Exception) -> None:  # python-can calls this on a reader error
@@ -154,7 +164,7 @@ class Connection:
         self.bus = bus
         self.name = name
         self.pace_s = pace_s
-        self.inbound: queue.SimpleQueue = queue.SimpleQueue()
+        self.inbound: queue.SimpleQueue[Any] = queue.SimpleQueue()
         self.sent = 0
         self.received = 0
         self._send_lock = threading.Lock()
@@ -171,6 +181,11 @@ class Connection:
     @property
     def closed(self) -> bool:
         return self._closed
+
+    @property
+    def dropped(self) -> int:
+        """Frames dropped because the consumer was ``INBOUND_MAX`` frames behind."""
+        return self._listener.dropped
 
     def send(self, arbitration_id: int, data: bytes) -> float:
         """Send one base frame; returns its timestamp. TransportError if the bus refuses it."""

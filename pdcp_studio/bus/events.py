@@ -82,6 +82,10 @@ class BusState:
 
 #: The states a BusState event reports.
 BUS_STATES = ("listening", "arbitrating", "yielded", "disconnected", "reconnected")
+#: How the CLI shows each state (the app translates its own words for them).
+BUS_STATE_TEXT = {"listening": "listening for another arbitrator",
+                  "arbitrating": "arbitrating", "yielded": "another arbitrator: not writing",
+                  "disconnected": "disconnected — reconnecting", "reconnected": "reconnected"}
 
 
 @dataclass(frozen=True)

@@ -20,6 +20,7 @@ from __future__ import annotations
 
 import struct
 
+from pdcp_studio.bus import hostlink_records as hr
 from pdcp_studio.bus.transaction import (
     STEPS,
     Change,
@@ -59,10 +60,10 @@ class _Reader:
         return hm.text(self.take(self.u16(what), what))
 
     def link(self) -> Link:
-        return hm.unpack_link(self.take(2 * hm.REF.size, "link"))
+        return hr.unpack_link(self.take(2 * hm.REF.size, "link"))
 
     def key(self) -> DeviceKey:
-        return hm.unpack_key(self.take(hm.KEY.size, "device key"))
+        return hr.unpack_key(self.take(hm.KEY.size, "device key"))
 
 
 def _str8(text: str) -> bytes:
@@ -93,11 +94,11 @@ def encode_change(change: Change) -> bytes:
     out = bytearray(_str8(change.action))
     out += struct.pack("<H", len(change.links))
     for action in change.links:
-        out += bytes([1 if action.op == "add" else 2]) + hm.pack_link(action.link)
+        out += bytes([1 if action.op == "add" else 2]) + hr.pack_link(action.link)
         out += _str8(action.reason)
     out += bytes([len(change.parameters)])
     for p in change.parameters:
-        out += hm.pack_key(p.device) + bytes([p.channel, p.param])
+        out += hr.pack_key(p.device) + bytes([p.channel, p.param])
         out += struct.pack("<H", len(p.value)) + p.value
     if change.configuration is None:
         out += b"\x00"
@@ -144,10 +145,10 @@ def encode_result(result: TransactionResult) -> bytes:
     out += bytes([_policy(result.policy_before), _policy(result.policy_after)])
     out += _str8(result.action) + _str16(result.reason) + _str8(result.interlock)
     for links in (result.links_before, result.links_after):
-        out += struct.pack("<H", len(links)) + b"".join(hm.pack_link(lk) for lk in links)
+        out += struct.pack("<H", len(links)) + b"".join(hr.pack_link(lk) for lk in links)
     for keys in (result.held, result.devices):
         keys = keys[:255]
-        out += bytes([len(keys)]) + b"".join(hm.pack_key(k) for k in keys)
+        out += bytes([len(keys)]) + b"".join(hr.pack_key(k) for k in keys)
     notes = result.notes[:255]
     out += bytes([len(notes)]) + b"".join(_str16(n, 1000) for n in notes)
     return bytes(out)

@@ -23,6 +23,7 @@ from dataclasses import dataclass
 from typing import Any
 
 from pdcp_studio.bus import events as ev
+from pdcp_studio.bus import hostlink_records as hr
 from pdcp_studio.bus.hostlink_conn import (
     HostLinkConnection,
     HostLinkError,
@@ -46,6 +47,8 @@ __all__ = ["ChannelCounts", "HostLinkError", "HostLinkSession", "VersionRefused"
 
 #: How long the arbitrator's system must stay the same to count as settled.
 SETTLE_POLL_S = 0.1
+#: Least seconds between two Progress events a scan sends subscribers (as bus/session.py).
+PROGRESS_EVENT_INTERVAL_S = 0.1
 #: Seconds TRANSACT_RUN may take: interlock, writes, read-back and perhaps a restore.
 TRANSACT_TIMEOUT_S = 30.0
 #: Reads of the stored configuration restarted when it changes under them.
@@ -90,8 +93,9 @@ class HostLinkSession(TransactingMixin):
 
     def __init__(self, port: Any, *, url: str = "", baudrate: int = 128_000,
                  reply_timeout: float | None = None, monitor: bool = True,
-                 **link_options: Any) -> None:
+                 transact_timeout: float = TRANSACT_TIMEOUT_S, **link_options: Any) -> None:
         self.url = url
+        self.transact_timeout = transact_timeout
         self._subs = ev.Subscribers(url or "host link")
         self._cache = _Cache()
         self._monitor = monitor
@@ -160,19 +164,19 @@ class HostLinkSession(TransactingMixin):
         cache = self._cache
         try:
             if code == Event.DEVICE_JOINED:
-                key = hm.unpack_key(body)
+                key = hr.unpack_key(body)
                 with cache.lock:
                     cache.stale.add(key)
                     cache.links_stale = True
                 self._emit(ev.DeviceJoined(key))
             elif code == Event.DEVICE_LEFT:
-                key = hm.unpack_key(body)
+                key = hr.unpack_key(body)
                 with cache.lock:
                     cache.stale.add(key)
                     cache.links_stale = True
                 self._emit(ev.DeviceLeft(key))
             elif code in (Event.LINK_MADE, Event.LINK_REMOVED):
-                link, _ = hm.unpack_link_event(body)
+                link, _ = hr.unpack_link_event(body)
                 with cache.lock:
                     cache.stale.update((link.output.device, link.input.device))
                     cache.links_stale = True
@@ -235,27 +239,27 @@ class HostLinkSession(TransactingMixin):
     # -- reading the tables --------------------
     def _fetch_device(self, key: DeviceKey) -> Device:
         """GET_DEVICE (its parameters and the first channels), GET_CHANNELS for the rest."""
-        body = self.request(Req.GET_DEVICE, hm.pack_key(key))
-        device, count, used = hm.unpack_device_info(key, body)
-        channels, nxt = hm.unpack_channel_page(body[used:])
+        body = self.request(Req.GET_DEVICE, hr.pack_key(key))
+        device, count, used = hr.unpack_device_info(key, body)
+        channels, nxt = hr.unpack_channel_page(body[used:])
         while True:
             for ch in channels:
                 device.add_channel(ch)
             if len(device.channels) >= count or (channels and not nxt):
                 return device
             start = nxt
-            channels, nxt = hm.unpack_channel_page(
-                self.request(Req.GET_CHANNELS, hm.pack_key(key) + bytes([start])))
+            channels, nxt = hr.unpack_channel_page(
+                self.request(Req.GET_CHANNELS, hr.pack_key(key) + bytes([start])))
             if not channels:
                 return device
 
-    def _fetch_rows(self) -> list[hm.DeviceRow]:
-        rows: list[hm.DeviceRow] = []
+    def _fetch_rows(self) -> list[hr.DeviceRow]:
+        rows: list[hr.DeviceRow] = []
         while True:
             body = self.request(Req.LIST_DEVICES, struct.pack("<H", len(rows)))
             hm.need(body, 4, "LIST_DEVICES reply")
             total, _ = struct.unpack_from("<HH", body)
-            page = hm.unpack_device_rows(body[4:])
+            page = hr.unpack_device_rows(body[4:])
             rows += page
             if len(rows) >= total or not page:
                 return rows
@@ -267,7 +271,7 @@ class HostLinkSession(TransactingMixin):
             hm.need(body, 4, "LIST_LINKS reply")
             total, _ = struct.unpack_from("<HH", body)
             rest = body[4:]
-            page = [hm.unpack_link(rest, off) for off in range(0, len(rest), 2 * hm.REF.size)]
+            page = [hr.unpack_link(rest, off) for off in range(0, len(rest), 2 * hm.REF.size)]
             links += page
             if len(links) >= total or not page:
                 return links
@@ -342,13 +346,22 @@ class HostLinkSession(TransactingMixin):
     def scan(self, progress: Callable[[int, int, str], None] | None = None,
              cancel: threading.Event | None = None) -> System:
         """The arbitrator's tables: devices, channels, parameters, links (cached)."""
-        system = self._refresh(progress, cancel)
+        last = [0.0]
+
+        def report(done: int, total: int, text: str) -> None:
+            if progress is not None:
+                progress(done, total, text)
+            now = time.monotonic()
+            if done >= total or now - last[0] >= PROGRESS_EVENT_INTERVAL_S:
+                last[0] = now
+                self._emit(ev.Progress(done, total, text))
+
+        system = self._refresh(report, cancel)
         present = System([d for d in system.devices.values() if d.present])
         for link in system.links:
             if present.device(link.output.device) and present.device(link.input.device):
                 present.add_link(link, check=False)
-        if progress is not None:
-            progress(1, 1, f"{len(present.devices)} device(s), {len(present.links)} link(s)")
+        report(1, 1, f"{len(present.devices)} device(s), {len(present.links)} link(s)")
         return present
 
     def status(self) -> dict[str, Any]:
@@ -381,9 +394,10 @@ class HostLinkSession(TransactingMixin):
             if len(value) >= total or len(body) == hm.SPAN.size:
                 return bytes(value[:total])
 
-    def set_parameter(self, key: DeviceKey, param: int, channel: int, value: bytes, *,
-                      timeout: float | None = None) -> None:
-        """Write one parameter value of any length (chunks; the arbitrator writes it whole)."""
+    def write_parameter_bytes(self, key: DeviceKey, param: int, channel: int,
+                              value: bytes, *, timeout: float | None = None) -> None:
+        """SET_PARAM in chunks, outside any transaction (the protocol's primitive; the session's
+        ``set_parameter`` is a transaction, as every change to a prosthesis)."""
         key = DeviceKey(*key)
         address = hm.PARAM.pack(*key, channel, param)
         value = bytes(value)
@@ -398,27 +412,14 @@ class HostLinkSession(TransactingMixin):
         with self._cache.lock:
             self._cache.stale.add(key)
 
-    def add_link(self, link: Link) -> None:
-        self.request(Req.ADD_LINK, hm.pack_link(link))
-        self._links_changed(link)
-
-    def remove_link(self, link: Link) -> None:
-        self.request(Req.REMOVE_LINK, hm.pack_link(link))
-        self._links_changed(link)
-
-    def _links_changed(self, link: Link) -> None:
-        with self._cache.lock:
-            self._cache.links_stale = True
-            self._cache.stale.update((link.output.device, link.input.device))
-
     def suspend(self, key: DeviceKey, ms: int = 0) -> None:
-        self.request(Req.SUSPEND, hm.pack_key(DeviceKey(*key)) + struct.pack("<H", ms))
+        self.request(Req.SUSPEND, hr.pack_key(DeviceKey(*key)) + struct.pack("<H", ms))
 
     def release(self, key: DeviceKey) -> None:
-        self.request(Req.RELEASE, hm.pack_key(DeviceKey(*key)))
+        self.request(Req.RELEASE, hr.pack_key(DeviceKey(*key)))
 
     def reset_device(self, key: DeviceKey) -> None:
-        self.request(Req.RESET_DEVICE, hm.pack_key(DeviceKey(*key)))
+        self.request(Req.RESET_DEVICE, hr.pack_key(DeviceKey(*key)))
 
     # -- the stored configuration --------------------
     def read_configuration_bytes(self) -> bytes:
@@ -493,7 +494,7 @@ class HostLinkSession(TransactingMixin):
                 progress(len(chunks), len(chunks) + 1, f"{change.action}: the arbitrator "
                                                        "carries it out")
             length, crc = hm.CONFIG_INFO.unpack(self.request(Req.TRANSACT_RUN,
-                                                             timeout=TRANSACT_TIMEOUT_S))
+                                                             timeout=self.transact_timeout))
         except HostLinkError as err:
             return TransactionResult(TxnStatus.FAILED, change.action, "write",
                                      f"the arbitrator refused the change: {err}")
@@ -539,13 +540,16 @@ class HostLinkSession(TransactingMixin):
         """The engine's plan on the arbitrator's system (and its memory unless ``config``)."""
         from pdcp_studio.engine import plan_for, plan_on_bus
 
+        autoconfigure = self.read_policy().autoconfigure
         if config is not None:
-            return plan_for(mode, self.system(), config)
-        return plan_on_bus(mode, self.system(), self.read_configuration())
+            return plan_for(mode, self.system(), config, autoconfigure=autoconfigure)
+        return plan_on_bus(mode, self.system(), self.read_configuration(),
+                           autoconfigure=autoconfigure)
 
 
 #: Options of other session kinds (memory, scan window, …) that mean nothing over a host link.
-_SESSION_OPTIONS = ("reply_timeout", "settle_timeout", "monitor", "ack_timeout", "max_attempts")
+_SESSION_OPTIONS = ("reply_timeout", "settle_timeout", "monitor", "ack_timeout", "max_attempts",
+                    "transact_timeout")
 
 
 def open_hostlink_session(spec: Any, **options: Any) -> HostLinkSession:

@@ -18,17 +18,26 @@ import time
 from collections.abc import Callable
 from typing import Any
 
-from pdcp_studio.bus.hostlink_port import DEFAULT_BAUD, Reopener, open_port, read_available
+from pdcp_studio.bus.hostlink_port import (
+    DEFAULT_BAUD,
+    Reopener,
+    open_port,
+    read_available,
+)
 from pdcp_studio.errors import BusTimeoutError, PdcpError, TransportError
 from pdcp_studio.protocol import hostlink_messages as hm
 from pdcp_studio.protocol.hostlink_link import LinkEndpoint
 from pdcp_studio.protocol.hostlink_messages import Req, Status
+from pdcp_studio.protocol.hostlink_v1 import PING as V1_PING
+from pdcp_studio.protocol.hostlink_v1 import V1Sniffer, encode_v1
 
 log = logging.getLogger(__name__)
 
 #: Seconds a reply may take once the request is acknowledged (the arbitrator may be waiting
 #: on the CAN bus: a device's retries, a bulk transfer, a memory write).
 REPLY_TIMEOUT_S = 6.0
+#: Seconds to wait for a version-1 arbitrator's answer to a version-1 PING.
+V1_PROBE_S = 1.0
 
 
 class HostLinkError(PdcpError):
@@ -67,7 +76,8 @@ class HostLinkConnection:
         self._link_options = {k: v for k, v in (("ack_timeout", ack_timeout),
                                                 ("max_attempts", max_attempts)) if v is not None}
         self._port_name = port if isinstance(port, str) else None
-        self.port: Any = open_port(port, baudrate) if isinstance(port, str) else port
+        self.port: Any = (open_port(port, baudrate, self.where) if isinstance(port, str)
+                          else port)
         self.link = LinkEndpoint(host=True, **self._link_options)
         self.info: dict[str, Any] = {}
         self.greetings = 0
@@ -76,6 +86,8 @@ class HostLinkConnection:
         self._request_lock = threading.Lock()
         self._replies: queue.SimpleQueue[bytes | _Lost] = queue.SimpleQueue()
         self._waiting: int | None = None
+        self._v1 = V1Sniffer()
+        self._v1_replies: queue.SimpleQueue[tuple[int, bytes]] = queue.SimpleQueue()
         self._stop = threading.Event()
         self._reopener = Reopener(self.where, on_notice or (lambda text: log.warning(text)))
         self._thread = threading.Thread(target=self._run, name="pdcp host link", daemon=True)
@@ -110,9 +122,12 @@ class HostLinkConnection:
         with self._io:
             self.link.reset(time.monotonic())
             self._flush()
-        status, body = self._exchange(Req.HELLO, bytes([hm.VERSION]) + (0xFFFF).to_bytes(2,
-                                                                                        "little"),
-                                      self.reply_timeout)
+        try:
+            status, body = self._exchange(Req.HELLO, bytes([hm.VERSION, 0xFF, 0xFF]),
+                                          self.reply_timeout)
+        except TransportError:
+            self._probe_v1()
+            raise
         if status is Status.VERSION:
             raise VersionRefused(f"{self.where}: the arbitrator refuses host-link version "
                                  f"{hm.VERSION}: {hm.text(body)}", status)
@@ -129,6 +144,27 @@ class HostLinkConnection:
         self._greeted = True
         self.greetings += 1
         self.on_greeted(self.greetings)
+
+    def _probe_v1(self) -> None:
+        """HELLO went unanswered: is it a version-1 arbitrator? Ask it its own way."""
+        while True:
+            try:
+                self._v1_replies.get_nowait()
+            except queue.Empty:
+                break
+        with self._io:
+            try:
+                self.port.write(encode_v1(V1_PING) + b"\x00")
+            except Exception:
+                return
+        try:
+            msg_id, _ = self._v1_replies.get(timeout=V1_PROBE_S)
+        except queue.Empty:
+            return
+        if msg_id in (V1_PING + 1, V1_PING + 2):
+            raise VersionRefused(f"{self.where}: the arbitrator speaks host-link version 1; "
+                                 f"this PDCP Studio speaks version {hm.VERSION} only (update "
+                                 "the arbitrator's firmware)", Status.VERSION)
 
     # -- requests --------------------
     def request(self, code: Req, body: bytes = b"", *, timeout: float | None = None) -> bytes:
@@ -169,8 +205,13 @@ class HostLinkConnection:
             self.link.send(message, time.monotonic())
             self._flush()
         deadline = time.monotonic() + timeout
+        # bounded even if the line thread stalls: every send's ACK wait, then the reply's
+        hard = deadline + self.link.max_attempts * self.link.ack_timeout + 1.0
         try:
             while True:
+                if time.monotonic() > hard:
+                    raise BusTimeoutError(f"{self.where}: no reply to {name} within "
+                                          f"{hard - deadline + timeout:.1f} s")
                 left = deadline - time.monotonic()
                 try:
                     reply = self._replies.get(timeout=max(left, 0.0) if left > 0 else 0.0)
@@ -213,6 +254,9 @@ class HostLinkConnection:
                 self._lose(err)
                 continue
             now = time.monotonic()
+            if data and not self._greeted:
+                for found in self._v1.feed(data):
+                    self._v1_replies.put(found)
             with self._io:
                 delivered = self.link.receive(data, now) if data else []
                 self.link.poll(now)
@@ -253,7 +297,7 @@ class HostLinkConnection:
         if self._stop.is_set():
             return False
         try:
-            self.port = open_port(self._port_name, self.baudrate)
+            self.port = open_port(self._port_name, self.baudrate, self.where)
         except Exception:
             return False
         with self._io:

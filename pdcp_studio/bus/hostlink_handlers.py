@@ -19,6 +19,7 @@ from typing import Any
 
 from pdcp_studio import __version__
 from pdcp_studio.bus import events as ev
+from pdcp_studio.bus import hostlink_records as hr
 from pdcp_studio.errors import (
     BusTimeoutError,
     ConfigFormatError,
@@ -35,7 +36,7 @@ from pdcp_studio.protocol.hostlink_messages import Req, Status
 log = logging.getLogger(__name__)
 
 #: Largest parameter value moved over the link (the arbitrator's value buffer).
-MAX_VALUE = 1024
+MAX_VALUE = 512
 #: Largest stored configuration accepted (the memory's slot).
 MAX_CONFIG = 8192
 #: Largest change accepted by TRANSACT (links, parameters, a configuration).
@@ -178,23 +179,23 @@ class Handlers:
         (start,) = struct.unpack("<H", body)
         devices = [d for _, d in sorted(self.arb.system().devices.items())]
         per = (hm.MAX_BODY - 1 - 4) // hm.DEVICE_ROW.size
-        rows = b"".join(hm.pack_device_row(d) for d in devices[start:start + per])
+        rows = b"".join(hr.pack_device_row(d) for d in devices[start:start + per])
         return struct.pack("<HH", len(devices), start) + rows
 
     def get_device(self, body: bytes) -> bytes:
         """The device's own parameters, then as much of its channel table as fits."""
         self._exact(body, hm.KEY.size, "GET_DEVICE")
-        device = self._device(hm.unpack_key(body))
-        info = hm.pack_device_info(device)
+        device = self._device(hr.unpack_key(body))
+        info = hr.pack_device_info(device)
         channels = [device.channels[i] for i in sorted(device.channels)]
-        page, _ = hm.pack_channel_page(channels, 0, room=hm.MAX_BODY - 1 - len(info))
+        page, _ = hr.pack_channel_page(channels, 0, room=hm.MAX_BODY - 1 - len(info))
         return info + page
 
     def get_channels(self, body: bytes) -> bytes:
         self._exact(body, hm.KEY.size + 1, "GET_CHANNELS")
-        device = self._device(hm.unpack_key(body))
+        device = self._device(hr.unpack_key(body))
         channels = [device.channels[i] for i in sorted(device.channels)]
-        page, _ = hm.pack_channel_page(channels, body[hm.KEY.size])
+        page, _ = hr.pack_channel_page(channels, body[hm.KEY.size])
         return page
 
     def list_links(self, body: bytes) -> bytes:
@@ -203,7 +204,7 @@ class Handlers:
         links = sorted(self.arb.system().links)
         per = (hm.MAX_BODY - 1 - 4) // (2 * hm.REF.size)
         return (struct.pack("<HH", len(links), start)
-                + b"".join(hm.pack_link(lk) for lk in links[start:start + per]))
+                + b"".join(hr.pack_link(lk) for lk in links[start:start + per]))
 
     # -- parameters --------------------
     def get_param(self, body: bytes) -> bytes:
@@ -256,31 +257,31 @@ class Handlers:
     # -- links and devices --------------------
     def add_link(self, body: bytes) -> bytes:
         self._exact(body, 2 * hm.REF.size, "ADD_LINK")
-        self.arb.add_link(hm.unpack_link(body))
+        self.arb.add_link(hr.unpack_link(body))
         return b""
 
     def remove_link(self, body: bytes) -> bytes:
         self._exact(body, 2 * hm.REF.size, "REMOVE_LINK")
-        self.arb.remove_link(hm.unpack_link(body))
+        self.arb.remove_link(hr.unpack_link(body))
         return b""
 
     def suspend(self, body: bytes) -> bytes:
         self._exact(body, hm.KEY.size + 2, "SUSPEND")
-        key = hm.unpack_key(body)
+        key = hr.unpack_key(body)
         self._device(key, present=True)
         self.arb.suspend(key, int.from_bytes(body[6:8], "little"))
         return b""
 
     def release(self, body: bytes) -> bytes:
         self._exact(body, hm.KEY.size, "RELEASE")
-        key = hm.unpack_key(body)
+        key = hr.unpack_key(body)
         self._device(key, present=True)
         self.arb.release(key)
         return b""
 
     def reset_device(self, body: bytes) -> bytes:
         self._exact(body, hm.KEY.size, "RESET_DEVICE")
-        key = hm.unpack_key(body)
+        key = hr.unpack_key(body)
         self._device(key, present=True)
         self.arb.reset_device(key)
         return b""
@@ -290,8 +291,10 @@ class Handlers:
         from pdcp_studio.storage import config_codec
 
         raw = getattr(self.arb.memory, "read_bytes", None)
-        data = raw() if raw is not None else None
-        return bytes(data) if data is not None else config_codec.dumps(self.arb.read_memory())
+        if raw is None:
+            return config_codec.dumps(self.arb.read_memory())
+        data = raw()
+        return bytes(data) if data is not None else b""  # nothing stored: 0 bytes
 
     def config_info(self, body: bytes) -> bytes:
         self._exact(body, 0, "CONFIG_INFO")
@@ -430,13 +433,13 @@ class Handlers:
     def event_message(self, event: object) -> bytes | None:
         """The EVENT message for an arbitrator event (None for what the link does not push)."""
         if isinstance(event, ev.DeviceJoined):
-            return (bytes([hm.Event.DEVICE_JOINED]) + hm.pack_key(event.key)
+            return (bytes([hm.Event.DEVICE_JOINED]) + hr.pack_key(event.key)
                     + bytes([self.arb.node_id_of(event.key) or 0]))
         if isinstance(event, ev.DeviceLeft):
-            return bytes([hm.Event.DEVICE_LEFT]) + hm.pack_key(event.key)
+            return bytes([hm.Event.DEVICE_LEFT]) + hr.pack_key(event.key)
         if isinstance(event, ev.LinkMade | ev.LinkRemoved):
             code = hm.Event.LINK_MADE if isinstance(event, ev.LinkMade) else hm.Event.LINK_REMOVED
-            return bytes([code]) + hm.pack_link_event(
+            return bytes([code]) + hr.pack_link_event(
                 event.link, self.arb.channel_node_id(event.link.output))
         if isinstance(event, ev.BusError):
             if event.kind == "other_arbitrator":

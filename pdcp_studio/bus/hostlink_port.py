@@ -22,6 +22,9 @@ log = logging.getLogger(__name__)
 DEFAULT_BAUD = 128_000
 #: How long one read waits (bounds how fast a reader thread notices close()).
 READ_TIMEOUT_S = 0.05
+#: How long a write may wait for the peer to read (then the bytes are dropped: the link
+#: layer sends again what matters).
+WRITE_TIMEOUT_S = 2.0
 #: Reopening a dropped port: first wait, growth, longest wait.
 BACKOFF_FIRST_S = 0.1
 BACKOFF_FACTOR = 2.0
@@ -43,7 +46,8 @@ class PtyPort:
         import tty
 
         self._master, self._slave = os.openpty()
-        tty.setraw(self._slave)  # no echo, no line editing: bytes pass unchanged
+        tty.setraw(self._slave)
+        os.set_blocking(self._master, False)  # no echo, no line editing: bytes pass unchanged
         self.slave_path = os.ttyname(self._slave)
         self.baudrate = DEFAULT_BAUD
         self._closed = False
@@ -56,14 +60,25 @@ class PtyPort:
             return b""
         try:
             return os.read(self._master, max(size, 4096))
+        except BlockingIOError:
+            return b""
         except OSError:  # EIO while no peer has the slave open
             time.sleep(READ_TIMEOUT_S)
             return b""
 
     def write(self, data: bytes) -> int:
+        """Write it all, or OSError when the peer has not read for ``WRITE_TIMEOUT_S`` (a
+        pseudo-terminal nobody reads fills up and would block the writer for ever)."""
         view = memoryview(data)
+        deadline = time.monotonic() + WRITE_TIMEOUT_S
         while view:
-            view = view[os.write(self._master, view):]
+            left = deadline - time.monotonic()
+            if left <= 0 or not select.select([], [self._master], [], left)[1]:
+                raise OSError(f"nobody reads {self.slave_path}: {len(view)} bytes not written")
+            try:
+                view = view[os.write(self._master, view):]
+            except BlockingIOError:
+                continue
         return len(data)
 
     def close(self) -> None:
@@ -73,8 +88,9 @@ class PtyPort:
             os.close(self._slave)
 
 
-def open_port(name: str, baudrate: int = DEFAULT_BAUD) -> Any:
-    """``pty`` → a new :class:`PtyPort`; anything else → pyserial ``serial_for_url``."""
+def open_port(name: str, baudrate: int = DEFAULT_BAUD, where: str = "host link") -> Any:
+    """``pty`` → a new :class:`PtyPort`; anything else → pyserial ``serial_for_url``.
+    TransportError names ``where`` (the bus URL) and the port."""
     if name == "pty":
         return PtyPort()
     import serial
@@ -83,7 +99,7 @@ def open_port(name: str, baudrate: int = DEFAULT_BAUD) -> Any:
         return serial.serial_for_url(name, baudrate=baudrate, timeout=READ_TIMEOUT_S,
                                      write_timeout=5.0)
     except (serial.SerialException, ValueError, OSError) as err:
-        raise TransportError(f"host link: cannot open serial port {name!r}: {err}") from err
+        raise TransportError(f"{where}: cannot open serial port {name!r}: {err}") from err
 
 
 def read_available(port: Any) -> bytes:

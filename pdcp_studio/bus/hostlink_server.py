@@ -27,11 +27,18 @@ from pdcp_studio.bus.hostlink_port import (
 )
 from pdcp_studio.protocol import hostlink_messages as hm
 from pdcp_studio.protocol.hostlink_link import LinkEndpoint
+from pdcp_studio.protocol.hostlink_v1 import V1Sniffer, encode_v1
 
 log = logging.getLogger(__name__)
 
+#: Requests answered from the arbitrator's tables, on the line thread (no CAN traffic, no
+#: waiting): a scan's round trips skip the hand-over to the request thread.
+_FROM_TABLES = {bytes([code]) for code in (
+    hm.Req.STATUS, hm.Req.LIST_DEVICES, hm.Req.GET_DEVICE, hm.Req.GET_CHANNELS,
+    hm.Req.LIST_LINKS, hm.Req.CONFIG_INFO, hm.Req.CONFIG_READ, hm.Req.RESULT_READ,
+    hm.Req.GET_POLICY)}
 #: Events kept while the PC is slow to acknowledge; beyond this they are counted as lost.
-EVENT_QUEUE = 32
+EVENT_QUEUE = 16
 
 
 class HostLinkServer:
@@ -55,6 +62,7 @@ class HostLinkServer:
         self._requests: queue.SimpleQueue[bytes | None] = queue.SimpleQueue()
         self._events: queue.SimpleQueue[bytes] = queue.SimpleQueue()
         self._reopener = Reopener(name, lambda text: log.warning("%s", text))
+        self._v1 = V1Sniffer()
         self._unsubscribe = arbitrator.subscribe(self._on_event)
         self._line = threading.Thread(target=self._run_line, name=f"pdcp {name} line",
                                       daemon=True)
@@ -139,6 +147,8 @@ class HostLinkServer:
                 self._lose(err)
                 continue
             now = time.monotonic()
+            if data:
+                self._refuse_v1(data)
             with self._io:
                 delivered = self.link.receive(data, now) if data else []
                 self.link.poll(now)
@@ -147,7 +157,12 @@ class HostLinkServer:
                 self._push_events(now)
                 self._flush()
             for message in delivered:
-                self._requests.put(message)
+                if message[:1] in _FROM_TABLES and self._requests.empty():
+                    reply = self.handlers.handle(message)  # answered from the tables at once
+                    if reply is not None:
+                        self.post(reply)
+                else:
+                    self._requests.put(message)
 
     def _push_events(self, now: float) -> None:
         greeted = self.handlers.greeted
@@ -158,18 +173,30 @@ class HostLinkServer:
                 break
             if not greeted:
                 continue
-            if len(self.link._outbox) >= EVENT_QUEUE:
+            if self.link.queued >= EVENT_QUEUE:
                 self.events_lost += 1
                 self._lost_pending = True
                 continue
             self.link.send(message, now)
-        if greeted and self._lost_pending and len(self.link._outbox) < EVENT_QUEUE:
+        if greeted and self._lost_pending and self.link.queued < EVENT_QUEUE:
             self._lost_pending = False
             self.link.send(bytes([hm.Event.EVENTS_LOST]) + self.events_lost.to_bytes(2, "little"),
                            now)
         if greeted:
             for message in self.monitor.take(now, self.link.idle):
                 self.link.send(message, now)
+
+    def _refuse_v1(self, data: bytes) -> None:
+        """A version-1 PC gets a version-1 failure reply saying why (docs/host-link.md §4)."""
+        for msg_id, _ in self._v1.feed(data):
+            if 0x10 <= msg_id <= 0x37 and (msg_id - 0x10) % 3 == 0:  # a version-1 request
+                text = (f"this arbitrator speaks host-link version {hm.VERSION}, not version "
+                        "1: update PDCP Studio").encode()
+                with self._io:
+                    try:
+                        self.port.write(encode_v1(msg_id + 2, text))
+                    except Exception as err:
+                        log.debug("%s: write failed: %s", self.name, err)
 
     def _lose(self, err: object) -> None:
         self._reopener.lost(err)

@@ -28,7 +28,7 @@ from pdcp_studio.model import parameters as P
 from pdcp_studio.model.refs import ChannelRef, DeviceKey, Direction
 from pdcp_studio.protocol import messages as M
 from pdcp_studio.protocol.bulk import BulkReassembler, packet_count
-from pdcp_studio.protocol.codes import ResponseCode
+from pdcp_studio.protocol.codes import FunctionCode, ResponseCode
 from pdcp_studio.protocol.identifier import Mode
 
 TO_BA, FROM_BA, CHANNEL_DATA = "device→BA", "BA→device", "channel data"
@@ -253,6 +253,7 @@ class FrameDecoder:
         self._pending: dict[tuple[int, int], int] = {}
         #: Device node IDs heard beaconing or answering (at most 254).
         self.heard: set[int] = set()
+        self._beaconed: set[int] = set()
 
     def _changed(self) -> None:
         """What was learned changed: cached link texts are stale."""
@@ -265,7 +266,32 @@ class FrameDecoder:
     # -- entry points -----------------------------------------------------------------------
 
     def decode_message(self, msg: Any) -> DecodedFrame:
-        """Decode a ``can.Message`` (or anything with its attributes)."""
+        """Decode a ``can.Message`` (or anything with its attributes).
+
+        Channel data of a known output (most of a busy bus) is handled here inline: on a
+        saturated bus every call and attribute lookup per frame counts.
+        """
+        arbitration_id = msg.arbitration_id
+        node = arbitration_id & 0xFF
+        if (arbitration_id < 0x600 and not arbitration_id & 0x100 and not self.foreign
+                and self._t0 is not None and not msg.is_extended_id
+                and not msg.is_remote_frame and not msg.is_error_frame
+                and (node in self.links or node in self.outputs)):
+            data = bytes(msg.data)
+            timestamp = msg.timestamp or 0.0
+            if len(data) <= 8:
+                stats = self.stats
+                stats.frames += 1
+                if self.meter_on:
+                    stats.meter.add_base(arbitration_id, data, timestamp)
+                entry = stats.by_id.get(arbitration_id)
+                if entry is not None:
+                    entry[0] += 1
+                    entry[2] = timestamp
+                    entry[3] = data
+                else:
+                    stats.note_id(arbitration_id, timestamp, data)
+                return self._channel_data(arbitration_id, node, data, timestamp)
         return self.decode(msg.arbitration_id, bytes(msg.data), msg.timestamp or 0.0,
                            is_extended_id=bool(getattr(msg, "is_extended_id", False)),
                            is_remote_frame=bool(getattr(msg, "is_remote_frame", False)),
@@ -336,6 +362,11 @@ class FrameDecoder:
         """Count frames that fit PDCP in context: a response to a request seen before it."""
         code = msg.CODE
         node = msg.node_id
+        if code == FunctionCode.BEACON:  # a node beaconing again fits (devices beacon)
+            if node in self._beaconed:
+                self.stats.in_context += 1
+            elif len(self._beaconed) < 512:
+                self._beaconed.add(node)
         if msg.mode is Mode.DEVICE and code != 0x01 and node:
             self.heard.add(node)
         if code < 0x80:
@@ -450,8 +481,8 @@ class FrameDecoder:
             if links and isinstance(self.links, dict):
                 for link in links:
                     self.links[_node(link["node_id"])] = (
-                        ChannelRef(**link["output"]),
-                        tuple(ChannelRef(**r) for r in link["inputs"]))
+                        _ref_from(link["output"]),
+                        tuple(_ref_from(r) for r in link["inputs"]))
         except (AttributeError, KeyError, TypeError, ValueError) as err:
             raise ValueError(f"{where}: {err}") from err
         self._changed()
@@ -637,6 +668,8 @@ class FrameDecoder:
         if complete:
             del self._bulk[msg.node_id, msg.mode]
             value = r.result()
+            if len(self.bulk_values) >= CACHE_SIZE:
+                self.bulk_values.clear()
             self.bulk_values[msg.node_id, chan, param] = value
             direction = self.directions.get((msg.node_id, chan))
             spec = P.find_parameter(param, chan, direction)
@@ -647,6 +680,10 @@ class FrameDecoder:
 
 def _ref_json(ref: ChannelRef | str) -> Any:
     return ref.as_json() if isinstance(ref, ChannelRef) else ref
+
+
+def _ref_from(doc: Any) -> ChannelRef | str:
+    return doc if isinstance(doc, str) else ChannelRef(**doc)
 
 
 def _node(value: Any) -> int:
@@ -737,7 +774,7 @@ def _writer_for(target: Path, file: Path) -> Any:
             raise ValueError(f"the file type {real} is incompatible with gzip")
         cls = _get_logger_for_suffix(real)
         binary = issubclass(cls, BinaryIOMessageWriter)
-        return cls(file=gzip.open(file, "wb" if binary else "wt"))
+        return cls(file=gzip.open(file, "wb" if binary else "wt"))  # type: ignore[arg-type]
     return _get_logger_for_suffix(suffixes[-1] if suffixes else "")(file=str(file))
 
 
@@ -804,6 +841,12 @@ class Recorder:
             raise CaptureError(self.path, f"cannot write this capture: {err}") from err
         except OSError as err:
             raise CaptureWriteError(self.path, f"cannot write: {err.strerror or err}") from err
+        if rotate_bytes and not callable(getattr(self._writer, "file_size", None)):
+            self.abandon()
+            with contextlib.suppress(OSError):
+                self.partial.unlink()
+            raise CaptureError(self.path, "this format cannot rotate (.asc, .blf, .csv, .log "
+                               "and .trc can)")
 
     def write_message(self, msg: Any) -> None:
         try:

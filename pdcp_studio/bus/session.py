@@ -152,21 +152,6 @@ class Session(TransactingMixin):
         self._check_open()
         return bytes(self.arbitrator.get_parameter(key, param, channel, timeout=timeout))
 
-    def set_parameter(self, key: DeviceKey, param: int, channel: int, value: bytes, *,
-                      timeout: float | None = None) -> None:
-        """Write one parameter to a device (node IDs are the arbitrator's: use links)."""
-        self._check_open()
-        self.arbitrator.set_parameter(key, param, channel, bytes(value), timeout=timeout)
-
-    def add_link(self, link: Link) -> None:
-        """Make a link on the bus (node IDs, source fields, Data Transfer Enabled)."""
-        self._check_open()
-        self.arbitrator.add_link(link)
-
-    def remove_link(self, link: Link) -> None:
-        self._check_open()
-        self.arbitrator.remove_link(link)
-
     # -- plans --------------------------------------------------------------------------
     def preview(self, mode: str, config: ConfigCollection | None = None) -> Plan:
         """The engine's plan for ``mode`` on the current system; ``config`` defaults to the
@@ -174,9 +159,11 @@ class Session(TransactingMixin):
         from pdcp_studio.engine import plan_for, plan_on_bus
 
         self._check_open()
+        autoconfigure = self.read_policy().autoconfigure
         if config is not None:
-            return plan_for(mode, self.system(), config)
-        return plan_on_bus(mode, self.system(), self.read_configuration())
+            return plan_for(mode, self.system(), config, autoconfigure=autoconfigure)
+        return plan_on_bus(mode, self.system(), self.read_configuration(),
+                           autoconfigure=autoconfigure)
 
     def carry_out(self, change: Change, progress: ProgressFn | None = None,
                   cancel: threading.Event | None = None) -> TransactionResult:
@@ -447,6 +434,8 @@ def open_sim_session(name: str, *, url: str = "", settle_timeout: float = SIM_SE
 
     entry = resolve_prosthesis(name)
     system = entry.load()
+    if data_rate_hz is None:
+        data_rate_hz = entry.data_rate_hz
     arb_opts = _arbitrator_options(options)
     arb_opts.setdefault("startup_quiet_s", SIM_STARTUP_QUIET_S)
     arb_opts.setdefault("frame_events", True)

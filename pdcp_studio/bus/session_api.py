@@ -21,6 +21,8 @@ from typing import TYPE_CHECKING, Any, Protocol, runtime_checkable
 
 from pdcp_studio.bus.transaction import (
     Change,
+    LinkAction,
+    ParameterWrite,
     Policy,
     Status,
     TransactionResult,
@@ -178,8 +180,10 @@ def run_transaction(session: Any, change: Change, *, operator: str | None = None
     ``confirm(preview)`` returns True to go on; None means the caller has already confirmed
     (``--yes``). A declined or empty change writes and records nothing. Every change that
     reached the arbitrator is recorded (applied, failed or rolled back) in ``history`` (the
-    user's archive when None) unless ``record`` is False; a record that cannot be written is
-    said in the result's notes and step ``record``, the prosthesis keeps the change.
+    user's archive when None) unless ``record`` is False: it is announced before the write
+    (``History.begin``) and recorded after (``History.finish``), so a PC that dies in between
+    leaves an ``interrupted`` entry, never none. An archive that cannot be written stops the
+    change before anything is written (step ``record``).
     """
     try:
         preview = preview_change(session, change)
@@ -200,30 +204,47 @@ def run_transaction(session: Any, change: Change, *, operator: str | None = None
         return TransactionResult(Status.DECLINED, change.action, "confirm", "cancelled",
                                  preview.links_before, preview.links_before,
                                  devices=preview.devices)
-    result = session.carry_out(change, progress, cancel)
-    if not result.devices:
-        result.devices = preview.devices
-    if record:
-        try:
-            from pdcp_studio.storage.history import History, entry_from_result
+    if not record:
+        result = session.carry_out(change, progress, cancel)
+        if not result.devices:
+            result.devices = preview.devices
+        return result
+    from pdcp_studio.storage.history import History, entry_from_result, interrupted
 
+    bus = getattr(session, "url", "")
+    archive = history if history is not None else History.open()
+    try:
+        announced = TransactionResult(
+            Status.FAILED, change.action, links_before=preview.links_before,
+            config_crc_before=config_crc(preview.config_before), interlock="unknown",
+            devices=preview.devices, policy_before=preview.policy_before)
+        try:
+            token = archive.begin(interrupted(entry_from_result(
+                announced, change, bus=bus, operator=operator, patient=patient)))
+        except Exception as err:  # no record, no change: a clinic must be able to say
+            return TransactionResult(Status.FAILED, change.action, "record",
+                                     f"the fitting history cannot be written ({err}); "
+                                     "nothing was written to the prosthesis",
+                                     preview.links_before, preview.links_before,
+                                     devices=preview.devices)
+        result = session.carry_out(change, progress, cancel)
+        if not result.devices:
+            result.devices = preview.devices
+        try:
             try:
                 after = session.read_configuration()
             except Exception:  # the record still says what happened, without the contents
                 after = None
-            archive = history if history is not None else History.open()
-            try:
-                entry = entry_from_result(result, change, bus=getattr(session, "url", ""),
-                                          operator=operator, patient=patient,
-                                          configuration_after=after)
-                result.history_id = archive.append(entry)
-            finally:
-                if history is None:
-                    archive.close()
-        except Exception as err:  # the change stands; say so
+            entry = entry_from_result(result, change, bus=bus, operator=operator,
+                                      patient=patient, configuration_after=after)
+            result.history_id = archive.finish(token, entry)
+        except Exception as err:  # the change stands; its announcement is recovered later
             result.notes.append(f"not recorded in the fitting history: {err}")
             if result.ok:
                 result.step, result.reason = "record", f"not recorded: {err}"
+    finally:
+        if history is None:
+            archive.close()
     return result
 
 
@@ -261,6 +282,35 @@ class TransactingMixin:
         if not result.written:
             raise ConfigVerifyError(f"{self.url or 'bus'}: {result.summary()}")
         return self.read_configuration()
+
+    # single edits: each one is a (small, unrecorded) transaction with its interlock
+    def add_link(self, link: Link) -> None:
+        """Make one link as a transaction; ModelError when the bus refuses it as it is."""
+        self._single(Change(f"add link {link}", links=[LinkAction("add", link)]))
+
+    def remove_link(self, link: Link) -> None:
+        """Remove one link as a transaction (ModelError if there is no such link)."""
+        if link not in self.system().links:
+            from pdcp_studio.errors import ModelError
+
+            raise ModelError(f"link {link} is not in the system")
+        self._single(Change(f"remove link {link}", links=[LinkAction("remove", link)]))
+
+    def set_parameter(self, key: DeviceKey, param: int, channel: int, value: bytes, *,
+                      timeout: float | None = None) -> None:
+        """Write one parameter as a transaction (interlock, read back, restore)."""
+        self._single(Change(f"set parameter 0x{param:02X} of {key}",
+                            parameters=[ParameterWrite(DeviceKey(*key), param, channel,
+                                                       bytes(value))]))
+
+    def _single(self, change: Change) -> TransactionResult:
+        from pdcp_studio.errors import ModelError, TransportError
+
+        result = self.carry_out(change)
+        if not result.written:
+            error = ModelError if result.step == "preview" else TransportError
+            raise error(result.summary())
+        return result
 
     def save_configuration(self) -> ConfigCollection:
         """Store the current links as the arbitrator's configuration (verified)."""

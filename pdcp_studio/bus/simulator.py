@@ -148,6 +148,10 @@ class Prosthesis:
     description: str
     load: Callable[[], System]
     scripts: tuple[Script, ...] = ()
+    #: Channel data per output per second when the session does not say (None: the
+    #: simulated device's default); the full rig's 161 outputs send slower so one process
+    #: can simulate them all.
+    data_rate_hz: float | None = None
 
     def script(self, name: str | None = None) -> Script:
         if not self.scripts:
@@ -219,6 +223,8 @@ _DESCRIPTIONS = {
     "transradial": "Transradial prosthesis: two EMG sites, a control unit and a hand",
     "appendix-d": "Appendix D: the thesis rig after test 5, links stored on the devices",
     LARGE: "A generated 32-device rig (8 arms of 4 devices) for scans and benchmarks",
+    "full": "Every node ID 1–254 in use: 23 arms of 4 devices and a battery pack "
+            "(93 devices, 161 outputs)",
 }
 
 
@@ -275,8 +281,11 @@ def large_system(arms: int = LARGE_ARMS) -> System:
 
 
 # -- the registry ---------------------------------------------------------------------------
+#: Rigs whose simulated outputs send slower than a device's default (see Prosthesis).
+_DATA_RATES_HZ = {"full": 2.0}
+
 _ORDER = ("thesis-test1", "thesis-test2", "thesis-test3", "thesis-test4", "thesis-test5",
-          "transradial", LARGE)
+          "transradial", LARGE, "full")
 
 
 def _file_loader(path: Path) -> Callable[[], System]:
@@ -299,7 +308,8 @@ def _registry() -> dict[str, Prosthesis]:
         if scripts is None:
             scripts = _scripts_from_file(files[name])
         entries[name] = Prosthesis(name, _DESCRIPTIONS.get(name, f"System file {name}.json"),
-                                   _file_loader(files[name]), scripts)
+                                   _file_loader(files[name]), scripts,
+                                   _DATA_RATES_HZ.get(name))
     large = large_system()
     keys = list(large.devices)
     entries[LARGE] = Prosthesis(LARGE, _DESCRIPTIONS[LARGE], large_system,

@@ -23,6 +23,7 @@ from dataclasses import dataclass, field
 from enum import StrEnum
 from typing import TYPE_CHECKING, Any
 
+from pdcp_studio.errors import PdcpError
 from pdcp_studio.model.configuration import ConfigCollection
 from pdcp_studio.model.refs import ChannelRef, DeviceKey
 from pdcp_studio.model.system import Link, System
@@ -314,3 +315,26 @@ def describe_interlock(held: list[DeviceKey], refused: DeviceKey | None = None) 
     if not held:
         return "not needed"
     return f"held {len(held)} device{'s' if len(held) != 1 else ''}"
+
+
+class NotRestorable(PdcpError):
+    """A fitting-history entry does not say what it left (an interrupted transaction)."""
+
+
+def restore_change(entry: dict[str, Any], links_now: Sequence[Link]) -> Change:
+    """The Change that puts back what a fitting-history ``entry`` left: its links after, the
+    stored configuration read after it, its policy after (one restore for the CLI and app)."""
+    from pdcp_studio.storage import config_codec
+
+    if entry.get("links_after") is None:
+        raise NotRestorable(f"history: entry {entry['id']} was interrupted; what it left is "
+                            "not known (restore the entry before it)")
+    after = [link_from_json(d) for d in entry["links_after"]]
+    change = Change.links_to(list(links_now), after, f"history restore {entry['id']}",
+                             reason=f"as after fitting history entry {entry['id']}")
+    cfg = entry.get("configuration_after")
+    if cfg is not None:
+        change.configuration = config_codec.from_json(cfg)
+    if entry.get("policy_after") is not None:
+        change.policy = Policy.from_json(entry["policy_after"])
+    return change

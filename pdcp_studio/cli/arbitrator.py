@@ -61,7 +61,9 @@ def describe(event: Any) -> str | None:
     if isinstance(event, ev.BusError):
         return f"error {event.message}"
     if isinstance(event, ev.BusState):  # a yield is the error line on stderr instead
-        return None if event.state == "yielded" else f"{event.state}: {event.message}"
+        if event.state == "yielded":
+            return None
+        return f"{ev.BUS_STATE_TEXT.get(event.state, event.state)}: {event.message}"
     if isinstance(event, ev.TerminalsUnconnected):
         return f"policy {event.why}"
     if isinstance(event, ev.PlanApplied):

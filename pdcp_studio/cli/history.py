@@ -1,6 +1,6 @@
 """``history list|show|restore|verify``: the fitting history (reference §5, contracts §2).
 
-The archive is ``$PDCP_STUDIO_HISTORY`` when set, else ``history.sqlite3`` in the user's data
+The archive is ``$PDCP_STUDIO_HISTORY`` when set, else ``history.sqlite`` in the user's data
 folder. ``restore ID --bus URL`` is a new, previewed transaction that puts back the links, the
 stored configuration and the policy that entry ID left on the prosthesis; it is written only
 with ``--yes``. ``verify`` exits 0 when the hash chain is intact and 1 naming the first entry
@@ -42,9 +42,12 @@ def add_subparser(subparsers: argparse._SubParsersAction) -> None:
 
 
 def _open() -> Any:
+    """The archive, with the changes of PCs that died mid-way recorded as interrupted."""
     from pdcp_studio.storage.history import History
 
-    return History.open()
+    history = History.open()
+    history.recover()
+    return history
 
 
 def _entry(history: Any, entry_id: int) -> dict:
@@ -57,7 +60,8 @@ def _entry(history: Any, entry_id: int) -> dict:
 def _line(e: dict) -> str:
     outcome = (e.get("outcome") or {}).get("status", "")
     return (f"{e['id']:>4}  {e['time']}  {e['operator']}  {e['action']}  on {e['bus']}  "
-            f"{len(e['links_before'])}→{len(e['links_after'])} link(s)  "
+            f"{len(e['links_before'])}→"
+            f"{'?' if e['links_after'] is None else len(e['links_after'])} link(s)  "
             f"{'verified' if e['verified'] else 'not verified'}  {outcome}  "
             f"interlock: {e['interlock'] or 'none'}"
             + (f"  patient: {e['patient']}" if e.get("patient") else ""))
@@ -101,7 +105,8 @@ def run_show(args: argparse.Namespace) -> int:
     print("  links before:")
     print("\n".join(_links_text(e["links_before"])))
     print("  links after:")
-    print("\n".join(_links_text(e["links_after"])))
+    print("\n".join(_links_text(e["links_after"]) if e["links_after"] is not None
+                    else ["    unknown (the change was interrupted)"]))
     actions = (e.get("plan") or {}).get("actions", [])
     if actions:
         print("  plan:")
@@ -113,26 +118,22 @@ def run_show(args: argparse.Namespace) -> int:
 
 
 def restore_change(entry: dict, links_now: list) -> Any:
-    """The Change that puts back what ``entry`` left: its links after, the stored
-    configuration read after it, its policy after."""
-    from pdcp_studio.bus.transaction import Change, Policy, link_from_json
-    from pdcp_studio.storage import config_codec
+    """bus.transaction.restore_change, with an interrupted entry as bad input."""
+    from pdcp_studio.bus.transaction import NotRestorable
+    from pdcp_studio.bus.transaction import restore_change as change_for
 
-    after = [link_from_json(d) for d in entry["links_after"]]
-    change = Change.links_to(links_now, after, f"history restore {entry['id']}",
-                             reason=f"as after fitting history entry {entry['id']}")
-    cfg = entry.get("configuration_after")
-    if cfg is not None:
-        change.configuration = config_codec.from_json(cfg)
-    if entry.get("policy_after") is not None:
-        change.policy = Policy.from_json(entry["policy_after"])
-    return change
+    try:
+        return change_for(entry, links_now)
+    except NotRestorable as err:
+        raise BadInput(str(err)) from err
 
 
 def run_restore(args: argparse.Namespace) -> int:
+    from pdcp_studio.bus.urls import check_bus_url
     from pdcp_studio.cli.change_road import carry_out
     from pdcp_studio.cli.scan import open_bus_session
 
+    check_bus_url(args.bus)  # a bad --bus is the same line from every command, checked first
     with _open() as history:
         entry = _entry(history, args.id)
     session = open_bus_session(args.bus, memory=args.memory)

@@ -36,6 +36,7 @@ COMMAND_MODULES = (
     "sim",
     "arbitrator",
     "monitor",
+    "hostlink_test",
     "doctor",
 )
 

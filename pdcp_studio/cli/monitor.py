@@ -9,6 +9,7 @@ capture to another format. The statistics go to stderr, so stdout holds only fra
 from __future__ import annotations
 
 import argparse
+import contextlib
 import queue
 import sys
 import time
@@ -113,12 +114,30 @@ class _ListenOnly:
         self._bus.shutdown()
 
 
+#: Kernel receive buffer asked for a socket-based bus (capped by the system's maximum): a
+#: saturated bus must not lose frames while the monitor waits for a core.
+RECEIVE_BUFFER = 4 << 20
+
+
+def _enlarge_receive_buffer(bus: Any) -> None:
+    """Best effort for python-can's udp_multicast bus (a datagram socket): the default
+    ~200 KB holds only a few dozen milliseconds of a saturated bus."""
+    import socket
+
+    sock = getattr(getattr(bus, "_multicast", None), "_socket", None)
+    if sock is not None:
+        with contextlib.suppress(OSError):
+            sock.setsockopt(socket.SOL_SOCKET, socket.SO_RCVBUF, RECEIVE_BUFFER)
+
+
 def _can_frames(spec: Any, stop: Callable[[], bool]) -> Iterator[Any]:
     """Frames of a python-can bus, opened only to listen (listen-only where the interface
     has it; the monitor never sends)."""
     from pdcp_studio.bus.urls import open_spec
 
-    bus = _ListenOnly(open_spec(spec, **_listen_only(spec)))  # TransportError names the URL
+    raw = open_spec(spec, **_listen_only(spec))  # TransportError names the URL
+    _enlarge_receive_buffer(raw)
+    bus = _ListenOnly(raw)
     yield None  # open: the listening time starts now
     try:
         while not stop():
@@ -261,7 +280,7 @@ def run(args: argparse.Namespace) -> int:
     out = sys.stdout
     json_out = JsonFrameWriter(out) if args.json else None
     limiter = UndecodableLog(sys.stderr) if live else None
-    decode = decoder.decode
+    decode = decoder.decode_message
     try:
         with ExitStack() as stack:
             stack.enter_context(closing(frames))  # shuts a live bus down on any exit
@@ -283,10 +302,7 @@ def run(args: argparse.Namespace) -> int:
                         continue
                     if recorder is not None:
                         recorder.write_message(msg)
-                    frame = decode(msg.arbitration_id, msg.data, msg.timestamp or 0.0,
-                                   is_extended_id=msg.is_extended_id,
-                                   is_remote_frame=msg.is_remote_frame,
-                                   is_error_frame=msg.is_error_frame)
+                    frame = decode(msg)
                     if limiter is not None and frame.error is not None:
                         limiter.note(frame)
                     if show is not None and not show(frame):

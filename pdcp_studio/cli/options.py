@@ -19,8 +19,8 @@ from collections.abc import Callable
 MAX_SECONDS = 1e7  # about 115 days
 
 
-def number(kind: type = float, *, low: float, high: float, low_open: bool = False,
-           what: str = "number") -> Callable[[str], float]:
+def number(kind: type[float] | type[int] = float, *, low: float, high: float,
+           low_open: bool = False, what: str = "number") -> Callable[[str], float]:
     """A parse-time type: ``kind(text)`` that is finite and within low…high.
 
     ``low_open`` excludes ``low`` itself (``> 0`` for a time that must pass).
@@ -28,7 +28,7 @@ def number(kind: type = float, *, low: float, high: float, low_open: bool = Fals
 
     def parse(text: str) -> float:
         try:
-            value = kind(text)
+            value: float = kind(text)
         except (TypeError, ValueError):
             raise argparse.ArgumentTypeError(
                 f"{text!r} is not {'an integer' if kind is int else 'a number'}") from None

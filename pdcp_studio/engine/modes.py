@@ -17,6 +17,36 @@ MODES = ("autoconfigure", "replacements", "implement", "startup", "enforce", "cl
 EXTRA_MODES = ("duty-cycle",)
 
 
+def without_unrouted_outputs(system: System) -> tuple[System, list[ChannelRef]]:
+    """The system without the output channels that got no node ID on a live bus.
+
+    When devices and outputs need more than the 254 node IDs (reference §1), some outputs of
+    a bound device get none: nothing can hear them, so a plan must never link from them. They
+    are recognised by their device having a node ID and they none (offline systems have no
+    node IDs at all and are returned as they are). Returns the system to plan on and the
+    outputs left out.
+    """
+    unrouted = [dev.ref(ch.index) for dev in system.devices.values()
+                if dev.present and dev.node_id is not None
+                for ch in dev.outputs() if ch.node_id is None]
+    if not unrouted:
+        return system, []
+    usable = system.copy()
+    for ref in unrouted:
+        for link in [lk for lk in usable.links if lk.output == ref]:
+            usable.remove_link(link)
+        del usable.devices[ref.device].channels[ref.index]
+    return usable, unrouted
+
+
+def _note_unrouted(plan: Plan, unrouted: list[ChannelRef]) -> Plan:
+    if unrouted:
+        plan.notes.append(
+            f"{len(unrouted)} output(s) got no node ID (all 254 are in use by devices and "
+            "outputs) and are never linked: " + ", ".join(str(r) for r in unrouted))
+    return plan
+
+
 def plan_autoconfigure(system: System) -> Plan:
     """Listing 4.7 on the current links."""
     layer = ProfileLayer(system, "autoconfigure")
@@ -78,10 +108,14 @@ def plan_startup(system: System, stored: AnyConfig, *, autoconfigure: bool = Tru
 
 def plan_duty_cycle(system: System, previously_present: set[ChannelRef] | None = None, *,
                     autoconfigure: bool = True) -> Plan:
-    """Listing 4.2, the hot-swap duty cycle (``autoconfigure`` as for start-up)."""
+    """Listing 4.2, the hot-swap duty cycle (``autoconfigure`` as for start-up); outputs
+    without a node ID are left out (:func:`without_unrouted_outputs`)."""
+    system, unrouted = without_unrouted_outputs(system)
+    if previously_present is not None and unrouted:
+        previously_present = previously_present - set(unrouted)
     layer = ProfileLayer(system, "duty-cycle")
     proc.duty_cycle(layer, previously_present, autoconfigure_on=autoconfigure)
-    return layer.finish()
+    return _note_unrouted(layer.finish(), unrouted)
 
 
 def plan_enforce(system: System) -> Plan:
@@ -99,7 +133,13 @@ def plan_clear(system: System) -> Plan:
 def plan_for(mode: str, system: System, config: AnyConfig = None, *,
              autoconfigure: bool = True) -> Plan:
     """Dispatch by mode name; ``config`` is ignored by autoconfigure, enforce and clear;
-    ``autoconfigure`` (the arbitrator's policy) only by startup and duty-cycle."""
+    ``autoconfigure`` (the arbitrator's policy) only by startup and duty-cycle. Outputs that
+    got no node ID on a live bus are never used (:func:`without_unrouted_outputs`)."""
+    if mode != "duty-cycle":
+        system, unrouted = without_unrouted_outputs(system)
+        if unrouted:
+            return _note_unrouted(plan_for(mode, system, config, autoconfigure=autoconfigure),
+                                  unrouted)
     if mode == "autoconfigure":
         return plan_autoconfigure(system)
     if mode == "replacements":

@@ -45,13 +45,7 @@ def _channel_json(ch: StoredChannel) -> dict[str, Any]:
 
 def unknown_json(records: Unknown) -> list[dict[str, int]]:
     """Unknown records as ``config decode --json`` writes them."""
-    out = []
-    for rec in records:
-        item = {"code": rec.code, "value": rec.value}
-        if rec.after is not None:
-            item["after"] = rec.after
-        out.append(item)
-    return out
+    return [{"code": rec.code, "value": rec.value} for rec in records]
 
 
 def _with_unknown(doc: dict[str, Any], records: Unknown) -> dict[str, Any]:

@@ -100,6 +100,11 @@ class LinkEndpoint:
             self.stats.resets += 1
 
     @property
+    def queued(self) -> int:
+        """Messages waiting behind the one in flight."""
+        return len(self._outbox)
+
+    @property
     def idle(self) -> bool:
         """Nothing in flight and nothing queued."""
         return self._inflight is None and not self._outbox

@@ -15,7 +15,11 @@ innermost open declaration (collection, configuration, link, input or output cha
 ``UnknownRecord`` in file order, with ``after`` = the known record of that declaration it
 followed (``None`` when no known record of the declaration follows it). The writer puts it
 back right after that record, so decode → encode of a valid file gives the same records,
-only the checksum added or recomputed (and, as before, known values in code order).
+only the checksum added or recomputed (and, as before, known values in code order). The
+contract JSON carries each record as ``{"code", "value"}`` on its object, in file order, and
+nothing more: through JSON a record keeps its declaration and order and is written at the
+end of that declaration's own records, where writers append (``from_json`` also takes an
+optional ``"after": CODE`` to pin it elsewhere).
 
 Decisions (reference §3 plus the ones it leaves open):
 - Extension code 16 = checksum: CRC-16/CCITT-FALSE of every byte before it, immediately
@@ -462,15 +466,8 @@ def channel_to_json(ch: StoredChannel) -> dict[str, Any]:
 
 
 def unknown_to_json(records: Unknown) -> list[dict[str, int]]:
-    """``[{"code": 32, "value": 4660}, …]``; ``"after"`` only for a record that sat
-    before another known record of its declaration (rare: writers append)."""
-    out = []
-    for rec in records:
-        item = {"code": rec.code, "value": rec.value}
-        if rec.after is not None:
-            item["after"] = rec.after
-        out.append(item)
-    return out
+    """``[{"code": 32, "value": 4660}, …]`` in file order (contracts §2)."""
+    return [{"code": rec.code, "value": rec.value} for rec in records]
 
 
 def _with_unknown(doc: dict[str, Any], records: Unknown) -> dict[str, Any]:

@@ -17,8 +17,16 @@ the entries in order and names the first one that was edited (its hash no longer
 after which one was deleted (the ids jump or the next entry's previous hash is not its hash);
 a ``head`` row updated in the same commit catches the deletion of the newest entries.
 
-The path is ``$PDCP_STUDIO_HISTORY`` when set, else ``history.sqlite3`` in the user's data
-folder (platformdirs). The operator is ``$PDCP_STUDIO_OPERATOR`` when set, else the login name.
+A change announces itself before it writes (``begin``: a row in a ``pending`` table, outside the
+chain) and ``finish`` turns it into its entry in the same commit that removes it. A PC killed
+between the write and the record leaves the pending row; the next ``recover`` (run by ``list``,
+``show`` and ``verify``) appends it as an entry whose outcome is ``interrupted`` — so the archive
+never forgets a change that may have reached the prosthesis. Rows of a process still running
+are left alone.
+
+The path is ``$PDCP_STUDIO_HISTORY`` when set, else ``history.sqlite`` in the user's data
+folder (platformdirs, ``pdcp_studio.paths.history_path``). The operator is
+``$PDCP_STUDIO_OPERATOR`` when set, else the login name.
 """
 
 from __future__ import annotations
@@ -40,7 +48,6 @@ if TYPE_CHECKING:
 
 ENV_PATH = "PDCP_STUDIO_HISTORY"
 ENV_OPERATOR = "PDCP_STUDIO_OPERATOR"
-FILE_NAME = "history.sqlite3"
 GENESIS = "0" * 64
 #: Seconds an append waits for another process's write to finish.
 BUSY_TIMEOUT_S = 15.0
@@ -53,6 +60,12 @@ CREATE TABLE IF NOT EXISTS entries (
     id INTEGER PRIMARY KEY,
     previous_hash TEXT NOT NULL,
     hash TEXT NOT NULL,
+    body TEXT NOT NULL
+);
+CREATE TABLE IF NOT EXISTS pending (
+    token TEXT PRIMARY KEY,
+    pid INTEGER NOT NULL,
+    host TEXT NOT NULL,
     body TEXT NOT NULL
 );
 CREATE TABLE IF NOT EXISTS head (
@@ -68,13 +81,11 @@ class HistoryError(PdcpError):
 
 
 def default_path() -> Path:
-    """``$PDCP_STUDIO_HISTORY``, else ``history.sqlite3`` in the user's data folder."""
-    env = os.environ.get(ENV_PATH)
-    if env:
-        return Path(env)
-    import platformdirs
+    """``$PDCP_STUDIO_HISTORY``, else the archive in the user's data folder — the one path
+    ``doctor`` shows too (``pdcp_studio.paths.history_path``)."""
+    from pdcp_studio.paths import history_path
 
-    return Path(platformdirs.user_data_dir("pdcp-studio", appauthor=False)) / FILE_NAME
+    return history_path()
 
 
 def default_operator() -> str:
@@ -149,27 +160,74 @@ class History:
     # -- writing ------------------------------------------------------------------------
     def append(self, body: dict[str, Any]) -> int:
         """Append one entry (its fields without ``id``); returns its id."""
+        return int(self._write(lambda: self._append_locked(body)))
+
+    def _append_locked(self, body: dict[str, Any]) -> int:
+        """Append inside an open write transaction; returns the new id."""
         body = {k: v for k, v in body.items() if k not in ("id", "hash", "previous_hash")}
-        text = json.dumps(body, ensure_ascii=False)  # stored as given; hashed canonically
+        text = json.dumps(body, ensure_ascii=False)
+        row = self._db.execute("SELECT id, hash FROM entries ORDER BY id DESC LIMIT 1").fetchone()
+        last_id, last_hash = row if row else (0, GENESIS)
+        new_id = last_id + 1
+        digest = entry_hash(new_id, last_hash, canonical(body))
+        self._db.execute("INSERT INTO entries (id, previous_hash, hash, body) VALUES (?, ?, ?, ?)",
+                         (new_id, last_hash, digest, text))
+        self._db.execute("INSERT OR REPLACE INTO head (one, last_id, last_hash) VALUES (1, ?, ?)",
+                         (new_id, digest))
+        return new_id
+
+    def _write(self, fn: Any) -> Any:
         try:
             self._db.execute("BEGIN IMMEDIATE")
             try:
-                row = self._db.execute(
-                    "SELECT id, hash FROM entries ORDER BY id DESC LIMIT 1").fetchone()
-                last_id, last_hash = row if row else (0, GENESIS)
-                new_id = last_id + 1
-                digest = entry_hash(new_id, last_hash, canonical(body))
-                self._db.execute("INSERT INTO entries (id, previous_hash, hash, body) "
-                                 "VALUES (?, ?, ?, ?)", (new_id, last_hash, digest, text))
-                self._db.execute("INSERT OR REPLACE INTO head (one, last_id, last_hash) "
-                                 "VALUES (1, ?, ?)", (new_id, digest))
+                value = fn()
                 self._db.execute("COMMIT")
             except BaseException:
                 self._db.execute("ROLLBACK")
                 raise
         except sqlite3.Error as err:
-            raise HistoryError(f"fitting history {self.path}: cannot append: {err}") from err
-        return new_id
+            raise HistoryError(f"fitting history {self.path}: cannot write: {err}") from err
+        return value
+
+    def begin(self, body: dict[str, Any]) -> str:
+        """Announce a change before it writes; ``body`` is its entry should it never finish
+        (outcome ``interrupted``). Returns the token for ``finish``."""
+        import socket
+        import uuid
+
+        token = uuid.uuid4().hex
+        self._write(lambda: self._db.execute(
+            "INSERT INTO pending (token, pid, host, body) VALUES (?, ?, ?, ?)",
+            (token, os.getpid(), socket.gethostname(), json.dumps(body, ensure_ascii=False))))
+        return token
+
+    def finish(self, token: str, body: dict[str, Any]) -> int:
+        """Record the finished change and drop its announcement, in one commit."""
+        def run() -> int:
+            self._db.execute("DELETE FROM pending WHERE token = ?", (token,))
+            return self._append_locked(body)
+
+        return int(self._write(run))
+
+    def recover(self) -> list[int]:
+        """Append the announcements of processes that died before they finished (their
+        outcome is ``interrupted``); returns the new entries' ids."""
+        import socket
+
+        host = socket.gethostname()
+
+        def run() -> list[int]:
+            ids = []
+            rows = self._db.execute(
+                "SELECT token, pid, host, body FROM pending ORDER BY rowid").fetchall()
+            for token, pid, where, body in rows:
+                if where == host and _alive(pid):
+                    continue
+                self._db.execute("DELETE FROM pending WHERE token = ?", (token,))
+                ids.append(self._append_locked(json.loads(body)))
+            return ids
+
+        return list(self._write(run))
 
     # -- reading ------------------------------------------------------------------------
     def _rows(self) -> list[tuple[int, str, str, str]]:
@@ -233,6 +291,28 @@ class History:
         if head is None and rows:
             return VerifyReport(False, len(rows), 1, "the archive's head record is missing")
         return VerifyReport(True, len(rows))
+
+
+def _alive(pid: int) -> bool:
+    """Is process ``pid`` running on this machine?"""
+    if pid == os.getpid():
+        return True
+    try:
+        os.kill(pid, 0)
+    except ProcessLookupError:
+        return False
+    except (PermissionError, OSError):
+        return True
+    return True
+
+
+def interrupted(body: dict[str, Any]) -> dict[str, Any]:
+    """The entry of a change whose process stopped before it was recorded."""
+    return {**body, "verified": False, "links_after": None, "config_crc_after": None,
+            "outcome": {"status": "interrupted", "step": "write",
+                        "reason": "the PC stopped during the change: the prosthesis holds the "
+                                  "state before or after it (see the next entry or read it "
+                                  "back)", "notes": []}}
 
 
 def list_json(entry: dict[str, Any]) -> dict[str, Any]:

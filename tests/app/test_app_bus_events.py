@@ -119,3 +119,20 @@ def test_app_and_cli_apply_write_the_same_system(make_window, tmp_path, capsys):
     window.act_undo.trigger()
     assert not window.doc.system.links
     assert all(not ch.data_enabled for _r, ch in window.doc.system.channels())
+
+
+def test_a_transaction_made_elsewhere_updates_the_configuration_previews_use(live, qtbot):
+    """Another user of the session (a script, the arbitrator's host link) stores the links:
+    the window reads the stored configuration again without being asked."""
+    import threading
+
+    from pdcp_studio.bus.transaction import Change
+
+    session = live.live.bridge.session
+    assert live.doc.config is not None and not live.doc.config.configurations
+    change = Change("config save", configuration=session.configuration_of_links())
+    worker = threading.Thread(target=lambda: session.transact(change, record=False))
+    worker.start()
+    worker.join(20)
+    qtbot.waitUntil(lambda: bool(live.doc.config.configurations), timeout=10000)
+    assert live.preview_plan("startup").configuration_source == "stored"

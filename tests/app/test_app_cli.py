@@ -55,10 +55,18 @@ def test_gui_bad_bus_url_exits_2(tmp_path):
 
 
 def test_gui_unreachable_bus_exits_1_without_a_picture(tmp_path):
+    # A known interface whose device is not there: a failure (1), named in the last line.
     out = tmp_path / "x.png"
-    # A known interface whose adapter (or, here, whole CAN support) is missing: exit 1.
-    # (An interface python-can does not have is bad input, exit 2: contracts §2.)
-    r = _run("gui", "--bus", "can:socketcan:nosuchcan0", "--screenshot", str(out))
-    assert r.returncode == 1, r.stderr
-    assert "nosuchcan0" in r.stderr.splitlines()[-1]
+    r = _run("gui", "--bus", "can:socketcan:pdcpnope0", "--screenshot", str(out))
+    assert r.returncode == 1
+    assert "pdcpnope0" in r.stderr.splitlines()[-1]
+    assert not out.exists()
+
+
+def test_gui_unknown_interface_is_bad_input_without_a_picture(tmp_path):
+    # contracts §2: an interface python-can does not have is bad input (2), as for every command.
+    out = tmp_path / "x.png"
+    r = _run("gui", "--bus", "can:nosuchinterface:x", "--screenshot", str(out))
+    assert r.returncode == 2
+    assert "nosuchinterface" in r.stderr.splitlines()[-1]
     assert not out.exists()

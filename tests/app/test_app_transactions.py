@@ -59,7 +59,7 @@ def _bus_links(window):
     return set(window.live.bridge.session.system().links)
 
 
-def test_live_edits_are_staged_then_written_in_one_transaction(live, qtbot):
+def test_live_edits_are_staged_then_written_in_one_transaction(live, qtbot, tmp_path):
     doc = live.doc
     assert HAND_LINK in _bus_links(live)
     # Delete a link (Del): staged — one undo step, drawn as a pending removal, listed.
@@ -115,6 +115,13 @@ def test_live_edits_are_staged_then_written_in_one_transaction(live, qtbot):
     assert entry["action"] == "write to prosthesis" and entry["verified"]
     qtbot.waitUntil(lambda: bool(live.history_panel.shown), timeout=5000)
     assert live.history_panel.shown[0]["patient"] == "Clinic ref 42"
+    # The fitting report of this session: who, for whom, and the change just made.
+    info = live.fitting_info()
+    assert (info.patient, info.prosthetist, info.bus) == ("Clinic ref 42", "Test Prosthetist",
+                                                         "sim:transradial")
+    assert [e["action"] for e in info.changes] == ["write to prosthesis"]
+    pdf = tmp_path / "fitting.pdf"
+    assert live.write_fitting_report(pdf) and pdf.read_bytes().startswith(b"%PDF")
 
 
 def test_undo_of_a_written_change_is_a_new_transaction(live, qtbot):
@@ -201,7 +208,7 @@ def test_a_failed_connect_offline_keeps_the_file(make_window, qtbot):
     assert window.windowTitle().startswith("transradial.json")
 
 
-def test_history_restore_is_a_previewed_transaction(live, qtbot):
+def test_history_restore_is_a_previewed_transaction(live, qtbot, tmp_path):
     doc = live.doc
     doc.select(HAND_LINK)
     live.act_delete.trigger()
@@ -227,6 +234,12 @@ def test_history_restore_is_a_previewed_transaction(live, qtbot):
         entries = archive.entries()
         assert archive.verify().ok
     assert entries[-1]["action"] == "history restore 1"  # as the CLI's restore names it
+    # The fitting report of one entry: its own patient, operator, time and change.
+    first = next(e for e in panel.all_entries() if e["id"] == 1)
+    info = live.fitting_info(first)
+    assert info.changes == [first] and info.prosthetist == "Test Prosthetist"
+    assert info.time is not None and info.time.tzinfo is not None
+    assert live.write_fitting_report(tmp_path / "entry1.pdf", entry=first)
     # The project follows the prosthesis: nothing is left pending.
     qtbot.waitUntil(lambda: not doc.system.has_link(HAND_LINK), timeout=5000)
     qtbot.waitUntil(lambda: not live.pending_panel.changes, timeout=5000)
@@ -247,3 +260,35 @@ def test_previews_use_the_stored_configuration_read_after_a_write(live, qtbot):
     plan = live.preview_plan("startup")
     assert plan is not None and plan.configuration_source == "stored"
     assert "no configuration" not in live.plan_panel.summary.text()
+
+
+def test_leaving_with_unwritten_changes_asks(live, qtbot):
+    live.doc.select(HAND_LINK)
+    live.act_delete.trigger()
+    qtbot.waitUntil(lambda: len(live.pending_panel.changes) == 1, timeout=3000)
+    asked = []
+    live.ask_unwritten = lambda n: asked.append(n) or False
+    live.quiet = False  # the question is only skipped for scripted, quiet windows
+    try:
+        live.act_disconnect.trigger()
+        assert asked == [1] and live.live.is_live  # kept: nothing lost
+        live.ask_unwritten = lambda n: asked.append(n) or True
+        live.act_disconnect.trigger()
+    finally:
+        live.quiet = True
+    assert asked == [1, 1] and not live.live.is_live
+    assert not live.doc.system.has_link(HAND_LINK)  # the document keeps its edits
+
+
+def test_the_confirmation_never_writes_on_enter(qtbot):
+    from PySide6.QtCore import Qt
+
+    from pdcp_studio.app.transaction_flow import ConfirmDialog
+
+    dialog = ConfirmDialog("Write to prosthesis", ["write to prosthesis on sim:x:",
+                                                   "  - link a → b"])
+    qtbot.addWidget(dialog)
+    dialog.show()
+    assert not dialog.write_button.isDefault() and not dialog.write_button.autoDefault()
+    qtbot.keyClick(dialog, Qt.Key.Key_Return)
+    assert dialog.result() != dialog.DialogCode.Accepted

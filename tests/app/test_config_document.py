@@ -211,6 +211,8 @@ def test_checks_name_the_links_and_selecting_a_finding_selects_them(main_window,
         assert first.text().startswith("Error: input 2/2/6#2 is given 2 sources")
         window._on_finding(first)
         assert window.selected_links() == [0, 1]
+        window.select_links([1])
+        assert window.graph_doc.selection.output == b.ref  # highlighted in the graph
         # Unknown devices are named plainly with their numbers.
         labels = {card.device.label for card in window.scene.cards.values()}
         assert "unknown device (2/2/6)" in labels
@@ -270,3 +272,62 @@ def test_a_configuration_drawn_alone_has_no_device_data_to_complain_about():
         assert not ch.terminal_profile and not ch.required_inputs
     assert all(d.label.startswith("unknown device (") for d in system.devices.values())
     assert len(system.links) == 5
+
+
+def test_fit_follows_the_live_bus(make_window, qtbot):
+    """Fitted to the simulated transradial prosthesis on its bus: the hook's configuration
+    is repaired with the hand; when the hand is unplugged the fit says so."""
+    main = make_window()
+    with qtbot.waitSignal(main.ready, timeout=20000):
+        main.connect_bus("sim:transradial")
+    assert main.live.is_live, main.statusBar().currentMessage()
+    window = _open(main, ROOT / "resources" / "configs" / "transradial-hand-and-hook.pdcfg")
+    try:
+        assert "the live bus sim:transradial" in window.fit_label.text()
+        assert window.side.currentIndex() == 1  # nothing to report: the fit is shown
+        window.config_list.setCurrentRow(1)
+        qtbot.waitUntil(lambda: window.fit is not None and window.fit.index == 2,
+                        timeout=5000)
+        assert [lf.whole for lf in window.fit.links] == [True, True, False, False]
+        assert "2641/769/301#1" in window.fit.links[2].summary()  # the hand stands in
+        assert window.fit.chosen_index == 1
+        labels = {card.device.label for card in window.scene.cards.values()}
+        control = main.doc.system.devices[DeviceKey(2641, 513, 201)]
+        assert control.label in labels and not control.label.startswith("unknown")
+        assert "unknown device (2641/770/302)" in labels
+        hand = DeviceKey(2641, 769, 301)
+        main.live.bridge.unplug(hand)
+        qtbot.waitUntil(lambda: window.fit is not None and not window.fit.links[2].actions,
+                        timeout=10000)
+        assert "no replacement found" in window.fit.links[2].summary()
+    finally:
+        _close(window)
+        main.live.disconnect_bus()
+
+
+def test_add_link_and_channel_dialogs(qtbot):
+    from pdcp_studio.app.config_view import AddLinkDialog, ChannelDialog
+
+    out = StoredChannel(3, 2641, 513, 201, 0x9000, 0x2220)
+    inp = StoredChannel(1, 2641, 770, 302, 0x9300, 0x2220)
+    dialog = AddLinkDialog([("control unit, channel 3", out)], [("hook, channel 1", inp)])
+    qtbot.addWidget(dialog)
+    dialog.output.pick.setCurrentIndex(1)
+    dialog.input.pick.setCurrentIndex(1)
+    assert dialog.ends() == (out, inp)
+    dialog.input.type_edit.setText("0x1FFFF")
+    dialog.accept()
+    assert dialog.result() == 0 and "0 to 0xFFFF" in dialog.error.text()
+    dialog.input.type_edit.setText("0x9300")
+    dialog.input.spins["serial"].setValue(201)
+    dialog.input.spins["pid"].setValue(513)
+    dialog.input.spins["index"].setValue(3)
+    dialog.accept()
+    assert "two different channels" in dialog.error.text()
+    edit = ChannelDialog("channel", out)
+    qtbot.addWidget(edit)
+    assert edit.values() == (0x9000, 0x2220)
+    edit.profile_edit.setText("8720")
+    assert edit.values() == (0x9000, 8720)
+    edit.type_edit.setText("nine")
+    assert edit.values() is None

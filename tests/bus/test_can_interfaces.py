@@ -124,6 +124,11 @@ COMMANDS = [
     ["config", "read", "-o", "never.pdcfg", "--bus"],
     ["print", "--bus"],
     ["info", "--bus"],
+    ["apply", "clear", "--bus"],
+    ["config", "save", "--bus"],
+    ["config", "diff", "never.pdcfg", "--bus"],
+    ["policy", "--bus"],
+    ["history", "restore", "1", "--bus"],
 ]
 
 

@@ -12,6 +12,7 @@ import logging
 import random
 import resource
 import struct
+import threading
 import time
 
 import can
@@ -154,3 +155,96 @@ def test_a_hostile_device_leaves_the_legitimate_links_intact_and_the_log_readabl
         rig.host.add(late)
         assert rig.wait(lambda: late.key in arb.devices_present(), 15), arb.devices_present()
         assert set(links) <= set(arb.system().links)
+
+
+class LyingDevice(SimulatedDevice):
+    """Honest until told to lie; then its bulk answers lie about their size, in turn:
+    60,000 bytes announced and two packets sent; 8 announced and 12 sent; 12 announced and
+    packet 1 sent over and over."""
+
+    lying = False
+    answers = 0
+
+    def handle(self, msg) -> None:
+        from pdcp_studio.protocol import BulkData, ConfigureGetBulk, ConfigureGetBulkResponse
+        from pdcp_studio.protocol.identifier import Mode
+
+        if not (self.lying and isinstance(msg, ConfigureGetBulk)):
+            super().handle(msg)
+            return
+        LyingDevice.answers += 1
+        size, ids = [(60_000, [1, 2]), (8, [1, 2]), (12, [1] * 40)][LyingDevice.answers % 3]
+        self.send(ConfigureGetBulkResponse(self.node_id, ResponseCode.SUCCESS, msg.param,
+                                           msg.channel, size))
+        for packet_id in ids:
+            self.send(BulkData(self.node_id, packet_id, b"\x55" * 6, mode=Mode.DEVICE))
+
+
+def test_bulk_transfers_that_lie_about_their_size_fail_alone_and_fast():
+    from pdcp_studio.errors import PdcpError
+
+    system = load("appendix-d", beacon_ms=BEACON_MS)
+    liar_model = Device(0x66, 6, 6, name="liar", descriptor="a descriptor long enough for bulk")
+    liar_model.beacon_interval, liar_model.bind_timeout = BEACON_MS, 60
+    liar_model.add_channel(Channel(1, Direction.OUTPUT, type=0x9000, profile=0x4600))
+    system.add_device(liar_model)
+    with Rig(system, data_rate_hz=0) as rig:
+        rig.settle()
+        arb = rig.arb
+        links = arb.system().links
+        rig.host.remove(liar_model.key)  # replaced by one that lies from now on
+        lying = LyingDevice(liar_model, data_rate_hz=0)
+        lying.lying = True
+        rig.host.add(lying)
+        assert rig.wait(lambda: liar_model.key in arb.devices_present(), 15)
+        for _ in range(6):
+            started = time.monotonic()
+            try:
+                value = arb.get_parameter(liar_model.key, P.DEVICE_DESCRIPTOR)
+            except PdcpError:
+                pass
+            else:
+                raise AssertionError(f"a lying transfer was accepted: {value!r}")
+            assert time.monotonic() - started < 5  # refused or timed out, never stuck
+        # The others are not affected: requests answered, links intact.
+        assert arb.get_parameter(key(5), P.DEVICE_CHANNEL_COUNT) == b"\x05"
+        assert set(links) <= set(arb.system().links)
+
+
+class _Gate:
+    """Stands between the Notifier and the arbitrator's queue; while ``held`` it blocks the
+    Notifier's thread, as a stalled process does (frames wait in the driver, unseen)."""
+
+    def __init__(self, target) -> None:
+        self.target = target
+        self.held = threading.Event()
+
+    def put(self, item) -> None:
+        while self.held.is_set():
+            time.sleep(0.001)
+        self.target.put(item)
+
+    def qsize(self) -> int:
+        return self.target.qsize()
+
+
+def test_a_stalled_arbitrator_process_does_not_take_its_own_pause_for_silent_devices():
+    """A loaded clinic PC can stop the arbitrator's process for longer than three beacons;
+    when it runs again the beacons are still in the driver's buffer: no device has left."""
+    with Rig("appendix-d", data_rate_hz=0) as rig:  # beacons every 50 ms: gone after 175 ms
+        rig.settle()
+        arb = rig.arb
+        present = set(arb.devices_present())
+        gate = _Gate(arb.conn._listener._target)
+        arb.conn._listener._target = gate
+
+        def stall() -> None:  # the dispatch thread and the Notifier both stop for 0.6 s
+            gate.held.set()
+            time.sleep(0.6)
+            gate.held.clear()
+
+        for _ in range(3):
+            arb.conn.post(stall)
+            time.sleep(1.0)
+        assert set(arb.devices_present()) == present
+        assert not rig.of(ev.DeviceLeft)

@@ -105,10 +105,15 @@ def test_links_made_over_the_host_link_are_on_the_bus(rig, session):
 
 
 def test_a_refused_request_carries_its_status_and_reason(session):
+    from pdcp_studio.bus import hostlink_records as hr
+    from pdcp_studio.errors import PdcpError
+
     ghost = Link(ChannelRef(VID, 999, 1, 1), ChannelRef(VID, 513, 201, 1))
     with pytest.raises(HostLinkError, match="ADD_LINK refused") as err:
-        session.add_link(ghost)
+        session.request(Req.ADD_LINK, hr.pack_link(ghost))
     assert err.value.status is Status.BAD_LINK
+    with pytest.raises(PdcpError, match="add link"):
+        session.add_link(ghost)  # a transaction: refused before anything is written
     with pytest.raises(HostLinkError) as err:
         session.get_parameter(DeviceKey(1, 2, 3), P.DEVICE_DESCRIPTOR)
     assert err.value.status is Status.UNKNOWN_DEVICE
@@ -126,14 +131,21 @@ def test_parameters_of_any_length_move_in_chunks(rig, session):
     assert session.get_parameter(EMG1, P.DEVICE_BEACON_INTERVAL) == interval
     assert session.system().devices[EMG1].beacon_interval == 150
     long = ("forearm EMG, left, " * 20).encode()[:300]  # longer than a frame
-    session.set_parameter(EMG1, P.CH_DESCRIPTOR, 1, long)
+    session.set_parameter(EMG1, P.CH_DESCRIPTOR, 1, long)  # in a transaction's change
     assert session.get_parameter(EMG1, P.CH_DESCRIPTOR, 1) == long
+    again = long[::-1]
+    session.write_parameter_bytes(EMG1, P.CH_DESCRIPTOR, 1, again)  # SET_PARAM in chunks
+    assert session.get_parameter(EMG1, P.CH_DESCRIPTOR, 1) == again
 
 
 def test_a_managed_parameter_is_refused_as_such(session):
+    from pdcp_studio.errors import PdcpError
+
     with pytest.raises(HostLinkError) as err:
-        session.set_parameter(EMG1, P.DEVICE_NODE_ID, 0, b"\x05")
+        session.write_parameter_bytes(EMG1, P.DEVICE_NODE_ID, 0, b"\x05")
     assert err.value.status is Status.MANAGED
+    with pytest.raises(PdcpError, match="managed"):
+        session.set_parameter(EMG1, P.DEVICE_NODE_ID, 0, b"\x05")
 
 
 def test_the_stored_configuration_is_written_in_chunks_and_verified(rig, relay, session):
@@ -230,3 +242,24 @@ def test_the_monitor_gets_protocol_frames_and_channel_counts(rig, relay):
 def test_a_port_that_does_not_exist_names_itself():
     with pytest.raises(TransportError, match="/dev/pdcp-no-such-port"):
         open_hostlink_session(parse_bus_url("serial:/dev/pdcp-no-such-port"))
+
+
+def test_the_serial_session_is_a_bus_session(session):
+    from pdcp_studio.bus.session_api import BusSession
+
+    assert isinstance(session, BusSession)
+    assert not session.closed
+
+
+def test_the_app_opens_on_a_serial_bus(rig, tmp_path):
+    import subprocess
+    import sys
+
+    _, server = rig
+    shot = tmp_path / "serial.png"
+    proc = subprocess.run([sys.executable, "-m", "pdcp_studio", "gui", "--bus",
+                           f"serial:{server.slave_path}", "--screenshot", str(shot)],
+                          capture_output=True, text=True, timeout=120,
+                          env={**os.environ, "QT_QPA_PLATFORM": "offscreen"})
+    assert proc.returncode == 0, proc.stderr[-2000:]
+    assert shot.stat().st_size > 10_000

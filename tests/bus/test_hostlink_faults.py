@@ -5,6 +5,7 @@ from __future__ import annotations
 
 import os
 import random
+import select
 import signal
 import subprocess
 import sys
@@ -191,72 +192,245 @@ def test_a_dropped_port_is_reopened_with_one_calm_message(rig, tmp_path):
 
 
 KILL_POINTS = 20
-
-
-def _spawn_arbitrator(memory: Path, bus: str) -> tuple[subprocess.Popen, str]:
-    proc = subprocess.Popen(
-        [sys.executable, "-m", "pdcp_studio", "arbitrator", "--bus", bus, "--memory",
-         str(memory), "--host-serial", "pty", "--no-profile-layer", "--seconds", "30"],
-        stdout=subprocess.PIPE, text=True, env={**os.environ, "PYTHONUNBUFFERED": "1"})
-    line = proc.stdout.readline()
-    assert line.startswith("host link on /dev/"), line
-    return proc, line.split(" on ", 1)[1].strip()
-
-
-def _kill_rounds(memory: Path, rounds: list[tuple[int, int]], old: ConfigCollection,
-                 new: ConfigCollection) -> dict[str, int]:
-    """Write ``new`` over ``old`` and kill the arbitrator when the host has sent ``at`` bytes."""
-    outcomes = {"old": 0, "new": 0}
-    MemoryStore(memory).write(old)
-    for n, kill_at in rounds:
-        proc, path = _spawn_arbitrator(memory, f"can:virtual:kill-{os.getpid()}-{n}")
-        killed = threading.Event()
-        sent = [0]
-
-        def spoil(direction: str, data: bytes, at=kill_at, p=proc, k=killed,
-                  sent=sent) -> bytes:
-            if direction == TO_ARB and not k.is_set():
-                sent[0] += len(data)
-                if sent[0] >= at:
-                    k.set()
-                    p.send_signal(signal.SIGKILL)
-            return data
-
+# A parent process with PDCP Studio imported forks one arbitrator per round (cheap, and the
+# child is a real process killed with SIGKILL); single-threaded itself, so fork is safe.
+_ZYGOTE = """
+import os, sys, time
+import can
+from pdcp_studio.bus.arbitrator import Arbitrator
+from pdcp_studio.bus.hostlink_server import HostLinkServer
+for line in sys.stdin:
+    memory, channel = line.split()
+    r, w = os.pipe()
+    pid = os.fork()
+    if pid == 0:
+        os.close(r)
         try:
-            with PtyRelay(path, spoil=spoil) as relay:
-                session = HostLinkSession(relay.client_path, url="kill", monitor=False,
-                                          reply_timeout=1.0, **FAST)
-                try:
-                    session.write_configuration(new)
-                except TransportError as err:
-                    assert killed.is_set(), err  # only the kill may fail the write
-                finally:
-                    session.close()
+            arb = Arbitrator(can.Bus(interface="virtual", channel=channel), memory=memory,
+                             profile_layer=False)
+            server = HostLinkServer(arb, "pty")
+            os.write(w, (str(os.getpid()) + " " + server.slave_path + "\\n").encode())
+            time.sleep(60)
         finally:
-            proc.kill()
-            proc.wait(10)
-            proc.stdout.close()
-        got = MemoryStore(memory).read()
-        assert got in (old, new), f"kill point {n} at byte {kill_at}: a mix was stored"
-        outcomes["new" if got == new else "old"] += 1
-        if got == new:  # the next round starts from the old one again
-            MemoryStore(memory).write(old)
-    return outcomes
+            os._exit(0)
+    os.close(w)
+    print(os.read(r, 300).decode().strip(), flush=True)
+    os.close(r)
+    while True:
+        try:
+            if os.waitpid(-1, os.WNOHANG)[0] == 0:
+                break
+        except ChildProcessError:
+            break
+"""
+
+
+def _dead(pid: int) -> bool:
+    try:
+        with open(f"/proc/{pid}/stat") as f:
+            return f.read().rsplit(")", 1)[1].split()[0] in ("Z", "X")
+    except FileNotFoundError:
+        return True
+
+
+def _kill(pid: int) -> None:
+    try:
+        os.kill(pid, signal.SIGKILL)
+    except ProcessLookupError:
+        return
+    deadline = time.monotonic() + 5
+    while not _dead(pid) and time.monotonic() < deadline:
+        time.sleep(0.005)
 
 
 def test_an_arbitrator_killed_during_a_configuration_write_keeps_old_or_new(tmp_path):
-    from concurrent.futures import ThreadPoolExecutor
-
     rng = random.Random(20261123)
+    memory = tmp_path / "memory.bin"
     old, new = configuration(20), configuration(45, serial_base=300)
-    # the host sends the chunks (≈ the new configuration's size), their headers and ACKs
+    # the host sends the change (≈ the new configuration's size), its headers and ACKs
     span = len(config_codec.dumps(new)) + 300
-    points = [(n, rng.randrange(span)) for n in range(KILL_POINTS)]
-    workers = 2
-    with ThreadPoolExecutor(workers) as pool:
-        results = list(pool.map(
-            lambda w: _kill_rounds(tmp_path / f"memory{w}.bin", points[w::workers], old, new),
-            range(workers)))
-    outcomes = {k: sum(r[k] for r in results) for k in ("old", "new")}
-    assert sum(outcomes.values()) == KILL_POINTS
+    outcomes = {"old": 0, "new": 0}
+    took = [0.2]  # seconds a whole write takes (learned from the rounds that finish)
+    MemoryStore(memory).write(old)
+    zygote = subprocess.Popen([sys.executable, "-c", _ZYGOTE], stdin=subprocess.PIPE,
+                              stdout=subprocess.PIPE, text=True)
+    try:
+        for n in range(KILL_POINTS):
+            kill_at = rng.randrange(span)
+            zygote.stdin.write(f"{memory} kill-{os.getpid()}-{n}\n")
+            zygote.stdin.flush()
+            pid_text, path = zygote.stdout.readline().split()
+            pid = int(pid_text)
+            killed = threading.Event()
+            sent = [0]
+
+            # even rounds: after a random number of bytes sent; odd ones: at a random time
+            # within a whole write (so some land while the arbitrator stores it)
+            timer = None
+            if n % 2:
+                at_time = rng.uniform(0.0, took[0])
+                timer = threading.Timer(at_time, lambda k=killed, p=pid: (k.set(), _kill(p)))
+
+            def spoil(direction: str, data: bytes, at=kill_at, pid=pid, k=killed,
+                      sent=sent, by_bytes=not n % 2) -> bytes:
+                if by_bytes and direction == TO_ARB and not k.is_set():
+                    sent[0] += len(data)
+                    if sent[0] >= at:
+                        k.set()
+                        _kill(pid)
+                return data
+
+            try:
+                with PtyRelay(path, spoil=spoil) as relay:
+                    session = HostLinkSession(relay.client_path, url="kill", monitor=False,
+                                              reply_timeout=0.5, transact_timeout=1.5, **FAST)
+                    try:
+                        t0 = time.monotonic()
+                        if timer is not None:
+                            timer.start()
+                        session.write_configuration(new)
+                        if not killed.is_set():
+                            took[0] = max(took[0], time.monotonic() - t0)
+                    except TransportError as err:
+                        assert killed.is_set(), err  # only the kill may fail the write
+                    finally:
+                        session.close()
+            finally:
+                if timer is not None:
+                    timer.cancel()
+                _kill(pid)
+            got = MemoryStore(memory).read()
+            assert got in (old, new), f"kill point {n} at byte {kill_at}: a mix was stored"
+            outcomes["new" if got == new else "old"] += 1
+            if got == new:  # the next round starts from the old one again
+                MemoryStore(memory).write(old)
+    finally:
+        zygote.stdin.close()
+        zygote.kill()
+        zygote.wait(10)
+        zygote.stdout.close()
     assert outcomes["old"] and outcomes["new"], outcomes
+
+
+class _Bridge:
+    """Copies bytes between two pty masters (the cable between two adapters)."""
+
+    def __init__(self, a: int, b: int) -> None:
+        self.fds = [a, b]
+        self.stop = threading.Event()
+        self.thread = threading.Thread(target=self._run, daemon=True)
+        self.thread.start()
+
+    def _run(self) -> None:
+        while not self.stop.is_set():
+            try:
+                ready, _, _ = select.select(self.fds, [], [], 0.02)
+                for fd in ready:
+                    data = os.read(fd, 512)
+                    os.write(self.fds[1] if fd == self.fds[0] else self.fds[0], data)
+            except OSError:
+                time.sleep(0.02)
+
+    def close(self) -> None:
+        self.stop.set()
+        self.thread.join(2.0)
+
+
+def _raw_pty() -> tuple[int, int, str]:
+    import tty
+
+    master, slave = os.openpty()
+    tty.setraw(slave)
+    return master, slave, os.ttyname(slave)
+
+
+def test_the_arbitrator_reopens_its_dropped_port_with_one_calm_message(rig, tmp_path, caplog):
+    from pdcp_studio.bus.hostlink_server import HostLinkServer
+
+    arbitrator, _ = rig
+    port_name = tmp_path / "ttyArb"
+    am, aslave, apath = _raw_pty()  # the arbitrator's adapter
+    bm, bslave, bpath = _raw_pty()  # the PC's adapter
+    port_name.symlink_to(apath)
+    server = HostLinkServer(arbitrator, str(port_name), name="arb link")
+    os.close(aslave)
+    bridge = _Bridge(am, bm)
+    session = HostLinkSession(bpath, url="pc", monitor=False, ack_timeout=0.1, max_attempts=8)
+    try:
+        assert session.status()["devices"] == 4
+        with caplog.at_level("WARNING", logger="pdcp_studio.bus.hostlink_server"):
+            bridge.close()
+            os.close(am)  # the arbitrator's adapter is pulled out
+            time.sleep(1.0)  # it tries to reopen, and fails, several times
+            cm, cslave, cpath = _raw_pty()  # plugged in again, as a new device node
+            port_name.unlink()
+            port_name.symlink_to(cpath)
+            bridge = _Bridge(cm, bm)
+            os.close(cslave)
+            assert wait_for(lambda: not server._reopener.down, 5.0)
+            assert session.status()["devices"] == 4  # greets again by itself
+        lost = [r for r in caplog.records if "lost" in r.getMessage()]
+        assert len(lost) == 1, [r.getMessage() for r in caplog.records]
+    finally:
+        session.close()
+        server.close()
+        bridge.close()
+        for fd in (bslave, bm, *bridge.fds[:1]):
+            try:
+                os.close(fd)
+            except OSError:
+                pass
+
+
+def test_a_version_1_pc_and_a_version_1_arbitrator_are_each_told_why(rig):
+    from pdcp_studio.protocol.hostlink_v1 import V1Sniffer, encode_v1
+
+    _, server = rig
+    # a version-1 PC pings the arbitrator: a version-1 failure reply with the reason
+    with PtyRelay(server.slave_path) as relay:
+        fd = os.open(relay.client_path, os.O_RDWR | os.O_NOCTTY)
+        try:
+            os.write(fd, encode_v1(0x10))
+            sniffer, got = V1Sniffer(), []
+            deadline = time.monotonic() + 3
+            while not got and time.monotonic() < deadline:
+                if select.select([fd], [], [], 0.05)[0]:
+                    got = sniffer.feed(os.read(fd, 512))
+        finally:
+            os.close(fd)
+    assert got and got[0][0] == 0x12  # PING's failure reply
+    assert b"speaks host-link version 2, not version 1" in got[0][1]
+    # a version-1 arbitrator: it ignores HELLO but answers a version-1 PING
+    master, slave, path = _raw_pty()
+    stop = threading.Event()
+
+    def old_firmware() -> None:
+        sniffer = V1Sniffer()
+        while not stop.is_set():
+            if select.select([master], [], [], 0.02)[0]:
+                for msg_id, _ in sniffer.feed(os.read(master, 512)):
+                    os.write(master, encode_v1(msg_id + 1, b'{"name": "old"}'))
+
+    thread = threading.Thread(target=old_firmware, daemon=True)
+    thread.start()
+    try:
+        with pytest.raises(VersionRefused, match="speaks host-link version 1; this PDCP Studio "
+                                                 "speaks version 2"):
+            HostLinkSession(path, url="old", monitor=False, **FAST)
+    finally:
+        stop.set()
+        thread.join(2)
+        os.close(master)
+        os.close(slave)
+
+
+def test_the_version_1_sniffer_finds_only_whole_valid_frames():
+    from pdcp_studio.protocol.hostlink_v1 import V1Sniffer, encode_v1
+
+    frame = encode_v1(0x11, b'{"v": 1}')
+    sniffer = V1Sniffer()
+    assert sniffer.feed(b"\xa5\x00\xff" + frame[:5]) == []
+    assert sniffer.feed(frame[5:]) == [(0x11, b'{"v": 1}')]
+    bad = bytearray(encode_v1(0x10))
+    bad[-1] ^= 1
+    assert V1Sniffer().feed(bytes(bad) * 3) == []

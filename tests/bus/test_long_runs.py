@@ -181,3 +181,20 @@ def test_a_stream_of_our_own_echoes_does_not_hold_get_past_its_deadline():
         assert conn.inbound.qsize() > 3_000  # it returned long before draining them all
     finally:
         conn.close()
+
+
+def test_a_flood_the_consumer_cannot_keep_up_with_is_dropped_and_counted(monkeypatch):
+    from pdcp_studio.bus import connection
+
+    monkeypatch.setattr(connection, "INBOUND_MAX", 100)
+    bus = can.Bus(interface="virtual", channel=unique_virtual_channel("pdcp-flood"))
+    conn = Connection(bus, name="flooded")
+    try:
+        for i in range(300):
+            conn._listener(can.Message(arbitration_id=0x100, data=i.to_bytes(2, "little"),
+                                       is_extended_id=False))
+        assert conn.inbound.qsize() == 100 and conn.dropped == 200
+        conn.post(lambda: None)  # the consumer's own requests always get through
+        assert conn.inbound.qsize() == 101
+    finally:
+        conn.close()

@@ -173,3 +173,13 @@ def test_a_pulled_slcan_adapter_is_said_once_reopened_and_its_links_re_read(tmp_
         session.close()
         host.close()
         adapter.close()
+
+
+def test_the_headless_arbitrator_prints_the_outage_lines():
+    from pdcp_studio.cli.arbitrator import describe
+
+    line = "can:slcan:/dev/x: the adapter is disconnected (EIO); reconnecting"
+    assert describe(ev.BusState("disconnected", line)) == \
+        f"disconnected — reconnecting: {line}"
+    assert describe(ev.BusState("reconnected", "back")) == "reconnected: back"
+    assert describe(ev.BusState("yielded", "another")) is None  # said on stderr, once

@@ -170,7 +170,7 @@ def test_an_impossible_change_fails_before_anything_is_written(rig):
     ghost = Link(ChannelRef(2, 2, 4, 1), ChannelRef(9, 9, 9, 1))
     start = len(recorder.messages())
     result = session.carry_out(Change("manual", links=[LinkAction("add", ghost)]))
-    assert result.status is Status.FAILED and result.step == "write"
+    assert result.status is Status.FAILED and result.step == "preview"
     assert "nothing was written" in result.reason
     assert not [m for m in recorder.messages()[start:] if isinstance(m, Suspend | SetParameter)]
 
@@ -280,3 +280,22 @@ def test_transaction_events_reach_subscribers(rig):
     assert [type(e) for e in got if isinstance(e, ev.LinkRemoved)] == [ev.LinkRemoved] * 3
     done = [e for e in got if isinstance(e, ev.TransactionDone)]
     assert len(done) == 1 and done[0].result.written
+
+
+def test_single_edits_are_transactions_too(rig):
+    """``add_link``/``remove_link``/``set_parameter`` on a session take the same road: held,
+    verified; a refused edit is a ModelError and writes nothing."""
+    from pdcp_studio.errors import ModelError
+
+    session, recorder = rig
+    start = len(recorder.messages())
+    session.remove_link(JOY)
+    msgs = recorder.messages()[start:]
+    assert any(isinstance(m, Suspend) for m in msgs) and any(isinstance(m, Release) for m in msgs)
+    assert JOY not in session.system().links
+    with pytest.raises(ModelError):
+        session.remove_link(JOY)
+    with pytest.raises(ModelError):
+        session.add_link(Link(ChannelRef(2, 2, 4, 1), ChannelRef(9, 9, 9, 1)))
+    session.add_link(JOY)
+    assert JOY in session.system().links

@@ -53,9 +53,7 @@ def test_json_has_the_contract_keys_every_module_and_every_interface(capsys, mon
 def test_history_defaults_to_the_user_data_folder(capsys, monkeypatch, tmp_path):
     monkeypatch.delenv("PDCP_STUDIO_HISTORY", raising=False)
     doc = _doc(capsys, monkeypatch, XDG_DATA_HOME=str(tmp_path))
-    from pdcp_studio.storage.history import FILE_NAME
-
-    assert doc["history"] == str(tmp_path / "pdcp-studio" / FILE_NAME)
+    assert doc["history"] == str(tmp_path / "pdcp-studio" / "history.sqlite")
     assert doc["user_data"] == str(tmp_path / "pdcp-studio")
 
 

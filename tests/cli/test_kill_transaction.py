@@ -6,7 +6,8 @@ Each child process opens a simulated prosthesis whose arbitrator memory is a fil
 (with the live links that go with them), each recorded in ONE fitting history shared by all
 children — until the parent SIGKILLs it at a random moment. 60 kill points, eight children at a
 time. Afterwards the shared archive must verify, and every memory file must read as exactly one
-of the configurations written (or the empty one it started with).
+of the configurations written (or the empty one it started with). Every change a child
+announced is in the archive after ``recover``: finished, or ``interrupted``.
 """
 
 from __future__ import annotations
@@ -16,6 +17,7 @@ import random
 import signal
 import subprocess
 import sys
+import threading
 import time
 from concurrent.futures import ThreadPoolExecutor
 from pathlib import Path
@@ -48,7 +50,7 @@ from pdcp_studio.storage.history import History
 
 memory, history_path, a_path, b_path = sys.argv[1:5]
 configs = [config_codec.load_path(a_path), config_codec.load_path(b_path)]
-session = open_session("sim:thesis-test2", memory=memory)
+session = open_session("sim:thesis-test2", memory=memory, data_rate_hz=0)
 links = session.system().links
 history = History(history_path)
 print("ready", flush=True)
@@ -115,10 +117,73 @@ def test_killed_at_random_points_the_archive_and_the_prosthesis_stay_whole(tmp_p
         got = store.read_bytes()
         assert got in allowed, f"{memory}: a mix of the old and the new configuration"
     with History(history) as h:
-        report = h.verify()
+        assert h.verify().ok  # intact before the interrupted changes are recorded …
+        recovered = h.recover()
+        report = h.verify()  # … and after
         entries = h.entries()
+        left = h._db.execute("SELECT COUNT(*) FROM pending").fetchone()[0]
     assert report.ok, report.reason
+    assert left == 0
     assert len(entries) >= KILL_POINTS // 4, "most children never finished a transaction"
-    assert {e["outcome"]["status"] for e in entries} <= {"applied", "nothing"}
-    print(f"{KILL_POINTS} kill points, {len(entries)} transactions recorded, "
-          f"{elapsed:.1f} s")
+    assert {e["outcome"]["status"] for e in entries} <= {"applied", "interrupted"}
+    assert all(entries[i - 1]["outcome"]["status"] == "interrupted" for i in recovered)
+    print(f"{KILL_POINTS} kill points, {len(entries)} transactions recorded "
+          f"({len(recovered)} interrupted), {elapsed:.1f} s")
+
+
+HOST_LINK_POINTS = 12
+
+
+@pytest.mark.skipif(not hasattr(os, "openpty"), reason="needs POSIX pseudo-terminals")
+def test_a_client_killed_during_a_change_over_the_host_link_leaves_old_or_new_links(tmp_path):
+    """The arbitrator carries a TRANSACT out whole: killing the PC's CLI at random moments of
+    ``apply clear|autoconfigure --yes`` leaves the live links all old or all new."""
+    from pdcp_studio.model import parameters as P
+    from pdcp_studio.storage.history import History as Archive
+    from tests.road_rigs import served
+
+    archive = tmp_path / "history.sqlite3"
+    env = {**os.environ, "PYTHONPATH": os.pathsep.join(sys.path),
+           "PDCP_STUDIO_HISTORY": str(archive)}
+    with served("thesis-test2", tmp_path / "memory.bin") as (arbitrator, _host, url):
+        full = sorted(arbitrator.system().links)
+        assert len(full) == 3
+        rng = random.Random(8)
+        flips = 0
+        entered = threading.Event()
+        real = arbitrator.transact
+
+        def transact(*args, **kwargs):  # the arbitrator's side of TRANSACT: note its start
+            entered.set()
+            return real(*args, **kwargs)
+
+        arbitrator.transact = transact
+        for n in range(HOST_LINK_POINTS):
+            entered.clear()
+            mode = "clear" if arbitrator.system().links else "autoconfigure"
+            proc = subprocess.Popen([sys.executable, "-m", "pdcp_studio", "apply", mode,
+                                     "--bus", url, "--yes"], stdout=subprocess.DEVNULL,
+                                    stderr=subprocess.DEVNULL, env=env)
+            if n % 3 == 0:  # a third at any moment, the rest around the request itself
+                time.sleep(rng.uniform(0.0, 1.0))
+            else:
+                entered.wait(30)
+                time.sleep(rng.uniform(0.0, 0.08))
+            proc.kill()
+            proc.wait(30)
+            assert arbitrator.wait_settled(10)
+            links = sorted(arbitrator.system().links)
+            assert links in (full, []), f"kill point {n}: a mix of old and new links: {links}"
+            flips += (links == []) == (mode == "clear")
+            for link in full:  # the devices agree with the arbitrator
+                want = b"\x01" if links else b"\x00"
+                assert arbitrator.get_parameter(link.input.device, P.CH_DATA_ENABLED,
+                                                link.input.index) == want
+        print(f"{HOST_LINK_POINTS} host-link kill points, {flips} changes made")
+    with Archive(archive) as h:
+        h.recover()
+        assert h.verify().ok
+        statuses = [e["outcome"]["status"] for e in h.entries()]
+    assert set(statuses) <= {"applied", "interrupted"}
+    print(f"history: {statuses.count('applied')} applied, {statuses.count('interrupted')} "
+          "interrupted")

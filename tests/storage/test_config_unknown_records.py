@@ -30,6 +30,20 @@ def _insert(base: list[tuple[int, int]], inserts: list[tuple[int, int, int]]):
     return pairs
 
 
+def _all_unknown(coll) -> list[UnknownRecord]:
+    out = list(coll.unknown)
+    for cfg in coll.configurations:
+        out += cfg.unknown
+        for lk in cfg.links:
+            out += [*lk.unknown, *lk.input.unknown, *lk.output.unknown]
+    return out
+
+
+def _json_round_trip(coll) -> bytes:
+    """decode --json → encode, as the CLI does it."""
+    return cc.dumps(cc.from_json(json.loads(json.dumps(cc.to_json(coll)))))
+
+
 def test_the_issue_case_a_0x20_record_in_a_channel_survives():
     pairs = _insert(FIG410_RECORDS, [(13, 0x20, 0x1234)])  # end of link 1's input channel
     data = records(pairs)
@@ -45,8 +59,12 @@ def test_one_unknown_record_at_every_position_is_written_back_in_place(position)
     decoded = cc.decode(data)
     assert decoded.unknown_records == 1
     assert cc.dumps(decoded.collection) == with_checksum(data)
-    again = cc.dumps(cc.from_json(json.loads(json.dumps(cc.to_json(decoded.collection)))))
-    assert again == with_checksum(data)  # the JSON carries them too
+    # Through the contract JSON the record keeps its object and order; at the end of its
+    # declaration (where writers append) even its byte position.
+    again = _json_round_trip(decoded.collection)
+    assert cc.to_json(cc.loads(again)) == cc.to_json(decoded.collection)
+    if all(r.after is None for r in _all_unknown(decoded.collection)):
+        assert again == with_checksum(data)
 
 
 def test_each_declaration_gets_its_own_records_in_file_order():
@@ -67,8 +85,9 @@ def test_each_declaration_gets_its_own_records_in_file_order():
     assert cfg2.links[0].output.unknown == (UnknownRecord(208, 9),)
     assert cfg2.unknown == () and link1.output.unknown == ()
     doc = cc.to_json(coll)
-    assert doc["unknown_records"] == [{"code": 200, "value": 1, "after": 0},
-                                      {"code": 201, "value": 2}]
+    assert doc["unknown_records"] == [{"code": 200, "value": 1}, {"code": 201, "value": 2}]
+    assert doc["configurations"][0]["links"][0]["input"]["unknown_records"] == [
+        {"code": 206, "value": 7}, {"code": 207, "value": 8}]
     assert doc["configurations"][0]["links"][0]["unknown_records"] == [
         {"code": 205, "value": 6}]
     assert "unknown_records" not in doc["configurations"][1]
@@ -84,7 +103,7 @@ def test_any_unknown_records_anywhere_round_trip_through_bytes_and_json(inserts)
     assert decoded.unknown_records == len(inserts)
     assert cc.dumps(decoded.collection) == with_checksum(data)
     doc = json.loads(json.dumps(cc.to_json(decoded.collection)))
-    assert cc.dumps(cc.from_json(doc)) == with_checksum(data)
+    assert cc.to_json(cc.loads(cc.dumps(cc.from_json(doc)))) == doc
     # Writing again what the program wrote changes nothing, checksum included.
     assert cc.dumps(cc.loads(with_checksum(data))) == with_checksum(data)
 
@@ -144,3 +163,16 @@ def test_a_value_record_outside_a_channel_is_still_refused_next_to_unknown_ones(
     with pytest.raises(ConfigFormatError) as err:
         cc.loads(records(pairs))
     assert err.value.offset == 12 and "outside a channel declaration" in err.value.reason
+
+
+def test_json_after_pins_a_record_inside_its_declaration():
+    """``config encode`` takes an optional ``"after": CODE`` (decode --json never prints it)."""
+    doc = cc.to_json(cc.loads(records(FIG410_RECORDS)))
+    doc["configurations"][1]["links"][0]["input"]["unknown_records"] = [
+        {"code": 32, "value": 4660, "after": 7}, {"code": 33, "value": 1}]
+    data = cc.dumps(cc.from_json(doc))
+    pairs = list(cc._RECORD.iter_unpack(data))
+    at = pairs.index((32, 4660))
+    assert pairs[at - 1] == (7, 13) and pairs[at + 1] == (8, 23)
+    assert pairs[pairs.index((33, 1)) - 1] == (12, 53)  # the end of that channel
+    assert cc.to_json(cc.loads(data)) == json.loads(json.dumps(cc.to_json(cc.from_json(doc))))

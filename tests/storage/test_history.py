@@ -93,7 +93,9 @@ def test_path_and_operator_come_from_the_environment(tmp_path, monkeypatch):
     assert default_path() == tmp_path / "x.sqlite3" and default_operator() == "Dr. Who"
     monkeypatch.delenv("PDCP_STUDIO_HISTORY")
     monkeypatch.delenv("PDCP_STUDIO_OPERATOR")
-    assert default_path().name == "history.sqlite3" and "pdcp-studio" in str(default_path())
+    from pdcp_studio.paths import history_path
+
+    assert default_path() == history_path() and default_path().name.startswith("history.")
     assert default_operator()
 
 
@@ -132,3 +134,20 @@ def test_an_unopenable_archive_is_a_clear_error(tmp_path):
     (tmp_path / "dir").mkdir()
     with pytest.raises(HistoryError, match="cannot open"):
         History(tmp_path / "dir")
+
+
+def test_an_announced_change_whose_process_died_is_recorded_as_interrupted(tmp_path):
+    from pdcp_studio.storage.history import interrupted
+
+    h = filled(tmp_path / "h.sqlite3", 1)
+    token = h.begin(interrupted(body(2)))
+    assert h.recover() == []  # this process is alive: its change is still running
+    h.finish(token, body(2))
+    assert [e["action"] for e in h.entries()] == ["apply clear 1", "apply clear 2"]
+    h.begin(interrupted(body(3)))
+    h._db.execute("UPDATE pending SET pid = 999999999")  # a process that no longer exists
+    assert h.recover() == [3]
+    last = h.get(3)
+    assert last["outcome"]["status"] == "interrupted" and last["links_after"] is None
+    assert last["verified"] is False and h.verify().ok
+    h.close()
