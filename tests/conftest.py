@@ -126,9 +126,6 @@ def multicast_url():
 @pytest.fixture(autouse=True)
 def _private_fitting_history(tmp_path_factory, monkeypatch):
     """Every test records its transactions in an archive of its own, never the user's."""
-    import os
-
-    if "PDCP_STUDIO_HISTORY" not in os.environ or os.environ.get("PDCP_STUDIO_TEST_KEEP") != "1":
-        path = tmp_path_factory.mktemp("history") / "history.sqlite3"
-        monkeypatch.setenv("PDCP_STUDIO_HISTORY", str(path))
+    path = tmp_path_factory.mktemp("history") / "history.sqlite3"
+    monkeypatch.setenv("PDCP_STUDIO_HISTORY", str(path))
     monkeypatch.setenv("PDCP_STUDIO_OPERATOR", "test prosthetist")

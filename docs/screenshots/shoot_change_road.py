@@ -70,6 +70,7 @@ def main() -> int:
         window.pending_panel.patient.editingFinished.emit()
         window.pending_dock.show()
         window.pending_dock.raise_()
+        window.inspector_dock.raise_()
         window.resizeDocks([window.pending_dock], [300], Qt.Orientation.Vertical)
         window.doc.select(None)
         later(1200, lambda: (shoot("pending-changes.png"), write()))

@@ -459,11 +459,22 @@ def open_sim_session(name: str, *, url: str = "", settle_timeout: float = SIM_SE
         if host is not None:
             host.close()
         raise
-    if not session.wait_settled(settle_timeout):
-        session.close()
-        raise TransportError(f"{url}: the simulated prosthesis did not settle within "
-                             f"{settle_timeout:g} s")
-    return session
+    # Settled means every device that is plugged in has joined (on a starved machine a
+    # device's first bind request can come after the start-up quiet time) and start-up ran.
+    expected = {key for key, dev in system.devices.items() if dev.present}
+    deadline = time.monotonic() + settle_timeout
+    while True:
+        settled = session.wait_settled(max(0.0, deadline - time.monotonic()))
+        joined = expected <= set(arbitrator.devices_present())
+        if settled and joined:
+            return session
+        if time.monotonic() >= deadline:
+            if settled:  # a device that cannot join (IDs exhausted…) is the bus's news
+                return session
+            session.close()
+            raise TransportError(f"{url}: the simulated prosthesis did not settle within "
+                                 f"{settle_timeout:g} s")
+        time.sleep(0.01)
 
 
 def open_can_session(spec: Any, *, settle_timeout: float = CAN_SETTLE_TIMEOUT_S,

@@ -75,6 +75,7 @@ def test_live_edits_are_staged_then_written_in_one_transaction(live, qtbot, tmp_
     live.inspector.editors["descriptor"].editingFinished.emit()
     assert doc.undo_stack.count() == 2
     qtbot.waitUntil(lambda: len(live.pending_panel.changes) == 2, timeout=3000)
+    qtbot.waitUntil(lambda: live.scene.cards[HAND].pending_rows == {2}, timeout=3000)
     kinds = [c.kind for c in live.pending_panel.changes]
     assert kinds == [pending.REMOVE, pending.PARAMETER]
     assert live.act_write_pending.isEnabled()
@@ -107,6 +108,7 @@ def test_live_edits_are_staged_then_written_in_one_transaction(live, qtbot, tmp_
     assert session.get_parameter(HAND, 2, 2).split(b"\0")[0] == b"Pinch motor"
     qtbot.waitUntil(lambda: HAND_LINK not in doc.bus_system.links, timeout=5000)
     qtbot.waitUntil(lambda: not live.pending_panel.changes, timeout=5000)
+    qtbot.waitUntil(lambda: not live.scene.cards[HAND].pending_rows, timeout=3000)
     # One undo step more: the write itself.
     assert doc.undo_stack.index() == 3 and "Write to prosthesis" in doc.undo_stack.undoText()
     with History.open() as archive:

@@ -136,6 +136,9 @@ class DeviceItem(QGraphicsRectItem):
         self.setPen(QPen(Qt.PenStyle.NoPen))
         self._set_bounds()
         self.problems: list[str] = []
+        #: Channel indices (0: the device itself) with a parameter change not yet written to
+        #: the prosthesis: a violet wash marks the row (a violet bar the header).
+        self.pending_rows: set[int] = set()
         self.selected_ref: ChannelRef | None = None
         self.links: set[LinkItem] = set()
         self.ports: dict[int, PortItem] = {}
@@ -274,6 +277,10 @@ class DeviceItem(QGraphicsRectItem):
                    f"{role}  ·  {d.vid}/{d.pid}/{d.serial}")
         if self.problems:
             self._paint_badge(p, QPointF(w - 16, 15))
+        if 0 in self.pending_rows:  # a device parameter staged, not yet written
+            p.setPen(Qt.PenStyle.NoPen)
+            p.setBrush(style.PENDING)
+            p.drawRect(QRectF(1, 6, 4, style.HEADER_HEIGHT - 8))
 
         # Channel rows.
         n_in = sum(1 for c in self.rows if c.is_input)
@@ -285,6 +292,12 @@ class DeviceItem(QGraphicsRectItem):
                 p.setPen(Qt.PenStyle.NoPen)
                 p.setBrush(style.ROW_SELECTED)
                 p.drawRect(row.adjusted(1, 0, -1, 0))
+            if ch.index in self.pending_rows:  # a parameter staged, not yet written
+                wash = QColor(style.PENDING)
+                wash.setAlpha(40)
+                p.setPen(QPen(style.PENDING, 1.0, Qt.PenStyle.DashDotLine))
+                p.setBrush(wash)
+                p.drawRect(row.adjusted(8, 2, -8, -2))
             if i == n_in and n_in:
                 p.setPen(QPen(style.GRID, 1.0))
                 p.drawLine(QPointF(10, y), QPointF(w - 10, y))

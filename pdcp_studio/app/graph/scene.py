@@ -41,6 +41,7 @@ class BusScene(QGraphicsScene):
         self.preview_items: list[LinkItem] = []
         #: Ghosts of links on the prosthesis that the project removes (pending removals).
         self.unwritten_items: list[LinkItem] = []
+        self._pending_cache: dict[DeviceKey, set[int]] | None = None
         self.states = SystemStates()
         self.flow_phase = 0.0
         self._live: dict[ChannelRef, float] = {}
@@ -80,6 +81,7 @@ class BusScene(QGraphicsScene):
             self.link_items.clear()
             self.preview_items.clear()
             self.unwritten_items.clear()
+            self._pending_cache = None
             system = self.doc.system
             self.states = compute_states(system)
             placed = layout.place(system, self.doc.positions)
@@ -125,10 +127,12 @@ class BusScene(QGraphicsScene):
         for link in current - self.link_items.keys():
             self._add_link_item(link)
         self.states = compute_states(self.doc.system)
+        self._pending_cache = None
         self._show_unwritten()
         self._apply_states()
 
     def _on_bus_changed(self) -> None:
+        self._pending_cache = None
         self._show_unwritten()
         self._apply_states()
 
@@ -152,6 +156,7 @@ class BusScene(QGraphicsScene):
             self.unwritten_items.append(item)
 
     def _on_device_changed(self, key: DeviceKey) -> None:
+        self._pending_cache = None
         device = self.doc.system.device(key)
         card = self.cards.get(key)
         if device is None or card is None:
@@ -174,12 +179,28 @@ class BusScene(QGraphicsScene):
         if card is not None and pos is not None and (card.pos().x(), card.pos().y()) != pos:
             card.setPos(*pos)
 
+    def _pending_rows(self) -> dict[DeviceKey, set[int]]:
+        """Channels (0: the device) with a parameter staged but not yet written."""
+        from pdcp_studio.app.pending import PARAMETER, pending_changes
+
+        marks: dict[DeviceKey, set[int]] = {}
+        if self.doc.bus_system is None:
+            return marks
+        for c in pending_changes(self.doc.bus_system, self.doc.system):
+            if c.kind == PARAMETER and c.key is not None:
+                marks.setdefault(c.key, set()).add(c.index)
+        return marks
+
     def _apply_states(self) -> None:
         system, st = self.doc.system, self.states
         live = set(self._live)
+        if self._pending_cache is None:  # not on every data tick: only after a change
+            self._pending_cache = self._pending_rows()
+        pending_rows = self._pending_cache
         for key, card in self.cards.items():
             card.role = st.roles.get(key, card.role)
             card.problems = st.device_problems(key)
+            card.pending_rows = pending_rows.get(key, set())
             for port in card.ports.values():
                 ref = port.ref
                 if port.is_output:
