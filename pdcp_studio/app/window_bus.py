@@ -8,6 +8,7 @@ reads in one place; the connection itself is :mod:`pdcp_studio.app.live`.
 from __future__ import annotations
 
 import logging
+from collections.abc import Callable
 from typing import TYPE_CHECKING, Any
 
 from PySide6.QtCore import Qt
@@ -19,7 +20,7 @@ class BusMixin:
     """Bus docks (made once per window, fed by each new bridge) and bus commands."""
 
     if TYPE_CHECKING:  # a mixin of a QObject: Qt gives it tr()
-        def tr(self, text: str, /) -> str: ...
+        tr: Callable[[str], str]
 
     def ask_connect(self) -> None:
         from pdcp_studio.app.connect_dialog import ConnectDialog

@@ -6,6 +6,7 @@ document (:mod:`window_files`).
 
 from __future__ import annotations
 
+from collections.abc import Callable
 from pathlib import Path
 from typing import TYPE_CHECKING
 
@@ -17,7 +18,7 @@ class ExportMixin:
     """Graph image, PNG/SVG export and the PDF report of :class:`MainWindow`."""
 
     if TYPE_CHECKING:  # a mixin of a QObject: Qt gives it tr()
-        def tr(self, text: str, /) -> str: ...
+        tr: Callable[[str], str]
 
     def graph_image(self, scale: float = 2.0) -> QImage:
         """The whole graph rendered off screen (for PNG export and the report)."""

@@ -6,6 +6,7 @@ writing the formats themselves is :mod:`pdcp_studio.app.files`.
 
 from __future__ import annotations
 
+from collections.abc import Callable
 from pathlib import Path
 from typing import TYPE_CHECKING
 
@@ -21,7 +22,7 @@ class FileHandlingMixin:
     """Open, save, save as, and the ask-before-dropping-changes of :class:`MainWindow`."""
 
     if TYPE_CHECKING:  # a mixin of a QObject: Qt gives it tr()
-        def tr(self, text: str, /) -> str: ...
+        tr: Callable[[str], str]
 
     def open_path(self, path: str | Path) -> bool:
         """Open a system file or a .pdcfg; errors go to a message box and return False.

@@ -6,6 +6,7 @@ Kept apart from :mod:`main_window`; the autosaver and the dialog themselves are 
 
 from __future__ import annotations
 
+from collections.abc import Callable
 from typing import TYPE_CHECKING, Any
 
 from pdcp_studio.app import files
@@ -16,7 +17,7 @@ class RecoveryMixin:
     """Autosave while editing; after a crash, offer and restore what was autosaved."""
 
     if TYPE_CHECKING:  # a mixin of a QObject: Qt gives it tr()
-        def tr(self, text: str, /) -> str: ...
+        tr: Callable[[str], str]
 
     def _start_autosave(self, recovery: Any) -> None:
         from pdcp_studio.app import recovery as mod

@@ -45,42 +45,42 @@
 <context>
     <name>BusMixin</name>
     <message>
-        <location filename="../../pdcp_studio/app/window_bus.py" line="34" />
+        <location filename="../../pdcp_studio/app/window_bus.py" line="38" />
         <source>Some bus panels are unavailable: {err}</source>
         <translation>Einige Bus-Ansichten sind nicht verfügbar: {err}</translation>
     </message>
     <message>
-        <location filename="../../pdcp_studio/app/window_bus.py" line="52" />
+        <location filename="../../pdcp_studio/app/window_bus.py" line="56" />
         <source>Live plot</source>
         <translation>Live-Verlauf</translation>
     </message>
     <message>
-        <location filename="../../pdcp_studio/app/window_bus.py" line="66" />
+        <location filename="../../pdcp_studio/app/window_bus.py" line="70" />
         <source>Simulator</source>
         <translation>Simulator</translation>
     </message>
     <message>
-        <location filename="../../pdcp_studio/app/window_bus.py" line="134" />
+        <location filename="../../pdcp_studio/app/window_bus.py" line="138" />
         <source>Read configuration: connect to a bus first</source>
         <translation>Konfiguration lesen: zuerst mit einem Bus verbinden</translation>
     </message>
     <message>
-        <location filename="../../pdcp_studio/app/window_bus.py" line="143" />
+        <location filename="../../pdcp_studio/app/window_bus.py" line="147" />
         <source>Read the arbitrator's stored configuration: {n} configuration(s), {links} links — Find replacements and Start-up now use it</source>
         <translation>Gespeicherte Konfiguration des Arbiters gelesen: {n} Konfiguration(en), {links} Verbindungen — Ersatz finden und Hochlauf verwenden sie jetzt</translation>
     </message>
     <message>
-        <location filename="../../pdcp_studio/app/window_bus.py" line="152" />
+        <location filename="../../pdcp_studio/app/window_bus.py" line="156" />
         <source>Cancelling…</source>
         <translation>Wird abgebrochen…</translation>
     </message>
     <message>
-        <location filename="../../pdcp_studio/app/window_bus.py" line="194" />
+        <location filename="../../pdcp_studio/app/window_bus.py" line="198" />
         <source>Write configuration</source>
         <translation>Konfiguration schreiben</translation>
     </message>
     <message>
-        <location filename="../../pdcp_studio/app/window_bus.py" line="194" />
+        <location filename="../../pdcp_studio/app/window_bus.py" line="198" />
         <source>connect to a bus first</source>
         <translation>zuerst mit einem Bus verbinden</translation>
     </message>
@@ -88,33 +88,33 @@
 <context>
     <name>BusScene</name>
     <message>
-        <location filename="../../pdcp_studio/app/graph/scene.py" line="149" />
+        <location filename="../../pdcp_studio/app/graph/scene.py" line="153" />
         <source>Pending removal (still on the prosthesis): {link}</source>
         <extracomment>A link counts as "live" this long after its output's last data frame. Ghosts of links on the prosthesis that the project removes (pending removals). The outcome of the last link drag: (link or None, refusal reason or "").</extracomment>
         <translation>Entfernen vorgemerkt (noch auf der Prothese): {link}</translation>
     </message>
     <message>
-        <location filename="../../pdcp_studio/app/graph/scene.py" line="333" />
+        <location filename="../../pdcp_studio/app/graph/scene.py" line="354" />
         <source>Removed {n} link{v1}</source>
         <translation>{n} Verbindung(en) entfernt</translation>
     </message>
     <message>
-        <location filename="../../pdcp_studio/app/graph/scene.py" line="344" />
+        <location filename="../../pdcp_studio/app/graph/scene.py" line="365" />
         <source>Drag from {ref} to {what} to link them</source>
         <translation>Von {ref} zu {what} ziehen, um sie zu verbinden</translation>
     </message>
     <message>
-        <location filename="../../pdcp_studio/app/graph/scene.py" line="389" />
+        <location filename="../../pdcp_studio/app/graph/scene.py" line="410" />
         <source>Link cancelled: release over a port to link</source>
         <translation>Verbinden abgebrochen: über einem Anschluss loslassen, um zu verbinden</translation>
     </message>
     <message>
-        <location filename="../../pdcp_studio/app/graph/scene.py" line="396" />
+        <location filename="../../pdcp_studio/app/graph/scene.py" line="417" />
         <source>Cannot link {a} → {b}: {reason}</source>
         <translation>{a} → {b} kann nicht verbunden werden: {reason}</translation>
     </message>
     <message>
-        <location filename="../../pdcp_studio/app/graph/scene.py" line="403" />
+        <location filename="../../pdcp_studio/app/graph/scene.py" line="424" />
         <source>Linked {v0} → {v1}</source>
         <translation>Verbunden: {v0} → {v1}</translation>
     </message>
@@ -789,27 +789,27 @@
 <context>
     <name>ExportMixin</name>
     <message>
-        <location filename="../../pdcp_studio/app/window_export.py" line="67" />
+        <location filename="../../pdcp_studio/app/window_export.py" line="72" />
         <source>Export graph</source>
         <translation>Grafik exportieren</translation>
     </message>
     <message>
-        <location filename="../../pdcp_studio/app/window_export.py" line="73" />
+        <location filename="../../pdcp_studio/app/window_export.py" line="78" />
         <source>Exported {path}</source>
         <translation>{path} exportiert</translation>
     </message>
     <message>
-        <location filename="../../pdcp_studio/app/window_export.py" line="75" />
+        <location filename="../../pdcp_studio/app/window_export.py" line="80" />
         <source>Cannot export</source>
         <translation>Export nicht möglich</translation>
     </message>
     <message>
-        <location filename="../../pdcp_studio/app/window_export.py" line="78" />
+        <location filename="../../pdcp_studio/app/window_export.py" line="83" />
         <source>Fitting report</source>
         <translation>Anpassungsbericht</translation>
     </message>
     <message>
-        <location filename="../../pdcp_studio/app/window_export.py" line="80" />
+        <location filename="../../pdcp_studio/app/window_export.py" line="85" />
         <source>PDF (*.pdf)</source>
         <translation>PDF (*.pdf)</translation>
     </message>
@@ -817,80 +817,80 @@
 <context>
     <name>FileHandlingMixin</name>
     <message>
-        <location filename="../../pdcp_studio/app/window_files.py" line="35" />
+        <location filename="../../pdcp_studio/app/window_files.py" line="40" />
         <source>Cannot open</source>
         <translation>Öffnen nicht möglich</translation>
     </message>
     <message>
-        <location filename="../../pdcp_studio/app/window_files.py" line="53" />
+        <location filename="../../pdcp_studio/app/window_files.py" line="58" />
         <source>Opened {what} {v1}: {n_devices} devices, {n_links} links{note}</source>
         <translation>{what} {v1} geöffnet: {n_devices} Geräte, {n_links} Verbindungen{note}</translation>
     </message>
     <message>
-        <location filename="../../pdcp_studio/app/window_files.py" line="70" />
+        <location filename="../../pdcp_studio/app/window_files.py" line="75" />
         <source>Opened stored configurations {name} in their own window</source>
         <translation>Gespeicherte Konfigurationen {name} in eigenem Fenster geöffnet</translation>
     </message>
     <message>
-        <location filename="../../pdcp_studio/app/window_files.py" line="97" />
+        <location filename="../../pdcp_studio/app/window_files.py" line="102" />
         <source>Connected to a prosthesis</source>
         <extracomment>``ask_leave_bus`` answers.</extracomment>
         <translation>Mit einer Prothese verbunden</translation>
     </message>
     <message>
-        <location filename="../../pdcp_studio/app/window_files.py" line="98" />
+        <location filename="../../pdcp_studio/app/window_files.py" line="103" />
         <source>another document</source>
         <translation>ein anderes Dokument</translation>
     </message>
     <message>
-        <location filename="../../pdcp_studio/app/window_files.py" line="99" />
+        <location filename="../../pdcp_studio/app/window_files.py" line="104" />
         <source>This window is connected to the prosthesis on {0}.
 Opening {1} ends that connection.</source>
         <translation>Dieses Fenster ist mit der Prothese an {0} verbunden.
 Das Öffnen von {1} beendet diese Verbindung.</translation>
     </message>
     <message>
-        <location filename="../../pdcp_studio/app/window_files.py" line="101" />
+        <location filename="../../pdcp_studio/app/window_files.py" line="106" />
         <source>You can compare the file with the prosthesis instead, and stay connected.</source>
         <translation>Sie können die Datei stattdessen mit der Prothese vergleichen und verbunden bleiben.</translation>
     </message>
     <message>
-        <location filename="../../pdcp_studio/app/window_files.py" line="103" />
+        <location filename="../../pdcp_studio/app/window_files.py" line="108" />
         <source>Compare with the prosthesis</source>
         <translation>Mit der Prothese vergleichen</translation>
     </message>
     <message>
-        <location filename="../../pdcp_studio/app/window_files.py" line="105" />
+        <location filename="../../pdcp_studio/app/window_files.py" line="110" />
         <source>Disconnect and open</source>
         <translation>Trennen und öffnen</translation>
     </message>
     <message>
-        <location filename="../../pdcp_studio/app/window_files.py" line="122" />
+        <location filename="../../pdcp_studio/app/window_files.py" line="127" />
         <source>Open</source>
         <translation>Öffnen</translation>
     </message>
     <message>
-        <location filename="../../pdcp_studio/app/window_files.py" line="135" />
+        <location filename="../../pdcp_studio/app/window_files.py" line="140" />
         <source>Save as</source>
         <translation>Speichern unter</translation>
     </message>
     <message>
-        <location filename="../../pdcp_studio/app/window_files.py" line="150" />
+        <location filename="../../pdcp_studio/app/window_files.py" line="155" />
         <source>Cannot save</source>
         <translation>Speichern nicht möglich</translation>
     </message>
     <message>
-        <location filename="../../pdcp_studio/app/window_files.py" line="154" />
+        <location filename="../../pdcp_studio/app/window_files.py" line="159" />
         <source>Saved {path}</source>
         <translation>{path} gespeichert</translation>
     </message>
     <message>
-        <location filename="../../pdcp_studio/app/window_files.py" line="171" />
+        <location filename="../../pdcp_studio/app/window_files.py" line="176" />
         <source>Unsaved changes</source>
         <translation>Ungespeicherte Änderungen</translation>
     </message>
     <message>
-        <location filename="../../pdcp_studio/app/window_files.py" line="172" />
+        <location filename="../../pdcp_studio/app/window_files.py" line="177" />
         <source>Save the changes to {title}?</source>
         <translation>Änderungen an {title} speichern?</translation>
     </message>
@@ -1554,187 +1554,187 @@ Den PDCP-Bus einer aktiven Prothese ansehen und einrichten.</translation>
 <context>
     <name>MenusMixin</name>
     <message>
-        <location filename="../../pdcp_studio/app/window_menus.py" line="33" />
+        <location filename="../../pdcp_studio/app/window_menus.py" line="37" />
         <source>&amp;Open…</source>
         <translation>Ö&amp;ffnen…</translation>
     </message>
     <message>
-        <location filename="../../pdcp_studio/app/window_menus.py" line="36" />
+        <location filename="../../pdcp_studio/app/window_menus.py" line="40" />
         <source>Open a system file (.json) or a configuration (.pdcfg)</source>
         <translation>Eine Systemdatei (.json) oder eine Konfiguration (.pdcfg) öffnen</translation>
     </message>
     <message>
-        <location filename="../../pdcp_studio/app/window_menus.py" line="38" />
+        <location filename="../../pdcp_studio/app/window_menus.py" line="42" />
         <source>&amp;Save</source>
         <translation>&amp;Speichern</translation>
     </message>
     <message>
-        <location filename="../../pdcp_studio/app/window_menus.py" line="39" />
+        <location filename="../../pdcp_studio/app/window_menus.py" line="43" />
         <source>Save &amp;As…</source>
         <translation>Speichern &amp;unter…</translation>
     </message>
     <message>
-        <location filename="../../pdcp_studio/app/window_menus.py" line="40" />
+        <location filename="../../pdcp_studio/app/window_menus.py" line="44" />
         <source>Export graph as &amp;PNG…</source>
         <translation>Grafik als &amp;PNG exportieren…</translation>
     </message>
     <message>
-        <location filename="../../pdcp_studio/app/window_menus.py" line="42" />
+        <location filename="../../pdcp_studio/app/window_menus.py" line="46" />
         <source>Export graph as S&amp;VG…</source>
         <translation>Grafik als S&amp;VG exportieren…</translation>
     </message>
     <message>
-        <location filename="../../pdcp_studio/app/window_menus.py" line="44" />
+        <location filename="../../pdcp_studio/app/window_menus.py" line="48" />
         <source>Fitting &amp;report (PDF)…</source>
         <translation>Anpassungs&amp;bericht (PDF)…</translation>
     </message>
     <message>
-        <location filename="../../pdcp_studio/app/window_menus.py" line="45" />
+        <location filename="../../pdcp_studio/app/window_menus.py" line="49" />
         <source>&amp;Quit</source>
         <translation>&amp;Beenden</translation>
     </message>
     <message>
-        <location filename="../../pdcp_studio/app/window_menus.py" line="46" />
+        <location filename="../../pdcp_studio/app/window_menus.py" line="50" />
         <source>&amp;Undo</source>
         <translation>&amp;Rückgängig</translation>
     </message>
     <message>
-        <location filename="../../pdcp_studio/app/window_menus.py" line="48" />
+        <location filename="../../pdcp_studio/app/window_menus.py" line="52" />
         <source>&amp;Redo</source>
         <translation>&amp;Wiederholen</translation>
     </message>
     <message>
-        <location filename="../../pdcp_studio/app/window_menus.py" line="50" />
+        <location filename="../../pdcp_studio/app/window_menus.py" line="54" />
         <source>&amp;Delete link</source>
         <translation>Verbindung &amp;löschen</translation>
     </message>
     <message>
-        <location filename="../../pdcp_studio/app/window_menus.py" line="51" />
+        <location filename="../../pdcp_studio/app/window_menus.py" line="55" />
         <source>Remove the selected links</source>
         <translation>Die ausgewählten Verbindungen entfernen</translation>
     </message>
     <message>
-        <location filename="../../pdcp_studio/app/window_menus.py" line="52" />
+        <location filename="../../pdcp_studio/app/window_menus.py" line="56" />
         <source>&amp;Fit to window</source>
         <translation>An &amp;Fenster anpassen</translation>
     </message>
     <message>
-        <location filename="../../pdcp_studio/app/window_menus.py" line="54" />
+        <location filename="../../pdcp_studio/app/window_menus.py" line="58" />
         <source>Zoom &amp;in</source>
         <translation>Ver&amp;größern</translation>
     </message>
     <message>
-        <location filename="../../pdcp_studio/app/window_menus.py" line="57" />
+        <location filename="../../pdcp_studio/app/window_menus.py" line="61" />
         <source>Zoom &amp;out</source>
         <translation>Ver&amp;kleinern</translation>
     </message>
     <message>
-        <location filename="../../pdcp_studio/app/window_menus.py" line="60" />
+        <location filename="../../pdcp_studio/app/window_menus.py" line="64" />
         <source>Show &amp;legend</source>
         <translation>&amp;Legende anzeigen</translation>
     </message>
     <message>
-        <location filename="../../pdcp_studio/app/window_menus.py" line="65" />
+        <location filename="../../pdcp_studio/app/window_menus.py" line="69" />
         <source>&amp;Arrange in layers</source>
         <translation>In Ebenen &amp;anordnen</translation>
     </message>
     <message>
-        <location filename="../../pdcp_studio/app/window_menus.py" line="66" />
+        <location filename="../../pdcp_studio/app/window_menus.py" line="70" />
         <source>Lay the cards out again: sensors → control → terminal devices (one undo step)</source>
         <translation>Die Karten neu anordnen: Sensoren → Steuerung → Endgeräte (ein Rückgängig-Schritt)</translation>
     </message>
     <message>
-        <location filename="../../pdcp_studio/app/window_menus.py" line="73" />
+        <location filename="../../pdcp_studio/app/window_menus.py" line="77" />
         <source>&amp;Connect…</source>
         <translation>&amp;Verbinden…</translation>
     </message>
     <message>
-        <location filename="../../pdcp_studio/app/window_menus.py" line="75" />
+        <location filename="../../pdcp_studio/app/window_menus.py" line="79" />
         <source>Connect to a simulated prosthesis or a CAN bus</source>
         <translation>Mit einer simulierten Prothese oder einem CAN-Bus verbinden</translation>
     </message>
     <message>
-        <location filename="../../pdcp_studio/app/window_menus.py" line="78" />
+        <location filename="../../pdcp_studio/app/window_menus.py" line="82" />
         <source>Open the &amp;simulated prosthesis</source>
         <translation>&amp;Simulierte Prothese öffnen</translation>
     </message>
     <message>
-        <location filename="../../pdcp_studio/app/window_menus.py" line="80" />
+        <location filename="../../pdcp_studio/app/window_menus.py" line="84" />
         <source>&amp;Disconnect</source>
         <translation>&amp;Trennen</translation>
     </message>
     <message>
-        <location filename="../../pdcp_studio/app/window_menus.py" line="81" />
+        <location filename="../../pdcp_studio/app/window_menus.py" line="85" />
         <source>&amp;Scan the bus</source>
         <translation>Bus &amp;abfragen</translation>
     </message>
     <message>
-        <location filename="../../pdcp_studio/app/window_menus.py" line="83" />
+        <location filename="../../pdcp_studio/app/window_menus.py" line="87" />
         <source>&amp;Read the stored configuration</source>
         <translation>Gespeicherte Konfiguration &amp;lesen</translation>
     </message>
     <message>
-        <location filename="../../pdcp_studio/app/window_menus.py" line="84" />
+        <location filename="../../pdcp_studio/app/window_menus.py" line="88" />
         <source>Read the arbitrator's stored configuration; plans that take a configuration (Find replacements, Start-up) then use it</source>
         <translation>Die gespeicherte Konfiguration des Arbiters lesen; Pläne mit Konfiguration (Ersatz finden, Hochlauf) verwenden sie dann</translation>
     </message>
     <message>
-        <location filename="../../pdcp_studio/app/window_menus.py" line="87" />
+        <location filename="../../pdcp_studio/app/window_menus.py" line="91" />
         <source>Ca&amp;ncel bus work</source>
         <translation>Bus-Arbeit a&amp;bbrechen</translation>
     </message>
     <message>
-        <location filename="../../pdcp_studio/app/window_menus.py" line="90" />
+        <location filename="../../pdcp_studio/app/window_menus.py" line="94" />
         <source>Cancel what the bus is doing for you (scan, apply…)</source>
         <translation>Abbrechen, was der Bus gerade für Sie tut (Abfragen, Anwenden…)</translation>
     </message>
     <message>
-        <location filename="../../pdcp_studio/app/window_menus.py" line="92" />
+        <location filename="../../pdcp_studio/app/window_menus.py" line="96" />
         <source>Co&amp;mpare configurations…</source>
         <translation>Konfigurationen &amp;vergleichen…</translation>
     </message>
     <message>
-        <location filename="../../pdcp_studio/app/window_menus.py" line="93" />
+        <location filename="../../pdcp_studio/app/window_menus.py" line="97" />
         <source>&amp;Write configuration to the arbitrator…</source>
         <translation>Konfiguration in den Arbiter &amp;schreiben…</translation>
     </message>
     <message>
-        <location filename="../../pdcp_studio/app/window_menus.py" line="95" />
+        <location filename="../../pdcp_studio/app/window_menus.py" line="99" />
         <source>&amp;Profile tree…</source>
         <translation>&amp;Profilbaum…</translation>
     </message>
     <message>
-        <location filename="../../pdcp_studio/app/window_menus.py" line="96" />
+        <location filename="../../pdcp_studio/app/window_menus.py" line="100" />
         <source>&amp;About PDCP Studio</source>
         <translation>Ü&amp;ber PDCP Studio</translation>
     </message>
     <message>
-        <location filename="../../pdcp_studio/app/window_menus.py" line="100" />
+        <location filename="../../pdcp_studio/app/window_menus.py" line="104" />
         <source>&amp;File</source>
         <translation>&amp;Datei</translation>
     </message>
     <message>
-        <location filename="../../pdcp_studio/app/window_menus.py" line="108" />
+        <location filename="../../pdcp_studio/app/window_menus.py" line="112" />
         <source>&amp;Edit</source>
         <translation>&amp;Bearbeiten</translation>
     </message>
     <message>
-        <location filename="../../pdcp_studio/app/window_menus.py" line="115" />
+        <location filename="../../pdcp_studio/app/window_menus.py" line="119" />
         <source>&amp;View</source>
         <translation>&amp;Ansicht</translation>
     </message>
     <message>
-        <location filename="../../pdcp_studio/app/window_menus.py" line="122" />
+        <location filename="../../pdcp_studio/app/window_menus.py" line="126" />
         <source>&amp;Plan</source>
         <translation>&amp;Plan</translation>
     </message>
     <message>
-        <location filename="../../pdcp_studio/app/window_menus.py" line="125" />
+        <location filename="../../pdcp_studio/app/window_menus.py" line="129" />
         <source>&amp;Bus</source>
         <translation>B&amp;us</translation>
     </message>
     <message>
-        <location filename="../../pdcp_studio/app/window_menus.py" line="132" />
+        <location filename="../../pdcp_studio/app/window_menus.py" line="136" />
         <source>&amp;Help</source>
         <translation>&amp;Hilfe</translation>
     </message>
@@ -2281,12 +2281,12 @@ Den PDCP-Bus einer aktiven Prothese ansehen und einrichten.</translation>
 <context>
     <name>RecoveryMixin</name>
     <message>
-        <location filename="../../pdcp_studio/app/window_recovery.py" line="52" />
+        <location filename="../../pdcp_studio/app/window_recovery.py" line="56" />
         <source>Cannot recover</source>
         <translation>Wiederherstellen nicht möglich</translation>
     </message>
     <message>
-        <location filename="../../pdcp_studio/app/window_recovery.py" line="57" />
+        <location filename="../../pdcp_studio/app/window_recovery.py" line="61" />
         <source>Recovered unsaved work: {title}</source>
         <translation>Ungespeicherte Arbeit wiederhergestellt: {title}</translation>
     </message>
@@ -2725,14 +2725,6 @@ Die Prothese ist wie zuvor.</translation>
         <location filename="../../pdcp_studio/app/config_view.py" line="179" />
         <source>Channel profile</source>
         <translation>Kanalprofil</translation>
-    </message>
-</context>
-<context>
-    <name>self.live</name>
-    <message>
-        <location filename="../../pdcp_studio/app/main_window.py" line="173" />
-        <source>offline</source>
-        <translation>offline</translation>
     </message>
 </context>
 <context>
