@@ -233,7 +233,7 @@ class Inspector(QScrollArea):
         box.addWidget(
             QLabel(
                 self.tr("<b>Checks</b> — {v0} finding{v1}").format(
-                    v0=len(findings) or "no", v1="s" * (len(findings) != 1)
+                    v0=len(findings) or self.tr("no"), v1="s" * (len(findings) != 1)
                 )
             )
         )

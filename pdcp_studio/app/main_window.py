@@ -36,7 +36,7 @@ from pdcp_studio.app.document import Document
 from pdcp_studio.app.graph.scene import BusScene
 from pdcp_studio.app.graph.view import GraphView
 from pdcp_studio.app.inspector import Inspector
-from pdcp_studio.app.live import LiveController
+from pdcp_studio.app.live import OFFLINE, LiveController
 from pdcp_studio.app.plan_panel import PlanPanel
 from pdcp_studio.app.tree_panel import DeviceTree
 from pdcp_studio.app.window_bus import BusMixin
@@ -170,7 +170,7 @@ class MainWindow(MenusMixin, FileHandlingMixin, ExportMixin, BusMixin, RecoveryM
                 self.tr("{v0}{v1}[*] — PDCP Studio").format(v0=state[:1].upper(), v1=state[1:])
             )
         else:
-            where = "" if state == self.live.tr("offline") else f" — {state}"
+            where = "" if self.live.state == OFFLINE else f" — {state}"
             self.setWindowTitle(
                 self.tr("{title}[*]{where} — PDCP Studio").format(title=self.doc.title, where=where)
             )

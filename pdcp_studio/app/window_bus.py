@@ -8,7 +8,8 @@ reads in one place; the connection itself is :mod:`pdcp_studio.app.live`.
 from __future__ import annotations
 
 import logging
-from typing import Any
+from collections.abc import Callable
+from typing import TYPE_CHECKING, Any
 
 from PySide6.QtCore import Qt
 
@@ -17,6 +18,9 @@ log = logging.getLogger("pdcp_studio.app.main_window")  # the name it always log
 
 class BusMixin:
     """Bus docks (made once per window, fed by each new bridge) and bus commands."""
+
+    if TYPE_CHECKING:  # a mixin of a QObject: Qt gives it tr()
+        tr: Callable[[str], str]
 
     def ask_connect(self) -> None:
         from pdcp_studio.app.connect_dialog import ConnectDialog

@@ -6,7 +6,9 @@ document (:mod:`window_files`).
 
 from __future__ import annotations
 
+from collections.abc import Callable
 from pathlib import Path
+from typing import TYPE_CHECKING
 
 from PySide6.QtGui import QImage, QPainter
 from PySide6.QtWidgets import QFileDialog, QGraphicsItem
@@ -14,6 +16,9 @@ from PySide6.QtWidgets import QFileDialog, QGraphicsItem
 
 class ExportMixin:
     """Graph image, PNG/SVG export and the PDF report of :class:`MainWindow`."""
+
+    if TYPE_CHECKING:  # a mixin of a QObject: Qt gives it tr()
+        tr: Callable[[str], str]
 
     def graph_image(self, scale: float = 2.0) -> QImage:
         """The whole graph rendered off screen (for PNG export and the report)."""

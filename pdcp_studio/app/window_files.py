@@ -6,7 +6,9 @@ writing the formats themselves is :mod:`pdcp_studio.app.files`.
 
 from __future__ import annotations
 
+from collections.abc import Callable
 from pathlib import Path
+from typing import TYPE_CHECKING
 
 from PySide6.QtCore import QSettings
 from PySide6.QtWidgets import QFileDialog, QMessageBox
@@ -18,6 +20,9 @@ from pdcp_studio.errors import PdcpError
 
 class FileHandlingMixin:
     """Open, save, save as, and the ask-before-dropping-changes of :class:`MainWindow`."""
+
+    if TYPE_CHECKING:  # a mixin of a QObject: Qt gives it tr()
+        tr: Callable[[str], str]
 
     def open_path(self, path: str | Path) -> bool:
         """Open a system file or a .pdcfg; errors go to a message box and return False.

@@ -6,7 +6,8 @@ where it shows) reads in one place; every action only calls a method of the wind
 
 from __future__ import annotations
 
-from typing import Any
+from collections.abc import Callable
+from typing import TYPE_CHECKING, Any
 
 from PySide6.QtGui import QAction, QKeySequence
 
@@ -17,6 +18,9 @@ from pdcp_studio.app.window_support import DEFAULT_BUS
 
 class MenusMixin:
     """Builds ``act_*``, ``plan_actions``, the menus (``view_menu``, ``bus_menu``) and toolbar."""
+
+    if TYPE_CHECKING:  # a mixin of a QObject: Qt gives it tr()
+        tr: Callable[[str], str]
 
     def _action(self, text: str, slot: Any, shortcut: Any = None, tip: str = "") -> QAction:
         action = QAction(text, self)

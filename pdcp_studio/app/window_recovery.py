@@ -6,7 +6,8 @@ Kept apart from :mod:`main_window`; the autosaver and the dialog themselves are 
 
 from __future__ import annotations
 
-from typing import Any
+from collections.abc import Callable
+from typing import TYPE_CHECKING, Any
 
 from pdcp_studio.app import files
 from pdcp_studio.errors import PdcpError
@@ -14,6 +15,9 @@ from pdcp_studio.errors import PdcpError
 
 class RecoveryMixin:
     """Autosave while editing; after a crash, offer and restore what was autosaved."""
+
+    if TYPE_CHECKING:  # a mixin of a QObject: Qt gives it tr()
+        tr: Callable[[str], str]
 
     def _start_autosave(self, recovery: Any) -> None:
         from pdcp_studio.app import recovery as mod

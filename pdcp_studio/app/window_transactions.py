@@ -142,10 +142,16 @@ class TransactionsMixin:
 
         SB = QMessageBox.StandardButton
         answer = QMessageBox.warning(
-            self, _tr("Pending changes"),
-            _tr("{0} change(s) were not written to the prosthesis. Leave it without them?\n"
-                "(Write to prosthesis writes them; the document keeps them either way.)")
-            .format(n), SB.Discard | SB.Cancel, SB.Cancel)
+            self,
+            translate("MainWindow", "Pending changes"),
+            translate(
+                "MainWindow",
+                "{0} change(s) were not written to the prosthesis. Leave it without them?\n"
+                "(Write to prosthesis writes them; the document keeps them either way.)",
+            ).format(n),
+            SB.Discard | SB.Cancel,
+            SB.Cancel,
+        )
         return answer == SB.Discard
 
     def disconnect_asking(self) -> None:

@@ -45,42 +45,42 @@
 <context>
     <name>BusMixin</name>
     <message>
-        <location filename="../../pdcp_studio/app/window_bus.py" line="34" />
+        <location filename="../../pdcp_studio/app/window_bus.py" line="38" />
         <source>Some bus panels are unavailable: {err}</source>
         <translation>Einige Bus-Ansichten sind nicht verfügbar: {err}</translation>
     </message>
     <message>
-        <location filename="../../pdcp_studio/app/window_bus.py" line="52" />
+        <location filename="../../pdcp_studio/app/window_bus.py" line="56" />
         <source>Live plot</source>
         <translation>Live-Verlauf</translation>
     </message>
     <message>
-        <location filename="../../pdcp_studio/app/window_bus.py" line="66" />
+        <location filename="../../pdcp_studio/app/window_bus.py" line="70" />
         <source>Simulator</source>
         <translation>Simulator</translation>
     </message>
     <message>
-        <location filename="../../pdcp_studio/app/window_bus.py" line="127" />
+        <location filename="../../pdcp_studio/app/window_bus.py" line="138" />
         <source>Read configuration: connect to a bus first</source>
         <translation>Konfiguration lesen: zuerst mit einem Bus verbinden</translation>
     </message>
     <message>
-        <location filename="../../pdcp_studio/app/window_bus.py" line="136" />
+        <location filename="../../pdcp_studio/app/window_bus.py" line="147" />
         <source>Read the arbitrator's stored configuration: {n} configuration(s), {links} links — Find replacements and Start-up now use it</source>
         <translation>Gespeicherte Konfiguration des Arbiters gelesen: {n} Konfiguration(en), {links} Verbindungen — Ersatz finden und Hochlauf verwenden sie jetzt</translation>
     </message>
     <message>
-        <location filename="../../pdcp_studio/app/window_bus.py" line="145" />
+        <location filename="../../pdcp_studio/app/window_bus.py" line="156" />
         <source>Cancelling…</source>
         <translation>Wird abgebrochen…</translation>
     </message>
     <message>
-        <location filename="../../pdcp_studio/app/window_bus.py" line="187" />
+        <location filename="../../pdcp_studio/app/window_bus.py" line="198" />
         <source>Write configuration</source>
         <translation>Konfiguration schreiben</translation>
     </message>
     <message>
-        <location filename="../../pdcp_studio/app/window_bus.py" line="187" />
+        <location filename="../../pdcp_studio/app/window_bus.py" line="198" />
         <source>connect to a bus first</source>
         <translation>zuerst mit einem Bus verbinden</translation>
     </message>
@@ -88,33 +88,33 @@
 <context>
     <name>BusScene</name>
     <message>
-        <location filename="../../pdcp_studio/app/graph/scene.py" line="149" />
+        <location filename="../../pdcp_studio/app/graph/scene.py" line="153" />
         <source>Pending removal (still on the prosthesis): {link}</source>
         <extracomment>A link counts as "live" this long after its output's last data frame. Ghosts of links on the prosthesis that the project removes (pending removals). The outcome of the last link drag: (link or None, refusal reason or "").</extracomment>
         <translation>Entfernen vorgemerkt (noch auf der Prothese): {link}</translation>
     </message>
     <message>
-        <location filename="../../pdcp_studio/app/graph/scene.py" line="333" />
+        <location filename="../../pdcp_studio/app/graph/scene.py" line="354" />
         <source>Removed {n} link{v1}</source>
         <translation>{n} Verbindung(en) entfernt</translation>
     </message>
     <message>
-        <location filename="../../pdcp_studio/app/graph/scene.py" line="344" />
+        <location filename="../../pdcp_studio/app/graph/scene.py" line="365" />
         <source>Drag from {ref} to {what} to link them</source>
         <translation>Von {ref} zu {what} ziehen, um sie zu verbinden</translation>
     </message>
     <message>
-        <location filename="../../pdcp_studio/app/graph/scene.py" line="389" />
+        <location filename="../../pdcp_studio/app/graph/scene.py" line="410" />
         <source>Link cancelled: release over a port to link</source>
         <translation>Verbinden abgebrochen: über einem Anschluss loslassen, um zu verbinden</translation>
     </message>
     <message>
-        <location filename="../../pdcp_studio/app/graph/scene.py" line="396" />
+        <location filename="../../pdcp_studio/app/graph/scene.py" line="417" />
         <source>Cannot link {a} → {b}: {reason}</source>
         <translation>{a} → {b} kann nicht verbunden werden: {reason}</translation>
     </message>
     <message>
-        <location filename="../../pdcp_studio/app/graph/scene.py" line="403" />
+        <location filename="../../pdcp_studio/app/graph/scene.py" line="424" />
         <source>Linked {v0} → {v1}</source>
         <translation>Verbunden: {v0} → {v1}</translation>
     </message>
@@ -357,13 +357,13 @@
     </message>
     <message>
         <location filename="../../pdcp_studio/app/config_view.py" line="269" />
-        <location filename="../../pdcp_studio/app/config_view.py" line="411" />
+        <location filename="../../pdcp_studio/app/config_view.py" line="412" />
         <source>Move up</source>
         <translation>Nach oben</translation>
     </message>
     <message>
         <location filename="../../pdcp_studio/app/config_view.py" line="270" />
-        <location filename="../../pdcp_studio/app/config_view.py" line="412" />
+        <location filename="../../pdcp_studio/app/config_view.py" line="413" />
         <source>Move down</source>
         <translation>Nach unten</translation>
     </message>
@@ -405,117 +405,117 @@
         <translation>Nach (Eingang)</translation>
     </message>
     <message>
-        <location filename="../../pdcp_studio/app/config_view.py" line="305" />
-        <location filename="../../pdcp_studio/app/config_view.py" line="413" />
+        <location filename="../../pdcp_studio/app/config_view.py" line="306" />
+        <location filename="../../pdcp_studio/app/config_view.py" line="414" />
         <source>Add link…</source>
         <translation>Verbindung hinzufügen…</translation>
     </message>
     <message>
-        <location filename="../../pdcp_studio/app/config_view.py" line="306" />
-        <location filename="../../pdcp_studio/app/config_view.py" line="402" />
+        <location filename="../../pdcp_studio/app/config_view.py" line="307" />
+        <location filename="../../pdcp_studio/app/config_view.py" line="403" />
         <source>Remove link</source>
         <translation>Verbindung entfernen</translation>
     </message>
     <message>
-        <location filename="../../pdcp_studio/app/config_view.py" line="307" />
+        <location filename="../../pdcp_studio/app/config_view.py" line="308" />
         <source>Edit output channel…</source>
         <translation>Ausgangskanal bearbeiten…</translation>
     </message>
     <message>
-        <location filename="../../pdcp_studio/app/config_view.py" line="308" />
+        <location filename="../../pdcp_studio/app/config_view.py" line="309" />
         <source>Edit input channel…</source>
         <translation>Eingangskanal bearbeiten…</translation>
     </message>
     <message>
-        <location filename="../../pdcp_studio/app/config_view.py" line="335" />
-        <location filename="../../pdcp_studio/app/config_view.py" line="418" />
+        <location filename="../../pdcp_studio/app/config_view.py" line="336" />
+        <location filename="../../pdcp_studio/app/config_view.py" line="419" />
         <source>Fit to the prosthesis in the main window</source>
         <translation>An die Prothese im Hauptfenster anpassen</translation>
     </message>
     <message>
-        <location filename="../../pdcp_studio/app/config_view.py" line="336" />
-        <location filename="../../pdcp_studio/app/config_view.py" line="420" />
+        <location filename="../../pdcp_studio/app/config_view.py" line="337" />
+        <location filename="../../pdcp_studio/app/config_view.py" line="421" />
         <source>Fit to a system file…</source>
         <translation>An eine Systemdatei anpassen…</translation>
     </message>
     <message>
-        <location filename="../../pdcp_studio/app/config_view.py" line="347" />
+        <location filename="../../pdcp_studio/app/config_view.py" line="348" />
         <source>Checks</source>
         <translation>Prüfungen</translation>
     </message>
     <message>
-        <location filename="../../pdcp_studio/app/config_view.py" line="348" />
+        <location filename="../../pdcp_studio/app/config_view.py" line="349" />
         <source>Fit</source>
         <translation>Anpassen</translation>
     </message>
     <message>
-        <location filename="../../pdcp_studio/app/config_view.py" line="383" />
+        <location filename="../../pdcp_studio/app/config_view.py" line="384" />
         <source>&amp;File</source>
         <extracomment>Started when the prosthesis changes (names and fit follow it, debounced).</extracomment>
         <translation>&amp;Datei</translation>
     </message>
     <message>
-        <location filename="../../pdcp_studio/app/config_view.py" line="384" />
+        <location filename="../../pdcp_studio/app/config_view.py" line="385" />
         <source>&amp;Save</source>
         <translation>&amp;Speichern</translation>
     </message>
     <message>
-        <location filename="../../pdcp_studio/app/config_view.py" line="387" />
+        <location filename="../../pdcp_studio/app/config_view.py" line="388" />
         <source>Save &amp;as…</source>
         <translation>Speichern &amp;unter…</translation>
     </message>
     <message>
-        <location filename="../../pdcp_studio/app/config_view.py" line="390" />
+        <location filename="../../pdcp_studio/app/config_view.py" line="391" />
         <source>&amp;Close</source>
         <translation>S&amp;chließen</translation>
     </message>
     <message>
-        <location filename="../../pdcp_studio/app/config_view.py" line="395" />
+        <location filename="../../pdcp_studio/app/config_view.py" line="396" />
         <source>&amp;Edit</source>
         <translation>&amp;Bearbeiten</translation>
     </message>
     <message>
-        <location filename="../../pdcp_studio/app/config_view.py" line="396" />
+        <location filename="../../pdcp_studio/app/config_view.py" line="397" />
         <source>&amp;Undo</source>
         <translation>&amp;Rückgängig</translation>
     </message>
     <message>
-        <location filename="../../pdcp_studio/app/config_view.py" line="398" />
+        <location filename="../../pdcp_studio/app/config_view.py" line="399" />
         <source>&amp;Redo</source>
         <translation>&amp;Wiederholen</translation>
     </message>
     <message>
-        <location filename="../../pdcp_studio/app/config_view.py" line="406" />
+        <location filename="../../pdcp_studio/app/config_view.py" line="407" />
         <source>&amp;Configuration</source>
         <translation>&amp;Konfiguration</translation>
     </message>
     <message>
-        <location filename="../../pdcp_studio/app/config_view.py" line="407" />
+        <location filename="../../pdcp_studio/app/config_view.py" line="408" />
         <source>Add configuration</source>
         <translation>Konfiguration hinzufügen</translation>
     </message>
     <message>
-        <location filename="../../pdcp_studio/app/config_view.py" line="408" />
+        <location filename="../../pdcp_studio/app/config_view.py" line="409" />
         <source>Duplicate configuration</source>
         <translation>Konfiguration duplizieren</translation>
     </message>
     <message>
-        <location filename="../../pdcp_studio/app/config_view.py" line="410" />
+        <location filename="../../pdcp_studio/app/config_view.py" line="411" />
         <source>Remove configuration</source>
         <translation>Konfiguration entfernen</translation>
     </message>
     <message>
-        <location filename="../../pdcp_studio/app/config_view.py" line="417" />
+        <location filename="../../pdcp_studio/app/config_view.py" line="418" />
         <source>F&amp;it</source>
         <translation>An&amp;passen</translation>
     </message>
     <message>
-        <location filename="../../pdcp_studio/app/config_view.py" line="432" />
+        <location filename="../../pdcp_studio/app/config_view.py" line="433" />
         <source>Stored configurations</source>
         <translation>Gespeicherte Konfigurationen</translation>
     </message>
     <message>
-        <location filename="../../pdcp_studio/app/config_view.py" line="433" />
+        <location filename="../../pdcp_studio/app/config_view.py" line="434" />
         <source> — PDCP Studio</source>
         <translation> — PDCP Studio</translation>
     </message>
@@ -607,52 +607,52 @@
         <translation>Systemdateien (*.json)</translation>
     </message>
     <message>
-        <location filename="../../pdcp_studio/app/config_view.py" line="659" />
+        <location filename="../../pdcp_studio/app/config_view.py" line="670" />
         <source>Stored channel %1</source>
         <translation>Gespeicherter Kanal %1</translation>
     </message>
     <message>
-        <location filename="../../pdcp_studio/app/config_view.py" line="710" />
+        <location filename="../../pdcp_studio/app/config_view.py" line="721" />
         <source>Save as</source>
         <translation>Speichern unter</translation>
     </message>
     <message>
-        <location filename="../../pdcp_studio/app/config_view.py" line="711" />
+        <location filename="../../pdcp_studio/app/config_view.py" line="722" />
         <source>Stored configurations (*.pdcfg)</source>
         <translation>Gespeicherte Konfigurationen (*.pdcfg)</translation>
     </message>
     <message>
-        <location filename="../../pdcp_studio/app/config_view.py" line="718" />
+        <location filename="../../pdcp_studio/app/config_view.py" line="729" />
         <source>Cannot save</source>
         <translation>Speichern nicht möglich</translation>
     </message>
     <message>
-        <location filename="../../pdcp_studio/app/config_view.py" line="720" />
+        <location filename="../../pdcp_studio/app/config_view.py" line="731" />
         <source>Saved %1</source>
         <translation>%1 gespeichert</translation>
     </message>
     <message>
-        <location filename="../../pdcp_studio/app/config_view.py" line="732" />
+        <location filename="../../pdcp_studio/app/config_view.py" line="743" />
         <source>Unsaved changes</source>
         <translation>Ungespeicherte Änderungen</translation>
     </message>
     <message>
-        <location filename="../../pdcp_studio/app/config_view.py" line="733" />
+        <location filename="../../pdcp_studio/app/config_view.py" line="744" />
         <source>Save the changes to %1?</source>
         <translation>Änderungen an %1 speichern?</translation>
     </message>
     <message>
-        <location filename="../../pdcp_studio/app/config_view.py" line="762" />
+        <location filename="../../pdcp_studio/app/config_view.py" line="773" />
         <source>the live bus %1</source>
         <translation>der Live-Bus %1</translation>
     </message>
     <message>
-        <location filename="../../pdcp_studio/app/config_view.py" line="768" />
+        <location filename="../../pdcp_studio/app/config_view.py" line="779" />
         <source>the main window</source>
         <translation>das Hauptfenster</translation>
     </message>
     <message>
-        <location filename="../../pdcp_studio/app/config_view.py" line="770" />
+        <location filename="../../pdcp_studio/app/config_view.py" line="781" />
         <source>the prosthesis in the main window (%1)</source>
         <translation>die Prothese im Hauptfenster (%1)</translation>
     </message>
@@ -789,27 +789,27 @@
 <context>
     <name>ExportMixin</name>
     <message>
-        <location filename="../../pdcp_studio/app/window_export.py" line="67" />
+        <location filename="../../pdcp_studio/app/window_export.py" line="72" />
         <source>Export graph</source>
         <translation>Grafik exportieren</translation>
     </message>
     <message>
-        <location filename="../../pdcp_studio/app/window_export.py" line="73" />
+        <location filename="../../pdcp_studio/app/window_export.py" line="78" />
         <source>Exported {path}</source>
         <translation>{path} exportiert</translation>
     </message>
     <message>
-        <location filename="../../pdcp_studio/app/window_export.py" line="75" />
+        <location filename="../../pdcp_studio/app/window_export.py" line="80" />
         <source>Cannot export</source>
         <translation>Export nicht möglich</translation>
     </message>
     <message>
-        <location filename="../../pdcp_studio/app/window_export.py" line="78" />
+        <location filename="../../pdcp_studio/app/window_export.py" line="83" />
         <source>Fitting report</source>
         <translation>Anpassungsbericht</translation>
     </message>
     <message>
-        <location filename="../../pdcp_studio/app/window_export.py" line="80" />
+        <location filename="../../pdcp_studio/app/window_export.py" line="85" />
         <source>PDF (*.pdf)</source>
         <translation>PDF (*.pdf)</translation>
     </message>
@@ -817,80 +817,80 @@
 <context>
     <name>FileHandlingMixin</name>
     <message>
-        <location filename="../../pdcp_studio/app/window_files.py" line="35" />
+        <location filename="../../pdcp_studio/app/window_files.py" line="40" />
         <source>Cannot open</source>
         <translation>Öffnen nicht möglich</translation>
     </message>
     <message>
-        <location filename="../../pdcp_studio/app/window_files.py" line="53" />
+        <location filename="../../pdcp_studio/app/window_files.py" line="58" />
         <source>Opened {what} {v1}: {n_devices} devices, {n_links} links{note}</source>
         <translation>{what} {v1} geöffnet: {n_devices} Geräte, {n_links} Verbindungen{note}</translation>
     </message>
     <message>
-        <location filename="../../pdcp_studio/app/window_files.py" line="70" />
+        <location filename="../../pdcp_studio/app/window_files.py" line="75" />
         <source>Opened stored configurations {name} in their own window</source>
         <translation>Gespeicherte Konfigurationen {name} in eigenem Fenster geöffnet</translation>
     </message>
     <message>
-        <location filename="../../pdcp_studio/app/window_files.py" line="97" />
+        <location filename="../../pdcp_studio/app/window_files.py" line="102" />
         <source>Connected to a prosthesis</source>
         <extracomment>``ask_leave_bus`` answers.</extracomment>
         <translation>Mit einer Prothese verbunden</translation>
     </message>
     <message>
-        <location filename="../../pdcp_studio/app/window_files.py" line="98" />
+        <location filename="../../pdcp_studio/app/window_files.py" line="103" />
         <source>another document</source>
         <translation>ein anderes Dokument</translation>
     </message>
     <message>
-        <location filename="../../pdcp_studio/app/window_files.py" line="99" />
+        <location filename="../../pdcp_studio/app/window_files.py" line="104" />
         <source>This window is connected to the prosthesis on {0}.
 Opening {1} ends that connection.</source>
         <translation>Dieses Fenster ist mit der Prothese an {0} verbunden.
 Das Öffnen von {1} beendet diese Verbindung.</translation>
     </message>
     <message>
-        <location filename="../../pdcp_studio/app/window_files.py" line="101" />
+        <location filename="../../pdcp_studio/app/window_files.py" line="106" />
         <source>You can compare the file with the prosthesis instead, and stay connected.</source>
         <translation>Sie können die Datei stattdessen mit der Prothese vergleichen und verbunden bleiben.</translation>
     </message>
     <message>
-        <location filename="../../pdcp_studio/app/window_files.py" line="103" />
+        <location filename="../../pdcp_studio/app/window_files.py" line="108" />
         <source>Compare with the prosthesis</source>
         <translation>Mit der Prothese vergleichen</translation>
     </message>
     <message>
-        <location filename="../../pdcp_studio/app/window_files.py" line="105" />
+        <location filename="../../pdcp_studio/app/window_files.py" line="110" />
         <source>Disconnect and open</source>
         <translation>Trennen und öffnen</translation>
     </message>
     <message>
-        <location filename="../../pdcp_studio/app/window_files.py" line="122" />
+        <location filename="../../pdcp_studio/app/window_files.py" line="127" />
         <source>Open</source>
         <translation>Öffnen</translation>
     </message>
     <message>
-        <location filename="../../pdcp_studio/app/window_files.py" line="135" />
+        <location filename="../../pdcp_studio/app/window_files.py" line="140" />
         <source>Save as</source>
         <translation>Speichern unter</translation>
     </message>
     <message>
-        <location filename="../../pdcp_studio/app/window_files.py" line="150" />
+        <location filename="../../pdcp_studio/app/window_files.py" line="155" />
         <source>Cannot save</source>
         <translation>Speichern nicht möglich</translation>
     </message>
     <message>
-        <location filename="../../pdcp_studio/app/window_files.py" line="154" />
+        <location filename="../../pdcp_studio/app/window_files.py" line="159" />
         <source>Saved {path}</source>
         <translation>{path} gespeichert</translation>
     </message>
     <message>
-        <location filename="../../pdcp_studio/app/window_files.py" line="171" />
+        <location filename="../../pdcp_studio/app/window_files.py" line="176" />
         <source>Unsaved changes</source>
         <translation>Ungespeicherte Änderungen</translation>
     </message>
     <message>
-        <location filename="../../pdcp_studio/app/window_files.py" line="172" />
+        <location filename="../../pdcp_studio/app/window_files.py" line="177" />
         <source>Save the changes to {title}?</source>
         <translation>Änderungen an {title} speichern?</translation>
     </message>
@@ -1057,87 +1057,88 @@ Ihr Name (wird einmal erfragt):</translation>
         <translation>  Parameter 0x{0:02X} von {1}/{2}/{3} Kanal {4} = {5}</translation>
     </message>
     <message>
-        <location filename="../../pdcp_studio/app/history_panel.py" line="184" />
+        <location filename="../../pdcp_studio/app/history_panel.py" line="185" />
         <source>This prosthesis</source>
         <translation>Diese Prothese</translation>
     </message>
     <message>
-        <location filename="../../pdcp_studio/app/history_panel.py" line="185" />
+        <location filename="../../pdcp_studio/app/history_panel.py" line="186" />
         <source>All prostheses</source>
         <translation>Alle Prothesen</translation>
     </message>
     <message>
-        <location filename="../../pdcp_studio/app/history_panel.py" line="188" />
+        <location filename="../../pdcp_studio/app/history_panel.py" line="189" />
         <source>Refresh</source>
         <translation>Aktualisieren</translation>
     </message>
     <message>
-        <location filename="../../pdcp_studio/app/history_panel.py" line="204" />
+        <location filename="../../pdcp_studio/app/history_panel.py" line="205" />
         <source>Restore on the prosthesis…</source>
         <translation>Auf der Prothese wiederherstellen…</translation>
     </message>
     <message>
-        <location filename="../../pdcp_studio/app/history_panel.py" line="205" />
+        <location filename="../../pdcp_studio/app/history_panel.py" line="206" />
         <source>Put the connected prosthesis back as it was after this entry (previewed, confirmed)</source>
         <translation>Die verbundene Prothese in den Zustand nach diesem Eintrag zurückversetzen (mit Vorschau und Bestätigung)</translation>
     </message>
     <message>
-        <location filename="../../pdcp_studio/app/history_panel.py" line="207" />
+        <location filename="../../pdcp_studio/app/history_panel.py" line="208" />
         <source>Fitting report…</source>
         <translation>Anpassungsbericht…</translation>
     </message>
     <message>
-        <location filename="../../pdcp_studio/app/history_panel.py" line="212" />
+        <location filename="../../pdcp_studio/app/history_panel.py" line="213" />
         <source>Show:</source>
         <translation>Anzeigen:</translation>
     </message>
     <message>
-        <location filename="../../pdcp_studio/app/history_panel.py" line="217" />
+        <location filename="../../pdcp_studio/app/history_panel.py" line="218" />
         <source>Select two entries to see how they differ.</source>
         <translation>Zwei Einträge auswählen, um ihre Unterschiede zu sehen.</translation>
     </message>
     <message>
-        <location filename="../../pdcp_studio/app/history_panel.py" line="246" />
+        <location filename="../../pdcp_studio/app/history_panel.py" line="247" />
         <source>{0} entries · chain intact</source>
         <translation>{0} Einträge · Kette intakt</translation>
     </message>
     <message>
-        <location filename="../../pdcp_studio/app/history_panel.py" line="249" />
+        <location filename="../../pdcp_studio/app/history_panel.py" line="250" />
         <source>The history was altered: {0}</source>
         <translation>Die Historie wurde verändert: {0}</translation>
     </message>
     <message>
-        <location filename="../../pdcp_studio/app/history_panel.py" line="256" />
+        <location filename="../../pdcp_studio/app/history_panel.py" line="257" />
         <source>Cannot read the fitting history: {0}</source>
         <translation>Die Anpassungshistorie kann nicht gelesen werden: {0}</translation>
     </message>
     <message>
-        <location filename="../../pdcp_studio/app/history_panel.py" line="310" />
+        <location filename="../../pdcp_studio/app/history_panel.py" line="311" />
         <source>Select an entry to see what it changed, or two to compare them.</source>
         <translation>Einen Eintrag auswählen, um zu sehen, was er geändert hat, oder zwei, um sie zu vergleichen.</translation>
     </message>
     <message>
-        <location filename="../../pdcp_studio/app/history_panel.py" line="329" />
+        <location filename="../../pdcp_studio/app/history_panel.py" line="330" />
+        <location filename="../../pdcp_studio/app/history_panel.py" line="338" />
         <source>Restore</source>
         <translation>Wiederherstellen</translation>
     </message>
     <message>
-        <location filename="../../pdcp_studio/app/history_panel.py" line="329" />
+        <location filename="../../pdcp_studio/app/history_panel.py" line="330" />
         <source>connect to the prosthesis first</source>
         <translation>zuerst mit der Prothese verbinden</translation>
     </message>
     <message>
-        <location filename="../../pdcp_studio/app/history_panel.py" line="336" />
+        <location filename="../../pdcp_studio/app/history_panel.py" line="341" />
         <source>Restore history entry {0}</source>
         <translation>Historieneintrag {0} wiederherstellen</translation>
     </message>
     <message>
-        <location filename="../../pdcp_studio/app/history_panel.py" line="344" />
+        <location filename="../../pdcp_studio/app/history_panel.py" line="349" />
         <source>Fitting report</source>
         <translation>Anpassungsbericht</translation>
     </message>
     <message>
-        <location filename="../../pdcp_studio/app/history_panel.py" line="346" />
+        <location filename="../../pdcp_studio/app/history_panel.py" line="351" />
         <source>PDF (*.pdf)</source>
         <translation>PDF (*.pdf)</translation>
     </message>
@@ -1146,123 +1147,128 @@ Ihr Name (wird einmal erfragt):</translation>
     <name>Inspector</name>
     <message>
         <location filename="../../pdcp_studio/app/inspector.py" line="164" />
-        <source>Live bus: an edit here is written to the device at once (and written back by Undo).</source>
+        <source>Live bus: an edit here is a pending change (one undo step); Write to prosthesis writes the pending changes in one transaction.</source>
         <extracomment>Device parameters (channel index 0) → Device attribute edited through them. A short message for the status bar (an edit refused, a link deleted). Editors and error labels of the current form by field name (tests drive them).</extracomment>
-        <translation>Live-Bus: Eine Änderung hier wird sofort in das Gerät geschrieben (und mit Rückgängig zurückgeschrieben).</translation>
+        <translation>Live-Bus: Eine Änderung hier ist eine vorgemerkte Änderung (ein Rückgängig-Schritt); „Auf die Prothese schreiben“ schreibt die vorgemerkten Änderungen in einem Vorgang.</translation>
     </message>
     <message>
-        <location filename="../../pdcp_studio/app/inspector.py" line="174" />
+        <location filename="../../pdcp_studio/app/inspector.py" line="175" />
         <source>&lt;b&gt;{text}&lt;/b&gt;</source>
         <translation>&lt;b&gt;{text}&lt;/b&gt;</translation>
     </message>
     <message>
-        <location filename="../../pdcp_studio/app/inspector.py" line="188" />
+        <location filename="../../pdcp_studio/app/inspector.py" line="189" />
         <source>{title}&lt;br&gt;&lt;span style='color:#66707b; font-size:small'&gt;{meta}&lt;/span&gt;</source>
         <translation>{title}&lt;br&gt;&lt;span style='color:#66707b; font-size:small'&gt;{meta}&lt;/span&gt;</translation>
     </message>
     <message>
-        <location filename="../../pdcp_studio/app/inspector.py" line="192" />
+        <location filename="../../pdcp_studio/app/inspector.py" line="193" />
         <source>&lt;span style='color:#66707b; font-size:small'&gt;{meta}&lt;/span&gt;</source>
         <translation>&lt;span style='color:#66707b; font-size:small'&gt;{meta}&lt;/span&gt;</translation>
     </message>
     <message>
-        <location filename="../../pdcp_studio/app/inspector.py" line="221" />
+        <location filename="../../pdcp_studio/app/inspector.py" line="222" />
         <source>live: {0}</source>
         <translation>live: {0}</translation>
     </message>
     <message>
-        <location filename="../../pdcp_studio/app/inspector.py" line="223" />
+        <location filename="../../pdcp_studio/app/inspector.py" line="224" />
         <source>System</source>
         <translation>System</translation>
     </message>
     <message>
-        <location filename="../../pdcp_studio/app/inspector.py" line="223" />
+        <location filename="../../pdcp_studio/app/inspector.py" line="224" />
         <source>{0} devices</source>
         <translation>{0} Geräte</translation>
     </message>
     <message>
-        <location filename="../../pdcp_studio/app/inspector.py" line="224" />
+        <location filename="../../pdcp_studio/app/inspector.py" line="225" />
         <source> ({0} missing)</source>
         <translation> ({0} fehlen)</translation>
     </message>
     <message>
-        <location filename="../../pdcp_studio/app/inspector.py" line="225" />
+        <location filename="../../pdcp_studio/app/inspector.py" line="226" />
         <source>, {0} links · {1}</source>
         <translation>, {0} Verbindungen · {1}</translation>
     </message>
     <message>
-        <location filename="../../pdcp_studio/app/inspector.py" line="226" />
+        <location filename="../../pdcp_studio/app/inspector.py" line="227" />
         <source>Select a device, channel or link on the graph or in the tree to see and edit its parameters.</source>
         <translation>Ein Gerät, einen Kanal oder eine Verbindung in der Grafik oder im Baum auswählen, um die Parameter zu sehen und zu bearbeiten.</translation>
     </message>
     <message>
-        <location filename="../../pdcp_studio/app/inspector.py" line="234" />
+        <location filename="../../pdcp_studio/app/inspector.py" line="235" />
         <source>&lt;b&gt;Checks&lt;/b&gt; — {v0} finding{v1}</source>
         <translation>&lt;b&gt;Prüfungen&lt;/b&gt; — {v0} Befund(e)</translation>
     </message>
     <message>
-        <location filename="../../pdcp_studio/app/inspector.py" line="265" />
+        <location filename="../../pdcp_studio/app/inspector.py" line="236" />
+        <source>no</source>
+        <translation>keine</translation>
+    </message>
+    <message>
+        <location filename="../../pdcp_studio/app/inspector.py" line="266" />
         <source>a name for this device (not sent to it)</source>
         <translation>ein Name für dieses Gerät (wird nicht übertragen)</translation>
     </message>
     <message>
-        <location filename="../../pdcp_studio/app/inspector.py" line="302" />
+        <location filename="../../pdcp_studio/app/inspector.py" line="303" />
         <source>not assigned</source>
         <translation>nicht zugewiesen</translation>
     </message>
     <message>
-        <location filename="../../pdcp_studio/app/inspector.py" line="332" />
+        <location filename="../../pdcp_studio/app/inspector.py" line="333" />
         <source>the profile (bytes 2–3 of parameter 1)</source>
         <translation>das Profil (Bytes 2–3 von Parameter 1)</translation>
     </message>
     <message>
-        <location filename="../../pdcp_studio/app/inspector.py" line="342" />
+        <location filename="../../pdcp_studio/app/inspector.py" line="343" />
         <source>enabled</source>
         <translation>aktiviert</translation>
     </message>
     <message>
-        <location filename="../../pdcp_studio/app/inspector.py" line="413" />
+        <location filename="../../pdcp_studio/app/inspector.py" line="414" />
         <source>sole access</source>
         <translation>alleiniger Zugriff</translation>
     </message>
     <message>
-        <location filename="../../pdcp_studio/app/inspector.py" line="415" />
+        <location filename="../../pdcp_studio/app/inspector.py" line="416" />
         <source>terminal</source>
         <translation>Endgerät</translation>
     </message>
     <message>
-        <location filename="../../pdcp_studio/app/inspector.py" line="418" />
+        <location filename="../../pdcp_studio/app/inspector.py" line="419" />
         <source>sole access is a property of input channels</source>
         <translation>alleiniger Zugriff ist eine Eigenschaft von Eingangskanälen</translation>
     </message>
     <message>
-        <location filename="../../pdcp_studio/app/inspector.py" line="419" />
+        <location filename="../../pdcp_studio/app/inspector.py" line="420" />
         <source>terminal is a property of input channels</source>
         <translation>Endgerät ist eine Eigenschaft von Eingangskanälen</translation>
     </message>
     <message>
-        <location filename="../../pdcp_studio/app/inspector.py" line="477" />
+        <location filename="../../pdcp_studio/app/inspector.py" line="478" />
         <source>choose a profile of the named tree or type one in hex</source>
         <translation>ein Profil aus dem Profilbaum wählen oder hexadezimal eingeben</translation>
     </message>
     <message>
-        <location filename="../../pdcp_studio/app/inspector.py" line="525" />
+        <location filename="../../pdcp_studio/app/inspector.py" line="526" />
         <source>Link</source>
         <translation>Verbindung</translation>
     </message>
     <message>
-        <location filename="../../pdcp_studio/app/inspector.py" line="535" />
+        <location filename="../../pdcp_studio/app/inspector.py" line="536" />
         <source>Delete link</source>
         <translation>Verbindung löschen</translation>
     </message>
     <message>
-        <location filename="../../pdcp_studio/app/inspector.py" line="544" />
+        <location filename="../../pdcp_studio/app/inspector.py" line="545" />
         <source>Removed link {link}</source>
         <translation>Verbindung {link} entfernt</translation>
     </message>
     <message>
-        <location filename="../../pdcp_studio/app/inspector.py" line="550" />
-        <location filename="../../pdcp_studio/app/inspector.py" line="552" />
+        <location filename="../../pdcp_studio/app/inspector.py" line="551" />
+        <location filename="../../pdcp_studio/app/inspector.py" line="553" />
         <source>Refused: {reason}</source>
         <translation>Abgelehnt: {reason}</translation>
     </message>
@@ -1483,6 +1489,7 @@ Den PDCP-Bus einer aktiven Prothese ansehen und einrichten.</translation>
     </message>
     <message>
         <location filename="../../pdcp_studio/app/window_transactions.py" line="34" />
+        <location filename="../../pdcp_studio/app/window_transactions.py" line="146" />
         <source>Pending changes</source>
         <translation>Vorgemerkte Änderungen</translation>
     </message>
@@ -1507,32 +1514,39 @@ Den PDCP-Bus einer aktiven Prothese ansehen und einrichten.</translation>
         <translation>Vorgemerkte Änderungen &amp;verwerfen</translation>
     </message>
     <message>
-        <location filename="../../pdcp_studio/app/window_transactions.py" line="64" />
+        <location filename="../../pdcp_studio/app/window_transactions.py" line="66" />
         <source>Fitting &amp;history</source>
         <translation>Anpassungs&amp;historie</translation>
     </message>
     <message>
-        <location filename="../../pdcp_studio/app/window_transactions.py" line="101" />
+        <location filename="../../pdcp_studio/app/window_transactions.py" line="103" />
         <source>Discard {0} pending change(s)</source>
         <translation>{0} vorgemerkte Änderung(en) verwerfen</translation>
     </message>
     <message>
-        <location filename="../../pdcp_studio/app/window_transactions.py" line="110" />
+        <location filename="../../pdcp_studio/app/window_transactions.py" line="112" />
         <source>Links as on the prosthesis</source>
         <translation>Verbindungen wie auf der Prothese</translation>
     </message>
     <message>
-        <location filename="../../pdcp_studio/app/window_transactions.py" line="121" />
+        <location filename="../../pdcp_studio/app/window_transactions.py" line="123" />
         <source>Discarded {0} pending change(s): the project is as the prosthesis (Undo brings them back)</source>
         <translation>{0} vorgemerkte Änderung(en) verworfen: Das Projekt entspricht der Prothese (Rückgängig holt sie zurück)</translation>
     </message>
     <message>
-        <location filename="../../pdcp_studio/app/window_transactions.py" line="174" />
+        <location filename="../../pdcp_studio/app/window_transactions.py" line="147" />
+        <source>{0} change(s) were not written to the prosthesis. Leave it without them?
+(Write to prosthesis writes them; the document keeps them either way.)</source>
+        <translation>{0} Änderung(en) wurden nicht auf die Prothese geschrieben. Ohne sie trennen?
+(„Auf die Prothese schreiben“ schreibt sie; das Dokument behält sie in jedem Fall.)</translation>
+    </message>
+    <message>
+        <location filename="../../pdcp_studio/app/window_transactions.py" line="207" />
         <source>Cannot write the report</source>
         <translation>Der Bericht kann nicht geschrieben werden</translation>
     </message>
     <message>
-        <location filename="../../pdcp_studio/app/window_transactions.py" line="176" />
+        <location filename="../../pdcp_studio/app/window_transactions.py" line="209" />
         <source>Wrote the fitting report {0}</source>
         <translation>Anpassungsbericht {0} geschrieben</translation>
     </message>
@@ -1540,187 +1554,187 @@ Den PDCP-Bus einer aktiven Prothese ansehen und einrichten.</translation>
 <context>
     <name>MenusMixin</name>
     <message>
-        <location filename="../../pdcp_studio/app/window_menus.py" line="33" />
+        <location filename="../../pdcp_studio/app/window_menus.py" line="37" />
         <source>&amp;Open…</source>
         <translation>Ö&amp;ffnen…</translation>
     </message>
     <message>
-        <location filename="../../pdcp_studio/app/window_menus.py" line="36" />
+        <location filename="../../pdcp_studio/app/window_menus.py" line="40" />
         <source>Open a system file (.json) or a configuration (.pdcfg)</source>
         <translation>Eine Systemdatei (.json) oder eine Konfiguration (.pdcfg) öffnen</translation>
     </message>
     <message>
-        <location filename="../../pdcp_studio/app/window_menus.py" line="38" />
+        <location filename="../../pdcp_studio/app/window_menus.py" line="42" />
         <source>&amp;Save</source>
         <translation>&amp;Speichern</translation>
     </message>
     <message>
-        <location filename="../../pdcp_studio/app/window_menus.py" line="39" />
+        <location filename="../../pdcp_studio/app/window_menus.py" line="43" />
         <source>Save &amp;As…</source>
         <translation>Speichern &amp;unter…</translation>
     </message>
     <message>
-        <location filename="../../pdcp_studio/app/window_menus.py" line="40" />
+        <location filename="../../pdcp_studio/app/window_menus.py" line="44" />
         <source>Export graph as &amp;PNG…</source>
         <translation>Grafik als &amp;PNG exportieren…</translation>
     </message>
     <message>
-        <location filename="../../pdcp_studio/app/window_menus.py" line="42" />
+        <location filename="../../pdcp_studio/app/window_menus.py" line="46" />
         <source>Export graph as S&amp;VG…</source>
         <translation>Grafik als S&amp;VG exportieren…</translation>
     </message>
     <message>
-        <location filename="../../pdcp_studio/app/window_menus.py" line="44" />
+        <location filename="../../pdcp_studio/app/window_menus.py" line="48" />
         <source>Fitting &amp;report (PDF)…</source>
         <translation>Anpassungs&amp;bericht (PDF)…</translation>
     </message>
     <message>
-        <location filename="../../pdcp_studio/app/window_menus.py" line="45" />
+        <location filename="../../pdcp_studio/app/window_menus.py" line="49" />
         <source>&amp;Quit</source>
         <translation>&amp;Beenden</translation>
     </message>
     <message>
-        <location filename="../../pdcp_studio/app/window_menus.py" line="46" />
+        <location filename="../../pdcp_studio/app/window_menus.py" line="50" />
         <source>&amp;Undo</source>
         <translation>&amp;Rückgängig</translation>
     </message>
     <message>
-        <location filename="../../pdcp_studio/app/window_menus.py" line="48" />
+        <location filename="../../pdcp_studio/app/window_menus.py" line="52" />
         <source>&amp;Redo</source>
         <translation>&amp;Wiederholen</translation>
     </message>
     <message>
-        <location filename="../../pdcp_studio/app/window_menus.py" line="50" />
+        <location filename="../../pdcp_studio/app/window_menus.py" line="54" />
         <source>&amp;Delete link</source>
         <translation>Verbindung &amp;löschen</translation>
     </message>
     <message>
-        <location filename="../../pdcp_studio/app/window_menus.py" line="51" />
+        <location filename="../../pdcp_studio/app/window_menus.py" line="55" />
         <source>Remove the selected links</source>
         <translation>Die ausgewählten Verbindungen entfernen</translation>
     </message>
     <message>
-        <location filename="../../pdcp_studio/app/window_menus.py" line="52" />
+        <location filename="../../pdcp_studio/app/window_menus.py" line="56" />
         <source>&amp;Fit to window</source>
         <translation>An &amp;Fenster anpassen</translation>
     </message>
     <message>
-        <location filename="../../pdcp_studio/app/window_menus.py" line="54" />
+        <location filename="../../pdcp_studio/app/window_menus.py" line="58" />
         <source>Zoom &amp;in</source>
         <translation>Ver&amp;größern</translation>
     </message>
     <message>
-        <location filename="../../pdcp_studio/app/window_menus.py" line="57" />
+        <location filename="../../pdcp_studio/app/window_menus.py" line="61" />
         <source>Zoom &amp;out</source>
         <translation>Ver&amp;kleinern</translation>
     </message>
     <message>
-        <location filename="../../pdcp_studio/app/window_menus.py" line="60" />
+        <location filename="../../pdcp_studio/app/window_menus.py" line="64" />
         <source>Show &amp;legend</source>
         <translation>&amp;Legende anzeigen</translation>
     </message>
     <message>
-        <location filename="../../pdcp_studio/app/window_menus.py" line="65" />
+        <location filename="../../pdcp_studio/app/window_menus.py" line="69" />
         <source>&amp;Arrange in layers</source>
         <translation>In Ebenen &amp;anordnen</translation>
     </message>
     <message>
-        <location filename="../../pdcp_studio/app/window_menus.py" line="66" />
+        <location filename="../../pdcp_studio/app/window_menus.py" line="70" />
         <source>Lay the cards out again: sensors → control → terminal devices (one undo step)</source>
         <translation>Die Karten neu anordnen: Sensoren → Steuerung → Endgeräte (ein Rückgängig-Schritt)</translation>
     </message>
     <message>
-        <location filename="../../pdcp_studio/app/window_menus.py" line="73" />
+        <location filename="../../pdcp_studio/app/window_menus.py" line="77" />
         <source>&amp;Connect…</source>
         <translation>&amp;Verbinden…</translation>
     </message>
     <message>
-        <location filename="../../pdcp_studio/app/window_menus.py" line="75" />
+        <location filename="../../pdcp_studio/app/window_menus.py" line="79" />
         <source>Connect to a simulated prosthesis or a CAN bus</source>
         <translation>Mit einer simulierten Prothese oder einem CAN-Bus verbinden</translation>
     </message>
     <message>
-        <location filename="../../pdcp_studio/app/window_menus.py" line="78" />
+        <location filename="../../pdcp_studio/app/window_menus.py" line="82" />
         <source>Open the &amp;simulated prosthesis</source>
         <translation>&amp;Simulierte Prothese öffnen</translation>
     </message>
     <message>
-        <location filename="../../pdcp_studio/app/window_menus.py" line="80" />
+        <location filename="../../pdcp_studio/app/window_menus.py" line="84" />
         <source>&amp;Disconnect</source>
         <translation>&amp;Trennen</translation>
     </message>
     <message>
-        <location filename="../../pdcp_studio/app/window_menus.py" line="81" />
+        <location filename="../../pdcp_studio/app/window_menus.py" line="85" />
         <source>&amp;Scan the bus</source>
         <translation>Bus &amp;abfragen</translation>
     </message>
     <message>
-        <location filename="../../pdcp_studio/app/window_menus.py" line="83" />
+        <location filename="../../pdcp_studio/app/window_menus.py" line="87" />
         <source>&amp;Read the stored configuration</source>
         <translation>Gespeicherte Konfiguration &amp;lesen</translation>
     </message>
     <message>
-        <location filename="../../pdcp_studio/app/window_menus.py" line="84" />
+        <location filename="../../pdcp_studio/app/window_menus.py" line="88" />
         <source>Read the arbitrator's stored configuration; plans that take a configuration (Find replacements, Start-up) then use it</source>
         <translation>Die gespeicherte Konfiguration des Arbiters lesen; Pläne mit Konfiguration (Ersatz finden, Hochlauf) verwenden sie dann</translation>
     </message>
     <message>
-        <location filename="../../pdcp_studio/app/window_menus.py" line="87" />
+        <location filename="../../pdcp_studio/app/window_menus.py" line="91" />
         <source>Ca&amp;ncel bus work</source>
         <translation>Bus-Arbeit a&amp;bbrechen</translation>
     </message>
     <message>
-        <location filename="../../pdcp_studio/app/window_menus.py" line="90" />
+        <location filename="../../pdcp_studio/app/window_menus.py" line="94" />
         <source>Cancel what the bus is doing for you (scan, apply…)</source>
         <translation>Abbrechen, was der Bus gerade für Sie tut (Abfragen, Anwenden…)</translation>
     </message>
     <message>
-        <location filename="../../pdcp_studio/app/window_menus.py" line="92" />
+        <location filename="../../pdcp_studio/app/window_menus.py" line="96" />
         <source>Co&amp;mpare configurations…</source>
         <translation>Konfigurationen &amp;vergleichen…</translation>
     </message>
     <message>
-        <location filename="../../pdcp_studio/app/window_menus.py" line="93" />
+        <location filename="../../pdcp_studio/app/window_menus.py" line="97" />
         <source>&amp;Write configuration to the arbitrator…</source>
         <translation>Konfiguration in den Arbiter &amp;schreiben…</translation>
     </message>
     <message>
-        <location filename="../../pdcp_studio/app/window_menus.py" line="95" />
+        <location filename="../../pdcp_studio/app/window_menus.py" line="99" />
         <source>&amp;Profile tree…</source>
         <translation>&amp;Profilbaum…</translation>
     </message>
     <message>
-        <location filename="../../pdcp_studio/app/window_menus.py" line="96" />
+        <location filename="../../pdcp_studio/app/window_menus.py" line="100" />
         <source>&amp;About PDCP Studio</source>
         <translation>Ü&amp;ber PDCP Studio</translation>
     </message>
     <message>
-        <location filename="../../pdcp_studio/app/window_menus.py" line="100" />
+        <location filename="../../pdcp_studio/app/window_menus.py" line="104" />
         <source>&amp;File</source>
         <translation>&amp;Datei</translation>
     </message>
     <message>
-        <location filename="../../pdcp_studio/app/window_menus.py" line="108" />
+        <location filename="../../pdcp_studio/app/window_menus.py" line="112" />
         <source>&amp;Edit</source>
         <translation>&amp;Bearbeiten</translation>
     </message>
     <message>
-        <location filename="../../pdcp_studio/app/window_menus.py" line="115" />
+        <location filename="../../pdcp_studio/app/window_menus.py" line="119" />
         <source>&amp;View</source>
         <translation>&amp;Ansicht</translation>
     </message>
     <message>
-        <location filename="../../pdcp_studio/app/window_menus.py" line="122" />
+        <location filename="../../pdcp_studio/app/window_menus.py" line="126" />
         <source>&amp;Plan</source>
         <translation>&amp;Plan</translation>
     </message>
     <message>
-        <location filename="../../pdcp_studio/app/window_menus.py" line="125" />
+        <location filename="../../pdcp_studio/app/window_menus.py" line="129" />
         <source>&amp;Bus</source>
         <translation>B&amp;us</translation>
     </message>
     <message>
-        <location filename="../../pdcp_studio/app/window_menus.py" line="132" />
+        <location filename="../../pdcp_studio/app/window_menus.py" line="136" />
         <source>&amp;Help</source>
         <translation>&amp;Hilfe</translation>
     </message>
@@ -1728,127 +1742,160 @@ Den PDCP-Bus einer aktiven Prothese ansehen und einrichten.</translation>
 <context>
     <name>MonitorDock</name>
     <message>
-        <location filename="../../pdcp_studio/app/monitor_dock.py" line="68" />
+        <location filename="../../pdcp_studio/app/monitor_dock.py" line="75" />
         <source>(any)</source>
+        <extracomment>A visible table takes new rows at most this often: painting it costs the GUI thread milliseconds, and a saturated bus brings a batch every few milliseconds. Rows an opened capture sends to the table at a time (the first ones at once).</extracomment>
         <translation>(alle)</translation>
     </message>
     <message>
-        <location filename="../../pdcp_studio/app/monitor_dock.py" line="71" />
+        <location filename="../../pdcp_studio/app/monitor_dock.py" line="78" />
         <source>Time</source>
         <translation>Zeit</translation>
     </message>
     <message>
-        <location filename="../../pdcp_studio/app/monitor_dock.py" line="71" />
+        <location filename="../../pdcp_studio/app/monitor_dock.py" line="78" />
         <source>ID</source>
         <translation>ID</translation>
     </message>
     <message>
-        <location filename="../../pdcp_studio/app/monitor_dock.py" line="72" />
+        <location filename="../../pdcp_studio/app/monitor_dock.py" line="79" />
         <source>Node</source>
         <translation>Knoten</translation>
     </message>
     <message>
-        <location filename="../../pdcp_studio/app/monitor_dock.py" line="73" />
+        <location filename="../../pdcp_studio/app/monitor_dock.py" line="80" />
         <source>Function</source>
         <translation>Funktion</translation>
     </message>
     <message>
-        <location filename="../../pdcp_studio/app/monitor_dock.py" line="74" />
+        <location filename="../../pdcp_studio/app/monitor_dock.py" line="81" />
         <source>Data</source>
         <translation>Daten</translation>
     </message>
     <message>
-        <location filename="../../pdcp_studio/app/monitor_dock.py" line="74" />
+        <location filename="../../pdcp_studio/app/monitor_dock.py" line="81" />
         <source>Decoded</source>
         <translation>Dekodiert</translation>
     </message>
     <message>
-        <location filename="../../pdcp_studio/app/monitor_dock.py" line="252" />
+        <location filename="../../pdcp_studio/app/monitor_dock.py" line="262" />
+        <location filename="../../pdcp_studio/app/monitor_dock.py" line="602" />
         <source>Bus monitor</source>
         <translation>Bus-Monitor</translation>
     </message>
     <message>
-        <location filename="../../pdcp_studio/app/monitor_dock.py" line="284" />
+        <location filename="../../pdcp_studio/app/monitor_dock.py" line="309" />
         <source>Filter text or hex…</source>
+        <extracomment>While a capture is open the table shows it, apart from the live frames, which keep being recorded in ``live_rows`` and come back with ``show_live()``.</extracomment>
         <translation>Text oder Hex filtern…</translation>
     </message>
     <message>
-        <location filename="../../pdcp_studio/app/monitor_dock.py" line="292" />
+        <location filename="../../pdcp_studio/app/monitor_dock.py" line="317" />
         <source>any node</source>
         <translation>jeder Knoten</translation>
     </message>
     <message>
-        <location filename="../../pdcp_studio/app/monitor_dock.py" line="294" />
+        <location filename="../../pdcp_studio/app/monitor_dock.py" line="319" />
         <source>Pause</source>
         <translation>Anhalten</translation>
     </message>
     <message>
-        <location filename="../../pdcp_studio/app/monitor_dock.py" line="295" />
+        <location filename="../../pdcp_studio/app/monitor_dock.py" line="320" />
         <source>Autoscroll</source>
         <translation>Mitlaufen</translation>
     </message>
     <message>
-        <location filename="../../pdcp_studio/app/monitor_dock.py" line="297" />
+        <location filename="../../pdcp_studio/app/monitor_dock.py" line="322" />
         <source>Clear</source>
         <translation>Leeren</translation>
     </message>
     <message>
-        <location filename="../../pdcp_studio/app/monitor_dock.py" line="298" />
+        <location filename="../../pdcp_studio/app/monitor_dock.py" line="323" />
         <source>Save…</source>
         <translation>Speichern…</translation>
     </message>
     <message>
-        <location filename="../../pdcp_studio/app/monitor_dock.py" line="299" />
+        <location filename="../../pdcp_studio/app/monitor_dock.py" line="324" />
         <source>Open…</source>
         <translation>Öffnen…</translation>
     </message>
     <message>
-        <location filename="../../pdcp_studio/app/monitor_dock.py" line="300" />
+        <location filename="../../pdcp_studio/app/monitor_dock.py" line="325" />
         <source>Show a capture file (python-can log formats)</source>
         <translation>Eine Mitschnittdatei anzeigen (python-can-Protokollformate)</translation>
     </message>
     <message>
-        <location filename="../../pdcp_studio/app/monitor_dock.py" line="301" />
+        <location filename="../../pdcp_studio/app/monitor_dock.py" line="326" />
+        <source>Back to live</source>
+        <translation>Zurück zu live</translation>
+    </message>
+    <message>
+        <location filename="../../pdcp_studio/app/monitor_dock.py" line="327" />
+        <source>Close the capture and show the live frames again</source>
+        <translation>Den Mitschnitt schließen und wieder die Live-Nachrichten zeigen</translation>
+    </message>
+    <message>
+        <location filename="../../pdcp_studio/app/monitor_dock.py" line="329" />
+        <source>Stop loading</source>
+        <translation>Laden anhalten</translation>
+    </message>
+    <message>
+        <location filename="../../pdcp_studio/app/monitor_dock.py" line="331" />
         <source>0 frames</source>
         <translation>0 Nachrichten</translation>
     </message>
     <message>
-        <location filename="../../pdcp_studio/app/monitor_dock.py" line="433" />
+        <location filename="../../pdcp_studio/app/monitor_dock.py" line="493" />
         <source>{shown} of {total} frames</source>
         <translation>{shown} von {total} Nachrichten</translation>
     </message>
     <message>
-        <location filename="../../pdcp_studio/app/monitor_dock.py" line="435" />
+        <location filename="../../pdcp_studio/app/monitor_dock.py" line="495" />
         <source>{total} frames</source>
         <translation>{total} Nachrichten</translation>
     </message>
     <message>
-        <location filename="../../pdcp_studio/app/monitor_dock.py" line="442" />
+        <location filename="../../pdcp_studio/app/monitor_dock.py" line="502" />
         <source>Save frames</source>
         <translation>Nachrichten speichern</translation>
     </message>
     <message>
-        <location filename="../../pdcp_studio/app/monitor_dock.py" line="443" />
+        <location filename="../../pdcp_studio/app/monitor_dock.py" line="503" />
         <source>python-can logs (*.asc *.blf *.log *.csv *.trc);;Plain text (*.txt)</source>
         <translation>python-can-Protokolle (*.asc *.blf *.log *.csv *.trc);;Reiner Text (*.txt)</translation>
     </message>
     <message>
-        <location filename="../../pdcp_studio/app/monitor_dock.py" line="449" />
+        <location filename="../../pdcp_studio/app/monitor_dock.py" line="509" />
         <source>Open capture</source>
         <translation>Mitschnitt öffnen</translation>
     </message>
     <message>
-        <location filename="../../pdcp_studio/app/monitor_dock.py" line="450" />
+        <location filename="../../pdcp_studio/app/monitor_dock.py" line="510" />
         <source>python-can logs (*.asc *.blf *.log *.csv *.trc *.db *.gz);;All files (*)</source>
         <translation>python-can-Protokolle (*.asc *.blf *.log *.csv *.trc *.db *.gz);;Alle Dateien (*)</translation>
     </message>
     <message>
-        <location filename="../../pdcp_studio/app/monitor_dock.py" line="503" />
+        <location filename="../../pdcp_studio/app/monitor_dock.py" line="616" />
+        <source>Bus monitor — capture %1</source>
+        <translation>Bus-Monitor — Mitschnitt %1</translation>
+    </message>
+    <message>
+        <location filename="../../pdcp_studio/app/monitor_dock.py" line="628" />
+        <source>%1 frames read</source>
+        <translation>%1 Nachrichten gelesen</translation>
+    </message>
+    <message>
+        <location filename="../../pdcp_studio/app/monitor_dock.py" line="636" />
+        <source>first %1 of %2 frames</source>
+        <translation>erste %1 von %2 Nachrichten</translation>
+    </message>
+    <message>
+        <location filename="../../pdcp_studio/app/monitor_dock.py" line="647" />
         <source>Reading {load_path}: {message}</source>
         <translation>{load_path} lesen: {message}</translation>
     </message>
     <message>
-        <location filename="../../pdcp_studio/app/monitor_dock.py" line="513" />
+        <location filename="../../pdcp_studio/app/monitor_dock.py" line="657" />
         <source>Saving {save_path}: {message}</source>
         <translation>{save_path} speichern: {message}</translation>
     </message>
@@ -1982,7 +2029,7 @@ Den PDCP-Bus einer aktiven Prothese ansehen und einrichten.</translation>
     <message>
         <location filename="../../pdcp_studio/app/plan_panel.py" line="65" />
         <source>Preview what {v0} would change</source>
-        <extracomment>A plan was applied (offline: pushed on the undo stack; live: sent to the bus).</extracomment>
+        <extracomment>A plan was applied: one undo step (on a live bus a staged change).</extracomment>
         <translation>Vorschau, was {v0} ändern würde</translation>
     </message>
     <message>
@@ -2234,12 +2281,12 @@ Den PDCP-Bus einer aktiven Prothese ansehen und einrichten.</translation>
 <context>
     <name>RecoveryMixin</name>
     <message>
-        <location filename="../../pdcp_studio/app/window_recovery.py" line="52" />
+        <location filename="../../pdcp_studio/app/window_recovery.py" line="56" />
         <source>Cannot recover</source>
         <translation>Wiederherstellen nicht möglich</translation>
     </message>
     <message>
-        <location filename="../../pdcp_studio/app/window_recovery.py" line="57" />
+        <location filename="../../pdcp_studio/app/window_recovery.py" line="61" />
         <source>Recovered unsaved work: {title}</source>
         <translation>Ungespeicherte Arbeit wiederhergestellt: {title}</translation>
     </message>
@@ -2678,14 +2725,6 @@ Die Prothese ist wie zuvor.</translation>
         <location filename="../../pdcp_studio/app/config_view.py" line="179" />
         <source>Channel profile</source>
         <translation>Kanalprofil</translation>
-    </message>
-</context>
-<context>
-    <name>self.live</name>
-    <message>
-        <location filename="../../pdcp_studio/app/main_window.py" line="173" />
-        <source>offline</source>
-        <translation>offline</translation>
     </message>
 </context>
 <context>

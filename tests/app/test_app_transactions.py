@@ -269,12 +269,17 @@ def test_leaving_with_unwritten_changes_asks(live, qtbot):
     live.act_delete.trigger()
     qtbot.waitUntil(lambda: len(live.pending_panel.changes) == 1, timeout=3000)
     asked = []
-    live.ask_unwritten = lambda n: asked.append(n) or False
+    answers = iter([False, True])  # the operator keeps the changes, then drops them
+
+    def ask_unwritten(n):
+        asked.append(n)
+        return next(answers)
+
+    live.ask_unwritten = ask_unwritten
     live.quiet = False  # the question is only skipped for scripted, quiet windows
     try:
         live.act_disconnect.trigger()
         assert asked == [1] and live.live.is_live  # kept: nothing lost
-        live.ask_unwritten = lambda n: asked.append(n) or True
         live.act_disconnect.trigger()
     finally:
         live.quiet = True

@@ -10,9 +10,6 @@ import logging
 import subprocess
 import sys
 
-import pytest
-
-from pdcp_studio.bus.connection import open_connections
 from pdcp_studio.bus.session import open_sim_session
 from pdcp_studio.bus.simulator import LARGE_VID, large_system, list_prostheses
 from pdcp_studio.cli.main import main
@@ -21,13 +18,6 @@ from pdcp_studio.engine.modes import without_unrouted_outputs
 from pdcp_studio.model.refs import Direction
 from pdcp_studio.model.system import Channel, Device, System
 from pdcp_studio.storage import system_file
-
-
-@pytest.fixture(autouse=True)
-def no_bus_left_open():
-    before = set(open_connections())
-    yield
-    assert not set(open_connections()) - before, "a test left a bus open"
 
 
 def exhausting_system() -> System:
