@@ -20,8 +20,9 @@ from pdcp_studio.app.graph.analysis import SystemStates, compute_states, link_re
 from pdcp_studio.app.graph.items import DeviceItem, PortItem
 from pdcp_studio.app.graph.links import DragLinkItem, LinkItem
 from pdcp_studio.model import profile as prof
+from pdcp_studio.model.catalog import default_catalog
 from pdcp_studio.model.refs import ChannelRef, DeviceKey
-from pdcp_studio.model.system import Channel, Link
+from pdcp_studio.model.system import Channel, Device, Link
 
 #: A link counts as "live" this long after its output's last data frame.
 LIVE_HOLD_S = 1.5
@@ -113,6 +114,10 @@ class BusScene(QGraphicsScene):
     def port(self, ref: ChannelRef) -> PortItem | None:
         card = self.cards.get(ref.device)
         return card.ports.get(ref.index) if card else None
+
+    def device_label(self, device: Device) -> str:
+        """The device's own name, else its product from the device catalogue."""
+        return default_catalog().device_label(device)
 
     def profile_name(self, profile: int) -> str:
         return self.doc.profile_name(profile)
@@ -439,12 +444,17 @@ class BusScene(QGraphicsScene):
         ch = self.doc.system.channel(ref)
         name = self.profile_name(ch.profile) if ch else "?"
         dev = self.doc.system.device(ref.device)
-        return f"{dev.label if dev else ref.device} #{ref.index} ({name})"
+        return f"{self.device_label(dev) if dev else ref.device} #{ref.index} ({name})"
 
     def tooltip_for(self, card: DeviceItem, row: Channel | None) -> str:
         d = card.device
         if row is None:
-            lines = [f"<b>{d.label}</b>", f"VID {d.vid} · PID {d.pid} · serial {d.serial}"]
+            lines = [f"<b>{self.device_label(d)}</b>",
+                     f"VID {d.vid} · PID {d.pid} · serial {d.serial}"]
+            entry = default_catalog().lookup(d.vid, d.pid)
+            if entry is not None:
+                lines.insert(1, " · ".join(x for x in (entry.vendor, entry.product, entry.kind)
+                                           if x))
             if d.node_id is not None:
                 lines.append(f"node ID {d.node_id}")
             if not d.present:
