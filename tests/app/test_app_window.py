@@ -344,7 +344,10 @@ def test_system_overview_lists_checks(window):
     window.doc.select(None)
     lst = window.inspector.editors["findings"]
     texts = [lst.item(i).text() for i in range(lst.count())]
-    assert any("terminal channel" in t and "not connected" in t for t in texts)
+    # Plain words with what to do; the engine's message and rule key in the tooltip.
+    assert any("nothing feeds it" in t and "Autoconfigure" in t for t in texts), texts
+    tips = [lst.item(i).toolTip() for i in range(lst.count())]
+    assert any("terminal-unconnected" in t and "not connected" in t for t in tips)
     lst.itemClicked.emit(lst.item(0))
     assert isinstance(window.doc.selection, ChannelRef)
 

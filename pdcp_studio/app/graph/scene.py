@@ -216,6 +216,7 @@ class BusScene(QGraphicsScene):
                     port.connected = source is not None
                     port.live = source in live
                 port.unmet = ref in st.unmet_required
+                port.setToolTip(self.port_advice(ref))
             card.refresh()
         dim = bool(self.preview_items)
         bus = self.doc.bus_system
@@ -224,6 +225,7 @@ class BusScene(QGraphicsScene):
             item.pending = on_bus is not None and link not in on_bus
             item.conflict = link in st.conflict_links
             item.missing = link in st.missing_links
+            item.setToolTip(self.link_advice(link))
             item.live = link.output in live
             item.setOpacity(0.35 if dim else 1.0)
             item.refresh()
@@ -459,7 +461,8 @@ class BusScene(QGraphicsScene):
                 lines.append(f"node ID {d.node_id}")
             if not d.present:
                 lines.append("<i>missing from the bus</i>")
-            lines += [f"<span style='color:#b45309'>⚠ {p}</span>" for p in card.problems]
+            lines += [f"<span style='color:#b45309'>⚠ {p}</span>"
+                      for p in self.problem_advice(d.key)]
             return "<br>".join(lines)
         ref = d.ref(row.index)
         lines = [f"<b>#{row.index} {row.direction.value}</b> — "
@@ -475,6 +478,43 @@ class BusScene(QGraphicsScene):
         else:
             fed = self.doc.system.inputs_fed_by(ref)
             lines.append("feeds: " + (", ".join(self._describe(r) for r in fed) or "nothing"))
-        if ref in self.states.unmet_required:
-            lines.append("<span style='color:#b91c1c'>required input not connected</span>")
+        advice = self.port_advice(ref)
+        if advice:
+            lines.append(f"<span style='color:#b91c1c'>⚠ {advice}</span>")
         return "<br>".join(lines)
+
+    # -- findings in plain words (the same ones the Checks list reports) -----------
+    def port_advice(self, ref: ChannelRef) -> str:
+        """What is wrong with one input and what to do (empty: nothing)."""
+        st = self.states
+        if ref in st.unmet_required:
+            return self.tr("Input {n} must be connected: a channel of this device that is "
+                           "in use needs it. Connect a source to it, or let Autoconfigure "
+                           "do it.").format(n=ref.index)
+        if ref in st.unconnected_terminals:
+            return self.tr("Input {n} drives a part of the prosthesis but nothing feeds it, "
+                           "so that part will not move. Connect a matching output, or let "
+                           "Autoconfigure do it.").format(n=ref.index)
+        return ""
+
+    def problem_advice(self, key: DeviceKey) -> list[str]:
+        """Every finding behind a card's warning badge, with what to do."""
+        st = self.states
+        refs = sorted(r for r in st.unmet_required | st.unconnected_terminals
+                      if r.device == key)
+        out = [self.port_advice(r) for r in refs]
+        if any(key in (lk.output.device, lk.input.device) for lk in st.conflict_links):
+            out.append(self.tr("One output feeds several inputs that each need it for "
+                               "themselves. Keep one of these links and remove the others."))
+        return out
+
+    def link_advice(self, link: Link) -> str:
+        """What a marked link means and what to do (empty: nothing marked)."""
+        st = self.states
+        if link in st.conflict_links:
+            return self.tr("Conflict: this output also feeds another input that needs it "
+                           "for itself. Keep one of these links and remove the others.")
+        if link in st.missing_links:
+            return self.tr("This link carries no data: a device at one of its ends is not "
+                           "on the bus. Plug the device in, or remove the link.")
+        return ""
