@@ -1434,6 +1434,14 @@ Ihr Name (wird einmal erfragt):</translation>
 <context>
     <name>MainWindow</name>
     <message>
+        <source>&amp;Go to device…</source>
+        <translation>&amp;Gehe zu Gerät…</translation>
+    </message>
+    <message>
+        <source>Find a device by name and show it on the graph</source>
+        <translation>Ein Gerät über seinen Namen finden und im Graphen zeigen</translation>
+    </message>
+    <message>
         <location filename="../../pdcp_studio/app/main_window.py" line="72" />
         <source>PDCP Studio</source>
         <extracomment>The first system is on screen and laid out (a file, a bus, or the offline fallback).</extracomment>
@@ -2790,6 +2798,17 @@ Die Prothese ist wie zuvor.</translation>
     <message>
         <source>{device}, channel {n}</source>
         <translation>{device}, Kanal {n}</translation>
+    </message>
+</context>
+<context>
+    <name>DeviceFinder</name>
+    <message>
+        <source>Go to device</source>
+        <translation>Gehe zu Gerät</translation>
+    </message>
+    <message>
+        <source>Device name or VID/PID/serial</source>
+        <translation>Gerätename oder VID/PID/Seriennummer</translation>
     </message>
 </context>
 </TS>
