@@ -54,6 +54,11 @@ def configs_dir() -> Path:
     return resources_dir() / "configs"
 
 
+def catalogs_dir() -> Path:
+    """Shipped device catalogues (VID/PID → vendor, product, kind, icon)."""
+    return resources_dir() / "catalog"
+
+
 def icon_path() -> Path:
     """The application icon (SVG)."""
     return resources_dir() / "icons" / "pdcp-studio.svg"

@@ -51,6 +51,7 @@ from pdcp_studio.app.i18n import translate
 from pdcp_studio.engine.config_checks import ConfigFinding, check_configuration
 from pdcp_studio.errors import PdcpError
 from pdcp_studio.model import profile as prof
+from pdcp_studio.model.catalog import default_catalog
 from pdcp_studio.model.config_edit import channels_of
 from pdcp_studio.model.configuration import StoredChannel, StoredConfiguration
 from pdcp_studio.model.device_names import DeviceCatalogue
@@ -447,7 +448,7 @@ class ConfigWindow(QMainWindow):
         doc = self.doc
         system, _name = self.prosthesis()
         self.catalogue = (DeviceCatalogue.from_system(system) if system is not None
-                          else DeviceCatalogue())
+                          else DeviceCatalogue()).with_catalog(default_catalog())
         self.config_list.blockSignals(True)
         self.config_list.clear()
         for each in doc.collection.configurations:

@@ -215,6 +215,7 @@ class Inspector(QScrollArea):
     # -- the whole system (nothing selected) ---------------------------------------
     def _build_system(self, box: QVBoxLayout) -> None:
         """An overview and the engine's checks; a finding selects its channel."""
+        from pdcp_studio.app.finding_text import finding_detail, plain_finding
         from pdcp_studio.engine import check_system
 
         system = self.doc.system
@@ -240,14 +241,16 @@ class Inspector(QScrollArea):
         lst = QListWidget()
         lst.setWordWrap(True)
         colours = {"error": "#b91c1c", "warning": "#b45309", "info": "#475569"}
+        severity = {"error": self.tr("Error"), "warning": self.tr("Warning"),
+                    "info": self.tr("Note")}
         for f in findings:
-            item = QListWidgetItem(f"{f.severity.value}: {f.message}")
+            item = QListWidgetItem(f"{severity[f.severity.value]}: {plain_finding(f, system)}")
             item.setForeground(QColor(colours.get(f.severity.value, "#1f2933")))
             item.setData(Qt.ItemDataRole.UserRole, f.refs[0] if f.refs else None)
-            item.setToolTip(f.code)
+            item.setToolTip(finding_detail(f))
             lst.addItem(item)
         if not findings:
-            lst.addItem("Nothing to report: every check passed.")
+            lst.addItem(self.tr("Nothing to report: every check passed."))
         lst.itemClicked.connect(lambda it: self._select_finding(it))
         box.addWidget(lst, 1)
         self.editors["findings"] = lst

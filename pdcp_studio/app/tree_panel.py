@@ -16,6 +16,7 @@ from pdcp_studio.app.graph import style
 from pdcp_studio.app.graph.analysis import ROLE_LAYER, device_role
 from pdcp_studio.app.i18n import translate
 from pdcp_studio.model import profile as prof
+from pdcp_studio.model.catalog import default_catalog
 from pdcp_studio.model.refs import ChannelRef, DeviceKey
 from pdcp_studio.model.system import Link
 
@@ -71,7 +72,8 @@ class DeviceTree(QTreeWidget):
     def _device_row(self, key: DeviceKey) -> QTreeWidgetItem:
         device = self.doc.system.devices[key]
         role = device_role(device)
-        item = QTreeWidgetItem([device.label, self.tr("missing") if not device.present
+        item = QTreeWidgetItem([default_catalog().device_label(device),
+                                self.tr("missing") if not device.present
                                 else translate("Style", style.ROLE_LABELS[role])])
         item.setData(0, ROLE, key)
         item.setToolTip(0, f"VID {device.vid} · PID {device.pid} · serial {device.serial}")

@@ -6,10 +6,12 @@ document (:mod:`window_files`).
 
 from __future__ import annotations
 
+import math
 from collections.abc import Callable
 from pathlib import Path
 from typing import TYPE_CHECKING
 
+from PySide6.QtCore import QRectF, Qt
 from PySide6.QtGui import QImage, QPainter
 from PySide6.QtWidgets import QFileDialog, QGraphicsItem
 
@@ -20,21 +22,30 @@ class ExportMixin:
     if TYPE_CHECKING:  # a mixin of a QObject: Qt gives it tr()
         tr: Callable[[str], str]
 
+    def export_rect(self) -> QRectF:
+        """The part of the scene an export shows: every item and a 20-unit margin, grown to
+        whole units so the file's size holds all of it (no clipping at right or bottom)."""
+        rect = self.scene.itemsBoundingRect().adjusted(-20, -20, 20, 20)
+        left, top = math.floor(rect.left()), math.floor(rect.top())
+        return QRectF(left, top, math.ceil(rect.right()) - left,
+                      math.ceil(rect.bottom()) - top)
+
     def graph_image(self, scale: float = 2.0) -> QImage:
         """The whole graph rendered off screen (for PNG export and the report)."""
-        rect = self.scene.itemsBoundingRect().adjusted(-20, -20, 20, 20)
-        image = QImage(max(1, int(rect.width() * scale)), max(1, int(rect.height() * scale)),
+        rect = self.export_rect()
+        image = QImage(max(1, round(rect.width() * scale)), max(1, round(rect.height() * scale)),
                        QImage.Format.Format_ARGB32)
         image.fill(self.scene.backgroundBrush().color())
         painter = QPainter(image)
         painter.setRenderHint(QPainter.RenderHint.Antialiasing)
-        self.scene.render(painter, source=rect)
+        self.scene.render(painter, QRectF(0, 0, image.width(), image.height()), rect,
+                          Qt.AspectRatioMode.IgnoreAspectRatio)
         painter.end()
         return image
 
     def export_graph(self, path: str | Path) -> None:
         path = Path(path)
-        rect = self.scene.itemsBoundingRect().adjusted(-20, -20, 20, 20)
+        rect = self.export_rect()
         if path.suffix.lower() == ".svg":
             from PySide6.QtCore import QBuffer, QByteArray, QIODevice
             from PySide6.QtSvg import QSvgGenerator
@@ -46,8 +57,12 @@ class ExportMixin:
             buffer.open(QIODevice.OpenModeFlag.WriteOnly)
             gen = QSvgGenerator()
             gen.setOutputDevice(buffer)  # rendered in memory, then written atomically
-            gen.setSize(rect.size().toSize())
-            gen.setViewBox(rect)
+            # The file's own coordinates start at 0,0 (a viewBox at the scene's negative
+            # origin shifted the drawing and cut off its right and bottom): the scene's
+            # rectangle is mapped onto the whole page.
+            page = QRectF(0, 0, rect.width(), rect.height())
+            gen.setSize(page.size().toSize())
+            gen.setViewBox(page)
             gen.setTitle(self.doc.title)
             # Cards keep a pixmap cache for the screen; a vector file wants their vectors.
             cached = [(item, item.cacheMode()) for item in self.scene.items()
@@ -56,7 +71,7 @@ class ExportMixin:
                 item.setCacheMode(QGraphicsItem.CacheMode.NoCache)
             try:
                 painter = QPainter(gen)
-                self.scene.render(painter, source=rect)
+                self.scene.render(painter, page, rect, Qt.AspectRatioMode.IgnoreAspectRatio)
                 painter.end()
             finally:
                 for item, mode in cached:

@@ -31,6 +31,20 @@ class MenusMixin:
         action.triggered.connect(lambda _checked=False: slot())
         return action
 
+    def go_to_device(self, key: Any) -> None:
+        """Select a device and centre its card in the graph."""
+        self.doc.select(key)
+        card = self.scene.cards.get(key)
+        if card is not None:
+            self.view.centerOn(card.sceneBoundingRect().center())
+
+    def ask_go_to_device(self) -> None:
+        from pdcp_studio.app.device_finder import DeviceFinder
+
+        self.device_finder = DeviceFinder(self.doc.system, self.go_to_device, self)
+        self.device_finder.show()
+        self.device_finder.field.setFocus()
+
     def _build_actions(self) -> None:
         K = QKeySequence.StandardKey
         self.act_open = self._action(
@@ -54,6 +68,8 @@ class MenusMixin:
         self.act_delete = self._action(self.tr("&Delete link"), self.scene.delete_selected,
                                        K.Delete, self.tr("Remove the selected links"))
         self.act_fit = self._action(self.tr("&Fit to window"), self.view.fit_all, "Ctrl+0")
+        self.act_find = self._action(self.tr("&Go to device…"), self.ask_go_to_device, K.Find,
+                                     self.tr("Find a device by name and show it on the graph"))
         self.act_zoom_in = self._action(
             self.tr("Zoom &in"), lambda: self.view.zoom_by(1.25), K.ZoomIn
         )
@@ -117,8 +133,8 @@ class MenusMixin:
         m.addSeparator()
         m.addAction(self.act_profiles)
         self.view_menu = m = mb.addMenu(self.tr("&View"))
-        for a in (self.act_fit, self.act_zoom_in, self.act_zoom_out, self.act_arrange,
-                  self.act_legend):
+        for a in (self.act_find, self.act_fit, self.act_zoom_in, self.act_zoom_out,
+                  self.act_arrange, self.act_legend):
             m.addAction(a)
         m.addSeparator()
         for dock in (self.tree_dock, self.inspector_dock, self.plan_dock):

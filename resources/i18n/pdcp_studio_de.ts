@@ -88,7 +88,27 @@
 <context>
     <name>BusScene</name>
     <message>
-        <location filename="../../pdcp_studio/app/graph/scene.py" line="153" />
+        <source>Input {n} must be connected: a channel of this device that is in use needs it. Connect a source to it, or let Autoconfigure do it.</source>
+        <translation>Eingang {n} muss verbunden sein: ein benutzter Kanal dieses Geräts braucht ihn. Verbinden Sie eine Quelle damit oder lassen Sie die Autokonfiguration das tun.</translation>
+    </message>
+    <message>
+        <source>Input {n} drives a part of the prosthesis but nothing feeds it, so that part will not move. Connect a matching output, or let Autoconfigure do it.</source>
+        <translation>Eingang {n} steuert ein Teil der Prothese, bekommt aber keine Daten, daher bewegt sich dieses Teil nicht. Verbinden Sie einen passenden Ausgang oder lassen Sie die Autokonfiguration das tun.</translation>
+    </message>
+    <message>
+        <source>One output feeds several inputs that each need it for themselves. Keep one of these links and remove the others.</source>
+        <translation>Ein Ausgang speist mehrere Eingänge, die ihn jeweils für sich allein brauchen. Behalten Sie eine dieser Verbindungen und entfernen Sie die anderen.</translation>
+    </message>
+    <message>
+        <source>Conflict: this output also feeds another input that needs it for itself. Keep one of these links and remove the others.</source>
+        <translation>Konflikt: dieser Ausgang speist auch einen anderen Eingang, der ihn für sich allein braucht. Behalten Sie eine dieser Verbindungen und entfernen Sie die anderen.</translation>
+    </message>
+    <message>
+        <source>This link carries no data: a device at one of its ends is not on the bus. Plug the device in, or remove the link.</source>
+        <translation>Diese Verbindung überträgt keine Daten: ein Gerät an einem ihrer Enden ist nicht am Bus. Stecken Sie das Gerät ein oder entfernen Sie die Verbindung.</translation>
+    </message>
+    <message>
+        <location filename="../../pdcp_studio/app/graph/scene.py" line="149" />
         <source>Pending removal (still on the prosthesis): {link}</source>
         <extracomment>A link counts as "live" this long after its output's last data frame. Ghosts of links on the prosthesis that the project removes (pending removals). The outcome of the last link drag: (link or None, refusal reason or "").</extracomment>
         <translation>Entfernen vorgemerkt (noch auf der Prothese): {link}</translation>
@@ -1146,6 +1166,22 @@ Ihr Name (wird einmal erfragt):</translation>
 <context>
     <name>Inspector</name>
     <message>
+        <source>Error</source>
+        <translation>Fehler</translation>
+    </message>
+    <message>
+        <source>Warning</source>
+        <translation>Warnung</translation>
+    </message>
+    <message>
+        <source>Note</source>
+        <translation>Hinweis</translation>
+    </message>
+    <message>
+        <source>Nothing to report: every check passed.</source>
+        <translation>Nichts zu melden: alle Prüfungen bestanden.</translation>
+    </message>
+    <message>
         <location filename="../../pdcp_studio/app/inspector.py" line="164" />
         <source>Live bus: an edit here is a pending change (one undo step); Write to prosthesis writes the pending changes in one transaction.</source>
         <extracomment>Device parameters (channel index 0) → Device attribute edited through them. A short message for the status bar (an edit refused, a link deleted). Editors and error labels of the current form by field name (tests drive them).</extracomment>
@@ -1403,6 +1439,14 @@ Ihr Name (wird einmal erfragt):</translation>
 </context>
 <context>
     <name>MainWindow</name>
+    <message>
+        <source>&amp;Go to device…</source>
+        <translation>&amp;Gehe zu Gerät…</translation>
+    </message>
+    <message>
+        <source>Find a device by name and show it on the graph</source>
+        <translation>Ein Gerät über seinen Namen finden und im Graphen zeigen</translation>
+    </message>
     <message>
         <location filename="../../pdcp_studio/app/main_window.py" line="72" />
         <source>PDCP Studio</source>
@@ -2734,6 +2778,76 @@ Die Prothese ist wie zuvor.</translation>
         <source>Cancelling…</source>
         <extracomment>Progress reports closer together than this are dropped (the last one always gets through), so a chatty loop cannot flood the GUI thread's event queue.</extracomment>
         <translation>Wird abgebrochen…</translation>
+    </message>
+</context>
+<context>
+    <name>Findings</name>
+    <message>
+        <source>{a} has no profile, so it can never be connected automatically. Set its profile in the inspector.</source>
+        <translation>{a} hat kein Profil und kann daher nie automatisch verbunden werden. Setzen Sie sein Profil im Inspektor.</translation>
+    </message>
+    <message>
+        <source>{a} has a profile with a gap in it, so matching ignores part of it. Check its profile in the inspector.</source>
+        <translation>{a} hat ein Profil mit einer Lücke, daher wird ein Teil davon beim Abgleich übergangen. Prüfen Sie sein Profil im Inspektor.</translation>
+    </message>
+    <message>
+        <source>{a} says it needs a channel of its device that is not an input. The device's description is wrong: ask its maker.</source>
+        <translation>{a} gibt an, einen Kanal seines Geräts zu brauchen, der kein Eingang ist. Die Gerätebeschreibung ist falsch: fragen Sie den Hersteller.</translation>
+    </message>
+    <message>
+        <source>{a} says it would like a channel of its device that is not an input. The device's description is wrong: ask its maker.</source>
+        <translation>{a} gibt an, einen Kanal seines Geräts zu wünschen, der kein Eingang ist. Die Gerätebeschreibung ist falsch: fragen Sie den Hersteller.</translation>
+    </message>
+    <message>
+        <source>{a} has no terminal profile, so it is connected before all others. Set its terminal profile if that is not intended.</source>
+        <translation>{a} hat kein Endgeräteprofil und wird daher vor allen anderen verbunden. Setzen Sie sein Endgeräteprofil, wenn das nicht gewollt ist.</translation>
+    </message>
+    <message>
+        <source>The link {a} → {b} carries no data: a device at one end is not on the bus. Plug the device in, or remove the link.</source>
+        <translation>Die Verbindung {a} → {b} überträgt keine Daten: ein Gerät an einem Ende ist nicht am Bus. Stecken Sie das Gerät ein oder entfernen Sie die Verbindung.</translation>
+    </message>
+    <message>
+        <source>The link {a} → {b} joins a device to itself. Remove it.</source>
+        <translation>Die Verbindung {a} → {b} verbindet ein Gerät mit sich selbst. Entfernen Sie sie.</translation>
+    </message>
+    <message>
+        <source>{a} feeds several inputs that each need it for themselves. Keep one of these links and remove the others.</source>
+        <translation>{a} speist mehrere Eingänge, die ihn jeweils für sich allein brauchen. Behalten Sie eine dieser Verbindungen und entfernen Sie die anderen.</translation>
+    </message>
+    <message>
+        <source>{a} is given more than one source. Keep one link into it and remove the others.</source>
+        <translation>{a} hat mehr als eine Quelle. Behalten Sie eine Verbindung dorthin und entfernen Sie die anderen.</translation>
+    </message>
+    <message>
+        <source>{a} remembers a different source than it is linked to. Writing the configuration again fixes this.</source>
+        <translation>{a} hat sich eine andere Quelle gemerkt, als mit ihm verbunden ist. Ein erneutes Schreiben der Konfiguration behebt das.</translation>
+    </message>
+    <message>
+        <source>{a} is in use but the input it needs, {b}, is not connected. Connect a source to it, or let Autoconfigure do it.</source>
+        <translation>{a} wird benutzt, aber der Eingang, den er braucht, {b}, ist nicht verbunden. Verbinden Sie eine Quelle damit oder lassen Sie die Autokonfiguration das tun.</translation>
+    </message>
+    <message>
+        <source>{a} is in use and would work better with {b} connected. Connect a source to it if one is available.</source>
+        <translation>{a} wird benutzt und würde mit verbundenem {b} besser arbeiten. Verbinden Sie eine Quelle damit, wenn eine vorhanden ist.</translation>
+    </message>
+    <message>
+        <source>{a} drives a part of the prosthesis but nothing feeds it, so that part will not move. Connect a matching output, or let Autoconfigure do it.</source>
+        <translation>{a} steuert ein Teil der Prothese, bekommt aber keine Daten, daher bewegt sich dieses Teil nicht. Verbinden Sie einen passenden Ausgang oder lassen Sie die Autokonfiguration das tun.</translation>
+    </message>
+    <message>
+        <source>{device}, channel {n}</source>
+        <translation>{device}, Kanal {n}</translation>
+    </message>
+</context>
+<context>
+    <name>DeviceFinder</name>
+    <message>
+        <source>Go to device</source>
+        <translation>Gehe zu Gerät</translation>
+    </message>
+    <message>
+        <source>Device name or VID/PID/serial</source>
+        <translation>Gerätename oder VID/PID/Seriennummer</translation>
     </message>
 </context>
 </TS>

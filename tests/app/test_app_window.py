@@ -282,6 +282,52 @@ def test_export_png_and_svg(window, tmp_path):
     assert svg.count(b"<path") + svg.count(b"<text") > 20
 
 
+def _content_box(image):
+    """The bounding box (x0, y0, x1, y1) of pixels that differ from the corner pixel."""
+    from PySide6.QtGui import QImage as _Q
+
+    img = image.convertToFormat(_Q.Format.Format_RGB32)
+    w, h = img.width(), img.height()
+    bg = img.pixel(0, 0)
+    xs, ys = [], []
+    for y in range(0, h, 1):
+        for x in range(0, w, 1):
+            if img.pixel(x, y) != bg:
+                xs.append(x)
+                ys.append(y)
+    return min(xs), min(ys), max(xs), max(ys)
+
+
+def test_svg_and_png_exports_match_the_scene(window, tmp_path):
+    """The SVG rendered back (QSvgRenderer) has the scene's size and its content sits where
+    the PNG's does: nothing shifted, nothing clipped at the right or bottom."""
+    from PySide6.QtGui import QImage, QPainter
+    from PySide6.QtSvg import QSvgRenderer
+
+    window.export_graph(tmp_path / "g.svg")
+    window.export_graph(tmp_path / "g.png")
+    rect = window.scene.itemsBoundingRect()
+    renderer = QSvgRenderer(str(tmp_path / "g.svg"))
+    assert renderer.isValid()
+    box = renderer.viewBoxF()
+    assert box.x() == 0 and box.y() == 0
+    assert abs(box.width() - (rect.width() + 40)) <= 1
+    assert abs(box.height() - (rect.height() + 40)) <= 1
+    png = QImage(str(tmp_path / "g.png"))
+    assert abs(png.width() - 2 * box.width()) <= 2 and abs(png.height() - 2 * box.height()) <= 2
+    back = QImage(png.size(), QImage.Format.Format_ARGB32)
+    back.fill(window.scene.backgroundBrush().color())
+    painter = QPainter(back)
+    renderer.render(painter)
+    painter.end()
+    svg_box, png_box = _content_box(back), _content_box(png)
+    # The margin is on every side, in both files: nothing touches an edge (clipped).
+    for got in (svg_box, png_box):
+        assert got[0] >= 20 and got[1] >= 20, got
+        assert png.width() - 1 - got[2] >= 20 and png.height() - 1 - got[3] >= 20, got
+    assert all(abs(a - b) <= 3 for a, b in zip(svg_box, png_box, strict=True)), (svg_box, png_box)
+
+
 def test_export_to_a_folder_that_does_not_exist_is_an_error(window, tmp_path):
     for name in ("g.svg", "g.png"):
         with pytest.raises(OSError):
@@ -344,7 +390,10 @@ def test_system_overview_lists_checks(window):
     window.doc.select(None)
     lst = window.inspector.editors["findings"]
     texts = [lst.item(i).text() for i in range(lst.count())]
-    assert any("terminal channel" in t and "not connected" in t for t in texts)
+    # Plain words with what to do; the engine's message and rule key in the tooltip.
+    assert any("nothing feeds it" in t and "Autoconfigure" in t for t in texts), texts
+    tips = [lst.item(i).toolTip() for i in range(lst.count())]
+    assert any("terminal-unconnected" in t and "not connected" in t for t in tips)
     lst.itemClicked.emit(lst.item(0))
     assert isinstance(window.doc.selection, ChannelRef)
 

@@ -215,7 +215,7 @@ def test_checks_name_the_links_and_selecting_a_finding_selects_them(main_window,
         assert window.graph_doc.selection.output == b.ref  # highlighted in the graph
         # Unknown devices are named plainly with their numbers.
         labels = {card.device.label for card in window.scene.cards.values()}
-        assert "unknown device (2/2/6)" in labels
+        assert "Thesis test node (serial 6)" in labels  # the device catalogue knows 2/2
     finally:
         _close(window)
 

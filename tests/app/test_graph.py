@@ -152,3 +152,39 @@ def test_sensor_order_follows_the_input_ports():
     s2 = System(devices, s.links)
     pos = layout.layered_layout(s2)
     assert pos[DeviceKey(2641, 257, 101)][1] < pos[ext][1]  # flexor → input 1, above
+
+
+def test_unnamed_devices_take_catalogue_names_and_hex_moves_to_tooltips(qtbot):
+    """A device without a name of its own is shown by its product from the device
+    catalogue on its card and in the device tree; the card rows show profile names, and
+    the hex profile code is in the row's tooltip."""
+    from pdcp_studio.app.tree_panel import DeviceTree
+
+    system = linked_transradial()
+    hand_key = next(k for k in system.devices if (k.vid, k.pid) == (2641, 769))
+    system.devices[hand_key].name = ""
+    system.devices[hand_key].descriptor = ""
+    stranger = Device(4242, 7, 3)
+    stranger.add_channel(Channel(1, Direction.OUTPUT, type=0x9000, profile=0x4222))
+    system.add_device(stranger)
+    doc = Document(system)
+    scene = BusScene(doc)
+    hand = scene.cards[hand_key]
+    assert scene.device_label(hand.device) == f"Multi-grip hand (serial {hand_key.serial})"
+    assert scene.device_label(stranger) == "unknown device (4242/7/3)"
+    card_tip = scene.tooltip_for(hand, None)
+    assert "Multi-grip hand" in card_tip and "PDCP Studio simulator" in card_tip
+    row = next(iter(hand.device.channels.values()))
+    row_tip = scene.tooltip_for(hand, row)
+    assert f"0x{row.profile:04X}" in row_tip
+    tree = DeviceTree(doc)
+    qtbot.addWidget(tree)
+    names = {tree.topLevelItem(i).text(0) for i in range(tree.topLevelItemCount())}
+    assert f"Multi-grip hand (serial {hand_key.serial})" in names
+    assert "unknown device (4242/7/3)" in names
+    # The card still paints (no hex column left to size the row text against).
+    image = QImage(int(hand.width), int(hand.height), QImage.Format.Format_ARGB32)
+    image.fill(0)
+    painter = QPainter(image)
+    hand.paint(painter, None)
+    painter.end()

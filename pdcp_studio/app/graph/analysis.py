@@ -60,23 +60,37 @@ def required_inputs_of(device: Device) -> set[int]:
 
 
 def compute_states(system: System) -> SystemStates:
+    """The graph's marks, by the same rules as the Checks list (``engine/checks.py``): only
+    links whose both ends are on the bus count; a required input is unmet only when a
+    channel that requires it is in use (linked), as ``required-unmet`` says; a terminal
+    input is unconnected when no live link feeds it; a sole-access conflict is an output
+    feeding several sole-access inputs over live links."""
     states = SystemStates()
+    live: list[Link] = []
+    for link in system.links:
+        if system.is_present(link.output) and system.is_present(link.input):
+            live.append(link)
+        else:
+            states.missing_links.add(link)
+    fed = {lk.input for lk in live}
+    in_use = {r for lk in live for r in (lk.output, lk.input)}
+    for ref in in_use:
+        ch = system.channel(ref)
+        for index in ch.required_inputs if ch is not None else ():
+            target = ChannelRef(*ref.device, index)
+            tch = system.channel(target)
+            if tch is not None and tch.is_input and target not in fed:
+                states.unmet_required.add(target)
     for key, device in system.devices.items():
         states.roles[key] = device_role(device)
         if not device.present:
             continue
-        for idx in required_inputs_of(device):
-            ref = device.ref(idx)
-            if system.source_of(ref) is None:
-                states.unmet_required.add(ref)
         for ch in device.inputs():
             ref = device.ref(ch.index)
-            if ch.terminal and system.source_of(ref) is None:
+            if ch.terminal and ref not in fed:
                 states.unconnected_terminals.add(ref)
     by_output: dict[ChannelRef, list[Link]] = {}
-    for link in system.links:
-        if not (system.is_present(link.output) and system.is_present(link.input)):
-            states.missing_links.add(link)
+    for link in live:
         inp = system.channel(link.input)
         if inp is not None and inp.sole_access:
             by_output.setdefault(link.output, []).append(link)

@@ -228,8 +228,8 @@ class DeviceItem(QGraphicsRectItem):
 
     def paint(self, p: QPainter, option: QStyleOptionGraphicsItem,
               widget: QWidget | None = None) -> None:
-        title_f, small_f, row_f, mono_f = _fonts()
-        title_m, _small_m, row_m, mono_m = _metrics()
+        title_f, small_f, row_f, _mono_f = _fonts()
+        title_m, _small_m, row_m, _mono_m = _metrics()
         d, w, h = self.device, self.width, self.height
         missing = not d.present
         selected = self.isSelected()
@@ -268,7 +268,8 @@ class DeviceItem(QGraphicsRectItem):
         badge = 18.0 if self.problems else 0.0
         p.setFont(title_f)
         p.setPen(text)
-        name = title_m.elidedText(d.label, Qt.TextElideMode.ElideRight, w - 22 - badge)
+        name = title_m.elidedText(self._scene_ref.device_label(d),
+                                  Qt.TextElideMode.ElideRight, w - 22 - badge)
         p.drawText(QRectF(11, 6, w - 20 - badge, 18), Qt.AlignmentFlag.AlignVCenter, name)
         p.setFont(small_f)
         p.setPen(dim)
@@ -301,14 +302,13 @@ class DeviceItem(QGraphicsRectItem):
             if i == n_in and n_in:
                 p.setPen(QPen(style.GRID, 1.0))
                 p.drawLine(QPointF(10, y), QPointF(w - 10, y))
-            hex_text = prof.fmt(ch.profile)
-            hex_w = mono_m.horizontalAdvance(hex_text)
+            # The profile's name from the tree; its hex code is in the row's tooltip.
             idx_text = str(ch.index)
             idx_w = row_m.horizontalAdvance("000")
             pname = name_of(ch.profile)
-            if pname == hex_text:
-                pname = ch.descriptor or "unnamed profile"
-            avail = w - 2 * 14 - idx_w - hex_w - 12
+            if pname == prof.fmt(ch.profile):
+                pname = ch.descriptor or pname
+            avail = w - 2 * 14 - idx_w - 6
             pname = row_m.elidedText(pname, Qt.TextElideMode.ElideRight, avail)
             p.setFont(row_f)
             if ch.is_input:
@@ -318,16 +318,7 @@ class DeviceItem(QGraphicsRectItem):
                 p.setPen(text)
                 p.drawText(QRectF(14 + idx_w, y, avail, style.ROW_HEIGHT),
                            Qt.AlignmentFlag.AlignVCenter | Qt.AlignmentFlag.AlignLeft, pname)
-                p.setFont(mono_f)
-                p.setPen(dim)
-                p.drawText(QRectF(w - 12 - hex_w, y, hex_w, style.ROW_HEIGHT),
-                           Qt.AlignmentFlag.AlignVCenter | Qt.AlignmentFlag.AlignRight, hex_text)
             else:
-                p.setFont(mono_f)
-                p.setPen(dim)
-                p.drawText(QRectF(12, y, hex_w, style.ROW_HEIGHT),
-                           Qt.AlignmentFlag.AlignVCenter | Qt.AlignmentFlag.AlignLeft, hex_text)
-                p.setFont(row_f)
                 p.setPen(text)
                 p.drawText(QRectF(w - 14 - idx_w - avail, y, avail, style.ROW_HEIGHT),
                            Qt.AlignmentFlag.AlignVCenter | Qt.AlignmentFlag.AlignRight, pname)

@@ -20,8 +20,9 @@ from pdcp_studio.app.graph.analysis import SystemStates, compute_states, link_re
 from pdcp_studio.app.graph.items import DeviceItem, PortItem
 from pdcp_studio.app.graph.links import DragLinkItem, LinkItem
 from pdcp_studio.model import profile as prof
+from pdcp_studio.model.catalog import default_catalog
 from pdcp_studio.model.refs import ChannelRef, DeviceKey
-from pdcp_studio.model.system import Channel, Link
+from pdcp_studio.model.system import Channel, Device, Link
 
 #: A link counts as "live" this long after its output's last data frame.
 LIVE_HOLD_S = 1.5
@@ -123,6 +124,10 @@ class BusScene(QGraphicsScene):
         card = self.cards.get(ref.device)
         return card.ports.get(ref.index) if card else None
 
+    def device_label(self, device: Device) -> str:
+        """The device's own name, else its product from the device catalogue."""
+        return default_catalog().device_label(device)
+
     def profile_name(self, profile: int) -> str:
         return self.doc.profile_name(profile)
 
@@ -220,6 +225,7 @@ class BusScene(QGraphicsScene):
                     port.connected = source is not None
                     port.live = source in live
                 port.unmet = ref in st.unmet_required
+                port.setToolTip(self.port_advice(ref))
             card.refresh()
         dim = bool(self.preview_items)
         bus = self.doc.bus_system
@@ -228,6 +234,7 @@ class BusScene(QGraphicsScene):
             item.pending = on_bus is not None and link not in on_bus
             item.conflict = link in st.conflict_links
             item.missing = link in st.missing_links
+            item.setToolTip(self.link_advice(link))
             item.live = link.output in live
             item.setOpacity(0.35 if dim else 1.0)
             item.refresh()
@@ -477,17 +484,23 @@ class BusScene(QGraphicsScene):
         ch = self.doc.system.channel(ref)
         name = self.profile_name(ch.profile) if ch else "?"
         dev = self.doc.system.device(ref.device)
-        return f"{dev.label if dev else ref.device} #{ref.index} ({name})"
+        return f"{self.device_label(dev) if dev else ref.device} #{ref.index} ({name})"
 
     def tooltip_for(self, card: DeviceItem, row: Channel | None) -> str:
         d = card.device
         if row is None:
-            lines = [f"<b>{d.label}</b>", f"VID {d.vid} · PID {d.pid} · serial {d.serial}"]
+            lines = [f"<b>{self.device_label(d)}</b>",
+                     f"VID {d.vid} · PID {d.pid} · serial {d.serial}"]
+            entry = default_catalog().lookup(d.vid, d.pid)
+            if entry is not None:
+                lines.insert(1, " · ".join(x for x in (entry.vendor, entry.product, entry.kind)
+                                           if x))
             if d.node_id is not None:
                 lines.append(f"node ID {d.node_id}")
             if not d.present:
                 lines.append("<i>missing from the bus</i>")
-            lines += [f"<span style='color:#b45309'>⚠ {p}</span>" for p in card.problems]
+            lines += [f"<span style='color:#b45309'>⚠ {p}</span>"
+                      for p in self.problem_advice(d.key)]
             return "<br>".join(lines)
         ref = d.ref(row.index)
         lines = [f"<b>#{row.index} {row.direction.value}</b> — "
@@ -503,6 +516,43 @@ class BusScene(QGraphicsScene):
         else:
             fed = self.doc.system.inputs_fed_by(ref)
             lines.append("feeds: " + (", ".join(self._describe(r) for r in fed) or "nothing"))
-        if ref in self.states.unmet_required:
-            lines.append("<span style='color:#b91c1c'>required input not connected</span>")
+        advice = self.port_advice(ref)
+        if advice:
+            lines.append(f"<span style='color:#b91c1c'>⚠ {advice}</span>")
         return "<br>".join(lines)
+
+    # -- findings in plain words (the same ones the Checks list reports) -----------
+    def port_advice(self, ref: ChannelRef) -> str:
+        """What is wrong with one input and what to do (empty: nothing)."""
+        st = self.states
+        if ref in st.unmet_required:
+            return self.tr("Input {n} must be connected: a channel of this device that is "
+                           "in use needs it. Connect a source to it, or let Autoconfigure "
+                           "do it.").format(n=ref.index)
+        if ref in st.unconnected_terminals:
+            return self.tr("Input {n} drives a part of the prosthesis but nothing feeds it, "
+                           "so that part will not move. Connect a matching output, or let "
+                           "Autoconfigure do it.").format(n=ref.index)
+        return ""
+
+    def problem_advice(self, key: DeviceKey) -> list[str]:
+        """Every finding behind a card's warning badge, with what to do."""
+        st = self.states
+        refs = sorted(r for r in st.unmet_required | st.unconnected_terminals
+                      if r.device == key)
+        out = [self.port_advice(r) for r in refs]
+        if any(key in (lk.output.device, lk.input.device) for lk in st.conflict_links):
+            out.append(self.tr("One output feeds several inputs that each need it for "
+                               "themselves. Keep one of these links and remove the others."))
+        return out
+
+    def link_advice(self, link: Link) -> str:
+        """What a marked link means and what to do (empty: nothing marked)."""
+        st = self.states
+        if link in st.conflict_links:
+            return self.tr("Conflict: this output also feeds another input that needs it "
+                           "for itself. Keep one of these links and remove the others.")
+        if link in st.missing_links:
+            return self.tr("This link carries no data: a device at one of its ends is not "
+                           "on the bus. Plug the device in, or remove the link.")
+        return ""

@@ -149,16 +149,21 @@ class GraphView(QGraphicsView):
         self.set_zoom(self.zoom * step)
 
     def fit_all(self) -> None:
-        """Show every card; never magnify beyond FIT_MAX_ZOOM."""
+        """Show every card, clear of the legend: zoom out as far as that needs, zoom in on
+        a small graph up to FIT_MAX_ZOOM (readable, not bloated). The scale is computed
+        from the viewport without scroll bars and without the legend's strip at the
+        bottom (``fitInView`` counted the legend's area as free and left the bottom cards
+        under it)."""
         rect = self.scene().itemsBoundingRect()
         if rect.isEmpty():
             return
         rect = rect.adjusted(-FIT_MARGIN, -FIT_MARGIN, FIT_MARGIN, FIT_MARGIN)
-        self.fitInView(rect, Qt.AspectRatioMode.KeepAspectRatio)
-        if self.zoom > FIT_MAX_ZOOM:
-            self.set_zoom(FIT_MAX_ZOOM)
-        elif self.zoom < MIN_ZOOM:
-            self.set_zoom(MIN_ZOOM)
+        room = self.maximumViewportSize()
+        reserved = self.legend.height() + 16 if self.legend.isVisible() else 0
+        # The view centres the graph, so the legend's strip is kept free at both ends.
+        width, height = room.width(), max(40, room.height() - 2 * reserved)
+        factor = min(width / rect.width(), height / rect.height())
+        self.set_zoom(min(FIT_MAX_ZOOM, factor))
         self.centerOn(rect.center())
 
     def centre_on_item(self, rect: QRectF) -> None:
