@@ -38,8 +38,8 @@ WAIT_MS = 30000  # a loaded machine: the host link is slow, never wrong
 class Rig:
     """The prosthesis behind the pty: its arbitrator, URL and a recorder on its bus."""
 
-    def __init__(self, arbitrator, url: str, recorder: FrameRecorder) -> None:
-        self.arbitrator, self.url, self.recorder = arbitrator, url, recorder
+    def __init__(self, arbitrator, host, url: str, recorder: FrameRecorder) -> None:
+        self.arbitrator, self.host, self.url, self.recorder = arbitrator, host, url, recorder
 
     def links(self) -> set[Link]:
         return set(self.arbitrator.system().links)
@@ -57,8 +57,8 @@ def rig(tmp_path, monkeypatch):
     monkeypatch.setattr(urls, "unique_virtual_channel", lambda prefix="": channel)
     recorder = FrameRecorder(channel)
     try:
-        with served("transradial", tmp_path / "memory.bin") as (arbitrator, _host, url):
-            yield Rig(arbitrator, url, recorder)
+        with served("transradial", tmp_path / "memory.bin") as (arbitrator, host, url):
+            yield Rig(arbitrator, host, url, recorder)
     finally:
         recorder.close()
 
@@ -237,3 +237,68 @@ def test_opening_a_file_while_connected_asks(live, rig, qtbot):
     assert not live.live.is_live and live.doc.session is None
     assert live.mode_label.text() == f"Disconnected from {rig.url}"
     assert HAND_LINK in rig.links()  # leaving wrote nothing
+
+
+def _flags(system) -> dict[ChannelRef, tuple]:
+    return {ref: (ch.data_enabled, ch.source, ch.node_id) for ref, ch in system.channels()
+            if system.is_present(ref)}
+
+
+def _settle(window, qtbot, until):
+    def ok() -> bool:
+        window.live.refresh()
+        return bool(until())
+    qtbot.waitUntil(ok, timeout=WAIT_MS)
+    qtbot.waitUntil(lambda: not window.live.bridge.busy, timeout=WAIT_MS)
+
+
+def test_a_hot_swap_behind_the_host_link_shows_as_it_is(live, rig, qtbot):
+    """A hand unplugged and plugged back on the prosthesis's own bus (not by the app)."""
+    flowing = ChannelRef(*HAND, 1)
+    live.doc.select(flowing)
+    rig.host.unplug(HAND)
+    _settle(live, qtbot, lambda: not live.doc.system.devices[HAND].present
+            and _flags(live.doc.system) == _flags(rig.arbitrator.system()))
+    assert not live.doc.system.channel(flowing).data_enabled
+    rig.host.plug(HAND)
+    _settle(live, qtbot, lambda: live.doc.system.devices[HAND].present
+            and _flags(live.doc.system) == _flags(rig.arbitrator.system()))
+    assert rig.arbitrator.system().channel(flowing).data_enabled
+    qtbot.waitUntil(lambda: "data_enabled" in live.inspector.editors
+                    and live.inspector.editors["data_enabled"].isChecked(), timeout=WAIT_MS)
+    assert not live.pending_panel.changes  # the bus's own changes are not staged edits
+
+
+def test_a_transaction_made_at_the_arbitrator_updates_the_stored_configuration(live, rig,
+                                                                              qtbot):
+    """Another user of the arbitrator stores the links: the window reads the stored
+    configuration again without being asked, and previews use it."""
+    from pdcp_studio.bus.transaction import Change
+    from pdcp_studio.engine import configuration_from_system
+    from pdcp_studio.model.configuration import ConfigCollection
+
+    assert live.doc.config is not None and not live.doc.config.configurations
+    change = Change("config save", configuration=ConfigCollection(
+        [configuration_from_system(rig.arbitrator.system())]))
+    assert rig.arbitrator.transact(change).written
+    qtbot.waitUntil(lambda: bool(live.doc.config.configurations), timeout=WAIT_MS)
+    assert live.preview_plan("startup").configuration_source == "stored"
+
+
+def test_a_parameter_edit_written_then_undone_and_redone(live, rig, qtbot):
+    ref = ChannelRef(*HAND, 2)
+    live.doc.select(ref)
+    live.inspector.editors["descriptor"].setText("Pinch motor")
+    live.inspector.editors["descriptor"].editingFinished.emit()
+    assert _write(live, qtbot).written
+    assert rig.descriptor(HAND, 2) == b"Pinch motor"
+    result = _write(live, qtbot, live.act_undo.trigger)
+    assert result.written and result.verified, result.summary()
+    assert rig.descriptor(HAND, 2) == b"Pinch grip"
+    assert live.doc.undo_stack.index() == 0
+    live.act_redo.trigger()  # the edit, staged again
+    qtbot.waitUntil(lambda: [c.kind for c in live.pending_panel.changes]
+                    == [pending.PARAMETER], timeout=WAIT_MS)
+    assert rig.descriptor(HAND, 2) == b"Pinch grip"
+    assert _write(live, qtbot, live.act_redo.trigger).written
+    assert rig.descriptor(HAND, 2) == b"Pinch motor"
