@@ -63,13 +63,25 @@ def rig(tmp_path, monkeypatch):
         recorder.close()
 
 
-def _connect(window, qtbot, monkeypatch, url: str) -> None:
-    """Bus ▸ Connect, with ``url`` chosen in the dialog (the user's road, not a shortcut)."""
+def _connect(window, monkeypatch, url: str) -> None:
+    """Bus ▸ Connect: the dialog's Serial host link page, the port typed in, OK."""
+    from PySide6.QtWidgets import QDialog
+
     from pdcp_studio.app.connect_dialog import ConnectDialog
 
-    monkeypatch.setattr(ConnectDialog, "get_url", classmethod(lambda cls, parent=None,
-                                                              settings=None: url))
+    port = url.removeprefix("serial:")
+    chosen = []
+
+    def fill_in_and_accept(dialog):
+        page = dialog.pages["serial"]
+        dialog.tabs.setCurrentWidget(page)
+        page.port.setCurrentText(port)
+        chosen.append(dialog.url())
+        return QDialog.DialogCode.Accepted
+
+    monkeypatch.setattr(ConnectDialog, "exec", fill_in_and_accept)
     window.ask_connect()
+    assert chosen == [url]  # 128000 baud, the default, is not written in the URL
 
 
 @pytest.fixture
@@ -77,7 +89,7 @@ def live(make_window, qtbot, monkeypatch, rig):
     """A window live on the host link, confirming every previewed change."""
     window = make_window()
     with qtbot.waitSignal(window.live.connected, timeout=WAIT_MS):
-        _connect(window, qtbot, monkeypatch, rig.url)
+        _connect(window, monkeypatch, rig.url)
     assert window.live.is_live and window.live.url == rig.url
     qtbot.waitUntil(lambda: window.doc.config is not None, timeout=WAIT_MS)
     qtbot.waitUntil(lambda: window.doc.system.has_link(HAND_LINK), timeout=WAIT_MS)
@@ -198,7 +210,7 @@ def test_a_failed_connect_keeps_the_host_link_session(live, rig, qtbot, monkeypa
     doc = live.doc
     system_before, bridge = doc.system, live.live.bridge
     with qtbot.waitSignal(live.live.failed, timeout=WAIT_MS):
-        _connect(live, qtbot, monkeypatch, "serial:/dev/pdcp-no-such-port")
+        _connect(live, monkeypatch, "serial:/dev/pdcp-no-such-port")
     assert live.live.is_live and live.live.url == rig.url and live.live.bridge is bridge
     assert doc.system is system_before and doc.session is bridge
     assert live.mode_label.text() == f"● Live on {rig.url}"
@@ -212,7 +224,7 @@ def test_a_failed_connect_keeps_the_host_link_session(live, rig, qtbot, monkeypa
 def test_a_failed_serial_connect_offline_keeps_the_file(make_window, qtbot, monkeypatch):
     window = make_window(TRANSRADIAL)
     with qtbot.waitSignal(window.live.failed, timeout=WAIT_MS):
-        _connect(window, qtbot, monkeypatch, "serial:/dev/pdcp-no-such-port")
+        _connect(window, monkeypatch, "serial:/dev/pdcp-no-such-port")
     assert window.doc.path == TRANSRADIAL and window.doc.session is None
     assert window.mode_label.text() == "Offline"
 
