@@ -6,8 +6,9 @@ an arbitrator error is mapped to the status that says why (the table in ``_statu
 
 State kept between requests is what a firmware keeps too, and as small: whether the PC has
 greeted, one parameter value in transfer, one configuration being written (staged; committed
-only whole with a matching CRC, by the memory's atomic double-buffered write), and the devices
-an open transaction holds suspended (renewed while it is open, released when the PC goes).
+only whole with a matching CRC, by the memory's atomic double-buffered write), one change being
+sent for TRANSACT_RUN (carried out by the arbitrator's own transaction: interlock, write, read
+back, restore, release) and the last transaction's result for RESULT_READ.
 """
 
 from __future__ import annotations

@@ -106,6 +106,10 @@ def run_diff(args: argparse.Namespace) -> int:
         raise BadInput("config diff: give either a second file B or --bus URL (not both)")
     if args.memory and args.bus is None:
         raise BadInput("config diff: --memory needs --bus")
+    if args.bus is not None:
+        from pdcp_studio.bus.urls import check_bus_url
+
+        check_bus_url(args.bus)  # BusUrlError: exit 2, the same line as from every command
     a = _load_collection(args.a)
     if args.b is not None:
         b, b_name = _load_collection(args.b), args.b

@@ -95,7 +95,8 @@ def test_unknown_records_count_as_a_difference(capsys, tmp_path):
     assert code == 0
 
 
-def test_against_the_bus_stored_configuration(capsys, tmp_path):
+def test_against_the_bus_stored_configuration(capsys, tmp_path, monkeypatch):
+    monkeypatch.setenv("PDCP_STUDIO_HISTORY", str(tmp_path / "history.sqlite"))
     memory = tmp_path / "arb.mem"
     stored = _save(tmp_path / "stored.pdcfg", [StoredLink(IN, OUT, 1)])
     other = _save(tmp_path / "other.pdcfg", [StoredLink(OTHER_IN, OUT, 1)])
