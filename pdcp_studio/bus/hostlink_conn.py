@@ -38,6 +38,8 @@ log = logging.getLogger(__name__)
 REPLY_TIMEOUT_S = 6.0
 #: Seconds to wait for a version-1 arbitrator's answer to a version-1 PING.
 V1_PROBE_S = 1.0
+#: What a version-2 arbitrator's version-1 failure reply says (docs/host-link.md §4).
+_V2_REFUSAL = f"speaks host-link version {hm.VERSION}, not version 1".encode()
 
 
 class HostLinkError(PdcpError):
@@ -119,15 +121,19 @@ class HostLinkConnection:
             self._greet_locked()
 
     def _greet_locked(self) -> None:
-        with self._io:
-            self.link.reset(time.monotonic())
-            self._flush()
-        try:
-            status, body = self._exchange(Req.HELLO, bytes([hm.VERSION, 0xFF, 0xFF]),
-                                          self.reply_timeout)
-        except TransportError:
-            self._probe_v1()
-            raise
+        for attempt in range(2):
+            with self._io:
+                self.link.reset(time.monotonic())
+                self._flush()
+            try:
+                status, body = self._exchange(Req.HELLO, bytes([hm.VERSION, 0xFF, 0xFF]),
+                                              self.reply_timeout)
+                break
+            except TransportError:
+                # A version-2 arbitrator refusing the version-1 PING is there, only slow
+                # (a loaded PC or arbitrator): greet it once more rather than give up.
+                if not self._probe_v1() or attempt:
+                    raise
         if status is Status.VERSION:
             raise VersionRefused(f"{self.where}: the arbitrator refuses host-link version "
                                  f"{hm.VERSION}: {hm.text(body)}", status)
@@ -145,8 +151,12 @@ class HostLinkConnection:
         self.greetings += 1
         self.on_greeted(self.greetings)
 
-    def _probe_v1(self) -> None:
-        """HELLO went unanswered: is it a version-1 arbitrator? Ask it its own way."""
+    def _probe_v1(self) -> bool:
+        """HELLO went unanswered: is it a version-1 arbitrator? Ask it its own way.
+
+        VersionRefused for a version-1 answer; True when a version-2 arbitrator refused the
+        version-1 PING (docs/host-link.md §4: it is there and speaks our version); False
+        when nothing answered."""
         while True:
             try:
                 self._v1_replies.get_nowait()
@@ -156,15 +166,18 @@ class HostLinkConnection:
             try:
                 self.port.write(encode_v1(V1_PING) + b"\x00")
             except Exception:
-                return
+                return False
         try:
-            msg_id, _ = self._v1_replies.get(timeout=V1_PROBE_S)
+            msg_id, payload = self._v1_replies.get(timeout=V1_PROBE_S)
         except queue.Empty:
-            return
+            return False
+        if msg_id == V1_PING + 2 and _V2_REFUSAL in bytes(payload):
+            return True
         if msg_id in (V1_PING + 1, V1_PING + 2):
             raise VersionRefused(f"{self.where}: the arbitrator speaks host-link version 1; "
                                  f"this PDCP Studio speaks version {hm.VERSION} only (update "
                                  "the arbitrator's firmware)", Status.VERSION)
+        return False
 
     # -- requests --------------------
     def request(self, code: Req, body: bytes = b"", *, timeout: float | None = None) -> bytes:
