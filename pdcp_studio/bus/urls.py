@@ -108,9 +108,10 @@ def parse_bus_url(url: str) -> BusSpec:
                        options=options)
     if scheme == "serial":
         port, baud = rest, DEFAULT_BAUD
-        match = re.match(r"^(.*)@(\d+)$", rest)
-        if match:
-            port, baud = match.group(1), _rate(match.group(2), url, "baud rate")
+        head, at, tail = rest.rpartition("@")
+        # ``@BAUD`` ends the URL; an ``@`` followed by ``/`` or ``:`` belongs to a pyserial URL.
+        if at and not any(c in tail for c in "/:"):
+            port, baud = head, _rate(tail, url, "baud rate")
         if not port:
             raise BusUrlError(f"bus URL {url!r}: serial needs a port (serial:/dev/ttyUSB0)")
         return BusSpec(url, "serial", port=port, baud=baud)
