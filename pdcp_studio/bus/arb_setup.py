@@ -112,6 +112,7 @@ class SetupMixin:
         with self._plan_lock:
             ids: dict[int, int] = {}
             refused: list[str] = []
+            why = ""
             with self._lock:
                 if not self._current(key, node_id, generation, epoch):
                     return
@@ -119,11 +120,12 @@ class SetupMixin:
                     try:
                         ids[ch.index] = self._pool.take((key, ch.index))
                     except NodeIdExhaustedError as err:
-                        refused.append(f"output {device.ref(ch.index)} gets no node ID and "
-                                       f"cannot be linked: {err}")
+                        refused.append(str(device.ref(ch.index)))
+                        why = str(err)
                 self._refresh_channel_ids()
-            for text in refused:
-                self._error(text, "node_ids_exhausted")
+            if refused:  # one line per device naming every output left without an ID
+                self._error(f"output {', output '.join(refused)} gets no node ID and cannot be "
+                            f"linked: {why}", "node_ids_exhausted")
             for index, channel_id in ids.items():
                 self.requests.set(node_id, P.OUT_NODE_ID, index, bytes([channel_id]))
                 device.channels[index].node_id = channel_id

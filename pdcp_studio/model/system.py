@@ -136,6 +136,13 @@ class Device:
         return channel
 
 
+def _copy_device(device: Device) -> Device:
+    """A copy of ``device`` with copies of its channels (every other field is immutable)."""
+    new = _copy.copy(device)
+    new.channels = {index: _copy.copy(ch) for index, ch in device.channels.items()}
+    return new
+
+
 @dataclass(frozen=True, order=True)
 class Link:
     """An output channel feeding an input channel."""
@@ -253,7 +260,10 @@ class System:
 
     # -- whole system -----------------------------------------------------------
     def copy(self) -> System:
-        return System((_copy.deepcopy(d) for d in self.devices.values()), self._links)
+        """An independent copy. Devices and channels hold only immutable values besides the
+        channel table, so each is copied one level deep: ~20× faster than ``deepcopy``
+        (a 254-node-ID bus is copied on the GUI thread at every live snapshot)."""
+        return System((_copy_device(d) for d in self.devices.values()), self._links)
 
     def validate(self) -> None:
         """Raise ModelError on the first structural problem (see the loader for paths)."""

@@ -126,7 +126,7 @@ COMMANDS = [
     ["info", "--bus"],
     ["apply", "clear", "--bus"],
     ["config", "save", "--bus"],
-    ["config", "diff", "never.pdcfg", "--bus"],
+    ["config", "diff", "empty.pdcfg", "--bus"],
     ["policy", "--bus"],
     ["history", "restore", "1", "--bus"],
 ]
@@ -135,7 +135,11 @@ COMMANDS = [
 @pytest.mark.parametrize("url", BAD)
 def test_a_bad_bus_url_is_the_same_exit_2_line_from_every_command(capsys, url, tmp_path,
                                                                    monkeypatch):
+    from pdcp_studio.model.configuration import ConfigCollection
+    from pdcp_studio.storage import config_codec
+
     monkeypatch.chdir(tmp_path)
+    (tmp_path / "empty.pdcfg").write_bytes(config_codec.dumps(ConfigCollection([])))
     lines = set()
     for command in COMMANDS:
         if url.startswith("sim:") and command[0] in ("arbitrator", "sim"):

@@ -25,6 +25,8 @@ from pdcp_studio.model.system import Channel, Link
 
 #: A link counts as "live" this long after its output's last data frame.
 LIVE_HOLD_S = 1.5
+#: Data that starts or stops flowing is drawn at most this often (milliseconds).
+LIVE_BATCH_MS = 100
 FLOW_TICK_MS = 80
 
 
@@ -48,6 +50,13 @@ class BusScene(QGraphicsScene):
         self._flow_timer = QTimer(self)
         self._flow_timer.setInterval(FLOW_TICK_MS)
         self._flow_timer.timeout.connect(self._flow_tick)
+        #: Outputs whose data started or stopped since the last update, drawn in one batch
+        #: (a bus with 161 outputs sending must not redraw every item per frame).
+        self._live_changed: set[ChannelRef] = set()
+        self._live_timer = QTimer(self)
+        self._live_timer.setSingleShot(True)
+        self._live_timer.setInterval(LIVE_BATCH_MS)
+        self._live_timer.timeout.connect(self._apply_live)
         self._drag: DragLinkItem | None = None
         self._drag_target: PortItem | None = None
         self._press: dict[DeviceKey, QPointF] = {}
@@ -223,6 +232,33 @@ class BusScene(QGraphicsScene):
             item.setOpacity(0.35 if dim else 1.0)
             item.refresh()
 
+    def _apply_live(self) -> None:
+        """Redraw only the ports and links of outputs whose data started or stopped."""
+        self._live_timer.stop()
+        changed, self._live_changed = self._live_changed, set()
+        if not changed:
+            return
+        system, live = self.doc.system, self._live
+        touched: set[DeviceItem] = set()
+        for ref in changed:
+            card = self.cards.get(ref.device)
+            port = card.ports.get(ref.index) if card is not None else None
+            if port is not None and port.is_output:
+                port.live = ref in live
+                touched.add(card)
+            for target in system.inputs_fed_by(ref):
+                in_card = self.cards.get(target.device)
+                in_port = in_card.ports.get(target.index) if in_card is not None else None
+                if in_port is not None:
+                    in_port.live = system.source_of(target) in live
+                    touched.add(in_card)
+        for card in touched:
+            card.refresh()
+        for link, item in self.link_items.items():
+            if link.output in changed:
+                item.live = link.output in live
+                item.refresh()
+
     def _on_doc_selection(self, obj: object) -> None:
         if self._syncing:
             return
@@ -282,8 +318,10 @@ class BusScene(QGraphicsScene):
         """An output sent data just now (from the live session): animate its links."""
         fresh = output not in self._live
         self._live[output] = time.monotonic()
-        if fresh:
-            self._apply_states()
+        if fresh:  # only the ports and links of outputs that start or stop: not every item
+            self._live_changed.add(output)
+            if not self._live_timer.isActive():
+                self._live_timer.start()
         if not self._flow_timer.isActive():
             self._flow_timer.start()
 
@@ -295,13 +333,13 @@ class BusScene(QGraphicsScene):
         stale = [r for r, t in self._live.items() if now - t > LIVE_HOLD_S]
         for ref in stale:
             del self._live[ref]
+        self._live_changed.update(stale)
         self.flow_phase = (self.flow_phase + 1.5) % 70.0
-        if stale:
-            self._apply_states()
-        else:
-            for link, item in self.link_items.items():
-                if link.output in self._live:
-                    item.refresh()
+        if self._live_changed:
+            self._apply_live()
+        for link, item in self.link_items.items():
+            if link.output in self._live:
+                item.refresh()
         if not self._live:
             self._flow_timer.stop()
 
