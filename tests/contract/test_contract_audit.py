@@ -40,7 +40,7 @@ def test_sim_list_names_the_contract_prostheses_one_a_line(capsys):
     assert code == 0
     names = out.split()
     for name in ("thesis-test1", "thesis-test2", "thesis-test3", "thesis-test4",
-                 "thesis-test5", "transradial", "large"):
+                 "thesis-test5", "transradial", "large", "full"):
         assert name in names
 
 
@@ -232,3 +232,95 @@ def test_the_loader_accepts_the_base_and_refuses_an_oversized_pipe(capsys, tmp_p
     big.write_text(TEXT[:-1] + ',"x":"' + "a" * (8 << 20) + '"}')
     code, _, err = run(capsys, "info", "--system", big)
     assert code == 2 and "big.json" in err
+
+
+# -- §2 config decode/encode: unknown records and omitted owner records ---------------------
+def test_unknown_records_and_omitted_owner_records_round_trip(capsys, tmp_path):
+    code, out, _ = run(capsys, "config", "decode", FIG410, "--json")
+    doc = one_json(out)
+    link = doc["configurations"][0]["links"][0]
+    del link["input"]["owner_type"], link["input"]["owner_profile"]
+    doc["unknown_records"] = [{"code": 32, "value": 4660}]
+    doc["configurations"][0]["unknown_records"] = [{"code": 33, "value": 1}]
+    link["unknown_records"] = [{"code": 34, "value": 2}]
+    link["output"]["unknown_records"] = [{"code": 35, "value": 3}, {"code": 36, "value": 4}]
+    source = tmp_path / "unknown.json"
+    source.write_text(json.dumps(doc))
+    target = tmp_path / "unknown.pdcfg"
+    assert run(capsys, "config", "encode", source, "-o", target)[0] == 0
+    code, out, _ = run(capsys, "config", "decode", target, "--json")
+    again = one_json(out)
+    assert code == 0 and again == doc
+    assert "owner_type" not in again["configurations"][0]["links"][0]["input"]
+
+
+# -- §2 history verify -----------------------------------------------------------------------
+def test_history_verify_exit_1_names_the_first_edited_entry(capsys, tmp_path):
+    import sqlite3
+
+    for bus in ("sim:thesis-test1", "sim:thesis-test2"):
+        assert run(capsys, "apply", "clear", "--bus", bus, "--yes")[0] == 0
+    db = tmp_path / "history.db"
+    with sqlite3.connect(db) as con:
+        con.execute("UPDATE entries SET body = replace(body, 'audit', 'mallory') WHERE id = 2")
+    con.close()
+    code, _, err = run(capsys, "history", "verify")
+    assert code == 1 and "entry 2" in err
+
+
+# -- §2 arbitrator --no-autoconfigure: the policy is kept in the memory -------------------------
+def test_arbitrator_no_autoconfigure_sets_the_stored_policy_which_then_holds(capsys, tmp_path):
+    from pdcp_studio.bus.memory import MemoryStore
+    from pdcp_studio.bus.urls import unique_virtual_channel
+
+    memory = tmp_path / "memory.json"
+    bus = f"can:virtual:{unique_virtual_channel('audit')}"
+    assert run(capsys, "arbitrator", "--bus", bus, "--memory", memory, "--seconds", "0.1",
+               "--startup-quiet", "0.1")[0] == 0
+    assert MemoryStore(memory).read_policy()["autoconfigure"] is True
+    assert run(capsys, "arbitrator", "--bus", bus, "--memory", memory, "--seconds", "0.1",
+               "--startup-quiet", "0.1", "--no-autoconfigure")[0] == 0
+    assert MemoryStore(memory).read_policy()["autoconfigure"] is False
+    assert run(capsys, "arbitrator", "--bus", bus, "--memory", memory, "--seconds", "0.1",
+               "--startup-quiet", "0.1")[0] == 0
+    assert MemoryStore(memory).read_policy()["autoconfigure"] is False
+
+
+# -- reference §3 decisions ------------------------------------------------------------------
+def _records(*pairs: tuple[int, int]) -> bytes:
+    return b"".join(bytes([code]) + value.to_bytes(2, "little") for code, value in pairs)
+
+
+def _channel(code: int) -> list[tuple[int, int]]:
+    return [(code, 0), (7, 10), (8, 20), (9, 1), (10, 30), (11, 40), (12, 50)]
+
+
+THESIS_ERA = _records((1, 1), (2, 1), (3, 1), (4, 1), *_channel(5), *_channel(6), (15, 0))
+
+
+def test_a_thesis_era_file_gains_a_checksum_and_a_mismatch_is_refused():
+    from pdcp_studio.errors import ConfigFormatError
+    from pdcp_studio.storage import config_codec
+
+    written = config_codec.dumps(config_codec.loads(THESIS_ERA + b"\xff" * 9))
+    assert written[-6] == 16 and written[-3:] == b"\x0f\x00\x00"
+    assert config_codec.dumps(config_codec.loads(written)) == written
+    tampered = bytearray(written)
+    tampered[-5] ^= 1
+    with pytest.raises(ConfigFormatError, match="offset"):
+        config_codec.loads(bytes(tampered))
+
+
+@pytest.mark.parametrize("data", [
+    THESIS_ERA[:-3],                                              # no End
+    THESIS_ERA[:-4] + b"\x0f\x00",                                # a truncated record
+    _records((1, 2), (2, 1), (3, 1), (4, 1), *_channel(5), *_channel(6), (15, 0)),
+    _records((1, 1), (2, 1), (3, 1), (4, 1), (7, 5), *_channel(5), *_channel(6), (15, 0)),
+    _records((1, 1), (2, 1), (3, 1), (4, 1), *_channel(5), (15, 0)),
+], ids=["no-end", "truncated", "count", "outside-channel", "one-channel"])
+def test_the_stored_configuration_reader_rejects_with_the_offset(data):
+    from pdcp_studio.errors import ConfigFormatError
+    from pdcp_studio.storage import config_codec
+
+    with pytest.raises(ConfigFormatError, match=r"offset \d+"):
+        config_codec.loads(data)
