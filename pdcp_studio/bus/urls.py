@@ -104,6 +104,10 @@ def parse_bus_url(url: str) -> BusSpec:
             bitrate = _rate(text, url, "bitrate")
         if not channel:
             raise BusUrlError(f"bus URL {url!r}: the channel is empty")
+        for key, _value in options:
+            if key in ("bitrate", "channel", "interface", "url"):  # set by the URL itself
+                raise BusUrlError(f"bus URL {url!r}: option {key!r} is given by the URL "
+                                  "itself (can:INTERFACE:CHANNEL[@BITRATE])")
         return BusSpec(url, "can", interface=interface, channel=channel, bitrate=bitrate,
                        options=options)
     if scheme == "serial":

@@ -164,7 +164,8 @@ def test_monitor_seconds_not_finite_or_negative_is_exit_2_naming_the_option(caps
 @pytest.mark.parametrize("url", ["serial:/dev/ttyUSB0@fast", "serial:/dev/ttyUSB0@-5",
                                  "serial:COM3@0", "can:pcan:PCAN_USBBUS1@fast",
                                  "can:nosuchinterface:x", "sim:no-such-prosthesis",
-                                 "bogus:foo"])
+                                 "bogus:foo", "can:virtual:bus0?bitrate=abc",
+                                 "can:virtual:bus0?bitrate=500000", "can:virtual:bus0?url=x"])
 def test_a_malformed_bus_url_is_exit_2_naming_it(capsys, url):
     code, out, err = run(capsys, "scan", "--bus", url, "--json")
     assert code == 2 and out == "" and url in err
