@@ -325,3 +325,28 @@ def test_the_stored_configuration_reader_rejects_with_the_offset(data):
 
     with pytest.raises(ConfigFormatError, match=r"offset \d+"):
         config_codec.loads(data)
+
+
+# -- reference §5: one arbitrator per bus, said in one line ------------------------------------
+def test_a_second_arbitrator_says_so_in_one_line_and_exits_1(tmp_path, multicast_url):
+    import subprocess
+    import sys
+
+    url = multicast_url("239.74.163.13", 46000)
+    first = subprocess.Popen(
+        [sys.executable, "-m", "pdcp_studio", "arbitrator", "--bus", url, "--memory",
+         str(tmp_path / "first.json"), "--seconds", "30"],
+        stdout=subprocess.PIPE, stderr=subprocess.PIPE, text=True)
+    try:
+        while "arbitrating" not in (line := first.stdout.readline()):
+            assert line, "the first arbitrator ended before it arbitrated"
+        second = subprocess.run(
+            [sys.executable, "-m", "pdcp_studio", "arbitrator", "--bus", url, "--memory",
+             str(tmp_path / "second.json"), "--seconds", "5"],
+            capture_output=True, text=True, timeout=60)
+    finally:
+        first.terminate()
+        first.communicate(timeout=10)
+    assert second.returncode == 1
+    lines = second.stderr.splitlines()
+    assert len(lines) == 1 and "another bus arbitrator" in lines[0], second.stderr
