@@ -136,7 +136,9 @@ class PresenceMixin:
     def _claim_yielded(self, decision: Decision) -> None:
         """Another arbitrator is on the bus: stop writing at once and say so, once."""
         self.bus_message = decision.message
-        log.warning("%s: %s", self.name, decision.message)
+        # Info, not warning: the yield event is what callers show (the CLI's one error line);
+        # a warning would reach stderr a second time through logging's last-resort handler.
+        log.info("%s: %s", self.name, decision.message)
         with self._lock:
             nodes = list(self._nodes)
         for node_id in nodes:

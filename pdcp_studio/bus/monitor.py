@@ -182,8 +182,9 @@ class MonitorStats:
 
     def verdict(self) -> str | None:
         """``not PDCP`` when plenty of frames came and none of them fitted PDCP in context."""
-        if self.by_function.get(NOT_PDCP) or (
-                self.frames >= NOT_PDCP_MIN_FRAMES and self.in_context == 0):
+        nothing_decoded = 0 < self.frames == self.undecodable  # a short foreign capture
+        if self.by_function.get(NOT_PDCP) or (self.in_context == 0 and (
+                self.frames >= NOT_PDCP_MIN_FRAMES or nothing_decoded)):
             return NOT_PDCP
         return None
 

@@ -104,13 +104,18 @@ def parse_bus_url(url: str) -> BusSpec:
             bitrate = _rate(text, url, "bitrate")
         if not channel:
             raise BusUrlError(f"bus URL {url!r}: the channel is empty")
+        for key, _value in options:
+            if key in ("bitrate", "channel", "interface", "url"):  # set by the URL itself
+                raise BusUrlError(f"bus URL {url!r}: option {key!r} is given by the URL "
+                                  "itself (can:INTERFACE:CHANNEL[@BITRATE])")
         return BusSpec(url, "can", interface=interface, channel=channel, bitrate=bitrate,
                        options=options)
     if scheme == "serial":
         port, baud = rest, DEFAULT_BAUD
-        match = re.match(r"^(.*)@(\d+)$", rest)
-        if match:
-            port, baud = match.group(1), _rate(match.group(2), url, "baud rate")
+        head, at, tail = rest.rpartition("@")
+        # ``@BAUD`` ends the URL; an ``@`` followed by ``/`` or ``:`` belongs to a pyserial URL.
+        if at and not any(c in tail for c in "/:"):
+            port, baud = head, _rate(tail, url, "baud rate")
         if not port:
             raise BusUrlError(f"bus URL {url!r}: serial needs a port (serial:/dev/ttyUSB0)")
         return BusSpec(url, "serial", port=port, baud=baud)
