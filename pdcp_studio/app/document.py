@@ -108,6 +108,8 @@ class Document(QObject):
     pathChanged = Signal(object)
     sessionChanged = Signal(object)
     busChanged = Signal()
+    #: The connected prosthesis's profile-layer policy was read (``Policy`` or None).
+    policyChanged = Signal(object)
 
     def __init__(self, system: System | None = None, *, tree: ProfileTree | None = None,
                  parent: QObject | None = None) -> None:
@@ -129,6 +131,9 @@ class Document(QObject):
         self.bus_system: System | None = None
         #: Why a link was staged (a plan's reason, "linked by hand"): for the pending list.
         self.link_reasons: dict[Link, str] = {}
+        #: The connected prosthesis's profile-layer policy as last read (None: offline or
+        #: not read yet); the checks follow it.
+        self.policy: Any = None
         self._selection: Selection = None
         self._extra_dirty = False
         self._was_dirty = False
@@ -227,12 +232,24 @@ class Document(QObject):
             device.present = present
             self.deviceChanged.emit(key)
 
+    @property
+    def autoconfigure(self) -> bool:
+        """May the prosthesis autoconfigure on its own? (True offline: the thesis default.)"""
+        return self.policy is None or bool(self.policy.autoconfigure)
+
+    def set_policy(self, policy: Any) -> None:
+        """The live prosthesis's policy as read (None: unknown); the checks follow it."""
+        if policy != self.policy:
+            self.policy = policy
+            self.policyChanged.emit(policy)
+
     def set_session(self, session: Any) -> None:
         """Bind or unbind a live session without touching the system."""
         if session is not self.session:
             self.session = session
             if session is None:
                 self.bus_system = None
+                self.set_policy(None)
             self.sessionChanged.emit(session)
             self.busChanged.emit()
 

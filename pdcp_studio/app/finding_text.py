@@ -47,6 +47,12 @@ _TEXTS = {
                             "Autoconfigure do it.",
 }
 
+#: ``terminal-unconnected`` on a prosthesis whose policy is autoconfigure off (issue 17).
+_TERMINAL_OFF = ("{a} drives a part of the prosthesis but nothing feeds it, so that part "
+                 "will not move. Autoconfigure is off on this prosthesis, so it will not "
+                 "link it on its own: connect a matching output.")
+
+
 def channel_words(system: System, ref: ChannelRef) -> str:
     """``Multi-grip hand (serial 301), channel 2``: the device's name and the channel."""
     device = system.devices.get(ref.device)
@@ -55,9 +61,13 @@ def channel_words(system: System, ref: ChannelRef) -> str:
     return translate(_CTX, "{device}, channel {n}").format(device=name, n=ref.index)
 
 
-def plain_finding(finding: Finding, system: System) -> str:
-    """The finding in plain words with what to do; the engine's message if the rule is new."""
+def plain_finding(finding: Finding, system: System, autoconfigure: bool = True) -> str:
+    """The finding in plain words with what to do; the engine's message if the rule is new.
+
+    ``autoconfigure`` is the prosthesis's policy (the checks were made with it)."""
     text = _TEXTS.get(finding.code)
+    if finding.code == "terminal-unconnected" and not autoconfigure:
+        text = _TERMINAL_OFF
     if text is None:
         return finding.message
     refs = [channel_words(system, r) for r in finding.refs[:2]]

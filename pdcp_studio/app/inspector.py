@@ -115,6 +115,7 @@ class Inspector(QScrollArea):
         doc.deviceChanged.connect(self._on_device_changed)
         doc.systemReset.connect(lambda: self.show_object(doc.selection))
         doc.linksChanged.connect(self._on_links_changed)
+        doc.policyChanged.connect(self._on_policy_changed)
         self.show_object(None)
 
     # -- building -------------------------------------------------------------------
@@ -230,7 +231,8 @@ class Inspector(QScrollArea):
         hint.setWordWrap(True)
         hint.setStyleSheet(DIM_STYLE)
         box.addWidget(hint)
-        findings = check_system(system) if system.devices else []
+        findings = (check_system(system, autoconfigure=self.doc.autoconfigure)
+                    if system.devices else [])
         box.addWidget(
             QLabel(
                 self.tr("<b>Checks</b> — {v0} finding{v1}").format(
@@ -244,7 +246,8 @@ class Inspector(QScrollArea):
         severity = {"error": self.tr("Error"), "warning": self.tr("Warning"),
                     "info": self.tr("Note")}
         for f in findings:
-            item = QListWidgetItem(f"{severity[f.severity.value]}: {plain_finding(f, system)}")
+            plain = plain_finding(f, system, self.doc.autoconfigure)
+            item = QListWidgetItem(f"{severity[f.severity.value]}: {plain}")
             item.setForeground(QColor(colours.get(f.severity.value, "#1f2933")))
             item.setData(Qt.ItemDataRole.UserRole, f.refs[0] if f.refs else None)
             item.setToolTip(finding_detail(f))
@@ -612,6 +615,10 @@ class Inspector(QScrollArea):
         subj = self.subject
         if subj is None or subj == key or (isinstance(subj, ChannelRef) and subj.device == key):
             self._refresh_later(subj)
+
+    def _on_policy_changed(self, _policy: object) -> None:
+        if self.subject is None:  # the system's checks follow the prosthesis's policy
+            self._refresh_later(None)
 
     def _on_links_changed(self) -> None:
         if self.subject is None or isinstance(self.subject, ChannelRef | Link):

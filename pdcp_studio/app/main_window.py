@@ -43,6 +43,7 @@ from pdcp_studio.app.window_bus import BusMixin
 from pdcp_studio.app.window_export import ExportMixin
 from pdcp_studio.app.window_files import FileHandlingMixin
 from pdcp_studio.app.window_menus import MenusMixin
+from pdcp_studio.app.window_policy import PolicyMixin
 from pdcp_studio.app.window_recovery import RecoveryMixin
 from pdcp_studio.app.window_support import (
     DEFAULT_BUS,
@@ -59,7 +60,7 @@ log = logging.getLogger(__name__)
 
 
 class MainWindow(MenusMixin, FileHandlingMixin, ExportMixin, BusMixin, RecoveryMixin,
-                 TransactionsMixin, QMainWindow):
+                 TransactionsMixin, PolicyMixin, QMainWindow):
     """PDCP Studio's window on one document."""
 
     #: The first system is on screen and laid out (a file, a bus, or the offline fallback).
@@ -83,6 +84,7 @@ class MainWindow(MenusMixin, FileHandlingMixin, ExportMixin, BusMixin, RecoveryM
         self._build_actions()
         self._build_menus()
         self._build_transactions()
+        self._build_policy()
         self._connect()
         self._update_title()
         self.recovery = recovery

@@ -67,6 +67,8 @@ class FittingInfo:
     time: _dt.datetime | None = None
     bus: str = ""
     changes: list[dict] = field(default_factory=list)
+    #: The prosthesis's profile-layer policy (a ``Policy``; None: not known, e.g. offline).
+    policy: Any = None
 
 
 def _version(value: int) -> str:
@@ -92,10 +94,10 @@ def _change_rows(changes: list[dict]) -> str:
     return "".join(rows) or "<tr><td colspan=6><i>no change was made in this session</i></td></tr>"
 
 
-def _finding_rows(system: System) -> str:
+def _finding_rows(system: System, autoconfigure: bool = True) -> str:
     from pdcp_studio.engine import check_system
 
-    findings = check_system(system) if system.devices else []
+    findings = check_system(system, autoconfigure=autoconfigure) if system.devices else []
     rows = [f"<tr><td>{_e(f.severity.value)}</td><td>{_e(f.message)}</td></tr>"
             for f in findings]
     return "".join(rows) or "<tr><td colspan=2><i>every check passed</i></td></tr>"
@@ -182,6 +184,15 @@ def report_html(system: System, tree: ProfileTree, *, title: str = DEFAULT_TITLE
     when = date.isoformat()
     patient = prosthetist = prosthesis = blank
     session_html = ""
+    policy_html = ""
+    autoconfigure = True
+    if info is not None and info.policy is not None:
+        autoconfigure = bool(info.policy.autoconfigure)
+        policy_html = ("<p>Profile-layer policy: <b>autoconfigure on</b> (the prosthesis may "
+                       "link unconnected terminal channels on its own)</p>" if autoconfigure
+                       else "<p>Profile-layer policy: <b>autoconfigure off</b> (the prosthesis "
+                       "repairs known links and finds replacements, but links nothing new on "
+                       "its own)</p>")
     if info is not None:
         if info.time is not None:
             when = info.time.strftime("%Y-%m-%d %H:%M UTC")
@@ -194,7 +205,7 @@ def report_html(system: System, tree: ProfileTree, *, title: str = DEFAULT_TITLE
             "<th>Change</th><th>Outcome</th><th>By</th></tr>"
             f"{_change_rows(info.changes)}</table>")
     findings = ("<h2>Checks</h2><table class=grid width=100%><tr><th width=12%>Finding</th>"
-                f"<th>What</th></tr>{_finding_rows(system)}</table>")
+                f"<th>What</th></tr>{_finding_rows(system, autoconfigure)}</table>")
     crc = "—" if checksum is None else f"0x{checksum:04X}"
     graph = ""
     if graph_size is not None:
@@ -216,6 +227,7 @@ def report_html(system: System, tree: ProfileTree, *, title: str = DEFAULT_TITLE
  <tr><td>Patient:</td><td>{patient}</td><td>Prosthesis:</td><td>{prosthesis}</td></tr>
  <tr><td>Prosthetist:</td><td>{prosthetist}</td><td>Signature:</td><td>{blank}</td></tr>
 </table>
+{policy_html}
 <h2>Devices ({len(system.devices)})</h2>
 <table class=grid width=100%>{devices}</table>
 <h2>Links ({len(system.links)})</h2>

@@ -189,10 +189,11 @@ class TransactionsMixin:
             except ValueError:
                 when = None
             return FittingInfo(entry.get("patient") or "", entry.get("operator") or "", when,
-                               entry.get("bus") or "", [entry])
+                               entry.get("bus") or "", [entry], policy_of_entry(entry))
         return FittingInfo(self.patient_reference(), fitting.stored_operator(),
                            dt.datetime.now(dt.UTC), self.live.url if self.live.is_live else "",
-                           self.session_changes())
+                           self.session_changes(),
+                           self.doc.policy if self.live.is_live else None)
 
     def write_fitting_report(self, path: Any, entry: dict | None = None) -> bool:
         """Write the fitting report PDF (GUI thread: text layout); False on an error."""
@@ -232,3 +233,16 @@ class TransactionsMixin:
         text = fitting.patient_reference(devices, history_entries=entries) if devices else ""
         self.pending_panel.set_patient(text)
         self.history_panel.refresh()
+
+
+def policy_of_entry(entry: dict) -> Any:
+    """The policy a history entry left on the prosthesis (None when it does not say)."""
+    from pdcp_studio.bus.transaction import Policy
+
+    doc = entry.get("policy_after")
+    if not isinstance(doc, dict):
+        return None
+    try:
+        return Policy.from_json(doc)
+    except ValueError:
+        return None
