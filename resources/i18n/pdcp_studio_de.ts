@@ -96,6 +96,10 @@
         <translation>Eingang {n} steuert ein Teil der Prothese, bekommt aber keine Daten, daher bewegt sich dieses Teil nicht. Verbinden Sie einen passenden Ausgang oder lassen Sie die Autokonfiguration das tun.</translation>
     </message>
     <message>
+        <source>{a} drives a part of the prosthesis but nothing feeds it, so that part will not move. Autoconfigure is off on this prosthesis, so it will not link it on its own: connect a matching output.</source>
+        <translation>{a} steuert ein Teil der Prothese, bekommt aber keine Daten, daher bewegt sich dieses Teil nicht. Die Autokonfiguration ist an dieser Prothese aus, sie verbindet es also nicht von selbst: verbinden Sie einen passenden Ausgang.</translation>
+    </message>
+    <message>
         <source>One output feeds several inputs that each need it for themselves. Keep one of these links and remove the others.</source>
         <translation>Ein Ausgang speist mehrere Eingänge, die ihn jeweils für sich allein brauchen. Behalten Sie eine dieser Verbindungen und entfernen Sie die anderen.</translation>
     </message>
@@ -2152,6 +2156,59 @@ Den PDCP-Bus einer aktiven Prothese ansehen und einrichten.</translation>
         <location filename="../../pdcp_studio/app/plan_panel.py" line="252" />
         <source>Applied {mode}: {n_added} added, {n_removed} removed (Undo reverts it)</source>
         <translation>{mode} angewendet: {n_added} hinzugefügt, {n_removed} entfernt (Rückgängig macht es ungeschehen)</translation>
+    </message>
+</context>
+<context>
+    <name>PolicyMixin</name>
+    <message>
+        <location filename="../../pdcp_studio/app/window_policy.py" line="31" />
+        <source>&amp;Autoconfigure on this prosthesis</source>
+        <translation>&amp;Autokonfiguration an dieser Prothese</translation>
+    </message>
+    <message>
+        <location filename="../../pdcp_studio/app/window_policy.py" line="35" />
+        <source>Whether the prosthesis may link unconnected hand, wrist or elbow channels on its own; the change is previewed, confirmed and recorded in the fitting history</source>
+        <translation>Ob die Prothese nicht verbundene Kanäle von Hand, Handgelenk oder Ellbogen selbst verbinden darf; die Änderung wird vorab gezeigt, bestätigt und in der Anpassungshistorie festgehalten</translation>
+    </message>
+    <message>
+        <location filename="../../pdcp_studio/app/window_policy.py" line="78" />
+        <source>Autoconfigure: …</source>
+        <translation>Autokonfiguration: …</translation>
+    </message>
+    <message>
+        <location filename="../../pdcp_studio/app/window_policy.py" line="79" />
+        <source>Reading the prosthesis&apos;s policy…</source>
+        <translation>Die Einstellung der Prothese wird gelesen…</translation>
+    </message>
+    <message>
+        <location filename="../../pdcp_studio/app/window_policy.py" line="84" />
+        <source>Autoconfigure: on</source>
+        <translation>Autokonfiguration: an</translation>
+    </message>
+    <message>
+        <location filename="../../pdcp_studio/app/window_policy.py" line="86" />
+        <source>This prosthesis links unconnected hand, wrist or elbow channels on its own when it starts or a part is swapped (Bus menu to change)</source>
+        <translation>Diese Prothese verbindet nicht verbundene Kanäle von Hand, Handgelenk oder Ellbogen selbst, wenn sie startet oder ein Teil getauscht wird (im Menü Bus zu ändern)</translation>
+    </message>
+    <message>
+        <location filename="../../pdcp_studio/app/window_policy.py" line="90" />
+        <source>Autoconfigure: off</source>
+        <translation>Autokonfiguration: aus</translation>
+    </message>
+    <message>
+        <location filename="../../pdcp_studio/app/window_policy.py" line="92" />
+        <source>This prosthesis repairs its known links and finds replacements for swapped parts, but links nothing new on its own (Bus menu to change)</source>
+        <translation>Diese Prothese stellt ihre bekannten Verbindungen wieder her und findet Ersatz für getauschte Teile, verbindet aber nichts Neues von selbst (im Menü Bus zu ändern)</translation>
+    </message>
+    <message>
+        <location filename="../../pdcp_studio/app/window_policy.py" line="106" />
+        <source>Turn autoconfigure on</source>
+        <translation>Autokonfiguration einschalten</translation>
+    </message>
+    <message>
+        <location filename="../../pdcp_studio/app/window_policy.py" line="107" />
+        <source>Turn autoconfigure off</source>
+        <translation>Autokonfiguration ausschalten</translation>
     </message>
 </context>
 <context>

@@ -146,3 +146,23 @@ def test_declining_changes_nothing(live, qtbot):
 def test_the_report_states_autoconfigure_on(live):
     html = report.report_html(live.doc.system, live.doc.tree, fitting=live.fitting_info())
     assert "autoconfigure on" in html
+
+
+def test_the_policy_reads_in_german(make_window, qtbot):
+    from PySide6.QtWidgets import QApplication
+
+    from pdcp_studio.app import i18n
+
+    app = QApplication.instance()
+    i18n.install(app, "de")
+    try:
+        window = make_window()
+        with qtbot.waitSignal(window.ready, timeout=20000):
+            window.connect_bus("sim:thesis-test2")
+        qtbot.waitUntil(lambda: window.policy_label.text() == "Autokonfiguration: an",
+                        timeout=10000)
+        assert window.act_autoconfigure.text() == "&Autokonfiguration an dieser Prothese"
+        assert "Handgelenk" in window.policy_label.toolTip()
+        window.live.disconnect_bus()
+    finally:
+        i18n.uninstall(app)
