@@ -50,8 +50,11 @@ class PolicyMixin:
         self.read_policy()
 
     def _policy_bus_event(self, event: Any) -> None:
-        # A transaction (ours or over the host link) may have changed it.
-        if type(event).__name__ == "TransactionDone":
+        # A transaction (ours or over the host link) may have changed it; an arbitrator
+        # that restarted (start-up's plan, a bus that came back) may hold another one.
+        kind = type(event).__name__
+        if kind in ("TransactionDone", "PlanApplied", "TerminalsUnconnected") or (
+                kind == "BusState" and event.state in ("arbitrating", "reconnected")):
             self.read_policy()
 
     def read_policy(self) -> None:

@@ -166,3 +166,23 @@ def test_the_policy_reads_in_german(make_window, qtbot):
         window.live.disconnect_bus()
     finally:
         i18n.uninstall(app)
+
+
+def test_the_policy_is_read_again_after_an_arbitrator_reset(live, qtbot):
+    with qtbot.waitSignal(live.flow.finished, timeout=20000):
+        live.act_autoconfigure.trigger()
+    qtbot.waitUntil(lambda: live.policy_label.text() == "Autoconfigure: off", timeout=10000)
+    _idle(live, qtbot)
+    # Kept with the stored configuration: still off after a reset that keeps the memory.
+    with qtbot.waitSignal(live.live.bridge.simChanged, timeout=20000):
+        live.live.bridge.reset_arbitrator(True)
+    _idle(live, qtbot)
+    assert _bus_policy(live).autoconfigure is False
+    assert live.policy_label.text() == "Autoconfigure: off"
+    # Erased memory: the label shows what the restarted arbitrator holds now.
+    with qtbot.waitSignal(live.live.bridge.simChanged, timeout=20000):
+        live.live.bridge.reset_arbitrator(False)
+    _idle(live, qtbot)
+    now = "on" if _bus_policy(live).autoconfigure else "off"
+    qtbot.waitUntil(lambda: live.policy_label.text() == f"Autoconfigure: {now}", timeout=10000)
+    assert live.act_autoconfigure.isChecked() == (now == "on")
