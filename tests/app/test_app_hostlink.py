@@ -316,3 +316,18 @@ def test_a_parameter_edit_written_then_undone_and_redone(live, rig, qtbot):
     assert rig.descriptor(HAND, 2) == b"Pinch grip"
     assert _write(live, qtbot, live.act_redo.trigger).written
     assert rig.descriptor(HAND, 2) == b"Pinch motor"
+
+
+def test_the_autoconfigure_policy_over_the_host_link(live, qtbot, rig):
+    """Issue 17 in the app over the host link: shown, changed as a recorded transaction,
+    checked on the arbitrator itself."""
+    qtbot.waitUntil(lambda: live.policy_label.text() == "Autoconfigure: on", timeout=WAIT_MS)
+    assert rig.arbitrator.read_policy().autoconfigure
+    with qtbot.waitSignal(live.flow.finished, timeout=WAIT_MS) as got:
+        live.act_autoconfigure.trigger()
+    assert got.args[0].ok, got.args[0].summary()
+    assert rig.arbitrator.read_policy().autoconfigure is False
+    assert History(os.environ["PDCP_STUDIO_HISTORY"]).entries()[-1]["action"] == (
+        "policy autoconfigure off")
+    qtbot.waitUntil(lambda: live.policy_label.text() == "Autoconfigure: off", timeout=WAIT_MS)
+    assert not live.act_autoconfigure.isChecked()
