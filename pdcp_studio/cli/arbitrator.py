@@ -113,6 +113,8 @@ def run(args: argparse.Namespace) -> int:
                                "listen_s": LISTEN_S}
     if args.no_autoconfigure:
         options["autoconfigure"] = False
+    if args.host_serial:
+        options["frame_events"] = True  # the host link's monitor passes the bus's frames on
     if args.startup_quiet is not None:
         options["startup_quiet_s"] = args.startup_quiet
     stop = threading.Event()

@@ -173,11 +173,14 @@ def _session_frames(url: str, stop: Callable[[], bool],
         from pdcp_studio.errors import TransportError
 
         raise TransportError(f"--bus {url}: the bus session is not available ({err})") from err
-    seen: queue.Queue[FrameSeen] = queue.Queue()
+    from pdcp_studio.bus.hostlink_client import ChannelCounts
+
+    seen: queue.Queue[Any] = queue.Queue()
     session = open_session(url)
     try:
-        # The session's callback only enqueues; decoding happens on this thread.
-        wanted = (FrameSeen, DeviceJoined, DeviceLeft, LinkMade, LinkRemoved)
+        # The session's callback only enqueues; decoding happens on this thread. Over the
+        # host link channel data arrives as counts per output (ChannelCounts), not frames.
+        wanted = (FrameSeen, DeviceJoined, DeviceLeft, LinkMade, LinkRemoved, ChannelCounts)
         session.subscribe(
             lambda ev: seen.put(ev) if isinstance(ev, wanted) else None)
         if links is not None:
@@ -188,6 +191,9 @@ def _session_frames(url: str, stop: Callable[[], bool],
                 ev = seen.get(timeout=POLL_S)
             except queue.Empty:
                 yield None
+                continue
+            if isinstance(ev, ChannelCounts):
+                yield ev
                 continue
             if not isinstance(ev, FrameSeen):
                 if links is not None:
@@ -281,6 +287,9 @@ def run(args: argparse.Namespace) -> int:
     json_out = JsonFrameWriter(out) if args.json else None
     limiter = UndecodableLog(sys.stderr) if live else None
     decode = decoder.decode_message
+    from pdcp_studio.bus.hostlink_client import ChannelCounts
+
+    counted = ChannelDataCounts()
     try:
         with ExitStack() as stack:
             stack.enter_context(closing(frames))  # shuts a live bus down on any exit
@@ -299,6 +308,11 @@ def run(args: argparse.Namespace) -> int:
                         out.flush()
                         if limiter is not None:
                             limiter.tick()
+                        continue
+                    if isinstance(msg, ChannelCounts):
+                        line = counted.add(msg)
+                        if line and json_out is None and show is None:
+                            lines.append(line)
                         continue
                     if recorder is not None:
                         recorder.write_message(msg)
@@ -333,9 +347,35 @@ def run(args: argparse.Namespace) -> int:
         limiter.tick(final=True)
     elapsed = None if args.replay else time.monotonic() - clock["started"]
     print(decoder.stats.summary(elapsed), file=sys.stderr)
+    if counted.total:
+        print(counted.summary(), file=sys.stderr)
     if args.log:
         print(f"wrote {args.log}", file=sys.stderr)
     return 0
+
+
+class ChannelDataCounts:
+    """Channel data the arbitrator counted for us (the host link carries counts, not the
+    frames: a busy CAN bus does not fit a 128000-baud line). One line per report."""
+
+    def __init__(self) -> None:
+        self.total = 0
+        self.by_output: dict[Any, int] = {}
+
+    def add(self, report: Any) -> str:
+        n = sum(report.counts.values()) or sum(report.by_node.values())
+        self.total += n
+        for ref, k in report.counts.items():
+            self.by_output[ref] = self.by_output.get(ref, 0) + k
+        if not n:
+            return ""
+        parts = [f"{ref} {k}" for ref, k in sorted(report.counts.items(), key=repr) if k]
+        return (f"channel data counted by the arbitrator over {report.seconds:g} s: "
+                f"{n} frame(s)" + (f" ({', '.join(parts)})" if parts else ""))
+
+    def summary(self) -> str:
+        return (f"{self.total} channel data frame(s) counted by the arbitrator on "
+                f"{len(self.by_output)} output(s) (the host link carries counts, not frames)")
 
 
 class UndecodableLog:

@@ -60,3 +60,12 @@ def test_config_write_over_the_host_link_is_verified(serial_url, tmp_path, capsy
     out = tmp_path / "back.pdcfg"
     assert main(["config", "read", "--bus", serial_url, "-o", str(out)]) == 0
     assert out.read_bytes() == good.read_bytes()
+
+
+def test_monitor_over_the_host_link_shows_frames_and_counts_channel_data(serial_url, capsys):
+    # The line cannot carry a busy CAN bus: protocol frames come in full, channel data as
+    # counts per output, and the monitor says so instead of "0 frames".
+    assert main(["monitor", "--bus", serial_url, "--seconds", "4"]) == 0
+    out, err = capsys.readouterr()
+    assert "channel data counted by the arbitrator over" in out, out[-2000:]
+    assert "channel data frame(s) counted by the arbitrator" in err, err
