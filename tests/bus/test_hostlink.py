@@ -156,7 +156,10 @@ def test_the_stored_configuration_is_written_in_chunks_and_verified(rig, relay, 
     assert back == session.read_configuration() == rig[0].read_memory()
     relay.reset_counts()
     session.read_configuration()
-    assert relay.total < 40  # unchanged: CONFIG_INFO only
+    # Unchanged, so CONFIG_INFO only (~30 bytes both ways): the configuration's own records
+    # are 60 bytes, so a re-read would pass 60. Room is left for one retransmitted ACK on a
+    # loaded machine.
+    assert relay.total < 60
 
 
 def test_a_commit_with_a_wrong_crc_stores_nothing(rig, session):
