@@ -31,7 +31,7 @@ from pdcp_studio.model.refs import ChannelRef
 LinkEnds = tuple[ChannelRef, ChannelRef]  # (output, input)
 
 
-def _channel_json(ch: StoredChannel) -> dict[str, Any]:
+def channel_json(ch: StoredChannel) -> dict[str, Any]:
     """A channel record as ``config decode --json`` writes it."""
     doc: dict[str, Any] = {
         "type": f"0x{ch.type:04X}", "profile": f"0x{ch.profile:04X}", "index": ch.index,
@@ -40,7 +40,7 @@ def _channel_json(ch: StoredChannel) -> dict[str, Any]:
         doc["owner_type"] = ch.owner_type
     if ch.owner_profile is not None:
         doc["owner_profile"] = ch.owner_profile
-    return _with_unknown(doc, ch.unknown)
+    return with_unknown(doc, ch.unknown)
 
 
 def unknown_json(records: Unknown) -> list[dict[str, int]]:
@@ -48,7 +48,8 @@ def unknown_json(records: Unknown) -> list[dict[str, int]]:
     return [{"code": rec.code, "value": rec.value} for rec in records]
 
 
-def _with_unknown(doc: dict[str, Any], records: Unknown) -> dict[str, Any]:
+def with_unknown(doc: dict[str, Any], records: Unknown) -> dict[str, Any]:
+    """``doc`` with its ``unknown_records`` when it has some (contracts §2)."""
     if records:
         doc["unknown_records"] = unknown_json(records)
     return doc
@@ -56,13 +57,13 @@ def _with_unknown(doc: dict[str, Any], records: Unknown) -> dict[str, Any]:
 
 def link_json(link: StoredLink) -> dict[str, Any]:
     """A stored link as ``config decode --json`` writes it."""
-    return _with_unknown({"index": link.index, "input": _channel_json(link.input),
-                          "output": _channel_json(link.output)}, link.unknown)
+    return with_unknown({"index": link.index, "input": channel_json(link.input),
+                          "output": channel_json(link.output)}, link.unknown)
 
 
 def _records_json(link: StoredLink) -> dict[str, Any]:
-    return _with_unknown({"input": _channel_json(link.input),
-                          "output": _channel_json(link.output)}, link.unknown)
+    return with_unknown({"input": channel_json(link.input),
+                          "output": channel_json(link.output)}, link.unknown)
 
 
 def _unknown_pair_json(pair: tuple[Unknown, Unknown] | None) -> dict[str, Any]:

@@ -52,6 +52,7 @@ from pathlib import Path
 from typing import Any, BinaryIO
 
 from pdcp_studio.errors import ConfigFormatError
+from pdcp_studio.model.config_diff import channel_json, link_json, unknown_json, with_unknown
 from pdcp_studio.model.configuration import (
     ConfigCollection,
     StoredChannel,
@@ -453,33 +454,12 @@ def save_path(collection: ConfigCollection, path: str | Path) -> None:
 
 
 # -- JSON (contracts §2, ``config decode --json``) -------------------------------------
-def channel_to_json(ch: StoredChannel) -> dict[str, Any]:
-    """Type and profile as ``"0x%04X"``, the rest as integers; absent owner fields omitted."""
-    doc: dict[str, Any] = {
-        "type": f"0x{ch.type:04X}", "profile": f"0x{ch.profile:04X}", "index": ch.index,
-        "vid": ch.vid, "pid": ch.pid, "serial": ch.serial}
-    if ch.owner_type is not None:
-        doc["owner_type"] = ch.owner_type
-    if ch.owner_profile is not None:
-        doc["owner_profile"] = ch.owner_profile
-    return _with_unknown(doc, ch.unknown)
-
-
-def unknown_to_json(records: Unknown) -> list[dict[str, int]]:
-    """``[{"code": 32, "value": 4660}, …]`` in file order (contracts §2)."""
-    return [{"code": rec.code, "value": rec.value} for rec in records]
-
-
-def _with_unknown(doc: dict[str, Any], records: Unknown) -> dict[str, Any]:
-    if records:
-        doc["unknown_records"] = unknown_to_json(records)
-    return doc
-
-
-def link_to_json(link: StoredLink) -> dict[str, Any]:
-    """One link object of the contract JSON."""
-    return _with_unknown({"index": link.index, "input": channel_to_json(link.input),
-                          "output": channel_to_json(link.output)}, link.unknown)
+# One JSON shape for a stored channel, link and unknown records: the configuration diff's
+# (model/config_diff.py), which compares exactly what ``config decode --json`` prints.
+channel_to_json = channel_json
+unknown_to_json = unknown_json
+link_to_json = link_json
+_with_unknown = with_unknown
 
 
 def to_json(collection: ConfigCollection) -> dict[str, Any]:
