@@ -40,7 +40,6 @@ class PolicyMixin:
         self.doc.policyChanged.connect(lambda _p: self._show_policy())
         self.live.sessionStarted.connect(self._policy_session_started)
         self.live.stateChanged.connect(lambda _s: self._show_policy())
-        self.flow.finished.connect(lambda _r: self.read_policy())
         self._show_policy()
 
     def _policy_session_started(self, bridge: Any) -> None:
