@@ -114,6 +114,25 @@ class MenusMixin:
                                       self.ask_write_configuration)
         self.act_profiles = self._action(self.tr("&Profile tree…"), self.show_profile_tree)
         self.act_about = self._action(self.tr("&About PDCP Studio"), self.about)
+        self.task_actions = {  # guided tasks (app/wizards)
+            "fitting": self._action(self.tr("&New fitting…"), lambda: self.open_task("fitting"),
+                                    tip=self.tr("Connect, scan, check, link and store a "
+                                                "prosthesis step by step")),
+            "replace": self._action(self.tr("&Replace a part…"),
+                                    lambda: self.open_task("replace"),
+                                    tip=self.tr("Swap a part and link the new one in its "
+                                                "place step by step")),
+            "restore": self._action(self.tr("Re&store a configuration…"),
+                                    lambda: self.open_task("restore"),
+                                    tip=self.tr("Put a configuration file or an earlier "
+                                                "fitting back on the prosthesis")),
+        }
+
+    def open_task(self, task: str) -> Any:
+        """Open a guided task (a wizard beside the window)."""
+        from pdcp_studio.app.wizards import open_wizard
+
+        return open_wizard(self, task)
 
     def _build_menus(self) -> None:
         mb = self.menuBar()
@@ -141,6 +160,9 @@ class MenusMixin:
             m.addAction(dock.toggleViewAction())
         m = mb.addMenu(self.tr("&Plan"))
         for a in self.plan_actions.values():
+            m.addAction(a)
+        self.tasks_menu = m = mb.addMenu(self.tr("&Tasks"))
+        for a in self.task_actions.values():
             m.addAction(a)
         self.bus_menu = m = mb.addMenu(self.tr("&Bus"))
         for a in (self.act_connect, self.act_connect_sim, self.act_disconnect, self.act_scan,
