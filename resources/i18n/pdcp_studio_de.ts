@@ -2907,4 +2907,671 @@ Die Prothese ist wie zuvor.</translation>
         <translation>Gerätename oder VID/PID/Seriennummer</translation>
     </message>
 </context>
+<context>
+    <name>Wizards</name>
+    <message>
+        <source>&amp;Tasks</source>
+        <translation>&amp;Aufgaben</translation>
+    </message>
+    <message>
+        <source>&amp;New fitting…</source>
+        <translation>&amp;Neue Versorgung…</translation>
+    </message>
+    <message>
+        <source>Connect, scan, check, link and store a prosthesis step by step</source>
+        <translation>Eine Prothese Schritt für Schritt verbinden, durchsuchen, prüfen, verknüpfen und speichern</translation>
+    </message>
+    <message>
+        <source>&amp;Replace a part…</source>
+        <translation>Ein Teil &amp;ersetzen…</translation>
+    </message>
+    <message>
+        <source>Swap a part and link the new one in its place step by step</source>
+        <translation>Ein Teil tauschen und das neue Schritt für Schritt an seiner Stelle verbinden</translation>
+    </message>
+    <message>
+        <source>Re&amp;store a configuration…</source>
+        <translation>Eine Konfiguration &amp;wiederherstellen…</translation>
+    </message>
+    <message>
+        <source>Put a configuration file or an earlier fitting back on the prosthesis</source>
+        <translation>Eine Konfigurationsdatei oder eine frühere Versorgung wieder auf die Prothese bringen</translation>
+    </message>
+    <message>
+        <source>The prosthesis keeps its links in its stored configuration: after a restart, or when a part is replaced, it links the parts as stored.</source>
+        <translation>Die Prothese bewahrt ihre Verbindungen in der gespeicherten Konfiguration auf: Nach einem Neustart oder wenn ein Teil ersetzt wird, verbindet sie die Teile wie gespeichert.</translation>
+    </message>
+    <message>
+        <source>Every part is already linked as autoconfigure would link it.</source>
+        <translation>Jedes Teil ist bereits so verbunden, wie die Autokonfiguration es verbinden würde.</translation>
+    </message>
+    <message>
+        <source>New fitting</source>
+        <translation>Neue Versorgung</translation>
+    </message>
+    <message>
+        <source>Autoconfigure</source>
+        <translation>Autokonfiguration</translation>
+    </message>
+    <message>
+        <source>PDCP Studio proposes the links between the parts: each one below with why it is made. Nothing is written yet.</source>
+        <translation>PDCP Studio schlägt die Verbindungen zwischen den Teilen vor: jede unten mit ihrem Grund. Noch wird nichts geschrieben.</translation>
+    </message>
+    <message>
+        <source>Write</source>
+        <translation>Schreiben</translation>
+    </message>
+    <message>
+        <source>The proposed links are written to the prosthesis.</source>
+        <translation>Die vorgeschlagenen Verbindungen werden in die Prothese geschrieben.</translation>
+    </message>
+    <message>
+        <source>Write to prosthesis</source>
+        <translation>In die Prothese schreiben</translation>
+    </message>
+    <message>
+        <source>Store the configuration</source>
+        <translation>Konfiguration speichern</translation>
+    </message>
+    <message>
+        <source>The links are stored in the prosthesis, so that it keeps them.</source>
+        <translation>Die Verbindungen werden in der Prothese gespeichert, damit sie sie behält.</translation>
+    </message>
+    <message>
+        <source>Store configuration</source>
+        <translation>Konfiguration speichern</translation>
+    </message>
+    <message>
+        <source>{0} link(s) already on the prosthesis stay as they are.</source>
+        <translation>{0} Verbindung(en), die die Prothese schon hat, bleiben, wie sie sind.</translation>
+    </message>
+    <message>
+        <source>Connect</source>
+        <translation>Verbinden</translation>
+    </message>
+    <message>
+        <source>Choose the prosthesis to work on. Next connects to it.</source>
+        <translation>Wählen Sie die Prothese, an der Sie arbeiten. „Weiter“ verbindet mit ihr.</translation>
+    </message>
+    <message>
+        <source>A simulated prosthesis, to practise on:</source>
+        <translation>Eine simulierte Prothese zum Üben:</translation>
+    </message>
+    <message>
+        <source>Another connection (CAN adapter or arbitrator cable):</source>
+        <translation>Eine andere Verbindung (CAN-Adapter oder Arbiter-Kabel):</translation>
+    </message>
+    <message>
+        <source>Choose…</source>
+        <translation>Auswählen…</translation>
+    </message>
+    <message>
+        <source>Scan</source>
+        <translation>Suchen</translation>
+    </message>
+    <message>
+        <source>PDCP Studio asks every part on the bus what it is and what it can do.</source>
+        <translation>PDCP Studio fragt jedes Teil am Bus, was es ist und was es kann.</translation>
+    </message>
+    <message>
+        <source>Scan again</source>
+        <translation>Erneut suchen</translation>
+    </message>
+    <message>
+        <source>Scanning the bus…</source>
+        <translation>Bus wird durchsucht…</translation>
+    </message>
+    <message>
+        <source>Scan finished.</source>
+        <translation>Suche beendet.</translation>
+    </message>
+    <message>
+        <source>Checks</source>
+        <translation>Prüfungen</translation>
+    </message>
+    <message>
+        <source>PDCP Studio checks that every part is described and linked as it asks to be.</source>
+        <translation>PDCP Studio prüft, ob jedes Teil so beschrieben und verbunden ist, wie es das verlangt.</translation>
+    </message>
+    <message>
+        <source>Show the technical detail</source>
+        <translation>Technische Einzelheiten zeigen</translation>
+    </message>
+    <message>
+        <source>Working out the change…</source>
+        <translation>Die Änderung wird ermittelt…</translation>
+    </message>
+    <message>
+        <source>Stop and put the prosthesis back</source>
+        <translation>Anhalten und die Prothese zurücksetzen</translation>
+    </message>
+    <message>
+        <source>Writing to the prosthesis…</source>
+        <translation>Wird in die Prothese geschrieben…</translation>
+    </message>
+    <message>
+        <source>Stopping… (the prosthesis is put back as it was)</source>
+        <translation>Wird angehalten… (die Prothese wird zurückgesetzt, wie sie war)</translation>
+    </message>
+    <message>
+        <source>The prosthesis changed after the preview, so nothing was written. Go back to look at it again.</source>
+        <translation>Die Prothese hat sich nach der Vorschau geändert, daher wurde nichts geschrieben. Gehen Sie zurück und sehen Sie sie erneut an.</translation>
+    </message>
+    <message>
+        <source>Verify</source>
+        <translation>Prüfen</translation>
+    </message>
+    <message>
+        <source>PDCP Studio reads the links and the stored configuration back from the prosthesis and compares them with what was written.</source>
+        <translation>PDCP Studio liest die Verbindungen und die gespeicherte Konfiguration aus der Prothese zurück und vergleicht sie mit dem Geschriebenen.</translation>
+    </message>
+    <message>
+        <source>Report</source>
+        <translation>Bericht</translation>
+    </message>
+    <message>
+        <source>The fitting is recorded in the fitting history. Save the fitting report to print it or keep it with the patient&apos;s file.</source>
+        <translation>Die Versorgung ist im Versorgungsprotokoll festgehalten. Speichern Sie den Versorgungsbericht, um ihn zu drucken oder zur Patientenakte zu nehmen.</translation>
+    </message>
+    <message>
+        <source>Save the fitting report (PDF)…</source>
+        <translation>Versorgungsbericht speichern (PDF)…</translation>
+    </message>
+    <message>
+        <source>Fitting report</source>
+        <translation>Versorgungsbericht</translation>
+    </message>
+    <message>
+        <source>PDF (*.pdf)</source>
+        <translation>PDF (*.pdf)</translation>
+    </message>
+    <message>
+        <source>Looking at the prosthesis…</source>
+        <translation>Die Prothese wird angesehen…</translation>
+    </message>
+    <message>
+        <source>No prosthesis is connected.</source>
+        <translation>Keine Prothese ist verbunden.</translation>
+    </message>
+    <message>
+        <source>The prosthesis connected now (none)</source>
+        <translation>Die jetzt verbundene Prothese (keine)</translation>
+    </message>
+    <message>
+        <source> (not on the bus)</source>
+        <translation> (nicht am Bus)</translation>
+    </message>
+    <message>
+        <source>Nothing was worked out to write.</source>
+        <translation>Es wurde nichts zum Schreiben ermittelt.</translation>
+    </message>
+    <message>
+        <source>Next goes on without writing anything.</source>
+        <translation>„Weiter“ geht weiter, ohne etwas zu schreiben.</translation>
+    </message>
+    <message>
+        <source>Stopped. The prosthesis is as it was before.</source>
+        <translation>Angehalten. Die Prothese ist wie zuvor.</translation>
+    </message>
+    <message>
+        <source>Everything is as written.</source>
+        <translation>Alles ist wie geschrieben.</translation>
+    </message>
+    <message>
+        <source>The prosthesis is not as written: look at the points above.</source>
+        <translation>Die Prothese ist nicht wie geschrieben: Sehen Sie sich die Punkte oben an.</translation>
+    </message>
+    <message>
+        <source>not recorded</source>
+        <translation>nicht festgehalten</translation>
+    </message>
+    <message>
+        <source>Nothing needed writing: the prosthesis already held it.</source>
+        <translation>Es musste nichts geschrieben werden: Die Prothese hatte es schon.</translation>
+    </message>
+    <message>
+        <source>Done:</source>
+        <translation>Erledigt:</translation>
+    </message>
+    <message>
+        <source>The prosthesis did not answer: {0}</source>
+        <translation>Die Prothese hat nicht geantwortet: {0}</translation>
+    </message>
+    <message>
+        <source>Connecting to {0}…</source>
+        <translation>Verbinde mit {0}…</translation>
+    </message>
+    <message>
+        <source>Connected to {0}.</source>
+        <translation>Verbunden mit {0}.</translation>
+    </message>
+    <message>
+        <source>Cannot connect to {0}: {1}</source>
+        <translation>Keine Verbindung mit {0} möglich: {1}</translation>
+    </message>
+    <message>
+        <source>On the prosthesis, the next step will:</source>
+        <translation>Der nächste Schritt wird an der Prothese:</translation>
+    </message>
+    <message>
+        <source>Written, read back and verified.</source>
+        <translation>Geschrieben, zurückgelesen und geprüft.</translation>
+    </message>
+    <message>
+        <source>Every linked part is on the bus.</source>
+        <translation>Jedes verbundene Teil ist am Bus.</translation>
+    </message>
+    <message>
+        <source>The prosthesis connected now ({0})</source>
+        <translation>Die jetzt verbundene Prothese ({0})</translation>
+    </message>
+    <message>
+        <source>Another connection: {0}</source>
+        <translation>Eine andere Verbindung: {0}</translation>
+    </message>
+    <message>
+        <source>{0} part(s) found on the bus, {1} link(s) between them:</source>
+        <translation>{0} Teil(e) am Bus gefunden, {1} Verbindung(en) zwischen ihnen:</translation>
+    </message>
+    <message>
+        <source>No problems found: every part is described and linked as it asks.</source>
+        <translation>Keine Probleme gefunden: Jedes Teil ist beschrieben und verbunden, wie es das verlangt.</translation>
+    </message>
+    <message>
+        <source>Nothing needs writing: the prosthesis already holds this.</source>
+        <translation>Nichts muss geschrieben werden: Die Prothese hat das schon.</translation>
+    </message>
+    <message>
+        <source>Press the button below to write this to the prosthesis. The parts that move are held still while it is written, then everything is read back and checked; on any difference the prosthesis is put back as it was.</source>
+        <translation>Drücken Sie die Schaltfläche unten, um dies in die Prothese zu schreiben. Die beweglichen Teile werden dabei stillgehalten, danach wird alles zurückgelesen und geprüft; bei jeder Abweichung wird die Prothese zurückgesetzt, wie sie war.</translation>
+    </message>
+    <message>
+        <source> Recorded in the fitting history as entry {0}.</source>
+        <translation> Im Versorgungsprotokoll als Eintrag {0} festgehalten.</translation>
+    </message>
+    <message>
+        <source>Not written: {0}. The prosthesis is as it was before.</source>
+        <translation>Nicht geschrieben: {0}. Die Prothese ist wie zuvor.</translation>
+    </message>
+    <message>
+        <source>The stored configuration reads back as written.</source>
+        <translation>Die gespeicherte Konfiguration liest sich zurück wie geschrieben.</translation>
+    </message>
+    <message>
+        <source>entry {0}</source>
+        <translation>Eintrag {0}</translation>
+    </message>
+    <message>
+        <source>{0}: written and verified ({1}, {2} link(s) on the prosthesis)</source>
+        <translation>{0}: geschrieben und geprüft ({1}, {2} Verbindung(en) an der Prothese)</translation>
+    </message>
+    <message>
+        <source>Saved the fitting report: {0}</source>
+        <translation>Versorgungsbericht gespeichert: {0}</translation>
+    </message>
+    <message>
+        <source>{0} thing(s) to look at. The next step proposes links that fix what can be fixed automatically:</source>
+        <translation>{0} Punkt(e) zum Ansehen. Der nächste Schritt schlägt Verbindungen vor, die beheben, was sich automatisch beheben lässt:</translation>
+    </message>
+    <message>
+        <source>All {0} link(s) are on the prosthesis as planned.</source>
+        <translation>Alle {0} Verbindung(en) sind wie geplant an der Prothese.</translation>
+    </message>
+    <message>
+        <source>Fitting history entry {0}: written and verified by the prosthesis.</source>
+        <translation>Eintrag {0} im Versorgungsprotokoll: von der Prothese geschrieben und geprüft.</translation>
+    </message>
+    <message>
+        <source>Scanning the bus… {0} of {1}</source>
+        <translation>Bus wird durchsucht… {0} von {1}</translation>
+    </message>
+    <message>
+        <source>Not on the prosthesis: {0}</source>
+        <translation>Nicht an der Prothese: {0}</translation>
+    </message>
+    <message>
+        <source>The stored configuration is not the one written.</source>
+        <translation>Die gespeicherte Konfiguration ist nicht die geschriebene.</translation>
+    </message>
+    <message>
+        <source>Also on the prosthesis: {0}</source>
+        <translation>Zusätzlich an der Prothese: {0}</translation>
+    </message>
+    <message>
+        <source>{0} is not on the bus.</source>
+        <translation>{0} ist nicht am Bus.</translation>
+    </message>
+    <message>
+        <source>The stored configuration will name the new part, so the next start-up links it directly.</source>
+        <translation>Die gespeicherte Konfiguration nennt dann das neue Teil, sodass der nächste Start es direkt verbindet.</translation>
+    </message>
+    <message>
+        <source>Show the Simulator panel</source>
+        <translation>Simulator-Bereich zeigen</translation>
+    </message>
+    <message>
+        <source>What is missing</source>
+        <translation>Was fehlt</translation>
+    </message>
+    <message>
+        <source>PDCP Studio compares the parts on the bus with the parts the prosthesis is linked and configured for.</source>
+        <translation>PDCP Studio vergleicht die Teile am Bus mit den Teilen, für die die Prothese verbunden und konfiguriert ist.</translation>
+    </message>
+    <message>
+        <source>Plug the new part in</source>
+        <translation>Das neue Teil anschließen</translation>
+    </message>
+    <message>
+        <source>Plug the new part in now. This page waits for it to appear on the bus.</source>
+        <translation>Schließen Sie das neue Teil jetzt an. Diese Seite wartet, bis es am Bus erscheint.</translation>
+    </message>
+    <message>
+        <source>Waiting for the new part…</source>
+        <translation>Warte auf das neue Teil…</translation>
+    </message>
+    <message>
+        <source>Replace a part</source>
+        <translation>Ein Teil ersetzen</translation>
+    </message>
+    <message>
+        <source>Replacement plan</source>
+        <translation>Ersatzplan</translation>
+    </message>
+    <message>
+        <source>How the new part takes the missing part&apos;s place: each link with why it is made and how alike the new channel is. Nothing is written yet.</source>
+        <translation>Wie das neue Teil den Platz des fehlenden einnimmt: jede Verbindung mit ihrem Grund und wie ähnlich der neue Kanal ist. Noch wird nichts geschrieben.</translation>
+    </message>
+    <message>
+        <source>The replacement is written to the prosthesis.</source>
+        <translation>Der Ersatz wird in die Prothese geschrieben.</translation>
+    </message>
+    <message>
+        <source>Next: plug the new part in.</source>
+        <translation>Als Nächstes: das neue Teil anschließen.</translation>
+    </message>
+    <message>
+        <source>Every part the prosthesis expects is on the bus.</source>
+        <translation>Jedes Teil, das die Prothese erwartet, ist am Bus.</translation>
+    </message>
+    <message>
+        <source>On this simulated prosthesis: in the Simulator panel choose the spare hand and press Plug in.</source>
+        <translation>An dieser simulierten Prothese: Wählen Sie im Simulator-Bereich die Ersatzhand und drücken Sie „Anstecken“.</translation>
+    </message>
+    <message>
+        <source>The new part is on the bus. Next shows how it will be linked.</source>
+        <translation>Das neue Teil ist am Bus. „Weiter“ zeigt, wie es verbunden wird.</translation>
+    </message>
+    <message>
+        <source>The new part: {0}.</source>
+        <translation>Das neue Teil: {0}.</translation>
+    </message>
+    <message>
+        <source>Missing:</source>
+        <translation>Es fehlt:</translation>
+    </message>
+    <message>
+        <source>To try a swap on this simulated prosthesis: in the Simulator panel choose the hand and press Unplug. This page follows the bus and shows the missing part.</source>
+        <translation>Um an dieser simulierten Prothese einen Tausch zu üben: Wählen Sie im Simulator-Bereich die Hand und drücken Sie „Abziehen“. Diese Seite folgt dem Bus und zeigt das fehlende Teil.</translation>
+    </message>
+    <message>
+        <source>Nothing is missing.</source>
+        <translation>Nichts fehlt.</translation>
+    </message>
+    <message>
+        <source>Seen on the bus: {0} (new).</source>
+        <translation>Am Bus erkannt: {0} (neu).</translation>
+    </message>
+    <message>
+        <source>{0} is back on the bus: it needs no replacement.</source>
+        <translation>{0} ist wieder am Bus: Es braucht keinen Ersatz.</translation>
+    </message>
+    <message>
+        <source>The prosthesis made {0} of these link(s) on its own when the part was plugged in; the write makes them part of the fitting.</source>
+        <translation>Die Prothese hat {0} dieser Verbindung(en) beim Anschließen selbst hergestellt; das Schreiben macht sie zum Teil der Versorgung.</translation>
+    </message>
+    <message>
+        <source>{0} is not on the bus; {1} link(s) lead to it.</source>
+        <translation>{0} ist nicht am Bus; {1} Verbindung(en) führen zu ihm.</translation>
+    </message>
+    <message>
+        <source>Choose the configuration</source>
+        <translation>Konfiguration wählen</translation>
+    </message>
+    <message>
+        <source>Choose a configuration file, or a fitting of this prosthesis from the fitting history, to put back on the prosthesis.</source>
+        <translation>Wählen Sie eine Konfigurationsdatei oder eine Versorgung dieser Prothese aus dem Versorgungsprotokoll, um sie wieder auf die Prothese zu bringen.</translation>
+    </message>
+    <message>
+        <source>From a configuration file (.pdcfg):</source>
+        <translation>Aus einer Konfigurationsdatei (.pdcfg):</translation>
+    </message>
+    <message>
+        <source>No file chosen</source>
+        <translation>Keine Datei gewählt</translation>
+    </message>
+    <message>
+        <source>Browse…</source>
+        <translation>Durchsuchen…</translation>
+    </message>
+    <message>
+        <source>From the fitting history of this prosthesis:</source>
+        <translation>Aus dem Versorgungsprotokoll dieser Prothese:</translation>
+    </message>
+    <message>
+        <source>Configuration file</source>
+        <translation>Konfigurationsdatei</translation>
+    </message>
+    <message>
+        <source>Configurations (*.pdcfg)</source>
+        <translation>Konfigurationen (*.pdcfg)</translation>
+    </message>
+    <message>
+        <source>The links on the prosthesis are already as in this configuration.</source>
+        <translation>Die Verbindungen an der Prothese sind schon wie in dieser Konfiguration.</translation>
+    </message>
+    <message>
+        <source>Restore a configuration</source>
+        <translation>Eine Konfiguration wiederherstellen</translation>
+    </message>
+    <message>
+        <source>Difference</source>
+        <translation>Unterschied</translation>
+    </message>
+    <message>
+        <source>What changes on the prosthesis when this configuration is put back. Nothing is written yet.</source>
+        <translation>Was sich an der Prothese ändert, wenn diese Konfiguration wiederhergestellt wird. Noch wird nichts geschrieben.</translation>
+    </message>
+    <message>
+        <source>The configuration is written to the prosthesis.</source>
+        <translation>Die Konfiguration wird in die Prothese geschrieben.</translation>
+    </message>
+    <message>
+        <source>No fitting of this prosthesis is recorded yet.</source>
+        <translation>Für diese Prothese ist noch keine Versorgung festgehalten.</translation>
+    </message>
+    <message>
+        <source>Connect {0}</source>
+        <translation>Verbinden: {0}</translation>
+    </message>
+    <message>
+        <source>Disconnect {0}</source>
+        <translation>Trennen: {0}</translation>
+    </message>
+    <message>
+        <source>{0}: {1} stored link(s).</source>
+        <translation>{0}: {1} gespeicherte Verbindung(en).</translation>
+    </message>
+    <message>
+        <source>From the file {0}.</source>
+        <translation>Aus der Datei {0}.</translation>
+    </message>
+    <message>
+        <source>As the fitting of {0} left the prosthesis (fitting history entry {1}).</source>
+        <translation>So, wie die Versorgung vom {0} die Prothese hinterließ (Eintrag {1} im Versorgungsprotokoll).</translation>
+    </message>
+    <message>
+        <source>Entry {0} — {1} — {2} ({3} link(s))</source>
+        <translation>Eintrag {0} — {1} — {2} ({3} Verbindung(en))</translation>
+    </message>
+    <message>
+        <source>Cannot read {0}: {1}</source>
+        <translation>{0} kann nicht gelesen werden: {1}</translation>
+    </message>
+    <message>
+        <source>nothing in common in what it does</source>
+        <translation>nichts gemeinsam in dem, was er tut,</translation>
+    </message>
+    <message>
+        <source>and sends its data the same way</source>
+        <translation>und sendet seine Daten auf dieselbe Weise</translation>
+    </message>
+    <message>
+        <source>Exact match</source>
+        <translation>Genaue Übereinstimmung</translation>
+    </message>
+    <message>
+        <source>It drives a part of the prosthesis that nothing fed.</source>
+        <translation>Er steuert ein Teil der Prothese, das keine Daten bekam.</translation>
+    </message>
+    <message>
+        <source>One end is gone; the new part takes this link over.</source>
+        <translation>Ein Ende fehlt; das neue Teil übernimmt diese Verbindung.</translation>
+    </message>
+    <message>
+        <source>The output that fed it is gone.</source>
+        <translation>Der Ausgang, der ihn speiste, fehlt.</translation>
+    </message>
+    <message>
+        <source>It is in the configuration.</source>
+        <translation>Sie steht in der Konfiguration.</translation>
+    </message>
+    <message>
+        <source>The parts remember this link.</source>
+        <translation>Die Teile erinnern sich an diese Verbindung.</translation>
+    </message>
+    <message>
+        <source>An input needs this output for itself alone.</source>
+        <translation>Ein Eingang braucht diesen Ausgang für sich allein.</translation>
+    </message>
+    <message>
+        <source>It is not in the configuration.</source>
+        <translation>Sie steht nicht in der Konfiguration.</translation>
+    </message>
+    <message>
+        <source>Every link is cleared.</source>
+        <translation>Alle Verbindungen werden gelöscht.</translation>
+    </message>
+    <message>
+        <source>{device}, channel {n}</source>
+        <translation>{device}, Kanal {n}</translation>
+    </message>
+    <message>
+        <source>it does the same job</source>
+        <translation>er erfüllt dieselbe Aufgabe</translation>
+    </message>
+    <message>
+        <source>but sends its data differently</source>
+        <translation>sendet seine Daten aber anders</translation>
+    </message>
+    <message>
+        <source>and sends its data partly the same way</source>
+        <translation>und sendet seine Daten teilweise auf dieselbe Weise</translation>
+    </message>
+    <message>
+        <source>Close match</source>
+        <translation>Gute Übereinstimmung</translation>
+    </message>
+    <message>
+        <source>Distant match</source>
+        <translation>Entfernte Übereinstimmung</translation>
+    </message>
+    <message>
+        <source>{grade}: {kind} {how} ({total} of {top} points).</source>
+        <translation>{grade}: {kind} {how} ({total} von {top} Punkten).</translation>
+    </message>
+    <message>
+        <source>A channel in use needs it to work.</source>
+        <translation>Ein genutzter Kanal braucht sie, um zu arbeiten.</translation>
+    </message>
+    <message>
+        <source>A channel in use works better with it.</source>
+        <translation>Ein genutzter Kanal arbeitet mit ihr besser.</translation>
+    </message>
+    <message>
+        <source>Disconnect</source>
+        <translation>Trennen</translation>
+    </message>
+    <message>
+        <source>The stored configuration&apos;s extra records change.</source>
+        <translation>Die zusätzlichen Einträge der gespeicherten Konfiguration ändern sich.</translation>
+    </message>
+    <message>
+        <source>Nothing changes: the prosthesis already holds this.</source>
+        <translation>Nichts ändert sich: Die Prothese hat das schon.</translation>
+    </message>
+    <message>
+        <source>It takes the place of {0}, which is gone.</source>
+        <translation>Er nimmt den Platz von {0} ein, das fehlt.</translation>
+    </message>
+    <message>
+        <source>Automatic linking of new parts: on</source>
+        <translation>Automatisches Verbinden neuer Teile: ein</translation>
+    </message>
+    <message>
+        <source>Automatic linking of new parts: off</source>
+        <translation>Automatisches Verbinden neuer Teile: aus</translation>
+    </message>
+    <message>
+        <source>it does a related job ({0} of {1} levels of its kind alike)</source>
+        <translation>er erfüllt eine verwandte Aufgabe ({0} von {1} Stufen seiner Art gleich)</translation>
+    </message>
+    <message>
+        <source>{0} needs it to work.</source>
+        <translation>{0} braucht sie, um zu arbeiten.</translation>
+    </message>
+    <message>
+        <source>{0} works better with it.</source>
+        <translation>{0} arbeitet mit ihr besser.</translation>
+    </message>
+    <message>
+        <source>{0} link(s) could not be made (the engineer&apos;s detail says why).</source>
+        <translation>{0} Verbindung(en) konnten nicht hergestellt werden (die technischen Einzelheiten nennen den Grund).</translation>
+    </message>
+    <message>
+        <source>Will be stored: {0}</source>
+        <translation>Wird gespeichert: {0}</translation>
+    </message>
+    <message>
+        <source>No longer stored: {0}</source>
+        <translation>Nicht mehr gespeichert: {0}</translation>
+    </message>
+    <message>
+        <source>Stored again with updated details: {0}</source>
+        <translation>Mit aktualisierten Angaben erneut gespeichert: {0}</translation>
+    </message>
+    <message>
+        <source>Kept from moving the prosthesis while it is written: {0}.</source>
+        <translation>Während des Schreibens daran gehindert, die Prothese zu bewegen: {0}.</translation>
+    </message>
+    <message>
+        <source>New fitting: links written</source>
+        <translation>Neue Versorgung: Verbindungen geschrieben</translation>
+    </message>
+    <message>
+        <source>New fitting: configuration stored</source>
+        <translation>Neue Versorgung: Konfiguration gespeichert</translation>
+    </message>
+    <message>
+        <source>Part replaced</source>
+        <translation>Teil ersetzt</translation>
+    </message>
+    <message>
+        <source>Configuration restored from {0}</source>
+        <translation>Konfiguration aus {0} wiederhergestellt</translation>
+    </message>
+    <message>
+        <source>Fitting history entry {0} restored</source>
+        <translation>Eintrag {0} des Versorgungsprotokolls wiederhergestellt</translation>
+    </message>
+</context>
 </TS>

@@ -626,7 +626,7 @@ class ReportPage(Page):
             entry = (_t("entry {0}").format(result.history_id) if result.history_id
                      else _t("not recorded"))
             lines.append(_t("{0}: written and verified ({1}, {2} link(s) on the "
-                                 "prosthesis)").format(result.action, entry,
+                                 "prosthesis)").format(words.action_words(result.action), entry,
                                                        len(result.links_after)))
         if not lines:
             lines.append(_t("Nothing needed writing: the prosthesis already held it."))

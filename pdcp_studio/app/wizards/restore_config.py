@@ -96,7 +96,8 @@ class SourcePage(Page):
         self.entries.clear()
         for e in self.history:
             item = QListWidgetItem(_t("Entry {0} — {1} — {2} ({3} link(s))").format(
-                e["id"], str(e.get("time", ""))[:19].replace("T", " "), e.get("action", ""),
+                e["id"], str(e.get("time", ""))[:19].replace("T", " "),
+                words.action_words(str(e.get("action", ""))),
                 len(e.get("links_after") or ())))
             self.entries.addItem(item)
         if not self.history:

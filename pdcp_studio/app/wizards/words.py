@@ -135,6 +135,26 @@ def why_words(system: System, plan: Plan, action: Action) -> str:
     return action.reason
 
 
+def action_words(action: str) -> str:
+    """A fitting-history action in words (the wizards' own and restores; others as
+    recorded)."""
+    from pdcp_studio.app.wizards import logic
+
+    if action == logic.ACTION_FITTING:
+        return _t("New fitting: links written")
+    if action == logic.ACTION_STORE:
+        return _t("New fitting: configuration stored")
+    if action == logic.ACTION_REPLACE:
+        return _t("Part replaced")
+    if action.startswith(logic.ACTION_RESTORE_FILE + " "):
+        return _t("Configuration restored from {0}").format(
+            action[len(logic.ACTION_RESTORE_FILE) + 1:])
+    if action.startswith("history restore "):
+        return _t("Fitting history entry {0} restored").format(
+            action[len("history restore "):])
+    return action
+
+
 def plan_lines(system: System, plan: Plan) -> list[str]:
     """The plan, one sentence per link made or removed, with why (and how similar)."""
     out = []
