@@ -3150,10 +3150,6 @@ Die Prothese ist wie zuvor.</translation>
         <translation>Keine Verbindung mit {0} möglich: {1}</translation>
     </message>
     <message>
-        <source>On the prosthesis, the next step will:</source>
-        <translation>Der nächste Schritt wird an der Prothese:</translation>
-    </message>
-    <message>
         <source>Written, read back and verified.</source>
         <translation>Geschrieben, zurückgelesen und geprüft.</translation>
     </message>
@@ -3572,6 +3568,22 @@ Die Prothese ist wie zuvor.</translation>
     <message>
         <source>Fitting history entry {0} restored</source>
         <translation>Eintrag {0} des Versorgungsprotokolls wiederhergestellt</translation>
+    </message>
+    <message>
+        <source>The links to make, each with why:</source>
+        <translation>Die herzustellenden Verbindungen, jede mit ihrem Grund:</translation>
+    </message>
+    <message>
+        <source>The links were written and verified (fitting history entry {0}).</source>
+        <translation>Die Verbindungen wurden geschrieben und geprüft (Eintrag {0} im Versorgungsprotokoll).</translation>
+    </message>
+    <message>
+        <source>Press the button below to write this to the prosthesis. It is read back and checked; on any difference the prosthesis is put back as it was.</source>
+        <translation>Drücken Sie die Schaltfläche unten, um dies in die Prothese zu schreiben. Es wird zurückgelesen und geprüft; bei jeder Abweichung wird die Prothese zurückgesetzt, wie sie war.</translation>
+    </message>
+    <message>
+        <source>When it is written:</source>
+        <translation>Beim Schreiben:</translation>
     </message>
 </context>
 </TS>

@@ -33,10 +33,10 @@ def plan_step(task: TaskWizard, system: Any, _stored: Any) -> tuple[list[str], A
     """Autoconfigure on the prosthesis as it is, explained link by link."""
     plan = logic.autoconfigure_plan(system)
     change = logic.change_to(system.links, plan, logic.ACTION_FITTING)
-    lines = words.plan_lines(system, plan)
+    lines = [_t("The links to make, each with why:") if plan.actions else
+             _t("Every part is already linked as autoconfigure would link it.")]
+    lines += words.plan_lines(system, plan)
     kept = len(set(system.links) & set(plan.final_links))
-    if not plan.actions:
-        lines.insert(0, _t("Every part is already linked as autoconfigure would link it."))
     if kept:
         lines.append(_t("{0} link(s) already on the prosthesis stay as they are.").format(kept))
     return lines, change, plan.final_links
@@ -47,6 +47,8 @@ def store_step(task: TaskWizard, system: Any, _stored: Any) -> tuple[list[str], 
     change = logic.store_change(system)
     lines = [_t("The prosthesis keeps its links in its stored configuration: after a "
                 "restart, or when a part is replaced, it links the parts as stored.")]
+    lines += [_t("The links were written and verified (fitting history entry {0}).").format(
+        r.history_id) for r in task.results if r.history_id]
     return lines, change, list(system.links)
 
 

@@ -43,11 +43,25 @@ def _t(text: str) -> str:
     return translate("Wizards", text)
 
 
-def bullets(lines: list[str], head: str = "") -> str:
-    """Lines as an HTML list under an optional heading (escaped)."""
+def _item(text: str) -> str:
+    """One line; what follows a line break is its explanation, shown quieter."""
+    first, _, rest = text.partition("\n")
+    out = html.escape(first)
+    if rest:
+        out += f"<br><span style='color:#4b5563'>{html.escape(rest)}</span>"
+    return out
+
+
+def bullets(lines: list[str], head: str = "", *, marks: bool = False) -> str:
+    """Lines as an HTML list under an optional heading (escaped); ``marks``: lines that
+    carry their own mark (✓, !) as plain paragraphs."""
     out = f"<p>{html.escape(head)}</p>" if head else ""
-    if lines:
-        out += "<ul>" + "".join(f"<li>{html.escape(t)}</li>" for t in lines) + "</ul>"
+    if lines and marks:
+        out += "".join(f"<p style='margin:3px 0'>{_item(t)}</p>" for t in lines)
+    elif lines:
+        out += ("<ul style='margin-left:-16px'>"
+                + "".join(f"<li style='margin-bottom:5px'>{_item(t)}</li>" for t in lines)
+                + "</ul>")
     return out
 
 
@@ -311,17 +325,12 @@ class ScanPage(Page):
         self.failed(message)
 
     def _scanned(self, system: Any) -> None:
-        from pdcp_studio.model.catalog import default_catalog
-
         self.again.setEnabled(True)
         self.task.system = system
-        catalogue = default_catalog()
         lines = []
         for key, device in sorted(system.devices.items()):
-            entry = catalogue.lookup(key.vid, key.pid)
-            kind = f" — {entry.kind}" if entry is not None and entry.kind else ""
             state = "" if device.present else _t(" (not on the bus)")
-            lines.append(f"{words.part_words(system, key)}{kind}{state}")
+            lines.append(f"{words.part_words(system, key)}{state}")
         present = sum(1 for d in system.devices.values() if d.present)
         self.view.setHtml(bullets(lines, _t("{0} part(s) found on the bus, {1} link(s) "
                                                  "between them:").format(
@@ -352,8 +361,7 @@ class ChecksPage(Page):
             self.view.setHtml(bullets([_t("No problems found: every part is described "
                                                "and linked as it asks.")]))
         else:
-            lines = [f"{WARN_MARK if f.severity.value != 'info' else '·'} "
-                     f"{plain_finding(f, task.system, auto)}" for f in findings]
+            lines = [plain_finding(f, task.system, auto) for f in findings]
             self.view.setHtml(bullets(lines, _t("{0} thing(s) to look at. The next step "
                                                      "proposes links that fix what can be "
                                                      "fixed automatically:").format(
@@ -403,10 +411,10 @@ class ChangePage(Page):
         task = self.task
         (task.system, task.stored, task.policy, self.lines, task.change,
          task.expected_links, task.preview) = got
-        preview_words = words.preview_lines(task.system, task.preview)
-        self.view.setHtml(bullets(self.lines)
-                          + bullets(preview_words, _t("On the prosthesis, the next step "
-                                                           "will:")))
+        preview_words = words.preview_lines(task.system, task.preview, links=False)
+        head, *lines = self.lines or [""]
+        self.view.setHtml(bullets(lines, head)
+                          + bullets(preview_words, _t("When it is written:")))
         plan = getattr(task.change, "plan", None)
         detail = list(task.preview.lines())
         if plan is not None:
@@ -475,15 +483,21 @@ class WritePage(Page):
             self.idle(_t("Nothing was worked out to write."))
             return
         what = words.preview_lines(task.system, preview)
+        head, *rest = lines or [""]
+        intro = bullets(rest, head)
         if preview.empty:
-            self.view.setHtml(bullets(lines or []) + bullets(
+            self.view.setHtml(intro + bullets(
                 what, _t("Nothing needs writing: the prosthesis already holds this.")))
             self.idle(_t("Next goes on without writing anything."))
         else:
-            self.view.setHtml(bullets(lines or []) + bullets(what, _t(
-                "Press the button below to write this to the prosthesis. The parts that "
-                "move are held still while it is written, then everything is read back and "
-                "checked; on any difference the prosthesis is put back as it was.")))
+            how = (_t("Press the button below to write this to the prosthesis. The parts "
+                      "that move are held still while it is written, then everything is read "
+                      "back and checked; on any difference the prosthesis is put back as it "
+                      "was.") if change.moves else
+                   _t("Press the button below to write this to the prosthesis. It is read "
+                      "back and checked; on any difference the prosthesis is put back as it "
+                      "was."))
+            self.view.setHtml(intro + bullets(what, how))
             self.idle()
         self.set_ready(True)
 
@@ -600,7 +614,7 @@ class VerifyPage(Page):
             if result.history_id:
                 lines.append(_t("Fitting history entry {0}: written and verified by the "
                                      "prosthesis.").format(result.history_id))
-        self.view.setHtml(bullets(lines))
+        self.view.setHtml(bullets(lines, marks=True))
         self.idle(_t("Everything is as written.") if not self.problems else
                   _t("The prosthesis is not as written: look at the points above."))
         self.set_ready(True)

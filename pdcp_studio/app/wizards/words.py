@@ -160,7 +160,7 @@ def plan_lines(system: System, plan: Plan) -> list[str]:
     out = []
     for action in plan.actions:
         verb = _t("Connect") if action.op.value == "add" else _t("Disconnect")
-        out.append(f"{verb} {link_words(system, action.link)}. {why_words(system, plan, action)}")
+        out.append(f"{verb} {link_words(system, action.link)}\n{why_words(system, plan, action)}")
     if plan.rejections:
         out.append(_t("{0} link(s) could not be made (the engineer's detail says why).")
                    .format(len(plan.rejections)))
@@ -187,11 +187,12 @@ def config_lines(system: System, diff: ConfigDiff | None) -> list[str]:
     return out
 
 
-def preview_lines(system: System, preview: ChangePreview) -> list[str]:
-    """What the transaction will do on the prosthesis, in words."""
+def preview_lines(system: System, preview: ChangePreview, links: bool = True) -> list[str]:
+    """What the transaction will do on the prosthesis, in words (``links`` False: without
+    the links made and removed, when the plan above already says them)."""
     out = []
     current = set(preview.links_before)
-    for a in preview.change.links:
+    for a in preview.change.links if links else ():
         if (a.op == "add") == (a.link in current):
             continue
         verb = _t("Connect") if a.op == "add" else _t("Disconnect")
