@@ -3546,8 +3546,8 @@ Die Prothese ist wie zuvor.</translation>
         <translation>Mit aktualisierten Angaben erneut gespeichert: {0}</translation>
     </message>
     <message>
-        <source>Kept from moving the prosthesis while it is written: {0}.</source>
-        <translation>Während des Schreibens daran gehindert, die Prothese zu bewegen: {0}.</translation>
+        <source>Held still meanwhile, so the prosthesis cannot move: {0}.</source>
+        <translation>Währenddessen stillgehalten, damit sich die Prothese nicht bewegen kann: {0}.</translation>
     </message>
     <message>
         <source>New fitting: links written</source>

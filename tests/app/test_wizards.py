@@ -134,7 +134,7 @@ def test_new_fitting_writes_the_autoconfigure_plan_with_the_motion_interlock(liv
     _ready(w, qtbot, w.plan_page)
     text = _text(w.plan_page)
     assert text.count("Connect ") >= 5 and "drives a part of the prosthesis" in text
-    assert "Kept from moving the prosthesis while it is written: Control unit (serial 201)" in text
+    assert "Held still meanwhile, so the prosthesis cannot move: Control unit (serial 201)" in text
     _next(w, qtbot, w.plan_page, w.write_page)
     w.next()
     qtbot.waitUntil(lambda: w.currentPage() is w.store_page, timeout=T)
@@ -360,3 +360,16 @@ def test_restore_from_the_history_and_cancel_changes_nothing(live, qtbot):
     assert set(session.system().links) == fitted
     with History.open() as history:
         assert history.entries()[-1]["action"].startswith("history restore")
+
+
+def test_help_opens_the_manual_at_the_guided_tasks(make_window):
+    from pdcp_studio.app import help_viewer
+
+    window = make_window()
+    for task in ("fitting", "replace", "restore"):
+        wizard = open_wizard(window, task)
+        assert help_viewer.section_for(wizard.currentPage()) == "tasks"
+        wizard.close()
+    for lang in ("en", "de"):
+        text = help_viewer.manual_path(lang).read_text("utf-8")
+        assert "tasks" in help_viewer.sections(text)

@@ -76,6 +76,7 @@ class TaskWizard(QWizard):
         self.setWizardStyle(QWizard.WizardStyle.ClassicStyle)
         self.setOption(QWizard.WizardOption.NoBackButtonOnStartPage, True)
         self.setOption(QWizard.WizardOption.NoDefaultButton, True)
+        self.setOption(QWizard.WizardOption.NoCancelButtonOnLastPage, True)
         self.setWindowModality(Qt.WindowModality.NonModal)
         self.resize(820, 600)
         # What the pages found and did.
@@ -612,8 +613,9 @@ class VerifyPage(Page):
                                                      "written."))
         for result in task.results:
             if result.history_id:
-                lines.append(_t("Fitting history entry {0}: written and verified by the "
-                                     "prosthesis.").format(result.history_id))
+                lines.append(f"{OK_MARK} " + _t("Fitting history entry {0}: written and "
+                                                "verified by the prosthesis.")
+                             .format(result.history_id))
         self.view.setHtml(bullets(lines, marks=True))
         self.idle(_t("Everything is as written.") if not self.problems else
                   _t("The prosthesis is not as written: look at the points above."))

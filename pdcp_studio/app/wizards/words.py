@@ -206,5 +206,5 @@ def preview_lines(system: System, preview: ChangePreview, links: bool = True) ->
         out.append(_t("Nothing changes: the prosthesis already holds this."))
     elif preview.change.moves and preview.held:
         names = ", ".join(part_words(system, k) for k in preview.held)
-        out.append(_t("Kept from moving the prosthesis while it is written: {0}.").format(names))
+        out.append(_t("Held still meanwhile, so the prosthesis cannot move: {0}.").format(names))
     return out
