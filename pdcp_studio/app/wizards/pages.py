@@ -88,10 +88,16 @@ class TaskWizard(QWizard):
         self.expected_links: list[Any] = []
         self.results: list[Any] = []
         self.report_path: Path | None = None
+        # Replace a part: the parts gone, the keys seen before, the parts plugged in since.
+        self.missing: list[Any] = []
+        self.known: set[Any] = set()
+        self.new_parts: list[Any] = []
+        # Restore: ("file", (path, collection)) or ("history", entry).
+        self.source: Any = None
 
     @property
     def writing(self) -> bool:
-        return any(getattr(p, "runner", None) is not None and p.runner.running
+        return any(isinstance(p, WritePage) and p.runner.running
                    for p in (self.page(i) for i in self.pageIds()))
 
     def reject(self) -> None:
@@ -592,16 +598,16 @@ class VerifyPage(Page):
         self.problems = verify(task.system, task.stored, task.expected_links, configuration)
         lines = []
         for p in self.problems:
-            if p.kind == "link-missing":
+            if p.kind == "link-missing" and p.link is not None:
                 lines.append(f"{WARN_MARK} " + _t("Not on the prosthesis: {0}").format(
                     words.link_words(task.system, p.link)))
-            elif p.kind == "link-extra":
+            elif p.kind == "link-extra" and p.link is not None:
                 lines.append(f"{WARN_MARK} " + _t("Also on the prosthesis: {0}").format(
                     words.link_words(task.system, p.link)))
             elif p.kind == "config-differs":
                 lines.append(f"{WARN_MARK} " + _t("The stored configuration is not the "
                                                        "one written."))
-            elif p.kind == "part-missing":
+            elif p.kind == "part-missing" and p.key is not None:
                 lines.append(f"{WARN_MARK} " + _t("{0} is not on the bus.").format(
                     words.part_words(task.system, p.key)))
         if not self.problems:

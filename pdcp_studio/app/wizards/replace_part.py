@@ -171,9 +171,6 @@ class ReplacePartWizard(TaskWizard):
 
     def __init__(self, window: Any) -> None:
         super().__init__(window, _t("Replace a part"))
-        self.missing: list[Any] = []
-        self.known: set[Any] = set()
-        self.new_parts: list[Any] = []
         self.missing_page = MissingPage()
         self.plug_page = PlugPage()
         self.plan_page = ChangePage(

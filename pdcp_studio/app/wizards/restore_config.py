@@ -38,7 +38,7 @@ def _t(text: str) -> str:
     return translate("Wizards", text)
 
 
-def restorable(entries: list[dict], devices: set[Any]) -> list[dict]:
+def restorable(entries: list[dict[str, Any]], devices: set[Any]) -> list[dict[str, Any]]:
     """The history entries of this prosthesis that can be put back (applied, with what they
     left known), newest first."""
     from pdcp_studio.app.history_panel import for_prosthesis
@@ -79,7 +79,7 @@ class SourcePage(Page):
         self.box.insertWidget(4, self.entries, 1)
         self.collection: Any = None
         self.file: Path | None = None
-        self.history: list[dict] = []
+        self.history: list[dict[str, Any]] = []
 
     def initializePage(self) -> None:
         self.from_file.setChecked(True)
@@ -89,7 +89,7 @@ class SourcePage(Page):
         if worker is not None:
             worker.finished.connect(lambda _r: self._fill(panel.all_entries()))
 
-    def _fill(self, entries: list[dict]) -> None:
+    def _fill(self, entries: list[dict[str, Any]]) -> None:
         bus = self.task.main.doc.bus_system
         devices = set(bus.devices) if bus is not None else set()
         self.history = restorable(entries, devices)
@@ -189,7 +189,6 @@ class RestoreWizard(TaskWizard):
 
     def __init__(self, window: Any) -> None:
         super().__init__(window, _t("Restore a configuration"))
-        self.source: Any = None
         self.source_page = SourcePage()
         self.diff_page = ChangePage(
             _t("Difference"),
