@@ -131,3 +131,14 @@ def test_parts_are_named_from_the_catalogue_and_kept_apart_by_serial(fitted):
     assert words.part_words(bus, DeviceKey(9, 9, 9)) == "unknown device (9/9/9)"
     assert words.channel_phrase(bus, ChannelRef(*HAND, 3)) == \
         "Multi-grip hand (serial 301), channel 3 (Wrist rotation)"
+
+
+def test_without_a_stored_configuration_the_links_on_the_bus_are_repaired(fitted):
+    system, _stored = fitted
+    swapped = _swap(system)  # the arbitrator keeps the links to the missing hand
+    plan = logic.replacement_plan(swapped, None, [SPARE_HAND])
+    assert sorted(lk.input.index for lk in plan.final_links
+                  if lk.input.device == SPARE_HAND) == [1, 2, 3]
+    assert not any(lk.input.device == HAND for lk in plan.final_links)
+    assert logic.replacement_plan(swapped, ConfigCollection(), [SPARE_HAND]).final_links == \
+        plan.final_links  # an empty stored configuration is none

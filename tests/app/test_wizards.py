@@ -373,3 +373,31 @@ def test_help_opens_the_manual_at_the_guided_tasks(make_window):
     for lang in ("en", "de"):
         text = help_viewer.manual_path(lang).read_text("utf-8")
         assert "tasks" in help_viewer.sections(text)
+
+
+def test_stop_during_the_write_puts_the_prosthesis_back_and_cancel_waits(live, qtbot):
+    from pdcp_studio.bus.transaction import Change
+
+    session = _session(live)
+    links = sorted(session.system().links)
+    assert session.transact(Change.links_to(links, [], "clear for the test"),
+                            record=False).written
+    live.live.refresh()
+    before = _bus_state(live)
+    w = open_wizard(live, "fitting")
+    for page, after in zip(order_of(w)[:4], order_of(w)[1:5], strict=True):
+        _next(w, qtbot, page, after)
+    _ready(w, qtbot, w.write_page)
+    w.next()  # Write to prosthesis …
+    assert w.writing and w.write_page.stop.isVisible()
+    w.reject()  # … Cancel cannot close the wizard while it writes
+    assert w.isVisible() and not w.button(w.WizardButton.CancelButton).isEnabled()
+    w.write_page.stop.click()  # … Stop does, and puts the prosthesis back
+    qtbot.waitUntil(lambda: not w.writing, timeout=T)
+    assert w.currentPage() is w.write_page
+    assert "Stopped. The prosthesis is as it was before." in w.write_page.status.text()
+    assert set(session.system().links) == before[0]
+    assert session.read_configuration() == before[1]
+    assert w.button(w.WizardButton.CancelButton).isEnabled()
+    w.reject()
+    assert not w.isVisible()

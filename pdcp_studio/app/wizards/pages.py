@@ -559,11 +559,12 @@ class WritePage(Page):
             if self.task.currentPage() is self:
                 QTimer.singleShot(0, self.task.next)
             return
-        if status == "declined":
-            text = _t("The prosthesis changed after the preview, so nothing was "
-                           "written. Go back to look at it again.")
-        elif status == "rolled_back" and result.reason == "cancelled":
+        if result.reason == "cancelled" or (self.runner.stop is not None
+                                            and self.runner.stop.is_set()):
             text = _t("Stopped. The prosthesis is as it was before.")
+        elif status == "declined":
+            text = _t("The prosthesis changed after the preview, so nothing was "
+                      "written. Go back to look at it again.")
         else:
             text = _t("Not written: {0}. The prosthesis is as it was before.").format(
                 result.reason or status)
