@@ -34,7 +34,7 @@ from PySide6.QtWidgets import (
 
 from pdcp_studio.app.i18n import translate
 from pdcp_studio.app.wizards import words
-from pdcp_studio.app.wizards.runner import TransactionRunner, look, on_bus
+from pdcp_studio.app.wizards.runner import TransactionRunner, alive, look, on_bus
 
 OK_MARK, WARN_MARK = "✓", "!"
 
@@ -172,7 +172,7 @@ class Page(QWizardPage):
         self.set_ready(False)
         self.working(what or _t("Looking at the prosthesis…"))
         if not on_bus(self.task.main, look, "Look at the prosthesis",
-                      lambda got: self._looked(got, done), self.failed):
+                      lambda got: self._looked(got, done), self.failed, owner=self):
             self.idle(_t("No prosthesis is connected."))
 
     def _looked(self, got: Any, done: Callable[[Any], None]) -> None:
@@ -321,11 +321,13 @@ class ScanPage(Page):
         if worker is None:
             self.idle(_t("No prosthesis is connected."))
             return
-        worker.progress.connect(lambda done, total, _what: self.status.setText(
-            _t("Scanning the bus… {0} of {1}").format(done, total) if total else
-            _t("Scanning the bus…")))
-        worker.finished.connect(self._scanned)
-        worker.failed.connect(self._scan_failed)
+        worker.progress.connect(alive(self, self._scan_progress))
+        worker.finished.connect(alive(self, self._scanned))
+        worker.failed.connect(alive(self, self._scan_failed))
+
+    def _scan_progress(self, done: int, total: int, _what: str) -> None:
+        self.status.setText(_t("Scanning the bus… {0} of {1}").format(done, total) if total
+                            else _t("Scanning the bus…"))
 
     def _scan_failed(self, message: str) -> None:
         self.again.setEnabled(True)
@@ -411,7 +413,8 @@ class ChangePage(Page):
             return system, stored, policy, lines, change, expected, \
                 preview_change(session, change)
 
-        if not on_bus(task.main, work, "Preview the change", self._previewed, self.failed):
+        if not on_bus(task.main, work, "Preview the change", self._previewed, self.failed,
+                      owner=self):
             self.idle(_t("No prosthesis is connected."))
 
     def _previewed(self, got: Any) -> None:
@@ -473,7 +476,8 @@ class WritePage(Page):
             return system, stored, policy, lines, change, expected, \
                 preview_change(session, change)
 
-        if not on_bus(task.main, work, "Preview the change", self._built, self.failed):
+        if not on_bus(task.main, work, "Preview the change", self._built, self.failed,
+                      owner=self):
             self.idle(_t("No prosthesis is connected."))
 
     def _built(self, got: Any) -> None:

@@ -28,6 +28,7 @@ from pdcp_studio.app.wizards.pages import (
     WritePage,
     bullets,
 )
+from pdcp_studio.app.wizards.runner import alive
 
 
 def _t(text: str) -> str:
@@ -52,11 +53,11 @@ class _FollowsBus(Page):
         bridge = self.task.main.live.bridge
         if bridge is not None and bridge is not self._bridge:
             self._bridge = bridge
-            bridge.deviceJoined.connect(lambda _k: self._changed())
-            bridge.deviceLeft.connect(lambda _k: self._changed())
+            bridge.deviceJoined.connect(alive(self, self._changed))
+            bridge.deviceLeft.connect(alive(self, self._changed))
         self.sim_button.setVisible(bridge is not None and bridge.is_sim)
 
-    def _changed(self) -> None:
+    def _changed(self, _key: Any = None) -> None:
         if self.wizard() is not None and self.task.currentPage() is self:
             self._again.start()
 

@@ -32,6 +32,7 @@ from pdcp_studio.app.wizards.pages import (
     VerifyPage,
     WritePage,
 )
+from pdcp_studio.app.wizards.runner import alive
 
 
 def _t(text: str) -> str:
@@ -87,7 +88,7 @@ class SourcePage(Page):
         self._fill(panel.all_entries())
         worker = panel.refresh()
         if worker is not None:
-            worker.finished.connect(lambda _r: self._fill(panel.all_entries()))
+            worker.finished.connect(alive(self, lambda _r: self._fill(panel.all_entries())))
 
     def _fill(self, entries: list[dict[str, Any]]) -> None:
         bus = self.task.main.doc.bus_system

@@ -15,6 +15,7 @@ from collections.abc import Callable
 from typing import Any
 
 from PySide6.QtCore import QObject, Signal
+from shiboken6 import isValid
 
 from pdcp_studio.app import fitting
 
@@ -83,10 +84,21 @@ class TransactionRunner(QObject):
         window.history_panel.refresh()
 
 
+def alive(owner: QObject, fn: Callable[..., None]) -> Callable[..., None]:
+    """``fn`` that does nothing once ``owner`` is gone (a wizard closed and deleted while
+    the bus still answers it)."""
+    def call(*args: Any) -> None:
+        if isValid(owner):
+            fn(*args)
+
+    return call
+
+
 def on_bus(window: Any, fn: Callable[[Any], Any], description: str,
-           done: Callable[[Any], None], failed: Callable[[str], None]) -> bool:
+           done: Callable[[Any], None], failed: Callable[[str], None],
+           owner: QObject | None = None) -> bool:
     """Run ``fn(session)`` on the window's bus worker; ``done(result)`` or ``failed(msg)``
-    on the GUI thread. False when no prosthesis is connected."""
+    on the GUI thread (not once ``owner`` is gone). False when no prosthesis is connected."""
     bridge = window.live.bridge
     if bridge is None:
         return False
@@ -94,6 +106,8 @@ def on_bus(window: Any, fn: Callable[[Any], Any], description: str,
     worker = bridge.run(lambda _p, _c: fn(session), description)
     if worker is None:
         return False
+    if owner is not None:
+        done, failed = alive(owner, done), alive(owner, failed)
     worker.finished.connect(done)
     worker.failed.connect(failed)
     return True
