@@ -9,7 +9,8 @@ record (so New fitting has links to propose), then walks New fitting, Replace a 
 hand unplugged and the spare hand plugged in through the Simulator panel) and Restore a
 configuration (the original hand back, the first fitting's stored configuration restored
 from the history), and
-saves ``wizard-<task>-<step>.png`` beside this script: the wizard's window, and for the plug
+saves ``wizard-<task>-<step>.png`` beside this script (with ``--lang de``: the German build,
+into a temporary folder, to look at): the wizard's window, and for the plug
 step the whole screen with the Simulator panel. The fitting history is a temporary file.
 """
 
@@ -43,6 +44,12 @@ def main() -> int:
     QSettings.setPath(QSettings.Format.IniFormat, QSettings.Scope.UserScope, str(TMP))
     app = QApplication(sys.argv)
     app.setApplicationName("PDCP Studio screenshots")
+    lang = sys.argv[sys.argv.index("--lang") + 1] if "--lang" in sys.argv else ""
+    out = HERE if not lang else Path(tempfile.mkdtemp())  # other languages: to look at
+    if lang:
+        from pdcp_studio.app import i18n
+
+        i18n.install(app, lang)
     window = MainWindow()
     window.resize(1600, 1000)
     window.move(0, 0)
@@ -52,7 +59,7 @@ def main() -> int:
 
     def shoot(wizard, name: str, screen: bool = False) -> None:
         app.processEvents()
-        path = HERE / f"wizard-{name}.png"
+        path = out / f"wizard-{name}.png"
         if screen:
             subprocess.run(["import", "-window", "root", str(path)], check=True)
         else:
@@ -98,7 +105,8 @@ def main() -> int:
 
         # Replace a part
         w = opened("replace")
-        yield lambda: "Nothing is missing" in w.missing_page.view.toPlainText()
+        yield lambda: (w.missing_page.view.toPlainText() and not w.missing_page.busy.isVisible()
+                       and not w.missing_page.isComplete())
         shoot(w, "replace-0-nothing-missing")
         w.missing_page.show_simulator()
         panel = window._leaf_docks["sim"].widget()
@@ -107,7 +115,7 @@ def main() -> int:
         yield ready(w, w.missing_page)
         shoot(w, "replace-1-missing")
         w.next()
-        yield lambda: "Waiting" in w.plug_page.status.text()
+        yield lambda: w.plug_page.busy.isVisible() and w.plug_page.view.toPlainText()
         panel.select(spare)
         shoot(w, "replace-2-plug", screen=True)
         panel.plug_selected()

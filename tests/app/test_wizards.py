@@ -401,3 +401,17 @@ def test_stop_during_the_write_puts_the_prosthesis_back_and_cancel_waits(live, q
     assert w.button(w.WizardButton.CancelButton).isEnabled()
     w.reject()
     assert not w.isVisible()
+
+
+def test_a_failed_connect_is_said_on_the_page_and_changes_nothing(live, qtbot):
+    w = open_wizard(live, "fitting")
+    page = w.connect_page
+    page.other_url = "sim:no-such-prosthesis"
+    page.other.setChecked(True)
+    w.next()
+    qtbot.waitUntil(lambda: "Cannot connect to sim:no-such-prosthesis" in page.status.text(),
+                    timeout=T)
+    assert w.currentPage() is page and page.isComplete()
+    assert live.live.url == "sim:transradial" and live.live.is_live
+    page.current.setChecked(True)
+    _next(w, qtbot, page, w.scan_page)
