@@ -12,19 +12,13 @@ import time
 
 from pdcp_studio.bus import events as ev
 from pdcp_studio.bus.arb_binding import MAX_KEYS_REMEMBERED
-from pdcp_studio.bus.arb_common import (
-    _CHANNEL_PARAMS,
-    _DEVICE_PARAMS,
-    _INPUT_PARAMS,
-    SETUP_ATTEMPTS,
-    _only_inputs,
-    learn_value,
-)
-from pdcp_studio.bus.requests import DeviceRefusedError
+from pdcp_studio.bus.arb_common import SETUP_ATTEMPTS
+from pdcp_studio.bus.device_reader import SETUP, DeviceReader
 from pdcp_studio.errors import ModelError, NodeIdExhaustedError, PdcpError
+from pdcp_studio.model import param_fields
 from pdcp_studio.model import parameters as P
-from pdcp_studio.model.refs import DeviceKey, Direction
-from pdcp_studio.model.system import Channel, Device
+from pdcp_studio.model.refs import DeviceKey
+from pdcp_studio.model.system import Device
 from pdcp_studio.protocol import Reset
 
 log = logging.getLogger("pdcp_studio.bus.arbitrator")  # one logger for the arbitrator
@@ -69,42 +63,18 @@ class SetupMixin:
                 self._last_change = time.monotonic()
             self._wake.set()
 
-    def _get(self, node_id: int, param: int, channel: int = 0) -> bytes | None:
-        """A set-up read; None if the device refuses (a parameter it does not have)."""
-        try:
-            return self.requests.get(node_id, param, channel)
-        except DeviceRefusedError:
-            return None
-
     def _read_device(self, key: DeviceKey, node_id: int) -> Device:
-        """Steps 1–3 and the reads of steps 4–5: the device and all its channels."""
-        device = Device(key.vid, key.pid, key.serial)
-        ident = self._get(node_id, P.DEVICE_VID_PID)
-        expected = P.encode_value(P.device_parameter(P.DEVICE_VID_PID), (key.vid, key.pid))
-        if ident is not None and len(ident) == 4 and ident != expected:
-            self._error(f"device {key} reports VID/PID {ident.hex()} after binding", "setup")
-        for param in _DEVICE_PARAMS:
-            value = self._get(node_id, param)
-            if value is not None:
-                learn_value(device, param, 0, value)
-        count = self._get(node_id, P.DEVICE_CHANNEL_COUNT) or b"\0"
-        for index in range(1, count[0] + 1):
-            transfer = self._get(node_id, P.CH_TRANSFER_TYPE, index)
-            if not transfer:
-                continue
-            try:
-                direction = Direction.from_transfer_type(transfer[0])
-            except ValueError as err:
-                self._error(f"device {key} channel {index}: {err}", "setup")
-                continue
-            ch = device.add_channel(Channel(index, direction))
-            params = _CHANNEL_PARAMS + (_INPUT_PARAMS if ch.is_input else ())
-            for param in params:
-                value = self._get(node_id, param, index)
-                if value is not None:
-                    learn_value(device, param, index, value)
-        _only_inputs(device)
-        return device
+        """Steps 1–3 and the reads of steps 4–5: the device and all its channels (the reader
+        the scan uses too)."""
+        reader = DeviceReader(self.requests, descriptor_bulk=False)
+        values: param_fields.Values = {}
+        reader.read_device(key, node_id, SETUP, values)
+        problem = reader.identity_problem(key, node_id, values)
+        if problem:
+            self._error(f"device {key} after binding: {problem}", "setup")
+        reader.read_channels(key, node_id, SETUP, values,
+                             lambda why: self._error(why, "setup"))
+        return param_fields.device_from_values(key, values)
 
     def _commit(self, key: DeviceKey, node_id: int, generation: int, epoch: int,
                 device: Device) -> None:

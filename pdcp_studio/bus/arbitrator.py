@@ -76,8 +76,6 @@ from pdcp_studio.bus.arb_common import (
     TWIN_BEACON_RATIO,
     UNKNOWN_RESET_S,
     _Node,
-    _only_inputs,
-    learn_value,
 )
 from pdcp_studio.bus.arb_links import LinksMixin
 from pdcp_studio.bus.arb_presence import PresenceMixin
@@ -93,6 +91,7 @@ from pdcp_studio.bus.signals import decode_sample
 from pdcp_studio.errors import FrameError, ModelError, TransportError
 from pdcp_studio.model import parameters as P
 from pdcp_studio.model.configuration import ConfigCollection
+from pdcp_studio.model.param_fields import learn_value, only_inputs
 from pdcp_studio.model.refs import ChannelRef, DeviceKey
 from pdcp_studio.model.system import System
 from pdcp_studio.protocol import (
@@ -398,7 +397,7 @@ class Arbitrator(BindingMixin, PresenceMixin, SetupMixin, LinksMixin, ProfileMix
             device = self._system.device(key)
             if device is not None:
                 learn_value(device, param, channel, value)
-                _only_inputs(device)
+                only_inputs(device)
             if channel == 0 and param == P.DEVICE_BEACON_INTERVAL and len(value) == 2:
                 node = self._nodes.get(self._node_of.get(key, -1))
                 if node is not None:
