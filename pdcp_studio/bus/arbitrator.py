@@ -226,7 +226,7 @@ class Arbitrator(BindingMixin, PresenceMixin, SetupMixin, LinksMixin, ProfileMix
         # One arbitrator per bus (reference §5, arb_claim): on a can: bus it first listens
         # ``listen_s``; until then (and for good once another arbitrator is heard) it writes
         # nothing, not even the start-up reset.
-        self._claim = BusClaim(now, listen_s)
+        self._claim = BusClaim(now, listen_s, own_echoes=self.conn.drop_own)
         self._listen_until = max(self._listen_until, self._claim.listen_until)
         self._reset_on_claim = reset_on_start
         self.bus_message = ""  # the last BusState line (why it arbitrates or not)
@@ -443,7 +443,11 @@ class Arbitrator(BindingMixin, PresenceMixin, SetupMixin, LinksMixin, ProfileMix
                 node = self._nodes.get(message.node_id)
                 if node is not None:
                     node.last_request = time.monotonic()
-        self.conn.send(arbitration_id, data)
+        # On a bus that echoes, the claim accounts for the copies (arb_claim), not the
+        # connection's filter: a copy later than the filter waits must not pass for another
+        # arbitrator's frame.
+        self._claim.sent(arbitration_id, data, time.monotonic())
+        self.conn.send(arbitration_id, data, filter_echo=False)
         if self.frame_events:
             self._frame_event(arbitration_id, data, time.time())
 
@@ -498,6 +502,9 @@ class Arbitrator(BindingMixin, PresenceMixin, SetupMixin, LinksMixin, ProfileMix
 
     def _on_frame(self, msg: can.Message) -> None:
         data = bytes(msg.data)
+        now = time.monotonic()
+        if self._claim.is_own_echo(msg.arbitration_id, data, now):
+            return  # our own frame, handed back by the bus (late or not)
         if self.frame_events:
             self._frame_event(msg.arbitration_id, data, msg.timestamp or time.time())
         if msg.is_error_frame:
@@ -508,7 +515,6 @@ class Arbitrator(BindingMixin, PresenceMixin, SetupMixin, LinksMixin, ProfileMix
             kind = "extended identifier" if msg.is_extended_id else "remote frame"
             self._bad_frame(f"0x{msg.arbitration_id:X}: {kind} (PDCP uses base data frames)")
             return
-        now = time.monotonic()
         aid = msg.arbitration_id
         node_id = aid & 0xFF
         if not self._hear_claim(aid, data, now):
