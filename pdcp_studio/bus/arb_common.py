@@ -1,8 +1,8 @@
 """The arbitrator's shared vocabulary: its timing constants, per-node state and wire formats.
 
-Split out of :mod:`pdcp_studio.bus.arbitrator` so each of its parts (binding, presence, set-up,
-links, profile layer) can use them without importing the :class:`Arbitrator` itself; that
-module re-exports every public name here. Each part imports the constants it reads, so a test
+Split out of :mod:`pdcp_studio.bus.arbitrator` so each of its parts (node table, presence,
+set-up, links, profile layer) can use them without importing the :class:`Arbitrator` itself;
+that module re-exports every public name here. Each part imports the constants it reads, so a test
 that patches one must patch it in the module that reads it.
 """
 
@@ -52,6 +52,10 @@ FOREIGN_HOLD_S = 1.0
 RESET_GRACE_S = 1.0
 #: Without a reset at start, binding waits this long while node IDs in use are heard.
 FOREIGN_LISTEN_S = 3.5 * DEFAULT_BEACON_INTERVAL_S
+#: Beacon interval assumed for presence until a newly bound device's own has been read: long
+#: enough for a device beaconing every 500 ms (the full rig's) not to be declared gone, and
+#: bound again, while it is still being set up.
+UNREAD_BEACON_INTERVAL_S = 1.0
 #: How long close() waits for each thread.
 JOIN_S = 2.0
 

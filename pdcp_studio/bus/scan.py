@@ -95,7 +95,7 @@ def build_device(key: DeviceKey, node_id: int, values: Values) -> Device:
     return param_fields.device_from_values(key, values, node_id)
 
 
-def links_on_bus(devices: list[Device], values: dict[DeviceKey, dict]) -> list[Link]:
+def links_on_bus(devices: list[Device], values: dict[DeviceKey, Values]) -> list[Link]:
     """Links as the bus has them: enabled inputs whose Source's Node Ids name an output."""
     by_node: dict[int, ChannelRef] = {}
     for device in devices:
