@@ -315,6 +315,12 @@ class Arbitrator:
             return self.nodes.output_id(ref)
 
     @property
+    def channel_node_ids(self) -> frozenset[int]:
+        """The node IDs output channels send their data with now (a frame's node ID in this
+        set and mode 0 is channel data)."""
+        return self.nodes.channel_set
+
+    @property
     def duplicates(self) -> set[DeviceKey]:
         """Devices reported as twins (two on the bus with one VID/PID/serial)."""
         return self.presence.duplicates
