@@ -44,11 +44,13 @@ its ``Network`` from ``nmt``, ``lss`` and ``sdo``):
 - ``links`` (:class:`~pdcp_studio.bus.arb_links.LinkWriter`): what to write for a link, and
   writing it;
 - ``profile`` (:class:`~pdcp_studio.bus.arb_profile.ProfileDriver`): start-up, duty cycle, plans;
-- ``transactions`` (:class:`~pdcp_studio.bus.arb_transaction.Transactions`): the change road.
+- ``transactions`` (:class:`~pdcp_studio.bus.arb_transaction.Transactions`): the change road;
+- ``dispatch`` (:class:`~pdcp_studio.bus.arb_dispatch.Dispatcher`): the dispatch thread, which
+  hears every frame, asks the deciding parts and carries their decisions out.
 
 The claim, node table and presence tracker decide from ``now`` and the frames heard and return
-decisions (tested without threads); this class owns the bus, the threads, the lock and the
-system, and carries the decisions out. ``arb_common`` holds the constants and node state.
+decisions (tested without threads); this class owns the bus, the threads, the locks and the
+system, sends, and keeps the public API. ``arb_common`` holds the constants and node state.
 """
 
 
@@ -60,10 +62,10 @@ import time
 from collections.abc import Callable
 from concurrent.futures import ThreadPoolExecutor
 from pathlib import Path
-from typing import TYPE_CHECKING, Any, cast
+from typing import TYPE_CHECKING, Any
 
 from pdcp_studio.bus import events as ev
-from pdcp_studio.bus.arb_claim import BusClaim, Decision, Phase
+from pdcp_studio.bus.arb_claim import BusClaim, Phase
 from pdcp_studio.bus.arb_common import (
     _MANAGED,
     BEACON_WINDOW,
@@ -86,11 +88,11 @@ from pdcp_studio.bus.arb_common import (
     TICK_S,
     TWIN_BEACON_RATIO,
     UNKNOWN_RESET_S,
-    UNREAD_BEACON_INTERVAL_S,
     _Node,
 )
+from pdcp_studio.bus.arb_dispatch import Dispatcher
 from pdcp_studio.bus.arb_links import LinkWriter
-from pdcp_studio.bus.arb_nodes import BindDecision, NodeTable
+from pdcp_studio.bus.arb_nodes import NodeTable
 from pdcp_studio.bus.arb_presence import PresenceTracker
 from pdcp_studio.bus.arb_profile import ProfileDriver
 from pdcp_studio.bus.arb_setup import DeviceSetup
@@ -100,26 +102,17 @@ from pdcp_studio.bus.log_limit import LimitedLog, RepeatLimiter
 from pdcp_studio.bus.memory import MemoryStore
 from pdcp_studio.bus.node_ids import NodeIdPool
 from pdcp_studio.bus.requests import RESPONSE_TIMEOUT_S, RequestEngine
-from pdcp_studio.bus.signals import decode_sample
 from pdcp_studio.bus.transaction import INTERLOCK_RENEW_S, Change, Policy, TransactionResult
-from pdcp_studio.errors import FrameError, ModelError, TransportError
+from pdcp_studio.errors import ModelError, TransportError
 from pdcp_studio.model import parameters as P
 from pdcp_studio.model.configuration import ConfigCollection
 from pdcp_studio.model.param_fields import learn_value, only_inputs
 from pdcp_studio.model.refs import ChannelRef, DeviceKey
 from pdcp_studio.model.system import Link, System
 from pdcp_studio.protocol import (
-    Beacon,
-    BindRequest,
-    BindResponse,
-    ChannelData,
     Message,
     Mode,
     Reset,
-    ResponseCode,
-    UpdateDataChannel,
-    UpdateDataChannelResponse,
-    decode,
 )
 from pdcp_studio.protocol.identifier import NODE_ID_MAX, NODE_ID_MIN
 
@@ -159,13 +152,6 @@ __all__ = [
     "learn_value",
 ]
 
-
-#: A dispatch loop that did not come round for this long was stalled (it runs every TICK_S)…
-STALL_S = 0.15
-#: … and then waits this long before judging presence: the frames received meanwhile may still
-#: sit in the driver's or the socket's buffer, unseen, and silence would be misread.
-STALL_GRACE_S = 0.3
-
 #: How a summary names the errors of a kind.
 _ERROR_WORDS = {"bad_frame": "undecodable frames", "error_frame": "error frames",
                 "transport": "transport errors"}
@@ -202,8 +188,6 @@ class Arbitrator:
         self._errors = RepeatLimiter(burst=ERROR_BURST)
         self._crashes = LimitedLog(log, f"{name}: ")
         self._disconnected = False  # the adapter was pulled (a ReopeningBus says so)
-        if hasattr(bus, "on_state"):
-            bus.on_state = self._adapter_state
         self.requests = RequestEngine(self._send, response_timeout=response_timeout,
                                       retries=retries)
         self._lock = threading.RLock()  # the parts' state and the system
@@ -230,6 +214,9 @@ class Arbitrator:
                                      duty_quiet_s=duty_quiet_s, max_wait_s=startup_max_wait_s,
                                      listen_until=listen_until)
         self.transactions = Transactions(self)
+        self.dispatch = Dispatcher(self)
+        if hasattr(bus, "on_state"):
+            bus.on_state = self.dispatch.adapter_state
         self._decoder: Any = None
         if frame_events:
             from pdcp_studio.bus.monitor import FrameDecoder
@@ -239,14 +226,15 @@ class Arbitrator:
         self._stop = threading.Event()
         self._wake = threading.Event()
         self._pool_exec = ThreadPoolExecutor(SETUP_WORKERS, thread_name_prefix=f"pdcp {name} setup")
-        self._thread = threading.Thread(target=self._run, name=f"pdcp {name}", daemon=True)
+        self._thread = threading.Thread(target=self.dispatch.run, name=f"pdcp {name}",
+                                        daemon=True)
         self._profile_thread = threading.Thread(target=self.profile.loop,
                                                 name=f"pdcp {name} profile", daemon=True)
         self._closed = False
         self._thread.start()
         self._profile_thread.start()
         if self.claim.may_write:
-            self._claim_started(None)
+            self.dispatch.claim_started(None)
 
     # -- lifetime -------------------------------------------------------------------------
     def __enter__(self) -> Arbitrator:
@@ -552,298 +540,6 @@ class Arbitrator:
         with self._decoder_lock:
             line = self._decoder.decode(arbitration_id, data, timestamp).line
         self._emit(ev.FrameSeen(timestamp, arbitration_id, bytes(data), line))
-
-    # -- the dispatch thread --------------------------------------------------------------
-    def _run(self) -> None:
-        next_tick = 0.0
-        last = time.monotonic()
-        hold_until = 0.0
-        while not self._stop.is_set():
-            item = self.conn.get(TICK_S)
-            if self._stop.is_set():
-                break
-            try:
-                if isinstance(item, Exception):
-                    self._error(f"the bus reported {item}", "transport")
-                elif callable(item):
-                    item()
-                elif item is not None:
-                    self._on_frame(cast("can.Message", item))
-                now = time.monotonic()
-                if now - last > STALL_S:  # this process did not run (a loaded PC, a pause):
-                    hold_until = now + STALL_GRACE_S  # frames may still wait in the driver
-                last = now
-                if now >= next_tick and self._claim_tick(now):
-                    next_tick = now + TICK_S
-                    self._flush_errors()
-                    # Presence is judged only when every frame received so far is handled:
-                    # a backlog (a busy machine) must not pass for silent devices.
-                    self._tick(now, self.conn.inbound.empty() and now >= hold_until)
-            except Exception:  # one bad frame or bug must never stop the arbitrator
-                self._crashes.exception("dispatch", "dispatch failed")
-
-    def _bad_frame(self, why: str) -> None:
-        self.bad_frames += 1
-        self._error(f"undecodable frame #{self.bad_frames}: {why}", "bad_frame")
-
-    def _on_frame(self, msg: can.Message) -> None:
-        data = bytes(msg.data)
-        now = time.monotonic()
-        if self.claim.is_own_echo(msg.arbitration_id, data, now):
-            return  # our own frame, handed back by the bus (late or not)
-        if self.frame_events:
-            self._frame_event(msg.arbitration_id, data, msg.timestamp or time.time())
-        if msg.is_error_frame:
-            self.error_frames += 1
-            self._error(f"error frame #{self.error_frames} on the bus", "error_frame")
-            return
-        if msg.is_extended_id or msg.is_remote_frame:
-            kind = "extended identifier" if msg.is_extended_id else "remote frame"
-            self._bad_frame(f"0x{msg.arbitration_id:X}: {kind} (PDCP uses base data frames)")
-            return
-        aid = msg.arbitration_id
-        node_id = aid & 0xFF
-        if not self._hear_claim(aid, data, now):
-            return  # another arbitrator is on the bus: nothing here is ours to answer
-        if self.nodes.is_foreign(aid):
-            self._foreign_frame(node_id, aid, data, now)
-            return
-        try:
-            message = decode(aid, data, channel_node_ids=self.nodes.channel_set)
-        except FrameError as err:
-            self._bad_frame(f"0x{aid:03X} [{data.hex(' ').upper()}]: {err}")
-            return
-        if isinstance(message, ChannelData):
-            self._on_data(message, msg.timestamp or time.time())
-            return
-        if message.mode is Mode.ARBITRATOR:
-            return  # (the claim has already yielded)
-        if isinstance(message, BindRequest):
-            self._on_bind(message, now)
-            return
-        with self._lock:
-            node = self.nodes.by_id.get(node_id)
-            if node is not None:
-                node.last_seen = now
-                if isinstance(message, Beacon):
-                    node.last_beacon = now
-        if node is None:  # node 0, or a device that left a moment ago
-            return
-        if isinstance(message, Beacon):
-            why = self.presence.beacon(node, now, self.conn.inbound.empty())
-            if why:
-                self._twin(node.key, why)
-            return
-        if isinstance(message, UpdateDataChannel):
-            self.links.on_update(node, message)
-            return
-        echo, why = self.presence.response(node, aid, data, now,
-                                           2 * self.requests.response_timeout)
-        if why:
-            self._twin(node.key, why)
-        if not echo:
-            self.requests.feed(message)
-
-    def _on_data(self, message: ChannelData, timestamp: float) -> None:
-        self.data_frames += 1
-        if not self.channel_events:
-            return
-        with self._lock:
-            ref = self.nodes.channel_ids.get(message.node_id)
-            ch = self._system.channel(ref) if ref else None
-            kind = ch.type if ch else 0
-        if ref is not None:
-            self._emit(ev.ChannelValue(ref, decode_sample(kind, message.data), timestamp))
-
-    # -- binding (the node table decides) -------------------------------------------------
-    def _on_bind(self, req: BindRequest, now: float) -> None:
-        key = DeviceKey(req.vid, req.pid, req.serial)
-        with self._lock:
-            if key not in self.presence.duplicates and key not in self.nodes.exhausted_reported:
-                self.profile.last_bind = now
-        if now < self.profile.listen_until:
-            return  # still learning which IDs devices of an earlier arbitrator use
-        with self._lock:
-            decision = self.nodes.on_bind_request(req, now, self.presence.duplicates)
-            if decision.kind == "grant":
-                self._bound(decision.key, decision.node_id, now)
-        self._answer(decision)
-
-    def _answer_bind(self, req: BindRequest, now: float) -> None:
-        with self._lock:
-            decision = self.nodes.decide_bind(req, now)
-            if decision.kind == "grant":
-                self._bound(decision.key, decision.node_id, now)
-        self._answer(decision)
-
-    def _answer(self, decision: BindDecision) -> None:
-        key = decision.key
-        if decision.kind == "exhausted":
-            if decision.report:  # once per device, not per retry
-                self._error(decision.report, "node_ids_exhausted")
-        elif decision.kind in ("grant", "suggest"):
-            self._send_quiet(BindResponse(decision.asked, decision.node_id, key.vid, key.pid,
-                                          key.serial))
-
-    def _bound(self, key: DeviceKey, node_id: int, now: float) -> None:
-        """Under the lock: ``key`` holds ``node_id``; start (or restart) its set-up."""
-        device = self._system.device(key)
-        interval = (max(device.beacon_interval, 1) / 1000.0 if device is not None
-                    else max(DEFAULT_BEACON_INTERVAL_S, UNREAD_BEACON_INTERVAL_S))
-        node, old = self.nodes.install(key, node_id, now, interval)
-        if old is not None and old != node_id:
-            self.requests.abort(old, "the device bound again with another node ID")
-        self.profile.last_change = now
-        self.setup.start(node)
-
-    # -- presence (the presence tracker decides) ------------------------------------------
-    def _tick(self, now: float, caught_up: bool = True) -> None:
-        """Presence, held and foreign node IDs, deferred binds."""
-        with self._lock:
-            gone = self.presence.absent(list(self.nodes.by_id.values()), now) \
-                if caught_up else []
-            self.nodes.expire(now)
-            resolved = self.nodes.resolve_deferred(now, self.presence.duplicates) \
-                if caught_up else []
-        for node in gone:
-            self._depart(node, now)
-        for req, twin in resolved:
-            key = DeviceKey(req.vid, req.pid, req.serial)
-            if twin:
-                self._twin(key, "a second one asked to bind while the first kept beaconing")
-            else:
-                log.info("%s: device %s binds again (it restarted)", self.name, key)
-                with self._lock:
-                    again = self.nodes.node(key)
-                    if again is not None:
-                        again.set_up = False
-                self._answer_bind(req, now)
-
-    def _twin(self, key: DeviceKey, why: str) -> None:
-        with self._lock:
-            line = self.presence.report(key, why)
-        self._error(line, "duplicate_device")
-
-    def _depart(self, node: _Node, now: float) -> None:
-        key = node.key
-        with self._lock:
-            if not self.nodes.remove(node):
-                return
-            self.setup.in_flight.pop(key, None)
-            device = self._system.device(key)
-            was_present = device is not None and device.present
-            fed: list[Link] = []
-            if device is not None:
-                device.present = False
-                device.node_id = None
-                for ch in device.channels.values():
-                    ch.node_id = None
-                    ch.data_enabled = False
-                fed = [lk for ref in (device.ref(c.index) for c in device.outputs())
-                       for lk in self.links.links_from(ref)
-                       if self._system.is_present(lk.input)]
-            self.presence.duplicates.discard(key)
-            self.profile.last_change = now
-            if was_present:
-                self.profile.duty_needed = True
-        self.requests.abort(node.node_id, "the device left the bus")
-        if not was_present:
-            return
-        log.info("%s: device %s left (node %d)", self.name, key, node.node_id)
-        self._emit(ev.DeviceLeft(key))
-        self._submit_job(self.links.silence_inputs, fed)
-        self._wake.set()
-
-    def _foreign_frame(self, node_id: int, aid: int, data: bytes, now: float) -> None:
-        """A frame from a node ID nobody holds here: a device (or output) bound by an earlier
-        arbitrator. Its ID is kept out of the pool while it is heard; a device is reset so
-        it binds with us; undecodable frames are counted, and shown once per node."""
-        with self._lock:
-            self.nodes.hear_foreign(node_id, now)
-        try:
-            message = decode(aid, data)
-        except FrameError as err:
-            what = self.presence.bad_stranger_frame(node_id, now)
-            if what == "stale":
-                return  # data already on the wire when we reset
-            self.bad_frames += 1
-            if what == "show":
-                self._error(f"undecodable frame #{self.bad_frames} 0x{aid:03X} "
-                            f"[{data.hex(' ').upper()}] from node {node_id}, which is not "
-                            f"bound here: {err} (further ones are counted, not shown)",
-                            "bad_frame")
-            return
-        if isinstance(message, Beacon | UpdateDataChannel):
-            with self._lock:
-                stranger = node_id not in self.nodes.channel_ids
-            if stranger and self.presence.may_reset_stranger(node_id, now):
-                log.info("%s: node %d is not bound here: resetting it", self.name, node_id)
-                self._send_quiet(Reset(node_id))
-        if isinstance(message, UpdateDataChannel):
-            self._send_quiet(UpdateDataChannelResponse(node_id, ResponseCode.FAILURE,
-                                                       message.channel))
-
-    # -- one arbitrator per bus (reference §5; the claim decides) -------------------------
-    def _hear_claim(self, arbitration_id: int, data: bytes, now: float) -> bool:
-        """Feed a received frame to the claim; False once another arbitrator is on the bus
-        (then nothing received is ours to handle)."""
-        decision = self.claim.heard(arbitration_id, data, now)
-        if decision is not None:
-            self._claim_yielded(decision)
-        return not self.claim.yielded
-
-    def _claim_tick(self, now: float) -> bool:
-        """End the listening when it is due, beacon when due; True while arbitrating (and
-        the adapter is there: presence is not judged while nobody can be heard)."""
-        decision = self.claim.tick(now)
-        if decision is not None:
-            self._claim_started(decision)
-        if self.claim.beacon_due(now):
-            self._send_quiet(Beacon(0, mode=Mode.ARBITRATOR))
-        return bool(self.claim.may_write) and not self._disconnected
-
-    def _claim_started(self, decision: Decision | None) -> None:
-        """The bus is ours: the start-up reset (a replaced arbitrator's devices bind again)."""
-        if decision is not None:
-            self.bus_message = decision.message
-            log.info("%s: %s", self.name, decision.message)
-            self._emit(ev.BusState("arbitrating", decision.message))
-            with self._lock:
-                self.presence.unknown_reset.clear()  # resets skipped while listening may go
-        if self._reset_on_claim or (decision is not None and decision.takeover):
-            self._send_quiet(Reset(0))
-
-    def _claim_yielded(self, decision: Decision) -> None:
-        """Another arbitrator is on the bus: stop writing at once and say so, once."""
-        self.bus_message = decision.message
-        # Info, not warning: the yield event is what callers show (the CLI's one error line);
-        # a warning would reach stderr a second time through logging's last-resort handler.
-        log.info("%s: %s", self.name, decision.message)
-        with self._lock:
-            nodes = list(self.nodes.by_id)
-        for node_id in nodes:
-            self.requests.abort(node_id, "another bus arbitrator is on the bus")
-        self._emit(ev.BusState("yielded", decision.message))
-        self._wake.set()
-
-    # -- a pulled adapter (bus/reopen.py reopens it) --------------------------------------
-    def _adapter_state(self, state: str, line: str) -> None:
-        """Called on the Notifier's thread: hand it to the dispatch thread."""
-        self.conn.post(lambda: self._on_adapter_state(state, line))
-
-    def _on_adapter_state(self, state: str, line: str) -> None:
-        """Disconnected: presence is not judged (nobody can be heard) and nothing is sent.
-        Reconnected: every device gets its beacon intervals to be heard again, and the links
-        are read back from the inputs and re-made where they differ."""
-        now = time.monotonic()
-        with self._lock:
-            self._disconnected = state == "disconnected"
-            if not self._disconnected:
-                for node in self.nodes.by_id.values():
-                    node.last_seen = max(node.last_seen, now)
-        self._emit(ev.BusState(state, line))
-        if not self._disconnected:
-            self._submit_job(self.links.reread)
 
     # -- reset ----------------------------------------------------------------------------
     def reset(self, keep_memory: bool = True) -> None:
