@@ -37,6 +37,16 @@ class FieldMap:
     kind: Kind = "plain"
     identity: bool = False  # the device's key: read to check it, never changed from the bus
 
+    @property
+    def on_source(self) -> bool:
+        """The fields are an input's ``source`` (``SourceInfo``) fields."""
+        return self.fields[0].startswith("source.")
+
+    @property
+    def attrs(self) -> tuple[str, ...]:
+        """The attribute names (of the source for ``source.…`` fields)."""
+        return tuple(name.removeprefix("source.") for name in self.fields)
+
     def applies_to(self, scope: str) -> bool:
         return self.scope == scope or (self.scope == "channel" and scope != "device")
 
@@ -75,6 +85,16 @@ _BY_SCOPE: dict[str, dict[int, FieldMap]] = {
     scope: {m.param: m for m in FIELD_MAPS if m.applies_to(scope)}
     for scope in ("device", "input", "output")
 }
+#: (catalog spec, field map, source?, attributes) by scope and parameter: what learning a
+#: value needs, looked up once (a scan of the full rig learns 3,500 values).
+_LEARN: dict[str, dict[int, tuple[P.ParameterSpec, FieldMap, bool, tuple[str, ...]]]] = {
+    scope: {m.param: (spec, m, m.on_source, m.attrs) for m in _BY_SCOPE[scope].values()
+            if not m.identity
+            for spec in [P.find_parameter(m.param, 0 if scope == "device" else 1,
+                                          None if scope == "device" else Direction(scope))]
+            if spec is not None}
+    for scope in ("device", "input", "output")
+}
 
 
 def _scope(channel: int, direction: Direction | None) -> str:
@@ -98,16 +118,13 @@ def param_of_field(name: str, scope: Literal["device", "input", "output"]) -> in
     raise ParameterError(f"{scope} field {name!r} is not written by any parameter")
 
 
-def _get(obj: Device | Channel, name: str) -> Any:
-    if name.startswith("source."):
-        assert isinstance(obj, Channel)
-        return getattr(obj.source, name[7:])
-    return getattr(obj, name)
-
-
 def model_value(obj: Device | Channel, fm: FieldMap) -> Any:
     """The parameter's value (as ``parameters.encode_value`` takes it) from the model."""
-    values = [_get(obj, name) for name in fm.fields]
+    if fm.on_source:
+        assert isinstance(obj, Channel)
+        values = [getattr(obj.source, name) for name in fm.attrs]
+    else:
+        values = [getattr(obj, name) for name in fm.attrs]
     if fm.kind == "flag":
         return int(bool(values[0]))
     if fm.kind == "node_id":
@@ -119,22 +136,27 @@ def model_value(obj: Device | Channel, fm: FieldMap) -> Any:
 
 def set_model_value(obj: Device | Channel, fm: FieldMap, value: Any) -> None:
     """Store a decoded parameter value in the model's fields (identity fields excepted)."""
-    if fm.identity:
-        return
-    if fm.kind == "flag":
+    if not fm.identity:
+        _store(obj, fm, fm.on_source, fm.attrs, value)
+
+
+def _store(obj: Device | Channel, fm: FieldMap, on_source: bool, attrs: tuple[str, ...],
+           value: Any) -> None:
+    kind = fm.kind
+    if kind == "flag":
         value = bool(value)
-    elif fm.kind == "node_id":
+    elif kind == "node_id":
         value = value or None
-    elif fm.kind == "indices":
+    elif kind == "indices":
         value = tuple(value)
-    values = tuple(value) if len(fm.fields) == 2 else (value,)
-    if fm.fields[0].startswith("source."):
+    if on_source:
         assert isinstance(obj, Channel)
-        changes = {name[7:]: v for name, v in zip(fm.fields, values, strict=True)}
-        obj.source = replace(obj.source, **changes)
-        return
-    for name, v in zip(fm.fields, values, strict=True):
-        setattr(obj, name, v)
+        obj.source = replace(obj.source, **dict(zip(attrs, value, strict=True)))
+    elif len(attrs) == 2:
+        setattr(obj, attrs[0], value[0])
+        setattr(obj, attrs[1], value[1])
+    else:
+        setattr(obj, attrs[0], value)
 
 
 def encode_field_value(obj: Device | Channel, param: int, direction: Direction | None = None
@@ -159,21 +181,21 @@ def learn_value(device: Device, param: int, channel: int, value: bytes) -> None:
     """
     if channel == 0:
         target: Device | Channel = device
-        direction = None
+        scope = "device"
     else:
         ch = device.channels.get(channel)
         if ch is None:
             return
-        target, direction = ch, ch.direction
-    spec = P.find_parameter(param, channel, direction)
-    fm = field_map(param, channel, direction)
-    if spec is None or fm is None:
+        target, scope = ch, ch.direction.value
+    entry = _LEARN[scope].get(param)
+    if entry is None:
         return
+    spec, fm, on_source, attrs = entry
     try:
         decoded = P.decode_value(spec, value)
     except ParameterError:
         return
-    set_model_value(target, fm, decoded)
+    _store(target, fm, on_source, attrs, decoded)
 
 
 def only_inputs(device: Device) -> None:
