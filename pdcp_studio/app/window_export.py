@@ -38,8 +38,9 @@ class ExportMixin:
         image.fill(self.scene.backgroundBrush().color())
         painter = QPainter(image)
         painter.setRenderHint(QPainter.RenderHint.Antialiasing)
-        self.scene.render(painter, QRectF(0, 0, image.width(), image.height()), rect,
-                          Qt.AspectRatioMode.IgnoreAspectRatio)
+        with self.scene.full_detail():  # the cards' rows, whatever the view's zoom
+            self.scene.render(painter, QRectF(0, 0, image.width(), image.height()), rect,
+                              Qt.AspectRatioMode.IgnoreAspectRatio)
         painter.end()
         return image
 
@@ -71,7 +72,9 @@ class ExportMixin:
                 item.setCacheMode(QGraphicsItem.CacheMode.NoCache)
             try:
                 painter = QPainter(gen)
-                self.scene.render(painter, page, rect, Qt.AspectRatioMode.IgnoreAspectRatio)
+                with self.scene.full_detail():  # vectors and rows, whatever the zoom
+                    self.scene.render(painter, page, rect,
+                                      Qt.AspectRatioMode.IgnoreAspectRatio)
                 painter.end()
             finally:
                 for item, mode in cached:

@@ -2907,4 +2907,30 @@ Die Prothese ist wie zuvor.</translation>
         <translation>Gerätename oder VID/PID/Seriennummer</translation>
     </message>
 </context>
+<context>
+    <name>GraphFooter</name>
+    <message>
+        <source>Legend</source>
+        <translation>Legende</translation>
+    </message>
+    <message>
+        <source>Show or hide what the colours mean</source>
+        <translation>Zeigen oder verbergen, was die Farben bedeuten</translation>
+    </message>
+    <message>
+        <source>Overview</source>
+        <translation>Übersicht</translation>
+    </message>
+    <message>
+        <source>Show or hide the whole graph in small, to move around a large prosthesis</source>
+        <translation>Den ganzen Graphen verkleinert zeigen oder verbergen, um sich in einer großen Prothese zu bewegen</translation>
+    </message>
+</context>
+<context>
+    <name>Overview</name>
+    <message>
+        <source>The whole graph: click or drag to show that part</source>
+        <translation>Der ganze Graph: klicken oder ziehen, um diesen Teil zu zeigen</translation>
+    </message>
+</context>
 </TS>

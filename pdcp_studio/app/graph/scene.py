@@ -9,6 +9,8 @@ the document's signals bring the items up to date; items never change the model.
 from __future__ import annotations
 
 import time
+from collections.abc import Iterator
+from contextlib import contextmanager
 
 from PySide6.QtCore import QPointF, QRectF, Qt, QTimer, Signal
 from PySide6.QtWidgets import QGraphicsScene
@@ -29,12 +31,16 @@ LIVE_HOLD_S = 1.5
 #: Data that starts or stops flowing is drawn at most this often (milliseconds).
 LIVE_BATCH_MS = 100
 FLOW_TICK_MS = 80
+#: Card pictures drawn per turn of the event loop (about 0.3 ms each).
+RENDER_BATCH = 12
 
 
 class BusScene(QGraphicsScene):
     """Cards, ports and links for one document."""
 
     statusMessage = Signal(str)
+    #: Every item was made anew (a new system): views recount the cards.
+    rebuilt = Signal()
 
     def __init__(self, doc: Document, parent: object | None = None) -> None:
         super().__init__(parent)
@@ -64,6 +70,19 @@ class BusScene(QGraphicsScene):
         self._syncing = False
         #: The outcome of the last link drag: (link or None, refusal reason or "").
         self.last_link_result: tuple[Link | None, str] = (None, "")
+        #: The zoom of the view showing the scene (cards choose their level of detail).
+        self.zoom = 1.0
+        #: The shape (width / height) of the view: a fresh layout takes it.
+        self.layout_aspect = 1.0
+        #: Device pixels per pixel of the screen the view is on (set by the view).
+        self.pixel_ratio = 1.0
+        self._vector = False
+        self._to_render: dict[DeviceKey, DeviceItem] = {}
+        self._sight = QRectF()
+        self._render_timer = QTimer(self)
+        self._render_timer.setSingleShot(True)
+        self._render_timer.setInterval(0)
+        self._render_timer.timeout.connect(self._render_batch)
         self.setBackgroundBrush(style.SCENE_BACKGROUND)
         doc.systemReset.connect(self.rebuild)
         doc.linksChanged.connect(self._on_links_changed)
@@ -88,16 +107,18 @@ class BusScene(QGraphicsScene):
             self._cancel_drag()
             self.clear()
             self.cards.clear()
+            self._to_render.clear()
             self.link_items.clear()
             self.preview_items.clear()
             self.unwritten_items.clear()
             self._pending_cache = None
             system = self.doc.system
             self.states = compute_states(system)
-            placed = layout.place(system, self.doc.positions)
+            placed = layout.place(system, self.doc.positions, self.layout_aspect)
             self.doc.positions.update(placed)
             for key, device in system.devices.items():
                 card = DeviceItem(self, device, self.states.roles[key])
+                card.set_zoom(self.zoom, self._vector)
                 card.setPos(*placed[key])
                 self.addItem(card)
                 self.cards[key] = card
@@ -109,10 +130,73 @@ class BusScene(QGraphicsScene):
             self._select_items(self.doc.selection)
         finally:
             self._syncing = False
+        self.rebuilt.emit()
+
+    def set_view_zoom(self, zoom: float) -> None:
+        """The main view's zoom changed: cards pick their level of detail for it (their
+        pictures are redrawn in batches, see :meth:`render_pending`)."""
+        if abs(zoom - self.zoom) < 1e-6:
+            return
+        self.zoom = zoom
+        for card in self.cards.values():
+            card.set_zoom(zoom, self._vector)
+
+    def set_pixel_ratio(self, ratio: float) -> None:
+        """The screen's device pixels per pixel (cards draw their pictures that fine)."""
+        if ratio > 0 and ratio != self.pixel_ratio:
+            self.pixel_ratio = ratio
+            for card in self.cards.values():
+                card.refresh()
+
+    def schedule_render(self, card: DeviceItem) -> None:
+        """Redraw a card's picture soon (batched: a bus's worth of cards is not drawn in
+        one go on the GUI thread)."""
+        self._to_render[card.key] = card
+        if not self._render_timer.isActive():
+            self._render_timer.start()
+
+    def render_pending(self, budget: int | None = None) -> int:
+        """Draw up to ``budget`` waiting card pictures (all with None); returns how many
+        still wait. Cards in the view's sight go first."""
+        waiting = self._to_render
+        keys = list(waiting)
+        if budget is not None and len(keys) > budget:
+            seen = self._sight
+            keys.sort(key=lambda k: not seen.intersects(waiting[k].sceneBoundingRect()))
+            keys = keys[:budget]
+        for key in keys:
+            card = waiting.pop(key)
+            if self.cards.get(key) is card:
+                card.render_picture()
+        if waiting and not self._render_timer.isActive():
+            self._render_timer.start()
+        return len(waiting)
+
+    def _render_batch(self) -> None:
+        views = self.views()
+        if views:
+            view = views[0]
+            self._sight = view.mapToScene(view.viewport().rect()).boundingRect()
+        self.render_pending(RENDER_BATCH)
+
+    @contextmanager
+    def full_detail(self) -> Iterator[None]:
+        """Every card painting its rows as vectors for a while (an export: read at its
+        own scale, and a vector file wants vectors)."""
+        zoom = self.zoom
+        self._vector = True
+        self.zoom = -1.0
+        self.set_view_zoom(1.0)
+        try:
+            yield
+        finally:
+            self._vector = False
+            self.zoom = -1.0
+            self.set_view_zoom(zoom)
 
     def relayout(self) -> dict[DeviceKey, tuple[float, float]]:
         """A fresh layered layout (View ▸ Arrange); returns the new positions."""
-        return layout.layered_layout(self.doc.system)
+        return layout.layered_layout(self.doc.system, self.layout_aspect)
 
     def _add_link_item(self, link: Link) -> LinkItem:
         item = LinkItem(self, link)
@@ -280,14 +364,14 @@ class BusScene(QGraphicsScene):
         for card in self.cards.values():
             if card.selected_ref is not None:
                 card.selected_ref = None
-                card.update()
+                card.refresh()
         item = self.item_for(obj)
         if item is None:
             return
         item.setSelected(True)
         if isinstance(obj, ChannelRef) and isinstance(item, DeviceItem):
             item.selected_ref = obj
-            item.update()
+            item.refresh()
 
     def item_for(self, obj: object) -> DeviceItem | LinkItem | None:
         """The graphics item showing a device, channel or link (for centring the view)."""

@@ -1,0 +1,199 @@
+"""A graph that scales: the legend never covers a card, the overview of a large bus,
+readable cards at fit zoom, and exports that keep the cards' rows."""
+
+from __future__ import annotations
+
+from pathlib import Path
+
+import pytest
+from PySide6.QtCore import QPoint, QPointF, QRect, Qt
+
+from pdcp_studio.app.graph.items import DETAIL_ZOOM, SUMMARY_MIN_PX
+
+ROOT = Path(__file__).resolve().parents[2]
+SMALL = ROOT / "resources" / "systems" / "thesis-test1.json"
+FULL = ROOT / "resources" / "systems" / "full.json"
+
+
+def _global(widget) -> QRect:
+    return QRect(widget.mapToGlobal(QPoint(0, 0)), widget.size())
+
+
+def _cards_on_screen(view):
+    """Each card's rectangle on screen (global coordinates), clipped to the viewport."""
+    vp = _global(view.viewport())
+    origin = view.viewport().mapToGlobal(QPoint(0, 0))
+    out = {}
+    for key, card in view.bus_scene().cards.items():
+        rect = view.mapFromScene(card.sceneBoundingRect()).boundingRect().translated(origin)
+        if rect.intersects(vp):
+            out[key] = rect.intersected(vp)
+    return out
+
+
+def _large_window(make_window, qtbot, size=(1600, 1000)):
+    window = make_window(size=size)
+    with qtbot.waitSignal(window.ready, timeout=30000):
+        window.connect_bus("sim:large")
+    qtbot.waitUntil(lambda: len(window.scene.cards) == 32, timeout=30000)
+    return window
+
+
+def _assert_legend_clear(view):
+    legend = _global(view.legend)
+    assert not legend.intersects(_global(view.viewport()))  # outside the scene's viewport
+    for key, rect in _cards_on_screen(view).items():
+        assert not rect.intersects(legend), (key, rect, legend)
+
+
+def test_legend_toggles_and_never_covers_a_card(make_window, qtbot):
+    window = _large_window(make_window, qtbot)
+    view = window.view
+    window.view.fit_all()
+    assert view.legend.isVisible() and window.act_legend.isChecked()
+    _assert_legend_clear(view)
+    assert _cards_on_screen(view)
+    # Zoomed in and scrolled about: still clear.
+    for zoom, point in ((1.0, (0, 0)), (1.6, (900, 700)), (0.5, (400, 1300))):
+        view.set_zoom(zoom)
+        view.centerOn(*point)
+        qtbot.wait(10)
+        _assert_legend_clear(view)
+    # The switch collapses it (the menu's check follows) and the viewport takes the room.
+    before = view.viewport().height() * view.viewport().width()
+    qtbot.mouseClick(view.footer.legend_button, Qt.MouseButton.LeftButton)
+    assert not view.legend.isVisible()
+    assert not window.act_legend.isChecked()
+    assert view.viewport().height() * view.viewport().width() >= before
+    # The menu shows it again; a narrow window flows it into more rows, still clear.
+    window.act_legend.trigger()
+    assert view.legend.isVisible() and view.legend_visible()
+    window.resize(900, 700)
+    qtbot.wait(50)
+    view.fit_all()
+    _assert_legend_clear(view)
+
+
+def test_legend_choice_is_remembered(make_window, qtbot):
+    first = make_window(SMALL)
+    first.view.set_legend_visible(False)
+    second = make_window(SMALL)
+    assert not second.view.legend.isVisible()
+    assert not second.act_legend.isChecked()
+    second.view.set_legend_visible(True)
+
+
+def test_overview_shows_for_a_large_bus_and_navigates(make_window, qtbot):
+    small = make_window(SMALL)
+    assert not small.view.overview.isVisible()  # a small graph needs none
+    window = _large_window(make_window, qtbot)
+    view, overview = window.view, window.view.overview
+    assert overview.isVisible() and view.overview_visible()
+    overview_rect = _global(overview)
+    assert not overview_rect.intersects(_global(view.viewport()))  # covers nothing either
+    view.set_zoom(1.5)
+    view.centerOn(0, 0)
+    qtbot.waitUntil(lambda: not overview._picture.isNull(), timeout=5000)
+    # The frame shows the visible part: top-left of the picture.
+    frame = overview.visible_frame()
+    assert frame.width() < overview._target.width() / 2
+    # A click moves the view there.
+    target = overview._target
+    spot = QPointF(target.left() + target.width() * 0.7, target.top() + target.height() * 0.6)
+    qtbot.mouseClick(overview, Qt.MouseButton.LeftButton, pos=spot.toPoint())
+    wanted = overview.to_scene(QPointF(spot.toPoint()))
+    centre = view.mapToScene(view.viewport().rect().center())
+    assert abs(centre.x() - wanted.x()) < 20 and abs(centre.y() - wanted.y()) < 20
+    assert overview.visible_frame().contains(spot)
+    # A drag follows the mouse.
+    spot2 = QPointF(target.left() + target.width() * 0.3, target.top() + target.height() * 0.3)
+    qtbot.mousePress(overview, Qt.MouseButton.LeftButton, pos=spot.toPoint())
+    qtbot.mouseMove(overview, pos=spot2.toPoint())
+    qtbot.mouseRelease(overview, Qt.MouseButton.LeftButton, pos=spot2.toPoint())
+    assert overview.visible_frame().contains(spot2)
+    # Switched off by the user, it stays off when the bus is read again.
+    qtbot.mouseClick(view.footer.overview_button, Qt.MouseButton.LeftButton)
+    assert not overview.isVisible()
+    window.scene.rebuild()
+    assert not overview.isVisible()
+    view.set_overview_visible(True)
+    assert overview.isVisible()
+
+
+def _assert_readable_fit(window):
+    view, scene = window.view, window.scene
+    view.fit_all()
+    scene.render_pending()
+    seen = view.mapToScene(view.viewport().rect()).boundingRect()
+    names = []
+    for key, card in scene.cards.items():
+        assert seen.contains(card.sceneBoundingRect()), key
+        assert card.name_pixel_size() >= SUMMARY_MIN_PX, (key, card.name_pixel_size())
+        shown = card.texts()[0]
+        assert shown.strip("…. ") and not shown.startswith("…"), (key, shown)
+        names.append(shown)
+    # Shortened or not, no two cards read the same ("flexor 11" and "extensor 11").
+    assert len(set(names)) == len(names), sorted(n for n in names if names.count(n) > 1)
+    return view.zoom
+
+
+def test_fit_on_the_large_rig_shows_every_card_with_a_readable_name(make_window, qtbot):
+    window = _large_window(make_window, qtbot)
+    zoom = _assert_readable_fit(window)
+    assert zoom < DETAIL_ZOOM  # the summary level: the name across the card
+    assert all(card.summary for card in window.scene.cards.values())
+    # Zoomed in, the rows come back (the profile names from the tree).
+    window.view.set_zoom(1.0)
+    window.scene.render_pending()
+    card = next(iter(window.scene.cards.values()))
+    assert not card.summary and len(card.texts()) == 2 + len(card.rows)
+
+
+@pytest.mark.parametrize("size", [(1600, 1000), (1280, 800)])
+def test_fit_on_the_full_rig_shows_every_card_with_a_readable_name(make_window, qtbot, size):
+    window = make_window(FULL, size=size)
+    assert len(window.scene.cards) == 93
+    _assert_readable_fit(window)
+
+
+def test_cards_are_drawn_without_python_on_the_paint_path(make_window, qtbot):
+    """A repaint of the view calls no Python for the cards (their pictures are drawn
+    once per change): what keeps the GUI responsive while bus threads hold the GIL."""
+    from pdcp_studio.app.graph.items import DeviceItem
+
+    window = make_window(FULL, size=(1600, 1000))
+    window.view.fit_all()
+    window.scene.render_pending()
+    calls = []
+    original = DeviceItem.paint
+
+    def counting(self, *args):
+        calls.append(self)
+        return original(self, *args)
+
+    DeviceItem.paint = counting
+    try:
+        window.view.viewport().grab()
+        assert calls == []
+        # Each change redraws one picture, in a batch, not every card.
+        card = next(iter(window.scene.cards.values()))
+        drawn = []
+        card.render_picture, real = (lambda: drawn.append(card) or real()), card.render_picture
+        card.setSelected(True)
+        window.scene.render_pending()
+        assert drawn == [card]
+        window.scene.refresh_states()  # a live snapshot: nothing changed on screen
+        assert window.scene.render_pending() == 0 and drawn == [card]
+    finally:
+        DeviceItem.paint = original
+
+
+def test_export_keeps_the_rows_whatever_the_zoom(make_window, qtbot, tmp_path):
+    window = make_window(FULL, size=(1600, 1000))
+    window.view.fit_all()
+    card = next(iter(window.scene.cards.values()))
+    assert card.summary
+    window.export_graph(tmp_path / "graph.svg")
+    svg = (tmp_path / "graph.svg").read_text(encoding="utf-8")
+    assert "Flexor" in svg or "Extensor" in svg  # a row's profile name, as vector text
+    assert card.summary and window.scene.zoom == window.view.zoom  # the view as it was
