@@ -48,6 +48,7 @@ def open_render() -> dict[str, float]:
         view = GraphView(scene)
         view.resize(1400, 900)
         view.fit_all()
+        scene.render_pending()  # the cards' pictures (drawn in batches in the app)
         image = QImage(1400, 900, QImage.Format.Format_ARGB32)
         image.fill(0xFFFFFFFF)
         painter = QPainter(image)

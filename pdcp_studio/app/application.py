@@ -156,7 +156,14 @@ def _recovery() -> object | None:
 
 
 def _preload_layout() -> None:
-    import networkx  # noqa: F401
+    """Import networkx on a thread of its own (an import of ~0.3 s on the GUI thread was
+    a stall the user saw)."""
+    import threading
+
+    def load() -> None:
+        import networkx  # noqa: F401
+
+    threading.Thread(target=load, name="preload networkx", daemon=True).start()
 
 
 def _has_display() -> bool:

@@ -248,13 +248,11 @@ class DeviceItem(QGraphicsRectItem):
     def _state(self) -> tuple:
         """Everything the card's picture shows (compared to skip needless redraws)."""
         d = self.device
-        name_of = self._scene_ref.profile_name
         return (d.present, self.isSelected(), self.role, tuple(self.problems),
                 frozenset(self.pending_rows),
                 self.selected_ref.index if self.selected_ref is not None else None,
                 self._scene_ref.device_label(d), d.vid, d.pid, d.serial, self.height,
-                tuple((c.index, c.is_input, name_of(c.profile), c.descriptor)
-                      for c in self.rows),
+                tuple((c.index, c.is_input, c.profile, c.descriptor) for c in self.rows),
                 self.summary, self.vector, self.picture_scale())
 
     def refresh(self) -> None:

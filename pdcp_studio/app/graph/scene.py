@@ -11,6 +11,7 @@ from __future__ import annotations
 import time
 from collections.abc import Iterator
 from contextlib import contextmanager
+from typing import Any
 
 from PySide6.QtCore import QPointF, QRectF, Qt, QTimer, Signal
 from PySide6.QtWidgets import QGraphicsScene
@@ -19,7 +20,7 @@ from pdcp_studio.app import commands
 from pdcp_studio.app.document import Document
 from pdcp_studio.app.graph import layout, style
 from pdcp_studio.app.graph.analysis import SystemStates, compute_states, link_refusal
-from pdcp_studio.app.graph.items import DeviceItem, PortItem
+from pdcp_studio.app.graph.items import DETAIL_ZOOM, DeviceItem, PortItem
 from pdcp_studio.app.graph.links import DragLinkItem, LinkItem
 from pdcp_studio.model import profile as prof
 from pdcp_studio.model.catalog import default_catalog
@@ -31,8 +32,11 @@ LIVE_HOLD_S = 1.5
 #: Data that starts or stops flowing is drawn at most this often (milliseconds).
 LIVE_BATCH_MS = 100
 FLOW_TICK_MS = 80
-#: Card pictures drawn per turn of the event loop (about 0.3 ms each).
-RENDER_BATCH = 12
+#: Flowing data is animated on at most this many links at once.
+FLOW_ANIMATE_MAX = 24
+#: Card pictures are drawn for at most this long per turn of the event loop (about
+#: 0.3 ms each; the GUI thread stays free for input and painting in between).
+RENDER_BUDGET_S = 0.006
 
 
 class BusScene(QGraphicsScene):
@@ -77,6 +81,7 @@ class BusScene(QGraphicsScene):
         #: Device pixels per pixel of the screen the view is on (set by the view).
         self.pixel_ratio = 1.0
         self._vector = False
+        self._catalog: Any = None
         self._to_render: dict[DeviceKey, DeviceItem] = {}
         self._sight = QRectF()
         self._render_timer = QTimer(self)
@@ -108,6 +113,7 @@ class BusScene(QGraphicsScene):
             self.clear()
             self.cards.clear()
             self._to_render.clear()
+            self._catalog = None
             self.link_items.clear()
             self.preview_items.clear()
             self.unwritten_items.clear()
@@ -155,19 +161,21 @@ class BusScene(QGraphicsScene):
         if not self._render_timer.isActive():
             self._render_timer.start()
 
-    def render_pending(self, budget: int | None = None) -> int:
-        """Draw up to ``budget`` waiting card pictures (all with None); returns how many
-        still wait. Cards in the view's sight go first."""
+    def render_pending(self, budget_s: float | None = None) -> int:
+        """Draw waiting card pictures for up to ``budget_s`` seconds (at least one; all
+        with None); returns how many still wait. Cards in the view's sight go first."""
         waiting = self._to_render
         keys = list(waiting)
-        if budget is not None and len(keys) > budget:
+        if budget_s is not None:
             seen = self._sight
             keys.sort(key=lambda k: not seen.intersects(waiting[k].sceneBoundingRect()))
-            keys = keys[:budget]
+        start = time.perf_counter()
         for key in keys:
             card = waiting.pop(key)
             if self.cards.get(key) is card:
                 card.render_picture()
+            if budget_s is not None and time.perf_counter() - start > budget_s:
+                break
         if waiting and not self._render_timer.isActive():
             self._render_timer.start()
         return len(waiting)
@@ -177,7 +185,7 @@ class BusScene(QGraphicsScene):
         if views:
             view = views[0]
             self._sight = view.mapToScene(view.viewport().rect()).boundingRect()
-        self.render_pending(RENDER_BATCH)
+        self.render_pending(RENDER_BUDGET_S)
 
     @contextmanager
     def full_detail(self) -> Iterator[None]:
@@ -209,8 +217,11 @@ class BusScene(QGraphicsScene):
         return card.ports.get(ref.index) if card else None
 
     def device_label(self, device: Device) -> str:
-        """The device's own name, else its product from the device catalogue."""
-        return default_catalog().device_label(device)
+        """The device's own name, else its product from the device catalogue (looked up
+        once per rebuild: finding the catalogue reads the user's folder)."""
+        if self._catalog is None:
+            self._catalog = default_catalog()
+        return self._catalog.device_label(device)
 
     def profile_name(self, profile: int) -> str:
         return self.doc.profile_name(profile)
@@ -385,6 +396,8 @@ class BusScene(QGraphicsScene):
 
     # -- preview --------------------------------------------------------------------
     def _on_preview(self, plan: object) -> None:
+        if plan is None and not self.preview_items:
+            return  # no preview before or after (a new system resets it): nothing to show
         self._show_preview(plan)
         self._apply_states()
 
@@ -425,12 +438,20 @@ class BusScene(QGraphicsScene):
         for ref in stale:
             del self._live[ref]
         self._live_changed.update(stale)
-        self.flow_phase = (self.flow_phase + 1.5) % 70.0
         if self._live_changed:
             self._apply_live()
-        for link, item in self.link_items.items():
-            if link.output in self._live:
+        live = [item for link, item in self.link_items.items() if link.output in self._live]
+        if self.flow_animated(len(live)):
+            self.flow_phase = (self.flow_phase + 1.5) % 70.0
+            for item in live:
                 item.refresh()
+
+    def flow_animated(self, live_links: int) -> bool:
+        """Whether flowing data moves along its links: only when the links are drawn
+        large enough to see it and few enough to redraw 12 times a second (on a large
+        bus fitted to the window every link redrawn per tick meant the whole view).
+        Otherwise a link with data is shown still, in the colour of data flowing."""
+        return self.zoom >= DETAIL_ZOOM and live_links <= FLOW_ANIMATE_MAX
         if not self._live:
             self._flow_timer.stop()
 

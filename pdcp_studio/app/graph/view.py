@@ -47,7 +47,7 @@ FIT_MAX_ZOOM = 1.3
 #: The overview is shown by itself for graphs with this many cards or more.
 OVERVIEW_MIN_DEVICES = 20
 #: The overview redraws its picture at most this often after the scene changed (ms).
-OVERVIEW_REDRAW_MS = 400
+OVERVIEW_REDRAW_MS = 700
 #: Where the legend's shown/hidden state is remembered.
 LEGEND_KEY = "graph/legend_shown"
 #: The footer's width when it stands beside the viewport (a tall graph in a wide view).
