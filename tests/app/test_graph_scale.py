@@ -197,3 +197,63 @@ def test_export_keeps_the_rows_whatever_the_zoom(make_window, qtbot, tmp_path):
     svg = (tmp_path / "graph.svg").read_text(encoding="utf-8")
     assert "Flexor" in svg or "Extensor" in svg  # a row's profile name, as vector text
     assert card.summary and window.scene.zoom == window.view.zoom  # the view as it was
+
+
+def test_the_gui_thread_stays_free_on_the_full_rig(make_window, qtbot):
+    """The app on ``sim:full`` (93 devices, every node ID): the layout is made on the
+    worker, no card is painted by Python, and a 5 ms heartbeat on the GUI thread never
+    stops long while the bus starts up and is scanned (the target is 50 ms on a quiet
+    machine — ``benchmarks/gui_full.py``; this shared test machine gets a margin, still
+    well under the 0.6 s stalls it had)."""
+    import threading
+
+    from PySide6.QtCore import QElapsedTimer, QTimer
+
+    from pdcp_studio.app.graph import layout
+    from pdcp_studio.app.graph.items import DeviceItem
+
+    window = make_window(size=(1600, 1000))
+    threads = []
+    original_layout, original_paint = layout.layered_layout, DeviceItem.paint
+
+    def recording_layout(*args, **kwargs):
+        threads.append(threading.current_thread() is threading.main_thread())
+        return original_layout(*args, **kwargs)
+
+    painted = []
+    layout.layered_layout = recording_layout
+    DeviceItem.paint = lambda self, *a: painted.append(self) or original_paint(self, *a)
+    clock = QElapsedTimer()
+    clock.start()
+    gaps: list[float] = []
+    last = [clock.nsecsElapsed()]
+
+    def beat():
+        now = clock.nsecsElapsed()
+        gaps.append((now - last[0]) / 1e6)
+        last[0] = now
+
+    heartbeat = QTimer()
+    heartbeat.setInterval(5)
+    heartbeat.timeout.connect(beat)
+    try:
+        heartbeat.start()
+        with qtbot.waitSignal(window.ready, timeout=60000):
+            window.connect_bus("sim:full")
+        qtbot.waitUntil(lambda: len(window.scene.cards) == 93, timeout=30000)
+        qtbot.wait(200)
+        connect_gaps = gaps[1:]
+        gaps.clear()
+        last[0] = clock.nsecsElapsed()
+        with qtbot.waitSignal(window.live.bridge.scanned, timeout=30000):
+            window.live.bridge.scan()
+        qtbot.wait(300)
+        scan_gaps = gaps[1:]
+    finally:
+        heartbeat.stop()
+        layout.layered_layout, DeviceItem.paint = original_layout, original_paint
+    assert threads and not any(threads)  # never laid out on the GUI thread
+    assert painted == []
+    print(f"longest GUI gap: start-up {max(connect_gaps):.0f} ms, scan {max(scan_gaps):.0f} ms")
+    assert max(scan_gaps) < 300
+    assert max(connect_gaps) < 500
