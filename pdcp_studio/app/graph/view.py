@@ -457,6 +457,13 @@ class GraphView(QGraphicsView):
         self.set_zoom(min(FIT_MAX_ZOOM, factor))
         self.centerOn(rect.center())
 
+    def settle(self) -> None:
+        """Draw now what is drawn in batches (the cards' pictures, the overview): for a
+        screenshot or an export of the window."""
+        self.bus_scene().render_pending()
+        if self.overview.isVisible():
+            self.overview.redraw()
+
     def centre_on_item(self, rect: QRectF) -> None:
         self.ensureVisible(rect, 40, 40)
 
