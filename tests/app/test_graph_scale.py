@@ -257,3 +257,22 @@ def test_the_gui_thread_stays_free_on_the_full_rig(make_window, qtbot):
     print(f"longest GUI gap: start-up {max(connect_gaps):.0f} ms, scan {max(scan_gaps):.0f} ms")
     assert max(scan_gaps) < 300
     assert max(connect_gaps) < 500
+
+
+def test_a_zoom_on_a_large_bus_redraws_what_is_seen_first(make_window, qtbot):
+    window = make_window(FULL, size=(1600, 1000))
+    view, scene = window.view, window.scene
+    view.fit_all()
+    scene.render_pending()
+    view.set_zoom(1.0)
+    view.centerOn(0, 0)
+    qtbot.waitUntil(lambda: not scene._render_timer.isActive(), timeout=5000)
+    waiting = set(scene._to_render)
+    assert waiting  # far cards keep their old picture for now…
+    seen = view.mapToScene(view.viewport().rect()).boundingRect()
+    assert not any(seen.intersects(scene.cards[k].sceneBoundingRect()) for k in waiting)
+    assert all(c.has_picture() for c in scene.cards.values())
+    far = max(waiting, key=lambda k: scene.cards[k].pos().x() + scene.cards[k].pos().y())
+    view.centerOn(scene.cards[far].sceneBoundingRect().center())  # …until the view goes there
+    qtbot.waitUntil(lambda: far not in scene._to_render, timeout=5000)
+    assert len(scene.cards[far].texts()) > 1  # drawn again: its rows, not the summary

@@ -293,6 +293,9 @@ class DeviceItem(QGraphicsRectItem):
         pixmap.setDevicePixelRatio(scale)
         self._picture.setPixmap(pixmap)
 
+    def has_picture(self) -> bool:
+        return not self._picture.pixmap().isNull()
+
     def set_zoom(self, zoom: float, export: bool = False) -> None:
         """The view's zoom: the level of detail, and a picture or vectors (``export``:
         vectors without Qt's pixmap cache, for a vector file)."""

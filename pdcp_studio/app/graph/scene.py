@@ -83,7 +83,8 @@ class BusScene(QGraphicsScene):
         self._vector = False
         self._catalog: Any = None
         self._to_render: dict[DeviceKey, DeviceItem] = {}
-        self._sight = QRectF()
+        #: Where the view looks, with a margin (scene coordinates; empty: everywhere).
+        self._sight = QRectF(-1e9, -1e9, 2e9, 2e9)
         self._render_timer = QTimer(self)
         self._render_timer.setSingleShot(True)
         self._render_timer.setInterval(0)
@@ -162,13 +163,18 @@ class BusScene(QGraphicsScene):
             self._render_timer.start()
 
     def render_pending(self, budget_s: float | None = None) -> int:
-        """Draw waiting card pictures for up to ``budget_s`` seconds (at least one; all
-        with None); returns how many still wait. Cards in the view's sight go first."""
+        """Draw waiting card pictures; returns how many still wait. With None, all of
+        them now. With a time budget (a batch on the event loop), for at most that long
+        (at least one card), only the cards near the view's sight and those with no
+        picture yet: a card out of sight keeps its old picture until it comes near
+        (:meth:`look_at`), so a zoom on a large bus redraws what is seen, not all."""
         waiting = self._to_render
         keys = list(waiting)
         if budget_s is not None:
-            seen = self._sight
-            keys.sort(key=lambda k: not seen.intersects(waiting[k].sceneBoundingRect()))
+            sight = self._sight
+            near = [k for k in keys if sight.intersects(waiting[k].sceneBoundingRect())]
+            keys = near + [k for k in keys if k not in set(near)
+                           and not waiting[k].has_picture()]
         start = time.perf_counter()
         for key in keys:
             card = waiting.pop(key)
@@ -176,15 +182,19 @@ class BusScene(QGraphicsScene):
                 card.render_picture()
             if budget_s is not None and time.perf_counter() - start > budget_s:
                 break
-        if waiting and not self._render_timer.isActive():
+        more = [k for k in keys if k in waiting]
+        if more and not self._render_timer.isActive():
             self._render_timer.start()
         return len(waiting)
 
+    def look_at(self, sight: QRectF) -> None:
+        """The part of the scene the view shows (with a margin): waiting pictures there
+        are drawn soon."""
+        self._sight = QRectF(sight)
+        if self._to_render and not self._render_timer.isActive():
+            self._render_timer.start()
+
     def _render_batch(self) -> None:
-        views = self.views()
-        if views:
-            view = views[0]
-            self._sight = view.mapToScene(view.viewport().rect()).boundingRect()
         self.render_pending(RENDER_BUDGET_S)
 
     @contextmanager

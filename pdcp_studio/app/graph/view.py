@@ -437,6 +437,7 @@ class GraphView(QGraphicsView):
         factor = max(MIN_ZOOM, min(MAX_ZOOM, factor))
         self.scale(factor / self.zoom, factor / self.zoom)
         self.bus_scene().set_view_zoom(self.zoom)
+        self._look()
         self.overview.update()
 
     def zoom_by(self, step: float) -> None:
@@ -509,6 +510,8 @@ class GraphView(QGraphicsView):
     def arrange_footer(self) -> None:
         """Put the footer under or beside the viewport — whichever leaves the graph the
         larger fit zoom — and keep the viewport clear of it."""
+        if self.scene() is None:
+            return  # being torn down
         frame = self.frameWidth()
         width, height = self.width() - 2 * frame, self.height() - 2 * frame
         graph = self.scene().itemsBoundingRect().adjusted(-FIT_MARGIN, -FIT_MARGIN,
@@ -534,14 +537,31 @@ class GraphView(QGraphicsView):
         self.footer.raise_()
         self.footer.update()
 
+    def _look(self) -> None:
+        """Tell the scene where the view looks (half a view's margin around it)."""
+        scene = self.scene()
+        if not isinstance(scene, BusScene):
+            return  # being torn down
+        shown = self.mapToScene(self.viewport().rect()).boundingRect()
+        w, h = shown.width() / 2, shown.height() / 2
+        scene.look_at(shown.adjusted(-w, -h, w, h))
+
     # -- Qt virtuals ----------------------------------------------------------------
+    def scrollContentsBy(self, dx: int, dy: int) -> None:
+        super().scrollContentsBy(dx, dy)
+        self._look()
+
     def resizeEvent(self, event: QResizeEvent) -> None:
         super().resizeEvent(event)
+        self._look()
         self.arrange_footer()
-        self.bus_scene().set_pixel_ratio(self.devicePixelRatioF())
+        scene = self.scene()
+        if not isinstance(scene, BusScene):
+            return
+        scene.set_pixel_ratio(self.devicePixelRatioF())
         vp = self.viewport().size()
         if vp.height() > 40 and vp.width() > 40:
-            self.bus_scene().layout_aspect = vp.width() / vp.height()
+            scene.layout_aspect = vp.width() / vp.height()
 
     def wheelEvent(self, event: QWheelEvent) -> None:
         delta = event.angleDelta().y()
