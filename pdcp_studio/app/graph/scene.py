@@ -32,6 +32,10 @@ LIVE_HOLD_S = 1.5
 #: Data that starts or stops flowing is drawn at most this often (milliseconds).
 LIVE_BATCH_MS = 100
 FLOW_TICK_MS = 80
+#: A live bus with more devices than this is built over several turns of the event loop,
+#: at most BUILD_BUDGET_S of card making per turn.
+BUILD_AT_ONCE = 40
+BUILD_BUDGET_S = 0.008
 #: Flowing data is animated on at most this many links at once.
 FLOW_ANIMATE_MAX = 24
 #: Card pictures are drawn for at most this long per turn of the event loop (about
@@ -103,13 +107,29 @@ class BusScene(QGraphicsScene):
         self._states_timer.setSingleShot(True)
         self._states_timer.setInterval(0)
         self._states_timer.timeout.connect(self.refresh_states)
+        self._to_build: list[DeviceKey] = []
+        self._chunked = False
+        self._steps: Iterator[None] | None = None
+        self._build_timer = QTimer(self)
+        self._build_timer.setSingleShot(True)
+        self._build_timer.setInterval(0)
+        self._build_timer.timeout.connect(self._build_step)
         self.rebuild()
 
     # -- building -------------------------------------------------------------------
     def rebuild(self) -> None:
-        """Recreate every item (a new system); remembered positions are kept."""
+        """Recreate every item (a new system); remembered positions are kept.
+
+        A large live bus (more than ``BUILD_AT_ONCE`` devices) is built over several
+        turns of the event loop, ``BUILD_BUDGET_S`` at a time, so the GUI thread never
+        stops long while the bus threads compete for the GIL; ``building`` is True
+        meanwhile, :meth:`graph_rect` already spans every card, :meth:`finish_building`
+        completes it at once and ``rebuilt`` follows when it is complete.
+        """
         self._syncing = True
         try:
+            self._build_timer.stop()
+            self._steps = None
             self._cancel_drag()
             self.clear()
             self.cards.clear()
@@ -123,21 +143,93 @@ class BusScene(QGraphicsScene):
             self.states = compute_states(system)
             placed = layout.place(system, self.doc.positions, self.layout_aspect)
             self.doc.positions.update(placed)
-            for key, device in system.devices.items():
-                card = DeviceItem(self, device, self.states.roles[key])
-                card.set_zoom(self.zoom, self._vector)
-                card.setPos(*placed[key])
-                self.addItem(card)
-                self.cards[key] = card
-            for link in system.links:
-                self._add_link_item(link)
-            self._show_unwritten()
-            self._apply_states()
-            self._show_preview(self.doc.preview_plan)
-            self._select_items(self.doc.selection)
+            self._to_build = list(system.devices)
         finally:
             self._syncing = False
-        self.rebuilt.emit()
+        self._chunked = len(self._to_build) > BUILD_AT_ONCE and self.doc.session is not None
+        self._steps = self._build_steps()
+        if self._chunked:
+            self._build_step()
+        else:
+            self.finish_building()
+
+    @property
+    def building(self) -> bool:
+        """True while a large bus is still being built (see :meth:`rebuild`)."""
+        return self._steps is not None
+
+    def _build_step(self) -> None:
+        """One turn's worth of building (``BUILD_BUDGET_S``)."""
+        self._run_steps(BUILD_BUDGET_S)
+        if self._steps is not None:
+            self._build_timer.start()
+
+    def finish_building(self) -> None:
+        """Build what is still to build, at once."""
+        self._build_timer.stop()
+        self._run_steps(None)
+
+    def _run_steps(self, budget_s: float | None) -> None:
+        steps = self._steps
+        if steps is None:
+            return
+        start = time.perf_counter()
+        self._syncing = True
+        try:
+            for _step in steps:
+                if budget_s is not None and time.perf_counter() - start > budget_s:
+                    return
+        finally:
+            self._syncing = False
+        if self._steps is steps:  # not restarted by a changed system
+            self._steps = None
+            self.rebuilt.emit()
+
+    def _build_steps(self) -> Iterator[None]:
+        """The cards, then the links, then their states, a step at a time."""
+        system = self.doc.system
+        while self._to_build:
+            key = self._to_build.pop(0)
+            device = system.devices.get(key)
+            if device is None or key in self.cards:
+                continue
+            card = DeviceItem(self, device, self.states.roles.get(key, "sensor"))
+            card.set_zoom(self.zoom, self._vector)
+            card.setPos(*self.doc.positions.get(key, (0.0, 0.0)))
+            self.addItem(card)
+            self.cards[key] = card
+            yield
+        system = self.doc.system
+        if self._chunked:  # the system may have changed while the cards were made
+            if set(self.cards) != set(system.devices):
+                self._steps = None
+                self._syncing = False
+                self.rebuild()
+                return
+            self.states = compute_states(system)
+            for key, card in self.cards.items():
+                if card.device is not system.devices[key]:
+                    card.set_device(system.devices[key], self.states.roles[key])
+        for link in system.links:
+            self._add_link_item(link)
+            yield
+        self._show_unwritten()
+        yield from self._state_steps()
+        self._show_preview(self.doc.preview_plan)
+        self._select_items(self.doc.selection)
+
+    def graph_rect(self) -> QRectF:
+        """Where the graph is, also while it is still being built (from the cards'
+        places: every card has one before it is made)."""
+        if not self.building:
+            return self.itemsBoundingRect()
+        rect = QRectF()
+        r = style.PORT_RADIUS + 2
+        for key, device in self.doc.system.devices.items():
+            x, y = self.doc.positions.get(key, (0.0, 0.0))
+            rect = rect.united(QRectF(x - r, y - 2, style.CARD_WIDTH + 2 * r,
+                                      layout.card_height(device) + 6))
+        return rect
 
     def set_view_zoom(self, zoom: float) -> None:
         """The main view's zoom changed: cards pick their level of detail for it (their
@@ -238,6 +330,8 @@ class BusScene(QGraphicsScene):
 
     # -- document → items -----------------------------------------------------------
     def _on_links_changed(self) -> None:
+        if self.building:
+            return  # finish_building shows the system as it is then
         current = set(self.doc.system.links)
         for link in [lk for lk in self.link_items if lk not in current]:
             item = self.link_items.pop(link)
@@ -251,6 +345,8 @@ class BusScene(QGraphicsScene):
         self._apply_states()
 
     def _on_bus_changed(self) -> None:
+        if self.building:
+            return  # finish_building shows the system as it is then
         self._pending_cache = None
         self._show_unwritten()
         self._apply_states()
@@ -275,6 +371,8 @@ class BusScene(QGraphicsScene):
             self.unwritten_items.append(item)
 
     def _on_device_changed(self, key: DeviceKey) -> None:
+        if self.building:
+            return  # finish_building shows the system as it is then
         self._pending_cache = None
         device = self.doc.system.device(key)
         card = self.cards.get(key)
@@ -288,6 +386,8 @@ class BusScene(QGraphicsScene):
 
     def refresh_states(self) -> None:
         """Recompute roles and problems for the whole system and show them on every item."""
+        if self.building:
+            return  # finish_building shows the system as it is then
         self._states_timer.stop()
         self.states = compute_states(self.doc.system)
         self._apply_states()
@@ -311,6 +411,12 @@ class BusScene(QGraphicsScene):
         return marks
 
     def _apply_states(self) -> None:
+        for _step in self._state_steps():
+            pass
+
+    def _state_steps(self) -> Iterator[None]:
+        """Show the states on every item, one item per step (a large bus being built
+        spreads them over turns of the event loop)."""
         system, st = self.doc.system, self.states
         live = set(self._live)
         if self._pending_cache is None:  # not on every data tick: only after a change
@@ -332,6 +438,7 @@ class BusScene(QGraphicsScene):
                 port.unmet = ref in st.unmet_required
                 port.setToolTip(self.port_advice(ref))
             card.refresh()
+            yield
         dim = bool(self.preview_items)
         bus = self.doc.bus_system
         on_bus = set(bus.links) if bus is not None else None
@@ -343,6 +450,7 @@ class BusScene(QGraphicsScene):
             item.live = link.output in live
             item.setOpacity(0.35 if dim else 1.0)
             item.refresh()
+            yield
 
     def _apply_live(self) -> None:
         """Redraw only the ports and links of outputs whose data started or stopped."""
@@ -406,6 +514,8 @@ class BusScene(QGraphicsScene):
 
     # -- preview --------------------------------------------------------------------
     def _on_preview(self, plan: object) -> None:
+        if self.building:
+            return  # finish_building shows the preview
         if plan is None and not self.preview_items:
             return  # no preview before or after (a new system resets it): nothing to show
         self._show_preview(plan)

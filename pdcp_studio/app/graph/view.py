@@ -423,6 +423,7 @@ class GraphView(QGraphicsView):
         self.footer.overview_button.toggled.connect(self._overview_toggled)
         self.overview.setVisible(False)
         scene.rebuilt.connect(self.update_overview_auto)
+        scene.doc.systemReset.connect(self.update_overview_auto)  # before a fit, not after
         self.update_overview_auto()
 
     def bus_scene(self) -> BusScene:
@@ -448,7 +449,7 @@ class GraphView(QGraphicsView):
         FIT_MAX_ZOOM (readable, not bloated). The scale is computed from the viewport
         without scroll bars (the legend and overview are outside it, in the footer)."""
         self.arrange_footer()
-        rect = self.scene().itemsBoundingRect()
+        rect = self.bus_scene().graph_rect()
         if rect.isEmpty():
             return
         rect = rect.adjusted(-FIT_MARGIN, -FIT_MARGIN, FIT_MARGIN, FIT_MARGIN)
@@ -487,7 +488,7 @@ class GraphView(QGraphicsView):
         """Shown for a large graph (OVERVIEW_MIN_DEVICES cards or more) unless the user
         chose otherwise."""
         if self._overview_choice is None:
-            big = len(self.bus_scene().cards) >= OVERVIEW_MIN_DEVICES
+            big = len(self.bus_scene().doc.system.devices) >= OVERVIEW_MIN_DEVICES
             button = self.footer.overview_button
             button.blockSignals(True)
             button.setChecked(big)
@@ -514,8 +515,8 @@ class GraphView(QGraphicsView):
             return  # being torn down
         frame = self.frameWidth()
         width, height = self.width() - 2 * frame, self.height() - 2 * frame
-        graph = self.scene().itemsBoundingRect().adjusted(-FIT_MARGIN, -FIT_MARGIN,
-                                                          FIT_MARGIN, FIT_MARGIN)
+        graph = self.bus_scene().graph_rect().adjusted(-FIT_MARGIN, -FIT_MARGIN,
+                                                       FIT_MARGIN, FIT_MARGIN)
         strip = self.footer.arrange(False, width, height, graph)
         side = False
         if not graph.isEmpty() and width > 2 * SIDE_WIDTH:
