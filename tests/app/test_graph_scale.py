@@ -252,6 +252,8 @@ def test_the_gui_thread_stays_free_on_the_full_rig(make_window, qtbot):
     finally:
         heartbeat.stop()
         layout.layered_layout, DeviceItem.paint = original_layout, original_paint
+    assert not window.scene.building
+    _assert_readable_fit(window)  # built over several turns, complete in the end
     assert threads and not any(threads)  # never laid out on the GUI thread
     assert painted == []
     print(f"longest GUI gap: start-up {max(connect_gaps):.0f} ms, scan {max(scan_gaps):.0f} ms")
