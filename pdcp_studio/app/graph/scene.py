@@ -49,6 +49,8 @@ class BusScene(QGraphicsScene):
     statusMessage = Signal(str)
     #: Every item was made anew (a new system): views recount the cards.
     rebuilt = Signal()
+    #: Some cards' pictures were drawn (what an overview shows changed).
+    picturesDrawn = Signal()
 
     def __init__(self, doc: Document, parent: object | None = None) -> None:
         super().__init__(parent)
@@ -186,7 +188,9 @@ class BusScene(QGraphicsScene):
             self.rebuilt.emit()
 
     def _build_steps(self) -> Iterator[None]:
-        """The cards, then the links, then their states, a step at a time."""
+        """The cards, then the links, then their states, a step at a time — off the
+        scene, so the view is not repainted at every step — and then into the scene at
+        once."""
         system = self.doc.system
         while self._to_build:
             key = self._to_build.pop(0)
@@ -196,7 +200,6 @@ class BusScene(QGraphicsScene):
             card = DeviceItem(self, device, self.states.roles.get(key, "sensor"))
             card.set_zoom(self.zoom, self._vector)
             card.setPos(*self.doc.positions.get(key, (0.0, 0.0)))
-            self.addItem(card)
             self.cards[key] = card
             yield
         system = self.doc.system
@@ -211,10 +214,14 @@ class BusScene(QGraphicsScene):
                 if card.device is not system.devices[key]:
                     card.set_device(system.devices[key], self.states.roles[key])
         for link in system.links:
-            self._add_link_item(link)
+            self.link_items[link] = LinkItem(self, link)
             yield
-        self._show_unwritten()
         yield from self._state_steps()
+        for card in self.cards.values():
+            self.addItem(card)
+        for item in self.link_items.values():
+            self.addItem(item)
+        self._show_unwritten()
         self._show_preview(self.doc.preview_plan)
         self._select_items(self.doc.selection)
 
@@ -277,6 +284,8 @@ class BusScene(QGraphicsScene):
         more = [k for k in keys if k in waiting]
         if more and not self._render_timer.isActive():
             self._render_timer.start()
+        if keys:
+            self.picturesDrawn.emit()
         return len(waiting)
 
     def look_at(self, sight: QRectF) -> None:

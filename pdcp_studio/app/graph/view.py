@@ -178,7 +178,7 @@ class Legend(QWidget):
 class Overview(QWidget):
     """The whole graph small, with the part the view shows framed; click or drag in it to
     move the view there. A picture of the scene, redrawn at most every
-    ``OVERVIEW_REDRAW_MS`` after the scene changed (not on every change of a big bus)."""
+    ``OVERVIEW_REDRAW_MS`` after the graph changed (not on every change of a big bus)."""
 
     MIN_SIDE = 72
     MAX_SIDE = 180
@@ -195,7 +195,13 @@ class Overview(QWidget):
         self._timer.setSingleShot(True)
         self._timer.setInterval(OVERVIEW_REDRAW_MS)
         self._timer.timeout.connect(self.redraw)
-        view.scene().changed.connect(self._scene_changed)
+        # Redrawn when what it shows changes — cards drawn, moved, linked — not on every
+        # change of the scene (data flowing along a link changes it ten times a second).
+        scene = view.bus_scene()
+        scene.picturesDrawn.connect(self._scene_changed)
+        scene.rebuilt.connect(self._scene_changed)
+        scene.doc.linksChanged.connect(self._scene_changed)
+        scene.doc.positionChanged.connect(self._scene_changed)
         view.horizontalScrollBar().valueChanged.connect(self.update)
         view.verticalScrollBar().valueChanged.connect(self.update)
 
