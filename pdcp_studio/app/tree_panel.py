@@ -7,6 +7,8 @@ channel in the document, and the graph follows; selecting on the graph selects t
 
 from __future__ import annotations
 
+from typing import Any
+
 from PySide6.QtCore import Qt
 from PySide6.QtGui import QBrush, QColor
 from PySide6.QtWidgets import QAbstractItemView, QHeaderView, QTreeWidget, QTreeWidgetItem, QWidget
@@ -41,6 +43,7 @@ class DeviceTree(QTreeWidget):
         header.setSectionResizeMode(1, QHeaderView.ResizeMode.ResizeToContents)
         self._rows: dict[object, QTreeWidgetItem] = {}
         self._signatures: dict[DeviceKey, tuple] = {}
+        self._catalog: Any = None
         self._syncing = False
         doc.systemReset.connect(self.rebuild)
         doc.deviceChanged.connect(self._on_device_changed)
@@ -56,6 +59,7 @@ class DeviceTree(QTreeWidget):
             self.clear()
             self._rows.clear()
             self._signatures.clear()
+            self._catalog = None
             for key in self.ordered_keys():
                 self.addTopLevelItem(self._device_row(key))
             self.expandAll()
@@ -74,7 +78,9 @@ class DeviceTree(QTreeWidget):
     def _device_row(self, key: DeviceKey) -> QTreeWidgetItem:
         device = self.doc.system.devices[key]
         role = device_role(device)
-        item = QTreeWidgetItem([default_catalog().device_label(device),
+        if self._catalog is None:  # finding it reads the user's folder: once per rebuild
+            self._catalog = default_catalog()
+        item = QTreeWidgetItem([self._catalog.device_label(device),
                                 self.tr("missing") if not device.present
                                 else translate("Style", style.ROLE_LABELS[role])])
         item.setData(0, ROLE, key)
