@@ -299,3 +299,20 @@ def test_a_live_snapshot_remakes_only_the_device_rows_that_changed(qtbot):
     doc.deviceChanged.emit(key)
     assert tree.row_for(key) is not rows[key]
     assert tree.row_for(key).text(1) == "missing"
+
+
+def test_a_small_graph_zoomed_out_keeps_its_rows_readable(make_window, qtbot):
+    """Between the summary level and 100 %, the rows' text grows inside its row so a
+    small prosthesis fitted to a narrow window still shows its channels at >= 9 px."""
+    from pdcp_studio.app.graph.items import ROW_MIN_PX
+
+    window = make_window(ROOT / "resources" / "systems" / "transradial.json", size=(900, 700))
+    view = window.view
+    view.fit_all()
+    view.set_zoom(0.6)
+    window.scene.render_pending()
+    for card in window.scene.cards.values():
+        assert not card.summary
+        assert card.name_pixel_size() >= 9.0
+        assert card.row_pixel_size() >= ROW_MIN_PX - 0.5  # whole pixels
+        assert len(card.texts()) == 2 + len(card.rows)

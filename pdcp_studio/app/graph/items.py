@@ -50,9 +50,13 @@ if TYPE_CHECKING:
 
 DEVICE_TYPE = QGraphicsItem.UserType + 1
 PORT_TYPE = QGraphicsItem.UserType + 2
-#: Below this zoom a card shows its name large instead of its rows (the rows' text would
-#: be under 8 px on screen).
-DETAIL_ZOOM = 0.7
+#: Below this zoom a card shows its name large instead of its rows (the rows' text,
+#: grown to fill its row, would be under ROW_MIN_PX on screen).
+DETAIL_ZOOM = 0.55
+#: Zoomed out (down to DETAIL_ZOOM) the rows' text grows to stay this high on screen.
+NAME_MIN_PX = 9.5
+ROLE_MIN_PX = 8.0
+ROW_MIN_PX = 9.0
 #: The device name's height on screen in the summary level, pixels (it may shrink to
 #: SUMMARY_MIN_PX to fit a small card, never further).
 SUMMARY_NAME_PX = 11.0
@@ -194,6 +198,7 @@ class DeviceItem(QGraphicsRectItem):
         self._shown: tuple | None = None  # the state last drawn (refresh skips no-ops)
         self._drawn: list[str] = []
         self._name_px = 0.0
+        self._row_px = 0.0
         self._picture = QGraphicsPixmapItem(self)
         self._picture.setShapeMode(QGraphicsPixmapItem.ShapeMode.BoundingRectShape)
         self._picture.setTransformationMode(Qt.TransformationMode.SmoothTransformation)
@@ -317,6 +322,10 @@ class DeviceItem(QGraphicsRectItem):
         name alone, in the summary level)."""
         return list(self._drawn)
 
+    def row_pixel_size(self) -> float:
+        """The rows' text height in pixels on a view at this card's zoom (0: no rows)."""
+        return 0.0 if self.summary else self._row_px * self.zoom
+
     def name_pixel_size(self) -> float:
         """The device name's text height in pixels on a view at this card's zoom."""
         return self._name_px * self.zoom
@@ -418,6 +427,10 @@ class DeviceItem(QGraphicsRectItem):
     def _draw_rows(self, p: QPainter, label: str, text: QColor) -> None:
         title_f, small_f, row_f, _mono_f = _fonts()
         title_m, small_m, row_m, _mono_m = _metrics()
+        if self.zoom < 1.0:  # zoomed out: the text grows in the card to stay readable
+            title_f, title_m = _at_least(title_f, NAME_MIN_PX, self.zoom, 17.0)
+            small_f, small_m = _at_least(small_f, ROLE_MIN_PX, self.zoom, 14.0)
+            row_f, row_m = _at_least(row_f, ROW_MIN_PX, self.zoom, style.ROW_HEIGHT - 3)
         d, w = self.device, self.width
         missing = not d.present
         dim = style.MISSING_TEXT if missing else style.TEXT_DIM
@@ -433,7 +446,10 @@ class DeviceItem(QGraphicsRectItem):
                                        Qt.TextElideMode.ElideRight, w - 20)
         p.drawText(QRectF(11, 22, w - 20, 14), Qt.AlignmentFlag.AlignVCenter, role_line)
         drawn = [name, role_line]
-        self._name_px = QFontInfo(title_f).pixelSize()
+        self._row_px = QFontInfo(row_f).pixelSize() if row_f.pixelSize() < 0 \
+            else row_f.pixelSize()
+        self._name_px = QFontInfo(title_f).pixelSize() if title_f.pixelSize() < 0 \
+            else title_f.pixelSize()
 
         # Channel rows.
         n_in = sum(1 for c in self.rows if c.is_input)
@@ -528,6 +544,18 @@ class DeviceItem(QGraphicsRectItem):
         p.setPen(QColor("#ffffff"))
         p.drawText(QRectF(centre.x() - 7.5, centre.y() - 7.5, 15, 15),
                    Qt.AlignmentFlag.AlignCenter, "!")
+
+
+def _at_least(font: QFont, px: float, zoom: float, cap: float) -> tuple[QFont, QFontMetricsF]:
+    """``font`` grown so that it is ``px`` pixels high on screen at ``zoom`` (never
+    smaller than it is, never taller than ``cap`` scene units: it must fit its row)."""
+    base = QFontInfo(font).pixelSize()
+    size = min(cap, max(base, px / max(zoom, 0.01)))
+    if size <= base:
+        return font, QFontMetricsF(font)
+    grown = QFont(font)
+    grown.setPixelSize(max(1, math.floor(size)))
+    return grown, QFontMetricsF(grown)
 
 
 def _over(base: QColor, tint: QColor) -> QColor:
