@@ -25,6 +25,7 @@ class ExportMixin:
     def export_rect(self) -> QRectF:
         """The part of the scene an export shows: every item and a 20-unit margin, grown to
         whole units so the file's size holds all of it (no clipping at right or bottom)."""
+        self.scene.finish_building()  # a large bus still being built: all of it
         rect = self.scene.itemsBoundingRect().adjusted(-20, -20, 20, 20)
         left, top = math.floor(rect.left()), math.floor(rect.top())
         return QRectF(left, top, math.ceil(rect.right()) - left,

@@ -254,6 +254,12 @@ def test_the_gui_thread_stays_free_on_the_full_rig(make_window, qtbot):
         layout.layered_layout, DeviceItem.paint = original_layout, original_paint
     assert not window.scene.building
     _assert_readable_fit(window)  # built over several turns, complete in the end
+    window.scene.rebuild()  # a live bus this large is built over several turns…
+    assert window.scene.building
+    window.view.settle()  # …which a screenshot completes at once
+    assert not window.scene.building
+    assert all(card.scene() is window.scene and card.has_picture()
+               for card in window.scene.cards.values())
     assert threads and not any(threads)  # never laid out on the GUI thread
     assert painted == []
     print(f"longest GUI gap: start-up {max(connect_gaps):.0f} ms, scan {max(scan_gaps):.0f} ms")

@@ -466,8 +466,10 @@ class GraphView(QGraphicsView):
         self.centerOn(rect.center())
 
     def settle(self) -> None:
-        """Draw now what is drawn in batches (the cards' pictures, the overview): for a
-        screenshot or an export of the window."""
+        """Build and draw now what is built and drawn in batches (a large bus's items,
+        the cards' pictures, the overview): for a screenshot of the window."""
+        self.bus_scene().finish_building()
+        self.fit_all()
         self.bus_scene().render_pending()
         if self.overview.isVisible():
             self.overview.redraw()
