@@ -3,6 +3,7 @@ readable cards at fit zoom, and exports that keep the cards' rows."""
 
 from __future__ import annotations
 
+import os
 from pathlib import Path
 
 import pytest
@@ -262,9 +263,13 @@ def test_the_gui_thread_stays_free_on_the_full_rig(make_window, qtbot):
                for card in window.scene.cards.values())
     assert threads and not any(threads)  # never laid out on the GUI thread
     assert painted == []
-    print(f"longest GUI gap: start-up {max(connect_gaps):.0f} ms, scan {max(scan_gaps):.0f} ms")
-    assert max(scan_gaps) < 300
-    assert max(connect_gaps) < 500
+    # A machine busier than its cores stretches every gap (the bus threads and the GUI
+    # thread share the GIL and the cores with everything else): the bound grows with it.
+    stretch = max(1.0, os.getloadavg()[0] / (os.cpu_count() or 1))
+    print(f"longest GUI gap: start-up {max(connect_gaps):.0f} ms, scan {max(scan_gaps):.0f} ms"
+          f" (load stretch {stretch:.1f})")
+    assert max(scan_gaps) < 250 * stretch
+    assert max(connect_gaps) < 400 * stretch
 
 
 def test_a_zoom_on_a_large_bus_redraws_what_is_seen_first(make_window, qtbot):
