@@ -110,10 +110,16 @@ class Inspector(QScrollArea):
         doc.selectionChanged.connect(self.show_object)
         doc.channelChanged.connect(self._on_channel_changed)
         doc.deviceChanged.connect(self._on_device_changed)
-        doc.systemReset.connect(lambda: self.show_object(doc.selection))
+        # A new system: rebuilt when the event loop is free — Document.set_system's
+        # selectionChanged right after usually builds it first (once, not twice).
+        doc.systemReset.connect(self._system_reset)
         doc.linksChanged.connect(self._on_links_changed)
         doc.policyChanged.connect(self._on_policy_changed)
         self.show_object(None)
+
+    def _system_reset(self) -> None:
+        self._pending = self.doc.selection
+        self._refresh_timer.start()
 
     # -- building -------------------------------------------------------------------
     def show_object(self, obj: object) -> None:

@@ -77,6 +77,7 @@ class MainWindow(MenusMixin, FileHandlingMixin, ExportMixin, BusMixin, RecoveryM
         self.setCentralWidget(self.view)
         self.live = LiveController(self.doc, self)
         self.live.on_data = self.scene.note_data
+        self.live.layout_shape = lambda: self.scene.layout_aspect
         self._is_ready = False
         self._leaf_docks: dict[str, QDockWidget] = {}
         self._build_docks()

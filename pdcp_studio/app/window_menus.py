@@ -95,7 +95,8 @@ class MenusMixin:
             lambda: self.view.set_legend_visible(self.act_legend.isChecked()),
         )
         self.act_legend.setCheckable(True)
-        self.act_legend.setChecked(True)
+        self.act_legend.setChecked(self.view.legend_visible())
+        self.view.legendVisibleChanged.connect(self.act_legend.setChecked)
         self.act_arrange = self._action(self.tr("&Arrange in layers"), self.arrange,
                                         tip=self.tr("Lay the cards out again: sensors → control → "
                                             "terminal devices (one undo step)"))
