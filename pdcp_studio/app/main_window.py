@@ -260,6 +260,11 @@ class MainWindow(MenusMixin, FileHandlingMixin, ExportMixin, BusMixin, RecoveryM
         if not self._is_ready and url == DEFAULT_BUS:
             self.open_offline_default(f"the simulated prosthesis did not start ({message})")
             return
+        if self.offer_other_arbitrator(url, message):
+            self._update_mode()
+            if not self._is_ready:
+                self._loaded()
+            return
         where = "" if message.startswith(url) else f"{url}: "
         self.error_box(self.tr("Cannot connect"), f"{where}{message}")
         self._update_mode()
@@ -335,6 +340,9 @@ class MainWindow(MenusMixin, FileHandlingMixin, ExportMixin, BusMixin, RecoveryM
             event.ignore()
             return
         self.live.disconnect_bus()
+        from pdcp_studio.app.arbitrator_found import stop_watching
+
+        stop_watching(self)  # a listen-only monitor, if one runs
         if self.autosaver is not None:
             self.autosaver.clean()  # closed on purpose: nothing to recover next time
         event.accept()

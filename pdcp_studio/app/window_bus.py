@@ -29,6 +29,17 @@ class BusMixin:
         if url and self.maybe_save():
             self.connect_bus(url)
 
+    def offer_other_arbitrator(self, url: str, message: str) -> bool:
+        """A Connect that found another arbitrator on the bus: offer a listen-only monitor
+        or the host link instead (True when that was the failure)."""
+        from pdcp_studio.app import arbitrator_found
+
+        connecting = self.live.connecting
+        if not arbitrator_found.is_other_arbitrator(getattr(connecting, "exception", None)):
+            return False
+        arbitrator_found.offer(self, url, message)
+        return True
+
     def _attach_bus_docks_safely(self, bridge: Any) -> None:
         """A dock that fails to build must not cost the connection: log it and go on."""
         try:
@@ -76,6 +87,9 @@ class BusMixin:
     def _session_started(self, bridge: Any) -> None:
         """A new session is on screen: the bus panels start afresh on it (no frames, values
         or node map of the previous session), and plans get its stored configuration."""
+        from pdcp_studio.app.arbitrator_found import stop_watching
+
+        stop_watching(self)  # a passive monitor of another bus gives way to the session
         system = self.doc.system
         monitor = self._leaf_docks.get("monitor")
         if monitor is not None and hasattr(monitor, "reset_for_session"):

@@ -2907,4 +2907,67 @@ Die Prothese ist wie zuvor.</translation>
         <translation>Gerätename oder VID/PID/Seriennummer</translation>
     </message>
 </context>
+<context>
+    <name>ArbitratorFoundDialog</name>
+    <message>
+        <source>Another bus arbitrator is running</source>
+        <translation>Ein anderer Bus-Arbitrator läuft</translation>
+    </message>
+    <message>
+        <source>&lt;p&gt;&lt;b&gt;This bus already has an arbitrator&lt;/b&gt; — most likely the prosthesis's own control unit.&lt;/p&gt;&lt;p&gt;PDCP Studio did not take part in it: nothing was sent to the prosthesis. Only one arbitrator may run a bus.&lt;/p&gt;&lt;p&gt;You can &lt;b&gt;watch the bus&lt;/b&gt;: see its traffic in the monitor without sending anything. Or &lt;b&gt;connect through the host link&lt;/b&gt;: the prosthesis's own arbitrator answers over its serial cable, and you can read and configure it there.&lt;/p&gt;</source>
+        <translation>&lt;p&gt;&lt;b&gt;Dieser Bus hat bereits einen Arbitrator&lt;/b&gt; — wahrscheinlich die eigene Steuereinheit der Prothese.&lt;/p&gt;&lt;p&gt;PDCP Studio hat sich nicht beteiligt: An die Prothese wurde nichts gesendet. Nur ein Arbitrator darf einen Bus führen.&lt;/p&gt;&lt;p&gt;Sie können &lt;b&gt;den Bus beobachten&lt;/b&gt;: seinen Verkehr im Monitor sehen, ohne etwas zu senden. Oder &lt;b&gt;über die Host-Verbindung verbinden&lt;/b&gt;: Der eigene Arbitrator der Prothese antwortet über sein serielles Kabel, und Sie können ihn dort auslesen und konfigurieren.&lt;/p&gt;</translation>
+    </message>
+    <message>
+        <source>Bus: {url}
+{detail}</source>
+        <translation>Bus: {url}
+{detail}</translation>
+    </message>
+    <message>
+        <source>Details</source>
+        <translation>Details</translation>
+    </message>
+    <message>
+        <source>Watch the bus (listen only)</source>
+        <translation>Bus beobachten (nur mithören)</translation>
+    </message>
+    <message>
+        <source>Connect through the host link…</source>
+        <translation>Über die Host-Verbindung verbinden…</translation>
+    </message>
+    <message>
+        <source>Show the bus's frames in the monitor; PDCP Studio sends nothing (listen-only)</source>
+        <translation>Die Frames des Busses im Monitor zeigen; PDCP Studio sendet nichts (nur mithören)</translation>
+    </message>
+    <message>
+        <source>Open the connection dialog on the serial host link</source>
+        <translation>Den Verbindungsdialog bei der seriellen Host-Verbindung öffnen</translation>
+    </message>
+</context>
+<context>
+    <name>ListeningIndicator</name>
+    <message>
+        <source>Listening to {url} — sends nothing</source>
+        <translation>Höre {url} mit — sendet nichts</translation>
+    </message>
+    <message>
+        <source>Stop listening</source>
+        <translation>Mithören beenden</translation>
+    </message>
+</context>
+<context>
+    <name>ArbitratorFound</name>
+    <message>
+        <source>{url}: another bus arbitrator is running this bus — PDCP Studio sent nothing</source>
+        <translation>{url}: Ein anderer Bus-Arbitrator führt diesen Bus — PDCP Studio hat nichts gesendet</translation>
+    </message>
+    <message>
+        <source>Watching {url} without sending: its frames appear in the monitor</source>
+        <translation>Beobachte {url} ohne zu senden: seine Frames erscheinen im Monitor</translation>
+    </message>
+    <message>
+        <source>Stopped listening to {url}: {reason}</source>
+        <translation>Mithören von {url} beendet: {reason}</translation>
+    </message>
+</context>
 </TS>
