@@ -72,6 +72,8 @@ class BusMixin:
             self._leaf_docks["plot"] = dock
             self.doc.selectionChanged.connect(self._plot_selection)
         bridge.channelValues.connect(dock.widget().add_values)
+        events = self._events_dock()
+        bridge.busEvent.connect(events.widget().add_event)
         if bridge.is_sim:
             old = self._leaf_docks.pop("sim", None)
             if old is not None:
@@ -83,6 +85,21 @@ class BusMixin:
             self.tabifyDockWidget(self.inspector_dock, dock)
             self.inspector_dock.raise_()
             self._leaf_docks["sim"] = dock
+
+    def _events_dock(self) -> Any:
+        """The bus events list (made once): which link the bus made, why, how similar."""
+        from pdcp_studio.app.events_panel import EventsPanel
+
+        dock = self._leaf_docks.get("events")
+        if dock is None:
+            panel = EventsPanel(lambda: self.doc.system, self.doc.profile_name)
+            dock = self._dock(self.tr("Bus events"), "EventsDock", panel,
+                              Qt.DockWidgetArea.BottomDockWidgetArea)
+            self.tabifyDockWidget(self.plan_dock, dock)
+            self.plan_dock.raise_()
+            self.view_menu.addAction(dock.toggleViewAction())
+            self._leaf_docks["events"] = dock
+        return dock
 
     def _session_started(self, bridge: Any) -> None:
         """A new session is on screen: the bus panels start afresh on it (no frames, values
@@ -112,6 +129,9 @@ class BusMixin:
     def _bus_seen(self, system: Any) -> None:
         """After any bus event: the monitor names frames by the bus's node IDs as they are
         now (a hot-swapped device may have a new one); the plot drops a channel that left."""
+        events = self._leaf_docks.get("events")
+        if events is not None:
+            events.widget().name_devices(system)
         monitor = self._leaf_docks.get("monitor")
         if monitor is not None and hasattr(monitor, "reset_for_session"):
             monitor.reset_for_session(system, keep_frames=True)

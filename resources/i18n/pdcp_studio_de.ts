@@ -1437,8 +1437,8 @@ Ihr Name (wird einmal erfragt):</translation>
     </message>
     <message>
         <location filename="../../pdcp_studio/app/live.py" line="248" />
-        <source>The bus applied {mode}</source>
-        <translation>Der Bus hat {mode} ausgeführt</translation>
+        <source>The prosthesis changed its links ({why}): {added} made, {removed} removed — see Bus events</source>
+        <translation>Die Prothese hat ihre Verbindungen geändert ({why}): {added} hergestellt, {removed} entfernt — siehe Busereignisse</translation>
     </message>
 </context>
 <context>
@@ -2968,6 +2968,255 @@ Die Prothese ist wie zuvor.</translation>
     <message>
         <source>Stopped listening to {url}: {reason}</source>
         <translation>Mithören von {url} beendet: {reason}</translation>
+    </message>
+</context>
+<context>
+    <name>PlanWords</name>
+    <message>
+        <source>a part was replaced while the prosthesis was running</source>
+        <translation>ein Teil wurde im laufenden Betrieb ersetzt</translation>
+    </message>
+    <message>
+        <source>the prosthesis started up</source>
+        <translation>die Prothese ist gestartet</translation>
+    </message>
+    <message>
+        <source>automatic set-up</source>
+        <translation>automatische Einrichtung</translation>
+    </message>
+    <message>
+        <source>looking for replacements for missing parts</source>
+        <translation>Suche nach Ersatz für fehlende Teile</translation>
+    </message>
+    <message>
+        <source>putting the stored set-up in place</source>
+        <translation>die gespeicherte Einrichtung wird umgesetzt</translation>
+    </message>
+    <message>
+        <source>making sure inputs that need a source for themselves have it alone</source>
+        <translation>Eingänge, die eine Quelle für sich allein brauchen, bekommen sie allein</translation>
+    </message>
+    <message>
+        <source>removing every link</source>
+        <translation>alle Verbindungen werden entfernt</translation>
+    </message>
+    <message>
+        <source>a change made by hand</source>
+        <translation>eine Änderung von Hand</translation>
+    </message>
+    <message>
+        <source>it is in the stored set-up</source>
+        <translation>sie ist in der gespeicherten Einrichtung</translation>
+    </message>
+    <message>
+        <source>the devices remembered it</source>
+        <translation>die Geräte haben sie sich gemerkt</translation>
+    </message>
+    <message>
+        <source>it replaces a part that is missing</source>
+        <translation>sie ersetzt ein fehlendes Teil</translation>
+    </message>
+    <message>
+        <source>it drives a part of the prosthesis</source>
+        <translation>sie steuert ein Teil der Prothese</translation>
+    </message>
+    <message>
+        <source>another channel needs it</source>
+        <translation>ein anderer Kanal braucht sie</translation>
+    </message>
+    <message>
+        <source>another channel works better with it</source>
+        <translation>ein anderer Kanal arbeitet damit besser</translation>
+    </message>
+    <message>
+        <source>an input needs its source for itself</source>
+        <translation>ein Eingang braucht seine Quelle für sich allein</translation>
+    </message>
+    <message>
+        <source>all links are removed</source>
+        <translation>alle Verbindungen werden entfernt</translation>
+    </message>
+    <message>
+        <source>it is not in the stored set-up</source>
+        <translation>sie ist nicht in der gespeicherten Einrichtung</translation>
+    </message>
+    <message>
+        <source>one of its parts is missing; a replacement takes its place</source>
+        <translation>eines ihrer Teile fehlt; ein Ersatz tritt an seine Stelle</translation>
+    </message>
+    <message>
+        <source>the part sending to it is missing; a replacement takes its place</source>
+        <translation>das sendende Teil fehlt; ein Ersatz tritt an seine Stelle</translation>
+    </message>
+    <message>
+        <source>that output already feeds an input that needs it for itself</source>
+        <translation>dieser Ausgang speist schon einen Eingang, der ihn für sich allein braucht</translation>
+    </message>
+    <message>
+        <source>that input already has a source</source>
+        <translation>dieser Eingang hat schon eine Quelle</translation>
+    </message>
+    <message>
+        <source>no similar free channel was found</source>
+        <translation>kein ähnlicher freier Kanal gefunden</translation>
+    </message>
+    <message>
+        <source>undone: a channel it needs could not be connected</source>
+        <translation>rückgängig gemacht: ein benötigter Kanal ließ sich nicht verbinden</translation>
+    </message>
+    <message>
+        <source>already tried and refused</source>
+        <translation>schon versucht und abgelehnt</translation>
+    </message>
+    <message>
+        <source>both of its parts are missing</source>
+        <translation>beide Teile fehlen</translation>
+    </message>
+    <message>
+        <source>the device's description names a channel that is not an input</source>
+        <translation>die Gerätebeschreibung nennt einen Kanal, der kein Eingang ist</translation>
+    </message>
+    <message>
+        <source>{device}, channel {n}</source>
+        <translation>{device}, Kanal {n}</translation>
+    </message>
+    <message>
+        <source>the same part</source>
+        <translation>dasselbe Teil</translation>
+    </message>
+    <message>
+        <source>same product, other serial number</source>
+        <translation>gleiches Produkt, andere Seriennummer</translation>
+    </message>
+    <message>
+        <source>same maker, another product</source>
+        <translation>gleicher Hersteller, anderes Produkt</translation>
+    </message>
+    <message>
+        <source>another maker's product</source>
+        <translation>Produkt eines anderen Herstellers</translation>
+    </message>
+    <message>
+        <source>the same kind of signal</source>
+        <translation>dieselbe Art Signal</translation>
+    </message>
+    <message>
+        <source>a similar signal (its kind matches {depth} of {levels} levels)</source>
+        <translation>ein ähnliches Signal (seine Art stimmt in {depth} von {levels} Ebenen überein)</translation>
+    </message>
+    <message>
+        <source>a similar signal (its kind matches {depth} level(s))</source>
+        <translation>ein ähnliches Signal (seine Art stimmt in {depth} Ebene(n) überein)</translation>
+    </message>
+    <message>
+        <source>a different kind of signal</source>
+        <translation>eine andere Art Signal</translation>
+    </message>
+    <message>
+        <source>{kind}, in the same form</source>
+        <translation>{kind}, in derselben Form</translation>
+    </message>
+    <message>
+        <source>control mode</source>
+        <translation>Steuerungsart</translation>
+    </message>
+    <message>
+        <source>value type</source>
+        <translation>Werttyp</translation>
+    </message>
+    <message>
+        <source>value size</source>
+        <translation>Wertgröße</translation>
+    </message>
+    <message>
+        <source>{kind}; differs in {what}</source>
+        <translation>{kind}; anders in {what}</translation>
+    </message>
+</context>
+<context>
+    <name>EventsPanel</name>
+    <message>
+        <source>{device} joined the bus</source>
+        <translation>{device} ist dem Bus beigetreten</translation>
+    </message>
+    <message>
+        <source>{device} left the bus</source>
+        <translation>{device} hat den Bus verlassen</translation>
+    </message>
+    <message>
+        <source>Left unconnected: {names}</source>
+        <translation>Nicht verbunden gelassen: {names}</translation>
+    </message>
+    <message>
+        <source>Bus problem</source>
+        <translation>Busproblem</translation>
+    </message>
+    <message>
+        <source>Listening for another arbitrator before taking part</source>
+        <translation>Hört vor der Teilnahme auf einen anderen Arbitrator</translation>
+    </message>
+    <message>
+        <source>PDCP Studio runs this bus</source>
+        <translation>PDCP Studio führt diesen Bus</translation>
+    </message>
+    <message>
+        <source>Another arbitrator runs this bus: PDCP Studio sends nothing</source>
+        <translation>Ein anderer Arbitrator führt diesen Bus: PDCP Studio sendet nichts</translation>
+    </message>
+    <message>
+        <source>The adapter is gone: reconnecting</source>
+        <translation>Der Adapter ist weg: verbinde neu</translation>
+    </message>
+    <message>
+        <source>The adapter is back: reading the bus again</source>
+        <translation>Der Adapter ist zurück: lese den Bus neu</translation>
+    </message>
+    <message>
+        <source>Linked {link}</source>
+        <translation>Verbunden: {link}</translation>
+    </message>
+    <message>
+        <source>Removed the link {link}</source>
+        <translation>Verbindung entfernt: {link}</translation>
+    </message>
+    <message>
+        <source> ({channel} is missing)</source>
+        <translation> ({channel} fehlt)</translation>
+    </message>
+    <message>
+        <source>Time</source>
+        <translation>Zeit</translation>
+    </message>
+    <message>
+        <source>What happened</source>
+        <translation>Was geschah</translation>
+    </message>
+    <message>
+        <source>Why</source>
+        <translation>Warum</translation>
+    </message>
+    <message>
+        <source>How similar</source>
+        <translation>Wie ähnlich</translation>
+    </message>
+    <message>
+        <source>Clear</source>
+        <translation>Leeren</translation>
+    </message>
+    <message>
+        <source>{n} event(s)</source>
+        <translation>{n} Ereignis(se)</translation>
+    </message>
+    <message>
+        <source>No bus events yet: parts that come and go and the links the bus makes appear here</source>
+        <translation>Noch keine Busereignisse: Teile, die kommen und gehen, und die Verbindungen des Busses erscheinen hier</translation>
+    </message>
+</context>
+<context>
+    <name>BusMixin</name>
+    <message>
+        <source>Bus events</source>
+        <translation>Busereignisse</translation>
     </message>
 </context>
 </TS>
