@@ -33,7 +33,7 @@ from PySide6.QtGui import QUndoStack
 
 from pdcp_studio.errors import ModelError, ProfileError
 from pdcp_studio.model import profile as prof
-from pdcp_studio.model.profile_tree import ProfileTree
+from pdcp_studio.model.profile_tree import ProfileTree, best_tree
 from pdcp_studio.model.refs import ChannelRef, DeviceKey
 from pdcp_studio.model.system import Channel, Device, Link, System
 
@@ -42,8 +42,9 @@ log = logging.getLogger(__name__)
 Selection = DeviceKey | ChannelRef | Link | None
 Position = tuple[float, float]
 
-#: Profile trees shipped in resources/profiles, merged in this order (first wins a name).
-BUILTIN_TREES = ("thesis-fig4.6.json", "thesis-tests.json")
+#: Profile trees shipped in resources/profiles: the prosthetic tree, then the thesis test
+#: tree. Each stands alone (their values overlap): a system is named by the one that fits it.
+BUILTIN_TREES = ("prosthesis.json", "thesis-tests.json")
 
 #: Channel fields an edit may change (``Channel`` dataclass attributes).
 CHANNEL_FIELDS = frozenset({
@@ -74,8 +75,11 @@ def user_profiles_dir() -> Path | None:
     return folder()
 
 
-def load_profile_tree(extra: Iterable[Path] = (), *, user_dir: bool = True) -> ProfileTree:
-    """The built-in trees merged with user trees; a broken user file is logged, not fatal."""
+def load_profile_trees(extra: Iterable[Path] = (), *,
+                       user_dir: bool = True) -> list[ProfileTree]:
+    """The named trees: the shipped ones, then the user's and vendors' (a user tree with a
+    shipped tree's name is the user's edit of it and takes its place). A broken user file
+    is logged, not fatal."""
     from pdcp_studio.paths import profiles_dir
 
     files = [profiles_dir() / name for name in BUILTIN_TREES]
@@ -83,15 +87,34 @@ def load_profile_tree(extra: Iterable[Path] = (), *, user_dir: bool = True) -> P
     if udir is not None and udir.is_dir():
         files += sorted(udir.glob("*.json"))
     files += list(extra)
-    tree = ProfileTree("profiles")
+    trees: list[ProfileTree] = []
     for path in files:
         try:
-            part = ProfileTree.from_json(json.loads(Path(path).read_text("utf-8")), str(path))
+            tree = ProfileTree.from_json(json.loads(Path(path).read_text("utf-8")), str(path))
         except (OSError, ValueError, ProfileError) as err:
             log.warning("profile tree %s skipped: %s", path, err)
             continue
-        tree = tree.merged(part)
-    return tree
+        same = next((i for i, t in enumerate(trees) if t.name == tree.name), None)
+        if same is None:
+            trees.append(tree)
+        else:
+            trees[same] = tree
+    return trees
+
+
+def load_profile_tree(extra: Iterable[Path] = (), *, user_dir: bool = True,
+                      system: System | None = None) -> ProfileTree:
+    """The tree that names ``system``'s channels (the prosthetic tree without a system)."""
+    return tree_for(load_profile_trees(extra, user_dir=user_dir), system)
+
+
+def tree_for(trees: list[ProfileTree], system: System | None) -> ProfileTree:
+    """Of the named trees, the one that names the most of ``system``'s channel profiles."""
+    profiles: list[int] = []
+    if system is not None:
+        for _ref, ch in system.channels():
+            profiles += [ch.profile, ch.terminal_profile]
+    return best_tree(trees, profiles)
 
 
 class Document(QObject):
@@ -115,7 +138,10 @@ class Document(QObject):
                  parent: QObject | None = None) -> None:
         super().__init__(parent)
         self.system: System = system if system is not None else System()
-        self.tree: ProfileTree = tree if tree is not None else load_profile_tree()
+        #: The named profile trees (prosthetic, thesis test rig, the user's and vendors').
+        self.trees: list[ProfileTree] = [tree] if tree is not None else load_profile_trees()
+        #: The tree that names this system's channels (one of ``trees``).
+        self.tree: ProfileTree = tree_for(self.trees, self.system)
         self.undo_stack = QUndoStack(self)
         self.path: Path | None = None
         self.session: Any = None
@@ -149,6 +175,7 @@ class Document(QObject):
         default, a scan) so closing asks before dropping it.
         """
         self.system = system
+        self.tree = tree_for(self.trees, system)
         self.path = Path(path) if path is not None else None
         self.kind, self.config = kind, config
         session_changed = session is not self.session
@@ -326,6 +353,11 @@ class Document(QObject):
         if channel is None:
             raise ModelError(f"no channel {ref} in this system")
         return channel
+
+    def set_trees(self, trees: list[ProfileTree]) -> None:
+        """The named trees changed (edited): name this system from them again."""
+        self.trees = list(trees)
+        self.tree = tree_for(self.trees, self.system)
 
     def profile_name(self, profile: int) -> str:
         """Short profile name from the tree (hex when the tree does not know it)."""

@@ -316,12 +316,15 @@ class MainWindow(MenusMixin, FileHandlingMixin, ExportMixin, BusMixin, RecoveryM
     def show_profile_tree(self) -> None:
         from pdcp_studio.app.profile_tree_editor import ProfileTreeDialog
 
-        dialog = ProfileTreeDialog(self.doc.tree, None, self)
-        dialog.editor.treeChanged.connect(self._tree_changed)
+        dialog = ProfileTreeDialog(parent=self, trees=self.doc.trees)  # edited in place
+        dialog.tabs.setCurrentIndex(self.doc.trees.index(self.doc.tree)
+                                    if self.doc.tree in self.doc.trees else 0)
+        dialog.treesChanged.connect(self._tree_changed)
         dialog.show()
+        self.profile_tree_dialog = dialog
 
-    def _tree_changed(self, tree: Any) -> None:
-        self.doc.tree = tree
+    def _tree_changed(self, trees: Any) -> None:
+        self.doc.set_trees(trees)
         self.scene.update()
         self.tree.rebuild()
         self.inspector.show_object(self.doc.selection)

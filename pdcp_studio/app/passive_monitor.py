@@ -46,13 +46,12 @@ class _NoSend:
 def open_listen_only(url: str) -> Any:
     """The python-can bus of a ``can:`` URL, opened listen-only where the interface can be
     (TransportError / BusUrlError name the URL)."""
-    from pdcp_studio.bus.urls import BusUrlError, check_bus_url, open_spec
-    from pdcp_studio.cli.monitor import _listen_only  # the interfaces' listen-only options
+    from pdcp_studio.bus.urls import BusUrlError, check_bus_url, listen_only_options, open_spec
 
     spec = check_bus_url(url)
     if spec.kind != "can":
         raise BusUrlError(f"{url}: only a CAN bus can be monitored passively")
-    return _NoSend(open_spec(spec, **_listen_only(spec)))
+    return _NoSend(open_spec(spec, **listen_only_options(spec)))
 
 
 class PassiveMonitor(QObject):

@@ -3219,4 +3219,18 @@ Die Prothese ist wie zuvor.</translation>
         <translation>Busereignisse</translation>
     </message>
 </context>
+<context>
+    <name>ProfileTreeDialog</name>
+    <message>
+        <source>Profile trees</source>
+        <translation>Profilbäume</translation>
+    </message>
+</context>
+<context>
+    <name>ProfileTreeEditor</name>
+    <message>
+        <source>Assigned by {vendor}</source>
+        <translation>Vergeben von {vendor}</translation>
+    </message>
+</context>
 </TS>
