@@ -119,51 +119,51 @@ def part_words(old: DeviceKey, new: DeviceKey) -> str:
 
 
 def signal_words(similarity: Any, levels: int = 0) -> str:
-    """How alike the two channels' signals are (the similarity score in words).
+    """How alike two channels' signals are (the similarity score in words).
 
-    ``levels``: how many levels the missing channel's profile has (0 if unknown)."""
+    ``levels``: how many levels the profile compared with has (0 if unknown)."""
     if similarity is None:
         return ""
     depth = similarity.profile_depth
-    same_type = similarity.control_mode and similarity.data_type and similarity.byte_size
+    same_form = similarity.control_mode and similarity.data_type and similarity.byte_size
     if levels and depth >= levels:
-        kind = tr("the same kind of signal")
+        kind = tr("same kind of signal")
     elif depth:
-        kind = tr("a similar signal (its kind matches {depth} of {levels} levels)").format(
-            depth=depth, levels=max(levels, depth)) if levels else \
-            tr("a similar signal (its kind matches {depth} level(s))").format(depth=depth)
+        kind = (tr("similar signal ({depth} of {levels} levels alike)").format(
+            depth=depth, levels=levels) if levels else
+            tr("similar signal ({depth} level(s) alike)").format(depth=depth))
     else:
-        kind = tr("a different kind of signal")
-    if same_type:
-        return tr("{kind}, in the same form").format(kind=kind)
+        kind = tr("another kind of signal")
+    if same_form:
+        return tr("{kind}, same form").format(kind=kind)
     differs = [name for flag, name in (
         (similarity.control_mode, tr("control mode")),
         (similarity.data_type, tr("value type")),
         (similarity.byte_size, tr("value size"))) if not flag]
-    return tr("{kind}; differs in {what}").format(kind=kind, what=", ".join(differs))
+    return tr("{kind}; other {what}").format(kind=kind, what=", ".join(differs))
 
 
 def similarity_words(action: Any, plan: Any) -> str:
-    """For a replacement step: how similar the new part and channel are to the missing one
-    (``same product, other serial number; the same kind of signal, in the same form``)."""
+    """How similar a step's two ends are; for a replacement, how similar the new part and
+    channel are to the missing one (``same product, other serial number; same kind of
+    signal, same form``)."""
     from pdcp_studio.model import profile as prof
 
     sim = getattr(action, "similarity", None)
     if sim is None:
         return ""
     cause = getattr(action, "cause", None)
-    missing = cause if isinstance(cause, ChannelRef) else None
-    levels = 0
-    if missing is not None:
-        facts = plan.channels.get(missing)
-        if facts is not None:
-            levels = prof.depth(facts.profile)
+    replacing = getattr(action.rule, "value", "") == "replacement" and isinstance(
+        cause, ChannelRef)
+    compared = cause if replacing else action.link.input
+    facts = plan.channels.get(compared)
+    levels = prof.depth(facts.profile) if facts is not None else 0
     signal = signal_words(sim, levels)
-    if missing is None:
+    if not replacing:
         return signal
-    was_input = any(lk.input == missing for lk in plan.links_before)
+    was_input = any(lk.input == cause for lk in plan.links_before)
     new = action.link.input if was_input else action.link.output
-    return f"{part_words(missing.device, new.device)}; {signal}"
+    return f"{part_words(cause.device, new.device)}; {signal}"
 
 
 def engineer_detail(action: Any) -> str:

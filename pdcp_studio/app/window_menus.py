@@ -154,8 +154,9 @@ class MenusMixin:
         tb.setObjectName("MainToolBar")
         tb.setMovable(False)
         for a in (self.act_open, self.act_save, None, self.act_undo, self.act_redo, None,
-                  self.act_fit, self.act_arrange, None, *self.plan_actions.values(), None,
-                  self.act_connect):
+                  self.act_fit, self.act_arrange, None, self.act_connect):
+            # The plan operations live in the Plan menu and the plan dock, next to the plan
+            # they show: not a third time here.
             if a is None:
                 tb.addSeparator()
             else:

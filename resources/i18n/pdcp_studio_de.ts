@@ -3097,24 +3097,24 @@ Die Prothese ist wie zuvor.</translation>
         <translation>Produkt eines anderen Herstellers</translation>
     </message>
     <message>
-        <source>the same kind of signal</source>
-        <translation>dieselbe Art Signal</translation>
+        <source>same kind of signal</source>
+        <translation>gleiche Art Signal</translation>
     </message>
     <message>
-        <source>a similar signal (its kind matches {depth} of {levels} levels)</source>
-        <translation>ein ähnliches Signal (seine Art stimmt in {depth} von {levels} Ebenen überein)</translation>
+        <source>similar signal ({depth} of {levels} levels alike)</source>
+        <translation>ähnliches Signal ({depth} von {levels} Ebenen gleich)</translation>
     </message>
     <message>
-        <source>a similar signal (its kind matches {depth} level(s))</source>
-        <translation>ein ähnliches Signal (seine Art stimmt in {depth} Ebene(n) überein)</translation>
+        <source>similar signal ({depth} level(s) alike)</source>
+        <translation>ähnliches Signal ({depth} Ebene(n) gleich)</translation>
     </message>
     <message>
-        <source>a different kind of signal</source>
-        <translation>eine andere Art Signal</translation>
+        <source>another kind of signal</source>
+        <translation>andere Art Signal</translation>
     </message>
     <message>
-        <source>{kind}, in the same form</source>
-        <translation>{kind}, in derselben Form</translation>
+        <source>{kind}, same form</source>
+        <translation>{kind}, gleiche Form</translation>
     </message>
     <message>
         <source>control mode</source>
@@ -3129,8 +3129,8 @@ Die Prothese ist wie zuvor.</translation>
         <translation>Wertgröße</translation>
     </message>
     <message>
-        <source>{kind}; differs in {what}</source>
-        <translation>{kind}; anders in {what}</translation>
+        <source>{kind}; other {what}</source>
+        <translation>{kind}; andere(r) {what}</translation>
     </message>
 </context>
 <context>
@@ -3231,6 +3231,61 @@ Die Prothese ist wie zuvor.</translation>
     <message>
         <source>Assigned by {vendor}</source>
         <translation>Vergeben von {vendor}</translation>
+    </message>
+</context>
+<context>
+    <name>PlanPanel</name>
+    <message>
+        <source>Change</source>
+        <translation>Änderung</translation>
+    </message>
+    <message>
+        <source>Link</source>
+        <translation>Verbindung</translation>
+    </message>
+    <message>
+        <source>Why</source>
+        <translation>Warum</translation>
+    </message>
+    <message>
+        <source>How similar</source>
+        <translation>Wie ähnlich</translation>
+    </message>
+    <message>
+        <source>Select a row for the engineer's detail: the engine's reason, profile codes and the similarity score</source>
+        <translation>Wählen Sie eine Zeile für die technischen Einzelheiten: Begründung der Planung, Profilcodes und Ähnlichkeitswert</translation>
+    </message>
+    <message>
+        <source> (missing)</source>
+        <translation> (fehlt)</translation>
+    </message>
+    <message>
+        <source>Stored set-up used: {reason}</source>
+        <translation>Verwendete gespeicherte Einrichtung: {reason}</translation>
+    </message>
+    <message>
+        <source>Nothing to change.</source>
+        <translation>Nichts zu ändern.</translation>
+    </message>
+    <message>
+        <source>Add</source>
+        <translation>Hinzufügen</translation>
+    </message>
+    <message>
+        <source>Remove</source>
+        <translation>Entfernen</translation>
+    </message>
+    <message>
+        <source>Not done</source>
+        <translation>Nicht ausgeführt</translation>
+    </message>
+    <message>
+        <source>Note</source>
+        <translation>Hinweis</translation>
+    </message>
+    <message>
+        <source> ({channel} is missing)</source>
+        <translation> ({channel} fehlt)</translation>
     </message>
 </context>
 </TS>
