@@ -79,12 +79,17 @@ class BusMixin:
             if old is not None:
                 old.close()
                 old.deleteLater()
-            panel = sim_panel.SimPanel(bridge)
+            panel = sim_panel.SimPanel(bridge, name_of=self._device_name)
             dock = self._dock(self.tr("Simulator"), "SimDock", panel,
                               Qt.DockWidgetArea.RightDockWidgetArea)
             self.tabifyDockWidget(self.inspector_dock, dock)
             self.inspector_dock.raise_()
             self._leaf_docks["sim"] = dock
+
+    def _device_name(self, key: Any) -> str | None:
+        """The name the graph gives a device on screen (None if it is not there)."""
+        device = self.doc.system.devices.get(key)
+        return self.scene.device_label(device) if device is not None else None
 
     def _events_dock(self) -> Any:
         """The bus events list (made once): which link the bus made, why, how similar."""
@@ -132,6 +137,9 @@ class BusMixin:
         events = self._leaf_docks.get("events")
         if events is not None:
             events.widget().name_devices(system)
+        sim = self._leaf_docks.get("sim")
+        if sim is not None and hasattr(sim.widget(), "relabel"):
+            sim.widget().relabel()  # the simulator panel names devices as the graph does
         monitor = self._leaf_docks.get("monitor")
         if monitor is not None and hasattr(monitor, "reset_for_session"):
             monitor.reset_for_session(system, keep_frames=True)

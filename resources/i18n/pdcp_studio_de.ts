@@ -3288,4 +3288,59 @@ Die Prothese ist wie zuvor.</translation>
         <translation> ({channel} fehlt)</translation>
     </message>
 </context>
+<context>
+    <name>SimPanel</name>
+    <message>
+        <source>Problem: {message}</source>
+        <translation>Problem: {message}</translation>
+    </message>
+    <message>
+        <source>{device} joined the bus</source>
+        <translation>{device} ist dem Bus beigetreten</translation>
+    </message>
+    <message>
+        <source>{device} left the bus</source>
+        <translation>{device} hat den Bus verlassen</translation>
+    </message>
+    <message>
+        <source>Done: {what}</source>
+        <translation>Erledigt: {what}</translation>
+    </message>
+    <message>
+        <source>Script {name}: ended in the expected links</source>
+        <translation>Skript {name}: endete mit den erwarteten Verbindungen</translation>
+    </message>
+    <message>
+        <source>Script {name}: the links differ from the expected ones — {diff}</source>
+        <translation>Skript {name}: die Verbindungen weichen von den erwarteten ab — {diff}</translation>
+    </message>
+    <message>
+        <source>Plugging in {device}…</source>
+        <translation>Stecke {device} ein…</translation>
+    </message>
+    <message>
+        <source>Unplugging {device}…</source>
+        <translation>Ziehe {device} ab…</translation>
+    </message>
+    <message>
+        <source>Replacing {old} by {new}…</source>
+        <translation>Ersetze {old} durch {new}…</translation>
+    </message>
+    <message>
+        <source>Resetting the arbitrator, keeping its memory…</source>
+        <translation>Setze den Arbitrator zurück, sein Speicher bleibt…</translation>
+    </message>
+    <message>
+        <source>Resetting the arbitrator, erasing its memory…</source>
+        <translation>Setze den Arbitrator zurück und lösche seinen Speicher…</translation>
+    </message>
+    <message>
+        <source>Storing the current links…</source>
+        <translation>Speichere die aktuellen Verbindungen…</translation>
+    </message>
+    <message>
+        <source>Running script {name}…</source>
+        <translation>Führe Skript {name} aus…</translation>
+    </message>
+</context>
 </TS>
