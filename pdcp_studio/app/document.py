@@ -28,7 +28,7 @@ from dataclasses import replace
 from pathlib import Path
 from typing import Any
 
-from PySide6.QtCore import QObject, Signal
+from PySide6.QtCore import QObject, QTimer, Signal
 from PySide6.QtGui import QUndoStack
 
 from pdcp_studio.errors import ModelError, ProfileError
@@ -45,6 +45,11 @@ Position = tuple[float, float]
 #: Profile trees shipped in resources/profiles: the prosthetic tree, then the thesis test
 #: tree. Each stands alone (their values overlap): a system is named by the one that fits it.
 BUILTIN_TREES = ("prosthesis.json", "thesis-tests.json")
+
+#: Undo commands that only move cards (a live view is not dirty for them).
+MOVE_COMMANDS = frozenset({"MoveDeviceCommand", "MoveDevicesCommand"})
+#: A live view's layout is remembered this long after the last move.
+LAYOUT_SAVE_MS = 400
 
 #: Channel fields an edit may change (``Channel`` dataclass attributes).
 CHANNEL_FIELDS = frozenset({
@@ -164,6 +169,12 @@ class Document(QObject):
         self._extra_dirty = False
         self._was_dirty = False
         self.undo_stack.cleanChanged.connect(self._on_clean_changed)
+        # A live view's moves do not make it dirty, other edits do: follow every step.
+        self.undo_stack.indexChanged.connect(lambda _i: self._emit_dirty())
+        self._layout_timer = QTimer(self)
+        self._layout_timer.setSingleShot(True)
+        self._layout_timer.setInterval(LAYOUT_SAVE_MS)
+        self._layout_timer.timeout.connect(self.remember_layout)
 
     # -- whole document -----------------------------------------------------------
     def set_system(self, system: System, path: Path | str | None = None, session: Any = None,
@@ -185,6 +196,10 @@ class Document(QObject):
         self._selection = None
         if positions is not None:
             self.positions = dict(positions)
+            if not positions and self.is_live_view:  # as this prosthesis was last laid out
+                from pdcp_studio.app import live_layout
+
+                self.positions = live_layout.load(self.live_url)
         self.undo_stack.clear()
         self.undo_stack.setClean()
         self._extra_dirty = dirty
@@ -298,9 +313,38 @@ class Document(QObject):
         self._emit_dirty()
 
     @property
+    def is_live_view(self) -> bool:
+        """The bus itself is the document (connected, no project file)."""
+        return self.path is None and self.session is not None and self.kind == "system"
+
+    @property
+    def live_url(self) -> str:
+        return str(getattr(self.session, "url", "") or "")
+
+    def remember_layout(self) -> None:
+        """Keep a live view's card positions for the next time this prosthesis connects."""
+        self._layout_timer.stop()
+        if self.is_live_view:
+            from pdcp_studio.app import live_layout
+
+            live_layout.save(self.live_url, self.positions)
+
+    def _only_moves_since_clean(self) -> bool:
+        stack = self.undo_stack
+        clean, index = stack.cleanIndex(), stack.index()
+        if clean < 0:
+            return False
+        low, high = sorted((clean, index))
+        return all(type(stack.command(i)).__name__ in MOVE_COMMANDS for i in range(low, high))
+
+    @property
     def is_dirty(self) -> bool:
+        """Changes that would be lost: a live view's card moves are not (they are
+        remembered per prosthesis, :mod:`live_layout`), any other edit is."""
         try:
             clean = self.undo_stack.isClean()
+            if not clean and self.is_live_view and self._only_moves_since_clean():
+                clean = True
         except RuntimeError:  # the stack is being destroyed with us and still signals
             return self._extra_dirty
         return self._extra_dirty or not clean
@@ -448,6 +492,8 @@ class Document(QObject):
     def set_position(self, key: DeviceKey, pos: Position) -> None:
         self.positions[key] = (float(pos[0]), float(pos[1]))
         self.positionChanged.emit(key)
+        if self.is_live_view:
+            self._layout_timer.start()  # remembered once the drag has settled
 
     def add_device(self, device: Device) -> None:
         self.system.add_device(device)
