@@ -94,6 +94,9 @@ class MainWindow(MenusMixin, FileHandlingMixin, ExportMixin, BusMixin, RecoveryM
         from pdcp_studio.app.window_desktop import install_desktop
 
         install_desktop(self)  # recent files, drops, Help, shortcuts, accessible names
+        from pdcp_studio.app.combo_popups import install as fit_combo_popups
+
+        fit_combo_popups()  # dropdown entries shown whole, never cut in the middle
 
     # -- construction -----------------------------------------------------------------
     def _dock(self, title: str, name: str, widget: QWidget,
