@@ -222,9 +222,9 @@ def report_html(system: System, tree: ProfileTree, *, title: str = DEFAULT_TITLE
     heads = ("<th>Name</th><th>Product</th><th>Maker / product / serial no.</th>"
              "<th>Firmware</th><th>Hardware</th>")
     if not compact:
-        heads = ("<th width=30%>Name</th><th width=26%>Product</th>"
-                 "<th width=22%>Maker / product / serial no.</th><th width=11%>Firmware</th>"
-                 "<th width=11%>Hardware</th>")
+        heads = ("<th width=26%>Name</th><th width=26%>Product</th>"
+                 "<th width=22%>Maker / product / serial no.</th><th width=13%>Firmware</th>"
+                 "<th width=13%>Hardware</th>")
     devices = f"<tr>{heads * per_row}</tr>{_device_rows(system, per_row)}"
 
     def missing(lk: Any) -> str:
