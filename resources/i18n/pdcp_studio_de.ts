@@ -3343,4 +3343,135 @@ Die Prothese ist wie zuvor.</translation>
         <translation>Führe Skript {name} aus…</translation>
     </message>
 </context>
+<context>
+    <name>ConfigWindow</name>
+    <message>
+        <source>Form</source>
+        <translation>Form</translation>
+    </message>
+    <message>
+        <source>What it carries</source>
+        <translation>Was er trägt</translation>
+    </message>
+    <message>
+        <source>not named in the profile tree</source>
+        <translation>im Profilbaum nicht benannt</translation>
+    </message>
+    <message>
+        <source>unknown form</source>
+        <translation>unbekannte Form</translation>
+    </message>
+    <message>
+        <source>signed number</source>
+        <translation>Zahl mit Vorzeichen</translation>
+    </message>
+    <message>
+        <source>number</source>
+        <translation>Zahl</translation>
+    </message>
+    <message>
+        <source>decimal number</source>
+        <translation>Dezimalzahl</translation>
+    </message>
+    <message>
+        <source>on/off</source>
+        <translation>ein/aus</translation>
+    </message>
+    <message>
+        <source>position</source>
+        <translation>Position</translation>
+    </message>
+    <message>
+        <source>speed</source>
+        <translation>Geschwindigkeit</translation>
+    </message>
+    <message>
+        <source>acceleration</source>
+        <translation>Beschleunigung</translation>
+    </message>
+    <message>
+        <source>other</source>
+        <translation>andere</translation>
+    </message>
+    <message>
+        <source>{kind} ({bits} bits), {mode}</source>
+        <translation>{kind} ({bits} Bit), {mode}</translation>
+    </message>
+    <message>
+        <source>type {code}</source>
+        <translation>Typ {code}</translation>
+    </message>
+    <message>
+        <source>profile {code}</source>
+        <translation>Profil {code}</translation>
+    </message>
+    <message>
+        <source>Link {links} joins {a} to its own device. Remove it.</source>
+        <translation>Verbindung {links} verbindet {a} mit dem eigenen Gerät. Entfernen Sie sie.</translation>
+    </message>
+    <message>
+        <source>Links {links} store the same link {a} → {b}; it is made once. Remove the extra ones.</source>
+        <translation>Die Verbindungen {links} speichern dieselbe Verbindung {a} → {b}; sie wird einmal hergestellt. Entfernen Sie die überzähligen.</translation>
+    </message>
+    <message>
+        <source>{a} is given more than one source (links {links}); only the first would be made. Keep one of them.</source>
+        <translation>{a} bekommt mehr als eine Quelle (Verbindungen {links}); nur die erste würde hergestellt. Behalten Sie eine davon.</translation>
+    </message>
+    <message>
+        <source>{a} is stored as an output and as an input (links {links}); a channel is one or the other. Correct the wrong link.</source>
+        <translation>{a} ist als Ausgang und als Eingang gespeichert (Verbindungen {links}); ein Kanal ist das eine oder das andere. Korrigieren Sie die falsche Verbindung.</translation>
+    </message>
+    <message>
+        <source>{a} feeds several inputs that each need it for themselves (links {links}). Keep one of these links.</source>
+        <translation>{a} speist mehrere Eingänge, die ihn jeweils für sich allein brauchen (Verbindungen {links}). Behalten Sie eine dieser Verbindungen.</translation>
+    </message>
+    <message>
+        <source>{a} is stored with different descriptions in links {links}. Edit the channel so they agree.</source>
+        <translation>{a} ist in den Verbindungen {links} unterschiedlich beschrieben. Bearbeiten Sie den Kanal, sodass sie übereinstimmen.</translation>
+    </message>
+    <message>
+        <source>Link {links}: {a} and {b} carry different kinds of signal; {b} may not understand what it is sent.</source>
+        <translation>Verbindung {links}: {a} und {b} tragen verschiedene Arten Signal; {b} versteht womöglich nicht, was gesendet wird.</translation>
+    </message>
+    <message>
+        <source>Link {links}: {a} and {b} carry the same kind of signal in different forms; the input adapts to the output.</source>
+        <translation>Verbindung {links}: {a} und {b} tragen dieselbe Art Signal in verschiedener Form; der Eingang passt sich dem Ausgang an.</translation>
+    </message>
+    <message>
+        <source>Add</source>
+        <translation>Hinzufügen</translation>
+    </message>
+    <message>
+        <source>Remove</source>
+        <translation>Entfernen</translation>
+    </message>
+    <message>
+        <source>both ends are on the prosthesis: made as stored</source>
+        <translation>beide Enden sind an der Prothese: wird wie gespeichert hergestellt</translation>
+    </message>
+    <message>
+        <source>the output</source>
+        <translation>der Ausgang</translation>
+    </message>
+    <message>
+        <source>the input</source>
+        <translation>der Eingang</translation>
+    </message>
+    <message>
+        <source>{end} is missing</source>
+        <translation>{end} fehlt</translation>
+    </message>
+    <message>
+        <source>{end} has the other direction on the prosthesis</source>
+        <translation>{end} hat an der Prothese die andere Richtung</translation>
+    </message>
+    <message>
+        <source>replaced by {link} ({similar})</source>
+        <translation>ersetzt durch {link} ({similar})</translation>
+    </message>
+    <message>
+        <source>{parts}: no replacement found, the link is not made</source>
+        <translation>{parts}: kein Ersatz gefunden, die Verbindung wird nicht hergestellt</translation>
+    </message>
+</context>
 </TS>

@@ -94,7 +94,6 @@ def test_the_report_speaks_plainly_with_the_detail_in_its_own_section(systems_di
 
     from pdcp_studio.app.document import load_profile_trees, tree_for
     from pdcp_studio.app.report import FittingInfo, action_words, report_html
-
     from pdcp_studio.engine import plan_autoconfigure
 
     system = system_file.load_path(systems_dir / "transradial.json")
