@@ -74,6 +74,7 @@ class BusMixin:
         bridge.channelValues.connect(dock.widget().add_values)
         events = self._events_dock()
         bridge.busEvent.connect(events.widget().add_event)
+        bridge.scanned.connect(self._scan_finished)  # any scan's end is said in the status bar
         if bridge.is_sim:
             old = self._leaf_docks.pop("sim", None)
             if old is not None:
@@ -85,6 +86,19 @@ class BusMixin:
             self.tabifyDockWidget(self.inspector_dock, dock)
             self.inspector_dock.raise_()
             self._leaf_docks["sim"] = dock
+
+    def scan_bus(self) -> Any:
+        """Scan the bus on its worker; the status bar says when it started and finished."""
+        worker = self.live.scan()
+        if worker is not None:
+            self.show_message(self.tr("Scanning the bus…"), 0)
+        return worker
+
+    def _scan_finished(self, system: Any) -> None:
+        devices = len(getattr(system, "devices", {}))
+        links = len(getattr(system, "links", []))
+        self.show_message(self.tr("Scan finished: {devices} device(s), {links} link(s)").format(
+            devices=devices, links=links))
 
     def _device_name(self, key: Any) -> str | None:
         """The name the graph gives a device on screen (None if it is not there)."""

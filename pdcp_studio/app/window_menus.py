@@ -98,7 +98,7 @@ class MenusMixin:
             self.tr("Open the &simulated prosthesis"),
             lambda: self.maybe_save() and self.connect_bus(DEFAULT_BUS))
         self.act_disconnect = self._action(self.tr("&Disconnect"), self.live.disconnect_bus)
-        self.act_scan = self._action(self.tr("&Scan the bus"), self.live.scan)
+        self.act_scan = self._action(self.tr("&Scan the bus"), self.scan_bus)
         self.act_read_config = self._action(
             self.tr("&Read the stored configuration"), self.read_configuration,
             tip=self.tr("Read the arbitrator's stored configuration; plans that take a "

@@ -3474,4 +3474,33 @@ Die Prothese ist wie zuvor.</translation>
         <translation>{parts}: kein Ersatz gefunden, die Verbindung wird nicht hergestellt</translation>
     </message>
 </context>
+<context>
+    <name>_DetectingPage</name>
+    <message>
+        <source>Looking for adapters… this can take a few seconds</source>
+        <translation>Suche nach Adaptern… das kann einige Sekunden dauern</translation>
+    </message>
+</context>
+<context>
+    <name>CanPage</name>
+    <message>
+        <source>Found {n} CAN channel(s): {which}</source>
+        <translation>{n} CAN-Kanal/Kanäle gefunden: {which}</translation>
+    </message>
+    <message>
+        <source>No CAN adapter found. Check that it is plugged in and its driver is installed, or type the interface and channel.</source>
+        <translation>Kein CAN-Adapter gefunden. Prüfen Sie, ob er eingesteckt und sein Treiber installiert ist, oder geben Sie Schnittstelle und Kanal ein.</translation>
+    </message>
+</context>
+<context>
+    <name>BusMixin</name>
+    <message>
+        <source>Scanning the bus…</source>
+        <translation>Lese den Bus…</translation>
+    </message>
+    <message>
+        <source>Scan finished: {devices} device(s), {links} link(s)</source>
+        <translation>Lesen beendet: {devices} Gerät(e), {links} Verbindung(en)</translation>
+    </message>
+</context>
 </TS>
