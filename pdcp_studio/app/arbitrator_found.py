@@ -49,15 +49,23 @@ class ArbitratorFoundDialog(QDialog):
 
     chosen = Signal(str)
 
-    def __init__(self, url: str, detail: str, parent: QWidget | None = None) -> None:
+    def __init__(self, url: str, detail: str, parent: QWidget | None = None, *,
+                 later: bool = False) -> None:
         super().__init__(parent)
         self.url = url
         self.setWindowTitle(self.tr("Another bus arbitrator is running"))
         self.setMinimumWidth(520)
-        self.text = QLabel(self.tr(
-            "<p><b>This bus already has an arbitrator</b> — most likely the prosthesis's own "
-            "control unit.</p><p>PDCP Studio did not take part in it: nothing was sent to "
-            "the prosthesis. Only one arbitrator may run a bus.</p>"
+        if later:
+            head = self.tr(
+                "<p><b>Another arbitrator started on this bus</b> — most likely the "
+                "prosthesis's own control unit.</p><p>PDCP Studio stopped sending at once "
+                "and disconnected: only one arbitrator may run a bus.</p>")
+        else:
+            head = self.tr(
+                "<p><b>This bus already has an arbitrator</b> — most likely the prosthesis's "
+                "own control unit.</p><p>PDCP Studio did not take part in it: nothing was "
+                "sent to the prosthesis. Only one arbitrator may run a bus.</p>")
+        self.text = QLabel(head + self.tr(
             "<p>You can <b>watch the bus</b>: see its traffic in the monitor without sending "
             "anything. Or <b>connect through the host link</b>: the prosthesis's own "
             "arbitrator answers over its serial cable, and you can read and configure it "
@@ -112,10 +120,12 @@ class ListeningIndicator(QWidget):
         layout.addWidget(self.stop_button)
 
 
-def offer(window: Any, url: str, message: str) -> ArbitratorFoundDialog:
-    """Show the dialog for ``url`` (not modal: the window stays usable) and act on the choice."""
+def offer(window: Any, url: str, message: str, *, later: bool = False
+          ) -> ArbitratorFoundDialog:
+    """Show the dialog for ``url`` (not modal: the window stays usable) and act on the choice;
+    ``later``: the other arbitrator appeared while PDCP Studio was arbitrating."""
     detail = message[len(url) + 2:] if message.startswith(f"{url}: ") else message
-    dialog = ArbitratorFoundDialog(url, detail, window)
+    dialog = ArbitratorFoundDialog(url, detail, window, later=later)
     dialog.setAttribute(Qt.WidgetAttribute.WA_DeleteOnClose)
     dialog.chosen.connect(lambda what: _act(window, url, what))
     window.arbitrator_found_dialog = dialog

@@ -142,8 +142,20 @@ class BusMixin:
         self.reread_configuration()
 
     def _bus_event(self, event: Any) -> None:
-        if type(event).__name__ == "TransactionDone":
+        kind = type(event).__name__
+        if kind == "TransactionDone":
             self.reread_configuration()
+        elif kind == "BusState" and event.state == "yielded":
+            self._other_arbitrator_appeared(event.message)
+
+    def _other_arbitrator_appeared(self, message: str) -> None:
+        """Another arbitrator started on our bus: our session has stopped writing (§5).
+        Say so plainly and offer the safe ways on, as when it is found on connecting."""
+        from pdcp_studio.app import arbitrator_found
+
+        url = self.live.url
+        self.live.disconnect_bus()  # it writes nothing more; edits could not be written
+        arbitrator_found.offer(self, url, message, later=True)
 
     def _bus_seen(self, system: Any) -> None:
         """After any bus event: the monitor names frames by the bus's node IDs as they are

@@ -2914,8 +2914,16 @@ Die Prothese ist wie zuvor.</translation>
         <translation>Ein anderer Bus-Arbitrator läuft</translation>
     </message>
     <message>
-        <source>&lt;p&gt;&lt;b&gt;This bus already has an arbitrator&lt;/b&gt; — most likely the prosthesis's own control unit.&lt;/p&gt;&lt;p&gt;PDCP Studio did not take part in it: nothing was sent to the prosthesis. Only one arbitrator may run a bus.&lt;/p&gt;&lt;p&gt;You can &lt;b&gt;watch the bus&lt;/b&gt;: see its traffic in the monitor without sending anything. Or &lt;b&gt;connect through the host link&lt;/b&gt;: the prosthesis's own arbitrator answers over its serial cable, and you can read and configure it there.&lt;/p&gt;</source>
-        <translation>&lt;p&gt;&lt;b&gt;Dieser Bus hat bereits einen Arbitrator&lt;/b&gt; — wahrscheinlich die eigene Steuereinheit der Prothese.&lt;/p&gt;&lt;p&gt;PDCP Studio hat sich nicht beteiligt: An die Prothese wurde nichts gesendet. Nur ein Arbitrator darf einen Bus führen.&lt;/p&gt;&lt;p&gt;Sie können &lt;b&gt;den Bus beobachten&lt;/b&gt;: seinen Verkehr im Monitor sehen, ohne etwas zu senden. Oder &lt;b&gt;über die Host-Verbindung verbinden&lt;/b&gt;: Der eigene Arbitrator der Prothese antwortet über sein serielles Kabel, und Sie können ihn dort auslesen und konfigurieren.&lt;/p&gt;</translation>
+        <source>&lt;p&gt;&lt;b&gt;This bus already has an arbitrator&lt;/b&gt; — most likely the prosthesis's own control unit.&lt;/p&gt;&lt;p&gt;PDCP Studio did not take part in it: nothing was sent to the prosthesis. Only one arbitrator may run a bus.&lt;/p&gt;</source>
+        <translation>&lt;p&gt;&lt;b&gt;Dieser Bus hat bereits einen Arbitrator&lt;/b&gt; — wahrscheinlich die eigene Steuereinheit der Prothese.&lt;/p&gt;&lt;p&gt;PDCP Studio hat sich nicht beteiligt: An die Prothese wurde nichts gesendet. Nur ein Arbitrator darf einen Bus führen.&lt;/p&gt;</translation>
+    </message>
+    <message>
+        <source>&lt;p&gt;&lt;b&gt;Another arbitrator started on this bus&lt;/b&gt; — most likely the prosthesis's own control unit.&lt;/p&gt;&lt;p&gt;PDCP Studio stopped sending at once and disconnected: only one arbitrator may run a bus.&lt;/p&gt;</source>
+        <translation>&lt;p&gt;&lt;b&gt;Auf diesem Bus hat ein anderer Arbitrator begonnen&lt;/b&gt; — wahrscheinlich die eigene Steuereinheit der Prothese.&lt;/p&gt;&lt;p&gt;PDCP Studio hat sofort aufgehört zu senden und die Verbindung getrennt: Nur ein Arbitrator darf einen Bus führen.&lt;/p&gt;</translation>
+    </message>
+    <message>
+        <source>&lt;p&gt;You can &lt;b&gt;watch the bus&lt;/b&gt;: see its traffic in the monitor without sending anything. Or &lt;b&gt;connect through the host link&lt;/b&gt;: the prosthesis's own arbitrator answers over its serial cable, and you can read and configure it there.&lt;/p&gt;</source>
+        <translation>&lt;p&gt;Sie können &lt;b&gt;den Bus beobachten&lt;/b&gt;: seinen Verkehr im Monitor sehen, ohne etwas zu senden. Oder &lt;b&gt;über die Host-Verbindung verbinden&lt;/b&gt;: Der eigene Arbitrator der Prothese antwortet über sein serielles Kabel, und Sie können ihn dort auslesen und konfigurieren.&lt;/p&gt;</translation>
     </message>
     <message>
         <source>Bus: {url}

@@ -105,3 +105,36 @@ def test_other_connect_failures_are_not_taken_for_an_arbitrator(make_window, qtb
     qtbot.waitUntil(lambda: "Cannot connect" in window.statusBar().currentMessage(),
                     timeout=10000)
     assert getattr(window, "arbitrator_found_dialog", None) is None
+
+
+def test_an_arbitrator_appearing_later_is_said_and_the_same_offer_made(make_window, qtbot):
+    """The app arbitrates a bus; then another arbitrator starts on it: the session stops
+    writing at once (bus layer) and the window says so with the same offer."""
+    import can
+
+    from pdcp_studio.bus.device_host import DeviceHost
+    from pdcp_studio.bus.device_sim import SimulatedDevice
+    from pdcp_studio.bus.simulator import load_prosthesis
+
+    channel = unique_virtual_channel("pdcp-app-later")
+    system = load_prosthesis("thesis-test2")
+    host = DeviceHost(open_can_bus("virtual", channel),
+                      [SimulatedDevice(d) for d in system.devices.values()], name="devices")
+    other = can.Bus(interface="virtual", channel=channel)
+    try:
+        window = make_window()
+        with qtbot.waitSignal(window.ready, timeout=30000):
+            window.connect_bus(f"can:virtual:{channel}")
+        assert window.live.is_live
+        other.send(can.Message(arbitration_id=0x100, data=b"\x0a", is_extended_id=False))
+        qtbot.waitUntil(lambda: getattr(window, "arbitrator_found_dialog", None) is not None,
+                        timeout=10000)
+        dialog = window.arbitrator_found_dialog
+        assert dialog.isVisible() and "Another arbitrator started" in dialog.text.text()
+        assert "stopped sending at once" in dialog.text.text()
+        assert "stopped writing" in dialog.detail.text()
+        assert not window.live.is_live  # nothing left that could write
+        dialog.reject()
+    finally:
+        other.shutdown()
+        host.close()
