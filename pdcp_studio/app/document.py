@@ -170,7 +170,7 @@ class Document(QObject):
         self._was_dirty = False
         self.undo_stack.cleanChanged.connect(self._on_clean_changed)
         # A live view's moves do not make it dirty, other edits do: follow every step.
-        self.undo_stack.indexChanged.connect(lambda _i: self._emit_dirty())
+        self.undo_stack.indexChanged.connect(self._on_index_changed)
         self._layout_timer = QTimer(self)
         self._layout_timer.setSingleShot(True)
         self._layout_timer.setInterval(LAYOUT_SAVE_MS)
@@ -350,6 +350,9 @@ class Document(QObject):
         return self._extra_dirty or not clean
 
     def _on_clean_changed(self, _clean: bool) -> None:
+        self._emit_dirty()
+
+    def _on_index_changed(self, _index: int) -> None:
         self._emit_dirty()
 
     def _emit_dirty(self) -> None:
