@@ -23,6 +23,7 @@ from PySide6.QtWidgets import (
     QDialogButtonBox,
     QHBoxLayout,
     QLabel,
+    QLayout,
     QPushButton,
     QStatusBar,
     QVBoxLayout,
@@ -72,8 +73,13 @@ class ArbitratorFoundDialog(QDialog):
             "there.</p>"))
         self.text.setWordWrap(True)
         self.text.setTextFormat(Qt.TextFormat.RichText)
+        self.text.setFixedWidth(500)  # a known width: its wrapped height is then exact
+        # A window does not size itself by height-for-width: give the wrapped text its height.
+        self.text.setMinimumHeight(self.text.heightForWidth(500))
         self.detail = QLabel(self.tr("Bus: {url}\n{detail}").format(url=url, detail=detail))
         self.detail.setWordWrap(True)
+        self.detail.setFixedWidth(500)
+        self.detail.setMinimumHeight(self.detail.heightForWidth(500))
         self.detail.setTextInteractionFlags(Qt.TextInteractionFlag.TextSelectableByMouse)
         self.detail.hide()
         self.details_button = QPushButton(self.tr("Details"))
@@ -100,6 +106,8 @@ class ArbitratorFoundDialog(QDialog):
         layout.addLayout(row)
         layout.addWidget(self.detail)
         layout.addWidget(self.buttons)
+        # Wrapped text: the dialog grows with it (and with the details), never clips it.
+        layout.setSizeConstraint(QLayout.SizeConstraint.SetMinimumSize)
 
     def _choose(self, what: str) -> None:
         self.chosen.emit(what)

@@ -63,6 +63,8 @@ def test_a_taken_bus_is_said_plainly_and_a_listen_only_monitor_sends_nothing(
     text = dialog.text.text()
     assert "already has an arbitrator" in text and "nothing was sent" in text
     assert "OtherArbitratorError" not in text and "0x" not in text  # no codes up front
+    label = dialog.text  # the wrapped text is shown whole, not clipped by the window
+    assert label.height() >= label.heightForWidth(label.width())
     assert not dialog.detail.isVisible()
     dialog.details_button.click()
     assert dialog.detail.isVisible() and "another bus arbitrator" in dialog.detail.text()
