@@ -15,7 +15,7 @@ The engineer's detail (what was heard) is one click away in the dialog's details
 
 from __future__ import annotations
 
-from typing import Any
+from typing import TYPE_CHECKING, Any
 
 from PySide6.QtCore import Qt, Signal
 from PySide6.QtWidgets import (
@@ -31,6 +31,9 @@ from PySide6.QtWidgets import (
 )
 
 from pdcp_studio.app.i18n import translate
+
+if TYPE_CHECKING:
+    from pdcp_studio.app.passive_monitor import PassiveMonitor
 
 WATCH, HOST_LINK = "watch", "host-link"
 
@@ -199,7 +202,7 @@ def stop_watching(window: Any) -> None:
         indicator.deleteLater()
 
 
-def _stopped(window: Any, monitor: Any, reason: str) -> None:
+def _stopped(window: Any, monitor: PassiveMonitor, reason: str) -> None:
     if getattr(window, "passive_monitor", None) is not monitor:
         return
     stop_watching(window)

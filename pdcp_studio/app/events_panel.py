@@ -184,8 +184,8 @@ class EventsPanel(QWidget):
                 item.setTextAlignment(Qt.AlignmentFlag.AlignTop | Qt.AlignmentFlag.AlignLeft)
                 item.setToolTip(tip)
                 view.setItem(row, col, item)
-            if provisional:
-                first = view.item(row, COL_WHAT)
+            first = view.item(row, COL_WHAT)
+            if provisional and first is not None:
                 first.setData(_EVENT_ROLE, (event, n))
                 self._unnamed.append(first)
         extra = view.rowCount() - MAX_ROWS
@@ -212,14 +212,19 @@ class EventsPanel(QWidget):
             if n < len(rows):
                 for col, text in ((COL_WHAT, rows[n].what), (COL_WHY, rows[n].why),
                                   (COL_SIMILAR, rows[n].similar)):
-                    self.view.item(row, col).setText(text)
+                    cell = self.view.item(row, col)
+                    if cell is not None:
+                        cell.setText(text)
         self._unnamed = still
 
     def rows(self) -> list[tuple[str, str, str]]:
         """(what, why, how similar) of every row, oldest first (for tests and reports)."""
-        v = self.view
-        return [(v.item(i, COL_WHAT).text(), v.item(i, COL_WHY).text(),
-                 v.item(i, COL_SIMILAR).text()) for i in range(v.rowCount())]
+        def text(row: int, col: int) -> str:
+            cell = self.view.item(row, col)
+            return cell.text() if cell is not None else ""
+
+        return [(text(i, COL_WHAT), text(i, COL_WHY), text(i, COL_SIMILAR))
+                for i in range(self.view.rowCount())]
 
     def clear(self) -> None:
         self.view.setRowCount(0)

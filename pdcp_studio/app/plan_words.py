@@ -65,8 +65,8 @@ REFUSAL_WORDS = {
 }
 
 
-def tr(text: str) -> str:
-    return translate(_CTX, text)
+def tr(text: object) -> str:
+    return translate(_CTX, str(text))
 
 
 def mode_words(mode: str) -> str:
@@ -163,6 +163,7 @@ def similarity_words(action: Any, plan: Any) -> str:
         return signal
     was_input = any(lk.input == cause for lk in plan.links_before)
     new = action.link.input if was_input else action.link.output
+    assert isinstance(cause, ChannelRef)  # replacing: the missing channel
     return f"{part_words(cause.device, new.device)}; {signal}"
 
 
