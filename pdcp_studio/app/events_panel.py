@@ -155,6 +155,7 @@ class EventsPanel(QWidget):
         for col in (COL_WHAT, COL_WHY, COL_SIMILAR):
             header.setSectionResizeMode(col, QHeaderView.ResizeMode.Stretch)
         self.count_label = QLabel()
+        self.count_label.setWordWrap(True)  # a long hint must not widen the dock
         self.clear_button = QPushButton(self.tr("Clear"))
         self.clear_button.clicked.connect(self.clear)
         row = QHBoxLayout()

@@ -26,6 +26,7 @@ from PySide6.QtWidgets import (
     QGridLayout,
     QGroupBox,
     QHBoxLayout,
+    QHeaderView,
     QLabel,
     QListWidget,
     QPushButton,
@@ -78,8 +79,11 @@ class SimPanel(QWidget):
             [self.tr("Device"), self.tr("VID/PID/SN"), self.tr("Power"), self.tr("On bus")]
         )
         self.tree.setRootIsDecorated(False)
-        for col, width in ((COL_NAME, 140), (COL_KEY, 100), (COL_PLUGGED, 45)):
-            self.tree.setColumnWidth(col, width)
+        header = self.tree.header()  # the name takes the room the other columns leave
+        header.setStretchLastSection(False)
+        header.setSectionResizeMode(COL_NAME, QHeaderView.ResizeMode.Stretch)
+        for col in (COL_KEY, COL_PLUGGED, COL_BUS):
+            header.setSectionResizeMode(col, QHeaderView.ResizeMode.ResizeToContents)
         self.tree.currentItemChanged.connect(lambda *_: self._update_buttons())
 
         self.plug_button = QPushButton(self.tr("Plug in"))
@@ -234,6 +238,7 @@ class SimPanel(QWidget):
             item = QTreeWidgetItem(self.tree)
             item.setData(COL_NAME, KEY_ROLE, key)
             item.setText(COL_NAME, label)
+            item.setToolTip(COL_NAME, label)  # whole, when the column is narrower
             item.setText(COL_KEY, str(key))
             self._paint(item, key)
         self._fill_replacements()
