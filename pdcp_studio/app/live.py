@@ -255,9 +255,16 @@ class LiveController(QObject):
         self.refresh()
 
     def _on_plan_applied(self, plan: Any) -> None:
+        from pdcp_studio.app.plan_words import mode_words
+
         mode = getattr(plan, "mode", None) or (plan.get("mode") if isinstance(plan, dict)
                                                 else "plan")
-        self.statusMessage.emit(self.tr("The bus applied {mode}").format(mode=mode))
+        why = mode_words(str(mode))
+        added = len(getattr(plan, "added", ()))
+        removed = len(getattr(plan, "removed", ()))
+        self.statusMessage.emit(self.tr(
+            "The prosthesis changed its links ({why}): {added} made, {removed} removed — "
+            "see Bus events").format(why=why, added=added, removed=removed))
         self.refresh()
 
     def _on_values(self, values: list) -> None:

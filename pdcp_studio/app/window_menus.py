@@ -113,7 +113,7 @@ class MenusMixin:
             self.tr("Open the &simulated prosthesis"),
             lambda: self.maybe_save() and self.connect_bus(DEFAULT_BUS))
         self.act_disconnect = self._action(self.tr("&Disconnect"), self.live.disconnect_bus)
-        self.act_scan = self._action(self.tr("&Scan the bus"), self.live.scan)
+        self.act_scan = self._action(self.tr("&Scan the bus"), self.scan_bus)
         self.act_read_config = self._action(
             self.tr("&Read the stored configuration"), self.read_configuration,
             tip=self.tr("Read the arbitrator's stored configuration; plans that take a "
@@ -182,8 +182,9 @@ class MenusMixin:
         tb.setObjectName("MainToolBar")
         tb.setMovable(False)
         for a in (self.act_open, self.act_save, None, self.act_undo, self.act_redo, None,
-                  self.act_fit, self.act_arrange, None, *self.plan_actions.values(), None,
-                  self.act_connect):
+                  self.act_fit, self.act_arrange, None, self.act_connect):
+            # The plan operations live in the Plan menu and the plan dock, next to the plan
+            # they show: not a third time here.
             if a is None:
                 tb.addSeparator()
             else:

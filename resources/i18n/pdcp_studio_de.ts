@@ -84,6 +84,14 @@
             <source>connect to a bus first</source>
             <translation>zuerst mit einem Bus verbinden</translation>
         </message>
+        <message>
+            <source>Scanning the bus…</source>
+            <translation>Lese den Bus…</translation>
+        </message>
+        <message>
+            <source>Scan finished: {devices} device(s), {links} link(s)</source>
+            <translation>Lesen beendet: {devices} Gerät(e), {links} Verbindung(en)</translation>
+        </message>
     </context>
     <context>
         <name>BusScene</name>
@@ -174,6 +182,14 @@
             <location filename="../../pdcp_studio/app/connect_dialog.py" line="235" />
             <source>No CAN interface found</source>
             <translation>Keine CAN-Schnittstelle gefunden</translation>
+        </message>
+        <message>
+            <source>Found {n} CAN channel(s): {which}</source>
+            <translation>{n} CAN-Kanal/Kanäle gefunden: {which}</translation>
+        </message>
+        <message>
+            <source>No CAN adapter found. Check that it is plugged in and its driver is installed, or type the interface and channel.</source>
+            <translation>Kein CAN-Adapter gefunden. Prüfen Sie, ob er eingesteckt und sein Treiber installiert ist, oder geben Sie Schnittstelle und Kanal ein.</translation>
         </message>
     </context>
     <context>
@@ -679,6 +695,126 @@
             <location filename="../../pdcp_studio/app/config_view.py" line="781" />
             <source>the prosthesis in the main window (%1)</source>
             <translation>die Prothese im Hauptfenster (%1)</translation>
+        </message>
+        <message>
+            <source>Form</source>
+            <translation>Form</translation>
+        </message>
+        <message>
+            <source>What it carries</source>
+            <translation>Was er trägt</translation>
+        </message>
+        <message>
+            <source>not named in the profile tree</source>
+            <translation>im Profilbaum nicht benannt</translation>
+        </message>
+        <message>
+            <source>unknown form</source>
+            <translation>unbekannte Form</translation>
+        </message>
+        <message>
+            <source>signed number</source>
+            <translation>Zahl mit Vorzeichen</translation>
+        </message>
+        <message>
+            <source>number</source>
+            <translation>Zahl</translation>
+        </message>
+        <message>
+            <source>decimal number</source>
+            <translation>Dezimalzahl</translation>
+        </message>
+        <message>
+            <source>on/off</source>
+            <translation>ein/aus</translation>
+        </message>
+        <message>
+            <source>position</source>
+            <translation>Position</translation>
+        </message>
+        <message>
+            <source>speed</source>
+            <translation>Geschwindigkeit</translation>
+        </message>
+        <message>
+            <source>acceleration</source>
+            <translation>Beschleunigung</translation>
+        </message>
+        <message>
+            <source>other</source>
+            <translation>andere</translation>
+        </message>
+        <message>
+            <source>{kind} ({bits} bits), {mode}</source>
+            <translation>{kind} ({bits} Bit), {mode}</translation>
+        </message>
+        <message>
+            <source>type {code}</source>
+            <translation>Typ {code}</translation>
+        </message>
+        <message>
+            <source>profile {code}</source>
+            <translation>Profil {code}</translation>
+        </message>
+        <message>
+            <source>Link {links} joins {a} to its own device. Remove it.</source>
+            <translation>Verbindung {links} verbindet {a} mit dem eigenen Gerät. Entfernen Sie sie.</translation>
+        </message>
+        <message>
+            <source>Links {links} store the same link {a} → {b}; it is made once. Remove the extra ones.</source>
+            <translation>Die Verbindungen {links} speichern dieselbe Verbindung {a} → {b}; sie wird einmal hergestellt. Entfernen Sie die überzähligen.</translation>
+        </message>
+        <message>
+            <source>{a} is given more than one source (links {links}); only the first would be made. Keep one of them.</source>
+            <translation>{a} bekommt mehr als eine Quelle (Verbindungen {links}); nur die erste würde hergestellt. Behalten Sie eine davon.</translation>
+        </message>
+        <message>
+            <source>{a} is stored as an output and as an input (links {links}); a channel is one or the other. Correct the wrong link.</source>
+            <translation>{a} ist als Ausgang und als Eingang gespeichert (Verbindungen {links}); ein Kanal ist das eine oder das andere. Korrigieren Sie die falsche Verbindung.</translation>
+        </message>
+        <message>
+            <source>{a} feeds several inputs that each need it for themselves (links {links}). Keep one of these links.</source>
+            <translation>{a} speist mehrere Eingänge, die ihn jeweils für sich allein brauchen (Verbindungen {links}). Behalten Sie eine dieser Verbindungen.</translation>
+        </message>
+        <message>
+            <source>{a} is stored with different descriptions in links {links}. Edit the channel so they agree.</source>
+            <translation>{a} ist in den Verbindungen {links} unterschiedlich beschrieben. Bearbeiten Sie den Kanal, sodass sie übereinstimmen.</translation>
+        </message>
+        <message>
+            <source>Link {links}: {a} and {b} carry different kinds of signal; {b} may not understand what it is sent.</source>
+            <translation>Verbindung {links}: {a} und {b} tragen verschiedene Arten Signal; {b} versteht womöglich nicht, was gesendet wird.</translation>
+        </message>
+        <message>
+            <source>Link {links}: {a} and {b} carry the same kind of signal in different forms; the input adapts to the output.</source>
+            <translation>Verbindung {links}: {a} und {b} tragen dieselbe Art Signal in verschiedener Form; der Eingang passt sich dem Ausgang an.</translation>
+        </message>
+        <message>
+            <source>both ends are on the prosthesis: made as stored</source>
+            <translation>beide Enden sind an der Prothese: wird wie gespeichert hergestellt</translation>
+        </message>
+        <message>
+            <source>the output</source>
+            <translation>der Ausgang</translation>
+        </message>
+        <message>
+            <source>the input</source>
+            <translation>der Eingang</translation>
+        </message>
+        <message>
+            <source>{end} is missing</source>
+            <translation>{end} fehlt</translation>
+        </message>
+        <message>
+            <source>{end} has the other direction on the prosthesis</source>
+            <translation>{end} hat an der Prothese die andere Richtung</translation>
+        </message>
+        <message>
+            <source>replaced by {link} ({similar})</source>
+            <translation>ersetzt durch {link} ({similar})</translation>
+        </message>
+        <message>
+            <source>{parts}: no replacement found, the link is not made</source>
+            <translation>{parts}: kein Ersatz gefunden, die Verbindung wird nicht hergestellt</translation>
         </message>
     </context>
     <context>
@@ -1440,6 +1576,11 @@ Ihr Name (wird einmal erfragt):</translation>
             <source>The bus applied {mode}</source>
             <translation>Der Bus hat {mode} ausgeführt</translation>
         </message>
+        <message>
+            <location filename="../../pdcp_studio/app/live.py" line="248" />
+            <source>The prosthesis changed its links ({why}): {added} made, {removed} removed — see Bus events</source>
+            <translation>Die Prothese hat ihre Verbindungen geändert ({why}): {added} hergestellt, {removed} entfernt — siehe Busereignisse</translation>
+        </message>
     </context>
     <context>
         <name>MainWindow</name>
@@ -2157,6 +2298,58 @@ Den PDCP-Bus einer aktiven Prothese ansehen und einrichten.</translation>
             <source>Applied {mode}: {n_added} added, {n_removed} removed (Undo reverts it)</source>
             <translation>{mode} angewendet: {n_added} hinzugefügt, {n_removed} entfernt (Rückgängig macht es ungeschehen)</translation>
         </message>
+        <message>
+            <source>Change</source>
+            <translation>Änderung</translation>
+        </message>
+        <message>
+            <source>Link</source>
+            <translation>Verbindung</translation>
+        </message>
+        <message>
+            <source>Why</source>
+            <translation>Warum</translation>
+        </message>
+        <message>
+            <source>How similar</source>
+            <translation>Wie ähnlich</translation>
+        </message>
+        <message>
+            <source>Select a row for the engineer's detail: the engine's reason, profile codes and the similarity score</source>
+            <translation>Wählen Sie eine Zeile für die technischen Einzelheiten: Begründung der Planung, Profilcodes und Ähnlichkeitswert</translation>
+        </message>
+        <message>
+            <source> (missing)</source>
+            <translation> (fehlt)</translation>
+        </message>
+        <message>
+            <source>Stored set-up used: {reason}</source>
+            <translation>Verwendete gespeicherte Einrichtung: {reason}</translation>
+        </message>
+        <message>
+            <source>Nothing to change.</source>
+            <translation>Nichts zu ändern.</translation>
+        </message>
+        <message>
+            <source>Add</source>
+            <translation>Hinzufügen</translation>
+        </message>
+        <message>
+            <source>Remove</source>
+            <translation>Entfernen</translation>
+        </message>
+        <message>
+            <source>Not done</source>
+            <translation>Nicht ausgeführt</translation>
+        </message>
+        <message>
+            <source>Note</source>
+            <translation>Hinweis</translation>
+        </message>
+        <message>
+            <source> ({channel} is missing)</source>
+            <translation> ({channel} fehlt)</translation>
+        </message>
     </context>
     <context>
         <name>PolicyMixin</name>
@@ -2227,6 +2420,10 @@ Den PDCP-Bus einer aktiven Prothese ansehen und einrichten.</translation>
             <location filename="../../pdcp_studio/app/profile_tree_editor.py" line="446" />
             <source>Discard the unsaved changes to the profile tree?</source>
             <translation>Die ungespeicherten Änderungen am Profilbaum verwerfen?</translation>
+        </message>
+        <message>
+            <source>Profile trees</source>
+            <translation>Profilbäume</translation>
         </message>
     </context>
     <context>
@@ -2336,6 +2533,10 @@ Den PDCP-Bus einer aktiven Prothese ansehen und einrichten.</translation>
             <location filename="../../pdcp_studio/app/profile_tree_editor.py" line="415" />
             <source>Save profile tree</source>
             <translation>Profilbaum speichern</translation>
+        </message>
+        <message>
+            <source>Assigned by {vendor}</source>
+            <translation>Vergeben von {vendor}</translation>
         </message>
     </context>
     <context>
@@ -2574,6 +2775,58 @@ Den PDCP-Bus einer aktiven Prothese ansehen und einrichten.</translation>
             <source>left</source>
             <translation>verlassen</translation>
         </message>
+        <message>
+            <source>Problem: {message}</source>
+            <translation>Problem: {message}</translation>
+        </message>
+        <message>
+            <source>{device} joined the bus</source>
+            <translation>{device} ist dem Bus beigetreten</translation>
+        </message>
+        <message>
+            <source>{device} left the bus</source>
+            <translation>{device} hat den Bus verlassen</translation>
+        </message>
+        <message>
+            <source>Done: {what}</source>
+            <translation>Erledigt: {what}</translation>
+        </message>
+        <message>
+            <source>Script {name}: ended in the expected links</source>
+            <translation>Skript {name}: endete mit den erwarteten Verbindungen</translation>
+        </message>
+        <message>
+            <source>Script {name}: the links differ from the expected ones — {diff}</source>
+            <translation>Skript {name}: die Verbindungen weichen von den erwarteten ab — {diff}</translation>
+        </message>
+        <message>
+            <source>Plugging in {device}…</source>
+            <translation>Stecke {device} ein…</translation>
+        </message>
+        <message>
+            <source>Unplugging {device}…</source>
+            <translation>Ziehe {device} ab…</translation>
+        </message>
+        <message>
+            <source>Replacing {old} by {new}…</source>
+            <translation>Ersetze {old} durch {new}…</translation>
+        </message>
+        <message>
+            <source>Resetting the arbitrator, keeping its memory…</source>
+            <translation>Setze den Arbitrator zurück, sein Speicher bleibt…</translation>
+        </message>
+        <message>
+            <source>Resetting the arbitrator, erasing its memory…</source>
+            <translation>Setze den Arbitrator zurück und lösche seinen Speicher…</translation>
+        </message>
+        <message>
+            <source>Storing the current links…</source>
+            <translation>Speichere die aktuellen Verbindungen…</translation>
+        </message>
+        <message>
+            <source>Running script {name}…</source>
+            <translation>Führe Skript {name} aus…</translation>
+        </message>
     </context>
     <context>
         <name>Style</name>
@@ -2783,6 +3036,10 @@ Die Prothese ist wie zuvor.</translation>
             <location filename="../../pdcp_studio/app/connect_dialog.py" line="187" />
             <source>Detection failed: {message}</source>
             <translation>Erkennung fehlgeschlagen: {message}</translation>
+        </message>
+        <message>
+            <source>Looking for adapters… this can take a few seconds</source>
+            <translation>Suche nach Adaptern… das kann einige Sekunden dauern</translation>
         </message>
     </context>
     <context>
@@ -3610,6 +3867,319 @@ Die Prothese ist wie zuvor.</translation>
         <message>
             <source>When it is written:</source>
             <translation>Beim Schreiben:</translation>
+        </message>
+    </context>
+    <context>
+        <name>ArbitratorFoundDialog</name>
+        <message>
+            <source>Another bus arbitrator is running</source>
+            <translation>Ein anderer Bus-Arbitrator läuft</translation>
+        </message>
+        <message>
+            <source>&lt;p&gt;&lt;b&gt;This bus already has an arbitrator&lt;/b&gt; — most likely the prosthesis's own control unit.&lt;/p&gt;&lt;p&gt;PDCP Studio did not take part in it: nothing was sent to the prosthesis. Only one arbitrator may run a bus.&lt;/p&gt;</source>
+            <translation>&lt;p&gt;&lt;b&gt;Dieser Bus hat bereits einen Arbitrator&lt;/b&gt; — wahrscheinlich die eigene Steuereinheit der Prothese.&lt;/p&gt;&lt;p&gt;PDCP Studio hat sich nicht beteiligt: An die Prothese wurde nichts gesendet. Nur ein Arbitrator darf einen Bus führen.&lt;/p&gt;</translation>
+        </message>
+        <message>
+            <source>&lt;p&gt;&lt;b&gt;Another arbitrator started on this bus&lt;/b&gt; — most likely the prosthesis's own control unit.&lt;/p&gt;&lt;p&gt;PDCP Studio stopped sending at once and disconnected: only one arbitrator may run a bus.&lt;/p&gt;</source>
+            <translation>&lt;p&gt;&lt;b&gt;Auf diesem Bus hat ein anderer Arbitrator begonnen&lt;/b&gt; — wahrscheinlich die eigene Steuereinheit der Prothese.&lt;/p&gt;&lt;p&gt;PDCP Studio hat sofort aufgehört zu senden und die Verbindung getrennt: Nur ein Arbitrator darf einen Bus führen.&lt;/p&gt;</translation>
+        </message>
+        <message>
+            <source>&lt;p&gt;You can &lt;b&gt;watch the bus&lt;/b&gt;: see its traffic in the monitor without sending anything. Or &lt;b&gt;connect through the host link&lt;/b&gt;: the prosthesis's own arbitrator answers over its serial cable, and you can read and configure it there.&lt;/p&gt;</source>
+            <translation>&lt;p&gt;Sie können &lt;b&gt;den Bus beobachten&lt;/b&gt;: seinen Verkehr im Monitor sehen, ohne etwas zu senden. Oder &lt;b&gt;über die Host-Verbindung verbinden&lt;/b&gt;: Der eigene Arbitrator der Prothese antwortet über sein serielles Kabel, und Sie können ihn dort auslesen und konfigurieren.&lt;/p&gt;</translation>
+        </message>
+        <message>
+            <source>Bus: {url}
+{detail}</source>
+            <translation>Bus: {url}
+{detail}</translation>
+        </message>
+        <message>
+            <source>Details</source>
+            <translation>Details</translation>
+        </message>
+        <message>
+            <source>Watch the bus (listen only)</source>
+            <translation>Bus beobachten (nur mithören)</translation>
+        </message>
+        <message>
+            <source>Connect through the host link…</source>
+            <translation>Über die Host-Verbindung verbinden…</translation>
+        </message>
+        <message>
+            <source>Show the bus's frames in the monitor; PDCP Studio sends nothing (listen-only)</source>
+            <translation>Die Frames des Busses im Monitor zeigen; PDCP Studio sendet nichts (nur mithören)</translation>
+        </message>
+        <message>
+            <source>Open the connection dialog on the serial host link</source>
+            <translation>Den Verbindungsdialog bei der seriellen Host-Verbindung öffnen</translation>
+        </message>
+    </context>
+    <context>
+        <name>ListeningIndicator</name>
+        <message>
+            <source>Listening to {url} — sends nothing</source>
+            <translation>Höre {url} mit — sendet nichts</translation>
+        </message>
+        <message>
+            <source>Stop listening</source>
+            <translation>Mithören beenden</translation>
+        </message>
+    </context>
+    <context>
+        <name>ArbitratorFound</name>
+        <message>
+            <source>{url}: another bus arbitrator is running this bus — PDCP Studio sent nothing</source>
+            <translation>{url}: Ein anderer Bus-Arbitrator führt diesen Bus — PDCP Studio hat nichts gesendet</translation>
+        </message>
+        <message>
+            <source>Watching {url} without sending: its frames appear in the monitor</source>
+            <translation>Beobachte {url} ohne zu senden: seine Frames erscheinen im Monitor</translation>
+        </message>
+        <message>
+            <source>Stopped listening to {url}: {reason}</source>
+            <translation>Mithören von {url} beendet: {reason}</translation>
+        </message>
+    </context>
+    <context>
+        <name>PlanWords</name>
+        <message>
+            <source>a part was replaced while the prosthesis was running</source>
+            <translation>ein Teil wurde im laufenden Betrieb ersetzt</translation>
+        </message>
+        <message>
+            <source>the prosthesis started up</source>
+            <translation>die Prothese ist gestartet</translation>
+        </message>
+        <message>
+            <source>automatic set-up</source>
+            <translation>automatische Einrichtung</translation>
+        </message>
+        <message>
+            <source>looking for replacements for missing parts</source>
+            <translation>Suche nach Ersatz für fehlende Teile</translation>
+        </message>
+        <message>
+            <source>putting the stored set-up in place</source>
+            <translation>die gespeicherte Einrichtung wird umgesetzt</translation>
+        </message>
+        <message>
+            <source>making sure inputs that need a source for themselves have it alone</source>
+            <translation>Eingänge, die eine Quelle für sich allein brauchen, bekommen sie allein</translation>
+        </message>
+        <message>
+            <source>removing every link</source>
+            <translation>alle Verbindungen werden entfernt</translation>
+        </message>
+        <message>
+            <source>a change made by hand</source>
+            <translation>eine Änderung von Hand</translation>
+        </message>
+        <message>
+            <source>it is in the stored set-up</source>
+            <translation>sie ist in der gespeicherten Einrichtung</translation>
+        </message>
+        <message>
+            <source>the devices remembered it</source>
+            <translation>die Geräte haben sie sich gemerkt</translation>
+        </message>
+        <message>
+            <source>it replaces a part that is missing</source>
+            <translation>sie ersetzt ein fehlendes Teil</translation>
+        </message>
+        <message>
+            <source>it drives a part of the prosthesis</source>
+            <translation>sie steuert ein Teil der Prothese</translation>
+        </message>
+        <message>
+            <source>another channel needs it</source>
+            <translation>ein anderer Kanal braucht sie</translation>
+        </message>
+        <message>
+            <source>another channel works better with it</source>
+            <translation>ein anderer Kanal arbeitet damit besser</translation>
+        </message>
+        <message>
+            <source>an input needs its source for itself</source>
+            <translation>ein Eingang braucht seine Quelle für sich allein</translation>
+        </message>
+        <message>
+            <source>all links are removed</source>
+            <translation>alle Verbindungen werden entfernt</translation>
+        </message>
+        <message>
+            <source>it is not in the stored set-up</source>
+            <translation>sie ist nicht in der gespeicherten Einrichtung</translation>
+        </message>
+        <message>
+            <source>one of its parts is missing; a replacement takes its place</source>
+            <translation>eines ihrer Teile fehlt; ein Ersatz tritt an seine Stelle</translation>
+        </message>
+        <message>
+            <source>the part sending to it is missing; a replacement takes its place</source>
+            <translation>das sendende Teil fehlt; ein Ersatz tritt an seine Stelle</translation>
+        </message>
+        <message>
+            <source>that output already feeds an input that needs it for itself</source>
+            <translation>dieser Ausgang speist schon einen Eingang, der ihn für sich allein braucht</translation>
+        </message>
+        <message>
+            <source>that input already has a source</source>
+            <translation>dieser Eingang hat schon eine Quelle</translation>
+        </message>
+        <message>
+            <source>no similar free channel was found</source>
+            <translation>kein ähnlicher freier Kanal gefunden</translation>
+        </message>
+        <message>
+            <source>undone: a channel it needs could not be connected</source>
+            <translation>rückgängig gemacht: ein benötigter Kanal ließ sich nicht verbinden</translation>
+        </message>
+        <message>
+            <source>already tried and refused</source>
+            <translation>schon versucht und abgelehnt</translation>
+        </message>
+        <message>
+            <source>both of its parts are missing</source>
+            <translation>beide Teile fehlen</translation>
+        </message>
+        <message>
+            <source>the device's description names a channel that is not an input</source>
+            <translation>die Gerätebeschreibung nennt einen Kanal, der kein Eingang ist</translation>
+        </message>
+        <message>
+            <source>{device}, channel {n}</source>
+            <translation>{device}, Kanal {n}</translation>
+        </message>
+        <message>
+            <source>the same part</source>
+            <translation>dasselbe Teil</translation>
+        </message>
+        <message>
+            <source>same product, other serial number</source>
+            <translation>gleiches Produkt, andere Seriennummer</translation>
+        </message>
+        <message>
+            <source>same maker, another product</source>
+            <translation>gleicher Hersteller, anderes Produkt</translation>
+        </message>
+        <message>
+            <source>another maker's product</source>
+            <translation>Produkt eines anderen Herstellers</translation>
+        </message>
+        <message>
+            <source>same kind of signal</source>
+            <translation>gleiche Art Signal</translation>
+        </message>
+        <message>
+            <source>similar signal ({depth} of {levels} levels alike)</source>
+            <translation>ähnliches Signal ({depth} von {levels} Ebenen gleich)</translation>
+        </message>
+        <message>
+            <source>similar signal ({depth} level(s) alike)</source>
+            <translation>ähnliches Signal ({depth} Ebene(n) gleich)</translation>
+        </message>
+        <message>
+            <source>another kind of signal</source>
+            <translation>andere Art Signal</translation>
+        </message>
+        <message>
+            <source>{kind}, same form</source>
+            <translation>{kind}, gleiche Form</translation>
+        </message>
+        <message>
+            <source>control mode</source>
+            <translation>Steuerungsart</translation>
+        </message>
+        <message>
+            <source>value type</source>
+            <translation>Werttyp</translation>
+        </message>
+        <message>
+            <source>value size</source>
+            <translation>Wertgröße</translation>
+        </message>
+        <message>
+            <source>{kind}; other {what}</source>
+            <translation>{kind}; andere(r) {what}</translation>
+        </message>
+    </context>
+    <context>
+        <name>EventsPanel</name>
+        <message>
+            <source>{device} joined the bus</source>
+            <translation>{device} ist dem Bus beigetreten</translation>
+        </message>
+        <message>
+            <source>{device} left the bus</source>
+            <translation>{device} hat den Bus verlassen</translation>
+        </message>
+        <message>
+            <source>Left unconnected: {names}</source>
+            <translation>Nicht verbunden gelassen: {names}</translation>
+        </message>
+        <message>
+            <source>Bus problem</source>
+            <translation>Busproblem</translation>
+        </message>
+        <message>
+            <source>Listening for another arbitrator before taking part</source>
+            <translation>Hört vor der Teilnahme auf einen anderen Arbitrator</translation>
+        </message>
+        <message>
+            <source>PDCP Studio runs this bus</source>
+            <translation>PDCP Studio führt diesen Bus</translation>
+        </message>
+        <message>
+            <source>Another arbitrator runs this bus: PDCP Studio sends nothing</source>
+            <translation>Ein anderer Arbitrator führt diesen Bus: PDCP Studio sendet nichts</translation>
+        </message>
+        <message>
+            <source>The adapter is gone: reconnecting</source>
+            <translation>Der Adapter ist weg: verbinde neu</translation>
+        </message>
+        <message>
+            <source>The adapter is back: reading the bus again</source>
+            <translation>Der Adapter ist zurück: lese den Bus neu</translation>
+        </message>
+        <message>
+            <source>Linked {link}</source>
+            <translation>Verbunden: {link}</translation>
+        </message>
+        <message>
+            <source>Removed the link {link}</source>
+            <translation>Verbindung entfernt: {link}</translation>
+        </message>
+        <message>
+            <source> ({channel} is missing)</source>
+            <translation> ({channel} fehlt)</translation>
+        </message>
+        <message>
+            <source>Time</source>
+            <translation>Zeit</translation>
+        </message>
+        <message>
+            <source>What happened</source>
+            <translation>Was geschah</translation>
+        </message>
+        <message>
+            <source>Why</source>
+            <translation>Warum</translation>
+        </message>
+        <message>
+            <source>How similar</source>
+            <translation>Wie ähnlich</translation>
+        </message>
+        <message>
+            <source>Clear</source>
+            <translation>Leeren</translation>
+        </message>
+        <message>
+            <source>{n} event(s)</source>
+            <translation>{n} Ereignis(se)</translation>
+        </message>
+        <message>
+            <source>No bus events yet: parts that come and go and the links the bus makes appear here</source>
+            <translation>Noch keine Busereignisse: Teile, die kommen und gehen, und die Verbindungen des Busses erscheinen hier</translation>
         </message>
     </context>
 </TS>

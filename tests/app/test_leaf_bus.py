@@ -198,7 +198,7 @@ def test_sim_panel_lists_devices_and_follows_a_hot_swap(qtbot, make_bridge):
     with qtbot.waitSignal(bridge.deviceJoined, timeout=5000):
         panel.plug_button.click()
     qtbot.waitUntil(lambda: panel.state(HAND) == (True, True), timeout=5000)
-    assert any("Hand (2641/769/301) joined the bus" in line for line in panel.log_lines())
+    assert any("Hand joined the bus" in line for line in panel.log_lines())
 
 
 def test_sim_panel_replaces_a_device_by_an_unplugged_one(qtbot, make_bridge):
