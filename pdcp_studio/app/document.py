@@ -196,10 +196,10 @@ class Document(QObject):
         self._selection = None
         if positions is not None:
             self.positions = dict(positions)
-            if not positions and self.is_live_view:  # as this prosthesis was last laid out
+            if self.is_live_view:  # as this prosthesis was last laid out, where remembered
                 from pdcp_studio.app import live_layout
 
-                self.positions = live_layout.load(self.live_url)
+                self.positions.update(live_layout.load(self.live_url))
         self.undo_stack.clear()
         self.undo_stack.setClean()
         self._extra_dirty = dirty
