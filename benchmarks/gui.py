@@ -281,7 +281,7 @@ def trace_at_full_load() -> dict[str, float]:
     gaps = gaps[1:]
     result = {"frames": delivered["frames"], "rate": delivered["frames"] / wall,
               "max_gap_ms": max(gaps), "p99_gap_ms": sorted(gaps)[int(len(gaps) * 0.99) - 1],
-              "ring": len(dock.all_rows), "capacity": dock.capacity,
+              "ring": len(dock.live_store), "capacity": dock.capacity,
               "plot_points": len(plot.points)}
     dock.close()
     plot.close()

@@ -2907,4 +2907,145 @@ Die Prothese ist wie zuvor.</translation>
         <translation>Gerätename oder VID/PID/Seriennummer</translation>
     </message>
 </context>
+<context>
+    <name>MonitorDock</name>
+    <message>
+        <source>Add marker</source>
+        <translation>Markierung setzen</translation>
+    </message>
+    <message>
+        <source>Any node</source>
+        <translation>Jeder Knoten</translation>
+    </message>
+    <message>
+        <source>Broadcast</source>
+        <translation>Rundruf</translation>
+    </message>
+    <message>
+        <source>Filter text, ID or data…</source>
+        <translation>Text, ID oder Daten filtern…</translation>
+    </message>
+    <message>
+        <source>Find text or ID…</source>
+        <translation>Text oder ID suchen…</translation>
+    </message>
+    <message>
+        <source>Find the next frame</source>
+        <translation>Nächsten Frame suchen</translation>
+    </message>
+    <message>
+        <source>Find the previous frame</source>
+        <translation>Vorherigen Frame suchen</translation>
+    </message>
+    <message>
+        <source>Freeze the table; frames are still recorded and counted</source>
+        <translation>Tabelle anhalten; Frames werden weiter aufgezeichnet und gezählt</translation>
+    </message>
+    <message>
+        <source>Go to a marker (times since a marker count from it)</source>
+        <translation>Zu einer Markierung springen (Zeiten seit Markierung zählen ab ihr)</translation>
+    </message>
+    <message>
+        <source>How the Time column counts</source>
+        <translation>Wie die Zeitspalte zählt</translation>
+    </message>
+    <message>
+        <source>Mark the selected frame, or the newest one</source>
+        <translation>Den gewählten oder den neuesten Frame markieren</translation>
+    </message>
+    <message>
+        <source>No markers</source>
+        <translation>Keine Markierungen</translation>
+    </message>
+    <message>
+        <source>Per identifier: frames counted, mean period, last period, last data and what it means. Double-click to show only that identifier.</source>
+        <translation>Je Kennung: gezählte Frames, mittlere Periode, letzte Periode, letzte Daten und ihre Bedeutung. Doppelklick zeigt nur diese Kennung.</translation>
+    </message>
+    <message>
+        <source>Show the frames of one node only</source>
+        <translation>Nur die Frames eines Knotens zeigen</translation>
+    </message>
+    <message>
+        <source>{device} output {index}</source>
+        <translation>{device} Ausgang {index}</translation>
+    </message>
+    <message>
+        <source>{name} (node {node})</source>
+        <translation>{name} (Knoten {node})</translation>
+    </message>
+    <message>
+        <source>Node {node}</source>
+        <translation>Knoten {node}</translation>
+    </message>
+    <message>
+        <source>Marker {n}</source>
+        <translation>Markierung {n}</translation>
+    </message>
+    <message>
+        <source>Filtering…</source>
+        <translation>Filtern…</translation>
+    </message>
+    <message>
+        <source>%1 frames</source>
+        <translation>%1 Frames</translation>
+    </message>
+</context>
+<context>
+    <name>TraceModel</name>
+    <message>
+        <source>Time since start</source>
+        <translation>Zeit seit Beginn</translation>
+    </message>
+    <message>
+        <source>Clock time</source>
+        <translation>Uhrzeit</translation>
+    </message>
+    <message>
+        <source>Time since previous row</source>
+        <translation>Zeit seit voriger Zeile</translation>
+    </message>
+    <message>
+        <source>Time since marker</source>
+        <translation>Zeit seit Markierung</translation>
+    </message>
+    <message>
+        <source>Δ previous</source>
+        <translation>Δ vorige</translation>
+    </message>
+    <message>
+        <source>Δ marker</source>
+        <translation>Δ Markierung</translation>
+    </message>
+</context>
+<context>
+    <name>StatsModel</name>
+    <message>
+        <source>ID</source>
+        <translation>ID</translation>
+    </message>
+    <message>
+        <source>Node</source>
+        <translation>Knoten</translation>
+    </message>
+    <message>
+        <source>Count</source>
+        <translation>Anzahl</translation>
+    </message>
+    <message>
+        <source>Period (ms)</source>
+        <translation>Periode (ms)</translation>
+    </message>
+    <message>
+        <source>Last period (ms)</source>
+        <translation>Letzte Periode (ms)</translation>
+    </message>
+    <message>
+        <source>Last data</source>
+        <translation>Letzte Daten</translation>
+    </message>
+    <message>
+        <source>Meaning</source>
+        <translation>Bedeutung</translation>
+    </message>
+</context>
 </TS>

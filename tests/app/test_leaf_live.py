@@ -93,7 +93,7 @@ def test_monitor_shows_decoded_bus_frames_filters_pauses_and_saves(qtbot, live, 
     qtbot.waitUntil(lambda: len(dock.all_rows) >= 50, timeout=5000)
     functions = {r.function for r in dock.all_rows}
     assert CHANNEL_DATA in functions and "Device Beacon" in functions
-    data = next(i for i, r in enumerate(dock.model.rows) if r.function == CHANNEL_DATA)
+    data = next(i for i, r in enumerate(dock.shown_rows()) if r.function == CHANNEL_DATA)
     cells = [dock.model.data(dock.model.index(data, c)) for c in range(6)]
     assert cells[2].endswith(" data") and cells[3] == CHANNEL_DATA
     assert "→" in cells[5] and "2641/" in cells[5]  # decoded: which output feeds which input
@@ -154,6 +154,7 @@ def test_monitor_text_filter_and_row_classification(qtbot):
     assert make_row(from_ba).who == "BA→#7"
     assert make_row(to_ba).who == "#7→BA"
     dock.add_frames([data, to_ba, from_ba])
+    dock.flush()  # frames are taken on the dock's next tick; now, for the test
     with qtbot.waitSignal(dock.countChanged, timeout=2000) as counted:
         dock.text_filter.setText("ba→#7")  # debounced; case-insensitive
     assert counted.args == [1, 3]
