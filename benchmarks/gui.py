@@ -184,6 +184,8 @@ def heartbeat_during_scans() -> dict[str, float]:
 TRACE_SECONDS = 6.0
 TRACE_RATE = 8000
 TRACE_BATCH_MS = 50
+TRACE_RING = 100_000  # the dock's default ring of live frames
+TRACE_SIGNALS = 3  # signals in the live plot
 
 
 def trace_at_full_load() -> dict[str, float]:
@@ -204,10 +206,13 @@ def trace_at_full_load() -> dict[str, float]:
     from trace import node_map, traffic
 
     _devices, outputs = node_map()
-    refs = {chan: ChannelRef(0x0A0, 0x10, 1000, 1) for chan, *_ in outputs}
-    dock = MonitorDock(capacity=20_000)
+    refs = {chan: ChannelRef(0x0A0 + dev - 10, 0x10, 1000 + dev - 10, index)
+            for chan, dev, index, *_ in outputs}
+    dock = MonitorDock(capacity=TRACE_RING)
     plot = LivePlot()
     plot.set_channel(refs[outputs[0][0]])
+    for chan, *_ in outputs[1:TRACE_SIGNALS]:
+        plot.add_channel(refs[chan])
     dock.resize(900, 500)
     plot.resize(600, 300)
     dock.show()
@@ -279,12 +284,19 @@ def trace_at_full_load() -> dict[str, float]:
     heart.stop()
     feed.stop()
     gaps = gaps[1:]
+    import resource
+
     result = {"frames": delivered["frames"], "rate": delivered["frames"] / wall,
+              "rss_mb": resource.getrusage(resource.RUSAGE_SELF).ru_maxrss / 1024,
               "max_gap_ms": max(gaps), "p99_gap_ms": sorted(gaps)[int(len(gaps) * 0.99) - 1],
               "ring": len(dock.live_store), "capacity": dock.capacity,
-              "plot_points": len(plot.points)}
+              "plot_points": sum(len(x.ts) for x in plot.series),
+              "signals": len(plot.series)}
     dock.close()
     plot.close()
+    dock.deleteLater()  # its timers stop with it: the next round measures its own dock
+    plot.deleteLater()
+    app.processEvents()
     return result
 
 
@@ -295,7 +307,8 @@ def print_trace() -> None:
               f"({r['rate']:,.0f} frames/s; bus bound 7,400–10,500) into the monitor dock and "
               f"live plot — longest gap between {HEARTBEAT_MS} ms heartbeats "
               f"{r['max_gap_ms']:.1f} ms, p99 {r['p99_gap_ms']:.1f} ms (target: never > 50 ms);"
-              f" ring {r['ring']:,} of {r['capacity']:,} rows, plot {r['plot_points']:,} points")
+              f" ring {r['ring']:,} of {r['capacity']:,} rows, plot {r['signals']} signals with "
+              f"{r['plot_points']:,} values; peak RSS {r['rss_mb']:.0f} MB")
 
 
 def main() -> None:

@@ -60,6 +60,7 @@ from pdcp_studio.app.trace_model import (
     TIME_MODES,
     StatsModel,
     TraceModel,
+    TraceView,
     decoded_fields,
 )
 from pdcp_studio.app.trace_store import (
@@ -206,7 +207,7 @@ class MonitorDock(QDockWidget):
     # -- widgets -------------------------------------------------------------------------
     def _build_widgets(self) -> None:
         fixed = QFontDatabase.systemFont(QFontDatabase.SystemFont.FixedFont)
-        self.view = QTableView()
+        self.view = TraceView()
         self.view.setModel(self.model)
         self.view.setFont(fixed)
         self.view.verticalHeader().setVisible(False)
@@ -394,6 +395,9 @@ class MonitorDock(QDockWidget):
         self.live_store.append(chunk)
 
     def _tick(self) -> None:
+        if not self._incoming and self.model.end == self.store.end and \
+                self._load_worker is None:
+            return  # nothing came: nothing to do
         self._ingest()
         if not self.paused and self._filter_worker is None:
             added = self.model.sync()
@@ -816,6 +820,9 @@ class MonitorDock(QDockWidget):
         self.loaded.emit(self._load_path)
 
     def _capture_done(self) -> None:
+        if self.sender() is not self._load_worker:
+            return  # an earlier capture's reader, replaced by a newer one
+        self._load_worker = None
         self.stop_load_button.setVisible(False)
         self.load_bar.setVisible(False)
         self.flush()

@@ -4,7 +4,7 @@ SessionBridge), plus the monitor's table mechanics."""
 from __future__ import annotations
 
 import pytest
-from PySide6.QtGui import QImage
+from PySide6.QtGui import QColor, QImage
 
 from pdcp_studio.app.live_plot import LivePlot, as_number
 from pdcp_studio.app.monitor_dock import CHANNEL_DATA, MonitorDock, make_row
@@ -45,13 +45,13 @@ def test_live_plot_shows_the_values_of_the_selected_link(qtbot, live):
     assert [p[1] for p in plot.points] == seen[-len(plot.points):]  # only this link's values
     qtbot.waitUntil(lambda: plot.paint_count > 0, timeout=2000)
     image: QImage = plot.grab().toImage()
-    highlight = plot.palette().highlight().color()
+    highlight = QColor(plot.series[0].color)
     traced = sum(1 for x in range(0, image.width(), 2) for y in range(0, image.height(), 2)
                  if image.pixelColor(x, y) == highlight)
-    assert traced > 10  # the polyline is drawn in the highlight colour
-    plot.set_window(0.2)
-    ts = [t for t, _ in plot.points]
-    assert ts[-1] - ts[0] <= 0.2
+    assert traced > 10  # the polyline is drawn in the signal's colour
+    plot.set_window(0.2)  # the axis shows 0.2 s; values are kept for the longest window
+    assert plot.window_s == 0.2 and plot.window_box.currentIndex() >= 0
+    assert len(plot.points) >= 10
     plot.set_link(None)
     assert plot.ref is None and not plot.points
     plot.add_values([])  # nothing selected: ignored
