@@ -3048,4 +3048,91 @@ Die Prothese ist wie zuvor.</translation>
         <translation>Bedeutung</translation>
     </message>
 </context>
+<context>
+    <name>LivePlot</name>
+    <message>
+        <source>value</source>
+        <translation>Wert</translation>
+    </message>
+    <message>
+        <source>position</source>
+        <translation>Position</translation>
+    </message>
+    <message>
+        <source>velocity</source>
+        <translation>Geschwindigkeit</translation>
+    </message>
+    <message>
+        <source>acceleration</source>
+        <translation>Beschleunigung</translation>
+    </message>
+    <message>
+        <source>on/off</source>
+        <translation>ein/aus</translation>
+    </message>
+    <message>
+        <source>on</source>
+        <translation>ein</translation>
+    </message>
+    <message>
+        <source>off</source>
+        <translation>aus</translation>
+    </message>
+    <message>
+        <source>Choose signals to plot: select a link or channel on the bus, or use Signals.</source>
+        <translation>Signale zum Anzeigen wählen: eine Verbindung oder einen Kanal am Bus auswählen oder „Signale“ benutzen.</translation>
+    </message>
+    <message>
+        <source>time before now (s)</source>
+        <translation>Zeit vor jetzt (s)</translation>
+    </message>
+    <message>
+        <source>time before the hold (s)</source>
+        <translation>Zeit vor dem Anhalten (s)</translation>
+    </message>
+    <message>
+        <source>Signals</source>
+        <translation>Signale</translation>
+    </message>
+    <message>
+        <source>Choose the output channels to plot</source>
+        <translation>Die anzuzeigenden Ausgangskanäle wählen</translation>
+    </message>
+    <message>
+        <source>Last {n} s</source>
+        <translation>Letzte {n} s</translation>
+    </message>
+    <message>
+        <source>How much time the plot shows</source>
+        <translation>Wie viel Zeit die Kurve zeigt</translation>
+    </message>
+    <message>
+        <source>Hold</source>
+        <translation>Anhalten</translation>
+    </message>
+    <message>
+        <source>Freeze the plot to read it; values keep being recorded</source>
+        <translation>Kurve zum Ablesen anhalten; Werte werden weiter aufgezeichnet</translation>
+    </message>
+    <message>
+        <source>Clear cursors</source>
+        <translation>Cursor entfernen</translation>
+    </message>
+    <message>
+        <source>Click the plot to set cursor A, right-click for cursor B; drag to move them</source>
+        <translation>In die Kurve klicken setzt Cursor A, Rechtsklick Cursor B; ziehen verschiebt sie</translation>
+    </message>
+    <message>
+        <source>Clear</source>
+        <translation>Leeren</translation>
+    </message>
+    <message>
+        <source>{device} output {index}</source>
+        <translation>{device} Ausgang {index}</translation>
+    </message>
+    <message>
+        <source>No output channels known yet</source>
+        <translation>Noch keine Ausgangskanäle bekannt</translation>
+    </message>
+</context>
 </TS>
