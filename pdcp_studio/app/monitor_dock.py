@@ -770,6 +770,18 @@ class MonitorDock(QDockWidget):
         self.load_bar.setVisible(True)
         return worker.start()
 
+    def show_frames(self, store: FrameStore, stats: IdStats | None = None,
+                    title: str = "") -> None:
+        """Show frames already in a store (a capture read elsewhere) apart from the live
+        ones, as ``load_capture`` does; ``show_live()`` returns."""
+        self.cancel_load()
+        if stats is None:
+            stats = IdStats(store.tables)
+            for chunk in store.chunks:
+                stats.update(chunk)
+        self._enter_capture(title or self.tr("frames"), store, stats)
+        self.capture_total = len(store)
+
     def cancel_load(self) -> None:
         """Stop reading an opened capture (what was read stays shown)."""
         if self._load_worker is not None and self._load_worker.is_running:

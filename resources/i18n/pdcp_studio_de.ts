@@ -3135,4 +3135,11 @@ Die Prothese ist wie zuvor.</translation>
         <translation>Noch keine Ausgangskanäle bekannt</translation>
     </message>
 </context>
+<context>
+    <name>MonitorDock</name>
+    <message>
+        <source>frames</source>
+        <translation>Frames</translation>
+    </message>
+</context>
 </TS>
