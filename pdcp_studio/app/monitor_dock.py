@@ -45,7 +45,6 @@ from PySide6.QtWidgets import (
     QLabel,
     QLineEdit,
     QProgressBar,
-    QPushButton,
     QSplitter,
     QTableView,
     QToolButton,
@@ -141,6 +140,14 @@ def _decoded(text: str) -> str:
     return text if head is text else decoded_fields(head)
 
 
+def _tool_button(text: str) -> QToolButton:
+    """A compact text button (the dock's rows stay narrow)."""
+    button = QToolButton()
+    button.setText(text)
+    button.setToolButtonStyle(Qt.ToolButtonStyle.ToolButtonTextOnly)
+    return button
+
+
 class Marker(NamedTuple):
     index: int  # absolute frame index
     time: float
@@ -187,6 +194,7 @@ class MonitorDock(QDockWidget):
 
         self.model = TraceModel(self)
         self.stats_model = StatsModel(self)
+        self.stats_model.names = self.model.names  # one map of device names
         self._build_widgets()
         self._tick_timer = QTimer(self)
         self._tick_timer.setInterval(REFRESH_MS)
@@ -218,7 +226,7 @@ class MonitorDock(QDockWidget):
         self.view.setWordWrap(False)
         header = self.view.horizontalHeader()
         header.setStretchLastSection(True)
-        for col, width in enumerate((105, 50, 80, 170, 170)):
+        for col, width in enumerate((92, 52, 70, 150, 170)):
             header.resizeSection(col, width)
         header.setSectionResizeMode(QHeaderView.ResizeMode.Interactive)
 
@@ -230,8 +238,14 @@ class MonitorDock(QDockWidget):
         self.stats_view.setWordWrap(False)
         self.stats_view.setSelectionBehavior(QTableView.SelectionBehavior.SelectRows)
         self.stats_view.horizontalHeader().setStretchLastSection(True)
-        for col, width in enumerate((52, 70, 70, 70, 80, 120)):
-            self.stats_view.horizontalHeader().resizeSection(col, width)
+        metrics = self.stats_view.fontMetrics()
+        for col, sample in enumerate(("0x000", "BA→#00 ", "000,000", "0000.000",
+                                      "0000.000", "00 00 00 00 ")):
+            head = str(self.stats_model.headerData(col, Qt.Orientation.Horizontal))
+            self.stats_view.horizontalHeader().resizeSection(
+                col, max(metrics.horizontalAdvance(sample),
+                         self.stats_view.horizontalHeader().fontMetrics().horizontalAdvance(
+                             head)) + 14)
         self.stats_view.doubleClicked.connect(self._stats_row_chosen)
         self.stats_view.setToolTip(self.tr("Per identifier: frames counted, mean period, "
                                            "last period, last data and what it means. "
@@ -245,12 +259,12 @@ class MonitorDock(QDockWidget):
         self.function_filter.addItems([CHANNEL_DATA, *sorted({c.title for c in FunctionCode})])
         self.function_filter.setSizeAdjustPolicy(
             QComboBox.SizeAdjustPolicy.AdjustToMinimumContentsLengthWithIcon)
-        self.function_filter.setMinimumContentsLength(14)
+        self.function_filter.setMinimumContentsLength(12)
         self.node_filter = QComboBox()
         self.node_filter.setToolTip(self.tr("Show the frames of one node only"))
         self.node_filter.setSizeAdjustPolicy(
             QComboBox.SizeAdjustPolicy.AdjustToMinimumContentsLengthWithIcon)
-        self.node_filter.setMinimumContentsLength(16)
+        self.node_filter.setMinimumContentsLength(12)
         self._fill_node_filter()
         self.find_edit = QLineEdit()
         self.find_edit.setPlaceholderText(self.tr("Find text or ID…"))
@@ -271,10 +285,13 @@ class MonitorDock(QDockWidget):
         for mode in TIME_MODES:
             self.time_mode.addItem(translate("TraceModel", mode))
         self.time_mode.setToolTip(self.tr("How the Time column counts"))
-        self.marker_button = QPushButton(self.tr("Add marker"))
+        self.time_mode.setSizeAdjustPolicy(
+            QComboBox.SizeAdjustPolicy.AdjustToMinimumContentsLengthWithIcon)
+        self.time_mode.setMinimumContentsLength(12)
+        self.marker_button = _tool_button(self.tr("Add marker"))
         self.marker_button.setToolTip(self.tr("Mark the selected frame, or the newest one"))
         self.marker_box = QComboBox()
-        self.marker_box.setMinimumContentsLength(12)
+        self.marker_box.setMinimumContentsLength(10)
         self.marker_box.setSizeAdjustPolicy(
             QComboBox.SizeAdjustPolicy.AdjustToMinimumContentsLengthWithIcon)
         self.marker_box.setToolTip(self.tr("Go to a marker (times since a marker count "
@@ -287,14 +304,14 @@ class MonitorDock(QDockWidget):
         self.load_bar.setMaximumWidth(160)
         self.load_bar.setTextVisible(True)
         self.load_bar.setVisible(False)
-        self.clear_button = QPushButton(self.tr("Clear"))
-        self.save_button = QPushButton(self.tr("Save…"))
-        self.open_button = QPushButton(self.tr("Open…"))
+        self.clear_button = _tool_button(self.tr("Clear"))
+        self.save_button = _tool_button(self.tr("Save…"))
+        self.open_button = _tool_button(self.tr("Open…"))
         self.open_button.setToolTip(self.tr("Show a capture file (python-can log formats)"))
-        self.live_button = QPushButton(self.tr("Back to live"))
+        self.live_button = _tool_button(self.tr("Back to live"))
         self.live_button.setToolTip(self.tr("Close the capture and show the live frames again"))
         self.live_button.setVisible(False)
-        self.stop_load_button = QPushButton(self.tr("Stop loading"))
+        self.stop_load_button = _tool_button(self.tr("Stop loading"))
         self.stop_load_button.setVisible(False)
 
         self.text_filter.textChanged.connect(lambda _t: self._refilter.start())
@@ -315,28 +332,35 @@ class MonitorDock(QDockWidget):
 
         self.text_filter.setMinimumWidth(90)
         self.find_edit.setMinimumWidth(90)
-        filters, actions = QHBoxLayout(), QHBoxLayout()
-        for w in (self.text_filter, self.function_filter, self.node_filter, self.find_edit,
-                  self.find_prev, self.find_next):
+        # Three short rows: the dock must not make the window wider than a laptop screen.
+        filters, finding, actions = QHBoxLayout(), QHBoxLayout(), QHBoxLayout()
+        for w in (self.text_filter, self.function_filter, self.node_filter):
             filters.addWidget(w)
-        filters.setStretch(0, 2)
-        filters.setStretch(3, 1)
-        for w in (self.pause_box, self.autoscroll_box, self.time_mode, self.marker_button,
-                  self.marker_box, self.count_label, self.load_bar):
+        filters.setStretch(0, 1)
+        for w in (self.find_edit, self.find_prev, self.find_next, self.time_mode,
+                  self.marker_button, self.marker_box):
+            finding.addWidget(w)
+        finding.setStretch(0, 1)
+        for w in (self.pause_box, self.autoscroll_box, self.count_label, self.load_bar):
             actions.addWidget(w)
         actions.addStretch(1)
         for w in (self.stop_load_button, self.live_button, self.clear_button, self.open_button,
                   self.save_button):
             actions.addWidget(w)
-        self.splitter = QSplitter(Qt.Orientation.Horizontal)
+        # Statistics under the frames, both the dock's full width: side by side, a dock
+        # beside the inspector is too narrow to show either's meaning column.
+        self.splitter = QSplitter(Qt.Orientation.Vertical)
         self.splitter.addWidget(self.view)
         self.splitter.addWidget(self.stats_view)
         self.splitter.setStretchFactor(0, 3)
         self.splitter.setStretchFactor(1, 2)
+        self.splitter.setSizes([620, 380])
+        self.splitter.setChildrenCollapsible(True)
         body = QWidget()
         layout = QVBoxLayout(body)
         layout.setContentsMargins(2, 2, 2, 2)
         layout.addLayout(filters)
+        layout.addLayout(finding)
         layout.addLayout(actions)
         layout.addWidget(self.splitter)
         self.setWidget(body)
@@ -440,6 +464,7 @@ class MonitorDock(QDockWidget):
         """Learn node names (devices and output channels) and which nodes send channel data,
         so a capture opened later names its links."""
         for device in system.devices.values():
+            self.model.names[tuple(device.key)] = device.label
             if device.node_id is not None:
                 self._node_names[device.node_id] = device.label
         for ref, ch in system.channels():
@@ -474,6 +499,7 @@ class MonitorDock(QDockWidget):
         self._builder.channel_nodes.clear()
         self._link_map.clear()
         self._node_names.clear()
+        self.model.names.clear()
         self.set_system(system)
 
     # -- node filter ---------------------------------------------------------------------
@@ -768,6 +794,7 @@ class MonitorDock(QDockWidget):
         self.stop_load_button.setVisible(True)
         self.load_bar.setValue(0)
         self.load_bar.setVisible(True)
+        self.count_label.setVisible(False)  # the bar counts meanwhile (and the row stays short)
         return worker.start()
 
     def show_frames(self, store: FrameStore, stats: IdStats | None = None,
@@ -795,6 +822,7 @@ class MonitorDock(QDockWidget):
         self.live_button.setVisible(False)
         self.stop_load_button.setVisible(False)
         self.load_bar.setVisible(False)
+        self.count_label.setVisible(True)
         self.setWindowTitle(self.tr("Bus monitor"))
         self._reset_view()
 
@@ -837,6 +865,7 @@ class MonitorDock(QDockWidget):
         self._load_worker = None
         self.stop_load_button.setVisible(False)
         self.load_bar.setVisible(False)
+        self.count_label.setVisible(True)
         self.flush()
 
     def _load_failed(self, message: str) -> None:

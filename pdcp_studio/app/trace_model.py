@@ -14,6 +14,7 @@ marked rows are tinted and carry their marker's name as a tooltip.
 from __future__ import annotations
 
 import datetime as _dt
+import re
 from typing import Any
 
 import numpy as np
@@ -47,6 +48,23 @@ TIME_MODES = (QT_TRANSLATE_NOOP("TraceModel", "Time since start"),
 _MARKED = QBrush(QColor(255, 200, 60, 110))
 
 
+_REF = re.compile(r"\b(\d+)/(\d+)/(\d+)#(\d+)\b")
+
+
+def with_names(text: str, names: dict[tuple[int, int, int], str]) -> str:
+    """``text`` with channel references (``vid/pid/serial#index``) written with the
+    device's name (``Hand #1``) where it is known; the raw form stays in tooltips."""
+    if not names or "#" not in text:
+        return text
+
+    def name(m: re.Match[str]) -> str:
+        key = (int(m[1]), int(m[2]), int(m[3]))
+        found = names.get(key)
+        return f"{found} #{m[4]}" if found else m[0]
+
+    return _REF.sub(name, text)
+
+
 def decoded_fields(head: str) -> str:
     """The fields of a decoded line without its time (``prio  who function  fields``): the
     table shows node and function in columns of their own. Other text is shown as is."""
@@ -71,6 +89,8 @@ class TraceModel(QAbstractTableModel):
         self.t0: float | None = None
         self.marker_time: float | None = None
         self.markers: dict[int, str] = {}
+        #: Device names by (VID, PID, serial): channel references are shown with them.
+        self.names: dict[tuple[int, int, int], str] = {}
 
     # -- what is shown ---------------------------------------------------------------
     def show(self, store: FrameStore, flt: TraceFilter = _NO_FILTER,
@@ -193,6 +213,12 @@ class TraceModel(QAbstractTableModel):
                 return None
         if role == INDEX_ROLE:
             return self.absolute(index.row())
+        if role == Qt.ItemDataRole.ToolTipRole and index.column() == 5 and self.names:
+            try:
+                frame = self.store.frame(self.absolute(index.row()))
+            except IndexError:
+                return None
+            return decoded_fields(self.store.text(frame))  # the raw references
         if self.markers and role in (Qt.ItemDataRole.BackgroundRole,
                                      Qt.ItemDataRole.ToolTipRole):
             name = self.markers.get(self.absolute(index.row()))
@@ -208,7 +234,7 @@ class TraceModel(QAbstractTableModel):
         return (self.time_text(row, frame.timestamp),
                 f"0x{aid:08X}" if aid > 0x7FF else f"0x{aid:03X}",
                 who(aid, frame.flags), frame.function, frame.data.hex(" ").upper(),
-                decoded_fields(self.store.text(frame)))
+                with_names(decoded_fields(self.store.text(frame)), self.names))
 
     def time_text(self, row: int, t: float) -> str:
         mode = self.time_mode
@@ -240,6 +266,7 @@ class StatsModel(QAbstractTableModel):
     def __init__(self, parent: Any = None) -> None:
         super().__init__(parent)
         self.stats: list[IdStat] = []
+        self.names: dict[tuple[int, int, int], str] = {}
 
     def refresh(self, stats: list[IdStat]) -> None:
         if [s.arbitration_id for s in stats] == [s.arbitration_id for s in self.stats]:
@@ -273,7 +300,7 @@ class StatsModel(QAbstractTableModel):
         if role == Qt.ItemDataRole.TextAlignmentRole and col in (2, 3, 4):
             return int(Qt.AlignmentFlag.AlignRight | Qt.AlignmentFlag.AlignVCenter)
         if role == Qt.ItemDataRole.ToolTipRole and col == 6:
-            return s.text
+            return decoded_fields(s.text)
         if role != Qt.ItemDataRole.DisplayRole:
             return None
         if col == 0:
@@ -289,7 +316,7 @@ class StatsModel(QAbstractTableModel):
             return "" if s.last_period_s is None else f"{s.last_period_s * 1000:.3f}"
         if col == 5:
             return s.last_data.hex(" ").upper()
-        fields = decoded_fields(s.text)
+        fields = with_names(decoded_fields(s.text), self.names)
         if s.function == "Channel data" or not fields or fields == s.text:
             return fields or s.function
         return f"{s.function}: {fields}"

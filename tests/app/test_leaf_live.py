@@ -96,7 +96,10 @@ def test_monitor_shows_decoded_bus_frames_filters_pauses_and_saves(qtbot, live, 
     data = next(i for i, r in enumerate(dock.shown_rows()) if r.function == CHANNEL_DATA)
     cells = [dock.model.data(dock.model.index(data, c)) for c in range(6)]
     assert cells[2].endswith(" data") and cells[3] == CHANNEL_DATA
-    assert "→" in cells[5] and "2641/" in cells[5]  # decoded: which output feeds which input
+    # decoded: which output feeds which input, by device name (the raw reference in the tip)
+    assert "→" in cells[5] and "2641/" not in cells[5] and " #" in cells[5]
+    tip = dock.model.data(dock.model.index(data, 5), 3)
+    assert "2641/" in tip
 
     dock.set_filter(function="Device Beacon")
     assert dock.shown_rows() and all(r.function == "Device Beacon" for r in dock.shown_rows())
