@@ -6,7 +6,7 @@ Public API
     ``set_system(system)`` (node names for the node filter; output channels' node IDs so
     data frames are named as such). Methods: ``set_paused(bool)``,
     ``set_filter(text="", function="", node=None)`` (node None: any; 0: broadcast),
-    ``find(text, forward=True) -> Worker`` (``found(row)`` follows), ``add_marker(name="")``,
+    ``find_frame(text, forward=True) -> Worker`` (``found(row)`` follows), ``add_marker(name="")``,
     ``jump_to_marker(i)``, ``set_time_mode(mode)``, ``clear()``, ``flush()``,
     ``save(path) -> Worker``, ``load_capture(path) -> Worker``, ``cancel_load()``,
     ``show_live()``, ``shown_rows()``, ``reset_for_session(system, keep_frames=False)``.
@@ -230,7 +230,7 @@ class MonitorDock(QDockWidget):
             header.resizeSection(col, width)
         header.setSectionResizeMode(QHeaderView.ResizeMode.Interactive)
 
-        self.stats_view = QTableView()
+        self.stats_view = TraceView()
         self.stats_view.setModel(self.stats_model)
         self.stats_view.setFont(fixed)
         self.stats_view.verticalHeader().setVisible(False)
@@ -317,9 +317,10 @@ class MonitorDock(QDockWidget):
         self.text_filter.textChanged.connect(lambda _t: self._refilter.start())
         self.function_filter.currentIndexChanged.connect(self._filter_changed)
         self.node_filter.currentIndexChanged.connect(self._filter_changed)
-        self.find_edit.returnPressed.connect(lambda: self.find(self.find_edit.text()))
-        self.find_next.clicked.connect(lambda: self.find(self.find_edit.text()))
-        self.find_prev.clicked.connect(lambda: self.find(self.find_edit.text(), forward=False))
+        self.find_edit.returnPressed.connect(lambda: self.find_frame(self.find_edit.text()))
+        self.find_next.clicked.connect(lambda: self.find_frame(self.find_edit.text()))
+        self.find_prev.clicked.connect(
+            lambda: self.find_frame(self.find_edit.text(), forward=False))
         self.pause_box.toggled.connect(self.set_paused)
         self.time_mode.currentIndexChanged.connect(self.set_time_mode)
         self.marker_button.clicked.connect(lambda: self.add_marker())
@@ -425,8 +426,8 @@ class MonitorDock(QDockWidget):
         self._ingest()
         if not self.paused and self._filter_worker is None:
             added = self.model.sync()
-            if added and self.autoscroll_box.isChecked():
-                self.view.scrollToBottom()
+            if added and self.autoscroll_box.isChecked() and self.capture_store is None:
+                self.view.scrollToBottom()  # live frames; a capture stays at its start
         self._count()
 
     def _refresh_stats(self) -> None:
@@ -590,7 +591,11 @@ class MonitorDock(QDockWidget):
 
         worker.finished.connect(finished)
         worker.cancelled.connect(dropped)
-        worker.failed.connect(lambda message: (dropped(), self.error.emit(message)))
+        def failed(message: str) -> None:
+            dropped()
+            self.error.emit(message)
+
+        worker.failed.connect(failed)
         worker.start()
 
     def _after_filter(self) -> None:
@@ -601,7 +606,7 @@ class MonitorDock(QDockWidget):
         self._count()
         self.filtered.emit()
 
-    def find(self, text: str, forward: bool = True) -> Worker | None:
+    def find_frame(self, text: str, forward: bool = True) -> Worker | None:
         """Go to the next (or previous) frame after the selected row whose text, function,
         ID (``0x…``) or data contains ``text``; the search runs on a worker over all the
         frames of the store, and ``found(row)`` follows (-1: none in the table)."""

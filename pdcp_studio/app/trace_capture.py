@@ -15,6 +15,7 @@ from __future__ import annotations
 
 import os
 import threading
+import time
 from collections.abc import Callable
 from pathlib import Path
 from typing import Any
@@ -30,7 +31,7 @@ from pdcp_studio.app.trace_store import (
 )
 
 Progress = Callable[[int, int, str], None]
-_CANCEL_EVERY = 2048
+_YIELD_EVERY = 256
 
 
 def _position_probe(path: str | Path) -> Callable[[], int]:
@@ -95,8 +96,11 @@ def load_capture(store: FrameStore, stats: IdStats, path: str | Path, links: dic
         add(frame.timestamp, frame.arbitration_id, frame.data,
             frame.head or line_head(frame.line), frame.direction == CHANNEL_DATA or None)
         count += 1
-        if count % _CANCEL_EVERY == 0 and cancel.is_set():
-            break
+        if count % _YIELD_EVERY == 0:
+            # Hand the interpreter to the window now and then: it waits for it to paint.
+            time.sleep(0)
+            if cancel.is_set():
+                break
         if len(builder) >= size:
             flush()
             size = CHUNK_ROWS

@@ -21,6 +21,7 @@ import numpy as np
 from PySide6.QtCore import (
     QT_TRANSLATE_NOOP,
     QAbstractTableModel,
+    QLineF,
     QModelIndex,
     QPersistentModelIndex,
     Qt,
@@ -200,7 +201,7 @@ class TraceModel(QAbstractTableModel):
         if section == 0 and self.time_mode != TIME_START:
             return translate("TraceModel", ("", "Clock time", "Δ previous", "Δ marker")
                              [self.time_mode])
-        return translate("MonitorDock", COLUMNS[section])
+        return translate("MonitorDock", str(COLUMNS[section]))
 
     def data(self, index: QModelIndex | QPersistentModelIndex,
              role: int = Qt.ItemDataRole.DisplayRole) -> Any:
@@ -226,6 +227,12 @@ class TraceModel(QAbstractTableModel):
                 return None
             return _MARKED if role == Qt.ItemDataRole.BackgroundRole else name
         return None
+
+    def row_brush(self, row: int) -> QBrush | None:
+        """The tint of a marked row (None: none)."""
+        if not self.markers:
+            return None
+        return _MARKED if self.absolute(row) in self.markers else None
 
     def row_texts(self, row: int) -> tuple[str, ...]:
         """The six cells of table row ``row`` (IndexError if the store no longer has it)."""
@@ -279,8 +286,17 @@ class StatsModel(QAbstractTableModel):
         self.stats = stats
         self.endResetModel()
 
+    RIGHT_ALIGNED = (2, 3, 4)
+
     def rowCount(self, parent: QModelIndex | QPersistentModelIndex = _ROOT) -> int:
         return 0 if parent.isValid() else len(self.stats)
+
+    def row_brush(self, _row: int) -> None:
+        return None
+
+    def row_texts(self, row: int) -> tuple[str, ...]:
+        """The cells of row ``row`` as shown."""
+        return tuple(self.cell(self.stats[row], c) for c in range(len(STATS_COLUMNS)))
 
     def columnCount(self, parent: QModelIndex | QPersistentModelIndex = _ROOT) -> int:
         return 0 if parent.isValid() else len(STATS_COLUMNS)
@@ -288,7 +304,7 @@ class StatsModel(QAbstractTableModel):
     def headerData(self, section: int, orientation: Qt.Orientation,
                    role: int = Qt.ItemDataRole.DisplayRole) -> Any:
         if role == Qt.ItemDataRole.DisplayRole and orientation == Qt.Orientation.Horizontal:
-            return translate("StatsModel", STATS_COLUMNS[section])
+            return translate("StatsModel", str(STATS_COLUMNS[section]))
         return None
 
     def data(self, index: QModelIndex | QPersistentModelIndex,
@@ -303,6 +319,9 @@ class StatsModel(QAbstractTableModel):
             return decoded_fields(s.text)
         if role != Qt.ItemDataRole.DisplayRole:
             return None
+        return self.cell(s, col)
+
+    def cell(self, s: IdStat, col: int) -> str:
         if col == 0:
             return (f"0x{s.arbitration_id:08X}" if s.arbitration_id > 0x7FF
                     else f"0x{s.arbitration_id:03X}")
@@ -323,54 +342,58 @@ class StatsModel(QAbstractTableModel):
 
 
 class TraceView(QTableView):
-    """The frame table, painted in one pass per repaint.
+    """A table of a ``TraceModel`` or ``StatsModel``, painted in one pass per repaint.
 
-    Qt's item delegates ask the model for seven roles of every visible cell — a thousand
-    calls into Python per repaint, each waiting for the interpreter lock while the
-    session's thread decodes a saturated bus (12 ms a repaint idle, 20–60 ms busy). This
-    view draws the visible rows itself from the store in one call (selection, marker tint,
-    grid and text), so a repaint costs a few ms whatever the bus does. Everything else
-    (selection, scrolling, keyboard, headers) is QTableView's own.
+    Qt's item delegates ask the model for seven roles of every visible cell, and every call
+    between Python and Qt waits for the interpreter lock, which a thread decoding a busy bus
+    (the session's, or a capture being read) hands over only every switch interval: a
+    thousand calls made one repaint take 100-400 ms. This view asks the model for each
+    visible row's cells once (``row_texts``), lays them out in the fixed-width font by
+    characters, and draws each row with a single call (plus one for the grid), so a repaint
+    makes a few dozen calls whatever the bus does. Selection, scrolling, keyboard and
+    headers are QTableView's own.
     """
 
     def paintEvent(self, event: Any) -> None:
         model = self.model()
-        if not isinstance(model, TraceModel):
+        if not hasattr(model, "row_texts"):
             super().paintEvent(event)
             return
-        vp = self.viewport()
-        painter = QPainter(vp)
+        painter = QPainter(self.viewport())
         try:
             self._paint_rows(painter, model, event.rect())
         finally:
             painter.end()
 
-    def _paint_rows(self, p: QPainter, model: TraceModel, clip: Any) -> None:
+    def _paint_rows(self, p: QPainter, model: Any, clip: Any) -> None:
         pal = self.palette()
         p.fillRect(clip, pal.base())
         count = model.rowCount()
         if not count:
             return
-        first = self.rowAt(clip.top())
+        first = max(0, self.rowAt(clip.top()))
         last = self.rowAt(clip.bottom())
-        first = 0 if first < 0 else first
         last = count - 1 if last < 0 else last
         header = self.horizontalHeader()
-        cols = [(c, self.columnViewportPosition(c), self.columnWidth(c))
-                for c in range(model.columnCount()) if not header.isSectionHidden(c)]
-        width = self.viewport().width()
-        current = self.currentIndex().row() if self.selectionModel() and \
-            self.selectionModel().hasSelection() else -1
-        text_color, selected_text = pal.text().color(), pal.highlightedText().color()
-        grid = QColor(pal.mid().color())
-        grid.setAlpha(90)
         metrics = self.fontMetrics()
         char_w = max(1, metrics.horizontalAdvance("0"))  # a fixed-width font
-        ascent = metrics.ascent()
-        # Cells are cut to their column by characters (fixed width) and drawn at a point:
-        # drawing into a rectangle (alignment, clipping) costs 2-4× more per cell.
-        fits = [(c, x + 3, max(0, (w - 6) // char_w)) for c, x, w in cols]
-        draw = p.drawText
+        x0 = self.columnViewportPosition(header.logicalIndex(0)) + 3
+        right = getattr(model, "RIGHT_ALIGNED", ())
+        # (column, first character, characters that fit, right-aligned), in visual order
+        cols = []
+        for visual in range(header.count()):
+            c = header.logicalIndex(visual)
+            if header.isSectionHidden(c):
+                continue
+            start = round((self.columnViewportPosition(c) + 3 - x0) / char_w)
+            cols.append((c, start, max(0, (self.columnWidth(c) - 6) // char_w), c in right))
+        width = self.viewport().width()
+        selection = self.selectionModel()
+        current = self.currentIndex().row() if selection and selection.hasSelection() else -1
+        text_pen, selected_pen = pal.text().color(), pal.highlightedText().color()
+        ascent, descent = metrics.ascent(), metrics.descent()
+        p.setPen(text_pen)
+        grid = []
         for row in range(first, last + 1):
             y = self.rowViewportPosition(row)
             h = self.rowHeight(row)
@@ -378,20 +401,25 @@ class TraceView(QTableView):
                 cells = model.row_texts(row)
             except IndexError:
                 continue
-            index = model.absolute(row)
-            if row == current:
-                p.fillRect(0, y, width, h, pal.highlight())
-                p.setPen(selected_text)
-            else:
-                if index in model.markers:
-                    p.fillRect(0, y, width, h, _MARKED)
-                p.setPen(text_color)
-            base = y + (h + ascent - metrics.descent()) // 2
-            for c, x, n in fits:
+            line = ""
+            for c, start, n, align_right in cols:
                 text = cells[c]
                 if len(text) > n:
                     text = text[:max(0, n - 1)] + "…" if n else ""
-                if text:
-                    draw(x, base, text)
-            p.setPen(grid)
-            p.drawLine(0, y + h - 1, width, y + h - 1)
+                elif align_right:
+                    text = text.rjust(n)
+                line = line.ljust(start) + text
+            brush = model.row_brush(row)
+            if row == current:
+                p.fillRect(0, y, width, h, pal.highlight())
+                p.setPen(selected_pen)
+            elif brush is not None:
+                p.fillRect(0, y, width, h, brush)
+            p.drawText(x0, y + (h + ascent - descent) // 2, line)
+            if row == current:
+                p.setPen(text_pen)
+            grid.append(QLineF(0, y + h - 0.5, width, y + h - 0.5))
+        grid_color = QColor(pal.mid().color())
+        grid_color.setAlpha(90)
+        p.setPen(grid_color)
+        p.drawLines(grid)

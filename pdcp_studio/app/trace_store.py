@@ -110,7 +110,7 @@ class Chunk(NamedTuple):
 class Frame(NamedTuple):
     """One stored frame, made on demand for the rows on screen."""
 
-    index: int
+    index: int  # type: ignore[assignment]  # the absolute row; shadows tuple.index on purpose
     timestamp: float
     arbitration_id: int
     data: bytes
@@ -392,7 +392,7 @@ class IdStat(NamedTuple):
     """Per-identifier statistics as the statistics view shows them."""
 
     arbitration_id: int
-    count: int
+    count: int  # type: ignore[assignment]  # frames seen; shadows tuple.count on purpose
     period_s: float | None  # mean period
     last_period_s: float | None
     last_time: float
@@ -422,37 +422,39 @@ class IdStats:
     def update(self, chunk: Chunk | None) -> None:
         if chunk is None or not len(chunk):
             return
-        with self._lock:
-            self._update(chunk)
-
-    def _update(self, chunk: Chunk) -> None:
-        self.frames += len(chunk)
+        # Vectorised per chunk (a stable sort groups each identifier's frames in order);
+        # the lock is held only to merge the few per-ID results.
         aids = chunk.aid
-        ids, first, counts = np.unique(aids, return_index=True, return_counts=True)
-        rev = aids[::-1]
-        _, last_rev = np.unique(rev, return_index=True)
-        last = len(aids) - 1 - last_rev
-        for j, aid in enumerate(ids.tolist()):
-            k, c = int(last[j]), int(counts[j])
-            prev_ts = None
-            if c > 1:  # the one before the last, inside this chunk
-                same = np.flatnonzero(aids[:k] == aid)
-                prev_ts = float(chunk.ts[same[-1]])
-            e = self.entries.get(aid)
-            n = int(chunk.dlc[k])
-            data = chunk.data[k, :min(n, 8)].tobytes()
-            if e is None:
-                if len(self.entries) >= self.limit:
-                    self.others += c
-                    continue
-                self.entries[aid] = [c, float(chunk.ts[first[j]]), float(chunk.ts[k]), prev_ts,
-                                     data, int(chunk.text[k]), int(chunk.func[k]),
-                                     int(chunk.flags[k])]
-            else:
-                e[3] = prev_ts if prev_ts is not None else e[2]
-                e[0] += c
-                e[2] = float(chunk.ts[k])
-                e[4:8] = data, int(chunk.text[k]), int(chunk.func[k]), int(chunk.flags[k])
+        n = len(aids)
+        order = np.argsort(aids, kind="stable")
+        grouped = aids[order]
+        starts = np.concatenate(([0], np.flatnonzero(np.diff(grouped)) + 1))
+        ends = np.concatenate((starts[1:], [n]))
+        counts = (ends - starts).tolist()
+        first = order[starts]
+        last = order[ends - 1]
+        prev = order[np.maximum(ends - 2, starts)]
+        ts = chunk.ts
+        rows = zip(grouped[starts].tolist(), counts, ts[first].tolist(), ts[last].tolist(),
+                   ts[prev].tolist(), last.tolist(), strict=True)
+        dlc, data, text, func, flags = chunk.dlc, chunk.data, chunk.text, chunk.func, chunk.flags
+        with self._lock:
+            self.frames += n
+            entries = self.entries
+            for aid, c, t_first, t_last, t_prev, k in rows:
+                e = entries.get(aid)
+                last_data = data[k, :min(int(dlc[k]), 8)].tobytes()
+                if e is None:
+                    if len(entries) >= self.limit:
+                        self.others += c
+                        continue
+                    entries[aid] = [c, t_first, t_last, t_prev if c > 1 else None, last_data,
+                                    int(text[k]), int(func[k]), int(flags[k])]
+                else:
+                    e[3] = t_prev if c > 1 else e[2]
+                    e[0] += c
+                    e[2] = t_last
+                    e[4:8] = last_data, int(text[k]), int(func[k]), int(flags[k])
 
     def ids(self) -> list[int]:
         """The identifiers seen (safe while a worker updates)."""

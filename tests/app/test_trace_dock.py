@@ -53,18 +53,18 @@ def test_a_million_frames_are_virtual_rows_shown_at_once(million):
 def test_search_finds_a_frame_near_the_end_on_a_worker(qtbot, million):
     dock, _ = million
     with qtbot.waitSignal(dock.found, timeout=10_000) as found:
-        dock.find(f"0x{NEEDLE_ID:03X}")
+        dock.find_frame(f"0x{NEEDLE_ID:03X}")
     assert found.args == [N - 17]
     assert dock.view.currentIndex().row() == N - 17
     with qtbot.waitSignal(dock.found, timeout=10_000) as again:
-        dock.find("de ad be ef")  # the data bytes: the same frame
+        dock.find_frame("de ad be ef")  # the data bytes: the same frame
     assert again.args == [-1]  # nothing after it
     with qtbot.waitSignal(dock.found, timeout=10_000) as back:
-        dock.find("de ad be ef", forward=False)
+        dock.find_frame("de ad be ef", forward=False)
     assert back.args == [-1]  # nothing before it either: it is the only one
     dock.view.setCurrentIndex(dock.model.index(0, 0))
     with qtbot.waitSignal(dock.found, timeout=10_000) as from_top:
-        dock.find("DEADBEEF")
+        dock.find_frame("DEADBEEF")
     assert from_top.args == [N - 17]
 
 
