@@ -45,6 +45,7 @@ from PySide6.QtWidgets import (
     QLabel,
     QLineEdit,
     QProgressBar,
+    QSizePolicy,
     QSplitter,
     QTableView,
     QToolButton,
@@ -62,6 +63,7 @@ from pdcp_studio.app.trace_model import (
     TraceView,
     decoded_fields,
 )
+from pdcp_studio.app.trace_record import LiveRecorder
 from pdcp_studio.app.trace_store import (
     CHANNEL_DATA,
     ChunkBuilder,
@@ -191,6 +193,7 @@ class MonitorDock(QDockWidget):
         self._node_names: dict[int, str] = {}
         self._nodes_listed: set[int] = set()
         self._counted = (-1, -1)
+        self.recorder: LiveRecorder | None = None
 
         self.model = TraceModel(self)
         self.stats_model = StatsModel(self)
@@ -299,11 +302,19 @@ class MonitorDock(QDockWidget):
         self.marker_box.addItem(self.tr("No markers"))
         self.marker_box.setEnabled(False)
         self.count_label = QLabel(self.tr("0 frames"))
+        # Long counts (and "recording to …") must not widen the dock, and so the window.
+        self.count_label.setSizePolicy(QSizePolicy.Policy.Ignored, QSizePolicy.Policy.Preferred)
+        self.count_label.setMinimumWidth(140)
         self.load_bar = QProgressBar()
         self.load_bar.setRange(0, 1000)
         self.load_bar.setMaximumWidth(160)
         self.load_bar.setTextVisible(True)
         self.load_bar.setVisible(False)
+        self.record_button = _tool_button(self.tr("Record…"))
+        self.record_button.setCheckable(True)
+        self.record_button.setToolTip(self.tr("Write every live frame to a capture file (the "
+                                              "table keeps only the newest ones)"))
+        self.record_button.clicked.connect(self._toggle_recording)
         self.clear_button = _tool_button(self.tr("Clear"))
         self.save_button = _tool_button(self.tr("Save…"))
         self.open_button = _tool_button(self.tr("Open…"))
@@ -345,8 +356,8 @@ class MonitorDock(QDockWidget):
         for w in (self.pause_box, self.autoscroll_box, self.count_label, self.load_bar):
             actions.addWidget(w)
         actions.addStretch(1)
-        for w in (self.stop_load_button, self.live_button, self.clear_button, self.open_button,
-                  self.save_button):
+        for w in (self.stop_load_button, self.live_button, self.record_button,
+                  self.clear_button, self.open_button, self.save_button):
             actions.addWidget(w)
         # Statistics under the frames, both the dock's full width: side by side, a dock
         # beside the inspector is too narrow to show either's meaning column.
@@ -408,6 +419,8 @@ class MonitorDock(QDockWidget):
         if not self._incoming:
             return
         frames, self._incoming = self._incoming, []
+        if self.recorder is not None:
+            self.recorder.feed([(f.timestamp, f.arbitration_id, f.data) for f in frames])
         add = self._builder.add
         for f in frames:
             add(f.timestamp, f.arbitration_id, f.data if type(f.data) is bytes else bytes(f.data),
@@ -720,6 +733,52 @@ class MonitorDock(QDockWidget):
             box.addItem(self.tr("No markers"))
         box.setEnabled(bool(self.markers))
 
+    # -- recording -----------------------------------------------------------------------
+    def _toggle_recording(self, on: bool) -> None:
+        if not on:
+            self.stop_recording()
+            return
+        path, _ = QFileDialog.getSaveFileName(
+            self, self.tr("Record live frames"), "recording.blf",
+            self.tr("python-can logs (*.blf *.asc *.log *.csv *.trc)"))
+        if path:
+            self.start_recording(path)
+        else:
+            self.record_button.setChecked(False)
+
+    def start_recording(self, path: str | Path) -> None:
+        """Write every live frame from now on to ``path`` (a python-can capture by
+        extension), on a thread, until ``stop_recording()``."""
+        self.stop_recording()
+        try:
+            self.recorder = LiveRecorder(path, dict(self._link_map))
+        except Exception as err:
+            self.record_button.setChecked(False)
+            self.error.emit(self.tr("Recording {path}: {message}").format(path=path,
+                                                                          message=err))
+            return
+        self.record_button.setChecked(True)
+        self.record_button.setText(self.tr("Recording"))
+        self._count()
+
+    def stop_recording(self) -> int:
+        """Finish the recording (the file is complete once this returns); the count."""
+        if self.recorder is not None:
+            self._ingest()  # what is queued goes in too
+        recorder, self.recorder = self.recorder, None
+        self.record_button.setChecked(False)
+        self.record_button.setText(self.tr("Record…"))
+        if recorder is None:
+            return 0
+        written = recorder.stop()
+        if recorder.error:
+            self.error.emit(self.tr("Recording {path}: {message}").format(
+                path=recorder.path, message=recorder.error))
+        else:
+            self.saved.emit(str(recorder.path))
+        self._count()
+        return written
+
     def _count(self) -> None:
         shown = self.model.rowCount()
         total = len(self.store)
@@ -733,6 +792,8 @@ class MonitorDock(QDockWidget):
                                                                  total=f"{seen:,}")
                     if self._filter or seen != shown
                     else self.tr("{total} frames").format(total=f"{seen:,}"))
+        if self.recorder is not None:
+            text += self.tr(" · recording to {name}").format(name=self.recorder.path.name)
         if self._filter_worker is None:
             self.count_label.setText(text)
         if (shown, total) != self._counted:

@@ -3142,4 +3142,35 @@ Die Prothese ist wie zuvor.</translation>
         <translation>Frames</translation>
     </message>
 </context>
+<context>
+    <name>MonitorDock</name>
+    <message>
+        <source>Record…</source>
+        <translation>Aufzeichnen…</translation>
+    </message>
+    <message>
+        <source>Write every live frame to a capture file (the table keeps only the newest ones)</source>
+        <translation>Jeden Live-Frame in eine Aufzeichnungsdatei schreiben (die Tabelle behält nur die neuesten)</translation>
+    </message>
+    <message>
+        <source>Record live frames</source>
+        <translation>Live-Frames aufzeichnen</translation>
+    </message>
+    <message>
+        <source>python-can logs (*.blf *.asc *.log *.csv *.trc)</source>
+        <translation>python-can-Aufzeichnungen (*.blf *.asc *.log *.csv *.trc)</translation>
+    </message>
+    <message>
+        <source>Recording {path}: {message}</source>
+        <translation>Aufzeichnung {path}: {message}</translation>
+    </message>
+    <message>
+        <source>Recording</source>
+        <translation>Zeichnet auf</translation>
+    </message>
+    <message>
+        <source> · recording to {name}</source>
+        <translation> · Aufzeichnung in {name}</translation>
+    </message>
+</context>
 </TS>

@@ -238,3 +238,35 @@ def test_gui_thread_stays_free_under_8000_frames_a_second(qtbot):
     assert sent["n"] >= rate * seconds * 0.9 and len(dock.live_store) == sent["n"]
     assert p95 < 50, f"p95 gap {p95:.1f} ms, max {gaps[-1]:.1f}, median " \
                      f"{statistics.median(gaps):.1f}"
+
+
+def test_recording_keeps_every_live_frame_in_a_file_while_the_ring_stays_bounded(
+        qtbot, tmp_path):
+    dock = MonitorDock(capacity=1000)
+    qtbot.addWidget(dock)
+    path = tmp_path / "afternoon.blf"
+    dock.start_recording(path)
+    assert dock.record_button.isChecked() and "afternoon.blf" in dock.count_label.text()
+    for start in range(0, 5000, 400):  # five times what the ring holds
+        dock.add_frames([FrameSeen(1000 + i / 8000, 6, bytes([i & 0xFF, i >> 8]),
+                                   f"{i / 8000:11.6f}  P0  #6 data Channel data  x  "
+                                   f"{i & 0xFF:02X} {i >> 8:02X}")
+                         for i in range(start, min(start + 400, 5000))])
+        dock.flush()
+    assert len(dock.live_store) == 1000
+    with qtbot.waitSignal(dock.saved, timeout=10_000) as saved:
+        assert dock.stop_recording() == 5000
+    assert saved.args == [str(path)] and not dock.record_button.isChecked()
+    with qtbot.waitSignal(dock.loaded, timeout=20_000):
+        dock.load_capture(path)  # the whole afternoon, in the trace
+    assert dock.model.rowCount() == 5000
+    assert dock.model.row_texts(4999)[4] == "87 13"
+
+
+def test_recording_to_an_impossible_place_says_where(qtbot, tmp_path):
+    dock = MonitorDock()
+    qtbot.addWidget(dock)
+    with qtbot.waitSignal(dock.error, timeout=5000) as failed:
+        dock.start_recording(tmp_path / "no-such-folder" / "x.blf")
+    assert "no-such-folder" in failed.args[0] and dock.recorder is None
+    assert not dock.record_button.isChecked()
