@@ -305,16 +305,16 @@ class PlotCanvas(QWidget):
             vs[0::2], vs[1::2] = lows, highs
         px = (body.left() + xs).tolist()
         py = (body.bottom() - (vs - lo) * sy).tolist()
-        poly = QPolygonF([QPointF(x, y) for x, y in zip(px, py, strict=True)])
+        points = [QPointF(x, y) for x, y in zip(px, py, strict=True)]
         p.save()
         p.setClipRect(body)
         # Antialiased lines cost ~10× more to draw: only for a sparse trace.
-        p.setRenderHint(QPainter.RenderHint.Antialiasing, len(poly) < 400)
-        p.setPen(QPen(color, 1.5 if len(poly) < 400 else 1.0))
-        if len(poly) == 1:
-            p.drawEllipse(poly[0], 2.0, 2.0)
+        p.setRenderHint(QPainter.RenderHint.Antialiasing, len(points) < 400)
+        p.setPen(QPen(color, 1.5 if len(points) < 400 else 1.0))
+        if len(points) == 1:
+            p.drawEllipse(points[0], 2.0, 2.0)
         else:
-            p.drawPolyline(poly)
+            p.drawPolyline(QPolygonF(points))
         p.restore()
 
 

@@ -151,7 +151,7 @@ def _tool_button(text: str) -> QToolButton:
 
 
 class Marker(NamedTuple):
-    index: int  # absolute frame index
+    index: int  # type: ignore[assignment]  # the absolute frame index
     time: float
     name: str
 
@@ -258,7 +258,7 @@ class MonitorDock(QDockWidget):
         self.text_filter.setPlaceholderText(self.tr("Filter text, ID or data…"))
         self.text_filter.setClearButtonEnabled(True)
         self.function_filter = QComboBox()
-        self.function_filter.addItem(translate("MonitorDock", ANY), ANY)
+        self.function_filter.addItem(translate("MonitorDock", str(ANY)), ANY)
         self.function_filter.addItems([CHANNEL_DATA, *sorted({c.title for c in FunctionCode})])
         self.function_filter.setSizeAdjustPolicy(
             QComboBox.SizeAdjustPolicy.AdjustToMinimumContentsLengthWithIcon)
@@ -286,7 +286,7 @@ class MonitorDock(QDockWidget):
         self.autoscroll_box.setChecked(True)
         self.time_mode = QComboBox()
         for mode in TIME_MODES:
-            self.time_mode.addItem(translate("TraceModel", mode))
+            self.time_mode.addItem(translate("TraceModel", str(mode)))
         self.time_mode.setToolTip(self.tr("How the Time column counts"))
         self.time_mode.setSizeAdjustPolicy(
             QComboBox.SizeAdjustPolicy.AdjustToMinimumContentsLengthWithIcon)
@@ -346,6 +346,7 @@ class MonitorDock(QDockWidget):
         self.find_edit.setMinimumWidth(90)
         # Three short rows: the dock must not make the window wider than a laptop screen.
         filters, finding, actions = QHBoxLayout(), QHBoxLayout(), QHBoxLayout()
+        w: QWidget
         for w in (self.text_filter, self.function_filter, self.node_filter):
             filters.addWidget(w)
         filters.setStretch(0, 1)
@@ -550,7 +551,7 @@ class MonitorDock(QDockWidget):
             w.blockSignals(True)
         try:
             self.text_filter.setText(text)
-            self.function_filter.setCurrentText(function or translate("MonitorDock", ANY))
+            self.function_filter.setCurrentText(function or translate("MonitorDock", str(ANY)))
             if node is not None and self.node_filter.findData(node) < 0:
                 self._nodes_listed.add(node)
                 self._fill_node_filter()
