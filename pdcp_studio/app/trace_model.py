@@ -26,7 +26,7 @@ from PySide6.QtCore import (
     QPersistentModelIndex,
     Qt,
 )
-from PySide6.QtGui import QBrush, QColor, QPainter
+from PySide6.QtGui import QBrush, QColor, QFontMetricsF, QPainter
 from PySide6.QtWidgets import QTableView
 
 from pdcp_studio.app.i18n import translate
@@ -376,7 +376,8 @@ class TraceView(QTableView):
         last = count - 1 if last < 0 else last
         header = self.horizontalHeader()
         metrics = self.fontMetrics()
-        char_w = max(1, metrics.horizontalAdvance("0"))  # a fixed-width font
+        # a fixed-width font; its advance is fractional, and whole pixels would drift
+        char_w = max(0.5, QFontMetricsF(self.font()).horizontalAdvance("0" * 64) / 64)
         x0 = self.columnViewportPosition(header.logicalIndex(0)) + 3
         right = getattr(model, "RIGHT_ALIGNED", ())
         # (column, first character, characters that fit, right-aligned), in visual order
@@ -386,7 +387,8 @@ class TraceView(QTableView):
             if header.isSectionHidden(c):
                 continue
             start = round((self.columnViewportPosition(c) + 3 - x0) / char_w)
-            cols.append((c, start, max(0, (self.columnWidth(c) - 6) // char_w), c in right))
+            fit = int((self.columnWidth(c) - 6) // char_w)
+            cols.append((c, start, max(0, fit), c in right))
         width = self.viewport().width()
         selection = self.selectionModel()
         current = self.currentIndex().row() if selection and selection.hasSelection() else -1
@@ -408,7 +410,7 @@ class TraceView(QTableView):
                     text = text[:max(0, n - 1)] + "…" if n else ""
                 elif align_right:
                     text = text.rjust(n)
-                line = line.ljust(start) + text
+                line = (line + " " if len(line) >= start and line else line.ljust(start)) + text
             brush = model.row_brush(row)
             if row == current:
                 p.fillRect(0, y, width, h, pal.highlight())
