@@ -247,8 +247,9 @@ class PlotCanvas(QWidget):
             p.setPen(QPen(QColor(0, 0, 0) if name == "A" else QColor(90, 90, 90), 1,
                           Qt.PenStyle.DashLine))
             p.drawLine(QPointF(x, area.top()), QPointF(x, area.bottom()))
-            p.drawText(QRectF(x + 3, area.top(), 20, m.height()), Qt.AlignmentFlag.AlignLeft,
-                       name)
+            # the letter at the foot of the line: the lanes' titles are at their tops
+            p.drawText(QRectF(x + 3, area.bottom() - m.height() - 2, 20, m.height()),
+                       Qt.AlignmentFlag.AlignLeft, name)
 
     def _paint_lane(self, p: QPainter, s: Series, lane: QRectF, start: float, end: float,
                     text_pen: QPen, grid_pen: QPen) -> None:
