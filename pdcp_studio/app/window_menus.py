@@ -9,11 +9,25 @@ from __future__ import annotations
 from collections.abc import Callable
 from typing import TYPE_CHECKING, Any
 
+from PySide6.QtCore import QT_TRANSLATE_NOOP
 from PySide6.QtGui import QAction, QKeySequence
 
 from pdcp_studio.app.i18n import translate
 from pdcp_studio.app.plan_panel import OPERATIONS
 from pdcp_studio.app.window_support import DEFAULT_BUS
+
+#: The Tasks menu: the guided tasks (app/wizards), their menu texts and tips.
+TASK_MENU = (
+    ("fitting", QT_TRANSLATE_NOOP("Wizards", "&New fitting…"),
+     QT_TRANSLATE_NOOP("Wizards", "Connect, scan, check, link and store a prosthesis step by "
+                                  "step")),
+    ("replace", QT_TRANSLATE_NOOP("Wizards", "&Replace a part…"),
+     QT_TRANSLATE_NOOP("Wizards", "Swap a part and link the new one in its place step by "
+                                  "step")),
+    ("restore", QT_TRANSLATE_NOOP("Wizards", "Re&store a configuration…"),
+     QT_TRANSLATE_NOOP("Wizards", "Put a configuration file or an earlier fitting back on "
+                                  "the prosthesis")),
+)
 
 
 class MenusMixin:
@@ -114,6 +128,16 @@ class MenusMixin:
                                       self.ask_write_configuration)
         self.act_profiles = self._action(self.tr("&Profile tree…"), self.show_profile_tree)
         self.act_about = self._action(self.tr("&About PDCP Studio"), self.about)
+        self.task_actions = {  # guided tasks (app/wizards)
+            task: self._action(translate("Wizards", text), lambda t=task: self.open_task(t),
+                               tip=translate("Wizards", tip))
+            for task, text, tip in TASK_MENU}
+
+    def open_task(self, task: str) -> Any:
+        """Open a guided task (a wizard beside the window)."""
+        from pdcp_studio.app.wizards import open_wizard
+
+        return open_wizard(self, task)
 
     def _build_menus(self) -> None:
         mb = self.menuBar()
@@ -141,6 +165,9 @@ class MenusMixin:
             m.addAction(dock.toggleViewAction())
         m = mb.addMenu(self.tr("&Plan"))
         for a in self.plan_actions.values():
+            m.addAction(a)
+        self.tasks_menu = m = mb.addMenu(translate("Wizards", "&Tasks"))
+        for a in self.task_actions.values():
             m.addAction(a)
         self.bus_menu = m = mb.addMenu(self.tr("&Bus"))
         for a in (self.act_connect, self.act_connect_sim, self.act_disconnect, self.act_scan,
