@@ -15,7 +15,12 @@
    the longest gap between 5 ms heartbeats. Target: never blocked > 50 ms; the dock's
    ring stays at its capacity.
 
-Run: ``python benchmarks/gui.py [--only trace]`` (offscreen; prints the figures).
+5. A large capture in the trace: the 1,000,000-frame BLF capture of ``benchmarks/trace.py``
+   (made there once, cached in the temp folder) opened in the monitor dock: time to the
+   first rows (target < 1 s), to every frame indexed, the GUI thread's longest gap while it
+   loads (target < 50 ms), a filter and a search over all the frames, and peak RSS.
+
+Run: ``python benchmarks/gui.py [--only trace|capture]`` (offscreen; prints the figures).
 """
 
 from __future__ import annotations
@@ -184,6 +189,8 @@ def heartbeat_during_scans() -> dict[str, float]:
 TRACE_SECONDS = 6.0
 TRACE_RATE = 8000
 TRACE_BATCH_MS = 50
+TRACE_RING = 100_000  # the dock's default ring of live frames
+TRACE_SIGNALS = 3  # signals in the live plot
 
 
 def trace_at_full_load() -> dict[str, float]:
@@ -204,10 +211,13 @@ def trace_at_full_load() -> dict[str, float]:
     from trace import node_map, traffic
 
     _devices, outputs = node_map()
-    refs = {chan: ChannelRef(0x0A0, 0x10, 1000, 1) for chan, *_ in outputs}
-    dock = MonitorDock(capacity=20_000)
+    refs = {chan: ChannelRef(0x0A0 + dev - 10, 0x10, 1000 + dev - 10, index)
+            for chan, dev, index, *_ in outputs}
+    dock = MonitorDock(capacity=TRACE_RING)
     plot = LivePlot()
     plot.set_channel(refs[outputs[0][0]])
+    for chan, *_ in outputs[1:TRACE_SIGNALS]:
+        plot.add_channel(refs[chan])
     dock.resize(900, 500)
     plot.resize(600, 300)
     dock.show()
@@ -271,20 +281,30 @@ def trace_at_full_load() -> dict[str, float]:
     heart.start()
     feed.start()
     t0 = time.perf_counter()
+    cpu0 = time.thread_time()  # the GUI thread's own CPU time: a figure the load cannot skew
     QTimer.singleShot(int(TRACE_SECONDS * 1000), app.quit)
     app.exec()
     wall = time.perf_counter() - t0
+    gui_cpu = time.thread_time() - cpu0
     stop.set()
     worker.join()
     heart.stop()
     feed.stop()
     gaps = gaps[1:]
+    import resource
+
     result = {"frames": delivered["frames"], "rate": delivered["frames"] / wall,
+              "gui_cpu_ms_per_s": gui_cpu / wall * 1000,
+              "rss_mb": resource.getrusage(resource.RUSAGE_SELF).ru_maxrss / 1024,
               "max_gap_ms": max(gaps), "p99_gap_ms": sorted(gaps)[int(len(gaps) * 0.99) - 1],
-              "ring": len(dock.all_rows), "capacity": dock.capacity,
-              "plot_points": len(plot.points)}
+              "ring": len(dock.live_store), "capacity": dock.capacity,
+              "plot_points": sum(len(x.ts) for x in plot.series),
+              "signals": len(plot.series)}
     dock.close()
     plot.close()
+    dock.deleteLater()  # its timers stop with it: the next round measures its own dock
+    plot.deleteLater()
+    app.processEvents()
     return result
 
 
@@ -295,12 +315,123 @@ def print_trace() -> None:
               f"({r['rate']:,.0f} frames/s; bus bound 7,400–10,500) into the monitor dock and "
               f"live plot — longest gap between {HEARTBEAT_MS} ms heartbeats "
               f"{r['max_gap_ms']:.1f} ms, p99 {r['p99_gap_ms']:.1f} ms (target: never > 50 ms);"
-              f" ring {r['ring']:,} of {r['capacity']:,} rows, plot {r['plot_points']:,} points")
+              f" GUI thread busy {r['gui_cpu_ms_per_s']:.0f} ms of CPU a second;"
+              f" ring {r['ring']:,} of {r['capacity']:,} rows, plot {r['signals']} signals with "
+              f"{r['plot_points']:,} values; peak RSS {r['rss_mb']:.0f} MB; {_load()}")
+
+
+CAPTURE_FRAMES = 1_000_000
+
+
+def capture_path() -> Path:
+    """The benchmark capture of ``benchmarks/trace.py`` (written there once, then cached)."""
+    sys.path.insert(0, str(ROOT / "benchmarks"))
+    from trace import traffic, write_capture
+
+    cache = Path(tempfile.gettempdir()) / "pdcp-trace-bench"
+    cache.mkdir(exist_ok=True)
+    path = cache / f"mixed-{CAPTURE_FRAMES}-v1.blf"
+    if not path.exists():
+        partial = path.with_name(path.name + ".tmp.blf")
+        write_capture(partial, traffic(CAPTURE_FRAMES))
+        partial.replace(path)
+    return path
+
+
+def capture_in_the_trace() -> dict[str, float]:
+    """Open the capture in the monitor dock: first rows, full index, gaps, filter, search."""
+    import resource
+
+    from PySide6.QtCore import QElapsedTimer, QTimer
+    from PySide6.QtWidgets import QApplication
+
+    app = QApplication.instance() or QApplication([])
+    from pdcp_studio.app import monitor_dock
+    from pdcp_studio.app.monitor_dock import MonitorDock
+
+    path = capture_path()
+    dock = MonitorDock()
+    dock.resize(1200, 600)
+    dock.show()
+    for thread in monitor_dock._WARM:  # in the app the dock is made long before a capture
+        thread.join()  # is opened: its readers are imported by then
+    gaps: list[float] = []
+    clock = QElapsedTimer()
+    clock.start()
+    last = {"t": clock.nsecsElapsed()}
+
+    def beat() -> None:
+        now = clock.nsecsElapsed()
+        gaps.append((now - last["t"]) / 1e6)
+        last["t"] = now
+
+    heart = QTimer()
+    heart.timeout.connect(beat)
+    heart.start(HEARTBEAT_MS)
+    marks: dict[str, float] = {}
+
+    def wait_for(key: str, limit_s: float = 600.0) -> None:
+        """Turn the event loop until ``marks[key]`` is set (signals may come at once)."""
+        deadline = time.perf_counter() + limit_s
+        while key not in marks and time.perf_counter() < deadline:
+            app.processEvents()
+            time.sleep(0.001)
+
+    t0 = time.perf_counter()
+    dock.loaded.connect(lambda _p: marks.setdefault("loaded", time.perf_counter() - t0))
+    dock.load_capture(path)
+    while "first" not in marks and time.perf_counter() - t0 < 30:
+        app.processEvents()
+        if dock.model.rowCount():
+            marks["first"] = time.perf_counter() - t0
+    wait_for("loaded")
+    heart.stop()
+    load_gaps = sorted(gaps[1:])
+    frames = dock.model.rowCount()
+    t1 = time.perf_counter()
+    dock.filtered.connect(lambda: marks.setdefault("filtered", time.perf_counter() - t1))
+    dock.set_filter(function="Device Beacon")
+    wait_for("filtered")
+    filter_s, shown = marks["filtered"], dock.model.rowCount()
+    dock.set_filter()
+    t2 = time.perf_counter()
+    dock.found.connect(lambda row: (marks.setdefault("row", row),
+                                    marks.setdefault("search", time.perf_counter() - t2)))
+    dock.find_frame("Bind Device Request Response", forward=False)  # from the end backwards
+    wait_for("search")
+    search_s = marks["search"]
+    result = {"frames": frames, "first_s": marks["first"], "loaded_s": marks["loaded"],
+              "max_gap_ms": load_gaps[-1], "p99_gap_ms": load_gaps[int(len(load_gaps) * 0.99)],
+              "filter_s": filter_s, "filtered": shown, "search_s": search_s,
+              "found_row": marks.get("row", -1),
+              "rss_mb": resource.getrusage(resource.RUSAGE_SELF).ru_maxrss / 1024,
+              "mb": path.stat().st_size / 1e6}
+    dock.close()
+    return result
+
+
+def print_capture() -> None:
+    r = capture_in_the_trace()
+    print(f"capture in the trace: {r['frames']:,} frames ({r['mb']:.0f} MB BLF) — first rows "
+          f"after {r['first_s'] * 1000:.0f} ms (target < 1 s), all indexed after "
+          f"{r['loaded_s']:.1f} s ({r['frames'] / r['loaded_s']:,.0f} frames/s); GUI thread "
+          f"while loading: longest gap {r['max_gap_ms']:.1f} ms, p99 {r['p99_gap_ms']:.1f} ms "
+          f"(target: never > 50 ms); filter over all frames {r['filter_s'] * 1000:.0f} ms "
+          f"({r['filtered']:,} rows), search from the end {r['search_s'] * 1000:.0f} ms "
+          f"(row {r['found_row']:,}); peak RSS {r['rss_mb']:.0f} MB; {_load()}")
+
+
+def _load() -> str:
+    """The machine's load while measuring: gaps depend on it, CPU figures do not."""
+    return f"load average {os.getloadavg()[0]:.1f} on {os.cpu_count()} cores"
 
 
 def main() -> None:
     if "--only" in sys.argv and sys.argv[-1] == "trace":
         print_trace()
+        return
+    if "--only" in sys.argv and sys.argv[-1] == "capture":
+        print_capture()
         return
     times = startup()
     print(f"start-up to window shown, laid out, live on sim:transradial: "
@@ -317,6 +448,7 @@ def main() -> None:
               f"between {HEARTBEAT_MS} ms heartbeats {hb['max_gap_ms']:.1f} ms, p99 "
               f"{hb['p99_gap_ms']:.1f} ms over {hb['beats']} beats (target: never > 50 ms)")
     print_trace()
+    print_capture()
 
 
 if __name__ == "__main__":

@@ -1,49 +1,39 @@
-"""The bus monitor dock: decoded frames in a table that stays fast under a flood.
+"""The bus monitor dock: a trace that keeps up with a saturated bus and opens any capture.
 
 Public API
     ``MonitorDock(parent=None, capacity=DEFAULT_CAPACITY)`` — a QDockWidget.
     Slots: ``add_frames(list[FrameSeen])`` (connect ``SessionBridge.frameSeen``),
-    ``set_system(system)`` (node IDs of output channels, so data frames are named as such
-    even when the session sent no decoded text). Methods: ``set_paused(bool)``,
-    ``set_filter(text="", function="", node=None)``, ``clear()``,
-    ``save(path) -> Worker`` (a python-can capture by extension — .asc .blf .csv .log .trc
-    .db — through ``bus.monitor.Recorder``, or decoded text for .txt; written on a worker),
-    ``load_capture(path) -> Worker`` (a capture read and decoded on a worker, then shown),
-    ``shown_rows()``. Properties: ``paused``, ``all_rows`` (every frame kept, newest last,
-    at most ``capacity``). Signals: ``saved(str path)``, ``loaded(str path)``, ``error(str)``,
-    ``countChanged(int shown, int total)``.
+    ``set_system(system)`` (node names for the node filter; output channels' node IDs so
+    data frames are named as such). Methods: ``set_paused(bool)``,
+    ``set_filter(text="", function="", node=None)`` (node None: any; 0: broadcast),
+    ``find_frame(text, forward=True) -> Worker`` (``found(row)`` follows), ``add_marker(name="")``,
+    ``jump_to_marker(i)``, ``set_time_mode(mode)``, ``clear()``, ``flush()``,
+    ``save(path) -> Worker``, ``load_capture(path) -> Worker``, ``cancel_load()``,
+    ``show_live()``, ``shown_rows()``, ``reset_for_session(system, keep_frames=False)``.
+    Properties: ``paused``, ``all_rows`` (the frames of what is shown: the live ring, or the
+    opened capture), ``store`` (that ``FrameStore``). Signals: ``saved(str)``, ``loaded(str)``,
+    ``error(str)``, ``countChanged(int shown, int total)``, ``loadProgress(int frames)``,
+    ``found(int row)`` (-1: nothing found), ``filtered()``.
 
-Frames arrive in batches (``SessionBridge.frameSeen(list)``). The session's arbitrator has
-already decoded them off the GUI thread (``FrameSeen.text``, from ``bus.monitor.FrameDecoder``),
-so the dock only classifies each frame in O(1) (node, direction, function) for the filter.
-It keeps every frame in a capped ring buffer (``capacity`` rows, oldest dropped first) and the
-table model shows the ones that pass the filter, appending a whole batch with one
-``beginInsertRows`` and dropping overflow with one ``beginRemoveRows``. Cell text is made
-lazily in ``data()``, only for the rows on screen.
-
-Note: a session reports ``FrameSeen`` only when its arbitrator was opened with frame events
-on; without them the dock stays empty (the rest of the app is unaffected).
+How it keeps up (issue 16): ``add_frames`` only queues the batch (the session decoded it off
+the GUI thread). Every ``REFRESH_MS`` a timer turns the queued frames into one column chunk
+of the live ring (``trace_store``; bounded to ``capacity`` frames), updates the per-ID
+statistics with vectorised counts, and lets the virtual-row table (``trace_model``) insert
+the new rows at once. An opened capture is decoded on a worker into its own store (shown
+apart from the live frames, which keep being recorded); its first rows show at once and
+the rest follow chunk by chunk with progress and a Stop button. Filters and search over a
+large store run on a worker and return row lists; small ones are filtered at once.
 """
 
 from __future__ import annotations
 
-import queue
 import threading
-from collections import deque
-from collections.abc import Iterable, Sequence
+from collections.abc import Iterable
 from pathlib import Path
 from typing import Any, NamedTuple
 
-from PySide6.QtCore import (
-    QT_TRANSLATE_NOOP,
-    QAbstractTableModel,
-    QElapsedTimer,
-    QModelIndex,
-    QPersistentModelIndex,
-    Qt,
-    QTimer,
-    Signal,
-)
+import numpy as np
+from PySide6.QtCore import QT_TRANSLATE_NOOP, Qt, QTimer, Signal
 from PySide6.QtGui import QFontDatabase
 from PySide6.QtWidgets import (
     QCheckBox,
@@ -54,36 +44,57 @@ from PySide6.QtWidgets import (
     QHeaderView,
     QLabel,
     QLineEdit,
-    QPushButton,
-    QSpinBox,
+    QProgressBar,
+    QSizePolicy,
+    QSplitter,
     QTableView,
+    QToolButton,
     QVBoxLayout,
     QWidget,
 )
 
 from pdcp_studio.app.i18n import translate
+from pdcp_studio.app.trace_capture import load_capture as _load_into
+from pdcp_studio.app.trace_capture import save_store, stored_rows
+from pdcp_studio.app.trace_model import (
+    TIME_MODES,
+    StatsModel,
+    TraceModel,
+    TraceView,
+    decoded_fields,
+)
+from pdcp_studio.app.trace_record import LiveRecorder
+from pdcp_studio.app.trace_store import (
+    CHANNEL_DATA,
+    ChunkBuilder,
+    Frame,
+    FrameStore,
+    IdStats,
+    Tables,
+    TraceFilter,
+    line_head,
+)
 from pdcp_studio.app.workers import Worker
 from pdcp_studio.protocol.codes import FunctionCode
 
-DEFAULT_CAPACITY = 100_000
-#: A visible table takes new rows at most this often: painting it costs the GUI thread
-#: milliseconds, and a saturated bus brings a batch every few milliseconds.
-REFRESH_MS = 250
-#: Rows an opened capture sends to the table at a time (the first ones at once).
-CAPTURE_CHUNK = 5000
-CHANNEL_DATA = "Channel data"
-ANY = QT_TRANSLATE_NOOP("MonitorDock", "(any)")
-_ROOT = QModelIndex()  # the invisible root, shared as a default argument
+__all__ = ["CHANNEL_DATA", "FrameFilter", "MonitorDock", "Row", "_decoded", "make_row"]
 
-COLUMNS = (QT_TRANSLATE_NOOP("MonitorDock", "Time"), QT_TRANSLATE_NOOP("MonitorDock", "ID"),
-           QT_TRANSLATE_NOOP("MonitorDock", "Node"),
-           QT_TRANSLATE_NOOP("MonitorDock", "Function"),
-           QT_TRANSLATE_NOOP("MonitorDock", "Data"), QT_TRANSLATE_NOOP("MonitorDock", "Decoded"))
-_MODE_BIT = 0x100
+DEFAULT_CAPACITY = 100_000
+#: Queued frames become table rows this often: one insert per tick whatever the bus rate.
+REFRESH_MS = 100
+#: Stores up to this many frames are filtered on the GUI thread (a few ms); larger ones on
+#: a worker.
+FILTER_AT_ONCE = 200_000
+#: The per-ID statistics are refreshed this often.
+STATS_MS = 500
+#: Interpreter switch interval while a trace is open (see ``_share_the_interpreter``).
+SWITCH_INTERVAL_S = 0.001
+ANY = QT_TRANSLATE_NOOP("MonitorDock", "(any)")
+FrameFilter = TraceFilter
 
 
 class Row(NamedTuple):
-    """One frame as shown: the raw fields plus the node, direction and function derived once."""
+    """One frame as classified for the table (kept for callers of ``make_row``)."""
 
     timestamp: float
     arbitration_id: int
@@ -95,377 +106,475 @@ class Row(NamedTuple):
 
 
 def make_row(frame: Any, channel_nodes: frozenset[int] | set[int] = frozenset()) -> Row:
-    """A table row from a ``FrameSeen`` (or anything with its four fields), in O(1)."""
+    """A classified row from a ``FrameSeen`` (or anything with its four fields), in O(1)."""
+    tables = _ROW_TABLES
+    builder = ChunkBuilder(tables, channel_nodes)
     data = bytes(frame.data)
-    text = str(getattr(frame, "text", "") or "")
-    arbitration_id = int(frame.arbitration_id)
-    node = arbitration_id & 0xFF
-    from_ba = bool(arbitration_id & _MODE_BIT)
-    if not from_ba and (node in channel_nodes or CHANNEL_DATA in text):
-        function, who = CHANNEL_DATA, f"#{node} data"
-    else:
-        who = (f"BA→#{node}" if node else "BA→all") if from_ba else f"#{node}→BA"
-        if data:
-            try:
-                function = FunctionCode(data[0]).title
-            except ValueError:
-                function = f"0x{data[0]:02X}"
-        else:
-            function = ""
-    return Row(float(frame.timestamp), arbitration_id, data, text, node, function, who)
+    builder.add(float(frame.timestamp), int(frame.arbitration_id), data,
+                line_head(str(getattr(frame, "text", "") or "")))
+    store = FrameStore(tables)
+    store.append(builder.take())
+    f = store.frame(0)
+    return Row(f.timestamp, f.arbitration_id, f.data, str(getattr(frame, "text", "") or ""),
+               f.node, f.function, f.who)
+
+
+_ROW_TABLES = Tables()
+
+
+_WARM: list[threading.Thread] = []
+
+
+def _warm_up() -> None:
+    """Import the capture readers (python-can, the decoder) on a thread, once: opening a
+    capture then shows its first rows without waiting ~0.3 s for them."""
+    if _WARM:
+        return
+
+    def load() -> None:
+        import can.io  # noqa: F401
+
+        import pdcp_studio.bus.monitor  # noqa: F401
+
+    _WARM.append(threading.Thread(target=load, name="trace warm-up", daemon=True))
+    _WARM[0].start()
+
+
+def _share_the_interpreter() -> None:
+    """Let the GUI thread take the interpreter sooner from the session's decoding thread.
+
+    Qt calls into Python for every cell it paints, and each call waits for the interpreter
+    lock; with the session thread decoding a saturated bus, CPython hands the lock over only
+    every switch interval (5 ms by default), so painting a table took hundreds of ms
+    (benchmarks/gui.py, trace case: 196 ms gaps at 5 ms, 56 ms at 0.5 ms on a loaded
+    2-core machine). Shorter intervals cost the decoding thread little."""
+    import sys
+
+    if sys.getswitchinterval() > SWITCH_INTERVAL_S:
+        sys.setswitchinterval(SWITCH_INTERVAL_S)
 
 
 def _decoded(text: str) -> str:
-    """The fields of a ``DecodedFrame.line`` (``time  prio  who function  fields``): the table
-    shows time, node and function in columns of their own. Other text is shown as is."""
-    head, _, rest = text.lstrip().partition(" ")
-    try:
-        float(head)
-    except ValueError:
-        return text
-    rest = rest.lstrip()
-    parts = rest.split("  ", 2)  # priority, "who function", fields
-    usual = len(parts) >= 2 and parts[0][:1] == "P" and "undecodable" not in parts[1]
-    if not usual:
-        return rest  # another shape, or why the frame does not decode: show all of it
-    return parts[2] if len(parts) == 3 else ""
+    """The fields of a ``DecodedFrame.line`` (``time  prio  who function  fields``)."""
+    head = line_head(text)
+    return text if head is text else decoded_fields(head)
 
 
-class FrameFilter(NamedTuple):
-    """Text (case-insensitive, in the decoded text or hex data), function name, node ID."""
-
-    text: str = ""
-    function: str = ""
-    node: int | None = None
-
-    def __bool__(self) -> bool:
-        return bool(self.text or self.function or self.node is not None)
-
-    def matches(self, row: Row) -> bool:
-        """Whether ``row`` passes this filter."""
-        if self.node is not None and row.node != self.node:
-            return False
-        if self.function and row.function != self.function:
-            return False
-        if self.text:
-            needle = self.text.lower()
-            return (needle in row.text.lower() or needle in row.data.hex(" ")
-                    or needle in row.function.lower())
-        return True
+def _tool_button(text: str) -> QToolButton:
+    """A compact text button (the dock's rows stay narrow)."""
+    button = QToolButton()
+    button.setText(text)
+    button.setToolButtonStyle(Qt.ToolButtonStyle.ToolButtonTextOnly)
+    return button
 
 
-class FrameTableModel(QAbstractTableModel):
-    """The filtered frames, capped at ``capacity`` rows (oldest dropped first)."""
-
-    def __init__(self, capacity: int = DEFAULT_CAPACITY, parent: Any = None) -> None:
-        super().__init__(parent)
-        self.capacity = capacity
-        self.rows: deque[Row] = deque()
-        self.t0: float | None = None
-
-    def rowCount(self, parent: QModelIndex | QPersistentModelIndex = _ROOT) -> int:
-        return 0 if parent.isValid() else len(self.rows)
-
-    def columnCount(self, parent: QModelIndex | QPersistentModelIndex = _ROOT) -> int:
-        return 0 if parent.isValid() else len(COLUMNS)
-
-    def headerData(self, section: int, orientation: Qt.Orientation,
-                   role: int = Qt.ItemDataRole.DisplayRole) -> Any:
-        if role == Qt.ItemDataRole.DisplayRole and orientation == Qt.Orientation.Horizontal:
-            return translate("MonitorDock", COLUMNS[section])
-        return None
-
-    def data(self, index: QModelIndex | QPersistentModelIndex,
-             role: int = Qt.ItemDataRole.DisplayRole) -> Any:
-        if role != Qt.ItemDataRole.DisplayRole or not index.isValid():
-            return None
-        row = self.rows[index.row()]
-        col = index.column()
-        if col == 0:
-            return f"{row.timestamp - (self.t0 or 0.0):10.4f}"
-        if col == 1:
-            return f"0x{row.arbitration_id:03X}"
-        if col == 2:
-            return row.who
-        if col == 3:
-            return row.function
-        if col == 4:
-            return row.data.hex(" ").upper()
-        return _decoded(row.text)
-
-    def append(self, rows: Sequence[Row]) -> None:
-        """Add rows at the end in one insert, dropping the oldest beyond the capacity."""
-        if not rows:
-            return
-        if self.t0 is None:
-            self.t0 = rows[0].timestamp
-        if len(rows) > self.capacity:
-            rows = rows[-self.capacity:]
-        overflow = len(self.rows) + len(rows) - self.capacity
-        if overflow > 0:
-            self.beginRemoveRows(QModelIndex(), 0, overflow - 1)
-            for _ in range(overflow):
-                self.rows.popleft()
-            self.endRemoveRows()
-        start = len(self.rows)
-        self.beginInsertRows(QModelIndex(), start, start + len(rows) - 1)
-        self.rows.extend(rows)
-        self.endInsertRows()
-
-    def replace(self, rows: Iterable[Row]) -> None:
-        """Show exactly ``rows`` (a refilter), capped at the capacity."""
-        self.beginResetModel()
-        self.rows = deque(rows, maxlen=None)
-        while len(self.rows) > self.capacity:
-            self.rows.popleft()
-        if self.rows and self.t0 is None:
-            self.t0 = self.rows[0].timestamp
-        self.endResetModel()
-
-    def clear(self) -> None:
-        self.t0 = None
-        self.replace(())
-
-
-def save_frames(path: str | Path, rows: Sequence[Row], links: dict | None = None) -> int:
-    """Write frames to ``path``: a python-can capture chosen by extension (.asc, .blf, .log,
-    .csv, .trc — the bus monitor's Recorder, replaced only once complete, with the node map
-    of ``links`` saved beside it), or decoded text for ``.txt``. Returns the count."""
-    path = Path(path)
-    if path.suffix.lower() == ".txt":
-        t0 = rows[0].timestamp if rows else 0.0
-        with open(path, "w", encoding="utf-8") as out:
-            for r in rows:
-                out.write(f"{r.timestamp - t0:12.6f}  0x{r.arbitration_id:03X}  {r.who:9}  "
-                          f"{r.data.hex(' ').upper():23}  {r.function}  "
-                          f"{_decoded(r.text)}".rstrip() + "\n")
-        return len(rows)
-    from pdcp_studio.bus.monitor import FrameDecoder, Recorder  # python-can loads only here
-
-    node_map = FrameDecoder(dict(links or {})).node_map
-    with Recorder(path, node_map=node_map) as recorder:
-        for r in rows:
-            recorder.write(r.arbitration_id, r.data, r.timestamp)
-    return len(rows)
+class Marker(NamedTuple):
+    index: int  # type: ignore[assignment]  # the absolute frame index
+    time: float
+    name: str
 
 
 class MonitorDock(QDockWidget):
-    """Decoded frames with filter, pause, clear, save and autoscroll (see the module doc)."""
+    """The trace: frames, per-ID statistics, markers, filters and search (module doc)."""
 
     saved = Signal(str)
     loaded = Signal(str)
     error = Signal(str)
     countChanged = Signal(int, int)
     loadProgress = Signal(int)  # frames of an opened capture read so far
+    found = Signal(int)  # the table row a search found, -1 for none
+    filtered = Signal()  # a filter's rows are shown
 
     def __init__(self, parent: QWidget | None = None, capacity: int = DEFAULT_CAPACITY) -> None:
         super().__init__(translate("MonitorDock", "Bus monitor"), parent)
         self.setObjectName("MonitorDock")
         self.capacity = capacity
-        self.all_rows: deque[Row] = deque(maxlen=capacity)
-        self._held: list[Row] = []  # rows that arrived while paused
-        self._filter = FrameFilter()
+        self.live_store = FrameStore(max_rows=capacity)
+        self.live_stats = IdStats(self.live_store.tables)
+        self._builder = ChunkBuilder(self.live_store.tables)
+        self._incoming: list[Any] = []
+        self.frames_seen = 0  # live frames counted since the last clear, kept or not
+        self.capture_store: FrameStore | None = None
+        self.capture_stats: IdStats | None = None
+        self.capture_path: str | None = None
+        self.capture_total = 0
+        self._filter = TraceFilter()
         self._save_worker: Worker | None = None
         self._save_path = ""
         self._load_path = ""
         self._load_worker: Worker | None = None
-        self.channel_nodes: set[int] = set()
-        self._link_map: dict[int, tuple[Any, tuple[Any, ...]]] = {}  # for opened captures
-        self.model = FrameTableModel(capacity, self)
-        self._pending_view: list[Row] = []  # filtered rows not yet in the table
-        self._view_clock = QElapsedTimer()
-        self._view_clock.start()
-        self._view_timer = QTimer(self)
-        self._view_timer.setSingleShot(True)
-        self._view_timer.timeout.connect(self._flush_view)
-        #: While a capture is open the table shows it, apart from the live frames, which
-        #: keep being recorded in ``live_rows`` and come back with ``show_live()``.
-        self.capture_path: str | None = None
-        self.capture_total = 0
-        self.live_rows: deque[Row] = deque(maxlen=capacity)
-        self._capture_chunks: queue.SimpleQueue[list[Row]] = queue.SimpleQueue()
-        self._capture_timer = QTimer(self)
-        self._capture_timer.setInterval(40)
-        self._capture_timer.timeout.connect(self._take_capture_chunks)
+        self._filter_worker: Worker | None = None
+        self._find_worker: Worker | None = None
+        self._hits: tuple[str, np.ndarray, int] | None = None  # needle, hits, scanned up to
+        self.markers: list[Marker] = []
+        self._link_map: dict[int, tuple[Any, tuple[Any, ...]]] = {}
+        self._node_names: dict[int, str] = {}
+        self._nodes_listed: set[int] = set()
+        self._counted = (-1, -1)
+        self.recorder: LiveRecorder | None = None
+
+        self.model = TraceModel(self)
+        self.stats_model = StatsModel(self)
+        self.stats_model.names = self.model.names  # one map of device names
+        self._build_widgets()
+        self._tick_timer = QTimer(self)
+        self._tick_timer.setInterval(REFRESH_MS)
+        self._tick_timer.timeout.connect(self._tick)
+        self._tick_timer.start()
+        # The statistics repaint on their own, slower beat, between the table's.
+        self._stats_timer = QTimer(self)
+        self._stats_timer.setInterval(STATS_MS)
+        self._stats_timer.timeout.connect(self._refresh_stats)
+        QTimer.singleShot(REFRESH_MS // 2, self._stats_timer.start)
+        _share_the_interpreter()
+        _warm_up()
         self._refilter = QTimer(self)  # typing in the filter: refilter once it pauses
         self._refilter.setSingleShot(True)
         self._refilter.setInterval(150)
         self._refilter.timeout.connect(self._filter_changed)
+        self.model.show(self.live_store)
 
-        self.view = QTableView()
+    # -- widgets -------------------------------------------------------------------------
+    def _build_widgets(self) -> None:
+        fixed = QFontDatabase.systemFont(QFontDatabase.SystemFont.FixedFont)
+        self.view = TraceView()
         self.view.setModel(self.model)
-        self.view.setFont(QFontDatabase.systemFont(QFontDatabase.SystemFont.FixedFont))
+        self.view.setFont(fixed)
         self.view.verticalHeader().setVisible(False)
         self.view.verticalHeader().setDefaultSectionSize(18)
+        self.view.verticalHeader().setSectionResizeMode(QHeaderView.ResizeMode.Fixed)
         self.view.setSelectionBehavior(QTableView.SelectionBehavior.SelectRows)
+        self.view.setSelectionMode(QTableView.SelectionMode.SingleSelection)
         self.view.setWordWrap(False)
         header = self.view.horizontalHeader()
         header.setStretchLastSection(True)
-        for col, width in enumerate((80, 50, 80, 170, 170)):
+        for col, width in enumerate((92, 52, 70, 150, 170)):
             header.resizeSection(col, width)
         header.setSectionResizeMode(QHeaderView.ResizeMode.Interactive)
 
+        self.stats_view = TraceView()
+        self.stats_view.setModel(self.stats_model)
+        self.stats_view.setFont(fixed)
+        self.stats_view.verticalHeader().setVisible(False)
+        self.stats_view.verticalHeader().setDefaultSectionSize(18)
+        self.stats_view.setWordWrap(False)
+        self.stats_view.setSelectionBehavior(QTableView.SelectionBehavior.SelectRows)
+        self.stats_view.horizontalHeader().setStretchLastSection(True)
+        metrics = self.stats_view.fontMetrics()
+        for col, sample in enumerate(("0x000", "BA→#00 ", "000,000", "0000.000",
+                                      "0000.000", "00 00 00 00 ")):
+            head = str(self.stats_model.headerData(col, Qt.Orientation.Horizontal))
+            self.stats_view.horizontalHeader().resizeSection(
+                col, max(metrics.horizontalAdvance(sample),
+                         self.stats_view.horizontalHeader().fontMetrics().horizontalAdvance(
+                             head)) + 14)
+        self.stats_view.doubleClicked.connect(self._stats_row_chosen)
+        self.stats_view.setToolTip(self.tr("Per identifier: frames counted, mean period, "
+                                           "last period, last data and what it means. "
+                                           "Double-click to show only that identifier."))
+
         self.text_filter = QLineEdit()
-        self.text_filter.setPlaceholderText(self.tr("Filter text or hex…"))
+        self.text_filter.setPlaceholderText(self.tr("Filter text, ID or data…"))
         self.text_filter.setClearButtonEnabled(True)
         self.function_filter = QComboBox()
-        self.function_filter.addItem(translate("MonitorDock", ANY), ANY)
-        self.function_filter.addItems([CHANNEL_DATA,
-                                       *sorted({c.title for c in FunctionCode})])
-        self.node_filter = QSpinBox()
-        self.node_filter.setRange(-1, 254)
-        self.node_filter.setSpecialValueText(self.tr("any node"))
-        self.node_filter.setValue(-1)
+        self.function_filter.addItem(translate("MonitorDock", str(ANY)), ANY)
+        self.function_filter.addItems([CHANNEL_DATA, *sorted({c.title for c in FunctionCode})])
+        self.function_filter.setSizeAdjustPolicy(
+            QComboBox.SizeAdjustPolicy.AdjustToMinimumContentsLengthWithIcon)
+        self.function_filter.setMinimumContentsLength(12)
+        self.node_filter = QComboBox()
+        self.node_filter.setToolTip(self.tr("Show the frames of one node only"))
+        self.node_filter.setSizeAdjustPolicy(
+            QComboBox.SizeAdjustPolicy.AdjustToMinimumContentsLengthWithIcon)
+        self.node_filter.setMinimumContentsLength(12)
+        self._fill_node_filter()
+        self.find_edit = QLineEdit()
+        self.find_edit.setPlaceholderText(self.tr("Find text or ID…"))
+        self.find_edit.setClearButtonEnabled(True)
+        self.find_prev = QToolButton()
+        self.find_prev.setText("▲")
+        self.find_prev.setToolTip(self.tr("Find the previous frame"))
+        self.find_next = QToolButton()
+        self.find_next.setText("▼")
+        self.find_next.setToolTip(self.tr("Find the next frame"))
+
         self.pause_box = QCheckBox(self.tr("Pause"))
+        self.pause_box.setToolTip(self.tr("Freeze the table; frames are still recorded and "
+                                          "counted"))
         self.autoscroll_box = QCheckBox(self.tr("Autoscroll"))
         self.autoscroll_box.setChecked(True)
-        self.clear_button = QPushButton(self.tr("Clear"))
-        self.save_button = QPushButton(self.tr("Save…"))
-        self.open_button = QPushButton(self.tr("Open…"))
+        self.time_mode = QComboBox()
+        for mode in TIME_MODES:
+            self.time_mode.addItem(translate("TraceModel", str(mode)))
+        self.time_mode.setToolTip(self.tr("How the Time column counts"))
+        self.time_mode.setSizeAdjustPolicy(
+            QComboBox.SizeAdjustPolicy.AdjustToMinimumContentsLengthWithIcon)
+        self.time_mode.setMinimumContentsLength(12)
+        self.marker_button = _tool_button(self.tr("Add marker"))
+        self.marker_button.setToolTip(self.tr("Mark the selected frame, or the newest one"))
+        self.marker_box = QComboBox()
+        self.marker_box.setMinimumContentsLength(10)
+        self.marker_box.setSizeAdjustPolicy(
+            QComboBox.SizeAdjustPolicy.AdjustToMinimumContentsLengthWithIcon)
+        self.marker_box.setToolTip(self.tr("Go to a marker (times since a marker count "
+                                           "from it)"))
+        self.marker_box.addItem(self.tr("No markers"))
+        self.marker_box.setEnabled(False)
+        self.count_label = QLabel(self.tr("0 frames"))
+        # Long counts (and "recording to …") must not widen the dock, and so the window.
+        self.count_label.setSizePolicy(QSizePolicy.Policy.Ignored, QSizePolicy.Policy.Preferred)
+        self.count_label.setMinimumWidth(140)
+        self.load_bar = QProgressBar()
+        self.load_bar.setRange(0, 1000)
+        self.load_bar.setMaximumWidth(160)
+        self.load_bar.setTextVisible(True)
+        self.load_bar.setVisible(False)
+        self.record_button = _tool_button(self.tr("Record…"))
+        self.record_button.setCheckable(True)
+        self.record_button.setToolTip(self.tr("Write every live frame to a capture file (the "
+                                              "table keeps only the newest ones)"))
+        self.record_button.clicked.connect(self._toggle_recording)
+        self.clear_button = _tool_button(self.tr("Clear"))
+        self.save_button = _tool_button(self.tr("Save…"))
+        self.open_button = _tool_button(self.tr("Open…"))
         self.open_button.setToolTip(self.tr("Show a capture file (python-can log formats)"))
-        self.live_button = QPushButton(self.tr("Back to live"))
+        self.live_button = _tool_button(self.tr("Back to live"))
         self.live_button.setToolTip(self.tr("Close the capture and show the live frames again"))
         self.live_button.setVisible(False)
-        self.stop_load_button = QPushButton(self.tr("Stop loading"))
+        self.stop_load_button = _tool_button(self.tr("Stop loading"))
         self.stop_load_button.setVisible(False)
-        self.count_label = QLabel(self.tr("0 frames"))
 
         self.text_filter.textChanged.connect(lambda _t: self._refilter.start())
-        self.function_filter.currentTextChanged.connect(self._filter_changed)
-        self.node_filter.valueChanged.connect(self._filter_changed)
+        self.function_filter.currentIndexChanged.connect(self._filter_changed)
+        self.node_filter.currentIndexChanged.connect(self._filter_changed)
+        self.find_edit.returnPressed.connect(lambda: self.find_frame(self.find_edit.text()))
+        self.find_next.clicked.connect(lambda: self.find_frame(self.find_edit.text()))
+        self.find_prev.clicked.connect(
+            lambda: self.find_frame(self.find_edit.text(), forward=False))
         self.pause_box.toggled.connect(self.set_paused)
+        self.time_mode.currentIndexChanged.connect(self.set_time_mode)
+        self.marker_button.clicked.connect(lambda: self.add_marker())
+        self.marker_box.activated.connect(self.jump_to_marker)
         self.clear_button.clicked.connect(self.clear)
         self.save_button.clicked.connect(self._ask_save)
         self.open_button.clicked.connect(self._ask_open)
         self.live_button.clicked.connect(self.show_live)
         self.stop_load_button.clicked.connect(self.cancel_load)
 
-        # Long function names must not make the dock (and so the window) wide.
-        self.function_filter.setSizeAdjustPolicy(
-            QComboBox.SizeAdjustPolicy.AdjustToMinimumContentsLengthWithIcon)
-        self.function_filter.setMinimumContentsLength(14)
         self.text_filter.setMinimumWidth(90)
-        filters, actions = QHBoxLayout(), QHBoxLayout()
+        self.find_edit.setMinimumWidth(90)
+        # Three short rows: the dock must not make the window wider than a laptop screen.
+        filters, finding, actions = QHBoxLayout(), QHBoxLayout(), QHBoxLayout()
+        w: QWidget
         for w in (self.text_filter, self.function_filter, self.node_filter):
             filters.addWidget(w)
         filters.setStretch(0, 1)
-        for w in (self.pause_box, self.autoscroll_box, self.count_label):
+        for w in (self.find_edit, self.find_prev, self.find_next, self.time_mode,
+                  self.marker_button, self.marker_box):
+            finding.addWidget(w)
+        finding.setStretch(0, 1)
+        for w in (self.pause_box, self.autoscroll_box, self.count_label, self.load_bar):
             actions.addWidget(w)
         actions.addStretch(1)
-        for w in (self.stop_load_button, self.live_button, self.clear_button, self.open_button,
-                  self.save_button):
+        for w in (self.stop_load_button, self.live_button, self.record_button,
+                  self.clear_button, self.open_button, self.save_button):
             actions.addWidget(w)
+        # Statistics under the frames, both the dock's full width: side by side, a dock
+        # beside the inspector is too narrow to show either's meaning column.
+        self.splitter = QSplitter(Qt.Orientation.Vertical)
+        self.splitter.addWidget(self.view)
+        self.splitter.addWidget(self.stats_view)
+        self.splitter.setStretchFactor(0, 3)
+        self.splitter.setStretchFactor(1, 2)
+        self.splitter.setSizes([620, 380])
+        self.splitter.setChildrenCollapsible(True)
         body = QWidget()
         layout = QVBoxLayout(body)
         layout.setContentsMargins(2, 2, 2, 2)
         layout.addLayout(filters)
+        layout.addLayout(finding)
         layout.addLayout(actions)
-        layout.addWidget(self.view)
+        layout.addWidget(self.splitter)
         self.setWidget(body)
 
-    # -- feeding -------------------------------------------------------------------------
+    # -- what is shown -------------------------------------------------------------------
+    @property
+    def store(self) -> FrameStore:
+        """The frames the table shows: the opened capture's, or the live ring."""
+        return self.capture_store if self.capture_store is not None else self.live_store
+
+    @property
+    def stats(self) -> IdStats:
+        return self.capture_stats if self.capture_stats is not None else self.live_stats
+
+    @property
+    def all_rows(self) -> list[Frame]:
+        """Every frame of what is shown (the live ring or the capture), oldest first."""
+        self.flush()
+        return stored_rows(self.store)
+
+    def shown_rows(self) -> list[Frame]:
+        """The frames the table shows now (filtered; frozen while paused)."""
+        self.flush()
+        m = self.model
+        return [m.store.frame(m.absolute(r)) for r in range(m.rowCount())]
+
     @property
     def paused(self) -> bool:
-        """True while the table is frozen (frames are still recorded)."""
+        """True while the table is frozen (frames are still recorded and counted)."""
         return self.pause_box.isChecked()
 
+    # -- feeding -------------------------------------------------------------------------
     def add_frames(self, frames: Iterable[Any]) -> None:
-        """Slot for ``SessionBridge.frameSeen``: record and show a batch of frames."""
-        nodes = self.channel_nodes
-        rows = [make_row(f, nodes) for f in frames]
-        if not rows:
-            return
-        for r in rows:  # learn output channels named by the session's decoder
-            if r.function == CHANNEL_DATA and r.node not in nodes:
-                nodes.add(r.node)
-                self._link_map.setdefault(r.node, (f"node {r.node}", ()))
-        if self.capture_path is not None:  # a capture is shown: keep live frames apart
-            self.live_rows.extend(rows)
-            return
-        self._add_rows(rows)
+        """Slot for ``SessionBridge.frameSeen``: queue a batch (taken on the next tick)."""
+        self._incoming.extend(frames)
 
-    def _add_rows(self, rows: list[Row]) -> None:
-        self.all_rows.extend(rows)
-        if self.paused:
-            self._held.extend(rows)
-            del self._held[:-self.capacity]
-        else:
-            self._show(rows)
+    def flush(self) -> None:
+        """Take the queued frames and bring the table and statistics up to date now (else:
+        on the next tick)."""
+        self._tick()
+        self._refresh_stats()
+
+    def _ingest(self) -> None:
+        if not self._incoming:
+            return
+        frames, self._incoming = self._incoming, []
+        if self.recorder is not None:
+            self.recorder.feed([(f.timestamp, f.arbitration_id, f.data) for f in frames])
+        add = self._builder.add
+        for f in frames:
+            add(f.timestamp, f.arbitration_id, f.data if type(f.data) is bytes else bytes(f.data),
+                line_head(f.text or ""))
+        chunk = self._builder.take()
+        for node in self._builder.channel_nodes - self._link_map.keys():
+            self._link_map[node] = (f"node {node}", ())  # named by the session's decoder
+        self.frames_seen += len(frames)
+        self.live_stats.update(chunk)
+        self.live_store.append(chunk)
+
+    def _tick(self) -> None:
+        if not self._incoming and self.model.end == self.store.end and \
+                self._load_worker is None:
+            return  # nothing came: nothing to do
+        self._ingest()
+        if not self.paused and self._filter_worker is None:
+            added = self.model.sync()
+            if added and self.autoscroll_box.isChecked() and self.capture_store is None:
+                self.view.scrollToBottom()  # live frames; a capture stays at its start
         self._count()
 
-    def _show(self, rows: list[Row]) -> None:
-        shown = [r for r in rows if self._filter.matches(r)] if self._filter else rows
-        if not shown:
-            return
-        self._pending_view.extend(shown)
-        if len(self._pending_view) > self.capacity:
-            del self._pending_view[:-self.capacity]
-        wait = REFRESH_MS - self._view_clock.elapsed()
-        if not self.view.isVisible() or wait <= 0:
-            self._flush_view()
-        elif not self._view_timer.isActive():
-            self._view_timer.start(max(1, wait))
-
-    def _flush_view(self) -> None:
-        """Put the rows that came since the last refresh into the table, in one insert."""
-        self._view_timer.stop()
-        self._view_clock.restart()
-        if not self._pending_view:
-            return
-        rows, self._pending_view = self._pending_view, []
-        self.model.append(rows)
-        if self.autoscroll_box.isChecked():
-            self.view.scrollToBottom()
+    def _refresh_stats(self) -> None:
+        if self.stats_view.isVisible() or not self.isVisible():
+            self.stats_model.refresh(self.stats.rows())
+        self._list_new_nodes()
 
     def set_paused(self, paused: bool) -> None:
-        """Freeze the table; frames keep being recorded and appear on resume."""
+        """Freeze the table; frames keep being recorded and counted and appear on resume."""
         if self.pause_box.isChecked() != paused:
             self.pause_box.setChecked(paused)  # re-enters through toggled
             return
-        if not paused and self._held:
-            held, self._held = self._held, []
-            self._show(held)
-            self._count()
+        self._ingest()
+        if paused:
+            self.model.show(self.store.snapshot(), self._filter, self.model.rows, self.model.end)
+        else:
+            self._show_filtered()
 
     def clear(self) -> None:
-        self.all_rows.clear()
-        self._held.clear()
-        self._pending_view.clear()
+        """Forget the frames shown (live: the ring and its statistics) and the markers."""
+        self._incoming.clear()
+        self.store.clear()
+        self.stats.clear()
+        if self.capture_store is None:
+            self.frames_seen = 0
+        self.markers.clear()
+        self._refresh_markers()
+        self._hits = None
+        self.model.show(self.store, self._filter)
         self.model.clear()
+        self.stats_model.refresh([])
         self._count()
 
     def set_system(self, system: Any) -> None:
-        """Learn the output channels' node IDs (frames from them are channel data) and what
-        they feed, so a capture opened later names its links."""
+        """Learn node names (devices and output channels) and which nodes send channel data,
+        so a capture opened later names its links."""
+        for device in system.devices.values():
+            self.model.names[tuple(device.key)] = device.label
+            if device.node_id is not None:
+                self._node_names[device.node_id] = device.label
         for ref, ch in system.channels():
             if ch.is_output and ch.node_id is not None:
-                self.channel_nodes.add(ch.node_id)
+                self._builder.channel_nodes.add(ch.node_id)
                 self._link_map[ch.node_id] = (ref, tuple(system.inputs_fed_by(ref)))
+                device = system.device(ref.device)
+                owner = device.label if device is not None else str(ref)
+                self._node_names[ch.node_id] = self.tr("{device} output {index}").format(
+                    device=owner, index=ref.index)
+        self._fill_node_filter()
+
+    @property
+    def channel_nodes(self) -> set[int]:
+        """Node IDs of output channels: their frames are channel data."""
+        return self._builder.channel_nodes
+
+    @channel_nodes.setter
+    def channel_nodes(self, nodes: Iterable[int]) -> None:
+        self._builder.channel_nodes = set(nodes)
 
     def reset_for_session(self, system: Any, *, keep_frames: bool = False) -> None:
         """Follow the bus this dock shows: forget the node map (node IDs are reassigned
         after a reset or hot-swap) and learn ``system``'s; a new session (``keep_frames``
         False) also starts with no frames, so two sessions' frames are never mixed."""
-        if not keep_frames:
+        if not keep_frames and self.capture_store is None:
             self.clear()
-        self.channel_nodes.clear()
+        elif not keep_frames:
+            self._incoming.clear()
+            self.live_store.clear()
+            self.live_stats.clear()
+        self._builder.channel_nodes.clear()
         self._link_map.clear()
+        self._node_names.clear()
+        self.model.names.clear()
         self.set_system(system)
 
-    def shown_rows(self) -> list[Row]:
-        """The rows the table shows now (filtered; frozen while paused)."""
-        self._flush_view()
-        return list(self.model.rows)
+    # -- node filter ---------------------------------------------------------------------
+    def _fill_node_filter(self) -> None:
+        box = self.node_filter
+        current = box.currentData() if box.count() else None
+        box.blockSignals(True)
+        try:
+            box.clear()
+            box.addItem(self.tr("Any node"), None)
+            box.addItem(self.tr("Broadcast"), 0)
+            nodes = set(self._node_names) | self._nodes_listed
+            for node in sorted(nodes - {0}):
+                name = self._node_names.get(node)
+                box.addItem(self.tr("{name} (node {node})").format(name=name, node=node)
+                            if name else self.tr("Node {node}").format(node=node), node)
+            found = box.findData(current)
+            box.setCurrentIndex(max(0, found))
+        finally:
+            box.blockSignals(False)
 
+    def _list_new_nodes(self) -> None:
+        seen = {aid & 0xFF for aid in self.stats.ids() if aid <= 0x7FF}
+        if not seen <= self._nodes_listed | set(self._node_names) | {0}:
+            self._nodes_listed |= seen
+            self._fill_node_filter()
+
+    # -- filters and search --------------------------------------------------------------
     def set_filter(self, text: str = "", function: str = "", node: int | None = None) -> None:
-        """Filter programmatically (the widgets follow; the table is filtered once)."""
+        """Filter programmatically (the widgets follow; the table is filtered once).
+        ``node`` None shows every node, 0 the broadcasts."""
         widgets = (self.text_filter, self.function_filter, self.node_filter)
         for w in widgets:
             w.blockSignals(True)
         try:
             self.text_filter.setText(text)
-            self.function_filter.setCurrentText(function or translate("MonitorDock", ANY))
-            self.node_filter.setValue(-1 if node is None else node)
+            self.function_filter.setCurrentText(function or translate("MonitorDock", str(ANY)))
+            if node is not None and self.node_filter.findData(node) < 0:
+                self._nodes_listed.add(node)
+                self._fill_node_filter()
+            self.node_filter.setCurrentIndex(max(0, self.node_filter.findData(node)))
         finally:
             for w in widgets:
                 w.blockSignals(False)
@@ -473,30 +582,245 @@ class MonitorDock(QDockWidget):
 
     def _filter_changed(self, *_args: Any) -> None:
         self._refilter.stop()
-        function = self.function_filter.currentText()
-        node = self.node_filter.value()
-        self._filter = FrameFilter(self.text_filter.text().strip(),
-                                   "" if self.function_filter.currentIndex() == 0 else function,
-                                   None if node < 0 else node)
-        rows: Iterable[Row] = self.all_rows
-        if self.paused and self._held:  # held rows appear on resume, not now
-            rows = list(self.all_rows)[:max(0, len(self.all_rows) - len(self._held))]
-        self._pending_view.clear()
-        self.model.replace(r for r in rows if self._filter.matches(r))
+        node = self.node_filter.currentData()
+        self._filter = TraceFilter(
+            self.text_filter.text().strip(),
+            "" if self.function_filter.currentIndex() <= 0 else self.function_filter.currentText(),
+            None if node is None else int(node))
+        self._show_filtered()
+
+    def _show_filtered(self) -> None:
+        """Show the current store through the filter: at once when small, else the rows
+        are selected on a worker (the table keeps its old rows meanwhile)."""
+        self._ingest()
+        flt = self._filter
+        store = self.store if not self.paused else self.model.store
+        if self._filter_worker is not None:
+            self._filter_worker.cancel()
+            self._filter_worker = None
+        if not flt or len(store) <= FILTER_AT_ONCE:
+            self.model.show(store, flt)
+            self._after_filter()
+            return
+        end = store.end
+        self.count_label.setText(self.tr("Filtering…"))
+
+        def work(progress: Any, cancel: threading.Event) -> Any:
+            return store.select(flt, None, end, cancel,
+                                lambda done, total: progress(done, total, ""))
+
+        worker = Worker(work, "Filter frames")
+        self._filter_worker = worker
+
+        def finished(rows: Any) -> None:
+            if self._filter_worker is worker:
+                self._filter_worker = None
+                self.model.show(store, flt, rows, end)
+                self._after_filter()
+
+        def dropped() -> None:
+            if self._filter_worker is worker:
+                self._filter_worker = None
+
+        worker.finished.connect(finished)
+        worker.cancelled.connect(dropped)
+        def failed(message: str) -> None:
+            dropped()
+            self.error.emit(message)
+
+        worker.failed.connect(failed)
+        worker.start()
+
+    def _after_filter(self) -> None:
+        if not self.paused:
+            self.model.sync()
         if self.autoscroll_box.isChecked():
             self.view.scrollToBottom()
         self._count()
+        self.filtered.emit()
+
+    def find_frame(self, text: str, forward: bool = True) -> Worker | None:
+        """Go to the next (or previous) frame after the selected row whose text, function,
+        ID (``0x…``) or data contains ``text``; the search runs on a worker over all the
+        frames of the store, and ``found(row)`` follows (-1: none in the table)."""
+        needle = text.strip()
+        if not needle:
+            return None
+        self.flush()
+        store = self.model.store
+        hits = self._hits
+        start = 0
+        if hits is not None and hits[0] == needle and hits[2] <= store.end:
+            start = hits[2]
+        end = store.end
+        current = self.view.currentIndex()
+        origin = self.model.absolute(current.row()) if current.isValid() else (
+            store.base - 1 if forward else store.end)
+
+        def work(_progress: Any, cancel: threading.Event) -> Any:
+            return store.select(TraceFilter(text=needle), start, end, cancel)
+
+        worker = Worker(work, "Find frames")
+        self._find_worker = worker
+
+        def finished(more: Any) -> None:
+            old = self._hits[1] if (self._hits is not None and start) else np.zeros(0, np.int64)
+            found = np.concatenate((old, more))
+            self._hits = (needle, found, end)
+            self._go_to_hit(found, origin, forward)
+
+        worker.finished.connect(finished)
+        worker.failed.connect(self.error.emit)
+        return worker.start()
+
+    def _go_to_hit(self, hits: np.ndarray, origin: int, forward: bool) -> None:
+        m = self.model
+        if m.rows is not None and len(hits):
+            hits = hits[np.isin(hits, m.rows)]
+        hits = hits[hits >= m.store.base]
+        if forward:
+            pos = int(np.searchsorted(hits, origin, side="right"))
+            target = int(hits[pos]) if pos < len(hits) else None
+        else:
+            pos = int(np.searchsorted(hits, origin, side="left")) - 1
+            target = int(hits[pos]) if pos >= 0 else None
+        row = None if target is None else m.row_of(target)
+        if row is None:
+            self.found.emit(-1)
+            return
+        self._select_row(row)
+        self.found.emit(row)
+
+    def _select_row(self, row: int) -> None:
+        self.autoscroll_box.setChecked(False)  # do not jump away from what was found
+        index = self.model.index(row, 0)
+        self.view.setCurrentIndex(index)
+        self.view.scrollTo(index, QTableView.ScrollHint.PositionAtCenter)
+
+    def _stats_row_chosen(self, index: Any) -> None:
+        stat = self.stats_model.stats[index.row()]
+        self.set_filter(text=f"0x{stat.arbitration_id:03X}")
+
+    # -- time and markers ----------------------------------------------------------------
+    def set_time_mode(self, mode: int) -> None:
+        """Time since start, clock time, since the previous row, or since the marker."""
+        if self.time_mode.currentIndex() != mode:
+            self.time_mode.setCurrentIndex(mode)  # re-enters through the signal
+            return
+        self.model.set_time_mode(mode)
+
+    def add_marker(self, name: str = "") -> Marker | None:
+        """Mark the selected frame, or the newest frame shown; times since a marker count
+        from the newest marker until another is chosen."""
+        self.flush()
+        current = self.view.currentIndex()
+        m = self.model
+        if current.isValid():
+            index = m.absolute(current.row())
+        elif m.rowCount():
+            index = m.absolute(m.rowCount() - 1)
+        else:
+            return None
+        marker = Marker(index, m.store.timestamp(index),
+                        name or self.tr("Marker {n}").format(n=len(self.markers) + 1))
+        self.markers.append(marker)
+        m.markers[index] = marker.name
+        m.set_marker_time(marker.time)
+        row = m.row_of(index)
+        if row is not None:
+            m.dataChanged.emit(m.index(row, 0), m.index(row, m.columnCount() - 1))
+        self._refresh_markers()
+        self.marker_box.setCurrentIndex(len(self.markers) - 1)
+        return marker
+
+    def jump_to_marker(self, i: int) -> None:
+        """Select the marked frame (or the first shown after it) and count from it."""
+        if not 0 <= i < len(self.markers):
+            return
+        marker = self.markers[i]
+        self.model.set_marker_time(marker.time)
+        row = self.model.row_of(marker.index, nearest=True)
+        if row is not None:
+            self._select_row(row)
+
+    def _refresh_markers(self) -> None:
+        box = self.marker_box
+        box.clear()
+        t0 = self.model.t0 or 0.0
+        for marker in self.markers:
+            box.addItem(f"{marker.name}  {marker.time - t0:.3f} s")
+        if not self.markers:
+            box.addItem(self.tr("No markers"))
+        box.setEnabled(bool(self.markers))
+
+    # -- recording -----------------------------------------------------------------------
+    def _toggle_recording(self, on: bool) -> None:
+        if not on:
+            self.stop_recording()
+            return
+        path, _ = QFileDialog.getSaveFileName(
+            self, self.tr("Record live frames"), "recording.blf",
+            self.tr("python-can logs (*.blf *.asc *.log *.csv *.trc)"))
+        if path:
+            self.start_recording(path)
+        else:
+            self.record_button.setChecked(False)
+
+    def start_recording(self, path: str | Path) -> None:
+        """Write every live frame from now on to ``path`` (a python-can capture by
+        extension), on a thread, until ``stop_recording()``."""
+        self.stop_recording()
+        try:
+            self.recorder = LiveRecorder(path, dict(self._link_map))
+        except Exception as err:
+            self.record_button.setChecked(False)
+            self.error.emit(self.tr("Recording {path}: {message}").format(path=path,
+                                                                          message=err))
+            return
+        self.record_button.setChecked(True)
+        self.record_button.setText(self.tr("Recording"))
+        self._count()
+
+    def stop_recording(self) -> int:
+        """Finish the recording (the file is complete once this returns); the count."""
+        if self.recorder is not None:
+            self._ingest()  # what is queued goes in too
+        recorder, self.recorder = self.recorder, None
+        self.record_button.setChecked(False)
+        self.record_button.setText(self.tr("Record…"))
+        if recorder is None:
+            return 0
+        written = recorder.stop()
+        if recorder.error:
+            self.error.emit(self.tr("Recording {path}: {message}").format(
+                path=recorder.path, message=recorder.error))
+        else:
+            self.saved.emit(str(recorder.path))
+        self._count()
+        return written
 
     def _count(self) -> None:
-        shown, total = self.model.rowCount() + len(self._pending_view), len(self.all_rows)
-        self.count_label.setText(
-            self.tr("{shown} of {total} frames").format(shown=shown, total=total)
-            if self._filter
-            else self.tr("{total} frames").format(total=total)
-        )
-        self.countChanged.emit(shown, total)
+        shown = self.model.rowCount()
+        total = len(self.store)
+        if self.capture_store is not None:
+            text = (self.tr("{shown} of {total} frames").format(shown=f"{shown:,}",
+                                                                 total=f"{total:,}")
+                    if self._filter else self.tr("{total} frames").format(total=f"{total:,}"))
+        else:
+            seen = self.frames_seen
+            text = (self.tr("{shown} of {total} frames").format(shown=f"{shown:,}",
+                                                                 total=f"{seen:,}")
+                    if self._filter or seen != shown
+                    else self.tr("{total} frames").format(total=f"{seen:,}"))
+        if self.recorder is not None:
+            text += self.tr(" · recording to {name}").format(name=self.recorder.path.name)
+        if self._filter_worker is None:
+            self.count_label.setText(text)
+        if (shown, total) != self._counted:
+            self._counted = (shown, total)
+            self.countChanged.emit(shown, total)
 
-    # -- saving --------------------------------------------------------------------------
+    # -- saving and opening --------------------------------------------------------------
     def _ask_save(self) -> None:
         path, _ = QFileDialog.getSaveFileName(
             self, self.tr("Save frames"), "capture.asc",
@@ -512,13 +836,14 @@ class MonitorDock(QDockWidget):
             self.load_capture(path)
 
     def save(self, path: str | Path) -> Worker:
-        """Save every recorded frame on a worker; ``saved(path)`` or ``error`` follows."""
-        rows = list(self.all_rows)
+        """Save every frame of what is shown on a worker; ``saved(path)`` or ``error``."""
+        self.flush()
+        store = self.store.snapshot()
         links = dict(self._link_map)
         self.save_button.setEnabled(False)
 
         def work(_progress: Any, _cancel: threading.Event) -> int:
-            return save_frames(path, rows, links)
+            return save_store(path, store, links)
 
         worker = Worker(work, "Save frames")
         self._save_path = str(path)
@@ -531,51 +856,20 @@ class MonitorDock(QDockWidget):
     def load_capture(self, path: str | Path) -> Worker:
         """Show a capture (any python-can log format) apart from the live frames.
 
-        Read and decoded on a worker (``bus.monitor.replay``, with the node map saved beside
-        the capture when there is one); the first rows appear at once, the rest in chunks
-        as they are read, with ``loadProgress(frames)``; ``cancel_load()`` stops it. Live
-        frames keep being recorded in ``live_rows`` and return with ``show_live()``. The
-        table holds the first ``capacity`` frames of the capture (all are counted);
-        ``loaded(path)`` or ``error`` follows.
+        Decoded on a worker into a store of its own (with the node map saved beside the
+        capture when there is one): the first rows show at once, the rest as they are read,
+        with ``loadProgress(frames)``, a progress bar and ``cancel_load()``. Live frames keep
+        being recorded and come back with ``show_live()``. ``loaded(path)`` or ``error``.
         """
-        from pdcp_studio.bus.events import FrameSeen
-
         self.cancel_load()
         links = dict(self._link_map)  # a capture may start after the set-up that names them
-        chunks: queue.SimpleQueue[list[Row]] = queue.SimpleQueue()
-        self._capture_chunks = chunks
-        capacity = self.capacity
+        store = FrameStore()
+        stats = IdStats(store.tables)
 
         def work(progress: Any, cancel: threading.Event) -> int:
-            from pdcp_studio.bus.monitor import FrameDecoder, read_node_map, replay
+            return _load_into(store, stats, path, links, progress, cancel)
 
-            decoder = FrameDecoder(links)
-            node_map = read_node_map(path)
-            if node_map is not None:
-                decoder.load_node_map(node_map, f"{path}.nodemap.json")
-            chunk: list[Row] = []
-            count = 0
-            size = 200  # the first rows go to the table at once
-            for decoded in replay(path, decoder):
-                if cancel.is_set():
-                    break
-                count += 1
-                if count > capacity:
-                    if count % CAPTURE_CHUNK == 0:
-                        progress(count, 0, "")
-                    continue  # counted (the total is shown), not kept
-                chunk.append(make_row(FrameSeen(decoded.timestamp, decoded.arbitration_id,
-                                                decoded.data, decoded.line)))
-                if len(chunk) >= size:
-                    chunks.put(chunk)
-                    chunk, size = [], CAPTURE_CHUNK
-                    progress(count, 0, "")
-            if chunk:
-                chunks.put(chunk)
-            progress(count, 0, "")
-            return count
-
-        self._enter_capture(str(path))
+        self._enter_capture(str(path), store, stats)
         worker = Worker(work, "Load capture")
         self._load_path = str(path)
         worker.progress.connect(self._capture_progress)
@@ -584,8 +878,22 @@ class MonitorDock(QDockWidget):
         worker.done.connect(self._capture_done)
         self._load_worker = worker
         self.stop_load_button.setVisible(True)
-        self._capture_timer.start()
+        self.load_bar.setValue(0)
+        self.load_bar.setVisible(True)
+        self.count_label.setVisible(False)  # the bar counts meanwhile (and the row stays short)
         return worker.start()
+
+    def show_frames(self, store: FrameStore, stats: IdStats | None = None,
+                    title: str = "") -> None:
+        """Show frames already in a store (a capture read elsewhere) apart from the live
+        ones, as ``load_capture`` does; ``show_live()`` returns."""
+        self.cancel_load()
+        if stats is None:
+            stats = IdStats(store.tables)
+            for chunk in store.chunks:
+                stats.update(chunk)
+        self._enter_capture(title or self.tr("frames"), store, stats)
+        self.capture_total = len(store)
 
     def cancel_load(self) -> None:
         """Stop reading an opened capture (what was read stays shown)."""
@@ -595,69 +903,67 @@ class MonitorDock(QDockWidget):
     def show_live(self) -> None:
         """Close the opened capture: the table shows the live frames again."""
         self.cancel_load()
-        self._capture_timer.stop()
         self.capture_path = None
+        self.capture_store = self.capture_stats = None
         self.live_button.setVisible(False)
         self.stop_load_button.setVisible(False)
+        self.load_bar.setVisible(False)
+        self.count_label.setVisible(True)
         self.setWindowTitle(self.tr("Bus monitor"))
-        live, self.live_rows = list(self.live_rows), deque(maxlen=self.capacity)
-        self.clear()
-        self.model.t0 = None
-        self._add_rows(live)
+        self._reset_view()
 
-    def _enter_capture(self, path: str) -> None:
-        if self.capture_path is None:
-            self.live_rows = deque(self.all_rows, maxlen=self.capacity)
+    def _enter_capture(self, path: str, store: FrameStore, stats: IdStats) -> None:
         self.capture_path = path
         self.capture_total = 0
-        self.clear()
-        self.model.t0 = None
+        self.capture_store, self.capture_stats = store, stats
         self.live_button.setVisible(True)
         self.setWindowTitle(self.tr("Bus monitor — capture %1").replace("%1", Path(path).name))
+        self._reset_view()
 
-    def _take_capture_chunks(self, limit: int = 4) -> None:
-        """Move what the worker decoded into the table, a few chunks per timer tick."""
-        for _ in range(limit):
-            try:
-                chunk = self._capture_chunks.get_nowait()
-            except queue.Empty:
-                return
-            self._add_rows(chunk)
+    def _reset_view(self) -> None:
+        self.markers.clear()
+        self._refresh_markers()
+        self._hits = None
+        self.model.t0 = None
+        self.model.markers.clear()
+        self.model.marker_time = None
+        self._show_filtered()
+        self._refresh_stats()
+        self._count()
 
-    def _capture_progress(self, done: int, _total: int, _text: str) -> None:
-        self.count_label.setText(self.tr("%1 frames read").replace("%1", f"{done:,}"))
+    def _capture_progress(self, done: int, permille: int, _text: str) -> None:
+        self.load_bar.setValue(permille)
+        self.load_bar.setFormat(self.tr("%1 frames").replace("%1", f"{done:,}"))
         self.loadProgress.emit(done)
+        if self.model.rowCount() == 0:
+            self._tick()  # the first rows at once
 
     def _capture_loaded(self, total: int) -> None:
-        self._take_capture_chunks(limit=1 << 30)
-        self._flush_view()
+        if self.capture_store is None:
+            return
         self.capture_total = total
-        if total > self.capacity:
-            self.count_label.setText(self.tr("first %1 of %2 frames").replace(
-                "%1", f"{self.capacity:,}").replace("%2", f"{total:,}"))
+        self.flush()
         self.loaded.emit(self._load_path)
 
     def _capture_done(self) -> None:
-        self._capture_timer.stop()
-        self._take_capture_chunks(limit=1 << 30)
+        if self.sender() is not self._load_worker:
+            return  # an earlier capture's reader, replaced by a newer one
+        self._load_worker = None
         self.stop_load_button.setVisible(False)
+        self.load_bar.setVisible(False)
+        self.count_label.setVisible(True)
+        self.flush()
 
     def _load_failed(self, message: str) -> None:
-        self.error.emit(
-            self.tr("Reading {load_path}: {message}").format(
-                load_path=self._load_path, message=message
-            )
-        )
+        self.error.emit(self.tr("Reading {load_path}: {message}").format(
+            load_path=self._load_path, message=message))
 
     def _save_finished(self, _count: int) -> None:
         self.saved.emit(self._save_path)
 
     def _save_failed(self, message: str) -> None:
-        self.error.emit(
-            self.tr("Saving {save_path}: {message}").format(
-                save_path=self._save_path, message=message
-            )
-        )
+        self.error.emit(self.tr("Saving {save_path}: {message}").format(
+            save_path=self._save_path, message=message))
 
     def _save_done(self) -> None:
         self.save_button.setEnabled(True)

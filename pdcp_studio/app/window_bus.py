@@ -133,6 +133,7 @@ class BusMixin:
         plot = self._leaf_docks.get("plot")
         if plot is not None:
             plot.widget().set_channel(None)
+            plot.widget().set_system(system)  # names and units of its signals
         bridge.simChanged.connect(lambda _what: (self.live.refresh(),
                                                  self.reread_configuration()))
         bridge.configurationWritten.connect(lambda _c: self.reread_configuration())
@@ -171,9 +172,10 @@ class BusMixin:
             monitor.reset_for_session(system, keep_frames=True)
         plot = self._leaf_docks.get("plot")
         if plot is not None:
-            ref = plot.widget().ref
-            if ref is not None and system.channel(ref) is None:
-                plot.widget().set_channel(None)
+            plot.widget().set_system(system)
+            for series in list(plot.widget().series):
+                if system.channel(series.ref) is None:
+                    plot.widget().remove_channel(series.ref)
 
     def _detach_bus_docks(self) -> None:
         """The session ended: no panel may keep acting on it (the simulator's goes)."""

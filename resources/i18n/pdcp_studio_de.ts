@@ -2088,6 +2088,34 @@ Den PDCP-Bus einer aktiven Prothese ansehen und einrichten.</translation>
             <source>Saving {save_path}: {message}</source>
             <translation>{save_path} speichern: {message}</translation>
         </message>
+        <message>
+            <source>Record…</source>
+            <translation>Aufzeichnen…</translation>
+        </message>
+        <message>
+            <source>Write every live frame to a capture file (the table keeps only the newest ones)</source>
+            <translation>Jeden Live-Frame in eine Aufzeichnungsdatei schreiben (die Tabelle behält nur die neuesten)</translation>
+        </message>
+        <message>
+            <source>Record live frames</source>
+            <translation>Live-Frames aufzeichnen</translation>
+        </message>
+        <message>
+            <source>python-can logs (*.blf *.asc *.log *.csv *.trc)</source>
+            <translation>python-can-Aufzeichnungen (*.blf *.asc *.log *.csv *.trc)</translation>
+        </message>
+        <message>
+            <source>Recording {path}: {message}</source>
+            <translation>Aufzeichnung {path}: {message}</translation>
+        </message>
+        <message>
+            <source>Recording</source>
+            <translation>Zeichnet auf</translation>
+        </message>
+        <message>
+            <source> · recording to {name}</source>
+            <translation> · Aufzeichnung in {name}</translation>
+        </message>
     </context>
     <context>
         <name>Pending</name>
@@ -4180,6 +4208,151 @@ Die Prothese ist wie zuvor.</translation>
         <message>
             <source>No bus events yet: parts that come and go and the links the bus makes appear here</source>
             <translation>Noch keine Busereignisse: Teile, die kommen und gehen, und die Verbindungen des Busses erscheinen hier</translation>
+        </message>
+    </context>
+    <context>
+        <name>TraceModel</name>
+        <message>
+            <source>Time since start</source>
+            <translation>Zeit seit Beginn</translation>
+        </message>
+        <message>
+            <source>Clock time</source>
+            <translation>Uhrzeit</translation>
+        </message>
+        <message>
+            <source>Time since previous row</source>
+            <translation>Zeit seit voriger Zeile</translation>
+        </message>
+        <message>
+            <source>Time since marker</source>
+            <translation>Zeit seit Markierung</translation>
+        </message>
+        <message>
+            <source>Δ previous</source>
+            <translation>Δ vorige</translation>
+        </message>
+        <message>
+            <source>Δ marker</source>
+            <translation>Δ Markierung</translation>
+        </message>
+    </context>
+    <context>
+        <name>StatsModel</name>
+        <message>
+            <source>ID</source>
+            <translation>ID</translation>
+        </message>
+        <message>
+            <source>Node</source>
+            <translation>Knoten</translation>
+        </message>
+        <message>
+            <source>Count</source>
+            <translation>Anzahl</translation>
+        </message>
+        <message>
+            <source>Period (ms)</source>
+            <translation>Periode (ms)</translation>
+        </message>
+        <message>
+            <source>Last period (ms)</source>
+            <translation>Letzte Periode (ms)</translation>
+        </message>
+        <message>
+            <source>Last data</source>
+            <translation>Letzte Daten</translation>
+        </message>
+        <message>
+            <source>Meaning</source>
+            <translation>Bedeutung</translation>
+        </message>
+    </context>
+    <context>
+        <name>LivePlot</name>
+        <message>
+            <source>value</source>
+            <translation>Wert</translation>
+        </message>
+        <message>
+            <source>position</source>
+            <translation>Position</translation>
+        </message>
+        <message>
+            <source>velocity</source>
+            <translation>Geschwindigkeit</translation>
+        </message>
+        <message>
+            <source>acceleration</source>
+            <translation>Beschleunigung</translation>
+        </message>
+        <message>
+            <source>on/off</source>
+            <translation>ein/aus</translation>
+        </message>
+        <message>
+            <source>on</source>
+            <translation>ein</translation>
+        </message>
+        <message>
+            <source>off</source>
+            <translation>aus</translation>
+        </message>
+        <message>
+            <source>Choose signals to plot: select a link or channel on the bus, or use Signals.</source>
+            <translation>Signale zum Anzeigen wählen: eine Verbindung oder einen Kanal am Bus auswählen oder „Signale“ benutzen.</translation>
+        </message>
+        <message>
+            <source>time before now (s)</source>
+            <translation>Zeit vor jetzt (s)</translation>
+        </message>
+        <message>
+            <source>time before the hold (s)</source>
+            <translation>Zeit vor dem Anhalten (s)</translation>
+        </message>
+        <message>
+            <source>Signals</source>
+            <translation>Signale</translation>
+        </message>
+        <message>
+            <source>Choose the output channels to plot</source>
+            <translation>Die anzuzeigenden Ausgangskanäle wählen</translation>
+        </message>
+        <message>
+            <source>Last {n} s</source>
+            <translation>Letzte {n} s</translation>
+        </message>
+        <message>
+            <source>How much time the plot shows</source>
+            <translation>Wie viel Zeit die Kurve zeigt</translation>
+        </message>
+        <message>
+            <source>Hold</source>
+            <translation>Anhalten</translation>
+        </message>
+        <message>
+            <source>Freeze the plot to read it; values keep being recorded</source>
+            <translation>Kurve zum Ablesen anhalten; Werte werden weiter aufgezeichnet</translation>
+        </message>
+        <message>
+            <source>Clear cursors</source>
+            <translation>Cursor entfernen</translation>
+        </message>
+        <message>
+            <source>Click the plot to set cursor A, right-click for cursor B; drag to move them</source>
+            <translation>In die Kurve klicken setzt Cursor A, Rechtsklick Cursor B; ziehen verschiebt sie</translation>
+        </message>
+        <message>
+            <source>Clear</source>
+            <translation>Leeren</translation>
+        </message>
+        <message>
+            <source>{device} output {index}</source>
+            <translation>{device} Ausgang {index}</translation>
+        </message>
+        <message>
+            <source>No output channels known yet</source>
+            <translation>Noch keine Ausgangskanäle bekannt</translation>
         </message>
     </context>
 </TS>

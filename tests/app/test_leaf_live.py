@@ -4,7 +4,7 @@ SessionBridge), plus the monitor's table mechanics."""
 from __future__ import annotations
 
 import pytest
-from PySide6.QtGui import QImage
+from PySide6.QtGui import QColor, QImage
 
 from pdcp_studio.app.live_plot import LivePlot, as_number
 from pdcp_studio.app.monitor_dock import CHANNEL_DATA, MonitorDock, make_row
@@ -45,13 +45,13 @@ def test_live_plot_shows_the_values_of_the_selected_link(qtbot, live):
     assert [p[1] for p in plot.points] == seen[-len(plot.points):]  # only this link's values
     qtbot.waitUntil(lambda: plot.paint_count > 0, timeout=2000)
     image: QImage = plot.grab().toImage()
-    highlight = plot.palette().highlight().color()
+    highlight = QColor(plot.series[0].color)
     traced = sum(1 for x in range(0, image.width(), 2) for y in range(0, image.height(), 2)
                  if image.pixelColor(x, y) == highlight)
-    assert traced > 10  # the polyline is drawn in the highlight colour
-    plot.set_window(0.2)
-    ts = [t for t, _ in plot.points]
-    assert ts[-1] - ts[0] <= 0.2
+    assert traced > 10  # the polyline is drawn in the signal's colour
+    plot.set_window(0.2)  # the axis shows 0.2 s; values are kept for the longest window
+    assert plot.window_s == 0.2 and plot.window_box.currentIndex() >= 0
+    assert len(plot.points) >= 10
     plot.set_link(None)
     assert plot.ref is None and not plot.points
     plot.add_values([])  # nothing selected: ignored
@@ -93,10 +93,13 @@ def test_monitor_shows_decoded_bus_frames_filters_pauses_and_saves(qtbot, live, 
     qtbot.waitUntil(lambda: len(dock.all_rows) >= 50, timeout=5000)
     functions = {r.function for r in dock.all_rows}
     assert CHANNEL_DATA in functions and "Device Beacon" in functions
-    data = next(i for i, r in enumerate(dock.model.rows) if r.function == CHANNEL_DATA)
+    data = next(i for i, r in enumerate(dock.shown_rows()) if r.function == CHANNEL_DATA)
     cells = [dock.model.data(dock.model.index(data, c)) for c in range(6)]
     assert cells[2].endswith(" data") and cells[3] == CHANNEL_DATA
-    assert "→" in cells[5] and "2641/" in cells[5]  # decoded: which output feeds which input
+    # decoded: which output feeds which input, by device name (the raw reference in the tip)
+    assert "→" in cells[5] and "2641/" not in cells[5] and " #" in cells[5]
+    tip = dock.model.data(dock.model.index(data, 5), 3)
+    assert "2641/" in tip
 
     dock.set_filter(function="Device Beacon")
     assert dock.shown_rows() and all(r.function == "Device Beacon" for r in dock.shown_rows())
@@ -154,6 +157,7 @@ def test_monitor_text_filter_and_row_classification(qtbot):
     assert make_row(from_ba).who == "BA→#7"
     assert make_row(to_ba).who == "#7→BA"
     dock.add_frames([data, to_ba, from_ba])
+    dock.flush()  # frames are taken on the dock's next tick; now, for the test
     with qtbot.waitSignal(dock.countChanged, timeout=2000) as counted:
         dock.text_filter.setText("ba→#7")  # debounced; case-insensitive
     assert counted.args == [1, 3]
