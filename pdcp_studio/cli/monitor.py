@@ -285,7 +285,7 @@ def run(args: argparse.Namespace) -> int:
             frames = _session_frames(args.bus, stop, links)
     out = sys.stdout
     json_out = JsonFrameWriter(out) if args.json else None
-    limiter = UndecodableLog(sys.stderr) if live else None
+    limiter = UndecodableFrames(sys.stderr) if live else None
     decode = decoder.decode_message
     from pdcp_studio.bus.hostlink_client import ChannelCounts
 
@@ -378,29 +378,36 @@ class ChannelDataCounts:
                 f"{len(self.by_output)} output(s) (the host link carries counts, not frames)")
 
 
-class UndecodableLog:
-    """Undecodable frames on stderr: the first of each reason, then a count at most once a
-    second (a hostile bus at 4 kHz writes a line a second, not 4,000). The trace and the
-    statistics still show and count every frame."""
+#: Kinds of undecodable frames told apart on stderr (a hostile bus could bring many more).
+MAX_UNDECODABLE_KINDS = 64
 
-    def __init__(self, stream: Any, interval_s: float = 1.0) -> None:
-        self.stream, self.interval_s = stream, interval_s
-        self.reasons: set[str] = set()
-        self.unreported = 0
-        self.last = time.monotonic()
+
+class UndecodableFrames:
+    """Undecodable frames on stderr, through the one repeat limiter (``bus/log_limit.py``):
+    the first of each reason in full, then at most one a second with a count of the rest (a
+    hostile bus at 4 kHz writes a line a second, not 4,000). The trace and the statistics
+    still show and count every frame."""
+
+    def __init__(self, stream: Any) -> None:
+        import logging
+
+        from pdcp_studio.bus.log_limit import LimitedLog
+
+        logger = logging.Logger("pdcp_studio.monitor")  # private: not the global tree
+        handler = logging.StreamHandler(stream)
+        handler.setFormatter(logging.Formatter("%(message)s"))
+        logger.addHandler(handler)
+        self.log = LimitedLog(logger)
+        self._kinds: set[str] = set()
 
     def note(self, frame: Any) -> None:
         reason = frame.error.split(":")[0]
-        if reason not in self.reasons and len(self.reasons) < 64:
-            self.reasons.add(reason)
-            print(f"undecodable frame {frame.fields}: {frame.error}", file=self.stream)
-        else:
-            self.unreported += 1
-            self.tick()
+        if reason not in self._kinds:
+            if len(self._kinds) >= MAX_UNDECODABLE_KINDS:
+                reason = "other reasons"
+            self._kinds.add(reason)
+        self.log.warning(f"undecodable frames ({reason})", "undecodable frame %s: %s",
+                         frame.fields, frame.error)
 
     def tick(self, final: bool = False) -> None:
-        now = time.monotonic()
-        if self.unreported and (final or now - self.last >= self.interval_s):
-            print(f"{self.unreported} more undecodable frames", file=self.stream)
-            self.unreported = 0
-            self.last = now
+        self.log.flush(final)
