@@ -39,6 +39,7 @@ LinkMap = Mapping[int, tuple[ChannelRef, Sequence[ChannelRef]]]
 #: Capture formats python-can 4.6 both writes and reads without extra packages (``.gz`` too).
 CAPTURE_SUFFIXES = (".asc", ".blf", ".csv", ".log", ".trc", ".db")
 _FAILURE = ResponseCode.FAILURE.title
+_BEACON, _DEVICE, _ARBITRATOR = int(FunctionCode.BEACON), Mode.DEVICE, Mode.ARBITRATOR
 _NO_SOURCE = (0, 0xFF)  # a Source's Node Ids byte that means "not connected"
 #: Per-ID statistics key extended identifiers above every base one.
 EXTENDED_KEY = 1 << 29
@@ -104,10 +105,13 @@ class DecodedFrame(NamedTuple):
 
     @property
     def line(self) -> str:
-        if self.head:
-            return f"{self.time:11.6f}  {self.head}"
+        return f"{self.time:11.6f}  {self.head or self.text_head}"
+
+    @property
+    def text_head(self) -> str:
+        """The line after its time."""
         prio = "P?" if self.priority is None else f"P{self.priority}"
-        text = f"{self.time:11.6f}  {prio}  {self.who} {self.function}"
+        text = f"{prio}  {self.who} {self.function}"
         return f"{text}  {self.fields}" if self.fields else text
 
     def __str__(self) -> str:
@@ -266,6 +270,30 @@ class FrameDecoder:
         self._version += 1
 
     @property
+    def version(self) -> int:
+        """Bumped by every change to what the decoder knows (texts cached under an older
+        version are stale)."""
+        return self._version
+
+    @property
+    def t0(self) -> float | None:
+        """The timestamp of the first frame (``time`` counts from it)."""
+        return self._t0
+
+    def relearn(self) -> None:
+        """The caller changed its link map: forget the texts cached from it."""
+        self._changed()
+
+    def channel_texts(self, arbitration_id: int) -> tuple[Any, str, str] | None:
+        """For an identifier just decoded as channel data of a known output: its link, the
+        fields and the line before the data bytes — the same for every frame of that
+        identifier while ``version`` stays."""
+        cached = self._link_cache.get(arbitration_id)
+        if cached is None or cached[0] != self._version:
+            return None
+        return cached[2], cached[3], cached[4]
+
+    @property
     def channel_node_ids(self) -> frozenset[int]:
         return frozenset(self.links) | frozenset(self.outputs)
 
@@ -332,8 +360,6 @@ class FrameDecoder:
         if (arbitration_id < 0x600 and not arbitration_id & 0x100 and len(data) <= 8
                 and (node in self.links or node in self.outputs)):
             return self._channel_data(arbitration_id, node, data, timestamp)
-        base = {"timestamp": timestamp, "time": timestamp - self._t0,
-                "arbitration_id": arbitration_id, "data": data}
         key = (arbitration_id, data)
         msg = self._messages.get(key)
         if msg is None:
@@ -344,7 +370,9 @@ class FrameDecoder:
             if len(self._messages) >= CACHE_SIZE:
                 self._messages.clear()
             self._messages[key] = msg
-        if isinstance(msg, str):
+        if type(msg) is str:
+            base = {"timestamp": timestamp, "time": timestamp - self._t0,
+                    "arbitration_id": arbitration_id, "data": data}
             if node <= 254:
                 base.update(priority=arbitration_id >> 9, node_id=node)
                 if (self.passive and arbitration_id < 0x600 and not arbitration_id & 0x100
@@ -352,7 +380,6 @@ class FrameDecoder:
                     return self._unattributed(base)
             return self._undecodable(base, msg)
         self._context(msg)
-        base.update(priority=arbitration_id >> 9, node_id=node)
         # A frame seen before while the decoder knew exactly what it knows now reads the
         # same: reuse its text, still learning from it (bulk packets always go through).
         version = self._version
@@ -360,9 +387,12 @@ class FrameDecoder:
         if seen is not None and seen[0] == version and seen[1] is msg:
             if seen[3] is not None:  # a parameter frame: learn as _describe does
                 self._track(msg, self._direction(node, msg.channel, msg.param, seen[3]))
-            frame = _new_frame(DecodedFrame, (timestamp, base["time"], arbitration_id, data,
-                                              *seen[2], msg, ""))
+            frame = _new_frame(DecodedFrame, (timestamp, timestamp - self._t0, arbitration_id,
+                                              data, *seen[2], msg, seen[4]))
         else:
+            base = {"timestamp": timestamp, "time": timestamp - self._t0,
+                    "arbitration_id": arbitration_id, "data": data,
+                    "priority": arbitration_id >> 9, "node_id": node}
             try:
                 frame = self._describe(msg, base)
             except Exception as err:  # a bug here must not stop a monitor: show it raw
@@ -372,7 +402,8 @@ class FrameDecoder:
                 if len(self._described) >= CACHE_SIZE:
                     self._described.clear()
                 value = getattr(msg, "value", b"") if hasattr(msg, "param") else None
-                self._described[key] = (version, msg, frame[4:12], value)
+                self._described[key] = (version, msg, frame[4:12], value,
+                                        frame.text_head)
         stats.by_function[frame.function] += 1
         if frame.response == _FAILURE:
             stats.failures += 1
@@ -384,15 +415,16 @@ class FrameDecoder:
         """Count frames that fit PDCP in context: a response to a request seen before it."""
         code = msg.CODE
         node = msg.node_id
-        if code == FunctionCode.BEACON:  # a node beaconing again fits (devices beacon)
+        if code == _BEACON:  # a node beaconing again fits (devices beacon)
             if node in self._beaconed:
                 self.stats.in_context += 1
             elif len(self._beaconed) < 512:
                 self._beaconed.add(node)
-        if msg.mode is Mode.DEVICE and code != 0x01 and node:
+        mode = msg.mode
+        if mode is _DEVICE and code != 0x01 and node:
             self.heard.add(node)
         if code < 0x80:
-            if msg.mode is Mode.ARBITRATOR or code == 0x01:
+            if mode is _ARBITRATOR or code == 0x01:
                 key = (node, code | 0x80)
                 if len(self._pending) >= CACHE_SIZE:
                     self._pending.clear()
@@ -768,9 +800,17 @@ class JsonFrameWriter:
         self._links: dict[int, tuple[Any, str]] = {}
 
     def write(self, frame: DecodedFrame) -> None:
-        self.stream.write(("[\n" if self.count == 0 else ",\n")
-                          + frame_json(frame, self._links))
-        self.count += 1
+        self.write_records([frame_json(frame, self._links)])
+
+    def write_to(self, records: list[str], frame: DecodedFrame) -> None:
+        """Append ``frame``'s record to ``records`` (to be written by ``write_records``)."""
+        records.append(frame_json(frame, self._links))
+
+    def write_records(self, records: list[str]) -> None:
+        """Write records made by ``write_to`` or ``frame_json``, in order."""
+        if records:
+            self.stream.write(("[\n" if self.count == 0 else ",\n") + ",\n".join(records))
+            self.count += len(records)
 
     def close(self) -> None:
         self.stream.write("\n]\n" if self.count else "[]\n")

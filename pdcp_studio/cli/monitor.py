@@ -157,11 +157,11 @@ def learn_links(links: dict, system: Any) -> None:
 
 
 def _session_frames(url: str, stop: Callable[[], bool],
-                    links: dict | None = None) -> Iterator[Any]:
+                    decoder: Any = None) -> Iterator[Any]:
     """Frames a bus session reports (sim:, serial:): its FrameSeen events.
 
-    ``links`` (the decoder's link map) is kept current from the session's system, re-read
-    whenever a device or link comes or goes.
+    The ``decoder``'s link map is kept current from the session's system, re-read whenever
+    a device or link comes or goes (then a ``None`` tells the consumer to look again).
     """
     import can
 
@@ -183,8 +183,9 @@ def _session_frames(url: str, stop: Callable[[], bool],
         wanted = (FrameSeen, DeviceJoined, DeviceLeft, LinkMade, LinkRemoved, ChannelCounts)
         session.subscribe(
             lambda ev: seen.put(ev) if isinstance(ev, wanted) else None)
-        if links is not None:
-            learn_links(links, session.system())
+        if decoder is not None:
+            learn_links(decoder.links, session.system())
+            decoder.relearn()
         yield None  # open: the listening time starts now
         while not stop():
             try:
@@ -196,8 +197,10 @@ def _session_frames(url: str, stop: Callable[[], bool],
                 yield ev
                 continue
             if not isinstance(ev, FrameSeen):
-                if links is not None:
-                    learn_links(links, session.system())
+                if decoder is not None:
+                    learn_links(decoder.links, session.system())
+                    decoder.relearn()
+                    yield None
                 continue
             yield can.Message(timestamp=ev.timestamp, arbitration_id=ev.arbitration_id,
                               data=bytes(ev.data), is_extended_id=False)
@@ -234,8 +237,7 @@ def _replay_frames(path: str, decoder: Any) -> Iterator[Any]:
     frames = read_capture(path)
     head = list(itertools.islice(frames, PROBE_FRAMES))
     decoder.foreign = _probe_foreign(head, decoder)
-    yield from head
-    yield from frames
+    yield from itertools.chain(head, frames)
 
 
 def _load_system_links(links: dict, path: str) -> None:
@@ -245,13 +247,8 @@ def _load_system_links(links: dict, path: str) -> None:
 
 
 def run(args: argparse.Namespace) -> int:
-    from pdcp_studio.bus.monitor import (
-        CaptureError,
-        CaptureWriteError,
-        FrameDecoder,
-        JsonFrameWriter,
-        Recorder,
-    )
+    from pdcp_studio.bus.monitor import CaptureError, CaptureWriteError, FrameDecoder, Recorder
+    from pdcp_studio.bus.trace_pump import TracePump
 
     show = make_filter(args.filter) if args.filter else None
     if args.seconds is not None and args.seconds <= 0:
@@ -282,66 +279,52 @@ def run(args: argparse.Namespace) -> int:
             decoder.passive = True  # it joins a running bus and learns from what it hears
             frames = _can_frames(spec, stop)
         else:
-            frames = _session_frames(args.bus, stop, links)
+            frames = _session_frames(args.bus, stop, decoder)
     out = sys.stdout
-    json_out = JsonFrameWriter(out) if args.json else None
     limiter = UndecodableFrames(sys.stderr) if live else None
-    decode = decoder.decode_message
     from pdcp_studio.bus.hostlink_client import ChannelCounts
 
     counted = ChannelDataCounts()
+    pump: TracePump | None = None
     try:
         with ExitStack() as stack:
             stack.enter_context(closing(frames))  # shuts a live bus down on any exit
             recorder = stack.enter_context(Recorder(
                 args.log, rotate_bytes=int((args.rotate_mb or 0) * 1e6),
                 node_map=decoder.node_map)) if args.log else None
-            lines: list[str] = []
+            pump = TracePump(decoder, out, json=args.json, show=show, recorder=recorder,
+                             on_error=None if limiter is None else limiter.note,
+                             flush_each_chunk=live)
+
+            def other(item: Any) -> None:
+                """A quiet moment on a live bus (None; the first: the bus just opened), or
+                channel data counted by the arbitrator."""
+                if item is None:
+                    if not clock["open"]:
+                        clock.update(started=time.monotonic(), open=True)
+                    out.flush()
+                    if limiter is not None:
+                        limiter.tick()
+                elif isinstance(item, ChannelCounts):
+                    line = counted.add(item)
+                    if line and not args.json and show is None:
+                        out.write(line + "\n")
+
             try:
-                for msg in frames:
-                    if msg is None:  # a quiet moment on a live bus (or the bus just opened)
-                        if not clock["open"]:
-                            clock.update(started=time.monotonic(), open=True)
-                        if lines:
-                            out.write("\n".join(lines) + "\n")
-                            lines.clear()
-                        out.flush()
-                        if limiter is not None:
-                            limiter.tick()
-                        continue
-                    if isinstance(msg, ChannelCounts):
-                        line = counted.add(msg)
-                        if line and json_out is None and show is None:
-                            lines.append(line)
-                        continue
-                    if recorder is not None:
-                        recorder.write_message(msg)
-                    frame = decode(msg)
-                    if limiter is not None and frame.error is not None:
-                        limiter.note(frame)
-                    if show is not None and not show(frame):
-                        continue
-                    if json_out is not None:
-                        json_out.write(frame)
-                    else:
-                        lines.append(frame.line)
-                        if len(lines) >= 512:
-                            out.write("\n".join(lines) + "\n")
-                            lines.clear()
-                            if live:
-                                out.flush()
+                pump.run(frames, other)
             except KeyboardInterrupt:
                 pass  # Ctrl-C is how a live monitor ends; the capture is still closed
-            if lines:
-                out.write("\n".join(lines) + "\n")
+            pump.flush()
     except CaptureError as err:
-        if json_out is not None and json_out.count:
-            json_out.close()  # stdout stays one JSON document
+        if pump is not None:
+            pump.flush()  # the frames read before the fault
+            if pump.json is not None and pump.json.count:
+                pump.close()  # stdout stays one JSON document
         if isinstance(err, CaptureWriteError):
             raise  # a failure (exit 1) naming the capture, not bad input
         raise BadInput(str(err)) from err
-    if json_out is not None:
-        json_out.close()
+    if pump is not None:
+        pump.close()
     out.flush()
     if limiter is not None:
         limiter.tick(final=True)

@@ -1,0 +1,209 @@
+"""The monitor's hot loop: frames in, decoded lines (or JSON records) out, as fast as a
+saturated bus needs.
+
+Most frames of a busy PDCP bus are channel data of outputs the decoder already knows, and
+every frame of one such identifier reads the same but for its time and data bytes. The pump
+decodes the first frame of an identifier through ``FrameDecoder`` and keeps what it
+learned — the line's and the JSON record's fixed parts, whether the filter shows it, the
+per-ID statistics entry — until the decoder learns something new (``FrameDecoder.version``).
+The next frames of that identifier cost a dictionary look-up, the counts and the text of
+their variable parts. Every other frame goes through the decoder as before. The output is
+the same text, character for character, as decoding every frame one by one
+(``tests/bus/test_trace_pump.py`` checks it on mixed traffic).
+"""
+
+from __future__ import annotations
+
+from collections.abc import Callable, Iterable
+from typing import Any
+
+from pdcp_studio.bus.monitor import (
+    CHANNEL_DATA,
+    DecodedFrame,
+    FrameDecoder,
+    JsonFrameWriter,
+    _json_str,
+    _link_json,
+)
+
+#: Lines gathered before they are written in one call.
+CHUNK = 512
+_CHANNEL_DATA = "Channel data"
+
+
+class TracePump:
+    """Feeds frames to a decoder and writes what ``show`` lets through to ``out``.
+
+    ``json``: one JSON list of frame records (``JsonFrameWriter``) instead of lines.
+    ``recorder``: also writes every frame to a capture. ``on_error(frame)``: called for
+    undecodable frames. ``flush_each_chunk``: flush ``out`` after each chunk (live).
+    """
+
+    def __init__(self, decoder: FrameDecoder, out: Any, *, json: bool = False,
+                 show: Callable[[DecodedFrame], bool] | None = None, recorder: Any = None,
+                 on_error: Callable[[DecodedFrame], None] | None = None,
+                 flush_each_chunk: bool = False) -> None:
+        self.decoder, self.out, self.show = decoder, out, show
+        self.recorder, self.on_error = recorder, on_error
+        self.flush_each_chunk = flush_each_chunk
+        self.json = JsonFrameWriter(out) if json else None
+        self._parts: list[str] = []
+        #: arbitration ID → (stats entry or None, shown, line head, JSON parts or None)
+        self._heads: dict[int, tuple[Any, ...]] = {}
+        self._version = -1
+
+    # -- output -----------------------------------------------------------------------------
+
+    def flush(self) -> None:
+        """Write what is gathered (``out`` itself is flushed by the caller or per chunk)."""
+        parts = self._parts
+        if parts:
+            if self.json is not None:
+                self.json.write_records(parts)
+            else:
+                self.out.write("\n".join(parts) + "\n")
+            parts.clear()
+
+    def close(self) -> None:
+        """Write the rest; a JSON list is ended (also after a failure: one document)."""
+        self.flush()
+        if self.json is not None:
+            self.json.close()
+
+    # -- the loop ---------------------------------------------------------------------------
+
+    def run(self, frames: Iterable[Any], on_other: Callable[[Any], None]) -> None:
+        """Decode every frame of ``frames``; anything that is not a frame (``None`` for a
+        quiet poll, reports) goes to ``on_other`` after what is gathered is written."""
+        decoder = self.decoder
+        stats = decoder.stats
+        decode = decoder.decode_message
+        heads = self._heads
+        parts = self._parts
+        append = parts.append
+        recorder, show, on_error = self.recorder, self.show, self.on_error
+        as_json = self.json is not None
+        meter_on = decoder.meter_on
+        # Channel data counted here and handed to the statistics before any other frame.
+        ids: list[int] = []
+        payloads: list[Any] = []
+        fast = untracked = 0
+        last_ts = 0.0
+        t0 = decoder.t0 or 0.0
+        if self._version != decoder.version:
+            heads.clear()
+            self._version = decoder.version
+
+        def settle() -> None:
+            nonlocal ids, payloads, fast, untracked
+            stats.frames += fast
+            stats.by_function[_CHANNEL_DATA] += fast
+            stats.in_context += fast
+            stats.other_ids += untracked
+            if meter_on:
+                stats.meter.add_batch(ids, payloads, last_ts)
+                ids, payloads = [], []
+            fast = untracked = 0
+
+        try:
+            for msg in frames:
+                try:
+                    arbitration_id = msg.arbitration_id
+                except AttributeError:  # not a frame: a quiet poll or a report
+                    if fast:
+                        settle()
+                    self.flush()
+                    if self.flush_each_chunk:
+                        self.out.flush()
+                    on_other(msg)
+                    if self._version != decoder.version:
+                        heads.clear()
+                        self._version = decoder.version
+                    continue
+                head = heads.get(arbitration_id)
+                if head is not None and not (msg.is_extended_id or msg.is_remote_frame
+                                             or msg.is_error_frame):
+                    data = msg.data
+                    if len(data) <= 8:
+                        if recorder is not None:
+                            recorder.write_message(msg)
+                        last_ts = timestamp = msg.timestamp or 0.0
+                        fast += 1
+                        if meter_on:
+                            ids.append(arbitration_id)
+                            payloads.append(data)
+                        entry = head[0]
+                        if entry is not None:
+                            entry[0] += 1
+                            entry[2] = timestamp
+                            entry[3] = data
+                        else:
+                            untracked += 1
+                        if head[1]:
+                            upper = data.hex(" ").upper() or "(empty)"
+                            t = timestamp - t0
+                            if as_json:
+                                j = head[3]
+                                fixed = f"{t:.6f}"
+                                # repr(round(t, 6)) without rounding twice: the same digits
+                                # where repr writes no exponent and 15 digits round-trip
+                                short = fixed.rstrip("0")
+                                if short[-1] == ".":
+                                    short += "0"
+                                if not 1e-4 <= t < 1e9:
+                                    short = repr(round(t, 6))
+                                append(f'{{"timestamp": {timestamp!r}, "time": {short}{j[0]}'
+                                       f'{data.hex()}{j[1]}{upper}{j[2]}{fixed:>11}{j[3]}'
+                                       f'{upper}"}}')
+                            else:
+                                append(f"{t:11.6f}  {head[2]}{upper}")
+                            if len(parts) >= CHUNK:
+                                self.flush()
+                                if self.flush_each_chunk:
+                                    self.out.flush()
+                        continue
+                if fast:
+                    settle()
+                if recorder is not None:
+                    recorder.write_message(msg)
+                frame = decode(msg)
+                if frame.error is not None and on_error is not None:
+                    on_error(frame)
+                shown = show is None or show(frame)
+                if shown:
+                    if as_json:
+                        self.json.write_to(parts, frame)  # type: ignore[union-attr]
+                    else:
+                        append(frame.line)
+                    if len(parts) >= CHUNK:
+                        self.flush()
+                        if self.flush_each_chunk:
+                            self.out.flush()
+                if self._version != decoder.version:
+                    heads.clear()
+                    self._version = decoder.version
+                    t0 = decoder.t0 or 0.0
+                elif frame.direction == CHANNEL_DATA and frame.message is None:
+                    heads[arbitration_id] = self._head(frame, shown)
+        finally:
+            if fast:
+                settle()
+
+    def _head(self, frame: DecodedFrame, shown: bool) -> tuple[Any, ...]:
+        """What every channel data frame of ``frame``'s identifier shares."""
+        arbitration_id = frame.arbitration_id
+        texts = self.decoder.channel_texts(arbitration_id)
+        if texts is None:  # pragma: no cover - decode_message just cached it
+            raise RuntimeError(f"no channel texts for 0x{arbitration_id:03X}")
+        link, fields, head = texts
+        entry = self.decoder.stats.by_id.get(arbitration_id)
+        parts = None
+        if self.json is not None:
+            parts = (f', "arbitration_id": {arbitration_id}, "data": "',
+                     f'", "direction": {_json_str(CHANNEL_DATA)}, "priority": {frame.priority}, '
+                     f'"node_id": {frame.node_id}, "function": {_json_str(_CHANNEL_DATA)}, '
+                     f'"fields": {_json_str(fields)[:-1]}',
+                     f'", "response": null, "error": null, "link": {_link_json(link)}, '
+                     '"text": "',
+                     _json_str("  " + head)[1:-1])
+        return entry, shown, head, parts
