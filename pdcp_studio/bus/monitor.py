@@ -39,7 +39,8 @@ LinkMap = Mapping[int, tuple[ChannelRef, Sequence[ChannelRef]]]
 #: Capture formats python-can 4.6 both writes and reads without extra packages (``.gz`` too).
 CAPTURE_SUFFIXES = (".asc", ".blf", ".csv", ".log", ".trc", ".db")
 _FAILURE = ResponseCode.FAILURE.title
-_BEACON, _DEVICE, _ARBITRATOR = int(FunctionCode.BEACON), Mode.DEVICE, Mode.ARBITRATOR
+_BEACON, _BULK_DATA = int(FunctionCode.BEACON), int(FunctionCode.BULK_DATA)
+_DEVICE, _ARBITRATOR = Mode.DEVICE, Mode.ARBITRATOR
 _NO_SOURCE = (0, 0xFF)  # a Source's Node Ids byte that means "not connected"
 #: Per-ID statistics key extended identifiers above every base one.
 EXTENDED_KEY = 1 << 29
@@ -241,6 +242,12 @@ class FrameDecoder:
         self.passive = passive
         #: Set when the traffic is known not to be PDCP's: frames are shown raw, no errors.
         self.foreign = False
+        #: Show a frame as a PDCP message only when it fits in context (``_fits``): a
+        #: request to or from a known device, a response to its request. Other frames that
+        #: parse are "unattributed" (the stray frames of another bus in a capture or on a
+        #: shared bus), not commands. Off, every frame that parses is shown as what it
+        #: parses to (a simulated bus, a test).
+        self.context_checked = False
         #: Count bus time (off for a decoder that only probes a capture).
         self.meter_on = True
         self.stats = MonitorStats()
@@ -379,7 +386,9 @@ class FrameDecoder:
                         and node not in self.devices and node not in self.heard):
                     return self._unattributed(base)
             return self._undecodable(base, msg)
-        self._context(msg)
+        if not self._context(msg):  # a foreign frame that happens to parse: not a command
+            return self._unattributed({"timestamp": timestamp, "time": timestamp - self._t0,
+                                       "arbitration_id": arbitration_id, "data": data})
         # A frame seen before while the decoder knew exactly what it knows now reads the
         # same: reuse its text, still learning from it (bulk packets always go through).
         version = self._version
@@ -411,33 +420,59 @@ class FrameDecoder:
             stats.bulk_errors += 1
         return frame
 
-    def _context(self, msg: Any) -> None:
-        """Count frames that fit PDCP in context: a response to a request seen before it."""
+    def _context(self, msg: Any) -> bool:
+        """Follow requests and count frames that fit PDCP in context (a response to a request
+        seen before it, a device beaconing again); whether this one may be shown as a PDCP
+        message — always, unless ``context_checked`` (see ``_fits``)."""
         code = msg.CODE
         node = msg.node_id
+        mode = msg.mode
         if code == _BEACON:  # a node beaconing again fits (devices beacon)
             if node in self._beaconed:
                 self.stats.in_context += 1
             elif len(self._beaconed) < 512:
                 self._beaconed.add(node)
-        mode = msg.mode
-        if mode is _DEVICE and code != 0x01 and node:
-            self.heard.add(node)
         if code < 0x80:
-            if mode is _ARBITRATOR or code == 0x01:
-                key = (node, code | 0x80)
-                if len(self._pending) >= CACHE_SIZE:
-                    self._pending.clear()
-                self._pending[key] = self._pending.get(key, 0) + 1
-            return
-        key = (node, code)
-        pending = self._pending.get(key)
-        if pending:
-            self.stats.in_context += 1
-            if pending == 1:
-                del self._pending[key]
-            else:
-                self._pending[key] = pending - 1
+            if code != _BEACON and code != _BULK_DATA:  # answered (bulk: after the last)
+                self._expect(node, code | 0x80)
+            fits = not self.context_checked or self._fits(code, mode, node)
+        else:
+            key = (node, code)
+            pending = self._pending.get(key)
+            fits = bool(pending)
+            if pending:
+                self.stats.in_context += 1
+                if pending == 1:
+                    del self._pending[key]
+                else:
+                    self._pending[key] = pending - 1
+            fits = fits or not self.context_checked
+        if fits and mode is _DEVICE and code != 0x01 and node:
+            self.heard.add(node)
+        return fits
+
+    def _expect(self, node: int, response: int) -> None:
+        """A request was seen: its response (from ``node``, or to it) fits."""
+        key = (node, response)
+        if len(self._pending) >= CACHE_SIZE:
+            self._pending.clear()
+        self._pending[key] = self._pending.get(key, 0) + 1
+
+    def _fits(self, code: int, mode: Any, node: int) -> bool:
+        """Whether a request or a beacon fits what the decoder knows: a Bind Device Request
+        and a device's beacon always (exactly as PDCP frames them), bulk data of an
+        announced transfer, the arbitrator's beacon, anything else only to or from a device
+        it knows (bound, named in the node map, or heard answering). Responses fit only
+        their requests."""
+        if code == 0x01 or (code == _BEACON and mode is _DEVICE):
+            return True  # how a device comes in, and says it is still there
+        if code == _BULK_DATA:
+            return (node, mode) in self._bulk
+        if code == _BEACON and mode is _ARBITRATOR:
+            return node == 0
+        if node == 0:
+            return mode is _ARBITRATOR and code != _BEACON
+        return node in self.devices or node in self.heard
 
     def _raw(self, arbitration_id: int, data: bytes, timestamp: float) -> DecodedFrame:
         """A frame of a bus that is not PDCP's: shown as it is, counted, not an error."""
@@ -721,10 +756,12 @@ class FrameDecoder:
             complete = r.add(msg.packet_id, msg.data)
         except FrameError as err:
             del self._bulk[msg.node_id, msg.mode]
+            self._expect(msg.node_id, _BULK_DATA | 0x80)  # the receiver answers, failing
             parts.append(f"bulk transfer aborted: {err}")
             return str(err)
         if complete:
             del self._bulk[msg.node_id, msg.mode]
+            self._expect(msg.node_id, _BULK_DATA | 0x80)
             value = r.result()
             if len(self.bulk_values) >= CACHE_SIZE:
                 self.bulk_values.clear()

@@ -18,16 +18,20 @@ from collections.abc import Callable, Iterable
 from typing import Any
 
 from pdcp_studio.bus.monitor import (
+    CACHE_SIZE,
     CHANNEL_DATA,
     DecodedFrame,
     FrameDecoder,
     JsonFrameWriter,
     _json_str,
     _link_json,
+    frame_json,
 )
 
 #: Lines gathered before they are written in one call.
 CHUNK = 512
+#: Channel data frames handed to the bus-time meter at once.
+METER_BATCH = 4096
 _CHANNEL_DATA = "Channel data"
 
 
@@ -50,6 +54,8 @@ class TracePump:
         self._parts: list[str] = []
         #: arbitration ID → (stats entry or None, shown, line head, JSON parts or None)
         self._heads: dict[int, tuple[Any, ...]] = {}
+        #: id(a cached frame's text) → (that text, the JSON record's fixed parts)
+        self._json_cache: dict[int, tuple[str, str, str]] = {}
         self._version = -1
 
     # -- output -----------------------------------------------------------------------------
@@ -84,26 +90,32 @@ class TracePump:
         recorder, show, on_error = self.recorder, self.show, self.on_error
         as_json = self.json is not None
         meter_on = decoder.meter_on
-        # Channel data counted here and handed to the statistics before any other frame.
+        # Channel data counted here, handed to the statistics at quiet moments and at the
+        # end (nothing the decoder decides reads them), and to the bus-time meter in batches.
         ids: list[int] = []
         payloads: list[Any] = []
-        fast = untracked = 0
-        last_ts = 0.0
+        fast = untracked = fast_at_slow = 0
+        timestamp = 0.0
         t0 = decoder.t0 or 0.0
         if self._version != decoder.version:
             heads.clear()
             self._version = decoder.version
+        json_cache = self._json_cache
 
         def settle() -> None:
-            nonlocal ids, payloads, fast, untracked
+            nonlocal ids, payloads, fast, untracked, fast_at_slow
             stats.frames += fast
             stats.by_function[_CHANNEL_DATA] += fast
             stats.in_context += fast
             stats.other_ids += untracked
-            if meter_on:
-                stats.meter.add_batch(ids, payloads, last_ts)
+            if meter_on and ids:
+                meter = stats.meter
+                last = meter.last_timestamp
+                meter.add_batch(ids, payloads, timestamp)
+                if fast == fast_at_slow and last is not None:
+                    meter.last_timestamp = last  # the last frame was not channel data
                 ids, payloads = [], []
-            fast = untracked = 0
+            fast = untracked = fast_at_slow = 0
 
         try:
             for msg in frames:
@@ -127,11 +139,14 @@ class TracePump:
                     if len(data) <= 8:
                         if recorder is not None:
                             recorder.write_message(msg)
-                        last_ts = timestamp = msg.timestamp or 0.0
+                        timestamp = msg.timestamp or 0.0
                         fast += 1
                         if meter_on:
                             ids.append(arbitration_id)
                             payloads.append(data)
+                            if len(ids) >= METER_BATCH:
+                                stats.meter.add_batch(ids, payloads, timestamp)
+                                ids, payloads = [], []
                         entry = head[0]
                         if entry is not None:
                             entry[0] += 1
@@ -162,8 +177,7 @@ class TracePump:
                                 if self.flush_each_chunk:
                                     self.out.flush()
                         continue
-                if fast:
-                    settle()
+                fast_at_slow = fast
                 if recorder is not None:
                     recorder.write_message(msg)
                 frame = decode(msg)
@@ -171,10 +185,23 @@ class TracePump:
                     on_error(frame)
                 shown = show is None or show(frame)
                 if shown:
-                    if as_json:
-                        self.json.write_to(parts, frame)  # type: ignore[union-attr]
+                    cached_head = frame.head
+                    if not cached_head:
+                        if as_json:
+                            self.json.write_to(parts, frame)  # type: ignore[union-attr]
+                        else:
+                            append(frame.line)
+                    elif as_json:
+                        j = json_cache.get(id(cached_head))
+                        if j is None or j[0] is not cached_head:
+                            if len(json_cache) >= CACHE_SIZE:
+                                json_cache.clear()
+                            j = json_cache[id(cached_head)] = self._json_parts(frame)
+                        t = frame.time
+                        append(f'{{"timestamp": {frame.timestamp!r}, "time": '
+                               f'{round(t, 6)!r}{j[1]}{t:11.6f}{j[2]}"}}')
                     else:
-                        append(frame.line)
+                        append(f"{frame.time:11.6f}  {cached_head}")
                     if len(parts) >= CHUNK:
                         self.flush()
                         if self.flush_each_chunk:
@@ -188,6 +215,17 @@ class TracePump:
         finally:
             if fast:
                 settle()
+
+    @staticmethod
+    def _json_parts(frame: DecodedFrame) -> tuple[str, str, str]:
+        """A cached frame's JSON record around its times: the same for every frame that
+        shares its text (``frame.head``)."""
+        record = frame_json(frame)
+        time_text = f"{frame.time:11.6f}"
+        start = record.index(', "arbitration_id": ')
+        end = record.rindex('"text": "') + len('"text": "')
+        assert record[end:end + len(time_text)] == time_text
+        return frame.head, record[start:end], record[end + len(time_text):-2]
 
     def _head(self, frame: DecodedFrame, shown: bool) -> tuple[Any, ...]:
         """What every channel data frame of ``frame``'s identifier shares."""

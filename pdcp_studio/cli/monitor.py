@@ -87,7 +87,16 @@ def make_filter(specs: list[str]) -> Callable[[Any], bool]:
             tests.append(lambda f, d=_DIRECTIONS[value]: f.direction == d)
         else:
             raise BadInput(f"--filter {spec!r}: expected {FILTER_HELP.split(': ', 1)[1]}")
-    return lambda frame: all(test(frame) for test in tests)
+    if len(tests) == 1:
+        return tests[0]
+
+    def every(frame: Any) -> bool:
+        for test in tests:
+            if not test(frame):
+                return False
+        return True
+
+    return every
 
 
 def _listen_only(spec: Any) -> dict[str, Any]:
@@ -258,6 +267,9 @@ def run(args: argparse.Namespace) -> int:
     links: dict = {}
     live = not args.replay
     decoder = FrameDecoder(links)
+    # A capture or a shared CAN bus may carry another bus's frames: none is shown as a PDCP
+    # message unless it fits one in context (a session's bus carries only PDCP's).
+    decoder.context_checked = bool(args.replay) or args.bus.startswith("can:")
     if args.system:
         _load_system_links(links, args.system)
     clock = {"started": time.monotonic(), "open": False}
