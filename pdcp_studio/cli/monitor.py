@@ -22,6 +22,8 @@ from pdcp_studio.cli.main import BadInput
 
 #: How often a live loop wakes up to check its deadline.
 POLL_S = 0.1
+#: Frames read from a busy bus between two checks of the deadline.
+BURST = 1024
 FILTER_HELP = (
     "show only matching frames (repeatable, all must match): node=N[,N…], "
     "function=TEXT (part of the name) or function=0xNN, direction=to-ba|from-ba|data, errors"
@@ -123,20 +125,32 @@ class _ListenOnly:
         self._bus.shutdown()
 
 
-#: Kernel receive buffer asked for a socket-based bus (capped by the system's maximum): a
-#: saturated bus must not lose frames while the monitor waits for a core.
-RECEIVE_BUFFER = 4 << 20
+#: Kernel receive buffer asked for a socket-based bus: a saturated bus (8,000 frames/s, a
+#: kernel buffer entry of about 1 KB each) must not lose frames while the monitor waits for
+#: a core on a busy machine — 16 MB hold about two seconds.
+RECEIVE_BUFFER = 16 << 20
+#: Linux's socket option (asm-generic/socket.h) that Python's socket module does not name.
+SO_RCVBUFFORCE = 33
 
 
-def _enlarge_receive_buffer(bus: Any) -> None:
+def _enlarge_receive_buffer(bus: Any) -> int:
     """Best effort for python-can's udp_multicast bus (a datagram socket): the default
-    ~200 KB holds only a few dozen milliseconds of a saturated bus."""
+    ~200 KB holds only a few dozen milliseconds of a saturated bus, and a datagram that does
+    not fit is dropped by the kernel. Asks beyond the system's maximum where allowed
+    (``SO_RCVBUFFORCE``, Linux, privileged), else up to it. Returns the size granted (0:
+    not a socket bus)."""
     import socket
 
     sock = getattr(getattr(bus, "_multicast", None), "_socket", None)
-    if sock is not None:
-        with contextlib.suppress(OSError):
-            sock.setsockopt(socket.SOL_SOCKET, socket.SO_RCVBUF, RECEIVE_BUFFER)
+    if sock is None:
+        return 0
+    force = getattr(socket, "SO_RCVBUFFORCE", SO_RCVBUFFORCE if sys.platform == "linux" else None)
+    for option in (force, socket.SO_RCVBUF):
+        if option is not None:
+            with contextlib.suppress(OSError):
+                sock.setsockopt(socket.SOL_SOCKET, option, RECEIVE_BUFFER)
+                break
+    return int(sock.getsockopt(socket.SOL_SOCKET, socket.SO_RCVBUF))
 
 
 def _can_frames(spec: Any, stop: Callable[[], bool]) -> Iterator[Any]:
@@ -147,11 +161,21 @@ def _can_frames(spec: Any, stop: Callable[[], bool]) -> Iterator[Any]:
     raw = open_spec(spec, **_listen_only(spec))  # TransportError names the URL
     _enlarge_receive_buffer(raw)
     bus = _ListenOnly(raw)
+    recv = raw.recv  # read directly: the wrapper only guards sending
     yield None  # open: the listening time starts now
     try:
-        while not stop():
-            msg = bus.recv(timeout=POLL_S)
-            yield msg  # None: a quiet poll, so the caller can flush and check the deadline
+        while True:
+            msg = recv(POLL_S)
+            burst = 0
+            while msg is not None and burst < BURST:  # what is queued, without waiting
+                yield msg
+                burst += 1
+                msg = recv(0.0)
+            if msg is not None:
+                yield msg
+            yield None  # a quiet poll (or a long burst): the caller flushes; the deadline
+            if stop():
+                break
     finally:
         bus.shutdown()
 
