@@ -64,6 +64,9 @@ class CaptureError(PdcpError):
         super().__init__(f"{path}: {reason}")
 
 
+#: Parameter messages the decoder learns from (``_track``) every time they are seen.
+_LEARNING = (M.ConfigureGetBulkResponse, M.ConfigureSetBulk, M.ConfigureSetBulkResponse,
+             M.SetParameter, M.GetParameterResponse, M.SetParameterResponse)
 #: Messages whose line depends on more than what the decoder learned (bulk packets follow a
 #: transfer) or that teach it something every time (binds): never described from a cache.
 _UNCACHED = (M.BulkData, M.BindRequest, M.BindResponse)
@@ -333,10 +336,10 @@ class FrameDecoder:
                 else:
                     stats.note_id(arbitration_id, timestamp, data)
                 return self._channel_data(arbitration_id, node, data, timestamp)
-        return self.decode(msg.arbitration_id, bytes(msg.data), msg.timestamp or 0.0,
-                           is_extended_id=bool(getattr(msg, "is_extended_id", False)),
-                           is_remote_frame=bool(getattr(msg, "is_remote_frame", False)),
-                           is_error_frame=bool(getattr(msg, "is_error_frame", False)))
+        return self.decode(arbitration_id, bytes(msg.data), msg.timestamp or 0.0,
+                           is_extended_id=msg.is_extended_id,
+                           is_remote_frame=msg.is_remote_frame,
+                           is_error_frame=msg.is_error_frame)
 
     def decode(self, arbitration_id: int, data: bytes, timestamp: float = 0.0, *,
                is_extended_id: bool = False, is_remote_frame: bool = False,
@@ -410,7 +413,7 @@ class FrameDecoder:
                     and not isinstance(msg, _UNCACHED)):
                 if len(self._described) >= CACHE_SIZE:
                     self._described.clear()
-                value = getattr(msg, "value", b"") if hasattr(msg, "param") else None
+                value = getattr(msg, "value", b"") if isinstance(msg, _LEARNING) else None
                 self._described[key] = (version, msg, frame[4:12], value,
                                         frame.text_head)
         stats.by_function[frame.function] += 1

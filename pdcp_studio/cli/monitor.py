@@ -255,8 +255,9 @@ def _probe_foreign(head: list[Any], decoder: Any) -> bool:
     return len(head) >= NOT_PDCP_MIN_FRAMES and probe.stats.in_context == 0
 
 
-def _replay_frames(path: str, decoder: Any) -> Iterator[Any]:
-    """A capture's frames; its saved node map loaded, and foreign traffic recognised."""
+def _replay_frames(path: str, decoder: Any) -> tuple[Iterator[Any], Callable[[], None]]:
+    """A capture's frames and how to close it; its saved node map loaded, and foreign
+    traffic recognised (CaptureError if it is unreadable)."""
     import itertools
 
     from pdcp_studio.bus.monitor import read_capture, read_node_map
@@ -268,9 +269,14 @@ def _replay_frames(path: str, decoder: Any) -> Iterator[Any]:
         except ValueError as err:
             raise BadInput(str(err)) from err
     frames = read_capture(path)
-    head = list(itertools.islice(frames, PROBE_FRAMES))
+    try:
+        head = list(itertools.islice(frames, PROBE_FRAMES))
+    except BaseException:
+        frames.close()
+        raise
     decoder.foreign = _probe_foreign(head, decoder)
-    yield from itertools.chain(head, frames)
+    # The rest straight from the reader: no generator of ours between it and the loop.
+    return itertools.chain(head, frames), frames.close
 
 
 def _load_system_links(links: dict, path: str) -> None:
@@ -302,9 +308,8 @@ def run(args: argparse.Namespace) -> int:
         elapsed = time.monotonic() - clock["started"]
         return args.seconds is not None and elapsed >= args.seconds
 
-    if args.replay:
-        frames: Iterator[Any] = _replay_frames(args.replay, decoder)
-    else:
+    frames: Iterator[Any] | None = None  # a replay is opened below, its errors handled there
+    if not args.replay:
         from pdcp_studio.bus.urls import BusUrlError, parse_bus_url
 
         try:
@@ -318,13 +323,21 @@ def run(args: argparse.Namespace) -> int:
             frames = _session_frames(args.bus, stop, decoder)
     out = sys.stdout
     limiter = UndecodableFrames(sys.stderr) if live else None
-    from pdcp_studio.bus.hostlink_client import ChannelCounts
+    reports: Any = ()  # kinds of report a live session sends besides frames
+    if live:
+        from pdcp_studio.bus.hostlink_client import ChannelCounts
+
+        reports = ChannelCounts
 
     counted = ChannelDataCounts()
     pump: TracePump | None = None
     try:
         with ExitStack() as stack:
-            stack.enter_context(closing(frames))  # shuts a live bus down on any exit
+            if frames is None:
+                frames, close = _replay_frames(args.replay, decoder)
+                stack.callback(close)
+            else:
+                stack.enter_context(closing(frames))  # type: ignore[type-var]  # shuts a bus
             recorder = stack.enter_context(Recorder(
                 args.log, rotate_bytes=int((args.rotate_mb or 0) * 1e6),
                 node_map=decoder.node_map)) if args.log else None
@@ -341,7 +354,7 @@ def run(args: argparse.Namespace) -> int:
                     out.flush()
                     if limiter is not None:
                         limiter.tick()
-                elif isinstance(item, ChannelCounts):
+                elif isinstance(item, reports):
                     line = counted.add(item)
                     if line and not args.json and show is None:
                         out.write(line + "\n")
