@@ -64,9 +64,11 @@ class CaptureError(PdcpError):
         super().__init__(f"{path}: {reason}")
 
 
-#: Parameter messages the decoder learns from (``_track``) every time they are seen.
-_LEARNING = (M.ConfigureGetBulkResponse, M.ConfigureSetBulk, M.ConfigureSetBulkResponse,
-             M.SetParameter, M.GetParameterResponse, M.SetParameterResponse)
+#: Messages the decoder follows (``_track``) every time they are seen: each starts or ends
+#: a bulk transfer. Seen again while the decoder knows what it knew (same ``version``), the
+#: other parameter messages teach nothing new — what they taught the first time did not
+#: change what it knows, or the version would have moved on.
+_LEARNING = (M.ConfigureGetBulkResponse, M.ConfigureSetBulk, M.ConfigureSetBulkResponse)
 #: Messages whose line depends on more than what the decoder learned (bulk packets follow a
 #: transfer) or that teach it something every time (binds): never described from a cache.
 _UNCACHED = (M.BulkData, M.BindRequest, M.BindResponse)
