@@ -305,6 +305,23 @@ class FrameDecoder:
             return None
         return cached[2], cached[3], cached[4]
 
+    def repeatable(self, arbitration_id: int, data: bytes) -> Any:
+        """For a base frame just decoded from the cache of described frames: its message
+        when every frame like it reads, counts and fits the same while ``version`` stays —
+        a beacon or a request the decoder does not follow (not bulk) that fits now: what it
+        fits cannot change without a new version (known devices leave only by one, heard
+        ones never). Never a response: it fits only after its request. Else None."""
+        seen = self._described.get((arbitration_id, data))
+        if seen is None or seen[0] != self._version or seen[3] is not None:
+            return None
+        msg = seen[1]
+        code = msg.CODE
+        if code >= 0x80 or code == _BULK_DATA or code == 0x01:
+            return None
+        if self.context_checked and not self._fits(code, msg.mode, msg.node_id):
+            return None
+        return msg
+
     @property
     def channel_node_ids(self) -> frozenset[int]:
         return frozenset(self.links) | frozenset(self.outputs)

@@ -56,6 +56,9 @@ class TracePump:
         self._heads: dict[int, tuple[Any, ...]] = {}
         #: id(a cached frame's text) → (that text, the JSON record's fixed parts)
         self._json_cache: dict[int, tuple[str, str, str]] = {}
+        #: (arbitration ID, data) → what a beacon or request seen before reads and counts as
+        #: (see ``FrameDecoder.repeatable``)
+        self._repeats: dict[tuple[int, bytes], tuple[Any, ...]] = {}
         self._version = -1
 
     # -- output -----------------------------------------------------------------------------
@@ -94,16 +97,19 @@ class TracePump:
         # end (nothing the decoder decides reads them), and to the bus-time meter in batches.
         ids: list[int] = []
         payloads: list[Any] = []
-        fast = untracked = fast_at_slow = 0
+        fast = untracked = 0
+        managed = managed_at_decode = 0  # frames counted here / when one was last decoded
         timestamp = 0.0
+        repeats = self._repeats
         t0 = decoder.t0 or 0.0
         if self._version != decoder.version:
             heads.clear()
+            repeats.clear()
             self._version = decoder.version
         json_cache = self._json_cache
 
         def settle() -> None:
-            nonlocal ids, payloads, fast, untracked, fast_at_slow
+            nonlocal ids, payloads, fast, untracked
             stats.frames += fast
             stats.by_function[_CHANNEL_DATA] += fast
             stats.in_context += fast
@@ -112,17 +118,17 @@ class TracePump:
                 meter = stats.meter
                 last = meter.last_timestamp
                 meter.add_batch(ids, payloads, timestamp)
-                if fast == fast_at_slow and last is not None:
-                    meter.last_timestamp = last  # the last frame was not channel data
+                if managed == managed_at_decode and last is not None:
+                    meter.last_timestamp = last  # the last frame went through the decoder
                 ids, payloads = [], []
-            fast = untracked = fast_at_slow = 0
+            fast = untracked = 0
 
         try:
             for msg in frames:
                 try:
                     arbitration_id = msg.arbitration_id
                 except AttributeError:  # not a frame: a quiet poll or a report
-                    if fast:
+                    if fast or ids:
                         settle()
                     self.flush()
                     if self.flush_each_chunk:
@@ -130,6 +136,7 @@ class TracePump:
                     on_other(msg)
                     if self._version != decoder.version:
                         heads.clear()
+                        repeats.clear()
                         self._version = decoder.version
                     continue
                 head = heads.get(arbitration_id)
@@ -141,6 +148,7 @@ class TracePump:
                             recorder.write_message(msg)
                         timestamp = msg.timestamp or 0.0
                         fast += 1
+                        managed += 1
                         if meter_on:
                             ids.append(arbitration_id)
                             payloads.append(data)
@@ -177,7 +185,54 @@ class TracePump:
                                 if self.flush_each_chunk:
                                     self.out.flush()
                         continue
-                fast_at_slow = fast
+                key = None
+                if not (msg.is_extended_id or msg.is_remote_frame or msg.is_error_frame):
+                    data = msg.data
+                    key = (arbitration_id, bytes(data))
+                    rep = repeats.get(key)
+                    if rep is not None and len(data) <= 8:
+                        # A beacon or request seen before: as the decoder would, from what
+                        # it said then (it still follows the request).
+                        if recorder is not None:
+                            recorder.write_message(msg)
+                        decoder._context(rep[0])
+                        timestamp = msg.timestamp or 0.0
+                        managed += 1
+                        stats.frames += 1
+                        if meter_on:
+                            ids.append(arbitration_id)
+                            payloads.append(data)
+                            if len(ids) >= METER_BATCH:
+                                stats.meter.add_batch(ids, payloads, timestamp)
+                                ids, payloads = [], []
+                        entry = rep[1]
+                        if entry is not None:
+                            entry[0] += 1
+                            entry[2] = timestamp
+                            entry[3] = key[1]
+                        else:
+                            stats.other_ids += 1
+                        stats.by_function[rep[2]] += 1
+                        if rep[3]:
+                            t = timestamp - t0
+                            if as_json:
+                                j = rep[5]
+                                fixed = f"{t:.6f}"
+                                short = fixed.rstrip("0")
+                                if short[-1] == ".":
+                                    short += "0"
+                                if not 1e-4 <= t < 1e9:
+                                    short = repr(round(t, 6))
+                                append(f'{{"timestamp": {timestamp!r}, "time": {short}{j[1]}'
+                                       f'{fixed:>11}{j[2]}"}}')
+                            else:
+                                append(f"{t:11.6f}  {rep[4]}")
+                            if len(parts) >= CHUNK:
+                                self.flush()
+                                if self.flush_each_chunk:
+                                    self.out.flush()
+                        continue
+                managed_at_decode = managed
                 if recorder is not None:
                     recorder.write_message(msg)
                 frame = decode(msg)
@@ -208,12 +263,21 @@ class TracePump:
                             self.out.flush()
                 if self._version != decoder.version:
                     heads.clear()
+                    repeats.clear()
                     self._version = decoder.version
                     t0 = decoder.t0 or 0.0
                 elif frame.direction == CHANNEL_DATA and frame.message is None:
                     heads[arbitration_id] = self._head(frame, shown)
+                elif key is not None and frame.head and frame.message is not None:
+                    again = decoder.repeatable(*key)
+                    if again is frame.message:
+                        if len(repeats) >= CACHE_SIZE:
+                            repeats.clear()
+                        repeats[key] = (again, stats.by_id.get(arbitration_id),
+                                        frame.function, shown, frame.head,
+                                        self._json_parts(frame) if as_json else None)
         finally:
-            if fast:
+            if fast or ids:
                 settle()
 
     @staticmethod
