@@ -399,7 +399,7 @@ class FrameDecoder:
             if len(self._messages) >= CACHE_SIZE:
                 self._messages.clear()
             self._messages[key] = msg
-        if type(msg) is str:
+        if isinstance(msg, str):
             base = {"timestamp": timestamp, "time": timestamp - self._t0,
                     "arbitration_id": arbitration_id, "data": data}
             if node <= 254:
@@ -548,7 +548,7 @@ class FrameDecoder:
         stats.by_function["Channel data"] += 1
         stats.in_context += 1
         hex_data = data.hex(" ").upper() or "(empty)"
-        return _new_frame(DecodedFrame, (  # type: ignore[arg-type]
+        return _new_frame(DecodedFrame, (
             timestamp, timestamp - self._t0, arbitration_id, data,  # type: ignore[operator]
             CHANNEL_DATA, arbitration_id >> 9, node, "Channel data", cached[3] + hex_data,
             None, None, cached[2], None, cached[4] + hex_data))
