@@ -14,7 +14,13 @@ RSS (target < 150 MB, whatever the length). The bus time the monitor reports mus
 exact figure computed here bit by bit (bus/bustime.py's plain bit-stream path). The bus bound:
 a 1 Mbit/s CAN bus carries at most ~8,000 8-byte (≈ 11,000 4-byte) frames a second.
 
-Run: ``python benchmarks/trace.py [--frames N] [--formats asc,blf]``.
+Live (``--live-seconds``, 10 by default): the same traffic played at its original rate onto a
+cross-process bus (python-can's udp_multicast on loopback, paced), counted by ``monitor --bus``
+and by an independent python-can counter in a third process; prints both counts, the frames
+sent, and the monitor's CPU while the traffic ran as a share of one core (target ≤ 30 %).
+
+Run: ``python benchmarks/trace.py [--frames N] [--formats asc,blf] [--live-seconds S]``
+(``--formats ""`` for the live case alone, ``--live-seconds 0`` to skip it).
 """
 
 from __future__ import annotations
