@@ -14,6 +14,7 @@ the same text, character for character, as decoding every frame one by one
 
 from __future__ import annotations
 
+from binascii import hexlify
 from collections.abc import Callable, Iterable
 from typing import Any
 
@@ -27,6 +28,22 @@ from pdcp_studio.bus.monitor import (
     _link_json,
     frame_json,
 )
+
+
+def _utf8_buffer(out: Any) -> Any:
+    """The byte buffer under a UTF-8 text stream (sys.stdout), else None."""
+    import codecs
+
+    encoding = getattr(out, "encoding", None)
+    buffer = getattr(out, "buffer", None)
+    if buffer is None or not isinstance(encoding, str):
+        return None
+    try:
+        utf8 = codecs.lookup(encoding).name == "utf-8"
+    except LookupError:
+        return None
+    return buffer if utf8 and getattr(out, "errors", "strict") == "strict" else None
+
 
 #: Lines gathered before they are written in one call.
 CHUNK = 512
@@ -51,7 +68,11 @@ class TracePump:
         self.recorder, self.on_error = recorder, on_error
         self.flush_each_chunk = flush_each_chunk
         self.json = JsonFrameWriter(out) if json else None
-        self._parts: list[str] = []
+        #: Lines as UTF-8 bytes, written to the stream's byte buffer: a line with an arrow
+        #: in it is a str of 2-byte characters, and encoding those costs more than making
+        #: the line (JSON records are ASCII, so they stay str).
+        self._bytes_out = None if json else _utf8_buffer(out)
+        self._parts: list[Any] = []
         #: arbitration ID → (stats entry or None, shown, line head, JSON parts or None)
         self._heads: dict[int, tuple[Any, ...]] = {}
         #: id(a cached frame's text) → (that text, the JSON record's fixed parts)
@@ -69,6 +90,9 @@ class TracePump:
         if parts:
             if self.json is not None:
                 self.json.write_records(parts)
+            elif self._bytes_out is not None:
+                self.out.flush()  # what was written as text first
+                self._bytes_out.write(b"\n".join(parts) + b"\n")
             else:
                 self.out.write("\n".join(parts) + "\n")
             parts.clear()
@@ -92,6 +116,7 @@ class TracePump:
         append = parts.append
         recorder, show, on_error = self.recorder, self.show, self.on_error
         as_json = self.json is not None
+        as_bytes = self._bytes_out is not None
         meter_on = decoder.meter_on
         # Channel data counted here, handed to the statistics at quiet moments and at the
         # end (nothing the decoder decides reads them), and to the bus-time meter in batches.
@@ -163,8 +188,16 @@ class TracePump:
                         else:
                             untracked += 1
                         if head[1]:
-                            upper = data.hex(" ").upper() or "(empty)"
                             t = timestamp - t0
+                            if as_bytes:
+                                append(b"%11.6f  %b%b" % (t, head[4], hexlify(data, b" ").upper()
+                                                          or b"(empty)"))
+                                if len(parts) >= CHUNK:
+                                    self.flush()
+                                    if self.flush_each_chunk:
+                                        self.out.flush()
+                                continue
+                            upper = data.hex(" ").upper() or "(empty)"
                             if as_json:
                                 j = head[3]
                                 fixed = f"{t:.6f}"
@@ -225,6 +258,8 @@ class TracePump:
                                     short = repr(round(t, 6))
                                 append(f'{{"timestamp": {timestamp!r}, "time": {short}{j[1]}'
                                        f'{fixed:>11}{j[2]}"}}')
+                            elif as_bytes:
+                                append(b"%11.6f  %b" % (t, rep[6]))
                             else:
                                 append(f"{t:11.6f}  {rep[4]}")
                             if len(parts) >= CHUNK:
@@ -244,6 +279,8 @@ class TracePump:
                     if not cached_head:
                         if as_json:
                             self.json.write_to(parts, frame)  # type: ignore[union-attr]
+                        elif as_bytes:
+                            append(frame.line.encode())
                         else:
                             append(frame.line)
                     elif as_json:
@@ -255,6 +292,8 @@ class TracePump:
                         t = frame.time
                         append(f'{{"timestamp": {frame.timestamp!r}, "time": '
                                f'{round(t, 6)!r}{j[1]}{t:11.6f}{j[2]}"}}')
+                    elif as_bytes:
+                        append(b"%11.6f  %b" % (frame.time, cached_head.encode()))
                     else:
                         append(f"{frame.time:11.6f}  {cached_head}")
                     if len(parts) >= CHUNK:
@@ -275,7 +314,8 @@ class TracePump:
                             repeats.clear()
                         repeats[key] = (again, stats.by_id.get(arbitration_id),
                                         frame.function, shown, frame.head,
-                                        self._json_parts(frame) if as_json else None)
+                                        self._json_parts(frame) if as_json else None,
+                                        frame.head.encode())
         finally:
             if fast or ids:
                 settle()
@@ -308,4 +348,4 @@ class TracePump:
                      f'", "response": null, "error": null, "link": {_link_json(link)}, '
                      '"text": "',
                      _json_str("  " + head)[1:-1])
-        return entry, shown, head, parts
+        return entry, shown, head, parts, head.encode()

@@ -54,16 +54,26 @@ def one_by_one(msgs, *, as_json: bool, show=None, checked: bool = False) -> tupl
 
 
 def pumped(msgs, *, as_json: bool, show=None, polls: bool = False,
-           checked: bool = False) -> tuple[str, dict]:
+           checked: bool = False, stdout: bool = False) -> tuple[str, dict]:
+    """``stdout``: a UTF-8 text stream over bytes, as sys.stdout is (lines go to its byte
+    buffer), with text written to it between frames."""
     decoder = FrameDecoder()
     decoder.context_checked = checked
-    out = io.StringIO()
+    out = io.TextIOWrapper(io.BytesIO(), encoding="utf-8") if stdout else io.StringIO()
     pump = TracePump(decoder, out, json=as_json, show=show)
     items = list(msgs)
     if polls:  # quiet polls between frames, as a live bus gives them
         items = [x for m in items for x in ((m, None) if m.arbitration_id % 7 == 0 else (m,))]
-    pump.run(items, lambda item: None)
+
+    def other(item) -> None:
+        if stdout:
+            out.write("a report →\n")
+    pump.run(items, other)
     pump.close()
+    if stdout:
+        out.flush()
+        text = out.buffer.getvalue().decode()
+        return text.replace("a report →\n", ""), decoder.stats.as_json()
     return out.getvalue(), decoder.stats.as_json()
 
 
@@ -82,6 +92,8 @@ def test_the_pump_writes_what_one_by_one_decoding_writes():
                     (as_json, spec)
                 assert pumped(msgs, as_json=as_json, show=show, polls=True,
                               checked=checked) == expected
+                assert pumped(msgs, as_json=as_json, show=show, polls=True, checked=checked,
+                              stdout=True) == expected
 
 
 def test_most_frames_of_a_busy_bus_take_the_short_ways():
@@ -105,6 +117,7 @@ def test_most_frames_of_a_busy_bus_take_the_short_ways():
     assert len(decoded) < 0.2 * len(msgs)
     text, stats = pumped(msgs, as_json=False)
     assert (text, stats) == one_by_one(msgs, as_json=False)
+    assert pumped(msgs, as_json=False, stdout=True, polls=True) == (text, stats)
     assert pumped(msgs, as_json=True, checked=True) == \
         one_by_one(msgs, as_json=True, checked=True)
     assert pump._heads and pump._repeats
@@ -128,5 +141,6 @@ def test_any_frames_at_any_times(noise, seed, step, t0):
     msgs = messages(frames, t0=t0, step=step if seed % 2 else -step, seed=seed)
     for as_json in (False, True):
         checked = bool(seed % 2)
-        assert pumped(msgs, as_json=as_json, checked=checked) == \
-            one_by_one(msgs, as_json=as_json, checked=checked)
+        expected = one_by_one(msgs, as_json=as_json, checked=checked)
+        assert pumped(msgs, as_json=as_json, checked=checked) == expected
+        assert pumped(msgs, as_json=as_json, checked=checked, stdout=True) == expected
