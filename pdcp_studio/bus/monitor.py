@@ -307,18 +307,20 @@ class FrameDecoder:
 
     def repeatable(self, arbitration_id: int, data: bytes) -> Any:
         """For a base frame just decoded from the cache of described frames: its message
-        when every frame like it reads, counts and fits the same while ``version`` stays —
-        a beacon or a request the decoder does not follow (not bulk) that fits now: what it
-        fits cannot change without a new version (known devices leave only by one, heard
-        ones never). Never a response: it fits only after its request. Else None."""
+        when every frame like it reads and counts the same while ``version`` stays — one
+        the decoder does not follow (not bulk, not a bind). A request or beacon must fit now
+        (what it fits cannot change without a new version: known devices leave only by one,
+        heard ones never); a response fits only after its request, so whoever repeats it
+        asks ``_context`` each time. Else None."""
         seen = self._described.get((arbitration_id, data))
         if seen is None or seen[0] != self._version or seen[3] is not None:
             return None
         msg = seen[1]
         code = msg.CODE
-        if code >= 0x80 or code == _BULK_DATA or code == 0x01:
+        if code == _BULK_DATA or code == 0x01 or code == 0x81:
             return None
-        if self.context_checked and not self._fits(code, msg.mode, msg.node_id):
+        if (code < 0x80 and self.context_checked
+                and not self._fits(code, msg.mode, msg.node_id)):
             return None
         return msg
 

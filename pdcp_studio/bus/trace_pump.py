@@ -28,6 +28,7 @@ from pdcp_studio.bus.monitor import (
     _link_json,
     frame_json,
 )
+from pdcp_studio.protocol.codes import ResponseCode
 
 
 def _utf8_buffer(out: Any) -> Any:
@@ -50,6 +51,7 @@ CHUNK = 512
 #: Channel data frames handed to the bus-time meter at once.
 METER_BATCH = 4096
 _CHANNEL_DATA = "Channel data"
+_FAILURE = ResponseCode.FAILURE.title
 
 
 class TracePump:
@@ -218,17 +220,17 @@ class TracePump:
                                 if self.flush_each_chunk:
                                     self.out.flush()
                         continue
-                key = None
+                key = frame = None
                 if not (msg.is_extended_id or msg.is_remote_frame or msg.is_error_frame):
                     data = msg.data
                     key = (arbitration_id, bytes(data))
                     rep = repeats.get(key)
                     if rep is not None and len(data) <= 8:
-                        # A beacon or request seen before: as the decoder would, from what
-                        # it said then (it still follows the request).
+                        # A frame seen before: as the decoder would, from what it said then
+                        # (it still follows requests and checks that a response fits).
                         if recorder is not None:
                             recorder.write_message(msg)
-                        decoder._context(rep[0])
+                        fits = decoder._context(rep[0])
                         timestamp = msg.timestamp or 0.0
                         managed += 1
                         stats.frames += 1
@@ -245,7 +247,14 @@ class TracePump:
                             entry[3] = key[1]
                         else:
                             stats.other_ids += 1
+                        if not fits:  # a response nobody asked for (now)
+                            frame = decoder._unattributed({
+                                "timestamp": timestamp, "time": timestamp - t0,
+                                "arbitration_id": arbitration_id, "data": key[1]})
+                    if frame is None and rep is not None and len(data) <= 8:
                         stats.by_function[rep[2]] += 1
+                        if rep[7]:
+                            stats.failures += 1
                         if rep[3]:
                             t = timestamp - t0
                             if as_json:
@@ -267,10 +276,11 @@ class TracePump:
                                 if self.flush_each_chunk:
                                     self.out.flush()
                         continue
-                managed_at_decode = managed
-                if recorder is not None:
-                    recorder.write_message(msg)
-                frame = decode(msg)
+                if frame is None:
+                    managed_at_decode = managed
+                    if recorder is not None:
+                        recorder.write_message(msg)
+                    frame = decode(msg)
                 if frame.error is not None and on_error is not None:
                     on_error(frame)
                 shown = show is None or show(frame)
@@ -315,7 +325,7 @@ class TracePump:
                         repeats[key] = (again, stats.by_id.get(arbitration_id),
                                         frame.function, shown, frame.head,
                                         self._json_parts(frame) if as_json else None,
-                                        frame.head.encode())
+                                        frame.head.encode(), frame.response == _FAILURE)
         finally:
             if fast or ids:
                 settle()
