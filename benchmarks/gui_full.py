@@ -4,7 +4,8 @@
    ``benchmarks/gui.py``'s 254-device case, for the full rig). Target < 1 s.
 2. The app connecting to ``sim:full`` (the simulated prosthesis starts up on its worker) and
    then scanning it: a 5 ms QTimer heartbeat on the GUI thread throughout; the longest gap
-   between two beats. Target: never blocked > 50 ms.
+   between two beats. Target: never blocked > 50 ms. Printed per round with the
+   machine's load average (a shared machine stretches every gap).
 
 Run: ``python benchmarks/gui_full.py`` (offscreen; prints the figures).
 """
@@ -21,6 +22,9 @@ ROOT = Path(__file__).resolve().parents[1]
 sys.path.insert(0, str(ROOT))
 
 HEARTBEAT_MS = 5
+#: The longest gap varies with the machine's load (the simulated prosthesis's threads
+#: share the GIL with the GUI thread): several rounds, each printed with the load.
+LIVE_ROUNDS = 2
 CONNECT_TIMEOUT_S = 120.0
 
 
@@ -48,6 +52,7 @@ def open_render() -> dict[str, float]:
         view = GraphView(scene)
         view.resize(1400, 900)
         view.fit_all()
+        scene.render_pending()  # the cards' pictures (drawn in batches in the app)
         image = QImage(1400, 900, QImage.Format.Format_ARGB32)
         image.fill(0xFFFFFFFF)
         painter = QPainter(image)
@@ -122,13 +127,15 @@ def main() -> None:
     print(f"full.json: {r['devices']} devices — load {r['load'] * 1000:.0f} ms, layout+scene "
           f"{r['layout+scene'] * 1000:.0f} ms, render {r['render'] * 1000:.0f} ms, total "
           f"{r['total'] * 1000:.0f} ms (target < 1000 ms)")
-    hb = live()
-    print(f"app on sim:full ({hb['devices']} devices): connected and started up in "
-          f"{hb['connect_s']:.1f} s, longest GUI gap meanwhile {hb['connect_max_ms']:.1f} ms "
-          f"(p99 {hb['connect_p99_ms']:.1f} ms); scan {hb['scan_s']:.1f} s, longest gap "
-          f"{hb['scan_max_ms']:.1f} ms (p99 {hb['scan_p99_ms']:.1f} ms) "
-          f"(target: never > 50 ms)")
-
+    for round_no in range(1, LIVE_ROUNDS + 1):
+        load = os.getloadavg()[0]
+        hb = live()
+        print(f"app on sim:full ({hb['devices']} devices), round {round_no} (machine load "
+              f"{load:.1f} on {os.cpu_count()} cores): connected and started up in "
+              f"{hb['connect_s']:.1f} s, longest GUI gap meanwhile {hb['connect_max_ms']:.1f} ms "
+              f"(p99 {hb['connect_p99_ms']:.1f} ms); scan {hb['scan_s']:.1f} s, longest gap "
+              f"{hb['scan_max_ms']:.1f} ms (p99 {hb['scan_p99_ms']:.1f} ms) "
+              f"(target: never > 50 ms)")
 
 if __name__ == "__main__":
     main()

@@ -75,6 +75,7 @@ def run_app(path: str | Path | None = None, bus: str | None = None,
         # A .pdcfg opens in its own window (app/config_view.py): that is what was asked for.
         target = (getattr(window, "config_windows", None) or [window])[-1]
         target.view.fit_all()
+        target.view.settle()  # every card's picture drawn, not the first few
         image = target.grab()
         if status["code"]:
             pass  # what was asked for is not on screen: no picture of an empty window
@@ -156,7 +157,14 @@ def _recovery() -> object | None:
 
 
 def _preload_layout() -> None:
-    import networkx  # noqa: F401
+    """Import networkx on a thread of its own (an import of ~0.3 s on the GUI thread was
+    a stall the user saw)."""
+    import threading
+
+    def load() -> None:
+        import networkx  # noqa: F401
+
+    threading.Thread(target=load, name="preload networkx", daemon=True).start()
 
 
 def _has_display() -> bool:

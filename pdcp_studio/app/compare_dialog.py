@@ -119,9 +119,9 @@ def load_file(path: str | Path) -> tuple[list[LinkSource], ConfigCollection | No
     """The file's sources, and its stored configuration when it is a ``.pdcfg``."""
     path = Path(path)
     if path.suffix.lower() == ".pdcfg":
-        from pdcp_studio.storage import config_codec
+        from pdcp_studio.app.config_document import load_config_file
 
-        collection = config_codec.load_path(path)
+        collection = load_config_file(path)  # a bad file's error names it
         return sources_of_collection(path.name, collection), collection
     from pdcp_studio.storage import system_file
 

@@ -32,6 +32,19 @@ from pdcp_studio.model.configuration import (
 from pdcp_studio.model.refs import ChannelRef
 
 
+def load_config_file(path: str | Path) -> ConfigCollection:
+    """Read a ``.pdcfg`` file; the error names the file (ConfigFormatError, OSError)."""
+    from pdcp_studio.errors import ConfigFormatError
+    from pdcp_studio.storage import config_codec
+
+    try:
+        return config_codec.load_path(path)
+    except ConfigFormatError as err:
+        named = ConfigFormatError(f"{path}: {err}")
+        named.offset, named.reason = err.offset, err.reason
+        raise named from None
+
+
 def _tr(text: str) -> str:
     return QCoreApplication.translate("ConfigDocument", text)
 
@@ -72,10 +85,8 @@ class ConfigDocument(QObject):
 
     @classmethod
     def open(cls, path: str | Path, parent: QObject | None = None) -> ConfigDocument:
-        """Read a ``.pdcfg`` file (ConfigFormatError / OSError on failure)."""
-        from pdcp_studio.storage import config_codec
-
-        return cls(config_codec.load_path(path), path, parent)
+        """Read a ``.pdcfg`` file (ConfigFormatError naming it / OSError on failure)."""
+        return cls(load_config_file(path), path, parent)
 
     def _on_clean_changed(self, clean: bool) -> None:
         self.dirtyChanged.emit(not clean)

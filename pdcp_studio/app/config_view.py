@@ -295,8 +295,9 @@ class ConfigWindow(QMainWindow):
 
         self.links = QTableWidget(0, 7)
         self.links.setHorizontalHeaderLabels([
-            self.tr("Link"), self.tr("From (output)"), self.tr("Type"), self.tr("Profile"),
-            self.tr("To (input)"), self.tr("Type"), self.tr("Profile")])
+            self.tr("Link"), self.tr("From (output)"), self.tr("Form"),
+            self.tr("What it carries"), self.tr("To (input)"), self.tr("Form"),
+            self.tr("What it carries")])
         self.links.setSelectionBehavior(QAbstractItemView.SelectionBehavior.SelectRows)
         self.links.setEditTriggers(QAbstractItemView.EditTrigger.NoEditTriggers)
         self.links.verticalHeader().hide()
@@ -492,24 +493,44 @@ class ConfigWindow(QMainWindow):
             .replace("%2", str(ch.index))
 
     def _profile_text(self, profile: int) -> str:
+        """What a channel carries, by the profile tree's names (the code is the tooltip)."""
         if profile == prof.NULL_PROFILE:
             return self.tr("not stored")
-        name = self.graph_doc.tree.name_of(profile)
-        return f"{prof.fmt(profile)}  {name}" if name != prof.fmt(profile) else prof.fmt(profile)
+        if self.graph_doc.tree.node(profile) is None:
+            return self.tr("not named in the profile tree")
+        return self.graph_doc.tree.name_of(profile)
+
+    def _type_text(self, value: int) -> str:
+        """A channel type in words: its data type, size and control mode."""
+        from pdcp_studio.model.channel_type import ChannelType
+
+        try:
+            t = ChannelType(value)
+        except ValueError:
+            return self.tr("unknown form")
+        kind = (self.tr("signed number"), self.tr("number"), self.tr("decimal number"),
+                self.tr("on/off"))[int(t.data_type)]
+        mode = (self.tr("position"), self.tr("speed"), self.tr("acceleration"),
+                self.tr("other"))[int(t.control_mode)]
+        return self.tr("{kind} ({bits} bits), {mode}").format(kind=kind, bits=t.bits, mode=mode)
 
     def _fill_links(self, cfg: StoredConfiguration | None) -> None:
         links = cfg.links if cfg is not None else []
         self.links.setRowCount(len(links))
         for row, sl in enumerate(links):
             cells = [str(sl.index or row + 1), self._channel_text(sl.output),
-                     _hex(sl.output.type), self._profile_text(sl.output.profile),
-                     self._channel_text(sl.input), _hex(sl.input.type),
+                     self._type_text(sl.output.type), self._profile_text(sl.output.profile),
+                     self._channel_text(sl.input), self._type_text(sl.input.type),
                      self._profile_text(sl.input.profile)]
             for col, text in enumerate(cells):
                 item = QTableWidgetItem(text)
-                if col in (1, 4):
-                    ch = sl.output if col == 1 else sl.input
+                ch = sl.output if col in (1, 2, 3) else sl.input
+                if col in (1, 4):  # the engineer's detail, one hover away
                     item.setToolTip(f"{ch.vid}/{ch.pid}/{ch.serial} #{ch.index}")
+                elif col in (2, 5):
+                    item.setToolTip(self.tr("type {code}").format(code=_hex(ch.type)))
+                elif col in (3, 6):
+                    item.setToolTip(self.tr("profile {code}").format(code=prof.fmt(ch.profile)))
                 self.links.setItem(row, col, item)
         self.links.resizeColumnsToContents()
 
@@ -521,12 +542,77 @@ class ConfigWindow(QMainWindow):
                 "fit each other."))
         colours = {"error": Qt.GlobalColor.darkRed, "warning": Qt.GlobalColor.darkYellow}
         for f in self.findings:
-            item = QListWidgetItem(f"{self.tr(SEVERITY_WORDS[f.severity.value])}: {f.message}")
+            item = QListWidgetItem(f"{self.tr(SEVERITY_WORDS[f.severity.value])}: "
+                                   f"{self._finding_words(f)}")
+            item.setToolTip(f"{f.message}\n({f.code})")  # the engineer's words and the rule
             item.setData(Qt.ItemDataRole.UserRole, list(f.links))
             if f.severity.value in colours:
                 item.setForeground(colours[f.severity.value])
             self.checks.addItem(item)
         QTimer.singleShot(0, self.checks.doItemsLayout)
+
+    def _finding_words(self, f: ConfigFinding) -> str:
+        """A configuration check in plain words with what to do (the engine's as tooltip)."""
+        names = [self._ref_words(r) for r in f.refs]
+        links = ", ".join(str(p + 1) for p in f.links)
+        a = names[0] if names else ""
+        b = names[1] if len(names) > 1 else ""
+        text = {
+            "same-device": self.tr("Link {links} joins {a} to its own device. Remove it."),
+            "duplicate-link": self.tr("Links {links} store the same link {a} → {b}; it is made "
+                                      "once. Remove the extra ones."),
+            "two-sources": self.tr("{a} is given more than one source (links {links}); only "
+                                   "the first would be made. Keep one of them."),
+            "both-directions": self.tr("{a} is stored as an output and as an input (links "
+                                       "{links}); a channel is one or the other. Correct the "
+                                       "wrong link."),
+            "sole-access": self.tr("{a} feeds several inputs that each need it for themselves "
+                                   "(links {links}). Keep one of these links."),
+            "inconsistent-records": self.tr("{a} is stored with different descriptions in "
+                                            "links {links}. Edit the channel so they agree."),
+            "profile-misfit": self.tr("Link {links}: {a} and {b} carry different kinds of "
+                                      "signal; {b} may not understand what it is sent."),
+            "type-differs": self.tr("Link {links}: {a} and {b} carry the same kind of signal in "
+                                    "different forms; the input adapts to the output."),
+        }.get(f.code)
+        if text is None:
+            return f.message
+        return text.format(links=links, a=a, b=b)
+
+    def _ref_words(self, ref: Any) -> str:
+        return self.tr("%1, channel %2").replace("%1", self.catalogue.label(ref.device)) \
+            .replace("%2", str(ref.index))
+
+    def _plan_step_words(self, a: Any, system: System) -> str:
+        from pdcp_studio.app import plan_words as W
+
+        verb = self.tr("Add") if a.op.value == "add" else self.tr("Remove")
+        return (f"{verb} {W.link_words(system, a.link.output, a.link.input)}: "
+                f"{W.rule_words(a.rule)}")
+
+    def _link_fit_words(self, lf: Any, system: System) -> str:
+        """What happens to one stored link on this prosthesis, in words."""
+        from pdcp_studio.app import plan_words as W
+        from pdcp_studio.engine.config_fit import MISSING, PRESENT
+
+        if lf.whole:
+            return self.tr("both ends are on the prosthesis: made as stored")
+        parts = []
+        for end, state in ((self.tr("the output"), lf.output), (self.tr("the input"), lf.input)):
+            if state == MISSING:
+                parts.append(self.tr("{end} is missing").format(end=end))
+            elif state != PRESENT:
+                parts.append(self.tr("{end} has the other direction on the prosthesis").format(
+                    end=end))
+        adds = [a for a in lf.actions if a.op.value == "add"]
+        if adds:
+            made = "; ".join(self.tr("replaced by {link} ({similar})").format(
+                link=W.link_words(system, a.link.output, a.link.input),
+                similar=W.similarity_words(a, self.fit.plan) if self.fit else "")
+                for a in adds)
+            return f"{', '.join(parts)}: {made}"
+        return self.tr("{parts}: no replacement found, the link is not made").format(
+            parts=", ".join(parts))
 
     def refresh_fit(self) -> None:
         """Fit the current configuration to the prosthesis (if one is open)."""
@@ -560,8 +646,10 @@ class ConfigWindow(QMainWindow):
             number = str(sl.index or lf.position + 1)
             label = self.tr("Link %1: %2 → %3\n%4").replace("%1", number) \
                 .replace("%2", self._channel_text(sl.output)) \
-                .replace("%3", self._channel_text(sl.input)).replace("%4", lf.summary())
+                .replace("%3", self._channel_text(sl.input)) \
+                .replace("%4", self._link_fit_words(lf, system))
             item = QListWidgetItem(label)
+            item.setToolTip(lf.summary())  # the engineer's words
             if not lf.whole:
                 item.setForeground(Qt.GlobalColor.darkRed if not lf.actions
                                    else Qt.GlobalColor.darkYellow)
@@ -573,8 +661,9 @@ class ConfigWindow(QMainWindow):
             head.setForeground(Qt.GlobalColor.darkBlue)
             self.fit_list.addItem(head)
             for a in fit.plan.actions:
-                verb = self.tr("add") if a.op.value == "add" else self.tr("remove")
-                self.fit_list.addItem(f"    {verb} {a.link.output} → {a.link.input}: {a.reason}")
+                step = QListWidgetItem("    " + self._plan_step_words(a, system))
+                step.setToolTip(f"{a.op.value} {a.link.output} → {a.link.input}: {a.reason}")
+                self.fit_list.addItem(step)
         QTimer.singleShot(0, self.fit_list.doItemsLayout)  # wrap at the width it has now
 
     def set_prosthesis_source(self, source: ProsthesisSource | None) -> None:

@@ -176,7 +176,9 @@ class _DetectingPage(BusPage):
     def detect(self) -> Worker:
         """Probe in the background; the result fills the fields and emits ``detected``."""
         self.detect_button.setEnabled(False)
-        self.status.setText(self.tr("Detecting…"))
+        self.detect_button.setText(self.tr("Detecting…"))
+        self.setCursor(Qt.CursorShape.BusyCursor)
+        self.status.setText(self.tr("Looking for adapters… this can take a few seconds"))
         self._worker = worker = Worker(self._probe(), f"Detect {self.kind}")
         worker.finished.connect(self._show)
         worker.failed.connect(self._failed)  # bound slots: dropped if the page is gone
@@ -188,6 +190,8 @@ class _DetectingPage(BusPage):
 
     def _detect_done(self) -> None:
         self.detect_button.setEnabled(True)
+        self.detect_button.setText(self.tr("Detect"))
+        self.unsetCursor()
         self._worker = None
         self.detected.emit()
 
@@ -229,10 +233,13 @@ class CanPage(_DetectingPage):
     def _show(self, configs: list[dict]) -> None:
         self._configs = [c for c in configs if c.get("interface") and c.get("channel")]
         kinds = sorted({str(c["interface"]) for c in self._configs})
+        found = sorted({f"{c['interface']}:{c['channel']}" for c in self._configs})
         self.status.setText(
-            self.tr("Found: {v0}").format(v0=", ".join(kinds))
-            if kinds
-            else self.tr("No CAN interface found")
+            self.tr("Found {n} CAN channel(s): {which}").format(n=len(found),
+                                                               which=", ".join(found))
+            if found
+            else self.tr("No CAN adapter found. Check that it is plugged in and its driver "
+                         "is installed, or type the interface and channel.")
         )
         if self._configs and self.interface.currentText() not in kinds:
             self.interface.setCurrentText(kinds[0])

@@ -28,12 +28,12 @@ from dataclasses import replace
 from pathlib import Path
 from typing import Any
 
-from PySide6.QtCore import QObject, Signal
+from PySide6.QtCore import QObject, QTimer, Signal
 from PySide6.QtGui import QUndoStack
 
 from pdcp_studio.errors import ModelError, ProfileError
 from pdcp_studio.model import profile as prof
-from pdcp_studio.model.profile_tree import ProfileTree
+from pdcp_studio.model.profile_tree import ProfileTree, best_tree
 from pdcp_studio.model.refs import ChannelRef, DeviceKey
 from pdcp_studio.model.system import Channel, Device, Link, System
 
@@ -42,8 +42,14 @@ log = logging.getLogger(__name__)
 Selection = DeviceKey | ChannelRef | Link | None
 Position = tuple[float, float]
 
-#: Profile trees shipped in resources/profiles, merged in this order (first wins a name).
-BUILTIN_TREES = ("thesis-fig4.6.json", "thesis-tests.json")
+#: Profile trees shipped in resources/profiles: the prosthetic tree, then the thesis test
+#: tree. Each stands alone (their values overlap): a system is named by the one that fits it.
+BUILTIN_TREES = ("prosthesis.json", "thesis-tests.json")
+
+#: Undo commands that only move cards (a live view is not dirty for them).
+MOVE_COMMANDS = frozenset({"MoveDeviceCommand", "MoveDevicesCommand"})
+#: A live view's layout is remembered this long after the last move.
+LAYOUT_SAVE_MS = 400
 
 #: Channel fields an edit may change (``Channel`` dataclass attributes).
 CHANNEL_FIELDS = frozenset({
@@ -74,8 +80,11 @@ def user_profiles_dir() -> Path | None:
     return folder()
 
 
-def load_profile_tree(extra: Iterable[Path] = (), *, user_dir: bool = True) -> ProfileTree:
-    """The built-in trees merged with user trees; a broken user file is logged, not fatal."""
+def load_profile_trees(extra: Iterable[Path] = (), *,
+                       user_dir: bool = True) -> list[ProfileTree]:
+    """The named trees: the shipped ones, then the user's and vendors' (a user tree with a
+    shipped tree's name is the user's edit of it and takes its place). A broken user file
+    is logged, not fatal."""
     from pdcp_studio.paths import profiles_dir
 
     files = [profiles_dir() / name for name in BUILTIN_TREES]
@@ -83,15 +92,34 @@ def load_profile_tree(extra: Iterable[Path] = (), *, user_dir: bool = True) -> P
     if udir is not None and udir.is_dir():
         files += sorted(udir.glob("*.json"))
     files += list(extra)
-    tree = ProfileTree("profiles")
+    trees: list[ProfileTree] = []
     for path in files:
         try:
-            part = ProfileTree.from_json(json.loads(Path(path).read_text("utf-8")), str(path))
+            tree = ProfileTree.from_json(json.loads(Path(path).read_text("utf-8")), str(path))
         except (OSError, ValueError, ProfileError) as err:
             log.warning("profile tree %s skipped: %s", path, err)
             continue
-        tree = tree.merged(part)
-    return tree
+        same = next((i for i, t in enumerate(trees) if t.name == tree.name), None)
+        if same is None:
+            trees.append(tree)
+        else:
+            trees[same] = tree
+    return trees
+
+
+def load_profile_tree(extra: Iterable[Path] = (), *, user_dir: bool = True,
+                      system: System | None = None) -> ProfileTree:
+    """The tree that names ``system``'s channels (the prosthetic tree without a system)."""
+    return tree_for(load_profile_trees(extra, user_dir=user_dir), system)
+
+
+def tree_for(trees: list[ProfileTree], system: System | None) -> ProfileTree:
+    """Of the named trees, the one that names the most of ``system``'s channel profiles."""
+    profiles: list[int] = []
+    if system is not None:
+        for _ref, ch in system.channels():
+            profiles += [ch.profile, ch.terminal_profile]
+    return best_tree(trees, profiles)
 
 
 class Document(QObject):
@@ -115,7 +143,10 @@ class Document(QObject):
                  parent: QObject | None = None) -> None:
         super().__init__(parent)
         self.system: System = system if system is not None else System()
-        self.tree: ProfileTree = tree if tree is not None else load_profile_tree()
+        #: The named profile trees (prosthetic, thesis test rig, the user's and vendors').
+        self.trees: list[ProfileTree] = [tree] if tree is not None else load_profile_trees()
+        #: The tree that names this system's channels (one of ``trees``).
+        self.tree: ProfileTree = tree_for(self.trees, self.system)
         self.undo_stack = QUndoStack(self)
         self.path: Path | None = None
         self.session: Any = None
@@ -138,6 +169,12 @@ class Document(QObject):
         self._extra_dirty = False
         self._was_dirty = False
         self.undo_stack.cleanChanged.connect(self._on_clean_changed)
+        # A live view's moves do not make it dirty, other edits do: follow every step.
+        self.undo_stack.indexChanged.connect(self._on_index_changed)
+        self._layout_timer = QTimer(self)
+        self._layout_timer.setSingleShot(True)
+        self._layout_timer.setInterval(LAYOUT_SAVE_MS)
+        self._layout_timer.timeout.connect(self.remember_layout)
 
     # -- whole document -----------------------------------------------------------
     def set_system(self, system: System, path: Path | str | None = None, session: Any = None,
@@ -149,6 +186,7 @@ class Document(QObject):
         default, a scan) so closing asks before dropping it.
         """
         self.system = system
+        self.tree = tree_for(self.trees, system)
         self.path = Path(path) if path is not None else None
         self.kind, self.config = kind, config
         session_changed = session is not self.session
@@ -158,6 +196,10 @@ class Document(QObject):
         self._selection = None
         if positions is not None:
             self.positions = dict(positions)
+            if not positions and self.is_live_view:  # as this prosthesis was last laid out
+                from pdcp_studio.app import live_layout
+
+                self.positions = live_layout.load(self.live_url)
         self.undo_stack.clear()
         self.undo_stack.setClean()
         self._extra_dirty = dirty
@@ -271,14 +313,46 @@ class Document(QObject):
         self._emit_dirty()
 
     @property
+    def is_live_view(self) -> bool:
+        """The bus itself is the document (connected, no project file)."""
+        return self.path is None and self.session is not None and self.kind == "system"
+
+    @property
+    def live_url(self) -> str:
+        return str(getattr(self.session, "url", "") or "")
+
+    def remember_layout(self) -> None:
+        """Keep a live view's card positions for the next time this prosthesis connects."""
+        self._layout_timer.stop()
+        if self.is_live_view:
+            from pdcp_studio.app import live_layout
+
+            live_layout.save(self.live_url, self.positions)
+
+    def _only_moves_since_clean(self) -> bool:
+        stack = self.undo_stack
+        clean, index = stack.cleanIndex(), stack.index()
+        if clean < 0:
+            return False
+        low, high = sorted((clean, index))
+        return all(type(stack.command(i)).__name__ in MOVE_COMMANDS for i in range(low, high))
+
+    @property
     def is_dirty(self) -> bool:
+        """Changes that would be lost: a live view's card moves are not (they are
+        remembered per prosthesis, :mod:`live_layout`), any other edit is."""
         try:
             clean = self.undo_stack.isClean()
+            if not clean and self.is_live_view and self._only_moves_since_clean():
+                clean = True
         except RuntimeError:  # the stack is being destroyed with us and still signals
             return self._extra_dirty
         return self._extra_dirty or not clean
 
     def _on_clean_changed(self, _clean: bool) -> None:
+        self._emit_dirty()
+
+    def _on_index_changed(self, _index: int) -> None:
         self._emit_dirty()
 
     def _emit_dirty(self) -> None:
@@ -326,6 +400,11 @@ class Document(QObject):
         if channel is None:
             raise ModelError(f"no channel {ref} in this system")
         return channel
+
+    def set_trees(self, trees: list[ProfileTree]) -> None:
+        """The named trees changed (edited): name this system from them again."""
+        self.trees = list(trees)
+        self.tree = tree_for(self.trees, self.system)
 
     def profile_name(self, profile: int) -> str:
         """Short profile name from the tree (hex when the tree does not know it)."""
@@ -416,6 +495,8 @@ class Document(QObject):
     def set_position(self, key: DeviceKey, pos: Position) -> None:
         self.positions[key] = (float(pos[0]), float(pos[1]))
         self.positionChanged.emit(key)
+        if self.is_live_view:
+            self._layout_timer.start()  # remembered once the drag has settled
 
     def add_device(self, device: Device) -> None:
         self.system.add_device(device)

@@ -90,9 +90,9 @@ def open_path(path: str | Path) -> Opened:
     """Load a system file or a stored configuration; SystemFileError / ConfigFormatError."""
     path = Path(path)
     if is_config_path(path):
-        from pdcp_studio.storage import config_codec
+        from pdcp_studio.app.config_document import load_config_file
 
-        collection = config_codec.load_path(path)
+        collection = load_config_file(path)  # a bad file's error names it
         system, skipped = system_from_configuration(collection)
         n = len(collection.configurations)
         notes = [f"{n} configurations; showing configuration 1"] if n > 1 else []

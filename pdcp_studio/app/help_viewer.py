@@ -42,6 +42,9 @@ VIEW_SECTIONS: dict[str, str] = {
     "WriteConfigDialog": "write",
     "ProfileTreeDialog": "profiles",
     "RecoveryDialog": "recovery",
+    "NewFittingWizard": "tasks",
+    "ReplacePartWizard": "tasks",
+    "RestoreWizard": "tasks",
 }
 
 

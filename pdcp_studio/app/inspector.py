@@ -36,6 +36,7 @@ from PySide6.QtWidgets import (
 from pdcp_studio.app import commands
 from pdcp_studio.app.document import Document
 from pdcp_studio.errors import ParameterError
+from pdcp_studio.model import param_fields
 from pdcp_studio.model import parameters as params
 from pdcp_studio.model import profile as prof
 from pdcp_studio.model.channel_type import (
@@ -50,13 +51,9 @@ from pdcp_studio.model.system import Channel, Device, Link
 ERROR_STYLE = "color: #b91c1c;"
 DIM_STYLE = "color: #66707b;"
 #: Device parameters (channel index 0) → Device attribute edited through them.
-DEVICE_FIELD = {
-    params.DEVICE_DESCRIPTOR: "descriptor",
-    params.DEVICE_NODE_ID: "node_id",
-    params.DEVICE_BEACON_INTERVAL: "beacon_interval",
-    params.DEVICE_ACK_TIMEOUT: "ack_timeout",
-    params.DEVICE_BIND_TIMEOUT: "bind_timeout",
-}
+DEVICE_FIELD = {m.param: m.fields[0] for m in param_fields.FIELD_MAPS
+                if m.scope == "device" and len(m.fields) == 1 and not m.identity
+                and params.device_parameter(m.param).writable}
 
 
 def parse_profile(text: str, tree_items: dict[str, int], *, allow_null: bool = False) -> int:
@@ -113,10 +110,16 @@ class Inspector(QScrollArea):
         doc.selectionChanged.connect(self.show_object)
         doc.channelChanged.connect(self._on_channel_changed)
         doc.deviceChanged.connect(self._on_device_changed)
-        doc.systemReset.connect(lambda: self.show_object(doc.selection))
+        # A new system: rebuilt when the event loop is free — Document.set_system's
+        # selectionChanged right after usually builds it first (once, not twice).
+        doc.systemReset.connect(self._system_reset)
         doc.linksChanged.connect(self._on_links_changed)
         doc.policyChanged.connect(self._on_policy_changed)
         self.show_object(None)
+
+    def _system_reset(self) -> None:
+        self._pending = self.doc.selection
+        self._refresh_timer.start()
 
     # -- building -------------------------------------------------------------------
     def show_object(self, obj: object) -> None:

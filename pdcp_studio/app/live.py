@@ -36,6 +36,15 @@ def open_session_blocking(url: str, progress: Any = None, cancel: Any = None) ->
     return open_session(url)
 
 
+def read_and_place(session: Any, shape: float = 1.0) -> tuple[Any, dict]:
+    """The bus's first snapshot and its cards' layout (on the worker: the layout imports
+    networkx and walks the whole bus, which stalled the GUI thread on ``sim:full``)."""
+    from pdcp_studio.app.graph import layout
+
+    system = session.system()
+    return system, layout.place(system, {}, shape)
+
+
 class LiveController(QObject):
     """Owns the bridge of the document's live session, if any."""
 
@@ -69,6 +78,8 @@ class LiveController(QObject):
         self._again = False
         #: A callable given each output ref that sent data (the scene's ``note_data``).
         self.on_data: Any = None
+        #: A callable giving the graph's shape (width / height) for the first layout.
+        self.layout_shape: Any = None
 
     @property
     def is_live(self) -> bool:
@@ -142,14 +153,15 @@ class LiveController(QObject):
         bridge.busyChanged.connect(self.busyChanged)
         bridge.scanned.connect(self._on_snapshot)
         self.bridgeReady.emit(bridge)
-        bridge.run(lambda _p, _c: session.system(), "Read the bus",
-                   lambda system: self._first_snapshot(bridge, system))
+        shape = self.layout_shape() if self.layout_shape is not None else 1.0
+        bridge.run(lambda _p, _c: read_and_place(session, shape), "Read the bus",
+                   lambda result: self._first_snapshot(bridge, *result))
 
-    def _first_snapshot(self, bridge: Any, system: Any) -> None:
+    def _first_snapshot(self, bridge: Any, system: Any, positions: Any) -> None:
         if bridge is not self.bridge:
             return
         self.connecting_url = ""
-        self.doc.set_system(system, None, self.bridge, positions={})
+        self.doc.set_system(system, None, self.bridge, positions=positions)
         self.last_url = self.url
         self._set_state(LIVE)
         self.sessionStarted.emit(bridge)
@@ -243,9 +255,16 @@ class LiveController(QObject):
         self.refresh()
 
     def _on_plan_applied(self, plan: Any) -> None:
+        from pdcp_studio.app.plan_words import mode_words
+
         mode = getattr(plan, "mode", None) or (plan.get("mode") if isinstance(plan, dict)
                                                 else "plan")
-        self.statusMessage.emit(self.tr("The bus applied {mode}").format(mode=mode))
+        why = mode_words(str(mode))
+        added = len(getattr(plan, "added", ()))
+        removed = len(getattr(plan, "removed", ()))
+        self.statusMessage.emit(self.tr(
+            "The prosthesis changed its links ({why}): {added} made, {removed} removed — "
+            "see Bus events").format(why=why, added=added, removed=removed))
         self.refresh()
 
     def _on_values(self, values: list) -> None:

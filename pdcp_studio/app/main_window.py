@@ -77,6 +77,7 @@ class MainWindow(MenusMixin, FileHandlingMixin, ExportMixin, BusMixin, RecoveryM
         self.setCentralWidget(self.view)
         self.live = LiveController(self.doc, self)
         self.live.on_data = self.scene.note_data
+        self.live.layout_shape = lambda: self.scene.layout_aspect
         self._is_ready = False
         self._leaf_docks: dict[str, QDockWidget] = {}
         self._build_docks()
@@ -94,6 +95,9 @@ class MainWindow(MenusMixin, FileHandlingMixin, ExportMixin, BusMixin, RecoveryM
         from pdcp_studio.app.window_desktop import install_desktop
 
         install_desktop(self)  # recent files, drops, Help, shortcuts, accessible names
+        from pdcp_studio.app.combo_popups import install as fit_combo_popups
+
+        fit_combo_popups()  # dropdown entries shown whole, never cut in the middle
 
     # -- construction -----------------------------------------------------------------
     def _dock(self, title: str, name: str, widget: QWidget,
@@ -260,6 +264,11 @@ class MainWindow(MenusMixin, FileHandlingMixin, ExportMixin, BusMixin, RecoveryM
         if not self._is_ready and url == DEFAULT_BUS:
             self.open_offline_default(f"the simulated prosthesis did not start ({message})")
             return
+        if self.offer_other_arbitrator(url, message):
+            self._update_mode()
+            if not self._is_ready:
+                self._loaded()
+            return
         where = "" if message.startswith(url) else f"{url}: "
         self.error_box(self.tr("Cannot connect"), f"{where}{message}")
         self._update_mode()
@@ -311,12 +320,15 @@ class MainWindow(MenusMixin, FileHandlingMixin, ExportMixin, BusMixin, RecoveryM
     def show_profile_tree(self) -> None:
         from pdcp_studio.app.profile_tree_editor import ProfileTreeDialog
 
-        dialog = ProfileTreeDialog(self.doc.tree, None, self)
-        dialog.editor.treeChanged.connect(self._tree_changed)
+        dialog = ProfileTreeDialog(parent=self, trees=self.doc.trees)  # edited in place
+        dialog.tabs.setCurrentIndex(self.doc.trees.index(self.doc.tree)
+                                    if self.doc.tree in self.doc.trees else 0)
+        dialog.treesChanged.connect(self._tree_changed)
         dialog.show()
+        self.profile_tree_dialog = dialog
 
-    def _tree_changed(self, tree: Any) -> None:
-        self.doc.tree = tree
+    def _tree_changed(self, trees: Any) -> None:
+        self.doc.set_trees(trees)
         self.scene.update()
         self.tree.rebuild()
         self.inspector.show_object(self.doc.selection)
@@ -335,6 +347,9 @@ class MainWindow(MenusMixin, FileHandlingMixin, ExportMixin, BusMixin, RecoveryM
             event.ignore()
             return
         self.live.disconnect_bus()
+        from pdcp_studio.app.arbitrator_found import stop_watching
+
+        stop_watching(self)  # a listen-only monitor, if one runs
         if self.autosaver is not None:
             self.autosaver.clean()  # closed on purpose: nothing to recover next time
         event.accept()

@@ -17,16 +17,17 @@ from dataclasses import dataclass
 from typing import Any
 
 from pdcp_studio.app.i18n import translate
-from pdcp_studio.model import parameters as params
+from pdcp_studio.model import param_fields
 from pdcp_studio.model.refs import ChannelRef, DeviceKey
 from pdcp_studio.model.system import Link, System
 
 #: Channel fields that can be staged on a live bus: field → catalog parameter ID.
-CHANNEL_PARAMS = {"type": 1, "profile": 1, "descriptor": 2, "data_enabled": 4,
-                  "required_inputs": 9, "desired_inputs": 10, "terminal_profile": 11}
+CHANNEL_PARAMS = {name: param_fields.param_of_field(name, "input") for name in (
+    "type", "profile", "descriptor", "data_enabled", "required_inputs", "desired_inputs",
+    "terminal_profile")}
 #: Device fields that can be staged on a live bus: field → catalog parameter ID.
-DEVICE_PARAMS = {"descriptor": 7, "beacon_interval": 10, "ack_timeout": 11,
-                 "bind_timeout": 12}
+DEVICE_PARAMS = {name: param_fields.param_of_field(name, "device") for name in (
+    "descriptor", "beacon_interval", "ack_timeout", "bind_timeout")}
 #: The action a written set of pending changes is recorded as.
 WRITE_ACTION = "write to prosthesis"
 
@@ -140,18 +141,10 @@ def parameter_write(project: System, change: PendingChange) -> Any:
 
     assert change.key is not None
     device = project.devices[change.key]
-    if not change.index:
-        pid = DEVICE_PARAMS[change.field]
-        spec = params.device_parameter(pid)
-        value: Any = getattr(device, change.field)
-    else:
-        ch = device.channels[change.index]
-        pid = CHANNEL_PARAMS[change.field]
-        spec = params.channel_parameter(pid, ch.direction)
-        value = (ch.type, ch.profile) if pid == 1 else getattr(ch, change.field)
-        if pid == 4:
-            value = int(bool(value))
-    return ParameterWrite(change.key, pid, change.index, params.encode_value(spec, value))
+    obj = device.channels[change.index] if change.index else device
+    pid = (CHANNEL_PARAMS if change.index else DEVICE_PARAMS)[change.field]
+    return ParameterWrite(change.key, pid, change.index,
+                          param_fields.encode_field_value(obj, pid))
 
 
 def change_for(changes: list[PendingChange], project: System,

@@ -1,33 +1,40 @@
 """Plans, previewed: run a profile-layer operation, see it, then Apply or Discard.
 
 The engine computes a :class:`~pdcp_studio.engine.plan.Plan` from a copy-free read of the
-document's system; the panel lists its actions in order (op, both channels with profile
-names, rule, reason, similarity and its breakdown) and what was tried and refused, while
-the graph draws the links to add and to remove. Nothing changes until Apply, which makes
-the plan one undo step — on a live bus a staged change, written to the prosthesis by Write
-to prosthesis as one transaction. On a live bus plans take the arbitrator's stored
-configuration as last read (re-read after every write), and a shown preview is computed
-again whenever the bus changes, so it never describes a bus that is gone.
+document's system; the panel lists its actions in order in plain words (add or remove,
+which link by device and channel names, why, how similar — rows wrap, so an ordinary plan
+reads without scrolling sideways) and what was tried and refused, while the graph draws the
+links to add and to remove. The engineer's detail of the selected row (the engine's reason,
+profile codes, the similarity score's breakdown) is in the detail pane beside the list.
+Nothing changes until Apply, which makes the plan one undo step — on a live bus a staged
+change, written to the prosthesis by Write to prosthesis as one transaction. On a live bus
+plans take the arbitrator's stored configuration as last read (re-read after every write),
+and a shown preview is computed again whenever the bus changes, so it never describes a bus
+that is gone.
 """
 
 from __future__ import annotations
 
 from typing import Any
 
-from PySide6.QtCore import QT_TRANSLATE_NOOP, Qt, Signal
+from PySide6.QtCore import QT_TRANSLATE_NOOP, QEvent, Qt, Signal
 from PySide6.QtGui import QBrush
 from PySide6.QtWidgets import (
+    QAbstractItemView,
     QHBoxLayout,
     QHeaderView,
     QLabel,
     QPushButton,
-    QTreeWidget,
-    QTreeWidgetItem,
+    QSplitter,
+    QTableWidget,
+    QTableWidgetItem,
+    QTextBrowser,
     QVBoxLayout,
     QWidget,
 )
 
 from pdcp_studio.app import commands
+from pdcp_studio.app import plan_words as W
 from pdcp_studio.app.document import Document
 from pdcp_studio.app.graph import style
 from pdcp_studio.app.i18n import translate
@@ -43,6 +50,8 @@ OPERATIONS = (
     ("enforce", QT_TRANSLATE_NOOP("PlanPanel", "Enforce sole access")),
 )
 LINK_ROLE = Qt.ItemDataRole.UserRole
+DETAIL_ROLE = Qt.ItemDataRole.UserRole + 1
+COL_N, COL_CHANGE, COL_LINK, COL_WHY, COL_SIMILAR = range(5)
 
 
 class PlanPanel(QWidget):
@@ -73,20 +82,40 @@ class PlanPanel(QWidget):
                               "change before anything changes."))
         self.summary.setWordWrap(True)
         box.addWidget(self.summary)
-        self.actions_view = QTreeWidget()
-        self.actions_view.setColumnCount(4)
-        self.actions_view.setHeaderLabels(
-            [self.tr("Action"), self.tr("Output → input"), self.tr("Rule"), self.tr("Similarity")]
-        )
-        self.actions_view.setUniformRowHeights(False)
-        header = self.actions_view.header()
-        header.setStretchLastSection(False)
-        header.setSectionResizeMode(1, QHeaderView.ResizeMode.Stretch)
-        for col in (0, 2, 3):
+        self.actions_view = QTableWidget(0, 5)
+        self.actions_view.setHorizontalHeaderLabels(
+            ["", self.tr("Change"), self.tr("Link"), self.tr("Why"), self.tr("How similar")])
+        view = self.actions_view
+        view.verticalHeader().hide()
+        view.setWordWrap(True)  # long names wrap onto more lines: never cut, no sideways scroll
+        view.setTextElideMode(Qt.TextElideMode.ElideNone)
+        view.setEditTriggers(QAbstractItemView.EditTrigger.NoEditTriggers)
+        view.setSelectionBehavior(QAbstractItemView.SelectionBehavior.SelectRows)
+        view.setSelectionMode(QAbstractItemView.SelectionMode.SingleSelection)
+        view.setAlternatingRowColors(True)
+        view.setHorizontalScrollBarPolicy(Qt.ScrollBarPolicy.ScrollBarAlwaysOff)
+        view.verticalHeader().setSectionResizeMode(QHeaderView.ResizeMode.ResizeToContents)
+        header = view.horizontalHeader()
+        for col in (COL_N, COL_CHANGE):
             header.setSectionResizeMode(col, QHeaderView.ResizeMode.ResizeToContents)
-        self.actions_view.setAlternatingRowColors(True)
-        self.actions_view.itemSelectionChanged.connect(self._on_row_selected)
-        box.addWidget(self.actions_view, 1)
+        header.setSectionResizeMode(COL_LINK, QHeaderView.ResizeMode.Stretch)
+        for col in (COL_WHY, COL_SIMILAR):  # sized with the table: see _share_width
+            header.setSectionResizeMode(col, QHeaderView.ResizeMode.Interactive)
+        view.viewport().installEventFilter(self)
+        view.itemSelectionChanged.connect(self._on_row_selected)
+        self.detail = QTextBrowser()
+        self.detail.setPlaceholderText(self.tr("Select a row for the engineer's detail: the "
+                                               "engine's reason, profile codes and the "
+                                               "similarity score"))
+        self.detail.setMinimumWidth(160)
+        split = QSplitter(Qt.Orientation.Horizontal)
+        split.addWidget(view)
+        split.addWidget(self.detail)
+        split.setStretchFactor(0, 5)
+        split.setStretchFactor(1, 1)
+        split.setSizes([800, 200])
+        split.setChildrenCollapsible(False)
+        box.addWidget(split, 1)
         row = QHBoxLayout()
         row.addStretch(1)
         self.discard_button = QPushButton(self.tr("Discard"))
@@ -100,6 +129,17 @@ class PlanPanel(QWidget):
         doc.previewChanged.connect(self._on_preview_changed)
         doc.busChanged.connect(self._on_bus_changed)
         self._update_buttons()
+
+    def eventFilter(self, watched: Any, event: Any) -> bool:
+        if event.type() == QEvent.Type.Resize and watched is self.actions_view.viewport():
+            self._share_width(event.size().width())
+        return super().eventFilter(watched, event)
+
+    def _share_width(self, width: int) -> None:
+        """Why and How similar get a fifth of the width each; the link (the longest text)
+        the rest, so an ordinary plan's rows wrap onto two lines at most."""
+        for col in (COL_WHY, COL_SIMILAR):
+            self.actions_view.setColumnWidth(col, max(110, width // 5))
 
     # -- computing ------------------------------------------------------------------
     def configuration(self) -> Any:
@@ -154,6 +194,7 @@ class PlanPanel(QWidget):
 
     # -- showing --------------------------------------------------------------------
     def _ref_text(self, plan: Any, ref: ChannelRef) -> str:
+        """The engineer's form of a channel: device, index, profile name and code."""
         facts = plan.channels.get(ref)
         dev = self.doc.system.device(ref.device)
         who = dev.label if dev else str(ref.device)
@@ -163,9 +204,35 @@ class PlanPanel(QWidget):
         return (f"{who} #{ref.index} {self.doc.profile_name(facts.profile)} "
                 f"{prof.fmt(facts.profile)}{missing}")
 
+    def _words(self, plan: Any, ref: ChannelRef) -> str:
+        """A channel in plain words: device, channel, what it carries; (missing) if gone."""
+        facts = plan.channels.get(ref)
+        name = self.doc.profile_name(facts.profile) if facts is not None else ""
+        if name.startswith("0x"):
+            name = ""
+        text = W.channel_words(self.doc.system, ref, name)
+        if facts is not None and not facts.present:
+            text += self.tr(" (missing)")
+        return text
+
+    def _add_row(self, cells: list[str], link: Any, detail: str, colour: Any = None) -> None:
+        view = self.actions_view
+        row = view.rowCount()
+        view.insertRow(row)
+        for col, text in enumerate(cells):
+            item = QTableWidgetItem(text)
+            item.setTextAlignment(Qt.AlignmentFlag.AlignTop | Qt.AlignmentFlag.AlignLeft)
+            item.setData(LINK_ROLE, link)
+            item.setData(DETAIL_ROLE, detail)
+            item.setToolTip(detail)
+            if colour is not None and col == COL_CHANGE:
+                item.setForeground(QBrush(colour))
+            view.setItem(row, col, item)
+
     def _fill(self, plan: Any) -> None:
         view = self.actions_view
-        view.clear()
+        view.setRowCount(0)
+        self.detail.clear()
         if plan is None:
             self.summary.setText(self.tr("No plan previewed. Choose an operation to see what it "
                                  "would change before anything changes."))
@@ -175,57 +242,52 @@ class PlanPanel(QWidget):
             title, len(plan.added), len(plan.removed), len(plan.links_before),
             len(plan.final_links))
         if plan.configuration_reason:
-            text += f"<br>Configuration ({plan.configuration_source}): " \
-                    f"{plan.configuration_reason}"
+            text += "<br>" + self.tr("Stored set-up used: {reason}").format(
+                reason=plan.configuration_reason)
         if not plan.actions:
-            text += "<br>Nothing to change."
+            text += "<br>" + self.tr("Nothing to change.")
         self.summary.setText(text)
         for n, a in enumerate(plan.actions, 1):
             add = a.op.value == "add"
-            sign = "+ add" if add else "− remove"
-            sim = str(a.similarity.total) if a.similarity is not None else ""
-            item = QTreeWidgetItem([f"{n}. {'  ' * a.depth}{sign}",
-                                    f"{self._ref_text(plan, a.link.output)} → "
-                                    f"{self._ref_text(plan, a.link.input)}",
-                                    a.rule.label, sim])
-            colour = style.PREVIEW_ADD if add else style.PREVIEW_REMOVE
-            item.setForeground(0, QBrush(colour))
-            item.setData(0, LINK_ROLE, a.link)
-            details = [f"why: {a.reason}"]
+            link_words = (f"{self._words(plan, a.link.output)} → "
+                          f"{self._words(plan, a.link.input)}")
+            why = W.rule_words(a.rule)
+            if a.rule.value == "replacement" and isinstance(a.cause, ChannelRef):
+                why += self.tr(" ({channel} is missing)").format(
+                    channel=W.channel_words(self.doc.system, a.cause))
+            detail = (f"<b>{n}. {'add' if add else 'remove'}</b> "
+                      f"{self._ref_text(plan, a.link.output)} → "
+                      f"{self._ref_text(plan, a.link.input)}<br>"
+                      f"<i>{a.rule.value}</i>: {a.reason}")
             if a.similarity is not None:
-                details.append(f"similarity {a.similarity.describe()}")
-            view.addTopLevelItem(item)
-            for text in details:
-                child = QTreeWidgetItem([text])
-                child.setData(0, LINK_ROLE, a.link)
-                child.setToolTip(0, text)
-                item.addChild(child)
-                child.setFirstColumnSpanned(True)
-        if plan.rejections:
-            head = QTreeWidgetItem(["Refused", f"{len(plan.rejections)} attempt(s) refused",
-                                    "", ""])
-            for r in plan.rejections:
-                at = r.attempt
-                if at.link is not None:
-                    what = (f"{self._ref_text(plan, at.link.output)} → "
-                            f"{self._ref_text(plan, at.link.input)}")
-                elif at.channel is not None:
-                    what = self._ref_text(plan, at.channel)
-                else:
-                    what = ""
-                child = QTreeWidgetItem([r.kind.value, what, at.rule.label, ""])
-                head.addChild(child)
-                why = QTreeWidgetItem([f"why: {r.reason}"])
-                child.addChild(why)
-                why.setFirstColumnSpanned(True)
-            view.addTopLevelItem(head)
+                detail += f"<br>similarity {a.similarity.describe()}"
+            self._add_row([f"{n}.", self.tr("Add") if add else self.tr("Remove"), link_words,
+                           why, W.similarity_words(a, plan)], a.link, detail,
+                          style.PREVIEW_ADD if add else style.PREVIEW_REMOVE)
+        for r in plan.rejections:
+            at = r.attempt
+            if at.link is not None:
+                what = (f"{self._words(plan, at.link.output)} → "
+                        f"{self._words(plan, at.link.input)}")
+                eng = (f"{self._ref_text(plan, at.link.output)} → "
+                       f"{self._ref_text(plan, at.link.input)}")
+            elif at.channel is not None:
+                what = self._words(plan, at.channel)
+                eng = self._ref_text(plan, at.channel)
+            else:
+                what = eng = ""
+            detail = f"<b>{r.kind.value}</b> {eng}<br><i>{at.rule.value}</i>: {r.reason}"
+            self._add_row(["", self.tr("Not done"), what, W.refusal_words(r.kind), ""],
+                          at.link, detail)
         for note in plan.notes:
-            view.addTopLevelItem(QTreeWidgetItem(["Note", note, "", ""]))
-        view.expandAll()
+            self._add_row(["", self.tr("Note"), note, "", ""], None, note)
 
     def _on_row_selected(self) -> None:
         items = self.actions_view.selectedItems()
-        link = items[0].data(0, LINK_ROLE) if items else None
+        if not items:
+            return
+        self.detail.setHtml(str(items[0].data(DETAIL_ROLE) or ""))
+        link = items[0].data(LINK_ROLE)
         if link is not None and self.doc.system.has_link(link):
             self.doc.select(link)
 
@@ -242,15 +304,16 @@ class PlanPanel(QWidget):
             return False
         self.doc.set_preview(None)
         commands.push_plan(self.doc, plan)
+        title = translate("PlanPanel", dict(OPERATIONS).get(plan.mode, plan.mode))
         if self.doc.session is not None:
             self.statusMessage.emit(self.tr(
                 "Staged {0}: {1} to add, {2} to remove — Write to prosthesis writes them "
-                "(Undo unstages)").format(plan.mode, len(plan.added), len(plan.removed)))
+                "(Undo unstages)").format(title, len(plan.added), len(plan.removed)))
         else:
             self.statusMessage.emit(
                 self.tr(
                     "Applied {mode}: {n_added} added, {n_removed} removed (Undo reverts it)"
-                ).format(mode=plan.mode, n_added=len(plan.added), n_removed=len(plan.removed))
+                ).format(mode=title, n_added=len(plan.added), n_removed=len(plan.removed))
             )
         self.applied.emit(plan)
         return True

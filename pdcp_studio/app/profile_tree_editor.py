@@ -11,12 +11,15 @@ Public API
     ``set_tree(tree, path)``. State: ``tree``, ``path``, ``dirty``, ``undo_stack``,
     ``selected_profile()``, ``select(profile)``. Signals: ``treeChanged(ProfileTree)``,
     ``saved(str)``, ``error(str)``.
-    ``ProfileTreeDialog(tree=None, path=None, parent=None)`` — the editor in a window
-    (``.editor``); closing with unsaved edits asks ``confirm_discard()``.
+    ``ProfileTreeDialog(tree=None, path=None, parent=None, *, trees=None)`` — the editor in
+    a window (``.editor``: the one shown); with ``trees``, one tab per named tree
+    (``.editors``, ``.tabs``; the prosthetic tree and the thesis test tree are shipped);
+    closing with unsaved edits asks ``confirm_discard()``.
     ``load_tree(path)`` / ``save_tree(tree, path)`` — the file format alone.
 
 Each node shows its name, its 4-bit component, the 16-bit profile value of its path in hex
-and, for odd components, "vendor-reserved". Names and components are edited in place;
+and, for odd components of a tree that names no vendor assigning them, "vendor-reserved"
+(a tree that names its vendor shows that vendor instead). Names and components are edited in place;
 add, remove, undo and redo sit on a toolbar. Every edit is one command on the editor's own
 ``QUndoStack`` and is tried on a copy of the tree first, so a refused edit (a duplicate
 component, a fifth level) pushes nothing and is reported through ``error`` instead.
@@ -37,6 +40,7 @@ from PySide6.QtWidgets import (
     QFileDialog,
     QLabel,
     QMessageBox,
+    QTabWidget,
     QToolBar,
     QTreeWidget,
     QTreeWidgetItem,
@@ -333,10 +337,13 @@ class ProfileTreeEditor(QWidget):
         item.setFlags(item.flags() | Qt.ItemFlag.ItemIsEditable)
         mono = QFont("monospace")
         item.setFont(COL_PROFILE, mono)
-        if node.vendor_reserved:
+        if self.tree.is_vendor_reserved(node):
             item.setText(COL_NOTE, VENDOR)
             item.setForeground(COL_NOTE, QBrush(QColor("#a05a00")))
             item.setForeground(COL_COMPONENT, QBrush(QColor("#a05a00")))
+        elif node.vendor_reserved:  # assigned by the vendor the tree names
+            item.setToolTip(COL_COMPONENT, self.tr("Assigned by {vendor}").format(
+                vendor=self.tree.vendor))
 
     def _item_edited(self, item: QTreeWidgetItem, column: int) -> None:
         """An in-place edit: applied on the next event-loop turn, because applying it
@@ -421,22 +428,52 @@ class ProfileTreeEditor(QWidget):
 
 
 class ProfileTreeDialog(QDialog):
-    """The editor in a non-modal window; ``editor`` exposes the widget and its signals."""
+    """The editor in a non-modal window; ``editor`` exposes the widget and its signals.
+
+    With ``trees`` each named tree gets a tab of its own (``editors``, in order) and
+    ``editor`` is the one on show; ``treesChanged(list)`` follows any edit."""
+
+    treesChanged = Signal(list)
 
     def __init__(self, tree: ProfileTree | None = None, path: str | Path | None = None,
-                 parent: QWidget | None = None) -> None:
+                 parent: QWidget | None = None, *,
+                 trees: list[ProfileTree] | None = None) -> None:
         super().__init__(parent)
-        self.setWindowTitle(self.tr("Profile tree"))
-        self.resize(560, 480)
-        self.editor = ProfileTreeEditor(tree, path, self)
+        self.setWindowTitle(self.tr("Profile trees") if trees else self.tr("Profile tree"))
+        self.resize(620, 520)
+        layout = QVBoxLayout(self)
+        self.tabs: QTabWidget | None = None
+        if trees:
+            self.trees = trees
+            self.tabs = QTabWidget()
+            self.editors = []
+            for t in trees:
+                ed = ProfileTreeEditor(t, None, self)
+                ed.treeChanged.connect(lambda _t: self.treesChanged.emit(self.trees))
+                self.tabs.addTab(ed, t.name)
+                index = self.tabs.count() - 1
+                self.tabs.setTabToolTip(index, t.description or t.name)
+                self.editors.append(ed)
+            layout.addWidget(self.tabs)
+        else:
+            self.editors = [ProfileTreeEditor(tree, path, self)]
+            self.trees = [self.editors[0].tree]
+            layout.addWidget(self.editors[0])
         buttons = QDialogButtonBox(QDialogButtonBox.StandardButton.Close)
         buttons.rejected.connect(self.reject)
-        layout = QVBoxLayout(self)
-        layout.addWidget(self.editor)
         layout.addWidget(buttons)
 
+    @property
+    def editor(self) -> ProfileTreeEditor:
+        """The editor on show (the only one without ``trees``)."""
+        if self.tabs is not None:
+            widget = self.tabs.currentWidget()
+            if isinstance(widget, ProfileTreeEditor):
+                return widget
+        return self.editors[0]
+
     def reject(self) -> None:
-        if self.editor.dirty and not self.confirm_discard():
+        if any(ed.dirty for ed in self.editors) and not self.confirm_discard():
             return
         super().reject()
 

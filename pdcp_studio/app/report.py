@@ -75,6 +75,32 @@ def _version(value: int) -> str:
     return f"{value >> 8}.{value & 0xFF}" if value else "—"
 
 
+def action_words(action: str) -> str:
+    """A fitting-history action (``config write``, ``apply autoconfigure``, ``policy
+    autoconfigure off``…) in words for the report; unknown ones as they are."""
+    from pdcp_studio.app.plan_panel import OPERATIONS
+
+    words = action.strip()
+    low = words.lower()
+    for prefix, text in (("undo ", "Undone: "), ("redo ", "Done again: ")):
+        if low.startswith(prefix):
+            return text + action_words(words[len(prefix):])
+    if low.startswith("apply "):
+        mode = low.split()[1] if len(low.split()) > 1 else ""
+        title = dict(OPERATIONS).get(mode, mode.replace("-", " "))
+        return f"{title} carried out"
+    for prefix, text in (("config write", "Stored set-up written"),
+                         ("config save", "Current links stored as the set-up"),
+                         ("policy autoconfigure on", "Autoconfigure turned on"),
+                         ("policy autoconfigure off", "Autoconfigure turned off"),
+                         ("add link", "Link added"), ("remove link", "Link removed"),
+                         ("set parameter", "Setting changed"),
+                         ("write to prosthesis", "Changes written to the prosthesis")):
+        if low.startswith(prefix):
+            return text
+    return words
+
+
 def _change_rows(changes: list[dict]) -> str:
     rows = []
     for e in changes:
@@ -89,16 +115,18 @@ def _change_rows(changes: list[dict]) -> str:
         what = f"+{adds} / −{removes} link(s)" + (f", {params} parameter(s)" if params else "")
         rows.append(f"<tr><td>{_e(e.get('id', ''))}</td>"
                     f"<td>{_e(str(e.get('time', '')).replace('T', ' ').rstrip('Z'))}</td>"
-                    f"<td>{_e(e.get('action', ''))}</td><td>{_e(what)}</td>"
+                    f"<td>{_e(action_words(str(e.get('action', ''))))}</td><td>{_e(what)}</td>"
                     f"<td>{_e(word)}</td><td>{_e(e.get('operator') or '')}</td></tr>")
     return "".join(rows) or "<tr><td colspan=6><i>no change was made in this session</i></td></tr>"
 
 
 def _finding_rows(system: System, autoconfigure: bool = True) -> str:
+    from pdcp_studio.app.finding_text import plain_finding
     from pdcp_studio.engine import check_system
 
     findings = check_system(system, autoconfigure=autoconfigure) if system.devices else []
-    rows = [f"<tr><td>{_e(f.severity.value)}</td><td>{_e(f.message)}</td></tr>"
+    rows = [f"<tr><td>{_e(f.severity.value.capitalize())}</td>"
+            f"<td>{_e(plain_finding(f, system, autoconfigure))}</td></tr>"
             for f in findings]
     return "".join(rows) or "<tr><td colspan=2><i>every check passed</i></td></tr>"
 
@@ -121,31 +149,61 @@ def _e(text: object) -> str:
 
 
 def _profile(tree: ProfileTree, value: int) -> str:
-    return f"{_e(tree.name_of(value))} <span class=hex>({prof.fmt(value)})</span>"
+    """What a channel carries, by the profile tree's names (the code is in the detail)."""
+    if tree.node(value) is None:
+        return "<i>a kind of signal the profile tree does not name</i>"
+    return _e(tree.name_of(value))
+
+
+def _device_name(system: System, key: Any) -> str:
+    from pdcp_studio.model.catalog import default_catalog
+
+    device = system.device(key)
+    catalog = default_catalog()
+    return catalog.device_label(device) if device is not None else catalog.label(key)
 
 
 def _end(system: System, tree: ProfileTree, ref: Any, compact: bool = False) -> str:
-    device = system.device(ref.device)
     ch = system.channel(ref)
-    name = device.label if device else f"Device {ref.device}"
+    name = _device_name(system, ref.device)
     if compact:
-        profile = prof.fmt(ch.profile) if ch else ""
-        return f"{_e(name)} #{ref.index} <span class=hex>{profile}</span>"
-    desc = f" {ch.descriptor}" if ch and ch.descriptor else ""
+        what = tree.short_name(ch.profile) if ch and tree.node(ch.profile) else ""
+        return f"{_e(name)}, channel {ref.index}" + (f" ({_e(what)})" if what else "")
+    desc = f" — {ch.descriptor}" if ch and ch.descriptor else ""
     profile = _profile(tree, ch.profile) if ch else "?"
-    return f"<b>{_e(name)}</b> #{ref.index}{_e(desc)}<br>{profile}"
+    return f"<b>{_e(name)}</b>, channel {ref.index}{_e(desc)}<br>{profile}"
+
+
+def _detail_rows(system: System) -> str:
+    """The engineer's detail: identities and channel codes, for matching a reading."""
+    rows = []
+    for i, lk in enumerate(system.links, 1):
+        ends = []
+        for ref in (lk.output, lk.input):
+            ch = system.channel(ref)
+            codes = (f"type {prof.fmt(ch.type)}, profile {prof.fmt(ch.profile)}"
+                     if ch else "not on the bus")
+            ends.append(f"VID 0x{ref.vid:04X} PID 0x{ref.pid:04X} serial {ref.serial} "
+                        f"channel {ref.index} ({codes})")
+        rows.append(f"<tr><td>{i}</td><td>{ends[0]}</td><td>→</td><td>{ends[1]}</td></tr>")
+    return "".join(rows)
 
 
 def _device_rows(system: System, per_row: int) -> str:
+    from pdcp_studio.model.catalog import default_catalog
+
+    catalog = default_catalog()
     cells = []
     for d in system.devices.values():
         state = " <i>(missing)</i>" if not d.present else ""
-        cells.append(f"<td>{_e(d.label)}{state}</td><td>0x{d.vid:04X}</td>"
-                     f"<td>0x{d.pid:04X}</td><td>{d.serial}</td>"
+        entry = catalog.lookup(d.vid, d.pid)
+        product = f"{entry.product} ({entry.vendor})" if entry else "not in the catalogue"
+        cells.append(f"<td>{_e(catalog.device_label(d))}{state}</td><td>{_e(product)}</td>"
+                     f"<td>{d.vid} / {d.pid} / {d.serial}</td>"
                      f"<td>{_version(d.fw_version)}</td><td>{_version(d.hw_version)}</td>")
     if not cells:
-        return "<tr><td colspan=6><i>no devices</i></td></tr>"
-    cells += ["<td></td>" * 6] * (-len(cells) % per_row)
+        return "<tr><td colspan=5><i>no devices</i></td></tr>"
+    cells += ["<td></td>" * 5] * (-len(cells) % per_row)
     return "".join("<tr>" + "".join(cells[i:i + per_row]) + "</tr>"
                    for i in range(0, len(cells), per_row))
 
@@ -161,12 +219,12 @@ def report_html(system: System, tree: ProfileTree, *, title: str = DEFAULT_TITLE
     date = date or _dt.date.today()
     blank = "_" * 38
     per_row = 3 if compact else 1
-    heads = ("<th>Name</th><th>VID</th><th>PID</th><th>Serial</th><th>FW</th>"
-             "<th>HW</th>")
+    heads = ("<th>Name</th><th>Product</th><th>Maker / product / serial no.</th>"
+             "<th>Firmware</th><th>Hardware</th>")
     if not compact:
-        heads = ("<th width=40%>Name</th><th width=12%>VID</th><th width=12%>PID</th>"
-                 "<th width=12%>Serial</th><th width=12%>Firmware</th>"
-                 "<th width=12%>Hardware</th>")
+        heads = ("<th width=26%>Name</th><th width=26%>Product</th>"
+                 "<th width=22%>Maker / product / serial no.</th><th width=13%>Firmware</th>"
+                 "<th width=13%>Hardware</th>")
     devices = f"<tr>{heads * per_row}</tr>{_device_rows(system, per_row)}"
 
     def missing(lk: Any) -> str:
@@ -188,11 +246,11 @@ def report_html(system: System, tree: ProfileTree, *, title: str = DEFAULT_TITLE
     autoconfigure = True
     if info is not None and info.policy is not None:
         autoconfigure = bool(info.policy.autoconfigure)
-        policy_html = ("<p>Profile-layer policy: <b>autoconfigure on</b> (the prosthesis may "
-                       "link unconnected terminal channels on its own)</p>" if autoconfigure
-                       else "<p>Profile-layer policy: <b>autoconfigure off</b> (the prosthesis "
-                       "repairs known links and finds replacements, but links nothing new on "
-                       "its own)</p>")
+        policy_html = ("<p>Autoconfigure: <b>on</b> (the prosthesis may link parts "
+                       "that nothing drives on its own)</p>" if autoconfigure
+                       else "<p>Autoconfigure: <b>off</b> (the prosthesis repairs known "
+                       "links and finds replacements for missing parts, but links nothing new "
+                       "on its own)</p>")
     if info is not None:
         if info.time is not None:
             when = info.time.strftime("%Y-%m-%d %H:%M UTC")
@@ -207,6 +265,7 @@ def report_html(system: System, tree: ProfileTree, *, title: str = DEFAULT_TITLE
     findings = ("<h2>Checks</h2><table class=grid width=100%><tr><th width=12%>Finding</th>"
                 f"<th>What</th></tr>{_finding_rows(system, autoconfigure)}</table>")
     crc = "—" if checksum is None else f"0x{checksum:04X}"
+    detail = _detail_rows(system) if not compact else ""
     graph = ""
     if graph_size is not None:
         graph = (f"<p align=center><img src='{_GRAPH_URL.toString()}' "
@@ -235,11 +294,17 @@ def report_html(system: System, tree: ProfileTree, *, title: str = DEFAULT_TITLE
  <tr><th width=4%>#</th><th width=46%>Output</th><th width=3%></th>
  <th width=47%>Input</th></tr>{links}
 </table>
-<h2>Stored configuration</h2>
-<p>Checksum (CRC-16/CCITT-FALSE): <b class=hex>{crc}</b>{stored_note}</p>
+<h2>Stored set-up</h2>
+<p>Check number: <b class=hex>{crc}</b>{stored_note}. A later reading of the prosthesis
+that shows the same number has the same links.</p>
 {session_html}
 {findings}
 {graph}
+<h2 style='font-size:8pt'>Technical detail</h2>
+<p style='font-size:7pt; color:#444'>Check number: CRC-16/CCITT-FALSE of the stored
+configuration record. Links by identity (VID, PID, serial number, channel index) with the
+channels' type and profile codes:</p>
+<table style='font-size:7pt; color:#444' cellpadding=1>{detail}</table>
 <p style='color:#777; font-size:7pt'>Generated by PDCP Studio.</p>
 """
 
@@ -265,11 +330,11 @@ def write_report(path: str | Path, system: System, tree: ProfileTree,
     path = Path(path)
     checksum = configuration_checksum(system, collection)
     if collection is None:
-        note = f" · the {len(system.links)} link(s) above stored as configuration 1"
+        note = f" (the {len(system.links)} link(s) above, as they would be stored)"
     else:
         n = sum(len(c.links) for c in collection.configurations)
-        note = (f" · the arbitrator's stored configuration: {n} link(s) in "
-                f"{len(collection.configurations)} configuration(s)")
+        note = (f" (what the prosthesis stores: {n} link(s) in "
+                f"{len(collection.configurations)} set-up(s))")
     buffer = QBuffer()
     buffer.open(QIODevice.OpenModeFlag.WriteOnly)
     writer = QPdfWriter(buffer)

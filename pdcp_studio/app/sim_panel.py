@@ -26,6 +26,7 @@ from PySide6.QtWidgets import (
     QGridLayout,
     QGroupBox,
     QHBoxLayout,
+    QHeaderView,
     QLabel,
     QListWidget,
     QPushButton,
@@ -44,14 +45,32 @@ MAX_LOG = 500
 _GONE = QColor(150, 150, 150)
 
 
+def default_name(key: DeviceKey) -> str:
+    from pdcp_studio.model.catalog import default_catalog
+
+    return default_catalog().label(key)
+
+
+def _catalogue_name(key: DeviceKey, label: str) -> str:
+    """The name the graph and the tree give the device (its own name, else the catalogue's
+    product with its serial): one name for one device in every panel."""
+    from pdcp_studio.model.catalog import default_catalog
+
+    own = "" if label in (str(key), f"Device {key}") else label
+    return default_catalog().label(key, own)
+
+
 class SimPanel(QWidget):
     """Simulator controls for a simulated prosthesis (see the module docstring)."""
 
     message = Signal(str)
 
-    def __init__(self, bridge: Any, parent: QWidget | None = None) -> None:
+    def __init__(self, bridge: Any, parent: QWidget | None = None,
+                 name_of: Any = None) -> None:
         super().__init__(parent)
         self.bridge = bridge
+        #: ``name_of(key) -> str | None``: the name the graph shows (None: not on it).
+        self.name_of = name_of
         self._devices: dict[DeviceKey, tuple[str, bool]] = {}
         self._on_bus: dict[DeviceKey, bool] = {}
 
@@ -60,8 +79,11 @@ class SimPanel(QWidget):
             [self.tr("Device"), self.tr("VID/PID/SN"), self.tr("Power"), self.tr("On bus")]
         )
         self.tree.setRootIsDecorated(False)
-        for col, width in ((COL_NAME, 140), (COL_KEY, 100), (COL_PLUGGED, 45)):
-            self.tree.setColumnWidth(col, width)
+        header = self.tree.header()  # the name takes the room the other columns leave
+        header.setStretchLastSection(False)
+        header.setSectionResizeMode(COL_NAME, QHeaderView.ResizeMode.Stretch)
+        for col in (COL_KEY, COL_PLUGGED, COL_BUS):
+            header.setSectionResizeMode(col, QHeaderView.ResizeMode.ResizeToContents)
         self.tree.currentItemChanged.connect(lambda *_: self._update_buttons())
 
         self.plug_button = QPushButton(self.tr("Plug in"))
@@ -180,9 +202,22 @@ class SimPanel(QWidget):
         """The event log's lines, oldest first."""
         return [self.log.item(i).text() for i in range(self.log.count())]
 
+    def relabel(self) -> None:
+        """Name the devices again (the graph's names changed: a new snapshot of the bus)."""
+        raw = getattr(self, "_raw", None)
+        if raw is not None:
+            names = {DeviceKey(*k): self._name(DeviceKey(*k), str(lb)) for k, lb, _p in raw}
+            if names != {k: v[0] for k, v in self._devices.items()}:
+                self._show_devices(raw)
+
+    def _name(self, key: DeviceKey, label: str) -> str:
+        """The graph's name for a device on it; else the catalogue's rule on the simulator's."""
+        shown = self.name_of(key) if self.name_of is not None else None
+        return shown or _catalogue_name(key, label)
+
     def _label(self, key: DeviceKey) -> str:
         entry = self._devices.get(key)
-        return f"{entry[0]} ({key})" if entry and entry[0] != str(key) else str(key)
+        return entry[0] if entry else default_name(key)
 
     def _log(self, text: str) -> None:
         self.log.addItem(f"{time.strftime('%H:%M:%S')}  {text}")
@@ -194,13 +229,16 @@ class SimPanel(QWidget):
     # -- bridge signals ----------------------------------------------------------------
     def _show_devices(self, devices: list[Any]) -> None:
         selected = self.selected_key()
-        self._devices = {DeviceKey(*key): (str(label), bool(plugged))
+        self._raw = list(devices)
+        self._devices = {DeviceKey(*key): (self._name(DeviceKey(*key), str(label)),
+                                           bool(plugged))
                          for key, label, plugged in devices}
         self.tree.clear()
         for key, (label, _plugged) in self._devices.items():
             item = QTreeWidgetItem(self.tree)
             item.setData(COL_NAME, KEY_ROLE, key)
             item.setText(COL_NAME, label)
+            item.setToolTip(COL_NAME, label)  # whole, when the column is narrower
             item.setText(COL_KEY, str(key))
             self._paint(item, key)
         self._fill_replacements()
@@ -226,35 +264,39 @@ class SimPanel(QWidget):
         self._update_buttons()
 
     def _error(self, message: str) -> None:
-        self._log(f"error: {message}")
+        self._log(self.tr("Problem: {message}").format(message=message))
 
     def _presence(self, key: Any, joined: bool) -> None:
         key = DeviceKey(*key)
         self._on_bus[key] = joined
-        self._log(f"{self._label(key)} {'joined the bus' if joined else 'left the bus'}")
+        self._log((self.tr("{device} joined the bus") if joined else
+                   self.tr("{device} left the bus")).format(device=self._label(key)))
         for i in range(self.tree.topLevelItemCount()):
             item = self.tree.topLevelItem(i)
             if item.data(COL_NAME, KEY_ROLE) == key:
                 self._paint(item, key)
 
     def _sim_changed(self, what: str) -> None:
-        self._log(f"done: {what}")
+        self._log(self.tr("Done: {what}").format(what=what))
         self.refresh()
 
     def _script_finished(self, result: Any) -> None:
         ok = getattr(result, "ok", None)
         name = getattr(getattr(result, "script", None), "name", "script")
         if ok is True:
-            self._log(f"script {name}: ended in the expected links")
+            self._log(self.tr("Script {name}: ended in the expected links").format(name=name))
         elif ok is False:
-            self._log(f"script {name}: links differ from the expected — {result.mismatch()}")
+            self._log(self.tr("Script {name}: the links differ from the expected ones — {diff}")
+                      .format(name=name, diff=result.mismatch()))
 
     def _fill_replacements(self) -> None:
         current = self.replace_combo.currentData()
         self.replace_combo.clear()
         for key, (label, plugged) in self._devices.items():
             if not plugged:
-                self.replace_combo.addItem(f"{label} ({key})", key)
+                self.replace_combo.addItem(label, key)
+                self.replace_combo.setItemData(self.replace_combo.count() - 1, str(key),
+                                               Qt.ItemDataRole.ToolTipRole)
         index = self.replace_combo.findData(current)
         if index >= 0:
             self.replace_combo.setCurrentIndex(index)
@@ -292,14 +334,16 @@ class SimPanel(QWidget):
         key = self.selected_key()
         if key is None:
             return None
-        return self._started(self.bridge.plug(key), f"plugging in {self._label(key)}…")
+        return self._started(self.bridge.plug(key), self.tr("Plugging in {device}…").format(
+            device=self._label(key)))
 
     def unplug_selected(self) -> Worker | None:
         """Unplug the selected device."""
         key = self.selected_key()
         if key is None:
             return None
-        return self._started(self.bridge.unplug(key), f"unplugging {self._label(key)}…")
+        return self._started(self.bridge.unplug(key), self.tr("Unplugging {device}…").format(
+            device=self._label(key)))
 
     def replace_selected(self, new_key: DeviceKey | None) -> Worker | None:
         """Replace the selected device by the unplugged device ``new_key``."""
@@ -307,20 +351,21 @@ class SimPanel(QWidget):
         if key is None or new_key is None:
             return None
         return self._started(self.bridge.replace(key, DeviceKey(*new_key)),
-                             f"replacing {self._label(key)} by {self._label(new_key)}…")
+                             self.tr("Replacing {old} by {new}…").format(
+                                 old=self._label(key), new=self._label(new_key)))
 
     def reset(self, keep_memory: bool) -> Worker | None:
         """Reset the arbitrator, keeping or erasing its memory."""
-        what = "keeping" if keep_memory else "erasing"
-        return self._started(self.bridge.reset_arbitrator(keep_memory),
-                             f"resetting the arbitrator, {what} its memory…")
+        text = (self.tr("Resetting the arbitrator, keeping its memory…") if keep_memory else
+                self.tr("Resetting the arbitrator, erasing its memory…"))
+        return self._started(self.bridge.reset_arbitrator(keep_memory), text)
 
     def save_links(self) -> Worker | None:
         """Store the current links as the arbitrator's configuration."""
         worker = self.bridge.save_configuration()
         if worker is not None:
             worker.finished.connect(self._links_stored)
-        return self._started(worker, "storing the current links…")
+        return self._started(worker, self.tr("Storing the current links…"))
 
     def _links_stored(self, _read_back: Any) -> None:
         self._log("stored the current links in the arbitrator's memory")
@@ -329,4 +374,5 @@ class SimPanel(QWidget):
         """Run the simulator script ``name``."""
         if not name:
             return None
-        return self._started(self.bridge.run_script(name), f"running script {name}…")
+        return self._started(self.bridge.run_script(name),
+                             self.tr("Running script {name}…").format(name=name))

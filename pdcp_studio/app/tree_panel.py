@@ -7,6 +7,8 @@ channel in the document, and the graph follows; selecting on the graph selects t
 
 from __future__ import annotations
 
+from typing import Any
+
 from PySide6.QtCore import Qt
 from PySide6.QtGui import QBrush, QColor
 from PySide6.QtWidgets import QAbstractItemView, QHeaderView, QTreeWidget, QTreeWidgetItem, QWidget
@@ -40,6 +42,8 @@ class DeviceTree(QTreeWidget):
         header.setSectionResizeMode(0, QHeaderView.ResizeMode.Stretch)
         header.setSectionResizeMode(1, QHeaderView.ResizeMode.ResizeToContents)
         self._rows: dict[object, QTreeWidgetItem] = {}
+        self._signatures: dict[DeviceKey, tuple] = {}
+        self._catalog: Any = None
         self._syncing = False
         doc.systemReset.connect(self.rebuild)
         doc.deviceChanged.connect(self._on_device_changed)
@@ -54,6 +58,8 @@ class DeviceTree(QTreeWidget):
         try:
             self.clear()
             self._rows.clear()
+            self._signatures.clear()
+            self._catalog = None
             for key in self.ordered_keys():
                 self.addTopLevelItem(self._device_row(key))
             self.expandAll()
@@ -72,10 +78,13 @@ class DeviceTree(QTreeWidget):
     def _device_row(self, key: DeviceKey) -> QTreeWidgetItem:
         device = self.doc.system.devices[key]
         role = device_role(device)
-        item = QTreeWidgetItem([default_catalog().device_label(device),
+        if self._catalog is None:  # finding it reads the user's folder: once per rebuild
+            self._catalog = default_catalog()
+        item = QTreeWidgetItem([self._catalog.device_label(device),
                                 self.tr("missing") if not device.present
                                 else translate("Style", style.ROLE_LABELS[role])])
         item.setData(0, ROLE, key)
+        self._signatures[key] = self._shown(key)
         item.setToolTip(0, f"VID {device.vid} · PID {device.pid} · serial {device.serial}")
         colour = style.MISSING_TEXT if not device.present else style.ROLE_COLOURS[role]
         item.setForeground(1, QBrush(colour))
@@ -100,10 +109,20 @@ class DeviceTree(QTreeWidget):
             self._rows[ref] = child
         return item
 
+    def _shown(self, key: DeviceKey) -> tuple:
+        """What a device's rows show (a live snapshot reports every device as changed;
+        rows are made again only when this differs)."""
+        d = self.doc.system.devices[key]
+        return (d.label, d.name, d.descriptor, d.present, device_role(d),
+                tuple((c.index, c.is_output, c.descriptor, self.doc.profile_name(c.profile))
+                      for c in sorted(d.channels.values(), key=lambda c: c.index)))
+
     def _on_device_changed(self, key: DeviceKey) -> None:
         old = self._rows.get(key)
         if old is None or key not in self.doc.system.devices:
             self.rebuild()
+            return
+        if self._signatures.get(key) == self._shown(key):
             return
         self._syncing = True
         try:

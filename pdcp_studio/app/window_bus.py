@@ -29,6 +29,17 @@ class BusMixin:
         if url and self.maybe_save():
             self.connect_bus(url)
 
+    def offer_other_arbitrator(self, url: str, message: str) -> bool:
+        """A Connect that found another arbitrator on the bus: offer a listen-only monitor
+        or the host link instead (True when that was the failure)."""
+        from pdcp_studio.app import arbitrator_found
+
+        connecting = self.live.connecting
+        if not arbitrator_found.is_other_arbitrator(getattr(connecting, "exception", None)):
+            return False
+        arbitrator_found.offer(self, url, message)
+        return True
+
     def _attach_bus_docks_safely(self, bridge: Any) -> None:
         """A dock that fails to build must not cost the connection: log it and go on."""
         try:
@@ -61,21 +72,60 @@ class BusMixin:
             self._leaf_docks["plot"] = dock
             self.doc.selectionChanged.connect(self._plot_selection)
         bridge.channelValues.connect(dock.widget().add_values)
+        events = self._events_dock()
+        bridge.busEvent.connect(events.widget().add_event)
+        bridge.scanned.connect(self._scan_finished)  # any scan's end is said in the status bar
         if bridge.is_sim:
             old = self._leaf_docks.pop("sim", None)
             if old is not None:
                 old.close()
                 old.deleteLater()
-            panel = sim_panel.SimPanel(bridge)
+            panel = sim_panel.SimPanel(bridge, name_of=self._device_name)
             dock = self._dock(self.tr("Simulator"), "SimDock", panel,
                               Qt.DockWidgetArea.RightDockWidgetArea)
             self.tabifyDockWidget(self.inspector_dock, dock)
             self.inspector_dock.raise_()
             self._leaf_docks["sim"] = dock
 
+    def scan_bus(self) -> Any:
+        """Scan the bus on its worker; the status bar says when it started and finished."""
+        worker = self.live.scan()
+        if worker is not None:
+            self.show_message(self.tr("Scanning the bus…"), 0)
+        return worker
+
+    def _scan_finished(self, system: Any) -> None:
+        devices = len(getattr(system, "devices", {}))
+        links = len(getattr(system, "links", []))
+        self.show_message(self.tr("Scan finished: {devices} device(s), {links} link(s)").format(
+            devices=devices, links=links))
+
+    def _device_name(self, key: Any) -> str | None:
+        """The name the graph gives a device on screen (None if it is not there)."""
+        device = self.doc.system.devices.get(key)
+        return self.scene.device_label(device) if device is not None else None
+
+    def _events_dock(self) -> Any:
+        """The bus events list (made once): which link the bus made, why, how similar."""
+        from pdcp_studio.app.events_panel import EventsPanel
+
+        dock = self._leaf_docks.get("events")
+        if dock is None:
+            panel = EventsPanel(lambda: self.doc.system, self.doc.profile_name)
+            dock = self._dock(self.tr("Bus events"), "EventsDock", panel,
+                              Qt.DockWidgetArea.BottomDockWidgetArea)
+            self.tabifyDockWidget(self.plan_dock, dock)
+            self.plan_dock.raise_()
+            self.view_menu.addAction(dock.toggleViewAction())
+            self._leaf_docks["events"] = dock
+        return dock
+
     def _session_started(self, bridge: Any) -> None:
         """A new session is on screen: the bus panels start afresh on it (no frames, values
         or node map of the previous session), and plans get its stored configuration."""
+        from pdcp_studio.app.arbitrator_found import stop_watching
+
+        stop_watching(self)  # a passive monitor of another bus gives way to the session
         system = self.doc.system
         monitor = self._leaf_docks.get("monitor")
         if monitor is not None and hasattr(monitor, "reset_for_session"):
@@ -92,12 +142,30 @@ class BusMixin:
         self.reread_configuration()
 
     def _bus_event(self, event: Any) -> None:
-        if type(event).__name__ == "TransactionDone":
+        kind = type(event).__name__
+        if kind == "TransactionDone":
             self.reread_configuration()
+        elif kind == "BusState" and event.state == "yielded":
+            self._other_arbitrator_appeared(event.message)
+
+    def _other_arbitrator_appeared(self, message: str) -> None:
+        """Another arbitrator started on our bus: our session has stopped writing (§5).
+        Say so plainly and offer the safe ways on, as when it is found on connecting."""
+        from pdcp_studio.app import arbitrator_found
+
+        url = self.live.url
+        self.live.disconnect_bus()  # it writes nothing more; edits could not be written
+        arbitrator_found.offer(self, url, message, later=True)
 
     def _bus_seen(self, system: Any) -> None:
         """After any bus event: the monitor names frames by the bus's node IDs as they are
         now (a hot-swapped device may have a new one); the plot drops a channel that left."""
+        events = self._leaf_docks.get("events")
+        if events is not None:
+            events.widget().name_devices(system)
+        sim = self._leaf_docks.get("sim")
+        if sim is not None and hasattr(sim.widget(), "relabel"):
+            sim.widget().relabel()  # the simulator panel names devices as the graph does
         monitor = self._leaf_docks.get("monitor")
         if monitor is not None and hasattr(monitor, "reset_for_session"):
             monitor.reset_for_session(system, keep_frames=True)

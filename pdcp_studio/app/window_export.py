@@ -25,6 +25,7 @@ class ExportMixin:
     def export_rect(self) -> QRectF:
         """The part of the scene an export shows: every item and a 20-unit margin, grown to
         whole units so the file's size holds all of it (no clipping at right or bottom)."""
+        self.scene.finish_building()  # a large bus still being built: all of it
         rect = self.scene.itemsBoundingRect().adjusted(-20, -20, 20, 20)
         left, top = math.floor(rect.left()), math.floor(rect.top())
         return QRectF(left, top, math.ceil(rect.right()) - left,
@@ -38,8 +39,9 @@ class ExportMixin:
         image.fill(self.scene.backgroundBrush().color())
         painter = QPainter(image)
         painter.setRenderHint(QPainter.RenderHint.Antialiasing)
-        self.scene.render(painter, QRectF(0, 0, image.width(), image.height()), rect,
-                          Qt.AspectRatioMode.IgnoreAspectRatio)
+        with self.scene.full_detail():  # the cards' rows, whatever the view's zoom
+            self.scene.render(painter, QRectF(0, 0, image.width(), image.height()), rect,
+                              Qt.AspectRatioMode.IgnoreAspectRatio)
         painter.end()
         return image
 
@@ -71,7 +73,9 @@ class ExportMixin:
                 item.setCacheMode(QGraphicsItem.CacheMode.NoCache)
             try:
                 painter = QPainter(gen)
-                self.scene.render(painter, page, rect, Qt.AspectRatioMode.IgnoreAspectRatio)
+                with self.scene.full_detail():  # vectors and rows, whatever the zoom
+                    self.scene.render(painter, page, rect,
+                                      Qt.AspectRatioMode.IgnoreAspectRatio)
                 painter.end()
             finally:
                 for item, mode in cached:

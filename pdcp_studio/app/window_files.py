@@ -161,6 +161,7 @@ class FileHandlingMixin:
 
     def maybe_save(self) -> bool:
         """True when it is fine to drop the document (saved, discarded, or clean)."""
+        self.doc.remember_layout()  # a live view's card positions: kept, never asked about
         if not self.doc.is_dirty:
             return True
         answer = self.ask_save_changes()

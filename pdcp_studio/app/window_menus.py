@@ -9,11 +9,25 @@ from __future__ import annotations
 from collections.abc import Callable
 from typing import TYPE_CHECKING, Any
 
+from PySide6.QtCore import QT_TRANSLATE_NOOP
 from PySide6.QtGui import QAction, QKeySequence
 
 from pdcp_studio.app.i18n import translate
 from pdcp_studio.app.plan_panel import OPERATIONS
 from pdcp_studio.app.window_support import DEFAULT_BUS
+
+#: The Tasks menu: the guided tasks (app/wizards), their menu texts and tips.
+TASK_MENU = (
+    ("fitting", QT_TRANSLATE_NOOP("Wizards", "&New fitting…"),
+     QT_TRANSLATE_NOOP("Wizards", "Connect, scan, check, link and store a prosthesis step by "
+                                  "step")),
+    ("replace", QT_TRANSLATE_NOOP("Wizards", "&Replace a part…"),
+     QT_TRANSLATE_NOOP("Wizards", "Swap a part and link the new one in its place step by "
+                                  "step")),
+    ("restore", QT_TRANSLATE_NOOP("Wizards", "Re&store a configuration…"),
+     QT_TRANSLATE_NOOP("Wizards", "Put a configuration file or an earlier fitting back on "
+                                  "the prosthesis")),
+)
 
 
 class MenusMixin:
@@ -81,7 +95,8 @@ class MenusMixin:
             lambda: self.view.set_legend_visible(self.act_legend.isChecked()),
         )
         self.act_legend.setCheckable(True)
-        self.act_legend.setChecked(True)
+        self.act_legend.setChecked(self.view.legend_visible())
+        self.view.legendVisibleChanged.connect(self.act_legend.setChecked)
         self.act_arrange = self._action(self.tr("&Arrange in layers"), self.arrange,
                                         tip=self.tr("Lay the cards out again: sensors → control → "
                                             "terminal devices (one undo step)"))
@@ -98,7 +113,7 @@ class MenusMixin:
             self.tr("Open the &simulated prosthesis"),
             lambda: self.maybe_save() and self.connect_bus(DEFAULT_BUS))
         self.act_disconnect = self._action(self.tr("&Disconnect"), self.live.disconnect_bus)
-        self.act_scan = self._action(self.tr("&Scan the bus"), self.live.scan)
+        self.act_scan = self._action(self.tr("&Scan the bus"), self.scan_bus)
         self.act_read_config = self._action(
             self.tr("&Read the stored configuration"), self.read_configuration,
             tip=self.tr("Read the arbitrator's stored configuration; plans that take a "
@@ -114,6 +129,16 @@ class MenusMixin:
                                       self.ask_write_configuration)
         self.act_profiles = self._action(self.tr("&Profile tree…"), self.show_profile_tree)
         self.act_about = self._action(self.tr("&About PDCP Studio"), self.about)
+        self.task_actions = {  # guided tasks (app/wizards)
+            task: self._action(translate("Wizards", text), lambda t=task: self.open_task(t),
+                               tip=translate("Wizards", tip))
+            for task, text, tip in TASK_MENU}
+
+    def open_task(self, task: str) -> Any:
+        """Open a guided task (a wizard beside the window)."""
+        from pdcp_studio.app.wizards import open_wizard
+
+        return open_wizard(self, task)
 
     def _build_menus(self) -> None:
         mb = self.menuBar()
@@ -142,6 +167,9 @@ class MenusMixin:
         m = mb.addMenu(self.tr("&Plan"))
         for a in self.plan_actions.values():
             m.addAction(a)
+        self.tasks_menu = m = mb.addMenu(translate("Wizards", "&Tasks"))
+        for a in self.task_actions.values():
+            m.addAction(a)
         self.bus_menu = m = mb.addMenu(self.tr("&Bus"))
         for a in (self.act_connect, self.act_connect_sim, self.act_disconnect, self.act_scan,
                   self.act_read_config, self.act_cancel):
@@ -154,8 +182,9 @@ class MenusMixin:
         tb.setObjectName("MainToolBar")
         tb.setMovable(False)
         for a in (self.act_open, self.act_save, None, self.act_undo, self.act_redo, None,
-                  self.act_fit, self.act_arrange, None, *self.plan_actions.values(), None,
-                  self.act_connect):
+                  self.act_fit, self.act_arrange, None, self.act_connect):
+            # The plan operations live in the Plan menu and the plan dock, next to the plan
+            # they show: not a third time here.
             if a is None:
                 tb.addSeparator()
             else:

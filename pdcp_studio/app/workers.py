@@ -98,6 +98,8 @@ class Worker(QObject):
         self._finished_event = threading.Event()
         self.result: Any = None
         self.error: str | None = None
+        #: The exception behind ``failed`` (None otherwise): callers that act on its kind.
+        self.exception: BaseException | None = None
         self._progress.connect(self.progress)
         self._outcome.connect(self._deliver)
 
@@ -166,6 +168,7 @@ class Worker(QObject):
             else:  # a bug: keep the traceback
                 log.warning("%s failed", self.description, exc_info=True)
             self.error = error_message(err)
+            self.exception = err
             self._end("failed", self.error)
         else:
             if self.cancel_event.is_set():

@@ -7,6 +7,14 @@ node IDs nobody here gave, while no arbitrator is heard, are a replaced arbitrat
 (thesis test 5): they may be reset so that they bind again. While arbitrating it beacons
 (``0x0A``, mode 1, node ID 0) every beacon interval so that another arbitrator hears it.
 
+On a bus that hands a process its own frames back (``can:udp_multicast``) every frame we
+send comes back, possibly late (a loaded receiver: later than a connection's echo filter
+waits). Our frames are mode-1 frames, the very thing that means "another arbitrator", and our
+beacon is the same frame as any arbitrator's; so the claim keeps the account of what this
+arbitrator sent (``sent``) and takes a copy heard within ``OWN_ECHO_S`` for its own, once per
+frame sent (``is_own_echo``). A frame with no send of ours outstanding is someone else's; an
+echo that never came masks at most one identical foreign frame.
+
 Pure: :class:`BusClaim` takes ``now`` and the frames heard and returns decisions; the
 arbitrator carries them out (tested without threads or a bus).
 """
@@ -16,6 +24,7 @@ from __future__ import annotations
 import enum
 from dataclasses import dataclass
 
+from pdcp_studio.bus.connection import EchoFilter
 from pdcp_studio.protocol.codes import FunctionCode
 from pdcp_studio.protocol.identifier import NODE_ID_MAX
 
@@ -26,6 +35,8 @@ LISTEN_INTERVALS = 2.2
 #: How long PDCP Studio listens on a ``can:`` bus before arbitrating.
 LISTEN_S = LISTEN_INTERVALS * ARBITRATOR_BEACON_S
 _BINDING_PRIORITY = 3
+#: A copy of one of our own frames later than this is not waited for any more.
+OWN_ECHO_S = 30.0
 
 
 class Phase(enum.Enum):
@@ -63,7 +74,8 @@ class BusClaim:
     """Whether this arbitrator may write on the bus, decided from what it hears."""
 
     def __init__(self, now: float, listen_s: float = LISTEN_S,
-                 beacon_interval_s: float = ARBITRATOR_BEACON_S) -> None:
+                 beacon_interval_s: float = ARBITRATOR_BEACON_S, *,
+                 own_echoes: bool = False) -> None:
         self.listen_s = max(0.0, listen_s)
         self.beacon_interval_s = beacon_interval_s
         self.phase = Phase.LISTENING if self.listen_s > 0 else Phase.ARBITRATING
@@ -71,6 +83,17 @@ class BusClaim:
         self.heard_other = ""  # what the other arbitrator sent first ('' if none)
         self._next_beacon = now if self.phase is Phase.ARBITRATING else self.listen_until
         self._beaconing: set[int] = set()
+        #: What we sent, on a bus that hands it back to us (None: a bus that does not).
+        self._own = EchoFilter(window_s=OWN_ECHO_S) if own_echoes else None
+
+    def sent(self, arbitration_id: int, data: bytes, now: float) -> None:
+        """We sent this frame; on a bus that echoes, its copy may come back once."""
+        if self._own is not None:
+            self._own.sent((arbitration_id, bytes(data)), now)
+
+    def is_own_echo(self, arbitration_id: int, data: bytes, now: float) -> bool:
+        """True (and accounted) when the frame heard is the copy of one we sent."""
+        return self._own is not None and self._own.is_echo((arbitration_id, bytes(data)), now)
 
     @property
     def may_write(self) -> bool:
@@ -81,7 +104,8 @@ class BusClaim:
         return self.phase is Phase.YIELDED
 
     def heard(self, arbitration_id: int, data: bytes, now: float) -> Decision | None:
-        """A frame from the bus (never our own); a Decision when it changes the phase."""
+        """A frame from the bus (never our own: ask :meth:`is_own_echo` first); a Decision
+        when it changes the phase."""
         if self.phase is Phase.YIELDED:
             return None
         if arbitration_id >> 8 & 1:  # mode 1: only an arbitrator sends it

@@ -1,19 +1,17 @@
 """The arbitrator's shared vocabulary: its timing constants, per-node state and wire formats.
 
-Split out of :mod:`pdcp_studio.bus.arbitrator` so each of its parts (binding, presence, set-up,
-links, profile layer) can use them without importing the :class:`Arbitrator` itself; that
-module re-exports every public name here. Each part imports the constants it reads, so a test
+Split out of :mod:`pdcp_studio.bus.arbitrator` so each of its parts (node table, presence,
+set-up, links, profile layer) can use them without importing the :class:`Arbitrator` itself;
+that module re-exports every public name here. Each part imports the constants it reads, so a test
 that patches one must patch it in the module that reads it.
 """
 
 from __future__ import annotations
 
-from dataclasses import dataclass, field, replace
+from dataclasses import dataclass, field
 
-from pdcp_studio.errors import ParameterError
 from pdcp_studio.model import parameters as P
 from pdcp_studio.model.refs import DeviceKey, Direction
-from pdcp_studio.model.system import Device
 
 #: Retries per request (so at most RETRIES + 1 attempts) unless the caller says otherwise.
 RETRIES = 4
@@ -54,6 +52,10 @@ FOREIGN_HOLD_S = 1.0
 RESET_GRACE_S = 1.0
 #: Without a reset at start, binding waits this long while node IDs in use are heard.
 FOREIGN_LISTEN_S = 3.5 * DEFAULT_BEACON_INTERVAL_S
+#: Beacon interval assumed for presence until a newly bound device's own has been read: long
+#: enough for a device beaconing every 500 ms (the full rig's) not to be declared gone, and
+#: bound again, while it is still being set up.
+UNREAD_BEACON_INTERVAL_S = 1.0
 #: How long close() waits for each thread.
 JOIN_S = 2.0
 
@@ -70,12 +72,6 @@ _NOT_CONNECTED = {
     P.IN_SOURCE_SN_INDEX: _input_value(P.IN_SOURCE_SN_INDEX, (0xFFFF, 0xFF)),
     P.IN_SOURCE_TYPE_PROFILE: _input_value(P.IN_SOURCE_TYPE_PROFILE, (0, 0)),
 }
-_DEVICE_PARAMS = (P.DEVICE_SERIAL, P.DEVICE_EAN_LOW, P.DEVICE_EAN_HIGH, P.DEVICE_VERSION,
-                  P.DEVICE_TYPE_PROFILE, P.DEVICE_DESCRIPTOR, P.DEVICE_BEACON_INTERVAL,
-                  P.DEVICE_ACK_TIMEOUT, P.DEVICE_BIND_TIMEOUT)
-_CHANNEL_PARAMS = (P.CH_TYPE_PROFILE, P.CH_DESCRIPTOR, P.CH_REQUIRED_INPUTS, P.CH_DESIRED_INPUTS)
-_INPUT_PARAMS = (P.IN_TERMINAL_PROFILE, P.IN_SOURCE_VID_PID, P.IN_SOURCE_SN_INDEX,
-                 P.IN_SOURCE_TYPE_PROFILE)
 #: Parameters only the arbitrator sets (changing them behind its back breaks the routing).
 _MANAGED = {(P.DEVICE_NODE_ID, "device"), (P.OUT_NODE_ID, "output"),
             (P.IN_SOURCE_NODE_IDS, "input")}
@@ -106,64 +102,3 @@ class _Node:
     answers: int = 0
     window_start: float = 0.0
     window_beacons: int = 0
-
-
-def learn_value(device: Device, param: int, channel: int, value: bytes) -> None:
-    """Store a parameter value read from (or written to) a device in its model ``Device``.
-
-    Unknown parameters and values that do not fit their layout are ignored (a monitor shows
-    them; the model keeps what it understands).
-    """
-    if channel == 0:
-        spec = P.find_parameter(param, 0)
-        ch = None
-    else:
-        ch = device.channels.get(channel)
-        spec = None if ch is None else P.find_parameter(param, channel, ch.direction)
-    if spec is None:
-        return
-    try:
-        v = P.decode_value(spec, value)
-    except ParameterError:
-        return
-    if ch is None:
-        attrs = {P.DEVICE_EAN_LOW: "ean_low", P.DEVICE_EAN_HIGH: "ean_high",
-                 P.DEVICE_DESCRIPTOR: "descriptor", P.DEVICE_BEACON_INTERVAL: "beacon_interval",
-                 P.DEVICE_ACK_TIMEOUT: "ack_timeout", P.DEVICE_BIND_TIMEOUT: "bind_timeout"}
-        if param in attrs:
-            setattr(device, attrs[param], v)
-        elif param == P.DEVICE_VERSION:
-            device.fw_version, device.hw_version = v
-        elif param == P.DEVICE_TYPE_PROFILE:
-            device.device_type, device.device_profile = v
-        elif param == P.DEVICE_NODE_ID:
-            device.node_id = v or None
-        return
-    if param == P.CH_TYPE_PROFILE:
-        ch.type, ch.profile = v
-    elif param == P.CH_DESCRIPTOR:
-        ch.descriptor = v
-    elif param == P.CH_DATA_ENABLED:
-        ch.data_enabled = bool(v)
-    elif param == P.CH_REQUIRED_INPUTS:
-        ch.required_inputs = tuple(v)
-    elif param == P.CH_DESIRED_INPUTS:
-        ch.desired_inputs = tuple(v)
-    elif ch.is_input and param == P.IN_TERMINAL_PROFILE:
-        ch.terminal_profile = v
-    elif ch.is_input and param == P.IN_SOURCE_VID_PID:
-        ch.source = replace(ch.source, vid=v[0], pid=v[1])
-    elif ch.is_input and param == P.IN_SOURCE_SN_INDEX:
-        ch.source = replace(ch.source, serial=v[0], index=v[1])
-    elif ch.is_input and param == P.IN_SOURCE_TYPE_PROFILE:
-        ch.source = replace(ch.source, type=v[0], profile=v[1])
-    elif ch.is_output and param == P.OUT_NODE_ID:
-        ch.node_id = v or None
-
-
-def _only_inputs(device: Device) -> None:
-    """Drop required/desired indices that are not input channels of the device."""
-    inputs = {c.index for c in device.inputs()}
-    for ch in device.channels.values():
-        ch.required_inputs = tuple(i for i in ch.required_inputs if i in inputs)
-        ch.desired_inputs = tuple(i for i in ch.desired_inputs if i in inputs)

@@ -1,171 +1,164 @@
 """Device set-up after binding (reference §1 steps 1–6), on the arbitrator's set-up pool.
 
-A mixin of :class:`pdcp_studio.bus.arbitrator.Arbitrator`: reads a newly bound device and its
-channels, gives its outputs node IDs, installs it in the system and re-makes its links. A set-up
-of an older binding (or from before a reset) discards its result.
+Reads a newly bound device and its channels with the device reader the scan uses too
+(``bus/device_reader.py``), gives its outputs node IDs from the node table, installs it in the
+system and re-makes its links through the link writer. A set-up of an older binding (or from
+before a reset: another ``epoch``) discards its result. A failed set-up resets the device so
+it binds again, up to ``SETUP_ATTEMPTS`` times.
 """
 
 from __future__ import annotations
 
 import logging
 import time
+from typing import TYPE_CHECKING
 
 from pdcp_studio.bus import events as ev
-from pdcp_studio.bus.arb_binding import MAX_KEYS_REMEMBERED
-from pdcp_studio.bus.arb_common import (
-    _CHANNEL_PARAMS,
-    _DEVICE_PARAMS,
-    _INPUT_PARAMS,
-    SETUP_ATTEMPTS,
-    _only_inputs,
-    learn_value,
-)
-from pdcp_studio.bus.requests import DeviceRefusedError
-from pdcp_studio.errors import ModelError, NodeIdExhaustedError, PdcpError
+from pdcp_studio.bus.arb_common import SETUP_ATTEMPTS, _Node
+from pdcp_studio.bus.arb_nodes import MAX_KEYS_REMEMBERED
+from pdcp_studio.bus.device_reader import SETUP, DeviceReader
+from pdcp_studio.errors import ModelError, PdcpError
+from pdcp_studio.model import param_fields
 from pdcp_studio.model import parameters as P
-from pdcp_studio.model.refs import DeviceKey, Direction
-from pdcp_studio.model.system import Channel, Device
+from pdcp_studio.model.refs import DeviceKey
+from pdcp_studio.model.system import Device
 from pdcp_studio.protocol import Reset
+
+if TYPE_CHECKING:
+    from pdcp_studio.bus.arbitrator import Arbitrator
 
 log = logging.getLogger("pdcp_studio.bus.arbitrator")  # one logger for the arbitrator
 
 
-class SetupMixin:
-    """The set-up jobs of the :class:`Arbitrator` (one per binding)."""
+class DeviceSetup:
+    """The set-up jobs of an :class:`Arbitrator` (one per binding) and their bookkeeping."""
 
-    # -- set-up (reference §1 steps 1–6) --------------------------------------------------
+    def __init__(self, arb: Arbitrator) -> None:
+        self.arb = arb
+        self.reader = DeviceReader(arb.requests, descriptor_bulk=False)
+        self.in_flight: dict[DeviceKey, tuple[int, int]] = {}  # key → (epoch, generation)
+        self.failures: dict[DeviceKey, int] = {}
+        self.epoch = 0  # bumped by a reset: stale set-ups discard their results
+
+    def start(self, node: _Node) -> None:
+        """Under the arbitrator's lock: set ``node``'s device up on the pool."""
+        key = node.key
+        self.in_flight[key] = (self.epoch, node.generation)
+        try:
+            self.arb._pool_exec.submit(self._job, key, node.node_id, node.generation,
+                                       self.epoch)
+        except RuntimeError:  # closing
+            self.in_flight.pop(key, None)
+
+    def forget(self) -> None:
+        """Under the lock: a reset; set-ups under way will discard their results."""
+        self.epoch += 1
+        self.in_flight.clear()
+        self.failures.clear()
+
     def _current(self, key: DeviceKey, node_id: int, generation: int, epoch: int) -> bool:
-        with self._lock:
-            node = self._nodes.get(node_id)
-            return (epoch == self._epoch and node is not None and node.key == key
+        arb = self.arb
+        with arb._lock:
+            node = arb.nodes.by_id.get(node_id)
+            return (epoch == self.epoch and node is not None and node.key == key
                     and node.generation == generation)
 
-    def _setup_job(self, key: DeviceKey, node_id: int, generation: int, epoch: int) -> None:
+    def _job(self, key: DeviceKey, node_id: int, generation: int, epoch: int) -> None:
+        arb = self.arb
         try:
             if not self._current(key, node_id, generation, epoch):
                 return  # it left (or bound again) while queued: a bind flood of made-up
                 # devices must not keep a real one waiting behind their timeouts
-            device = self._read_device(key, node_id)
+            device = self.read_device(key, node_id)
             if self._current(key, node_id, generation, epoch):
                 self._commit(key, node_id, generation, epoch, device)
         except PdcpError as err:
-            if self._current(key, node_id, generation, epoch) and not self._stop.is_set():
-                with self._lock:
-                    if (key not in self._setup_failures
-                            and len(self._setup_failures) >= MAX_KEYS_REMEMBERED):
-                        del self._setup_failures[next(iter(self._setup_failures))]  # oldest
-                    failures = self._setup_failures[key] = self._setup_failures.get(key, 0) + 1
+            if self._current(key, node_id, generation, epoch) and not arb._stop.is_set():
+                with arb._lock:
+                    if key not in self.failures and len(self.failures) >= MAX_KEYS_REMEMBERED:
+                        del self.failures[next(iter(self.failures))]  # the oldest
+                    failures = self.failures[key] = self.failures.get(key, 0) + 1
                 again = failures < SETUP_ATTEMPTS
-                self._error(f"set-up of device {key} (node {node_id}) failed: {err}"
-                            + ("; resetting it to try again" if again else ""), "setup")
+                arb._error(f"set-up of device {key} (node {node_id}) failed: {err}"
+                           + ("; resetting it to try again" if again else ""), "setup")
                 if again:
-                    self._send_quiet(Reset(node_id))
+                    arb._send_quiet(Reset(node_id))
         except Exception:
-            log.exception("%s: set-up of %s failed", self.name, key)
+            log.exception("%s: set-up of %s failed", arb.name, key)
         finally:
-            with self._lock:
-                if self._setups.get(key) == (epoch, generation):
-                    del self._setups[key]
-                self._last_change = time.monotonic()
-            self._wake.set()
+            with arb._lock:
+                if self.in_flight.get(key) == (epoch, generation):
+                    del self.in_flight[key]
+                arb.profile.last_change = time.monotonic()
+            arb._wake.set()
 
-    def _get(self, node_id: int, param: int, channel: int = 0) -> bytes | None:
-        """A set-up read; None if the device refuses (a parameter it does not have)."""
-        try:
-            return self.requests.get(node_id, param, channel)
-        except DeviceRefusedError:
-            return None
-
-    def _read_device(self, key: DeviceKey, node_id: int) -> Device:
+    def read_device(self, key: DeviceKey, node_id: int) -> Device:
         """Steps 1–3 and the reads of steps 4–5: the device and all its channels."""
-        device = Device(key.vid, key.pid, key.serial)
-        ident = self._get(node_id, P.DEVICE_VID_PID)
-        expected = P.encode_value(P.device_parameter(P.DEVICE_VID_PID), (key.vid, key.pid))
-        if ident is not None and len(ident) == 4 and ident != expected:
-            self._error(f"device {key} reports VID/PID {ident.hex()} after binding", "setup")
-        for param in _DEVICE_PARAMS:
-            value = self._get(node_id, param)
-            if value is not None:
-                learn_value(device, param, 0, value)
-        count = self._get(node_id, P.DEVICE_CHANNEL_COUNT) or b"\0"
-        for index in range(1, count[0] + 1):
-            transfer = self._get(node_id, P.CH_TRANSFER_TYPE, index)
-            if not transfer:
-                continue
-            try:
-                direction = Direction.from_transfer_type(transfer[0])
-            except ValueError as err:
-                self._error(f"device {key} channel {index}: {err}", "setup")
-                continue
-            ch = device.add_channel(Channel(index, direction))
-            params = _CHANNEL_PARAMS + (_INPUT_PARAMS if ch.is_input else ())
-            for param in params:
-                value = self._get(node_id, param, index)
-                if value is not None:
-                    learn_value(device, param, index, value)
-        _only_inputs(device)
-        return device
+        values: param_fields.Values = {}
+        self.reader.read_device(key, node_id, SETUP, values)
+        problem = self.reader.identity_problem(key, node_id, values)
+        if problem:
+            self.arb._error(f"device {key} after binding: {problem}", "setup")
+        self.reader.read_channels(key, node_id, SETUP, values,
+                                  lambda why: self.arb._error(why, "setup"))
+        return param_fields.device_from_values(key, values)
 
     def _commit(self, key: DeviceKey, node_id: int, generation: int, epoch: int,
                 device: Device) -> None:
         """Steps 4 (channel node IDs), 5 and 6: install the device, re-make its links."""
-        with self._plan_lock:
-            ids: dict[int, int] = {}
-            refused: list[str] = []
-            why = ""
-            with self._lock:
+        arb = self.arb
+        with arb._plan_lock:
+            with arb._lock:
                 if not self._current(key, node_id, generation, epoch):
                     return
-                for ch in device.outputs():
-                    try:
-                        ids[ch.index] = self._pool.take((key, ch.index))
-                    except NodeIdExhaustedError as err:
-                        refused.append(str(device.ref(ch.index)))
-                        why = str(err)
-                self._refresh_channel_ids()
+                ids, refused, why = arb.nodes.give_outputs(key, [c.index for c in
+                                                                 device.outputs()])
             if refused:  # one line per device naming every output left without an ID
-                self._error(f"output {', output '.join(refused)} gets no node ID and cannot be "
-                            f"linked: {why}", "node_ids_exhausted")
+                names = ", output ".join(str(device.ref(i)) for i in refused)
+                arb._error(f"output {names} gets no node ID and cannot be linked: {why}",
+                           "node_ids_exhausted")
             for index, channel_id in ids.items():
-                self.requests.set(node_id, P.OUT_NODE_ID, index, bytes([channel_id]))
+                arb.requests.set(node_id, P.OUT_NODE_ID, index, bytes([channel_id]))
                 device.channels[index].node_id = channel_id
-            with self._lock:
+            with arb._lock:
                 if not self._current(key, node_id, generation, epoch):
                     return
-                node = self._nodes[node_id]
-                old = self._system.device(key)
+                node = arb.nodes.by_id[node_id]
+                system = arb._system
+                old = system.device(key)
                 joined = old is None or not old.present
                 device.present, device.node_id = True, node_id
                 device.name = old.name if old is not None else ""
                 node.beacon_interval = max(device.beacon_interval, 1) / 1000.0
                 if old is None:
-                    self._system.add_device(device)
+                    system.add_device(device)
                 else:
-                    self._system.devices[key] = device
-                    for link in self._system.links:
+                    system.devices[key] = device
+                    for link in system.links:
                         if key in (link.output.device, link.input.device):
                             try:
-                                self._system.check_link(link)
+                                system.check_link(link)
                             except ModelError:
-                                self._system.remove_link(link)
-                links = [lk for lk in self._system.links
+                                system.remove_link(link)
+                links = [lk for lk in system.links
                          if key in (lk.output.device, lk.input.device)
-                         and self._system.is_present(lk.output)
-                         and self._system.is_present(lk.input)]
+                         and system.is_present(lk.output) and system.is_present(lk.input)]
                 node.set_up = True
                 node.updates.clear()
-                self._setup_failures.pop(key, None)
+                self.failures.pop(key, None)
                 if joined:
-                    self._duty_needed = True
-                self._last_change = time.monotonic()
+                    arb.profile.duty_needed = True
+                arb.profile.last_change = time.monotonic()
             for link in links:
                 try:
-                    self._wire_add(link)
+                    arb.links.wire_add(link)
                 except PdcpError as err:
-                    self._error(f"link {link} could not be re-made: {err}", "transport")
+                    arb._error(f"link {link} could not be re-made: {err}", "transport")
         if joined:
-            log.info("%s: device %s joined (node %d, %d channels)", self.name, key, node_id,
+            log.info("%s: device %s joined (node %d, %d channels)", arb.name, key, node_id,
                      len(device.channels))
-            self._emit(ev.DeviceJoined(key))
-        self._wake.set()
+            arb._emit(ev.DeviceJoined(key))
+        arb._wake.set()
 
+
+__all__ = ["DeviceSetup"]

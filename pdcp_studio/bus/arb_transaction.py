@@ -1,8 +1,8 @@
 """Transactions in the arbitrator: the part of the change road that touches the bus.
 
-A mixin of :class:`pdcp_studio.bus.arbitrator.Arbitrator`, so every transport gets it — the
-in-process sessions call :meth:`TransactionMixin.transact` directly, the host link's TRANSACT
-request calls it on the arbitrator's side of the line. Reference §5::
+A part of :class:`pdcp_studio.bus.arbitrator.Arbitrator` (``arbitrator.transactions``), so
+every transport gets it — the in-process sessions call :meth:`Arbitrator.transact` directly,
+the host link's TRANSACT request calls it on the arbitrator's side of the line. Reference §5::
 
     interlock → write → read back and compare → restore on mismatch → release
 
@@ -28,12 +28,11 @@ from __future__ import annotations
 import logging
 import threading
 from collections.abc import Callable
-from typing import Any
+from typing import TYPE_CHECKING, Any
 
 from pdcp_studio.bus import events as ev
 from pdcp_studio.bus.transaction import (
     INTERLOCK_MS,
-    INTERLOCK_RENEW_S,
     Change,
     Policy,
     Status,
@@ -48,6 +47,9 @@ from pdcp_studio.model.config_diff import diff_configurations
 from pdcp_studio.model.configuration import ConfigCollection
 from pdcp_studio.model.refs import DeviceKey
 from pdcp_studio.model.system import Link, System
+
+if TYPE_CHECKING:
+    from pdcp_studio.bus.arbitrator import Arbitrator
 
 log = logging.getLogger("pdcp_studio.bus.arbitrator")
 
@@ -85,11 +87,12 @@ class _Renewer:
             self._thread.join(timeout=5.0)
 
 
-class TransactionMixin:
-    """``transact`` and the policy for the :class:`Arbitrator`."""
+class Transactions:
+    """``transact`` and the policy of an :class:`Arbitrator` (no state of its own: what it
+    changes is the bus's, the memory's and the system's)."""
 
-    #: Seconds between two renewals of the interlock (tests shorten it).
-    interlock_renew_s = INTERLOCK_RENEW_S
+    def __init__(self, arb: Arbitrator) -> None:
+        self.arb = arb
 
     # -- the policy (issue 17) ---------------------------------------------------------
     def read_policy(self) -> Policy:
@@ -97,9 +100,9 @@ class TransactionMixin:
         unreadable memory gives the thesis's default (autoconfigure on), as start-up
         falls back to the devices' own configuration then."""
         try:
-            stored = self.memory.read_policy()
+            stored = self.arb.memory.read_policy()
         except (OSError, PdcpError) as err:
-            log.warning("%s: policy unreadable (%s): autoconfigure on", self.name, err)
+            log.warning("%s: policy unreadable (%s): autoconfigure on", self.arb.name, err)
             return Policy()
         return Policy(autoconfigure=stored.get("autoconfigure", True))
 
@@ -108,24 +111,24 @@ class TransactionMixin:
                  cancel: threading.Event | None = None) -> TransactionResult:
         """Carry ``change`` out as one transaction; never raises for a bus failure — the
         result says applied, failed or rolled back, at which step and why."""
-        with self._plan_lock:
-            with self._lock:
-                self._plan_running += 1
+        with self.arb._plan_lock:
+            with self.arb._lock:
+                self.arb.profile.plan_running += 1
             try:
                 result = self._transact(change, progress, cancel)
             finally:
-                with self._lock:
-                    self._plan_running -= 1
-        log.info("%s: transaction %s: %s", self.name, change.action, result.summary())
-        self._emit(ev.TransactionDone(result))
+                with self.arb._lock:
+                    self.arb.profile.plan_running -= 1
+        log.info("%s: transaction %s: %s", self.arb.name, change.action, result.summary())
+        self.arb._emit(ev.TransactionDone(result))
         return result
 
     def _transact(self, change: Change, progress: ProgressFn | None,
                   cancel: threading.Event | None) -> TransactionResult:
-        system = self.system()
+        system = self.arb.system()
         before = system.links
         after = change.links_after(before)
-        cfg_before = self.memory.read_bytes()
+        cfg_before = self.arb.memory.read_bytes()
         policy_before = self.read_policy()
         result = TransactionResult(
             Status.FAILED, change.action, links_before=before, links_after=before,
@@ -141,7 +144,7 @@ class TransactionMixin:
         suspended: list[DeviceKey] = []
         for key in held:
             try:
-                self.suspend(key, INTERLOCK_MS)
+                self.arb.suspend(key, INTERLOCK_MS)
             except PdcpError as err:
                 self._release_all(suspended, result)
                 result.step = "interlock"
@@ -151,7 +154,7 @@ class TransactionMixin:
             suspended.append(key)
         result.held = list(suspended)
         result.interlock = describe_interlock(suspended)
-        renewer = _Renewer(self.suspend, suspended, self.interlock_renew_s, self.name)
+        renewer = _Renewer(self.arb.suspend, suspended, self.arb.interlock_renew_s, self.arb.name)
         try:
             self._write_verify_restore(change, after, cfg_before, policy_before, result,
                                        progress, cancel)
@@ -159,8 +162,8 @@ class TransactionMixin:
             renewer.stop()
             result.notes += renewer.failures
             self._release_all(suspended, result)
-        result.links_after = self.system().links
-        result.config_crc_after = crc_of_bytes(self.memory.read_bytes())
+        result.links_after = self.arb.system().links
+        result.config_crc_after = crc_of_bytes(self.arb.memory.read_bytes())
         result.policy_after = self.read_policy()
         return result
 
@@ -173,23 +176,23 @@ class TransactionMixin:
         step, why = "", ""
         try:
             for p in change.parameters:  # read what is there first, to restore it
-                old_params.append((p, bytes(self.get_parameter(p.device, p.param, p.channel))))
+                old_params.append((p, bytes(self.arb.get_parameter(p.device, p.param, p.channel))))
             for n, action in enumerate(change.links):
                 _check_cancel(cancel, n, total)
                 if progress is not None:
                     progress(n, total, f"{action.op} {action.link}")
-                self._do_link(action.op, action.link)
+                self.arb._do_link(action.op, action.link)
             for n, p in enumerate(change.parameters, len(change.links)):
                 _check_cancel(cancel, n, total)
                 if progress is not None:
                     progress(n, total, f"parameter 0x{p.param:02X} of {p.device}")
-                self.set_parameter(p.device, p.param, p.channel, p.value)
+                self.arb.set_parameter(p.device, p.param, p.channel, p.value)
             done = len(change.links) + len(change.parameters)
             if change.configuration is not None:
                 _check_cancel(cancel, done, total)
                 if progress is not None:
                     progress(done, total, "stored configuration")
-                self.write_memory(change.configuration)
+                self.arb.write_memory(change.configuration)
                 done += 1
             if change.policy is not None:
                 if progress is not None:
@@ -224,21 +227,22 @@ class TransactionMixin:
             result.reason += "; what was there is restored"
 
     # -- the parts -----------------------------------------------------------------------
-    def _do_link(self, op: str, link: Link) -> None:
-        with self._lock:
-            exists = self._system.has_link(link)
+    def do_link(self, op: str, link: Link) -> None:
+        """One link action of a change (none when the link is already so)."""
+        with self.arb._lock:
+            exists = self.arb._system.has_link(link)
         if op == "add" and not exists:
-            self.add_link(link)
+            self.arb.add_link(link)
         elif op == "remove" and exists:
-            self.remove_link(link)
+            self.arb.remove_link(link)
 
     def _store_policy(self, policy: Policy) -> None:
-        self.memory.write_policy(policy.to_json())
+        self.arb.memory.write_policy(policy.to_json())
 
     def _verify(self, change: Change, after: list[Link]) -> list[str]:
         """What does not read back as written (empty: verified)."""
         problems: list[str] = []
-        system = self.system()
+        system = self.arb.system()
         if set(system.links) != set(after):
             missing = set(after) - set(system.links)
             extra = set(system.links) - set(after)
@@ -248,14 +252,14 @@ class TransactionMixin:
         for ref in sorted(touched):
             problems += self._verify_input(system, ref)
         for p in change.parameters:
-            got = bytes(self.get_parameter(p.device, p.param, p.channel))
+            got = bytes(self.arb.get_parameter(p.device, p.param, p.channel))
             if got != p.value:
                 problems.append(f"parameter 0x{p.param:02X} of {p.device} channel {p.channel} "
                                 f"reads {got.hex()}, {p.value.hex()} was written")
         if change.configuration is not None:
             from pdcp_studio.storage import config_codec
 
-            back = self.read_memory()
+            back = self.arb.read_memory()
             if config_codec.dumps(back) != config_codec.dumps(change.configuration):
                 problems.append("the stored configuration does not verify when read back: "
                                 + diff_configurations(change.configuration, back)
@@ -269,15 +273,15 @@ class TransactionMixin:
         if not system.is_present(ref):
             return []
         live = [s for s in system.sources_of(ref) if system.is_present(s)]
-        enabled = self.get_parameter(ref.device, P.CH_DATA_ENABLED, ref.index)
+        enabled = self.arb.get_parameter(ref.device, P.CH_DATA_ENABLED, ref.index)
         if not live:
             if enabled[:1] not in (b"\x00", b""):
                 return [f"input {ref} still receives data after its link was removed"]
             return []
         source = live[0]
-        want = bytes([self.node_id_of(source.device) or 0,
-                      self.channel_node_id(source) or 0])
-        ids = self.get_parameter(ref.device, P.IN_SOURCE_NODE_IDS, ref.index)
+        want = bytes([self.arb.node_id_of(source.device) or 0,
+                      self.arb.channel_node_id(source) or 0])
+        ids = self.arb.get_parameter(ref.device, P.IN_SOURCE_NODE_IDS, ref.index)
         out: list[str] = []
         if enabled[:1] != b"\x01":
             out.append(f"input {ref} does not receive data from {source}")
@@ -291,34 +295,34 @@ class TransactionMixin:
                  change: Change) -> list[str]:
         """Put back what was there; returns what could not be put back."""
         errors: list[str] = []
-        current = set(self.system().links)
+        current = set(self.arb.system().links)
         wanted = set(links_before)
         for link in sorted(current - wanted):
             try:
-                self._remove(link)
+                self.arb.links.remove(link)
             except PdcpError as err:
                 errors.append(f"removing {link}: {err}")
         for link in sorted(wanted - current):
             try:
-                with self._lock:
-                    if not self._system.has_link(link):
-                        self._system.check_link(link)
-                self._add(link)
+                with self.arb._lock:
+                    if not self.arb._system.has_link(link):
+                        self.arb._system.check_link(link)
+                self.arb.links.add(link)
             except PdcpError as err:
                 errors.append(f"re-making {link}: {err}")
         for p, value in reversed(old_params):
             try:
-                self.set_parameter(p.device, p.param, p.channel, value)
+                self.arb.set_parameter(p.device, p.param, p.channel, value)
             except PdcpError as err:
                 errors.append(f"parameter 0x{p.param:02X} of {p.device}: {err}")
         if change.configuration is not None:
             try:
                 from pdcp_studio.storage import config_codec
 
-                if self.memory.read_bytes() != cfg_before:
+                if self.arb.memory.read_bytes() != cfg_before:
                     old = (config_codec.loads(cfg_before) if cfg_before is not None
                            else ConfigCollection())
-                    self.write_memory(old)
+                    self.arb.write_memory(old)
             except (PdcpError, OSError) as err:
                 errors.append(f"the stored configuration: {err}")
         if change.policy is not None and self.read_policy() != policy_before:
@@ -331,7 +335,7 @@ class TransactionMixin:
     def _release_all(self, keys: list[DeviceKey], result: TransactionResult) -> None:
         for key in keys:
             try:
-                self.release(key)
+                self.arb.release(key)
             except PdcpError as err:  # its suspension runs out on its own within 2 s
                 result.notes.append(f"release of {key} failed ({err}); its suspension ends "
                                     f"within {INTERLOCK_MS} ms on its own")
@@ -372,4 +376,4 @@ def _check_change(system: System, change: Change) -> str:
     return ""
 
 
-__all__ = ["TransactionMixin"]
+__all__ = ["Transactions"]

@@ -31,17 +31,31 @@ Decisions beyond the reference:
   arbitrator) keeps that ID out of the pool while it is heard; a beacon from such a node gets
   a Reset Device, so the device binds again; start and :meth:`reset` broadcast one.
 
-This module keeps the class, its threads and its public API; the parts are mixins next to it:
-``arb_binding`` (bind requests, node IDs), ``arb_presence`` (beacons, departures, twins, foreign
-nodes), ``arb_setup`` (set-up after binding), ``arb_links`` (links on the wire), ``arb_profile``
-(start-up, duty cycle, plans), ``arb_transaction`` (the change road: interlock, write, verify,
-restore, release; the policy) and ``arb_common`` (constants, node state, wire formats).
+The arbitrator is composed of parts, each with one job and its own state (as canopen composes
+its ``Network`` from ``nmt``, ``lss`` and ``sdo``):
+
+- ``claim`` (:class:`~pdcp_studio.bus.arb_claim.BusClaim`): may we write on this bus at all;
+- ``nodes`` (:class:`~pdcp_studio.bus.arb_nodes.NodeTable`): who holds which node ID, and what
+  to answer a bind request;
+- ``presence`` (:class:`~pdcp_studio.bus.arb_presence.PresenceTracker`): who is gone at
+  ``now``, twins on one node ID, nodes bound by someone else;
+- ``setup`` (:class:`~pdcp_studio.bus.arb_setup.DeviceSetup`): reading a bound device with the
+  device reader the scan shares (``bus/device_reader.py``) and installing it;
+- ``links`` (:class:`~pdcp_studio.bus.arb_links.LinkWriter`): what to write for a link, and
+  writing it;
+- ``profile`` (:class:`~pdcp_studio.bus.arb_profile.ProfileDriver`): start-up, duty cycle, plans;
+- ``transactions`` (:class:`~pdcp_studio.bus.arb_transaction.Transactions`): the change road;
+- ``dispatch`` (:class:`~pdcp_studio.bus.arb_dispatch.Dispatcher`): the dispatch thread, which
+  hears every frame, asks the deciding parts and carries their decisions out.
+
+The claim, node table and presence tracker decide from ``now`` and the frames heard and return
+decisions (tested without threads); this class owns the bus, the threads, the locks and the
+system, sends, and keeps the public API. ``arb_common`` holds the constants and node state.
 """
 
 
 from __future__ import annotations
 
-import itertools
 import logging
 import threading
 import time
@@ -51,7 +65,6 @@ from pathlib import Path
 from typing import TYPE_CHECKING, Any
 
 from pdcp_studio.bus import events as ev
-from pdcp_studio.bus.arb_binding import BindingMixin
 from pdcp_studio.bus.arb_claim import BusClaim, Phase
 from pdcp_studio.bus.arb_common import (
     _MANAGED,
@@ -76,34 +89,30 @@ from pdcp_studio.bus.arb_common import (
     TWIN_BEACON_RATIO,
     UNKNOWN_RESET_S,
     _Node,
-    _only_inputs,
-    learn_value,
 )
-from pdcp_studio.bus.arb_links import LinksMixin
-from pdcp_studio.bus.arb_presence import PresenceMixin
-from pdcp_studio.bus.arb_profile import ProfileMixin
-from pdcp_studio.bus.arb_setup import SetupMixin
-from pdcp_studio.bus.arb_transaction import TransactionMixin
+from pdcp_studio.bus.arb_dispatch import Dispatcher
+from pdcp_studio.bus.arb_links import LinkWriter
+from pdcp_studio.bus.arb_nodes import NodeTable
+from pdcp_studio.bus.arb_presence import PresenceTracker
+from pdcp_studio.bus.arb_profile import ProfileDriver
+from pdcp_studio.bus.arb_setup import DeviceSetup
+from pdcp_studio.bus.arb_transaction import Transactions
 from pdcp_studio.bus.connection import Connection
 from pdcp_studio.bus.log_limit import LimitedLog, RepeatLimiter
 from pdcp_studio.bus.memory import MemoryStore
 from pdcp_studio.bus.node_ids import NodeIdPool
 from pdcp_studio.bus.requests import RESPONSE_TIMEOUT_S, RequestEngine
-from pdcp_studio.bus.signals import decode_sample
-from pdcp_studio.errors import FrameError, ModelError, TransportError
+from pdcp_studio.bus.transaction import INTERLOCK_RENEW_S, Change, Policy, TransactionResult
+from pdcp_studio.errors import ModelError, TransportError
 from pdcp_studio.model import parameters as P
 from pdcp_studio.model.configuration import ConfigCollection
+from pdcp_studio.model.param_fields import learn_value, only_inputs
 from pdcp_studio.model.refs import ChannelRef, DeviceKey
-from pdcp_studio.model.system import System
+from pdcp_studio.model.system import Link, System
 from pdcp_studio.protocol import (
-    Beacon,
-    BindRequest,
-    ChannelData,
     Message,
     Mode,
     Reset,
-    UpdateDataChannel,
-    decode,
 )
 from pdcp_studio.protocol.identifier import NODE_ID_MAX, NODE_ID_MIN
 
@@ -143,21 +152,16 @@ __all__ = [
     "learn_value",
 ]
 
-
-#: A dispatch loop that did not come round for this long was stalled (it runs every TICK_S)…
-STALL_S = 0.15
-#: … and then waits this long before judging presence: the frames received meanwhile may still
-#: sit in the driver's or the socket's buffer, unseen, and silence would be misread.
-STALL_GRACE_S = 0.3
-
 #: How a summary names the errors of a kind.
 _ERROR_WORDS = {"bad_frame": "undecodable frames", "error_frame": "error frames",
                 "transport": "transport errors"}
 
 
-class Arbitrator(BindingMixin, PresenceMixin, SetupMixin, LinksMixin, ProfileMixin,
-                 TransactionMixin):
+class Arbitrator:
     """A headless PDCP bus arbitrator on ``bus`` (which it owns and shuts down on close)."""
+
+    #: Seconds between two renewals of a transaction's interlock (tests shorten it).
+    interlock_renew_s = INTERLOCK_RENEW_S
 
     def __init__(self, bus: can.BusABC, *, memory: str | Path | MemoryStore | None = None,
                  profile_layer: bool = True, name: str = "arbitrator", pace_s: float = 0.0,
@@ -171,71 +175,48 @@ class Arbitrator(BindingMixin, PresenceMixin, SetupMixin, LinksMixin, ProfileMix
         self.name = name
         self.profile_layer = profile_layer
         self.retries = retries
-        self.startup_quiet_s = startup_quiet_s
-        self.duty_quiet_s = duty_quiet_s
-        self.startup_max_wait_s = startup_max_wait_s
         self.frame_events = frame_events
         self.channel_events = channel_events
         self.memory = memory if isinstance(memory, MemoryStore) else MemoryStore(memory)
         if autoconfigure is not None and self.memory.read_policy()["autoconfigure"] != \
                 autoconfigure:  # ``--no-autoconfigure``: the flag sets the stored policy
             self.memory.write_policy({"autoconfigure": autoconfigure})
-        self.applied_plans: list[Plan] = []
         self.bad_frames = 0
         self.error_frames = 0
         self.data_frames = 0
-        self.duplicates: set[DeviceKey] = set()
         self.conn = Connection(bus, name=name, pace_s=pace_s, drop_own=drop_own)
         self._errors = RepeatLimiter(burst=ERROR_BURST)
         self._crashes = LimitedLog(log, f"{name}: ")
         self._disconnected = False  # the adapter was pulled (a ReopeningBus says so)
-        if hasattr(bus, "on_state"):
-            bus.on_state = self._adapter_state
         self.requests = RequestEngine(self._send, response_timeout=response_timeout,
                                       retries=retries)
-        self._lock = threading.RLock()
-        self._plan_lock = threading.RLock()
+        self._lock = threading.RLock()  # the parts' state and the system
+        self._plan_lock = threading.RLock()  # wire work on links: plans, set-ups, transactions
         self._subscribers = ev.Subscribers(name)
         self._system = System()
-        self._pool = NodeIdPool(*node_ids)
-        self._nodes: dict[int, _Node] = {}
-        self._node_of: dict[DeviceKey, int] = {}
-        self._channel_ids: dict[int, ChannelRef] = {}
-        self._channel_set: frozenset[int] = frozenset()
-        self._held: dict[DeviceKey, float] = {}  # suggested, not yet granted: since when
-        self._deferred: dict[DeviceKey, tuple[BindRequest, float, float]] = {}
-        self._setups: dict[DeviceKey, tuple[int, int]] = {}  # in flight: (epoch, generation)
-        self._jobs = 0  # departure jobs in flight
-        self._exhausted_reported: set[DeviceKey] = set()
-        self._setup_failures: dict[DeviceKey, int] = {}
-        self._unknown_reset: dict[int, float] = {}
-        self._foreign: dict[int, float] = {}  # node ID heard but not bound here: last heard
-        self._foreign_shown: set[int] = set()
-        # Channel node IDs given out before the last reset, and until when their in-flight data
-        # frames are expected (counted in stale_data_frames, not reported as undecodable).
-        self._stale_channels: frozenset[int] = frozenset()
-        self._stale_until = 0.0
-        self.stale_data_frames = 0
-        self._epoch = 0  # bumped by reset(): stale set-ups discard their results
-        self._generations = itertools.count(1)
-        self._plan_running = 0
+        self._jobs = 0  # jobs in flight on the set-up pool besides set-ups (departures …)
         now = time.monotonic()
-        self._started = now
-        # Without the start-up reset, devices bound by an earlier arbitrator keep their IDs:
-        # hear them all (beacons) before handing any ID out; the device asking retries.
-        self._listen_until = now if reset_on_start else now + FOREIGN_LISTEN_S
         # One arbitrator per bus (reference §5, arb_claim): on a can: bus it first listens
         # ``listen_s``; until then (and for good once another arbitrator is heard) it writes
         # nothing, not even the start-up reset.
-        self._claim = BusClaim(now, listen_s)
-        self._listen_until = max(self._listen_until, self._claim.listen_until)
+        self.claim = BusClaim(now, listen_s, own_echoes=self.conn.drop_own)
         self._reset_on_claim = reset_on_start
         self.bus_message = ""  # the last BusState line (why it arbitrates or not)
-        self._last_bind = now
-        self._last_change = now
-        self._startup_done = False
-        self._duty_needed = False
-        self._last_present: set[ChannelRef] = set()
+        self.nodes = NodeTable(*node_ids)
+        self.presence = PresenceTracker()
+        self.setup = DeviceSetup(self)
+        self.links = LinkWriter(self)
+        # Without the start-up reset, devices bound by an earlier arbitrator keep their IDs:
+        # hear them all (beacons) before handing any ID out; the device asking retries.
+        listen_until = max(now if reset_on_start else now + FOREIGN_LISTEN_S,
+                           self.claim.listen_until)
+        self.profile = ProfileDriver(self, now, quiet_s=startup_quiet_s,
+                                     duty_quiet_s=duty_quiet_s, max_wait_s=startup_max_wait_s,
+                                     listen_until=listen_until)
+        self.transactions = Transactions(self)
+        self.dispatch = Dispatcher(self)
+        if hasattr(bus, "on_state"):
+            bus.on_state = self.dispatch.adapter_state
         self._decoder: Any = None
         if frame_events:
             from pdcp_studio.bus.monitor import FrameDecoder
@@ -245,14 +226,15 @@ class Arbitrator(BindingMixin, PresenceMixin, SetupMixin, LinksMixin, ProfileMix
         self._stop = threading.Event()
         self._wake = threading.Event()
         self._pool_exec = ThreadPoolExecutor(SETUP_WORKERS, thread_name_prefix=f"pdcp {name} setup")
-        self._thread = threading.Thread(target=self._run, name=f"pdcp {name}", daemon=True)
-        self._profile_thread = threading.Thread(target=self._profile_loop,
+        self._thread = threading.Thread(target=self.dispatch.run, name=f"pdcp {name}",
+                                        daemon=True)
+        self._profile_thread = threading.Thread(target=self.profile.loop,
                                                 name=f"pdcp {name} profile", daemon=True)
         self._closed = False
         self._thread.start()
         self._profile_thread.start()
-        if self._claim.may_write:
-            self._claim_started(None)
+        if self.claim.may_write:
+            self.dispatch.claim_started(None)
 
     # -- lifetime -------------------------------------------------------------------------
     def __enter__(self) -> Arbitrator:
@@ -313,41 +295,74 @@ class Arbitrator(BindingMixin, PresenceMixin, SetupMixin, LinksMixin, ProfileMix
     def node_id_of(self, key: DeviceKey) -> int | None:
         """The node ID of a bound device (None if it is not bound)."""
         with self._lock:
-            return self._node_of.get(DeviceKey(*key))
+            return self.nodes.node_of.get(DeviceKey(*key))
 
     def channel_node_id(self, ref: ChannelRef) -> int | None:
         """The node ID an output channel sends its data with (None if it has none)."""
         with self._lock:
-            return self._pool.id_of((ref.device, ref.index))
+            return self.nodes.output_id(ref)
+
+    @property
+    def channel_node_ids(self) -> frozenset[int]:
+        """The node IDs output channels send their data with now (a frame's node ID in this
+        set and mode 0 is channel data)."""
+        return self.nodes.channel_set
+
+    @property
+    def duplicates(self) -> set[DeviceKey]:
+        """Devices reported as twins (two on the bus with one VID/PID/serial)."""
+        return self.presence.duplicates
+
+    @property
+    def stale_data_frames(self) -> int:
+        """Data frames on channel node IDs from before the last reset (expected, counted)."""
+        return self.presence.stale_data_frames
+
+    @property
+    def applied_plans(self) -> list[Plan]:
+        return self.profile.applied_plans
+
+    @property
+    def _pool(self) -> NodeIdPool:  # (tests look at the pool's free IDs)
+        return self.nodes.pool
+
+    @property
+    def _nodes(self) -> dict[int, _Node]:  # (tests look at a node's state)
+        return self.nodes.by_id
 
     @property
     def bus_state(self) -> str:
         """``listening``, ``arbitrating`` or ``yielded`` (ev.BusState says when it changes)."""
-        return self._claim.phase.value
+        return self.claim.phase.value
 
     @property
     def yielded(self) -> bool:
         """True once another arbitrator was heard: this one writes nothing any more."""
-        return self._claim.phase is Phase.YIELDED
+        return self.claim.phase is Phase.YIELDED
 
     def wait_claimed(self, timeout: float) -> bool:
         """Wait until listening is over; True when this arbitrator arbitrates the bus."""
         deadline = time.monotonic() + timeout
-        while self._claim.phase is Phase.LISTENING and time.monotonic() < deadline \
+        while self.claim.phase is Phase.LISTENING and time.monotonic() < deadline \
                 and not self._closed:
             time.sleep(0.01)
-        return self._claim.may_write
+        return self.claim.may_write
 
     @property
     def startup_done(self) -> bool:
-        return self._startup_done
+        return self.profile.startup_done
+
+    def _busy(self) -> bool:
+        """Binds held or deferred, set-ups or jobs under way."""
+        with self._lock:
+            return bool(self.setup.in_flight or self.nodes.held or self.nodes.deferred
+                         or self._jobs)
 
     def _settled(self) -> bool:
         with self._lock:
-            busy = bool(self._setups or self._held or self._deferred or self._plan_running
-                        or self._jobs)
+            busy = self._busy() or bool(self.profile.plan_running)
             if self.profile_layer:
-                busy = busy or not self._startup_done or self._duty_needed
+                busy = busy or not self.profile.startup_done or self.profile.duty_needed
             return not busy
 
     def wait_settled(self, timeout: float) -> bool:
@@ -366,6 +381,20 @@ class Arbitrator(BindingMixin, PresenceMixin, SetupMixin, LinksMixin, ProfileMix
         if node_id is None:
             raise TransportError(f"{self.name}: device {DeviceKey(*key)} is not on the bus")
         return node_id
+
+    # -- jobs on the set-up pool ----------------------------------------------------------
+    def _submit_job(self, fn: Callable[..., None], *args: Any) -> None:
+        """Run ``fn(*args)`` on the set-up pool, counted until it calls :meth:`_job_done`."""
+        with self._lock:
+            self._jobs += 1
+        try:
+            self._pool_exec.submit(fn, *args)
+        except RuntimeError:  # closing
+            self._job_done()
+
+    def _job_done(self) -> None:
+        with self._lock:
+            self._jobs -= 1
 
     # -- parameters -----------------------------------------------------------------------
     def get_parameter(self, key: DeviceKey, param: int, channel: int = 0, *,
@@ -398,9 +427,9 @@ class Arbitrator(BindingMixin, PresenceMixin, SetupMixin, LinksMixin, ProfileMix
             device = self._system.device(key)
             if device is not None:
                 learn_value(device, param, channel, value)
-                _only_inputs(device)
+                only_inputs(device)
             if channel == 0 and param == P.DEVICE_BEACON_INTERVAL and len(value) == 2:
-                node = self._nodes.get(self._node_of.get(key, -1))
+                node = self.nodes.node(key)
                 if node is not None:
                     node.beacon_interval = max(int.from_bytes(value, "little"), 1) / 1000.0
 
@@ -415,6 +444,53 @@ class Arbitrator(BindingMixin, PresenceMixin, SetupMixin, LinksMixin, ProfileMix
     def reset_device(self, key: DeviceKey) -> None:
         """Reset Device: it answers, restarts and binds again (then is set up again)."""
         self.requests.reset(self._node_for(key))
+
+    # -- links, plans, transactions (the parts do the work) -------------------------------
+    def add_link(self, link: Link) -> None:
+        """Make a link on the bus; ModelError for what the model refuses (a second source on
+        an input, wrong directions) or an end that is not on the bus.
+
+        A dead link (its output gone) on the same input is replaced.
+        """
+        self.links.add_link(link)
+
+    def remove_link(self, link: Link) -> None:
+        """Remove a link from the model and the bus (ModelError if there is no such link)."""
+        self.links.remove_link(link)
+
+    def apply_plan(self, plan: Plan, progress: Callable[[int, int, str], Any] | None = None,
+                   cancel: threading.Event | None = None) -> TransactionResult:
+        """Carry out an engine plan's actions on the bus, in order, with no interlock (the
+        profile layer's own start-up and duty cycle); log it and return what came of it.
+
+        An action that fails on the wire is reported and skipped, the others go on (status
+        ``failed``, reason naming them). ``cancel`` stops between actions. Changes a person
+        asks for go through :meth:`transact` instead (interlock, verify, all or nothing).
+        """
+        return self.profile.apply_plan(plan, progress, cancel)
+
+    def run_startup(self) -> Plan:
+        """Listing 4.1 / 5.1 with the memory's configuration (or the devices' own)."""
+        return self.profile.run_startup()
+
+    def run_duty_cycle(self) -> Plan:
+        """Listing 4.2: replacements for channels that left, then autoconfigure."""
+        return self.profile.run_duty_cycle()
+
+    def read_policy(self) -> Policy:
+        """The profile-layer policy kept in memory beside the stored configuration; an
+        unreadable memory gives the thesis's default (autoconfigure on)."""
+        return self.transactions.read_policy()
+
+    def transact(self, change: Change, progress: Callable[[int, int, str], Any] | None = None,
+                 cancel: threading.Event | None = None) -> TransactionResult:
+        """Carry ``change`` out as one transaction (reference §5: interlock, write, verify,
+        restore, release); never raises for a bus failure — the result says applied, failed
+        or rolled back, at which step and why."""
+        return self.transactions.transact(change, progress, cancel)
+
+    def _do_link(self, op: str, link: Link) -> None:  # (a test slows a transaction down here)
+        self.transactions.do_link(op, link)
 
     # -- memory ---------------------------------------------------------------------------
     def read_memory(self) -> ConfigCollection:
@@ -435,129 +511,35 @@ class Arbitrator(BindingMixin, PresenceMixin, SetupMixin, LinksMixin, ProfileMix
 
     # -- sending --------------------------------------------------------------------------
     def _send(self, message: Message) -> None:
-        if not self._claim.may_write:
+        if not self.claim.may_write:
             raise TransportError(f"{self.name}: not writing to the bus ({self.bus_state}: "
                                  "another arbitrator is on it or it is still being heard)")
         arbitration_id, data = message.encode()
         if message.mode is Mode.ARBITRATOR and message.node_id:
             with self._lock:
-                node = self._nodes.get(message.node_id)
+                node = self.nodes.by_id.get(message.node_id)
                 if node is not None:
                     node.last_request = time.monotonic()
-        self.conn.send(arbitration_id, data)
+        # On a bus that echoes, the claim accounts for the copies (arb_claim), not the
+        # connection's filter: a copy later than the filter waits must not pass for another
+        # arbitrator's frame.
+        self.claim.sent(arbitration_id, data, time.monotonic())
+        self.conn.send(arbitration_id, data, filter_echo=False)
         if self.frame_events:
             self._frame_event(arbitration_id, data, time.time())
 
     def _send_quiet(self, message: Message) -> None:
-        if not self._claim.may_write or self._disconnected:
+        if not self.claim.may_write or self._disconnected:
             return  # listening, another arbitrator on the bus, or no adapter: say nothing
         try:
             self._send(message)
         except TransportError as err:
             self._error(str(err), "transport")
 
-    def _broadcast_reset(self) -> None:
-        self._send_quiet(Reset(0))
-
     def _frame_event(self, arbitration_id: int, data: bytes, timestamp: float) -> None:
         with self._decoder_lock:
             line = self._decoder.decode(arbitration_id, data, timestamp).line
         self._emit(ev.FrameSeen(timestamp, arbitration_id, bytes(data), line))
-
-    # -- the dispatch thread --------------------------------------------------------------
-    def _run(self) -> None:
-        next_tick = 0.0
-        last = time.monotonic()
-        hold_until = 0.0
-        while not self._stop.is_set():
-            item = self.conn.get(TICK_S)
-            if self._stop.is_set():
-                break
-            try:
-                if isinstance(item, Exception):
-                    self._error(f"the bus reported {item}", "transport")
-                elif callable(item):
-                    item()
-                elif item is not None:
-                    self._on_frame(item)
-                now = time.monotonic()
-                if now - last > STALL_S:  # this process did not run (a loaded PC, a pause):
-                    hold_until = now + STALL_GRACE_S  # frames may still wait in the driver
-                last = now
-                if now >= next_tick and self._claim_tick(now):
-                    next_tick = now + TICK_S
-                    self._flush_errors()
-                    # Presence is judged only when every frame received so far is handled:
-                    # a backlog (a busy machine) must not pass for silent devices.
-                    self._tick(now, self.conn.inbound.empty() and now >= hold_until)
-            except Exception:  # one bad frame or bug must never stop the arbitrator
-                self._crashes.exception("dispatch", "dispatch failed")
-
-    def _bad_frame(self, why: str) -> None:
-        self.bad_frames += 1
-        self._error(f"undecodable frame #{self.bad_frames}: {why}", "bad_frame")
-
-    def _on_frame(self, msg: can.Message) -> None:
-        data = bytes(msg.data)
-        if self.frame_events:
-            self._frame_event(msg.arbitration_id, data, msg.timestamp or time.time())
-        if msg.is_error_frame:
-            self.error_frames += 1
-            self._error(f"error frame #{self.error_frames} on the bus", "error_frame")
-            return
-        if msg.is_extended_id or msg.is_remote_frame:
-            kind = "extended identifier" if msg.is_extended_id else "remote frame"
-            self._bad_frame(f"0x{msg.arbitration_id:X}: {kind} (PDCP uses base data frames)")
-            return
-        now = time.monotonic()
-        aid = msg.arbitration_id
-        node_id = aid & 0xFF
-        if not self._hear_claim(aid, data, now):
-            return  # another arbitrator is on the bus: nothing here is ours to answer
-        if (not aid >> 8 & 1 and aid >> 9 != 3 and 0 < node_id <= NODE_ID_MAX
-                and node_id not in self._nodes and node_id not in self._channel_set):
-            self._foreign_frame(node_id, aid, data, now)
-            return
-        try:
-            message = decode(aid, data, channel_node_ids=self._channel_set)
-        except FrameError as err:
-            self._bad_frame(f"0x{aid:03X} [{data.hex(' ').upper()}]: {err}")
-            return
-        if isinstance(message, ChannelData):
-            self._on_data(message, msg.timestamp or time.time())
-            return
-        if message.mode is Mode.ARBITRATOR:
-            return  # (the claim has already yielded)
-        if isinstance(message, BindRequest):
-            self._on_bind(message, now)
-            return
-        with self._lock:
-            node = self._nodes.get(node_id)
-            if node is not None:
-                node.last_seen = now
-                if isinstance(message, Beacon):
-                    node.last_beacon = now
-        if node is None:  # node 0, or a device that left a moment ago
-            return
-        if isinstance(message, Beacon):
-            self._count_beacon(node, now, self.conn.inbound.empty())
-            return
-        if isinstance(message, UpdateDataChannel):
-            self._on_update(node, message)
-            return
-        if not self._is_echo(node, msg.arbitration_id, data, now):
-            self.requests.feed(message)
-
-    def _on_data(self, message: ChannelData, timestamp: float) -> None:
-        self.data_frames += 1
-        if not self.channel_events:
-            return
-        with self._lock:
-            ref = self._channel_ids.get(message.node_id)
-            ch = self._system.channel(ref) if ref else None
-            kind = ch.type if ch else 0
-        if ref is not None:
-            self._emit(ev.ChannelValue(ref, decode_sample(kind, message.data), timestamp))
 
     # -- reset ----------------------------------------------------------------------------
     def reset(self, keep_memory: bool = True) -> None:
@@ -567,33 +549,17 @@ class Arbitrator(BindingMixin, PresenceMixin, SetupMixin, LinksMixin, ProfileMix
             if not keep_memory:
                 self.memory.erase()
             with self._lock:
-                nodes = list(self._nodes)
-                self._stale_channels = frozenset(self._channel_ids)
-                self._stale_until = time.monotonic() + RESET_GRACE_S
-                self._epoch += 1
-                self._system = System()
-                self._pool.clear()
-                self._nodes.clear()
-                self._node_of.clear()
-                self._refresh_channel_ids()
-                self._held.clear()
-                self._deferred.clear()
-                self._setups.clear()
-                self.duplicates.clear()
-                self._exhausted_reported.clear()
-                self._setup_failures.clear()
-                self._unknown_reset.clear()
-                self._foreign.clear()
-                self._foreign_shown.clear()
-                self._startup_done = False
-                self._duty_needed = False
-                self._last_present = set()
+                node_ids = list(self.nodes.by_id)
                 now = time.monotonic()
-                self._started = self._last_bind = self._last_change = now
-            for node_id in nodes:
+                self.presence.forget(self.nodes.channel_ids, now)
+                self.setup.forget()
+                self._system = System()
+                self.nodes.clear()
+                self.profile.restart(now)
+            for node_id in node_ids:
                 self.requests.abort(node_id, "the arbitrator was reset")
             log.info("%s: reset (%s memory)", self.name, "kept" if keep_memory else "erased")
-            self._broadcast_reset()
+            self._send_quiet(Reset(0))
         self._wake.set()
 
     def devices_present(self) -> list[DeviceKey]:
@@ -609,4 +575,3 @@ class Arbitrator(BindingMixin, PresenceMixin, SetupMixin, LinksMixin, ProfileMix
                 return False
             time.sleep(0.005)
         return True
-

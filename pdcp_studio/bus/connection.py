@@ -187,14 +187,17 @@ class Connection:
         """Frames dropped because the consumer was ``INBOUND_MAX`` frames behind."""
         return self._listener.dropped
 
-    def send(self, arbitration_id: int, data: bytes) -> float:
-        """Send one base frame; returns its timestamp. TransportError if the bus refuses it."""
+    def send(self, arbitration_id: int, data: bytes, *, filter_echo: bool = True) -> float:
+        """Send one base frame; returns its timestamp. TransportError if the bus refuses it.
+
+        ``filter_echo=False``: its echo is not dropped here (the arbitrator's claim accounts
+        for the copies of its own frames itself, however late they come)."""
         import can
 
         if self._closed:
             raise TransportError(f"{self.name}: the bus is closed")
         msg = can.Message(arbitration_id=arbitration_id, data=data, is_extended_id=False)
-        if self.drop_own:
+        if self.drop_own and filter_echo:
             self._remember(arbitration_id, bytes(data))
         with self._send_lock:
             if self.pace_s:

@@ -18,8 +18,8 @@ from typing import Protocol
 
 from pdcp_studio.bus.signals import decode_sample, encode_sample, synthetic_value
 from pdcp_studio.errors import FrameError, ParameterError
+from pdcp_studio.model import param_fields
 from pdcp_studio.model import parameters as P
-from pdcp_studio.model.refs import Direction
 from pdcp_studio.model.system import Device
 from pdcp_studio.protocol import (
     Beacon,
@@ -74,50 +74,18 @@ class State(Enum):
 
 
 def _param_table(device: Device) -> tuple[dict[tuple[int, int], bytes], set[tuple[int, int]]]:
-    """(parameter, channel) → bytes for every parameter the device has, and the volatile keys."""
-    enc = P.encode_value
-    dev = P.device_parameter
-    channel_count = max(device.channels, default=0)
-    nv: dict[tuple[int, int], bytes] = {
-        (P.DEVICE_VID_PID, 0): enc(dev(P.DEVICE_VID_PID), (device.vid, device.pid)),
-        (P.DEVICE_SERIAL, 0): enc(dev(P.DEVICE_SERIAL), device.serial),
-        (P.DEVICE_EAN_LOW, 0): enc(dev(P.DEVICE_EAN_LOW), device.ean_low),
-        (P.DEVICE_EAN_HIGH, 0): enc(dev(P.DEVICE_EAN_HIGH), device.ean_high),
-        (P.DEVICE_VERSION, 0): enc(dev(P.DEVICE_VERSION), (device.fw_version, device.hw_version)),
-        (P.DEVICE_TYPE_PROFILE, 0): enc(dev(P.DEVICE_TYPE_PROFILE),
-                                        (device.device_type, device.device_profile)),
-        (P.DEVICE_DESCRIPTOR, 0): enc(dev(P.DEVICE_DESCRIPTOR), device.descriptor or device.name),
-        (P.DEVICE_NODE_ID, 0): b"\0",
-        (P.DEVICE_CHANNEL_COUNT, 0): enc(dev(P.DEVICE_CHANNEL_COUNT), channel_count),
-        (P.DEVICE_BEACON_INTERVAL, 0): enc(dev(P.DEVICE_BEACON_INTERVAL), device.beacon_interval),
-        (P.DEVICE_ACK_TIMEOUT, 0): enc(dev(P.DEVICE_ACK_TIMEOUT), device.ack_timeout),
-        (P.DEVICE_BIND_TIMEOUT, 0): enc(dev(P.DEVICE_BIND_TIMEOUT), device.bind_timeout),
-    }
+    """(parameter, channel) → bytes for every parameter the device has, and the volatile keys
+    (the model's values through the catalog's field mapping; a device with no descriptor
+    of its own tells its name)."""
+    nv = param_fields.parameter_table(device)
+    nv[P.DEVICE_DESCRIPTOR, 0] = P.encode_value(P.device_parameter(P.DEVICE_DESCRIPTOR),
+                                                device.descriptor or device.name)
     volatile = {(P.DEVICE_NODE_ID, 0)}
     for ch in device.channels.values():
-        i, d = ch.index, ch.direction
-
-        def put(pid: int, value: object, ch_index: int = i, direction: Direction = d) -> None:
-            nv[pid, ch_index] = enc(P.channel_parameter(pid, direction), value)
-
-        put(P.CH_TYPE_PROFILE, (ch.type, ch.profile))
-        put(P.CH_DESCRIPTOR, ch.descriptor)
-        put(P.CH_TRANSFER_TYPE, d.transfer_type)
-        put(P.CH_DATA_ENABLED, 0)
-        put(P.CH_REQUIRED_INPUTS, ch.required_inputs)
-        put(P.CH_DESIRED_INPUTS, ch.desired_inputs)
-        volatile.add((P.CH_DATA_ENABLED, i))
-        if ch.is_input:
-            s = ch.source
-            put(P.IN_SOURCE_VID_PID, (s.vid, s.pid))
-            put(P.IN_SOURCE_SN_INDEX, (s.serial, s.index))
-            put(P.IN_SOURCE_NODE_IDS, (0, 0))
-            put(P.IN_SOURCE_TYPE_PROFILE, (s.type, s.profile))
-            put(P.IN_TERMINAL_PROFILE, ch.terminal_profile)
-            volatile.add((P.IN_SOURCE_NODE_IDS, i))
-        else:
-            put(P.OUT_NODE_ID, 0)
-            volatile.add((P.OUT_NODE_ID, i))
+        volatile.add((P.CH_DATA_ENABLED, ch.index))
+        volatile.add((P.IN_SOURCE_NODE_IDS if ch.is_input else P.OUT_NODE_ID, ch.index))
+    for key in volatile:  # power-on: no node IDs, nothing enabled
+        nv[key] = bytes(len(nv[key]))
     return nv, volatile
 
 

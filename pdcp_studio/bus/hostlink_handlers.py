@@ -170,7 +170,7 @@ class Handlers:
     def status(self, body: bytes) -> bytes:
         system = self.arb.system()
         flags = ((1 if self.arb.wait_settled(0) else 0) | (2 if self.arb.startup_done else 0)
-                 | (4 if getattr(self.arb, "_other_arbitrator", False) else 0))
+                 | (4 if getattr(self.arb, "yielded", False) else 0))
         return hm.STATUS.pack(flags, min(len(system.devices), 255), len(system.links),
                               self.server.changes, self.server.events_lost & 0xFFFF)
 

@@ -61,7 +61,7 @@ class MonitorFeed:
             return
         aid = event.arbitration_id
         node = aid & 0xFF
-        data_frame = not aid >> 8 & 1 and node in getattr(arbitrator, "_channel_set", ())
+        data_frame = not aid >> 8 & 1 and node in getattr(arbitrator, "channel_node_ids", ())
         with self._lock:
             if data_frame:
                 if self._on_counts:

@@ -220,7 +220,8 @@ _DESCRIPTIONS = {
     "thesis-test3": "Thesis test 3: recall of the stored configuration after a reset",
     "thesis-test4": "Thesis test 4: replacement of a joystick by a different one",
     "thesis-test5": "Thesis test 5: a replaced arbitrator rebuilds from the devices",
-    "transradial": "Transradial prosthesis: two EMG sites, a control unit and a hand",
+    "transradial": "Transradial prosthesis: two EMG sites, a control unit and a hand, with a "
+                   "spare hand to swap in",
     "appendix-d": "Appendix D: the thesis rig after test 5, links stored on the devices",
     LARGE: "A generated 32-device rig (8 arms of 4 devices) for scans and benchmarks",
     "full": "Every node ID 1–254 in use: 23 arms of 4 devices and a battery pack "
@@ -297,6 +298,29 @@ def _file_loader(path: Path) -> Callable[[], System]:
     return load
 
 
+#: The transradial rig's hand and its spare (issue 11): the spare is simulated but not plugged
+#: in, so a new user can swap it in from the Simulator panel (the hand unplugged, the spare
+#: plugged in). It is not in the system file: opened as a file, the rig is its four parts.
+HAND, SPARE_HAND = DeviceKey(2641, 769, 301), DeviceKey(2641, 769, 302)
+
+
+def with_spare_hand(load: Callable[[], System]) -> Callable[[], System]:
+    """``load`` with a second, unplugged hand of the same product beside the hand."""
+    def loader() -> System:
+        import copy
+        import dataclasses
+
+        system = load()
+        hand = system.device(HAND)
+        if hand is not None and system.device(SPARE_HAND) is None:
+            system.add_device(dataclasses.replace(
+                hand, serial=SPARE_HAND.serial, name="Spare hand", present=False,
+                node_id=None, channels=copy.deepcopy(hand.channels)))
+        return system
+
+    return loader
+
+
 @cache
 def _registry() -> dict[str, Prosthesis]:
     from pdcp_studio.paths import systems_dir
@@ -307,8 +331,11 @@ def _registry() -> dict[str, Prosthesis]:
         scripts = _THESIS_SCRIPTS.get(name)
         if scripts is None:
             scripts = _scripts_from_file(files[name])
+        load = _file_loader(files[name])
+        if name == "transradial":
+            load = with_spare_hand(load)
         entries[name] = Prosthesis(name, _DESCRIPTIONS.get(name, f"System file {name}.json"),
-                                   _file_loader(files[name]), scripts,
+                                   load, scripts,
                                    _DATA_RATES_HZ.get(name))
     large = large_system()
     keys = list(large.devices)

@@ -171,6 +171,24 @@ def bitrate_warning(spec: BusSpec) -> str:
             "(reference §1); PDCP devices will not be heard")
 
 
+#: python-can options that make an interface listen only (it never acknowledges nor sends).
+LISTEN_ONLY: dict[str, dict[str, Any]] = {
+    "slcan": {"listen_only": True},
+    "vector": {"listen_only": True},
+    "kvaser": {"driver_mode": False},  # canlib's DRIVER_MODE_SILENT
+}
+
+
+def listen_only_options(spec: BusSpec) -> dict[str, Any]:
+    """The options that open ``spec``'s interface listen-only, where python-can has them
+    (a passive monitor must not even acknowledge frames)."""
+    if spec.interface == "pcan":
+        import can
+
+        return {"state": can.BusState.PASSIVE}
+    return dict(LISTEN_ONLY.get(spec.interface, {}))
+
+
 #: Interfaces without a CAN bitrate of their own (simulated buses).
 _NO_BITRATE = ("virtual", "udp_multicast")
 

@@ -15,6 +15,7 @@ from __future__ import annotations
 
 import argparse
 import importlib
+import logging
 import sys
 from collections.abc import Sequence
 
@@ -63,7 +64,29 @@ def build_parser() -> argparse.ArgumentParser:
     return parser
 
 
+class _StderrWarnings(logging.Handler):
+    """A warning the user must see (a bitrate other than PDCP's) on stderr as one line with
+    the program's prefix, like its errors; the stream is looked up at each line."""
+
+    def __init__(self) -> None:
+        super().__init__(logging.WARNING)
+        self.setFormatter(logging.Formatter("pdcp-studio: warning: %(message)s"))
+
+    def emit(self, record: logging.LogRecord) -> None:
+        try:
+            print(self.format(record), file=sys.stderr)
+        except Exception:
+            self.handleError(record)
+
+
+def _warnings_to_stderr() -> None:
+    logger = logging.getLogger("pdcp_studio.bus.urls")
+    if not any(isinstance(h, _StderrWarnings) for h in logger.handlers):
+        logger.addHandler(_StderrWarnings())
+
+
 def main(argv: Sequence[str] | None = None) -> int:
+    _warnings_to_stderr()
     parser = build_parser()
     args = parser.parse_args(argv)
     if args.command is None:

@@ -1,12 +1,20 @@
-"""The named profile tree: human names for profile paths (thesis figure 4.6).
+"""Named profile trees: human names for profile paths (thesis figure 4.6).
 
 Trees are JSON resources (``pdcp-profile-tree/1``) that users edit and extend with
-vendor trees; several trees merge into one lookup. Pure: file I/O is in
-:mod:`pdcp_studio.storage.profile_tree_file`.
+vendor trees. Two are shipped, each named and standing alone: the prosthetic tree (hand,
+wrist, elbow, EMG, control unit…, figure 4.6's example extended) and the thesis test
+tree (chapter 6's LEDs and joystick). Their values overlap (both use the root ``0x2``), so
+they are never merged: :func:`best_tree` picks the one that names a system's channels.
+
+A tree may say who assigns its odd components (``vendor``): odd components are reserved
+for vendors (reference §1), so a tree's odd nodes are "vendor-reserved" only when it does
+not (the thesis's own test hierarchy uses ``0x1``, assigned by its author). Pure: file
+I/O is in :mod:`pdcp_studio.app.profile_tree_editor` and :mod:`pdcp_studio.app.document`.
 """
 
 from __future__ import annotations
 
+from collections.abc import Iterable
 from dataclasses import dataclass, field
 from typing import Any
 
@@ -42,6 +50,17 @@ class ProfileTree:
 
     name: str = "profiles"
     roots: list[ProfileNode] = field(default_factory=list)
+    #: Who assigns this tree's odd (vendor) components; '' when nobody does.
+    vendor: str = ""
+    description: str = ""
+
+    def is_vendor_reserved(self, node: ProfileNode) -> bool:
+        """An odd component no vendor of this tree has assigned: reserved, not to be used."""
+        return node.vendor_reserved and not self.vendor
+
+    def names_exactly(self, profile: int) -> bool:
+        """True when the tree has a node for exactly ``profile``."""
+        return self.node(profile) is not None
 
     # -- lookup -----------------------------------------------------------------
     def node_path(self, profile: int) -> list[ProfileNode]:
@@ -161,7 +180,8 @@ class ProfileTree:
                     merge_into(d.children, s.children)
             dst.sort(key=lambda n: n.component)
 
-        result = ProfileTree(self.name, [copy(r) for r in self.roots])
+        result = ProfileTree(self.name, [copy(r) for r in self.roots], self.vendor,
+                             self.description)
         merge_into(result.roots, other.roots)
         return result
 
@@ -176,7 +196,13 @@ class ProfileTree:
             return d
 
         nodes = [node_json(r) for r in self.roots]
-        return {"format": TREE_FORMAT, "name": self.name, "nodes": nodes}
+        doc: dict[str, Any] = {"format": TREE_FORMAT, "name": self.name}
+        if self.description:
+            doc["description"] = self.description
+        if self.vendor:
+            doc["vendor"] = self.vendor
+        doc["nodes"] = nodes
+        return doc
 
     @classmethod
     def from_json(cls, doc: object, where: str = "") -> ProfileTree:
@@ -207,4 +233,19 @@ class ProfileTree:
                 nodes.append(ProfileNode(item["name"], comp, children, item.get("description", "")))
             return nodes
 
-        return cls(str(doc.get("name", "profiles")), parse(doc.get("nodes", []), "nodes", 1))
+        for key in ("vendor", "description"):
+            if not isinstance(doc.get(key, ""), str):
+                raise ProfileError(f"{where}: {key}: must be text")
+        return cls(str(doc.get("name", "profiles")), parse(doc.get("nodes", []), "nodes", 1),
+                   doc.get("vendor", ""), doc.get("description", ""))
+
+
+def best_tree(trees: list[ProfileTree], profiles: Iterable[int]) -> ProfileTree:
+    """The tree that names the most of ``profiles`` exactly (ties: the earlier tree); the
+    first tree when none names any. Never a mix: two trees' overlapping values would give
+    names from both (``Terminal Device › Axis``)."""
+    if not trees:
+        return ProfileTree("profiles")
+    wanted = [p for p in profiles if p]
+    scores = [sum(1 for p in wanted if t.names_exactly(p)) for t in trees]
+    return trees[max(range(len(trees)), key=lambda i: (scores[i], -i))]

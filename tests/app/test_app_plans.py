@@ -30,12 +30,15 @@ def test_autoconfigure_preview_then_apply_and_undo(window):
     assert plan is not None and len(plan.actions) == 5
     # Drawn on the graph as additions, listed with reasons and similarity breakdowns.
     assert [i.kind for i in scene.preview_items] == ["add"] * 5
-    assert panel.actions_view.topLevelItemCount() == 5
-    first = panel.actions_view.topLevelItem(0)
-    assert first.text(0).endswith("+ add")
-    children = [first.child(i).text(0) for i in range(first.childCount())]
-    assert any(t.startswith("why: terminal channel") for t in children)
-    assert any("profile 3 levels" in t for t in children)
+    view = panel.actions_view
+    assert view.rowCount() == 5
+    assert [view.item(0, c).text() for c in (0, 1)] == ["1.", "Add"]
+    # Plain words in the table; the engine's words in the selected row's detail.
+    assert "drives a part of the prosthesis" in view.item(0, 3).text()
+    assert "0x" not in view.item(0, 2).text() and "terminal" not in view.item(0, 3).text()
+    view.selectRow(0)
+    detail = panel.detail.toPlainText()
+    assert "terminal channel" in detail and "profile 3 levels" in detail
     assert "add 5, remove 0" in panel.summary.text()
     # Nothing changed yet.
     assert not doc.system.links and doc.undo_stack.count() == 0

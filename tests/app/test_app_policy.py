@@ -115,8 +115,8 @@ def test_turning_autoconfigure_off_is_a_recorded_transaction(live, qtbot, tmp_pa
 
     # The fitting report states the policy (and its checks use it).
     html = report.report_html(doc.system, doc.tree, fitting=live.fitting_info())
-    assert "autoconfigure off" in html
-    assert "not connected — autoconfigure is off" in html
+    assert "Autoconfigure: <b>off</b>" in html
+    assert "Autoconfigure is off on this prosthesis" in html  # the checks, in plain words
     pdf = tmp_path / "report.pdf"
     assert live.write_fitting_report(pdf)
     assert pdf.read_bytes().startswith(b"%PDF")
@@ -145,7 +145,7 @@ def test_declining_changes_nothing(live, qtbot):
 
 def test_the_report_states_autoconfigure_on(live):
     html = report.report_html(live.doc.system, live.doc.tree, fitting=live.fitting_info())
-    assert "autoconfigure on" in html
+    assert "Autoconfigure: <b>on</b>" in html
 
 
 def test_the_policy_reads_in_german(make_window, qtbot):

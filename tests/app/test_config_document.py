@@ -208,7 +208,9 @@ def test_checks_name_the_links_and_selecting_a_finding_selects_them(main_window,
         codes = [f.code for f in window.findings]
         assert codes[0] == "two-sources"
         first = window.checks.item(0)
-        assert first.text().startswith("Error: input 2/2/6#2 is given 2 sources")
+        assert first.text().startswith("Error: Thesis test node (serial 6), channel 2 is given "
+                                       "more than one source (links 1, 2)")
+        assert "input 2/2/6#2 is given 2 sources" in first.toolTip()  # the engineer's words
         window._on_finding(first)
         assert window.selected_links() == [0, 1]
         window.select_links([1])
@@ -243,7 +245,9 @@ def test_fit_to_a_system_file_shows_presence_replacement_and_start_up_choice(
         assert window.fit_choice.text().startswith("At start-up: the only stored "
                                                    "configuration 1")
         texts = [window.fit_list.item(i).text() for i in range(window.fit_list.count())]
-        assert texts[0].startswith("Link 1: ") and "\ninput missing: replaced by" in texts[0]
+        assert texts[0].startswith("Link 1: ") and "\nthe input is missing: replaced by" in texts[0]
+        assert "/" not in texts[0].partition("\n")[2]  # no raw references in the words
+        assert "input missing: replaced by" in window.fit_list.item(0).toolTip()
         assert texts[1].startswith("What start-up would do") and len(texts) == 2 + len(
             fit.plan.actions)
         # Back to the main window's prosthesis (transradial): nothing of test 1 there.
@@ -331,3 +335,26 @@ def test_add_link_and_channel_dialogs(qtbot):
     assert edit.values() == (0x9000, 8720)
     edit.type_edit.setText("nine")
     assert edit.values() is None
+
+
+def test_the_window_speaks_plainly_with_codes_one_hover_away(main_window, pdcfg):
+    """Issue 11: the links table and the checks say what a channel carries and in what form,
+    in words; the hex codes and the engine's rule keys are in the tooltips."""
+    import re
+
+    window = _open(main_window, pdcfg)
+    try:
+        table = window.links
+        headers = [table.horizontalHeaderItem(c).text() for c in range(table.columnCount())]
+        assert "Type" not in headers and "Profile" not in headers
+        cells = [table.item(r, c).text() for r in range(table.rowCount())
+                 for c in range(table.columnCount())]
+        assert cells and not [t for t in cells if re.search(r"0x[0-9A-F]", t)], cells
+        assert any("Power Grip" in t for t in cells) and any("bits" in t for t in cells)
+        tips = [table.item(r, c).toolTip() for r in range(table.rowCount()) for c in (2, 3)]
+        assert any(t.startswith("type 0x") for t in tips)
+        assert any(t.startswith("profile 0x") for t in tips)
+        for i in range(window.checks.count()):
+            assert not re.search(r"\d+/\d+/\d+#\d+|0x[0-9A-F]", window.checks.item(i).text())
+    finally:
+        _close(window)

@@ -4,10 +4,17 @@ from __future__ import annotations
 
 from pathlib import Path
 
+from PySide6.QtCore import QPoint, QRect
+
 from pdcp_studio.app.graph.view import FIT_MAX_ZOOM
 
 ROOT = Path(__file__).resolve().parents[2]
 SMALL = ROOT / "resources" / "systems" / "thesis-test1.json"
+
+
+def _global(widget):
+    """A widget's rectangle in global (screen) coordinates."""
+    return QRect(widget.mapToGlobal(QPoint(0, 0)), widget.size())
 
 
 def _visible(view):
@@ -24,10 +31,12 @@ def test_fit_shows_every_card_of_the_large_rig(make_window, qtbot):
     qtbot.wait(50)
     seen = _visible(window.view)
     view = window.view
-    legend = view.legend.geometry().translated(-view.viewport().pos())
+    assert view.legend.isVisible()
+    legend = _global(view.legend)
     for key, card in window.scene.cards.items():
         assert seen.contains(card.sceneBoundingRect()), (key, seen, card.sceneBoundingRect())
         on_screen = view.mapFromScene(card.sceneBoundingRect()).boundingRect()
+        on_screen.translate(view.viewport().mapToGlobal(QPoint(0, 0)))
         assert not on_screen.intersects(legend), (key, on_screen, legend)  # not covered
 
 

@@ -5,6 +5,7 @@ from __future__ import annotations
 import time
 from pathlib import Path
 
+from PySide6.QtCore import QRectF
 from PySide6.QtGui import QImage, QPainter
 
 from pdcp_studio.app.document import Document
@@ -182,9 +183,15 @@ def test_unnamed_devices_take_catalogue_names_and_hex_moves_to_tooltips(qtbot):
     names = {tree.topLevelItem(i).text(0) for i in range(tree.topLevelItemCount())}
     assert f"Multi-grip hand (serial {hand_key.serial})" in names
     assert "unknown device (4242/7/3)" in names
-    # The card still paints (no hex column left to size the row text against).
+    # The card still paints (no hex column left to size the row text against), its rows
+    # named from the profile tree.
+    scene.render_pending()
     image = QImage(int(hand.width), int(hand.height), QImage.Format.Format_ARGB32)
     image.fill(0)
     painter = QPainter(image)
-    hand.paint(painter, None)
+    scene.render(painter, QRectF(image.rect()), hand.sceneBoundingRect())
     painter.end()
+    assert image.pixelColor(int(hand.width / 2), 10).alpha() > 0
+    texts = hand.texts()
+    assert scene.device_label(hand.device) in texts
+    assert all(not t.startswith("0x") for t in texts)

@@ -177,8 +177,10 @@ def test_sim_panel_lists_devices_and_follows_a_hot_swap(qtbot, make_bridge):
     bridge = make_bridge()
     panel = SimPanel(bridge)
     qtbot.addWidget(panel)
-    qtbot.waitUntil(lambda: panel.tree.topLevelItemCount() == 4, timeout=5000)
+    # the four parts and the spare hand, simulated but not plugged in
+    qtbot.waitUntil(lambda: panel.tree.topLevelItemCount() == 5, timeout=5000)
     assert panel.state(HAND) == (True, True)
+    assert panel.state(DeviceKey(2641, 769, 302))[0] is False
     assert panel.script_combo.count() == len(bridge.script_names())
     assert panel.script_info.text()  # the selected script is described
 
@@ -189,14 +191,14 @@ def test_sim_panel_lists_devices_and_follows_a_hot_swap(qtbot, make_bridge):
     qtbot.waitUntil(lambda: panel.state(HAND) == (False, False), timeout=5000)
     qtbot.waitUntil(lambda: panel.plug_button.isEnabled(), timeout=5000)
     assert any("left the bus" in line for line in panel.log_lines())
-    row = next(panel.tree.topLevelItem(i) for i in range(4)
+    row = next(panel.tree.topLevelItem(i) for i in range(5)
                if panel.tree.topLevelItem(i).text(1) == str(HAND))
     assert (row.text(2), row.text(3)) == ("off", "left")
 
     with qtbot.waitSignal(bridge.deviceJoined, timeout=5000):
         panel.plug_button.click()
     qtbot.waitUntil(lambda: panel.state(HAND) == (True, True), timeout=5000)
-    assert any("Hand (2641/769/301) joined the bus" in line for line in panel.log_lines())
+    assert any("Hand joined the bus" in line for line in panel.log_lines())
 
 
 def test_sim_panel_replaces_a_device_by_an_unplugged_one(qtbot, make_bridge):
@@ -244,7 +246,7 @@ def test_sim_panel_resets_the_arbitrator_with_and_without_memory(qtbot, make_bri
 def test_a_deleted_sim_panel_does_not_break_the_bridge(qtbot, make_bridge):
     bridge = make_bridge()
     panel = SimPanel(bridge)
-    qtbot.waitUntil(lambda: panel.tree.topLevelItemCount() == 4, timeout=5000)
+    qtbot.waitUntil(lambda: panel.tree.topLevelItemCount() == 5, timeout=5000)
     panel.deleteLater()
     qtbot.wait(10)  # the panel is gone; the bridge's signals must not reach it
     with qtbot.waitSignal(bridge.deviceLeft, timeout=5000):

@@ -4,7 +4,7 @@ detection on a worker."""
 from __future__ import annotations
 
 import pytest
-from PySide6.QtCore import QSettings
+from PySide6.QtCore import QSettings, Qt
 
 from pdcp_studio.app import connect_dialog as cd
 from pdcp_studio.app.connect_dialog import ConnectDialog
@@ -110,14 +110,30 @@ def test_can_detection_runs_on_a_worker_and_fills_the_channels(qtbot, ini, monke
     page = dialog.pages["can"]
     with qtbot.waitSignal(page.detected, timeout=10_000):
         page.detect()
+        # Busy while it looks: the button says so and the status says what is going on.
         assert not page.detect_button.isEnabled()
+        assert page.detect_button.text() == "Detecting…"
+        assert "Looking for adapters" in page.status.text()
+        assert page.cursor().shape() == Qt.CursorShape.BusyCursor
     assert calls == [False]  # probed off the GUI thread
-    assert page.detect_button.isEnabled()
-    assert page.status.text() == "Found: virtual"
+    assert page.detect_button.isEnabled() and page.detect_button.text() == "Detect"
+    n = len({c["channel"] for c in detect()})
+    assert page.status.text().startswith(f"Found {n} CAN channel(s): ")
+    assert "virtual:vcan-test" in page.status.text()
     assert page.interface.currentText() == "virtual"
     channels = [page.channel.itemText(i) for i in range(page.channel.count())]
     assert "vcan-test" in channels
     assert dialog.url().startswith("can:virtual:")
+
+
+def test_can_detection_that_finds_nothing_says_so(qtbot, ini, monkeypatch):
+    monkeypatch.setattr(cd, "detect_can_configs", lambda progress=None, cancel=None: [])
+    dialog = _dialog(qtbot, ini, initial_url="can:socketcan:can0")
+    page = dialog.pages["can"]
+    with qtbot.waitSignal(page.detected, timeout=5000):
+        page.detect()
+    assert page.status.text().startswith("No CAN adapter found.")
+    assert dialog.url().startswith("can:socketcan:can0")  # what was typed stays
 
 
 def test_detection_failure_is_shown(qtbot, ini, monkeypatch):

@@ -24,7 +24,7 @@ pytestmark = pytest.mark.gui
 @pytest.fixture
 def editor(qtbot, resources, tmp_path):
     path = tmp_path / "tree.json"
-    path.write_text((resources / "profiles" / "thesis-fig4.6.json").read_text("utf-8"), "utf-8")
+    path.write_text((resources / "profiles" / "prosthesis.json").read_text("utf-8"), "utf-8")
     widget = ProfileTreeEditor(load_tree(path), path)
     qtbot.addWidget(widget)
     return widget
@@ -39,24 +39,24 @@ def _row(editor: ProfileTreeEditor, profile: int) -> list[str]:
 def test_add_rename_renumber_with_vendor_mark_and_undo(editor):
     assert _row(editor, 0x4620) == ["Wrist", "0x2", "0x4620", ""]
     new = editor.add_child(0x4000, "Temperature")  # under Sensor: first free even component
-    assert new == 0x4A00
-    assert _row(editor, 0x4A00) == ["Temperature", "0xA", "0x4A00", ""]
-    assert editor.rename(0x4A00, "Skin temperature")
-    assert editor.rename(0x4A00, "Skin temperature") is False  # a no-op pushes nothing
-    moved = editor.renumber(0x4A00, 0x5)  # odd: reserved for vendors
+    assert new == 0x4E00
+    assert _row(editor, 0x4E00) == ["Temperature", "0xE", "0x4E00", ""]
+    assert editor.rename(0x4E00, "Skin temperature")
+    assert editor.rename(0x4E00, "Skin temperature") is False  # a no-op pushes nothing
+    moved = editor.renumber(0x4E00, 0x5)  # odd: reserved for vendors
     assert moved == 0x4500
     assert _row(editor, 0x4500) == ["Skin temperature", "0x5", "0x4500", VENDOR]
     assert editor.tree.node(0x4500).vendor_reserved
     assert editor.undo_stack.count() == 3 and editor.dirty
 
     editor.undo_stack.undo()  # renumber
-    assert editor._item(0x4500) is None and _row(editor, 0x4A00)[0] == "Skin temperature"
+    assert editor._item(0x4500) is None and _row(editor, 0x4E00)[0] == "Skin temperature"
     editor.undo_stack.undo()  # rename
-    assert _row(editor, 0x4A00)[0] == "Temperature"
+    assert _row(editor, 0x4E00)[0] == "Temperature"
     editor.undo_stack.undo()  # add
-    assert editor.tree.node(0x4A00) is None and not editor.dirty
+    assert editor.tree.node(0x4E00) is None and not editor.dirty
     editor.undo_stack.redo()
-    assert editor.tree.node(0x4A00).name == "Temperature"
+    assert editor.tree.node(0x4E00).name == "Temperature"
 
 
 def test_a_subtree_moves_with_a_renumbered_node(editor):
@@ -120,7 +120,7 @@ def test_save_failure_and_bad_file_are_reported(qtbot, editor, tmp_path):
 
 
 def test_dialog_asks_before_discarding_unsaved_edits(qtbot, resources, monkeypatch):
-    dialog = ProfileTreeDialog(load_tree(resources / "profiles" / "thesis-fig4.6.json"))
+    dialog = ProfileTreeDialog(load_tree(resources / "profiles" / "prosthesis.json"))
     qtbot.addWidget(dialog)
     dialog.show()
     dialog.editor.add_child(0x2000, "Hook")
@@ -144,3 +144,40 @@ def test_new_trees_are_offered_in_the_user_profile_folder(tmp_path, monkeypatch)
     assert path.parent.is_dir()
     monkeypatch.setattr(document, "user_profiles_dir", lambda: None)
     assert default_save_path(ProfileTree("x")).name == "x.json"
+
+
+def test_the_shipped_trees_are_two_named_trees_with_no_vendor_reserved_node(qtbot):
+    """Issue 11: the prosthetic tree and the thesis test tree are shown apart, by name, and
+    none of their shipped nodes is marked vendor-reserved."""
+    from pdcp_studio.app.document import load_profile_trees
+
+    trees = load_profile_trees(user_dir=False)
+    dialog = ProfileTreeDialog(trees=trees)
+    dialog.confirm_discard = lambda: True  # closing at teardown must not ask (modal)
+    qtbot.addWidget(dialog)
+    dialog.show()
+    names = [dialog.tabs.tabText(i) for i in range(dialog.tabs.count())]
+    assert names == ["Prosthesis", "Thesis test rig"]
+    for i, editor in enumerate(dialog.editors):
+        dialog.tabs.setCurrentIndex(i)
+        assert dialog.editor is editor
+        rows = [_row(editor, value) for value, _node in editor.tree.walk()]
+        assert rows and all(r[3] == "" for r in rows), editor.tree.name
+    prosthesis, tests = dialog.editors
+    assert _row(prosthesis, 0x2220)[0] == "Power Grip"
+    assert _row(tests, 0x2120)[0] == "Y"
+    assert prosthesis._item(0x2100) is None  # no joystick axis in the prosthetic tree
+    # An edit in one tab is that tree's only, and reported for the window.
+    with qtbot.waitSignal(dialog.treesChanged):
+        dialog.editors[1].add_child(0x1000, "Ring")
+    assert trees[1].node(0x1400).name == "Ring" and trees[0].node(0x1400) is None
+
+
+def test_a_vendors_odd_node_added_to_the_prosthetic_tree_is_still_marked(qtbot):
+    from pdcp_studio.app.document import load_profile_trees
+
+    prosthesis = load_profile_trees(user_dir=False)[0]
+    editor = ProfileTreeEditor(prosthesis)
+    qtbot.addWidget(editor)
+    new = editor.add_child(0x4000, "Vendor sensor", component=0xB)
+    assert _row(editor, new)[3] == VENDOR

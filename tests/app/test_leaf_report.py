@@ -65,7 +65,7 @@ def test_report_prints_a_given_stored_configuration_checksum(qtbot, tmp_path, re
     pages, text = _pdf_text(qtbot, out)
     assert pages == 1
     assert f"0x{_crc_of_encoding(stored):04X}" in text
-    assert "3 link(s) in 2 configuration(s)" in text
+    assert "3 link(s) in 2 set-up(s)" in text
 
 
 def test_a_32_device_rig_still_fits_on_one_page(qtbot, tmp_path):
@@ -85,3 +85,34 @@ def test_unwritable_path_raises(tmp_path, systems_dir):
     with pytest.raises(OSError):
         write_report(tmp_path / "no-such-dir" / "r.pdf", system,
                      load_profile_tree(user_dir=False))
+
+
+def test_the_report_speaks_plainly_with_the_detail_in_its_own_section(systems_dir):
+    """Issue 11: no raw keys, internal codes, hex without words or command names in the
+    report's body; the engineer's codes are in the Technical detail section at the end."""
+    import re
+
+    from pdcp_studio.app.document import load_profile_trees, tree_for
+    from pdcp_studio.app.report import FittingInfo, action_words, report_html
+    from pdcp_studio.engine import plan_autoconfigure
+
+    system = system_file.load_path(systems_dir / "transradial.json")
+    plan_autoconfigure(system).apply(system)
+    tree = tree_for(load_profile_trees(user_dir=False), system)
+    info = FittingInfo("P-1", "A. Prosthetist", None, "sim:transradial",
+                       [{"id": 1, "action": "apply autoconfigure", "outcome":
+                         {"status": "applied"}, "plan": {"actions": [{"op": "add"}]}},
+                        {"id": 2, "action": "config write", "outcome": {"status": "failed"}}])
+    html = report_html(system, tree, fitting=info, checksum=0x1234)
+    body, _, detail = html.partition("Technical detail")
+    assert detail and "0x2220" in detail and "VID 0x0A51" in detail
+    text = re.sub(r"<[^>]+>", " ", body)
+    assert "Check number" in text and "0x1234" in text  # hex, with its words
+    hexes = set(re.findall(r"0x[0-9A-Fa-f]+", text))
+    assert hexes == {"0x1234"}, hexes
+    for raw in ("terminal-unconnected", "required-unmet", "apply autoconfigure",
+                "config write", "pdcp-studio", "CRC-16"):
+        assert raw not in text, raw
+    assert "Autoconfigure carried out" in text and "Stored set-up written" in text
+    assert "Power Grip" in text and "2641 / 769 / 301" in text
+    assert action_words("undo write to prosthesis") == "Undone: Changes written to the prosthesis"

@@ -115,6 +115,9 @@ def _data_strings(window) -> set[str]:
         out.add(device.name or "")
         for ch in device.channels.values():
             out.add(ch.descriptor or "")
+    bridge = window.live.bridge  # the Simulator panel lists the simulated parts by name
+    if bridge is not None and bridge.is_sim:
+        out.update(name for _key, name, _plugged in bridge.session.sim_devices())
     tree = window.tree  # the device list shows names and profiles: data, not the app's words
     for i in range(tree.topLevelItemCount()):
         top = tree.topLevelItem(i)

@@ -208,3 +208,86 @@ def test_a_replaced_arbitrators_bus_is_taken_over_thesis_test_5():
         new.close()
         tap.close()
         host.close()
+
+
+# -- our own frames handed back by an echoing bus (can:udp_multicast) -------------------------
+def test_the_copy_of_our_own_frame_is_ours_however_late():
+    claim = BusClaim(0.0, listen_s=0.0, own_echoes=True)
+    beacon = frame(Beacon(0, mode=Mode.ARBITRATOR))
+    for t in (0.0, 0.5, 1.0):
+        assert claim.beacon_due(t)
+        claim.sent(*beacon, t)
+    claim.sent(*frame(Reset(0)), 0.0)
+    assert claim.is_own_echo(*beacon, 0.01)  # on time
+    assert claim.is_own_echo(*beacon, 9.0)  # 8.5 s late: still one of ours
+    assert claim.is_own_echo(*frame(Reset(0)), 9.0)
+    assert claim.is_own_echo(*beacon, 9.1)
+    assert not claim.is_own_echo(*beacon, 9.2)  # a fourth copy of three beacons:
+    decision = claim.heard(*beacon, 9.2)  # someone else's
+    assert decision is not None and decision.later and not claim.may_write
+
+
+def test_without_echoes_every_mode_1_frame_is_anothers():
+    claim = BusClaim(0.0, listen_s=0.0)  # a bus that never hands our frames back
+    claim.sent(*frame(Beacon(0, mode=Mode.ARBITRATOR)), 0.0)
+    assert not claim.is_own_echo(*frame(Beacon(0, mode=Mode.ARBITRATOR)), 0.01)
+
+
+def test_an_echo_that_never_came_masks_one_foreign_frame_at_most():
+    beacon = frame(Beacon(0, mode=Mode.ARBITRATOR))
+    claim = BusClaim(0.0, listen_s=0.0, own_echoes=True)
+    claim.sent(*beacon, 0.0)  # its copy was lost
+    assert claim.is_own_echo(*beacon, 1.0)  # taken for the lost copy
+    assert not claim.is_own_echo(*beacon, 1.5)  # the other arbitrator's next beacon
+    claim = BusClaim(0.0, listen_s=0.0, own_echoes=True)
+    claim.sent(*beacon, 0.0)
+    assert not claim.is_own_echo(*beacon, 31.0)  # outstanding for too long: forgotten
+    assert not claim.is_own_echo(*frame(GetParameter(7, 9, 0)), 0.1)  # never sent
+
+
+class LateEcho(can.BusABC):
+    """A virtual bus that hands every frame it sends back to its own reader ``delay`` seconds
+    later, as a loaded ``can:udp_multicast`` receiver does."""
+
+    def __init__(self, channel: str, delay: float) -> None:
+        self.inner = can.Bus(interface="virtual", channel=channel)
+        self.delay = delay
+        self._late: list[tuple[float, can.Message]] = []
+        self._lock = threading.Lock()
+        super().__init__(channel=channel)
+
+    def send(self, msg, timeout=None):
+        self.inner.send(msg, timeout)
+        with self._lock:
+            self._late.append((time.monotonic() + self.delay, msg))
+
+    def _recv_internal(self, timeout):
+        with self._lock:
+            if self._late and self._late[0][0] <= time.monotonic():
+                return self._late.pop(0)[1], False
+        return self.inner.recv(min(timeout, 0.01) if timeout is not None else 0.01), False
+
+    def shutdown(self):
+        super().shutdown()
+        self.inner.shutdown()
+
+
+def test_an_arbitrator_is_not_scared_off_by_its_own_late_beacons():
+    channel = unique_virtual_channel()
+    bus = LateEcho(channel, delay=2.6)  # later than the connection's echo filter waits (2 s)
+    tap = can.Bus(interface="virtual", channel=channel)
+    with Arbitrator(bus, profile_layer=False, drop_own=True, listen_s=0.0) as arb:
+        deadline = time.monotonic() + 4.0
+        while time.monotonic() < deadline:
+            assert not arb.yielded, arb.bus_message
+            time.sleep(0.05)
+        assert arb.bus_state == "arbitrating"
+        # Another arbitrator beaconing every 500 ms: while copies of ours are on their way
+        # its beacons may pass for them, but within a few of its beacons it is heard.
+        aid, data = frame(Beacon(0, mode=Mode.ARBITRATOR))
+        deadline = time.monotonic() + 8.0
+        while not arb.yielded and time.monotonic() < deadline:
+            tap.send(can.Message(arbitration_id=aid, data=data, is_extended_id=False))
+            time.sleep(ARBITRATOR_BEACON_S)
+        assert arb.yielded and "appeared" in arb.bus_message
+    tap.shutdown()

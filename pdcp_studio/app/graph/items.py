@@ -1,21 +1,35 @@
 """Device cards and their ports.
 
-A :class:`DeviceItem` paints one card (header with name and role, one row per channel:
-inputs first with their port on the left, then outputs with their port on the right).
-Ports are built-in ellipse items (painted by C++, cheap on big systems). Following Qt's
-elasticnodes example, a card tells its links to re-route from ``itemChange``.
+A :class:`DeviceItem` shows one card (header with name and role, one row per channel:
+inputs first with their port on the left, then outputs with their port on the right) as
+a picture in a built-in pixmap item; ports are built-in ellipse items (painted by C++:
+no Python on the paint path).
+Following Qt's elasticnodes example, a card tells its links to re-route from
+``itemChange``.
 """
 
 from __future__ import annotations
 
+import math
 from functools import cache
 from typing import TYPE_CHECKING
 
 from PySide6.QtCore import QPointF, QRectF, Qt
-from PySide6.QtGui import QBrush, QColor, QFont, QFontMetricsF, QPainter, QPen
+from PySide6.QtGui import (
+    QBrush,
+    QColor,
+    QFont,
+    QFontInfo,
+    QFontMetricsF,
+    QImage,
+    QPainter,
+    QPen,
+    QPixmap,
+)
 from PySide6.QtWidgets import (
     QGraphicsEllipseItem,
     QGraphicsItem,
+    QGraphicsPixmapItem,
     QGraphicsRectItem,
     QGraphicsSceneHoverEvent,
     QGraphicsSceneMouseEvent,
@@ -36,6 +50,22 @@ if TYPE_CHECKING:
 
 DEVICE_TYPE = QGraphicsItem.UserType + 1
 PORT_TYPE = QGraphicsItem.UserType + 2
+#: Below this zoom a card shows its name large instead of its rows (the rows' text,
+#: grown to fill its row, would be under ROW_MIN_PX on screen).
+DETAIL_ZOOM = 0.55
+#: Zoomed out (down to DETAIL_ZOOM) the rows' text grows to stay this high on screen.
+NAME_MIN_PX = 9.5
+ROLE_MIN_PX = 8.0
+ROW_MIN_PX = 9.0
+#: The device name's height on screen in the summary level, pixels (it may shrink to
+#: SUMMARY_MIN_PX to fit a small card, never further).
+SUMMARY_NAME_PX = 11.0
+SUMMARY_MIN_PX = 9.0
+#: Above this zoom cards paint vectors themselves (few are visible; a picture at that
+#: scale would be large).
+PICTURE_MAX_ZOOM = 2.0
+#: The picture's margin around the card (the shadow, the selection border).
+PICTURE_PAD = 4.0
 
 
 @cache
@@ -67,6 +97,7 @@ class PortItem(QGraphicsEllipseItem):
         self.connected = False
         self.unmet = False
         self.live = False
+        self._look: tuple | None = None
         self.refresh()
 
     def type(self) -> int:
@@ -81,14 +112,17 @@ class PortItem(QGraphicsEllipseItem):
             colour, width = style.ERROR, 2.2
         if self._hover:
             colour, width = style.DRAG_OK, 2.4
-        self.setPen(QPen(colour, width))
         if self.live:
             fill = style.LINK_LIVE
         elif self.connected:
             fill = style.MISSING_TEXT if missing else style.ROLE_COLOURS[self.card.role]
         else:
             fill = style.PORT_FILL
-        self.setBrush(QBrush(fill))
+        state = (colour.rgba(), width, fill.rgba())
+        if state != self._look:  # unchanged: no repaint
+            self._look = state
+            self.setPen(QPen(colour, width))
+            self.setBrush(QBrush(fill))
 
     def set_hover(self, on: bool) -> None:
         if on != self._hover:
@@ -123,7 +157,22 @@ class PortItem(QGraphicsEllipseItem):
 
 
 class DeviceItem(QGraphicsRectItem):
-    """One device as a card; movable, selectable, one row per channel."""
+    """One device as a card; movable, selectable, one row per channel.
+
+    The card is drawn by :meth:`draw` (vectors) into a picture at the view's scale, shown
+    by a built-in pixmap child: Qt repaints the scene without calling into Python — each
+    such call waits for the GIL, which the threads of a simulated prosthesis hold most of
+    the time, and 93 Python-painted cards stalled the GUI for half a second on
+    ``sim:full``. The picture is redrawn only when what the card shows changes
+    (:meth:`refresh` skips no-ops) or the zoom does, by the scene in small batches
+    (:meth:`BusScene.render_pending`). Above ``PICTURE_MAX_ZOOM`` (few cards visible) and
+    for a vector export the card paints itself (``vector``), with Qt's cache.
+
+    Two levels of detail: *rows* (the header with name and role, one row per channel)
+    when the text is readable, and *summary* below ``DETAIL_ZOOM`` (the device's name
+    large across the card, at least ``SUMMARY_MIN_PX`` on screen), e.g. a large bus
+    fitted to the window.
+    """
 
     def __init__(self, scene: BusScene, device: Device, role: str) -> None:
         super().__init__()
@@ -143,13 +192,26 @@ class DeviceItem(QGraphicsRectItem):
         self.links: set[LinkItem] = set()
         self.ports: dict[int, PortItem] = {}
         self.rows: list[Channel] = []
+        self.zoom = 1.0
+        self.summary = False
+        self.vector = False
+        self._shown: tuple | None = None  # the state last drawn (refresh skips no-ops)
+        self._drawn: list[str] = []
+        self._name_px = 0.0
+        self._row_px = 0.0
+        self._picture = QGraphicsPixmapItem(self)
+        self._picture.setShapeMode(QGraphicsPixmapItem.ShapeMode.BoundingRectShape)
+        self._picture.setTransformationMode(Qt.TransformationMode.SmoothTransformation)
+        self._picture.setAcceptedMouseButtons(Qt.MouseButton.NoButton)
+        self._picture.setOffset(-PICTURE_PAD, -PICTURE_PAD)
+        self._picture.setZValue(-1)
         self.setFlags(
             QGraphicsItem.GraphicsItemFlag.ItemIsMovable
             | QGraphicsItem.GraphicsItemFlag.ItemIsSelectable
             | QGraphicsItem.GraphicsItemFlag.ItemSendsGeometryChanges
+            | QGraphicsItem.GraphicsItemFlag.ItemHasNoContents
         )
         self.setAcceptHoverEvents(True)
-        self.setCacheMode(QGraphicsItem.CacheMode.DeviceCoordinateCache)
         self._build_rows()
 
     def type(self) -> int:
@@ -168,6 +230,7 @@ class DeviceItem(QGraphicsRectItem):
         for i, ch in enumerate(self.rows):
             y = style.HEADER_HEIGHT + (i + 0.5) * style.ROW_HEIGHT
             self.ports[ch.index] = PortItem(self, ch, y)
+        self._shown = None
 
     def set_device(self, device: Device, role: str) -> None:
         """The model object changed (same key): rebuild rows if the channels changed."""
@@ -182,12 +245,90 @@ class DeviceItem(QGraphicsRectItem):
             self._build_rows()
             for lk in links:
                 lk.rebind()
+        else:
+            self.rows = sorted(device.inputs(), key=lambda c: c.index) + sorted(
+                device.outputs(), key=lambda c: c.index)
         self.refresh()
 
+    def _state(self) -> tuple:
+        """Everything the card's picture shows (compared to skip needless redraws)."""
+        d = self.device
+        return (d.present, self.isSelected(), self.role, tuple(self.problems),
+                frozenset(self.pending_rows),
+                self.selected_ref.index if self.selected_ref is not None else None,
+                self._scene_ref.device_label(d), d.vid, d.pid, d.serial, self.height,
+                tuple((c.index, c.is_input, c.profile, c.descriptor) for c in self.rows),
+                self.summary, self.vector, self.picture_scale())
+
     def refresh(self) -> None:
+        """Bring ports and the card's picture up to date; the picture is redrawn (soon, by
+        the scene) only when something it shows changed."""
         for port in self.ports.values():
             port.refresh()
-        self.update()
+        state = self._state()
+        if state == self._shown:
+            return
+        self._shown = state
+        if self.vector:
+            self.update()
+        else:
+            self._scene_ref.schedule_render(self)
+
+    def picture_scale(self) -> float:
+        """Device pixels per scene unit of the card's picture (the view's zoom)."""
+        return min(self.zoom, PICTURE_MAX_ZOOM) * self._scene_ref.pixel_ratio
+
+    def render_picture(self) -> None:
+        """Draw the card into its picture at the current scale (the scene calls this)."""
+        if self.vector:
+            return
+        scale = self.picture_scale()
+        w = self.width + 2 * PICTURE_PAD
+        h = self.height + 2 * PICTURE_PAD
+        image = QImage(max(1, math.ceil(w * scale)), max(1, math.ceil(h * scale)),
+                       QImage.Format.Format_ARGB32_Premultiplied)
+        image.fill(Qt.GlobalColor.transparent)
+        p = QPainter(image)
+        p.setRenderHint(QPainter.RenderHint.TextAntialiasing, True)
+        p.scale(scale, scale)
+        p.translate(PICTURE_PAD, PICTURE_PAD)
+        self.draw(p)
+        p.end()
+        pixmap = QPixmap.fromImage(image)
+        pixmap.setDevicePixelRatio(scale)
+        self._picture.setPixmap(pixmap)
+
+    def has_picture(self) -> bool:
+        return not self._picture.pixmap().isNull()
+
+    def set_zoom(self, zoom: float, export: bool = False) -> None:
+        """The view's zoom: the level of detail, and a picture or vectors (``export``:
+        vectors without Qt's pixmap cache, for a vector file)."""
+        self.zoom = zoom
+        self.summary = zoom < DETAIL_ZOOM
+        vector = export or zoom > PICTURE_MAX_ZOOM
+        cache = (QGraphicsItem.CacheMode.DeviceCoordinateCache if vector and not export
+                 else QGraphicsItem.CacheMode.NoCache)
+        if cache != self.cacheMode():
+            self.setCacheMode(cache)
+        if vector != self.vector:
+            self.vector = vector
+            self.setFlag(QGraphicsItem.GraphicsItemFlag.ItemHasNoContents, not vector)
+            self._picture.setVisible(not vector)
+        self.refresh()
+
+    def texts(self) -> list[str]:
+        """The text the card showed when last drawn (name, role line and rows; or the
+        name alone, in the summary level)."""
+        return list(self._drawn)
+
+    def row_pixel_size(self) -> float:
+        """The rows' text height in pixels on a view at this card's zoom (0: no rows)."""
+        return 0.0 if self.summary else self._row_px * self.zoom
+
+    def name_pixel_size(self) -> float:
+        """The device name's text height in pixels on a view at this card's zoom."""
+        return self._name_px * self.zoom
 
     def row_at(self, local: QPointF) -> Channel | None:
         i = int((local.y() - style.HEADER_HEIGHT) // style.ROW_HEIGHT)
@@ -209,6 +350,8 @@ class DeviceItem(QGraphicsRectItem):
         if change == QGraphicsItem.GraphicsItemChange.ItemPositionHasChanged:
             for link in self.links:
                 link.update_path()
+        elif change == QGraphicsItem.GraphicsItemChange.ItemSelectedHasChanged:
+            self.refresh()
         return super().itemChange(change, value)
 
     def mousePressEvent(self, event: QGraphicsSceneMouseEvent) -> None:
@@ -222,20 +365,24 @@ class DeviceItem(QGraphicsRectItem):
         self._scene_ref.drag_finished()
 
     def hoverMoveEvent(self, event: QGraphicsSceneHoverEvent) -> None:
-        row = self.row_at(event.pos())
+        row = None if self.summary else self.row_at(event.pos())
         self.setToolTip(self._scene_ref.tooltip_for(self, row))
         super().hoverMoveEvent(event)
 
     def paint(self, p: QPainter, option: QStyleOptionGraphicsItem,
               widget: QWidget | None = None) -> None:
-        title_f, small_f, row_f, _mono_f = _fonts()
-        title_m, _small_m, row_m, _mono_m = _metrics()
+        """Vectors (zoomed far in, or an export); otherwise the picture child shows the
+        card and Qt never calls this (``ItemHasNoContents``)."""
+        self.draw(p)
+
+    # -- drawing --------------------------------------------------------------------
+    def draw(self, p: QPainter) -> None:
+        """The card in card coordinates, at its current level of detail."""
         d, w, h = self.device, self.width, self.height
         missing = not d.present
         selected = self.isSelected()
         role_colour = style.ROLE_COLOURS[self.role]
         text = style.MISSING_TEXT if missing else style.TEXT
-        dim = style.MISSING_TEXT if missing else style.TEXT_DIM
         rect = QRectF(0, 0, w, h)
         p.setRenderHint(QPainter.RenderHint.Antialiasing, True)
 
@@ -248,44 +395,68 @@ class DeviceItem(QGraphicsRectItem):
         if missing:
             pen.setStyle(Qt.PenStyle.DashLine)
         p.setPen(pen)
-        p.setBrush(style.MISSING_FILL if missing else style.CARD_FILL)
-        p.drawRoundedRect(rect, style.CORNER, style.CORNER)
-
-        # Header tinted with the role colour; a solid accent strip on top.
         tint = QColor(role_colour)
         tint.setAlpha(16 if missing else 30)
+        fill = style.MISSING_FILL if missing else style.CARD_FILL
+        p.setBrush(_over(fill, tint) if self.summary else fill)
+        p.drawRoundedRect(rect, style.CORNER, style.CORNER)
+        if not self.summary:
+            # Header tinted with the role colour.
+            p.setPen(Qt.PenStyle.NoPen)
+            p.setBrush(tint)
+            p.drawRoundedRect(QRectF(1, 1, w - 2, style.HEADER_HEIGHT - 1), style.CORNER - 1,
+                              style.CORNER - 1)
+            p.drawRect(QRectF(1, style.HEADER_HEIGHT - style.CORNER, w - 2, style.CORNER))
+            p.setPen(QPen(style.CARD_BORDER, 0.8))
+            p.drawLine(QPointF(1, style.HEADER_HEIGHT), QPointF(w - 1, style.HEADER_HEIGHT))
         p.setPen(Qt.PenStyle.NoPen)
-        p.setBrush(tint)
-        p.drawRoundedRect(QRectF(1, 1, w - 2, style.HEADER_HEIGHT - 1), style.CORNER - 1,
-                          style.CORNER - 1)
-        p.drawRect(QRectF(1, style.HEADER_HEIGHT - style.CORNER, w - 2, style.CORNER))
-        accent = QColor(style.MISSING_TEXT if missing else role_colour)
-        p.setBrush(accent)
+        p.setBrush(QColor(style.MISSING_TEXT if missing else role_colour))
         p.drawRoundedRect(QRectF(1, 1, w - 2, 4), 2, 2)
-        p.setPen(QPen(style.CARD_BORDER, 0.8))
-        p.drawLine(QPointF(1, style.HEADER_HEIGHT), QPointF(w - 1, style.HEADER_HEIGHT))
-
-        badge = 18.0 if self.problems else 0.0
-        p.setFont(title_f)
-        p.setPen(text)
-        name = title_m.elidedText(self._scene_ref.device_label(d),
-                                  Qt.TextElideMode.ElideRight, w - 22 - badge)
-        p.drawText(QRectF(11, 6, w - 20 - badge, 18), Qt.AlignmentFlag.AlignVCenter, name)
-        p.setFont(small_f)
-        p.setPen(dim)
-        role = translate("Style", style.MISSING_LABEL if missing else style.ROLE_LABELS[self.role])
-        p.drawText(QRectF(11, 22, w - 20, 14), Qt.AlignmentFlag.AlignVCenter,
-                   f"{role}  ·  {d.vid}/{d.pid}/{d.serial}")
         if self.problems:
             self._paint_badge(p, QPointF(w - 16, 15))
         if 0 in self.pending_rows:  # a device parameter staged, not yet written
             p.setPen(Qt.PenStyle.NoPen)
             p.setBrush(style.PENDING)
             p.drawRect(QRectF(1, 6, 4, style.HEADER_HEIGHT - 8))
+        label = self._scene_ref.device_label(d)
+        if self.summary:
+            self._draw_summary(p, label, text)
+        else:
+            self._draw_rows(p, label, text)
+
+    def _draw_rows(self, p: QPainter, label: str, text: QColor) -> None:
+        title_f, small_f, row_f, _mono_f = _fonts()
+        title_m, small_m, row_m, _mono_m = _metrics()
+        if self.zoom < 1.0:  # zoomed out: the text grows in the card to stay readable
+            title_f, title_m = _at_least(title_f, NAME_MIN_PX, self.zoom, 17.0)
+            small_f, small_m = _at_least(small_f, ROLE_MIN_PX, self.zoom, 14.0)
+            row_f, row_m = _at_least(row_f, ROW_MIN_PX, self.zoom, style.ROW_HEIGHT - 3)
+        d, w = self.device, self.width
+        missing = not d.present
+        dim = style.MISSING_TEXT if missing else style.TEXT_DIM
+        badge = 18.0 if self.problems else 0.0
+        p.setFont(title_f)
+        p.setPen(text)
+        name = title_m.elidedText(label, Qt.TextElideMode.ElideRight, w - 22 - badge)
+        p.drawText(QRectF(11, 6, w - 20 - badge, 18), Qt.AlignmentFlag.AlignVCenter, name)
+        p.setFont(small_f)
+        p.setPen(dim)
+        role = translate("Style", style.MISSING_LABEL if missing else style.ROLE_LABELS[self.role])
+        role_line = small_m.elidedText(f"{role}  ·  {d.vid}/{d.pid}/{d.serial}",
+                                       Qt.TextElideMode.ElideRight, w - 20)
+        p.drawText(QRectF(11, 22, w - 20, 14), Qt.AlignmentFlag.AlignVCenter, role_line)
+        drawn = [name, role_line]
+        self._row_px = QFontInfo(row_f).pixelSize() if row_f.pixelSize() < 0 \
+            else row_f.pixelSize()
+        self._name_px = QFontInfo(title_f).pixelSize() if title_f.pixelSize() < 0 \
+            else title_f.pixelSize()
 
         # Channel rows.
         n_in = sum(1 for c in self.rows if c.is_input)
         name_of = self._scene_ref.profile_name
+        idx_w = row_m.horizontalAdvance("000")
+        avail = w - 2 * 14 - idx_w - 6
+        p.setFont(row_f)
         for i, ch in enumerate(self.rows):
             y = style.HEADER_HEIGHT + i * style.ROW_HEIGHT
             row = QRectF(0, y, w, style.ROW_HEIGHT)
@@ -304,13 +475,11 @@ class DeviceItem(QGraphicsRectItem):
                 p.drawLine(QPointF(10, y), QPointF(w - 10, y))
             # The profile's name from the tree; its hex code is in the row's tooltip.
             idx_text = str(ch.index)
-            idx_w = row_m.horizontalAdvance("000")
             pname = name_of(ch.profile)
             if pname == prof.fmt(ch.profile):
                 pname = ch.descriptor or pname
-            avail = w - 2 * 14 - idx_w - 6
             pname = row_m.elidedText(pname, Qt.TextElideMode.ElideRight, avail)
-            p.setFont(row_f)
+            drawn.append(pname)
             if ch.is_input:
                 p.setPen(dim)
                 p.drawText(QRectF(14, y, idx_w, style.ROW_HEIGHT),
@@ -325,6 +494,43 @@ class DeviceItem(QGraphicsRectItem):
                 p.setPen(dim)
                 p.drawText(QRectF(w - 14 - idx_w, y, idx_w, style.ROW_HEIGHT),
                            Qt.AlignmentFlag.AlignVCenter | Qt.AlignmentFlag.AlignRight, idx_text)
+        self._drawn = drawn
+
+    def _draw_summary(self, p: QPainter, label: str, colour: QColor) -> None:
+        """The name across the card, at least ``SUMMARY_MIN_PX`` on screen at the current
+        zoom: the largest size (up to ``SUMMARY_NAME_PX``) at which it fits whole, wrapped
+        at words in as many lines as the card holds; else at the least size, shortened
+        ("EMG flexor 11" → "flex. 11", so flexor and extensor stay apart)."""
+        pad = 6.0
+        width = self.width - 2 * pad - (18.0 if self.problems else 0.0)
+        top = 7.0
+        zoom = max(self.zoom, 0.01)
+        whole = " ".join(label.split())
+        chosen: tuple[QFont, list[str]] | None = None
+        for px in (SUMMARY_NAME_PX, SUMMARY_NAME_PX - 1, SUMMARY_MIN_PX):
+            font = QFont(_fonts()[0])
+            font.setPixelSize(max(1, math.ceil(px / zoom)))
+            metrics = QFontMetricsF(font)
+            room = max(1, int((self.height - top - 3) // metrics.lineSpacing()))
+            lines = _wrap(label, metrics, width, room)
+            chosen = (font, lines)
+            if " ".join(lines) == whole:
+                break
+        assert chosen is not None
+        font, lines = chosen
+        metrics = QFontMetricsF(font)
+        if " ".join(lines) != whole:
+            rest = label.split()[len(" ".join(lines[:-1]).split()):]
+            lines[-1] = _shorten(" ".join(rest), metrics, width)
+        p.setFont(font)
+        p.setPen(colour)
+        spacing = metrics.lineSpacing()
+        y = max(top, (self.height - spacing * len(lines)) / 2)
+        for i, line in enumerate(lines):
+            p.drawText(QRectF(pad, y + i * spacing, width, spacing),
+                       Qt.AlignmentFlag.AlignVCenter | Qt.AlignmentFlag.AlignLeft, line)
+        self._drawn = [" ".join(lines)]
+        self._name_px = font.pixelSize()
 
     @staticmethod
     def _paint_badge(p: QPainter, centre: QPointF) -> None:
@@ -338,3 +544,69 @@ class DeviceItem(QGraphicsRectItem):
         p.setPen(QColor("#ffffff"))
         p.drawText(QRectF(centre.x() - 7.5, centre.y() - 7.5, 15, 15),
                    Qt.AlignmentFlag.AlignCenter, "!")
+
+
+def _at_least(font: QFont, px: float, zoom: float, cap: float) -> tuple[QFont, QFontMetricsF]:
+    """``font`` grown so that it is ``px`` pixels high on screen at ``zoom`` (never
+    smaller than it is, never taller than ``cap`` scene units: it must fit its row)."""
+    base = QFontInfo(font).pixelSize()
+    size = min(cap, max(base, px / max(zoom, 0.01)))
+    if size <= base:
+        return font, QFontMetricsF(font)
+    grown = QFont(font)
+    grown.setPixelSize(max(1, math.floor(size)))
+    return grown, QFontMetricsF(grown)
+
+
+def _over(base: QColor, tint: QColor) -> QColor:
+    """``tint`` (with its alpha) laid over the opaque ``base``."""
+    a = tint.alphaF()
+    return QColor.fromRgbF(base.redF() * (1 - a) + tint.redF() * a,
+                           base.greenF() * (1 - a) + tint.greenF() * a,
+                           base.blueF() * (1 - a) + tint.blueF() * a)
+
+
+def _shorten(text: str, metrics: QFontMetricsF, width: float) -> str:
+    """``text`` abbreviated to fit ``width``: numbers kept whole, the longest word cut
+    first ("EMG flexor 11" → "EMG flex. 11"), then a leading word dropped ("flex. 11"),
+    then words cut to their initial ("H. 10"); elided only as a last resort — so
+    "flexor 11" and "extensor 11" stay apart."""
+    full = text.split()
+    for least in (3, 1):
+        for start in range(len(full)):
+            words = full[start:]
+            if start and len(words) < 2:
+                break
+            while True:
+                candidate = " ".join(words)
+                if metrics.horizontalAdvance(candidate) <= width:
+                    return candidate
+                cuttable = [i for i, w in enumerate(words)
+                            if not any(c.isdigit() for c in w) and len(w.rstrip(".")) > least]
+                if not cuttable:
+                    break
+                i = max(cuttable, key=lambda j: len(words[j].rstrip(".")))
+                stem = words[i].rstrip(".")
+                words = [*words[:i], stem[:-1] + ".", *words[i + 1:]]
+    return metrics.elidedText(text, Qt.TextElideMode.ElideRight, width)
+
+
+def _wrap(text: str, metrics: QFontMetricsF, width: float, max_lines: int) -> list[str]:
+    """Words into lines no wider than ``width``; at most ``max_lines``, the last elided."""
+    lines: list[str] = []
+    current = ""
+    words = text.split()
+    if len(words) > 2 and len(words[-1]) <= 4 and any(c.isdigit() for c in words[-1]):
+        words[-2:] = [f"{words[-2]} {words[-1]}"]  # "Control / unit 1", not "… unit / 1"
+    for i, word in enumerate(words):
+        trial = f"{current} {word}".strip()
+        if current and metrics.horizontalAdvance(trial) > width:
+            if len(lines) == max_lines - 1:  # the last line takes the rest, elided
+                current = " ".join([current, *words[i:]])
+                break
+            lines.append(current)
+            current = word
+        else:
+            current = trial
+    lines.append(current)
+    return [metrics.elidedText(line, Qt.TextElideMode.ElideRight, width) for line in lines]

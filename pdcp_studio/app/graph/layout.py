@@ -122,15 +122,18 @@ def _order(system: System, layers: dict[DeviceKey, int]) -> list[list[DeviceKey]
     return columns
 
 
-def layered_layout(system: System) -> dict[DeviceKey, Position]:
-    """Top-left corners of every card, laid out from scratch."""
+def layered_layout(system: System, aspect: float = 1.0) -> dict[DeviceKey, Position]:
+    """Top-left corners of every card, laid out from scratch; a tall layer wraps into
+    sub-columns so the whole comes out about ``aspect`` (width / height) — the shape of
+    the window it is shown in, so that fitting it loses the least room."""
     if not system.devices:
         return {}
     layers = assign_layers(system)
     columns = _order(system, layers)
     heights = {k: card_height(d) for k, d in system.devices.items()}
     total_area = sum((h + style.CARD_GAP) * PITCH for h in heights.values())
-    max_col = max(900.0, math.sqrt(total_area) * 1.1)
+    aspect = max(0.5, min(3.0, aspect))
+    max_col = max(900.0, math.sqrt(total_area / aspect) * 1.1)
     # Split a tall layer into sub-columns so big systems stay roughly square.
     placed: dict[DeviceKey, Position] = {}
     col_tops: list[tuple[list[tuple[DeviceKey, float]], float]] = []
@@ -157,11 +160,13 @@ def layered_layout(system: System) -> dict[DeviceKey, Position]:
     return placed
 
 
-def place(system: System, remembered: Mapping[DeviceKey, Position]) -> dict[DeviceKey, Position]:
-    """Positions for every device: remembered ones kept, newcomers at their layer's bottom."""
+def place(system: System, remembered: Mapping[DeviceKey, Position],
+          aspect: float = 1.0) -> dict[DeviceKey, Position]:
+    """Positions for every device: remembered ones kept, newcomers at their layer's bottom
+    (none remembered: a fresh layout about ``aspect`` wide)."""
     known = {k: remembered[k] for k in system.devices if k in remembered}
     if not known:
-        return layered_layout(system)
+        return layered_layout(system, aspect)
     new = [k for k in system.devices if k not in known]
     if not new:
         return known

@@ -9,6 +9,9 @@ the document's signals bring the items up to date; items never change the model.
 from __future__ import annotations
 
 import time
+from collections.abc import Iterator
+from contextlib import contextmanager
+from typing import Any
 
 from PySide6.QtCore import QPointF, QRectF, Qt, QTimer, Signal
 from PySide6.QtWidgets import QGraphicsScene
@@ -17,7 +20,7 @@ from pdcp_studio.app import commands
 from pdcp_studio.app.document import Document
 from pdcp_studio.app.graph import layout, style
 from pdcp_studio.app.graph.analysis import SystemStates, compute_states, link_refusal
-from pdcp_studio.app.graph.items import DeviceItem, PortItem
+from pdcp_studio.app.graph.items import DETAIL_ZOOM, DeviceItem, PortItem
 from pdcp_studio.app.graph.links import DragLinkItem, LinkItem
 from pdcp_studio.model import profile as prof
 from pdcp_studio.model.catalog import default_catalog
@@ -29,12 +32,25 @@ LIVE_HOLD_S = 1.5
 #: Data that starts or stops flowing is drawn at most this often (milliseconds).
 LIVE_BATCH_MS = 100
 FLOW_TICK_MS = 80
+#: A live bus with more devices than this is built over several turns of the event loop,
+#: at most BUILD_BUDGET_S of card making per turn.
+BUILD_AT_ONCE = 40
+BUILD_BUDGET_S = 0.008
+#: Flowing data is animated on at most this many links at once.
+FLOW_ANIMATE_MAX = 24
+#: Card pictures are drawn for at most this long per turn of the event loop (about
+#: 0.3 ms each; the GUI thread stays free for input and painting in between).
+RENDER_BUDGET_S = 0.006
 
 
 class BusScene(QGraphicsScene):
     """Cards, ports and links for one document."""
 
     statusMessage = Signal(str)
+    #: Every item was made anew (a new system): views recount the cards.
+    rebuilt = Signal()
+    #: Some cards' pictures were drawn (what an overview shows changed).
+    picturesDrawn = Signal()
 
     def __init__(self, doc: Document, parent: object | None = None) -> None:
         super().__init__(parent)
@@ -64,6 +80,21 @@ class BusScene(QGraphicsScene):
         self._syncing = False
         #: The outcome of the last link drag: (link or None, refusal reason or "").
         self.last_link_result: tuple[Link | None, str] = (None, "")
+        #: The zoom of the view showing the scene (cards choose their level of detail).
+        self.zoom = 1.0
+        #: The shape (width / height) of the view: a fresh layout takes it.
+        self.layout_aspect = 1.0
+        #: Device pixels per pixel of the screen the view is on (set by the view).
+        self.pixel_ratio = 1.0
+        self._vector = False
+        self._catalog: Any = None
+        self._to_render: dict[DeviceKey, DeviceItem] = {}
+        #: Where the view looks, with a margin (scene coordinates; empty: everywhere).
+        self._sight = QRectF(-1e9, -1e9, 2e9, 2e9)
+        self._render_timer = QTimer(self)
+        self._render_timer.setSingleShot(True)
+        self._render_timer.setInterval(0)
+        self._render_timer.timeout.connect(self._render_batch)
         self.setBackgroundBrush(style.SCENE_BACKGROUND)
         doc.systemReset.connect(self.rebuild)
         doc.linksChanged.connect(self._on_links_changed)
@@ -78,41 +109,213 @@ class BusScene(QGraphicsScene):
         self._states_timer.setSingleShot(True)
         self._states_timer.setInterval(0)
         self._states_timer.timeout.connect(self.refresh_states)
+        self._to_build: list[DeviceKey] = []
+        self._chunked = False
+        self._steps: Iterator[None] | None = None
+        self._build_timer = QTimer(self)
+        self._build_timer.setSingleShot(True)
+        self._build_timer.setInterval(0)
+        self._build_timer.timeout.connect(self._build_step)
         self.rebuild()
 
     # -- building -------------------------------------------------------------------
     def rebuild(self) -> None:
-        """Recreate every item (a new system); remembered positions are kept."""
+        """Recreate every item (a new system); remembered positions are kept.
+
+        A large live bus (more than ``BUILD_AT_ONCE`` devices) is built over several
+        turns of the event loop, ``BUILD_BUDGET_S`` at a time, so the GUI thread never
+        stops long while the bus threads compete for the GIL; ``building`` is True
+        meanwhile, :meth:`graph_rect` already spans every card, :meth:`finish_building`
+        completes it at once and ``rebuilt`` follows when it is complete.
+        """
         self._syncing = True
         try:
+            self._build_timer.stop()
+            self._steps = None
             self._cancel_drag()
             self.clear()
             self.cards.clear()
+            self._to_render.clear()
+            self._catalog = None
             self.link_items.clear()
             self.preview_items.clear()
             self.unwritten_items.clear()
             self._pending_cache = None
             system = self.doc.system
             self.states = compute_states(system)
-            placed = layout.place(system, self.doc.positions)
+            placed = layout.place(system, self.doc.positions, self.layout_aspect)
             self.doc.positions.update(placed)
-            for key, device in system.devices.items():
-                card = DeviceItem(self, device, self.states.roles[key])
-                card.setPos(*placed[key])
-                self.addItem(card)
-                self.cards[key] = card
-            for link in system.links:
-                self._add_link_item(link)
-            self._show_unwritten()
-            self._apply_states()
-            self._show_preview(self.doc.preview_plan)
-            self._select_items(self.doc.selection)
+            self._to_build = list(system.devices)
         finally:
             self._syncing = False
+        self._chunked = len(self._to_build) > BUILD_AT_ONCE and self.doc.session is not None
+        self._steps = self._build_steps()
+        if self._chunked:
+            self._build_step()
+        else:
+            self.finish_building()
+
+    @property
+    def building(self) -> bool:
+        """True while a large bus is still being built (see :meth:`rebuild`)."""
+        return self._steps is not None
+
+    def _build_step(self) -> None:
+        """One turn's worth of building (``BUILD_BUDGET_S``)."""
+        self._run_steps(BUILD_BUDGET_S)
+        if self._steps is not None:
+            self._build_timer.start()
+
+    def finish_building(self) -> None:
+        """Build what is still to build, at once."""
+        self._build_timer.stop()
+        self._run_steps(None)
+
+    def _run_steps(self, budget_s: float | None) -> None:
+        steps = self._steps
+        if steps is None:
+            return
+        start = time.perf_counter()
+        self._syncing = True
+        try:
+            for _step in steps:
+                if budget_s is not None and time.perf_counter() - start > budget_s:
+                    return
+        finally:
+            self._syncing = False
+        if self._steps is steps:  # not restarted by a changed system
+            self._steps = None
+            self.rebuilt.emit()
+
+    def _build_steps(self) -> Iterator[None]:
+        """The cards, then the links, then their states, a step at a time — off the
+        scene, so the view is not repainted at every step — and then into the scene at
+        once."""
+        system = self.doc.system
+        while self._to_build:
+            key = self._to_build.pop(0)
+            device = system.devices.get(key)
+            if device is None or key in self.cards:
+                continue
+            card = DeviceItem(self, device, self.states.roles.get(key, "sensor"))
+            card.set_zoom(self.zoom, self._vector)
+            card.setPos(*self.doc.positions.get(key, (0.0, 0.0)))
+            self.cards[key] = card
+            yield
+        system = self.doc.system
+        if self._chunked:  # the system may have changed while the cards were made
+            if set(self.cards) != set(system.devices):
+                self._steps = None
+                self._syncing = False
+                self.rebuild()
+                return
+            self.states = compute_states(system)
+            for key, card in self.cards.items():
+                if card.device is not system.devices[key]:
+                    card.set_device(system.devices[key], self.states.roles[key])
+        for link in system.links:
+            self.link_items[link] = LinkItem(self, link)
+            yield
+        yield from self._state_steps()
+        for card in self.cards.values():
+            self.addItem(card)
+        for item in self.link_items.values():
+            self.addItem(item)
+        self._show_unwritten()
+        self._show_preview(self.doc.preview_plan)
+        self._select_items(self.doc.selection)
+
+    def graph_rect(self) -> QRectF:
+        """Where the graph is, also while it is still being built (from the cards'
+        places: every card has one before it is made)."""
+        if not self.building:
+            return self.itemsBoundingRect()
+        rect = QRectF()
+        r = style.PORT_RADIUS + 2
+        for key, device in self.doc.system.devices.items():
+            x, y = self.doc.positions.get(key, (0.0, 0.0))
+            rect = rect.united(QRectF(x - r, y - 2, style.CARD_WIDTH + 2 * r,
+                                      layout.card_height(device) + 6))
+        return rect
+
+    def set_view_zoom(self, zoom: float) -> None:
+        """The main view's zoom changed: cards pick their level of detail for it (their
+        pictures are redrawn in batches, see :meth:`render_pending`)."""
+        if abs(zoom - self.zoom) < 1e-6:
+            return
+        self.zoom = zoom
+        for card in self.cards.values():
+            card.set_zoom(zoom, self._vector)
+
+    def set_pixel_ratio(self, ratio: float) -> None:
+        """The screen's device pixels per pixel (cards draw their pictures that fine)."""
+        if ratio > 0 and ratio != self.pixel_ratio:
+            self.pixel_ratio = ratio
+            for card in self.cards.values():
+                card.refresh()
+
+    def schedule_render(self, card: DeviceItem) -> None:
+        """Redraw a card's picture soon (batched: a bus's worth of cards is not drawn in
+        one go on the GUI thread)."""
+        self._to_render[card.key] = card
+        if not self._render_timer.isActive():
+            self._render_timer.start()
+
+    def render_pending(self, budget_s: float | None = None) -> int:
+        """Draw waiting card pictures; returns how many still wait. With None, all of
+        them now. With a time budget (a batch on the event loop), for at most that long
+        (at least one card), only the cards near the view's sight and those with no
+        picture yet: a card out of sight keeps its old picture until it comes near
+        (:meth:`look_at`), so a zoom on a large bus redraws what is seen, not all."""
+        waiting = self._to_render
+        keys = list(waiting)
+        if budget_s is not None:
+            sight = self._sight
+            near = [k for k in keys if sight.intersects(waiting[k].sceneBoundingRect())]
+            keys = near + [k for k in keys if k not in set(near)
+                           and not waiting[k].has_picture()]
+        start = time.perf_counter()
+        for key in keys:
+            card = waiting.pop(key)
+            if self.cards.get(key) is card:
+                card.render_picture()
+            if budget_s is not None and time.perf_counter() - start > budget_s:
+                break
+        more = [k for k in keys if k in waiting]
+        if more and not self._render_timer.isActive():
+            self._render_timer.start()
+        if keys:
+            self.picturesDrawn.emit()
+        return len(waiting)
+
+    def look_at(self, sight: QRectF) -> None:
+        """The part of the scene the view shows (with a margin): waiting pictures there
+        are drawn soon."""
+        self._sight = QRectF(sight)
+        if self._to_render and not self._render_timer.isActive():
+            self._render_timer.start()
+
+    def _render_batch(self) -> None:
+        self.render_pending(RENDER_BUDGET_S)
+
+    @contextmanager
+    def full_detail(self) -> Iterator[None]:
+        """Every card painting its rows as vectors for a while (an export: read at its
+        own scale, and a vector file wants vectors)."""
+        zoom = self.zoom
+        self._vector = True
+        self.zoom = -1.0
+        self.set_view_zoom(1.0)
+        try:
+            yield
+        finally:
+            self._vector = False
+            self.zoom = -1.0
+            self.set_view_zoom(zoom)
 
     def relayout(self) -> dict[DeviceKey, tuple[float, float]]:
         """A fresh layered layout (View ▸ Arrange); returns the new positions."""
-        return layout.layered_layout(self.doc.system)
+        return layout.layered_layout(self.doc.system, self.layout_aspect)
 
     def _add_link_item(self, link: Link) -> LinkItem:
         item = LinkItem(self, link)
@@ -125,14 +328,19 @@ class BusScene(QGraphicsScene):
         return card.ports.get(ref.index) if card else None
 
     def device_label(self, device: Device) -> str:
-        """The device's own name, else its product from the device catalogue."""
-        return default_catalog().device_label(device)
+        """The device's own name, else its product from the device catalogue (looked up
+        once per rebuild: finding the catalogue reads the user's folder)."""
+        if self._catalog is None:
+            self._catalog = default_catalog()
+        return self._catalog.device_label(device)
 
     def profile_name(self, profile: int) -> str:
         return self.doc.profile_name(profile)
 
     # -- document → items -----------------------------------------------------------
     def _on_links_changed(self) -> None:
+        if self.building:
+            return  # finish_building shows the system as it is then
         current = set(self.doc.system.links)
         for link in [lk for lk in self.link_items if lk not in current]:
             item = self.link_items.pop(link)
@@ -146,6 +354,8 @@ class BusScene(QGraphicsScene):
         self._apply_states()
 
     def _on_bus_changed(self) -> None:
+        if self.building:
+            return  # finish_building shows the system as it is then
         self._pending_cache = None
         self._show_unwritten()
         self._apply_states()
@@ -170,6 +380,8 @@ class BusScene(QGraphicsScene):
             self.unwritten_items.append(item)
 
     def _on_device_changed(self, key: DeviceKey) -> None:
+        if self.building:
+            return  # finish_building shows the system as it is then
         self._pending_cache = None
         device = self.doc.system.device(key)
         card = self.cards.get(key)
@@ -183,6 +395,8 @@ class BusScene(QGraphicsScene):
 
     def refresh_states(self) -> None:
         """Recompute roles and problems for the whole system and show them on every item."""
+        if self.building:
+            return  # finish_building shows the system as it is then
         self._states_timer.stop()
         self.states = compute_states(self.doc.system)
         self._apply_states()
@@ -206,6 +420,12 @@ class BusScene(QGraphicsScene):
         return marks
 
     def _apply_states(self) -> None:
+        for _step in self._state_steps():
+            pass
+
+    def _state_steps(self) -> Iterator[None]:
+        """Show the states on every item, one item per step (a large bus being built
+        spreads them over turns of the event loop)."""
         system, st = self.doc.system, self.states
         live = set(self._live)
         if self._pending_cache is None:  # not on every data tick: only after a change
@@ -227,6 +447,7 @@ class BusScene(QGraphicsScene):
                 port.unmet = ref in st.unmet_required
                 port.setToolTip(self.port_advice(ref))
             card.refresh()
+            yield
         dim = bool(self.preview_items)
         bus = self.doc.bus_system
         on_bus = set(bus.links) if bus is not None else None
@@ -238,6 +459,7 @@ class BusScene(QGraphicsScene):
             item.live = link.output in live
             item.setOpacity(0.35 if dim else 1.0)
             item.refresh()
+            yield
 
     def _apply_live(self) -> None:
         """Redraw only the ports and links of outputs whose data started or stopped."""
@@ -280,14 +502,14 @@ class BusScene(QGraphicsScene):
         for card in self.cards.values():
             if card.selected_ref is not None:
                 card.selected_ref = None
-                card.update()
+                card.refresh()
         item = self.item_for(obj)
         if item is None:
             return
         item.setSelected(True)
         if isinstance(obj, ChannelRef) and isinstance(item, DeviceItem):
             item.selected_ref = obj
-            item.update()
+            item.refresh()
 
     def item_for(self, obj: object) -> DeviceItem | LinkItem | None:
         """The graphics item showing a device, channel or link (for centring the view)."""
@@ -301,6 +523,10 @@ class BusScene(QGraphicsScene):
 
     # -- preview --------------------------------------------------------------------
     def _on_preview(self, plan: object) -> None:
+        if self.building:
+            return  # finish_building shows the preview
+        if plan is None and not self.preview_items:
+            return  # no preview before or after (a new system resets it): nothing to show
         self._show_preview(plan)
         self._apply_states()
 
@@ -341,12 +567,20 @@ class BusScene(QGraphicsScene):
         for ref in stale:
             del self._live[ref]
         self._live_changed.update(stale)
-        self.flow_phase = (self.flow_phase + 1.5) % 70.0
         if self._live_changed:
             self._apply_live()
-        for link, item in self.link_items.items():
-            if link.output in self._live:
+        live = [item for link, item in self.link_items.items() if link.output in self._live]
+        if self.flow_animated(len(live)):
+            self.flow_phase = (self.flow_phase + 1.5) % 70.0
+            for item in live:
                 item.refresh()
+
+    def flow_animated(self, live_links: int) -> bool:
+        """Whether flowing data moves along its links: only when the links are drawn
+        large enough to see it and few enough to redraw 12 times a second (on a large
+        bus fitted to the window every link redrawn per tick meant the whole view).
+        Otherwise a link with data is shown still, in the colour of data flowing."""
+        return self.zoom >= DETAIL_ZOOM and live_links <= FLOW_ANIMATE_MAX
         if not self._live:
             self._flow_timer.stop()
 

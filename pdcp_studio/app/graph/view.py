@@ -2,11 +2,24 @@
 
 Plain ``QGraphicsView`` with the default viewport update mode (measured fine up to 254
 devices); rubber-band selection on empty space, a card drag moves it, a port drag links.
+The zoom picks the cards' level of detail (:meth:`BusScene.set_view_zoom`). Under the
+viewport a footer holds a collapsible legend and, for large buses, an overview.
 """
 
 from __future__ import annotations
 
-from PySide6.QtCore import QT_TRANSLATE_NOOP, QPoint, QPointF, QRectF, QSize, Qt
+from PySide6.QtCore import (
+    QT_TRANSLATE_NOOP,
+    QPoint,
+    QPointF,
+    QRectF,
+    QSettings,
+    QSize,
+    QSizeF,
+    Qt,
+    QTimer,
+    Signal,
+)
 from PySide6.QtGui import (
     QColor,
     QFontMetricsF,
@@ -14,10 +27,12 @@ from PySide6.QtGui import (
     QPainter,
     QPaintEvent,
     QPen,
+    QPixmap,
     QResizeEvent,
+    QShowEvent,
     QWheelEvent,
 )
-from PySide6.QtWidgets import QGraphicsView, QWidget
+from PySide6.QtWidgets import QGraphicsView, QToolButton, QWidget
 
 from pdcp_studio.app.graph import style
 from pdcp_studio.app.graph.scene import BusScene
@@ -29,6 +44,14 @@ WHEEL_STEP = 1.15
 FIT_MARGIN = 30.0
 #: Fit never magnifies beyond this (a three-card system should not look bloated).
 FIT_MAX_ZOOM = 1.3
+#: The overview is shown by itself for graphs with this many cards or more.
+OVERVIEW_MIN_DEVICES = 20
+#: The overview redraws its picture at most this often after the scene changed (ms).
+OVERVIEW_REDRAW_MS = 700
+#: Where the legend's shown/hidden state is remembered.
+LEGEND_KEY = "graph/legend_shown"
+#: The footer's width when it stands beside the viewport (a tall graph in a wide view).
+SIDE_WIDTH = 230
 
 
 #: The legend's rows: (kind, colour, label). Kinds: "role" swatch, "ring" port,
@@ -61,7 +84,10 @@ LEGEND = (
 
 
 class Legend(QWidget):
-    """What the colours mean, in a corner of the view (a widget: it does not scroll)."""
+    """What the colours mean (a widget under the scene's viewport: it never covers a card).
+
+    Its entries flow into as many rows as the width it is given needs.
+    """
 
     PAD = 8.0
     ROW = 18.0
@@ -69,17 +95,48 @@ class Legend(QWidget):
 
     def __init__(self, parent: QWidget) -> None:
         super().__init__(parent)
-        self.setAttribute(Qt.WidgetAttribute.WA_TransparentForMouseEvents)
         self.setFont(style.small_font())
         self._metrics = QFontMetricsF(self.font())
+        self._rows: list[list[tuple]] = [list(r) for r in LEGEND]
 
-    def _width(self, row: tuple) -> float:
-        return sum(24 + self._metrics.horizontalAdvance(translate("Legend", label)) + self.GAP
-                   for _k, _c, label in row) - self.GAP
+    def _entry_width(self, label: str) -> float:
+        return 24 + self._metrics.horizontalAdvance(translate("Legend", label))
+
+    def rows_for(self, width: float) -> list[list[tuple]]:
+        """The entries flowed into rows no wider than ``width``, in order."""
+        rows: list[list[tuple]] = []
+        room = width - 2 * self.PAD
+        row: list[tuple] = []
+        used = 0.0
+        for entry in (e for group in LEGEND for e in group):
+            w = self._entry_width(entry[2])
+            if row and used + self.GAP + w > room:
+                rows.append(row)
+                row, used = [], 0.0
+            used += (self.GAP if row else 0.0) + w
+            row.append(entry)
+        rows.append(row)
+        return rows
+
+    def widest_entry(self) -> int:
+        """The width of the widest single entry (the least width that shows it whole)."""
+        return int(max(self._entry_width(e[2]) for g in LEGEND for e in g) + 2 * self.PAD) + 1
+
+    def natural_width(self) -> int:
+        """Wide enough for the longest of the legend's three groups on one row."""
+        return int(max(sum(self._entry_width(e[2]) for e in g) + self.GAP * (len(g) - 1)
+                       for g in LEGEND) + 2 * self.PAD) + 1
+
+    def height_for(self, width: float) -> int:
+        return int(len(self.rows_for(width)) * self.ROW + 2 * self.PAD)
+
+    def resizeEvent(self, event: QResizeEvent) -> None:
+        super().resizeEvent(event)
+        self._rows = self.rows_for(self.width())
 
     def sizeHint(self) -> QSize:
-        w = max(self._width(r) for r in LEGEND) + 2 * self.PAD
-        return QSize(int(w) + 1, int(len(LEGEND) * self.ROW + 2 * self.PAD))
+        w = self.natural_width()
+        return QSize(w, self.height_for(w))
 
     def paintEvent(self, event: QPaintEvent) -> None:
         p = QPainter(self)
@@ -87,7 +144,7 @@ class Legend(QWidget):
         p.setPen(QPen(style.CARD_BORDER, 1))
         p.setBrush(QColor(255, 255, 255, 225))
         p.drawRoundedRect(QRectF(self.rect()).adjusted(0.5, 0.5, -0.5, -0.5), 6, 6)
-        for r, row in enumerate(LEGEND):
+        for r, row in enumerate(self._rows):
             y = self.PAD + r * self.ROW + self.ROW / 2
             x = self.PAD
             for kind, colour, source in row:
@@ -118,8 +175,237 @@ class Legend(QWidget):
         p.end()
 
 
+class Overview(QWidget):
+    """The whole graph small, with the part the view shows framed; click or drag in it to
+    move the view there. A picture of the scene, redrawn at most every
+    ``OVERVIEW_REDRAW_MS`` after the graph changed (not on every change of a big bus)."""
+
+    MIN_SIDE = 72
+    MAX_SIDE = 180
+
+    def __init__(self, view: GraphView, parent: QWidget) -> None:
+        super().__init__(parent)
+        self.view = view
+        self.setCursor(Qt.CursorShape.PointingHandCursor)
+        self.setToolTip(self.tr("The whole graph: click or drag to show that part"))
+        self._picture = QPixmap()
+        self._source = QRectF()
+        self._target = QRectF()
+        self._timer = QTimer(self)
+        self._timer.setSingleShot(True)
+        self._timer.setInterval(OVERVIEW_REDRAW_MS)
+        self._timer.timeout.connect(self.redraw)
+        # Redrawn when what it shows changes — cards drawn, moved, linked — not on every
+        # change of the scene (data flowing along a link changes it ten times a second).
+        scene = view.bus_scene()
+        scene.picturesDrawn.connect(self._scene_changed)
+        scene.rebuilt.connect(self._scene_changed)
+        scene.doc.linksChanged.connect(self._scene_changed)
+        scene.doc.positionChanged.connect(self._scene_changed)
+        view.horizontalScrollBar().valueChanged.connect(self.update)
+        view.verticalScrollBar().valueChanged.connect(self.update)
+
+    def _scene_changed(self, _rects: object = None) -> None:
+        if self.isVisible() and not self._timer.isActive():
+            self._timer.start()
+
+    def size_for(self, scene_rect: QRectF, *, width: int = 0, height: int = 0) -> QSize:
+        """The overview's size for a given width (or height), the other side following
+        the graph's shape within MIN_SIDE…MAX_SIDE."""
+        aspect = (scene_rect.width() / scene_rect.height()
+                  if not scene_rect.isEmpty() else 1.0)
+        if width:
+            h = (width - 8) / aspect + 8
+            return QSize(width, int(max(self.MIN_SIDE, min(self.MAX_SIDE, h))))
+        w = (height - 8) * aspect + 8
+        return QSize(int(max(self.MIN_SIDE, min(2 * self.MAX_SIDE, w))), height)
+
+    def redraw(self) -> None:
+        """Render the scene into the picture (C++ work, one call)."""
+        self._timer.stop()
+        scene = self.view.scene()
+        source = scene.itemsBoundingRect().adjusted(-20, -20, 20, 20)
+        box = QRectF(self.rect()).adjusted(4, 4, -4, -4)
+        if source.isEmpty() or box.isEmpty():
+            self._picture = QPixmap()
+            self.update()
+            return
+        scale = min(box.width() / source.width(), box.height() / source.height())
+        size = QSizeF(source.width() * scale, source.height() * scale)
+        target = QRectF(box.center().x() - size.width() / 2,
+                        box.center().y() - size.height() / 2, size.width(), size.height())
+        ratio = self.devicePixelRatioF()
+        picture = QPixmap(max(1, round(size.width() * ratio)),
+                          max(1, round(size.height() * ratio)))
+        picture.setDevicePixelRatio(ratio)
+        picture.fill(style.SCENE_BACKGROUND)
+        painter = QPainter(picture)
+        painter.setRenderHint(QPainter.RenderHint.Antialiasing)
+        scene.render(painter, QRectF(0, 0, size.width(), size.height()), source,
+                     Qt.AspectRatioMode.IgnoreAspectRatio)
+        painter.end()
+        self._picture, self._source, self._target = picture, source, target
+        self.update()
+
+    def to_scene(self, point: QPointF) -> QPointF:
+        """A point of this widget in scene coordinates."""
+        if self._target.isEmpty():
+            return QPointF()
+        fx = (point.x() - self._target.left()) / self._target.width()
+        fy = (point.y() - self._target.top()) / self._target.height()
+        return QPointF(self._source.left() + fx * self._source.width(),
+                       self._source.top() + fy * self._source.height())
+
+    def from_scene(self, rect: QRectF) -> QRectF:
+        """A scene rectangle in this widget's coordinates."""
+        if self._source.isEmpty():
+            return QRectF()
+        sx = self._target.width() / self._source.width()
+        sy = self._target.height() / self._source.height()
+        return QRectF(self._target.left() + (rect.left() - self._source.left()) * sx,
+                      self._target.top() + (rect.top() - self._source.top()) * sy,
+                      rect.width() * sx, rect.height() * sy)
+
+    def visible_frame(self) -> QRectF:
+        """The view's visible part, framed in this widget (clipped to the picture)."""
+        view = self.view
+        shown = view.mapToScene(view.viewport().rect()).boundingRect()
+        return self.from_scene(shown).intersected(self._target)
+
+    def showEvent(self, event: QShowEvent) -> None:
+        super().showEvent(event)
+        self.redraw()
+
+    def resizeEvent(self, event: QResizeEvent) -> None:
+        super().resizeEvent(event)
+        if self.isVisible():
+            self.redraw()
+
+    def paintEvent(self, event: QPaintEvent) -> None:
+        p = QPainter(self)
+        p.setRenderHint(QPainter.RenderHint.Antialiasing)
+        p.setPen(QPen(style.CARD_BORDER, 1))
+        p.setBrush(style.SCENE_BACKGROUND)
+        p.drawRoundedRect(QRectF(self.rect()).adjusted(0.5, 0.5, -0.5, -0.5), 6, 6)
+        if not self._picture.isNull():
+            p.drawPixmap(self._target.topLeft(), self._picture)
+            frame = self.visible_frame()
+            if not frame.isEmpty():
+                fill = QColor(style.CARD_BORDER_SELECTED)
+                fill.setAlpha(36)
+                p.setBrush(fill)
+                p.setPen(QPen(style.CARD_BORDER_SELECTED, 1.5))
+                p.drawRect(frame)
+        p.end()
+
+    def mousePressEvent(self, event: QMouseEvent) -> None:
+        if event.button() == Qt.MouseButton.LeftButton:
+            self.view.centerOn(self.to_scene(event.position()))
+            event.accept()
+            return
+        super().mousePressEvent(event)
+
+    def mouseMoveEvent(self, event: QMouseEvent) -> None:
+        if event.buttons() & Qt.MouseButton.LeftButton:
+            self.view.centerOn(self.to_scene(event.position()))
+            event.accept()
+            return
+        super().mouseMoveEvent(event)
+
+
+class GraphFooter(QWidget):
+    """The strip under the scene's viewport: the Legend and Overview switches, the legend
+    and the overview. The view keeps it outside its viewport (viewport margins), so
+    nothing in it ever covers a card."""
+
+    PAD = 4
+
+    def __init__(self, view: GraphView) -> None:
+        super().__init__(view)
+        self.setAutoFillBackground(True)
+        self.side = False
+        self.legend_button = self._switch(self.tr("Legend"),
+                                          self.tr("Show or hide what the colours mean"))
+        self.overview_button = self._switch(
+            self.tr("Overview"), self.tr("Show or hide the whole graph in small, to move "
+                                         "around a large prosthesis"))
+        self.legend = Legend(self)
+        self.overview = Overview(view, self)
+
+    def _switch(self, text: str, tip: str) -> QToolButton:
+        button = QToolButton(self)
+        button.setText(text)
+        button.setToolTip(tip)
+        button.setCheckable(True)
+        button.setToolButtonStyle(Qt.ToolButtonStyle.ToolButtonTextBesideIcon)
+        button.setArrowType(Qt.ArrowType.RightArrow)
+        button.setAutoRaise(True)
+        button.toggled.connect(lambda on, b=button: b.setArrowType(
+            Qt.ArrowType.DownArrow if on else Qt.ArrowType.RightArrow))
+        return button
+
+    def arrange(self, side: bool, width: int, height: int, scene_rect: QRectF) -> int:
+        """Place the parts: under the viewport (``side`` False: a strip ``width`` wide;
+        returns its height) or beside it (a column ``height`` tall; returns its width)."""
+        self.side = side
+        pad = self.PAD
+        buttons = [self.legend_button, self.overview_button]
+        x = pad
+        for b in buttons:
+            hint = b.sizeHint()
+            b.setGeometry(x, pad, hint.width(), hint.height())
+            x += hint.width() + pad
+        row = max(b.sizeHint().height() for b in buttons) + 2 * pad
+        show_overview = self.overview.isVisibleTo(self)
+        show_legend = self.legend.isVisibleTo(self)
+        if side:
+            column = max(x, SIDE_WIDTH, self.legend.widest_entry() + 2 * pad)
+            inner = column - 2 * pad
+            y = row
+            if show_overview:
+                size = self.overview.size_for(scene_rect, width=inner)
+                self.overview.setGeometry(pad, y, size.width(), size.height())
+                y += size.height() + pad
+            if show_legend:
+                lh = self.legend.height_for(inner)
+                self.legend.setGeometry(pad, y, inner, lh)
+            return column if show_overview or show_legend else x
+        strip = row
+        right = width - pad
+        if show_overview:
+            size = self.overview.size_for(scene_rect, height=min(Overview.MAX_SIDE - 52,
+                                                                  max(Overview.MIN_SIDE,
+                                                                      height // 5)))
+            self.overview.setGeometry(right - size.width(), pad, size.width(), size.height())
+            right -= size.width() + 2 * pad
+            strip = max(strip, size.height() + 2 * pad)
+        if show_legend:
+            room = max(120, right - x - pad)
+            lw = min(self.legend.natural_width(), room)
+            lh = self.legend.height_for(lw)
+            self.legend.setGeometry(x + pad, pad, lw, lh)
+            strip = max(strip, lh + 2 * pad)
+        return strip
+
+    def paintEvent(self, event: QPaintEvent) -> None:
+        p = QPainter(self)
+        p.setPen(QPen(style.CARD_BORDER, 1))
+        if getattr(self, "side", False):
+            p.drawLine(0, 0, 0, self.height())
+        else:
+            p.drawLine(0, 0, self.width(), 0)
+        p.end()
+
+
 class GraphView(QGraphicsView):
-    """Shows a :class:`BusScene`; owns only view state (zoom, scroll), never the model."""
+    """Shows a :class:`BusScene`; owns only view state (zoom, scroll), never the model.
+
+    Under the viewport (in its bottom margin, so they never cover a card) a footer holds
+    the legend and the overview, each behind a switch; ``legendVisibleChanged`` follows
+    the legend's switch.
+    """
+
+    legendVisibleChanged = Signal(bool)
 
     def __init__(self, scene: BusScene, parent: QWidget | None = None) -> None:
         super().__init__(scene, parent)
@@ -130,8 +416,21 @@ class GraphView(QGraphicsView):
         self.setResizeAnchor(QGraphicsView.ViewportAnchor.AnchorViewCenter)
         self.setFocusPolicy(Qt.FocusPolicy.StrongFocus)
         self._pan_from: QPoint | None = None
-        self.legend = Legend(self)
-        self.legend.resize(self.legend.sizeHint())
+        self.footer = GraphFooter(self)
+        self.legend = self.footer.legend
+        self.overview = self.footer.overview
+        #: The user's own choice for the overview (None: shown for large graphs only).
+        self._overview_choice: bool | None = None
+        shown = QSettings().value(LEGEND_KEY, True)
+        shown = shown not in (False, "false", "0", 0)
+        self.footer.legend_button.setChecked(shown)
+        self.legend.setVisible(shown)
+        self.footer.legend_button.toggled.connect(self._legend_toggled)
+        self.footer.overview_button.toggled.connect(self._overview_toggled)
+        self.overview.setVisible(False)
+        scene.rebuilt.connect(self.update_overview_auto)
+        scene.doc.systemReset.connect(self.update_overview_auto)  # before a fit, not after
+        self.update_overview_auto()
 
     def bus_scene(self) -> BusScene:
         return self.scene()  # type: ignore[return-value]
@@ -144,40 +443,134 @@ class GraphView(QGraphicsView):
         """Absolute zoom, clamped so cards never vanish or fill the screen with one port."""
         factor = max(MIN_ZOOM, min(MAX_ZOOM, factor))
         self.scale(factor / self.zoom, factor / self.zoom)
+        self.bus_scene().set_view_zoom(self.zoom)
+        self._look()
+        self.overview.update()
 
     def zoom_by(self, step: float) -> None:
         self.set_zoom(self.zoom * step)
 
     def fit_all(self) -> None:
-        """Show every card, clear of the legend: zoom out as far as that needs, zoom in on
-        a small graph up to FIT_MAX_ZOOM (readable, not bloated). The scale is computed
-        from the viewport without scroll bars and without the legend's strip at the
-        bottom (``fitInView`` counted the legend's area as free and left the bottom cards
-        under it)."""
-        rect = self.scene().itemsBoundingRect()
+        """Show every card: zoom out as far as that needs, zoom in on a small graph up to
+        FIT_MAX_ZOOM (readable, not bloated). The scale is computed from the viewport
+        without scroll bars (the legend and overview are outside it, in the footer)."""
+        self.arrange_footer()
+        rect = self.bus_scene().graph_rect()
         if rect.isEmpty():
             return
         rect = rect.adjusted(-FIT_MARGIN, -FIT_MARGIN, FIT_MARGIN, FIT_MARGIN)
         room = self.maximumViewportSize()
-        reserved = self.legend.height() + 16 if self.legend.isVisible() else 0
-        # The view centres the graph, so the legend's strip is kept free at both ends.
-        width, height = room.width(), max(40, room.height() - 2 * reserved)
+        width, height = room.width(), max(40, room.height())
         factor = min(width / rect.width(), height / rect.height())
         self.set_zoom(min(FIT_MAX_ZOOM, factor))
         self.centerOn(rect.center())
 
+    def settle(self) -> None:
+        """Build and draw now what is built and drawn in batches (a large bus's items,
+        the cards' pictures, the overview): for a screenshot of the window."""
+        self.bus_scene().finish_building()
+        self.fit_all()
+        self.bus_scene().render_pending()
+        if self.overview.isVisible():
+            self.overview.redraw()
+
     def centre_on_item(self, rect: QRectF) -> None:
         self.ensureVisible(rect, 40, 40)
 
+    # -- legend and overview (the footer under the viewport) ---------------------------
     def set_legend_visible(self, on: bool) -> None:
+        self.footer.legend_button.setChecked(on)
+
+    def legend_visible(self) -> bool:
+        return self.footer.legend_button.isChecked()
+
+    def set_overview_visible(self, on: bool) -> None:
+        """The user's choice: it holds over the automatic one from now on."""
+        self._overview_choice = on
+        self.footer.overview_button.setChecked(on)
+
+    def overview_visible(self) -> bool:
+        return self.footer.overview_button.isChecked()
+
+    def update_overview_auto(self) -> None:
+        """Shown for a large graph (OVERVIEW_MIN_DEVICES cards or more) unless the user
+        chose otherwise."""
+        if self._overview_choice is None:
+            big = len(self.bus_scene().doc.system.devices) >= OVERVIEW_MIN_DEVICES
+            button = self.footer.overview_button
+            button.blockSignals(True)
+            button.setChecked(big)
+            button.setArrowType(Qt.ArrowType.DownArrow if big else Qt.ArrowType.RightArrow)
+            button.blockSignals(False)
+            self.overview.setVisible(big)
+        self.arrange_footer()
+
+    def _legend_toggled(self, on: bool) -> None:
         self.legend.setVisible(on)
+        QSettings().setValue(LEGEND_KEY, on)  # remembered for the next session
+        self.arrange_footer()
+        self.legendVisibleChanged.emit(on)
+
+    def _overview_toggled(self, on: bool) -> None:
+        self._overview_choice = on
+        self.overview.setVisible(on)
+        self.arrange_footer()
+
+    def arrange_footer(self) -> None:
+        """Put the footer under or beside the viewport — whichever leaves the graph the
+        larger fit zoom — and keep the viewport clear of it."""
+        if self.scene() is None:
+            return  # being torn down
+        frame = self.frameWidth()
+        width, height = self.width() - 2 * frame, self.height() - 2 * frame
+        graph = self.bus_scene().graph_rect().adjusted(-FIT_MARGIN, -FIT_MARGIN,
+                                                       FIT_MARGIN, FIT_MARGIN)
+        strip = self.footer.arrange(False, width, height, graph)
+        side = False
+        if not graph.isEmpty() and width > 2 * SIDE_WIDTH:
+            column = self.footer.arrange(True, width, height, graph)
+            below = min(width / graph.width(), (height - strip) / graph.height())
+            beside = min((width - column) / graph.width(), height / graph.height())
+            side = beside > below * 1.05
+            if not side:
+                self.footer.arrange(False, width, height, graph)
+        margins = (0, 0, column, 0) if side else (0, 0, 0, strip)
+        m = self.viewportMargins()
+        if (m.left(), m.top(), m.right(), m.bottom()) != margins:
+            self.setViewportMargins(*margins)
+        vp = self.viewport().geometry()
+        if side:
+            self.footer.setGeometry(vp.right() + 1, frame, column, height)
+        else:
+            self.footer.setGeometry(frame, vp.bottom() + 1, width, strip)
+        self.footer.raise_()
+        self.footer.update()
+
+    def _look(self) -> None:
+        """Tell the scene where the view looks (half a view's margin around it)."""
+        scene = self.scene()
+        if not isinstance(scene, BusScene):
+            return  # being torn down
+        shown = self.mapToScene(self.viewport().rect()).boundingRect()
+        w, h = shown.width() / 2, shown.height() / 2
+        scene.look_at(shown.adjusted(-w, -h, w, h))
 
     # -- Qt virtuals ----------------------------------------------------------------
+    def scrollContentsBy(self, dx: int, dy: int) -> None:
+        super().scrollContentsBy(dx, dy)
+        self._look()
+
     def resizeEvent(self, event: QResizeEvent) -> None:
         super().resizeEvent(event)
-        vp = self.viewport().geometry()
-        self.legend.move(vp.left() + 8, vp.bottom() - self.legend.height() - 8)
-        self.legend.raise_()
+        self._look()
+        self.arrange_footer()
+        scene = self.scene()
+        if not isinstance(scene, BusScene):
+            return
+        scene.set_pixel_ratio(self.devicePixelRatioF())
+        vp = self.viewport().size()
+        if vp.height() > 40 and vp.width() > 40:
+            scene.layout_aspect = vp.width() / vp.height()
 
     def wheelEvent(self, event: QWheelEvent) -> None:
         delta = event.angleDelta().y()

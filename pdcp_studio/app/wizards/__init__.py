@@ -1,0 +1,45 @@
+"""Guided tasks (issue 11): New fitting, Replace a part, Restore a configuration.
+
+Each is a :class:`QWizard` with clear steps, Back and Next, that ends in the change road's
+transaction (reference §5) on the main window's prosthesis. The decisions are pure
+(:mod:`.logic`), the words in :mod:`.words`, the shared pages in :mod:`.pages`.
+"""
+
+from __future__ import annotations
+
+from typing import Any
+
+#: The tasks by name (the Tasks menu's order).
+TASKS = ("fitting", "replace", "restore")
+
+
+def make_wizard(window: Any, task: str) -> Any:
+    """The wizard for ``task`` (one of :data:`TASKS`) on ``window``, not shown yet."""
+    if task == "fitting":
+        from pdcp_studio.app.wizards.new_fitting import NewFittingWizard
+
+        return NewFittingWizard(window)
+    if task == "replace":
+        from pdcp_studio.app.wizards.replace_part import ReplacePartWizard
+
+        return ReplacePartWizard(window)
+    if task == "restore":
+        from pdcp_studio.app.wizards.restore_config import RestoreWizard
+
+        return RestoreWizard(window)
+    raise ValueError(f"no guided task {task!r} (one of {', '.join(TASKS)})")
+
+
+def open_wizard(window: Any, task: str) -> Any:
+    """Show the wizard for ``task`` beside the window (one at a time) and return it."""
+    old = getattr(window, "task_wizard", None)
+    if old is not None and old.isVisible():
+        if not old.writing:
+            old.close()
+        else:
+            old.raise_()
+            return old
+    wizard = make_wizard(window, task)
+    window.task_wizard = wizard
+    wizard.show()
+    return wizard

@@ -1,0 +1,77 @@
+"""New fitting: connect → scan → checks → autoconfigure preview → write → store the
+configuration → report.
+
+The plan is autoconfigure's on the prosthesis as it is (links a start-up already made stay);
+the write and the store are two transactions of the change road, each recorded in the
+fitting history, so the report lists both.
+"""
+
+from __future__ import annotations
+
+from typing import Any
+
+from pdcp_studio.app.i18n import translate
+from pdcp_studio.app.wizards import logic, words
+from pdcp_studio.app.wizards.pages import (
+    ChangePage,
+    ChecksPage,
+    ConnectPage,
+    ReportPage,
+    ScanPage,
+    TaskWizard,
+    WritePage,
+)
+
+_CTX = "Wizards"
+
+
+def _t(text: str) -> str:
+    return translate(_CTX, text)
+
+
+def plan_step(task: TaskWizard, system: Any, _stored: Any) -> tuple[list[str], Any, list[Any]]:
+    """Autoconfigure on the prosthesis as it is, explained link by link."""
+    plan = logic.autoconfigure_plan(system)
+    change = logic.change_to(system.links, plan, logic.ACTION_FITTING)
+    lines = [_t("The links to make, each with why:") if plan.actions else
+             _t("Every part is already linked as autoconfigure would link it.")]
+    lines += words.plan_lines(system, plan)
+    kept = len(set(system.links) & set(plan.final_links))
+    if kept:
+        lines.append(_t("{0} link(s) already on the prosthesis stay as they are.").format(kept))
+    return lines, change, plan.final_links
+
+
+def store_step(task: TaskWizard, system: Any, _stored: Any) -> tuple[list[str], Any, list[Any]]:
+    """The links on the prosthesis now, stored as its configuration."""
+    change = logic.store_change(system)
+    lines = [_t("The prosthesis keeps its links in its stored configuration: after a "
+                "restart, or when a part is replaced, it links the parts as stored.")]
+    lines += [_t("The links were written and verified (fitting history entry {0}).").format(
+        r.history_id) for r in task.results if r.history_id]
+    return lines, change, list(system.links)
+
+
+class NewFittingWizard(TaskWizard):
+    """A first fitting of a prosthesis, step by step."""
+
+    def __init__(self, window: Any) -> None:
+        super().__init__(window, _t("New fitting"))
+        self.connect_page = ConnectPage()
+        self.scan_page = ScanPage()
+        self.checks_page = ChecksPage()
+        self.plan_page = ChangePage(
+            _t("Autoconfigure"),
+            _t("PDCP Studio proposes the links between the parts: each one below with why "
+               "it is made. Nothing is written yet."), plan_step)
+        self.write_page = WritePage(
+            _t("Write"), _t("The proposed links are written to the prosthesis."),
+            _t("Write to prosthesis"))
+        self.store_page = WritePage(
+            _t("Store the configuration"),
+            _t("The links are stored in the prosthesis, so that it keeps them."),
+            _t("Store configuration"), build=store_step)
+        self.report_page = ReportPage()
+        for page in (self.connect_page, self.scan_page, self.checks_page, self.plan_page,
+                     self.write_page, self.store_page, self.report_page):
+            self.addPage(page)

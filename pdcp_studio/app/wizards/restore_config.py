@@ -1,0 +1,203 @@
+"""Restore a configuration: from a configuration file or the fitting history → preview the
+difference → write → verify.
+
+A file is implemented (its links made where both ends are on the bus) and stored; a history
+entry is put back as it left the prosthesis (``bus.transaction.restore_change``, the CLI's
+``history restore`` too). Either is one transaction of the change road.
+"""
+
+from __future__ import annotations
+
+from pathlib import Path
+from typing import Any
+
+from PySide6.QtCore import Qt
+from PySide6.QtWidgets import (
+    QButtonGroup,
+    QFileDialog,
+    QHBoxLayout,
+    QLineEdit,
+    QListWidget,
+    QListWidgetItem,
+    QPushButton,
+    QRadioButton,
+)
+
+from pdcp_studio.app.i18n import translate
+from pdcp_studio.app.wizards import logic, words
+from pdcp_studio.app.wizards.pages import (
+    ChangePage,
+    Page,
+    TaskWizard,
+    VerifyPage,
+    WritePage,
+)
+from pdcp_studio.app.wizards.runner import alive
+
+
+def _t(text: str) -> str:
+    return translate("Wizards", text)
+
+
+def restorable(entries: list[dict[str, Any]], devices: set[Any]) -> list[dict[str, Any]]:
+    """The history entries of this prosthesis that can be put back (applied, with what they
+    left known), newest first."""
+    from pdcp_studio.app.history_panel import for_prosthesis
+
+    ok = [e for e in for_prosthesis(entries, devices)
+          if e.get("links_after") is not None
+          and (e.get("outcome") or {}).get("status") == "applied"]
+    return sorted(ok, key=lambda e: int(e.get("id", 0)), reverse=True)
+
+
+class SourcePage(Page):
+    """Where the configuration comes from: a file, or an entry of the fitting history."""
+
+    def __init__(self) -> None:
+        super().__init__(_t("Choose the configuration"),
+                         _t("Choose a configuration file, or a fitting of this prosthesis "
+                            "from the fitting history, to put back on the prosthesis."))
+        self.view.hide()
+        self.from_file = QRadioButton(_t("From a configuration file (.pdcfg):"))
+        self.path = QLineEdit()
+        self.path.setPlaceholderText(_t("No file chosen"))
+        self.path.editingFinished.connect(lambda: self.load_file(self.path.text()))
+        self.browse = QPushButton(_t("Browse…"))
+        self.browse.clicked.connect(self.ask_file)
+        self.from_history = QRadioButton(_t("From the fitting history of this prosthesis:"))
+        self.entries = QListWidget()
+        self.entries.currentRowChanged.connect(lambda _r: self._pick_history())
+        self.group = QButtonGroup(self)
+        self.group.addButton(self.from_file)
+        self.group.addButton(self.from_history)
+        self.group.buttonToggled.connect(lambda *_: self.completeChanged.emit())
+        row = QHBoxLayout()
+        row.addWidget(self.path, 1)
+        row.addWidget(self.browse)
+        self.box.insertWidget(1, self.from_file)
+        self.box.insertLayout(2, row)
+        self.box.insertWidget(3, self.from_history)
+        self.box.insertWidget(4, self.entries, 1)
+        self.collection: Any = None
+        self.file: Path | None = None
+        self.history: list[dict[str, Any]] = []
+
+    def initializePage(self) -> None:
+        self.from_file.setChecked(True)
+        panel = self.task.main.history_panel
+        self._fill(panel.all_entries())
+        worker = panel.refresh()
+        if worker is not None:
+            worker.finished.connect(alive(self, lambda _r: self._fill(panel.all_entries())))
+
+    def _fill(self, entries: list[dict[str, Any]]) -> None:
+        bus = self.task.main.doc.bus_system
+        devices = set(bus.devices) if bus is not None else set()
+        self.history = restorable(entries, devices)
+        self.entries.clear()
+        for e in self.history:
+            item = QListWidgetItem(_t("Entry {0} — {1} — {2} ({3} link(s))").format(
+                e["id"], str(e.get("time", ""))[:19].replace("T", " "),
+                words.action_words(str(e.get("action", ""))),
+                len(e.get("links_after") or ())))
+            self.entries.addItem(item)
+        if not self.history:
+            self.entries.addItem(_t("No fitting of this prosthesis is recorded yet."))
+            self.entries.item(0).setFlags(Qt.ItemFlag.NoItemFlags)
+
+    def ask_file(self) -> None:
+        path, _ = QFileDialog.getOpenFileName(self, _t("Configuration file"),
+                                              self.task.main._last_dir(),
+                                              _t("Configurations (*.pdcfg)"))
+        if path:
+            self.load_file(path)
+
+    def load_file(self, path: str | Path) -> bool:
+        """Read a configuration file; a bad one is named with why (nothing else changes)."""
+        from pdcp_studio.errors import PdcpError
+        from pdcp_studio.storage import config_codec
+
+        path = Path(path)
+        self.path.setText(str(path))
+        self.from_file.setChecked(True)
+        try:
+            self.collection, self.file = config_codec.load_path(path), path
+        except (PdcpError, OSError, ValueError) as err:
+            self.collection, self.file = None, None
+            self.idle(_t("Cannot read {0}: {1}").format(path, err))
+            self.completeChanged.emit()
+            return False
+        n = sum(len(c.links) for c in self.collection.configurations)
+        self.idle(_t("{0}: {1} stored link(s).").format(path.name, n))
+        self.completeChanged.emit()
+        return True
+
+    def _pick_history(self) -> None:
+        if self.entries.currentRow() >= 0 and self.history:
+            self.from_history.setChecked(True)
+        self.completeChanged.emit()
+
+    def choose_entry(self, entry_id: int) -> bool:
+        for row, e in enumerate(self.history):
+            if e["id"] == entry_id:
+                self.entries.setCurrentRow(row)
+                return True
+        return False
+
+    def source(self) -> tuple[str, Any] | None:
+        if self.from_file.isChecked():
+            return ("file", (self.file, self.collection)) if self.collection is not None \
+                else None
+        row = self.entries.currentRow()
+        if 0 <= row < len(self.history):
+            return "history", self.history[row]
+        return None
+
+    def isComplete(self) -> bool:
+        return self.source() is not None
+
+    def validatePage(self) -> bool:
+        self.task.source = self.source()
+        return self.task.source is not None
+
+
+def restore_step(task: TaskWizard, system: Any, stored: Any) -> tuple[list[str], Any, list[Any]]:
+    """The change that puts the chosen configuration back, and the difference in words."""
+    from pdcp_studio.bus.transaction import restore_change
+
+    kind, what = task.source
+    if kind == "file":
+        path, collection = what
+        change = logic.restore_file_change(system, collection, path.name)
+        lines = [_t("From the file {0}.").format(path.name)]
+    else:
+        change = restore_change(what, system.links)
+        lines = [_t("As the fitting of {0} left the prosthesis (fitting history entry {1}).")
+                 .format(str(what.get("time", ""))[:19].replace("T", " "), what["id"])]
+    after = change.links_after(system.links)
+    added = set(after) - set(system.links)
+    removed = set(system.links) - set(after)
+    lines += [_t("Connect {0}").format(words.link_words(system, lk)) for lk in sorted(added)]
+    lines += [_t("Disconnect {0}").format(words.link_words(system, lk))
+              for lk in sorted(removed)]
+    if not added and not removed:
+        lines.append(_t("The links on the prosthesis are already as in this configuration."))
+    return lines, change, after
+
+
+class RestoreWizard(TaskWizard):
+    """A stored configuration put back, step by step."""
+
+    def __init__(self, window: Any) -> None:
+        super().__init__(window, _t("Restore a configuration"))
+        self.source_page = SourcePage()
+        self.diff_page = ChangePage(
+            _t("Difference"),
+            _t("What changes on the prosthesis when this configuration is put back. Nothing "
+               "is written yet."), restore_step)
+        self.write_page = WritePage(_t("Write"),
+                                    _t("The configuration is written to the prosthesis."),
+                                    _t("Write to prosthesis"))
+        self.verify_page = VerifyPage()
+        for page in (self.source_page, self.diff_page, self.write_page, self.verify_page):
+            self.addPage(page)

@@ -1,0 +1,118 @@
+"""A wizard's calls to the prosthesis, off the GUI thread: read, preview, and the one
+transaction at the end of each guided task.
+
+The transaction is the change road's (``session.transact``: interlock, write, read back,
+restore on a mismatch, release, record in the fitting history), exactly as the main
+window's Write to prosthesis runs it (:mod:`pdcp_studio.app.transaction_flow`): the wizard's
+Write button is the user's confirmation of the preview shown on the page before, and the
+prosthesis must still be as previewed, else nothing is written.
+"""
+
+from __future__ import annotations
+
+import threading
+from collections.abc import Callable
+from typing import Any
+
+from PySide6.QtCore import QObject, Signal
+from shiboken6 import isValid
+
+from pdcp_studio.app import fitting
+
+
+class TransactionRunner(QObject):
+    """Carries one change out on the window's prosthesis; ``progress(done, total, text)``,
+    then ``finished(TransactionResult)`` or ``failed(message)``."""
+
+    progress = Signal(int, int, str)
+    finished = Signal(object)
+    failed = Signal(str)
+
+    def __init__(self, window: Any, parent: QObject | None = None) -> None:
+        super().__init__(parent)
+        self.window = window
+        self.stop: threading.Event | None = None
+        self.running = False
+
+    def start(self, change: Any, links_previewed: list[Any]) -> bool:
+        """Write ``change`` (already previewed and confirmed); False when not connected."""
+        bridge = self.window.live.bridge
+        if bridge is None or self.running:
+            return False
+        operator = fitting.operator_name(self.window)
+        patient = self.window.patient_reference()
+        shown = set(links_previewed)
+
+        def same_bus(preview: Any) -> bool:  # the prosthesis must still be as previewed
+            return set(preview.links_before) == shown
+
+        stop = threading.Event()
+        session = bridge.session
+        worker = bridge.run(
+            lambda prog, _cancel: session.transact(
+                change, operator=operator or None, patient=patient or None,
+                confirm=same_bus, progress=prog, cancel=stop),
+            change.action)
+        if worker is None:
+            return False
+        self.stop, self.running = stop, True
+        worker.progress.connect(self.progress)
+        worker.finished.connect(self._done)
+        worker.failed.connect(self._failed)
+        return True
+
+    def cancel(self) -> None:
+        """Stop the running transaction: what was written is put back as it was."""
+        if self.stop is not None:
+            self.stop.set()
+
+    def _done(self, result: Any) -> None:
+        self.running = False
+        self._after()
+        self.finished.emit(result)
+
+    def _failed(self, message: str) -> None:
+        self.running = False
+        self._after()
+        self.failed.emit(message)
+
+    def _after(self) -> None:
+        """The window follows the prosthesis and its history (as after any transaction)."""
+        window = self.window
+        window.live.refresh()
+        window.reread_configuration()
+        window.history_panel.refresh()
+
+
+def alive(owner: QObject, fn: Callable[..., None]) -> Callable[..., None]:
+    """``fn`` that does nothing once ``owner`` is gone (a wizard closed and deleted while
+    the bus still answers it)."""
+    def call(*args: Any) -> None:
+        if isValid(owner):
+            fn(*args)
+
+    return call
+
+
+def on_bus(window: Any, fn: Callable[[Any], Any], description: str,
+           done: Callable[[Any], None], failed: Callable[[str], None],
+           owner: QObject | None = None) -> bool:
+    """Run ``fn(session)`` on the window's bus worker; ``done(result)`` or ``failed(msg)``
+    on the GUI thread (not once ``owner`` is gone). False when no prosthesis is connected."""
+    bridge = window.live.bridge
+    if bridge is None:
+        return False
+    session = bridge.session
+    worker = bridge.run(lambda _p, _c: fn(session), description)
+    if worker is None:
+        return False
+    if owner is not None:
+        done, failed = alive(owner, done), alive(owner, failed)
+    worker.finished.connect(done)
+    worker.failed.connect(failed)
+    return True
+
+
+def look(session: Any) -> tuple[Any, Any, Any]:
+    """The prosthesis as it is: its system, stored configuration and policy."""
+    return session.system(), session.read_configuration(), session.read_policy()
