@@ -233,6 +233,9 @@ COUNTER = ("import can, socket, sys, time\n"
            "    sock.setsockopt(socket.SOL_SOCKET, 33, 16 << 20)  # SO_RCVBUFFORCE (Linux)\n"
            "except OSError:\n"
            "    sock.setsockopt(socket.SOL_SOCKET, socket.SO_RCVBUF, 16 << 20)\n"
+           "import resource\n"
+           "r = resource.getrusage(resource.RUSAGE_SELF)\n"
+           "t_ready = r.ru_utime + r.ru_stime\n"
            "print('ready', flush=True)\n"
            "n, last = 0, None\n"
            "while True:\n"
@@ -242,7 +245,9 @@ COUNTER = ("import can, socket, sys, time\n"
            "            n += 1; last = time.monotonic()\n"
            "    elif last is not None and time.monotonic() - last > 2.0:\n"
            "        break\n"
-           "print(n)\n")
+           "import resource\n"
+           "u = resource.getrusage(resource.RUSAGE_SELF)\n"
+           "print(n, u.ru_utime + u.ru_stime, t_ready)\n")
 #: A beacon from a node the traffic does not use: pings until the monitor shows it.
 PING_NODE = 253
 
@@ -302,7 +307,9 @@ def live(seconds: float, rate: int) -> None:
         time.sleep(0.05)  # the end marker: every frame before it has been decoded
     drained_s = time.perf_counter() - t0
     cpu_traffic = _cpu_s(monitor.pid) - cpu_before
-    counted = int(counter.communicate(timeout=60)[0].strip())
+    count_text, counter_cpu, counter_start = counter.communicate(timeout=60)[0].split()
+    counted = int(count_text)
+    counter_cpu_s = float(counter_cpu) - float(counter_start)  # after it was ready
     monitor.send_signal(2)  # Ctrl-C: the monitor ends and prints its summary
     err = monitor.stderr.read()
     _, _, usage = os.wait4(monitor.pid, 0)
@@ -319,7 +326,10 @@ def live(seconds: float, rate: int) -> None:
           f"; monitor CPU while the traffic ran {cpu_traffic:.2f} s = "
           f"{100 * cpu_traffic / drained_s:.0f} % of a core (target ≤ 30 %; {cpu:.2f} s = "
           f"{100 * cpu / sent_s:.0f} % with its start-up and shutdown); it had decoded the "
-          f"last frame {drained_s - sent_s:.2f} s after it was sent")
+          f"last frame {drained_s - sent_s:.2f} s after it was sent. The independent "
+          f"counter (python-can's recv alone) used {counter_cpu_s:.2f} s = "
+          f"{100 * counter_cpu_s / drained_s:.0f} % of a core over the same time, with its "
+          "2 s wait for the end")
 
 
 def main() -> None:

@@ -22,8 +22,6 @@ from pdcp_studio.cli.main import BadInput
 
 #: How often a live loop wakes up to check its deadline.
 POLL_S = 0.1
-#: Frames read from a busy bus between two checks of the deadline.
-BURST = 1024
 FILTER_HELP = (
     "show only matching frames (repeatable, all must match): node=N[,N…], "
     "function=TEXT (part of the name) or function=0xNN, direction=to-ba|from-ba|data, errors"
@@ -164,16 +162,16 @@ def _can_frames(spec: Any, stop: Callable[[], bool]) -> Iterator[Any]:
     recv = raw.recv  # read directly: the wrapper only guards sending
     yield None  # open: the listening time starts now
     try:
+        tick = time.monotonic() + POLL_S
         while True:
             msg = recv(POLL_S)
-            burst = 0
-            while msg is not None and burst < BURST:  # what is queued, without waiting
-                yield msg
-                burst += 1
-                msg = recv(0.0)
             if msg is not None:
                 yield msg
-            yield None  # a quiet poll (or a long burst): the caller flushes; the deadline
+                if time.monotonic() < tick:
+                    continue  # a busy bus: a quiet moment is told at most every POLL_S
+            # A quiet poll, or POLL_S of a busy bus: the caller flushes; the deadline.
+            tick = time.monotonic() + POLL_S
+            yield None
             if stop():
                 break
     finally:
