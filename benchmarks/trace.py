@@ -245,7 +245,7 @@ COUNTER = ("import can, socket, sys, time\n"
            "            n += 1; last = time.monotonic()\n"
            "    elif last is not None and time.monotonic() - last > 2.0:\n"
            "        break\n"
-           "import resource\n"
+           "bus.shutdown()\n"
            "u = resource.getrusage(resource.RUSAGE_SELF)\n"
            "print(n, u.ru_utime + u.ru_stime, t_ready)\n")
 #: A beacon from a node the traffic does not use: pings until the monitor shows it.
