@@ -358,6 +358,24 @@ class BusTimeMeter:
             self.first_timestamp = timestamp
         self.last_timestamp = timestamp
 
+    def add_batch(self, ids: list[int], payloads: list[bytes], last_timestamp: float) -> None:
+        """``add_base`` for many frames at once (the lists are taken over, not copied)."""
+        if not ids:
+            return
+        self.frames += len(ids)
+        if self.worst_case:
+            self._bits += sum(worst_case_bits(len(data)) for data in payloads)
+        elif self._ids:
+            self._ids += ids
+            self._payloads += payloads
+        else:
+            self._ids, self._payloads = ids, payloads
+        if len(self._ids) >= BATCH:
+            self._count()
+        if self.first_timestamp is None:
+            self.first_timestamp = last_timestamp
+        self.last_timestamp = last_timestamp
+
     def _count(self) -> None:
         if self._ids:
             self._bits += _batch_counter().bits(self._ids, self._payloads)

@@ -86,15 +86,16 @@ class RepeatLimiter:
             self.suppressed_total += 1
             return False, summary
 
-    def due(self, now: float | None = None) -> list[Summary]:
-        """Summaries whose interval has passed (call it from a periodic tick)."""
+    def due(self, now: float | None = None, *, final: bool = False) -> list[Summary]:
+        """Summaries whose interval has passed (call it from a periodic tick); ``final``:
+        every pending one, as the work ends."""
         now = self.clock() if now is None else now
         with self._lock:
-            out = [self._due(kind, state, now) for kind, state in self._kinds.items()]
+            out = [self._due(kind, state, now, final) for kind, state in self._kinds.items()]
         return [s for s in out if s is not None]
 
-    def _due(self, kind: str, state: _Kind, now: float) -> Summary | None:
-        if state.suppressed == 0 or now - state.since < self.interval_s:
+    def _due(self, kind: str, state: _Kind, now: float, final: bool = False) -> Summary | None:
+        if state.suppressed == 0 or (now - state.since < self.interval_s and not final):
             return None
         summary = Summary(kind, state.suppressed, now - state.since, state.last)
         state.suppressed = 0
@@ -135,8 +136,9 @@ class LimitedLog:
     def exception(self, kind: str, msg: str, *args: object) -> bool:
         return self.log(logging.ERROR, kind, msg, *args, exc_info=True)
 
-    def flush(self) -> None:
-        for summary in self.limiter.due():
+    def flush(self, final: bool = False) -> None:
+        """Tell the summaries that are due (``final``: all that are pending)."""
+        for summary in self.limiter.due(final=final):
             self._tell_summary(summary)
 
     def _tell_summary(self, summary: Summary) -> None:

@@ -39,6 +39,8 @@ LinkMap = Mapping[int, tuple[ChannelRef, Sequence[ChannelRef]]]
 #: Capture formats python-can 4.6 both writes and reads without extra packages (``.gz`` too).
 CAPTURE_SUFFIXES = (".asc", ".blf", ".csv", ".log", ".trc", ".db")
 _FAILURE = ResponseCode.FAILURE.title
+_BEACON, _BULK_DATA = int(FunctionCode.BEACON), int(FunctionCode.BULK_DATA)
+_DEVICE, _ARBITRATOR = Mode.DEVICE, Mode.ARBITRATOR
 _NO_SOURCE = (0, 0xFF)  # a Source's Node Ids byte that means "not connected"
 #: Per-ID statistics key extended identifiers above every base one.
 EXTENDED_KEY = 1 << 29
@@ -62,6 +64,11 @@ class CaptureError(PdcpError):
         super().__init__(f"{path}: {reason}")
 
 
+#: Messages the decoder follows (``_track``) every time they are seen: each starts or ends
+#: a bulk transfer. Seen again while the decoder knows what it knew (same ``version``), the
+#: other parameter messages teach nothing new — what they taught the first time did not
+#: change what it knows, or the version would have moved on.
+_LEARNING = (M.ConfigureGetBulkResponse, M.ConfigureSetBulk, M.ConfigureSetBulkResponse)
 #: Messages whose line depends on more than what the decoder learned (bulk packets follow a
 #: transfer) or that teach it something every time (binds): never described from a cache.
 _UNCACHED = (M.BulkData, M.BindRequest, M.BindResponse)
@@ -104,10 +111,13 @@ class DecodedFrame(NamedTuple):
 
     @property
     def line(self) -> str:
-        if self.head:
-            return f"{self.time:11.6f}  {self.head}"
+        return f"{self.time:11.6f}  {self.head or self.text_head}"
+
+    @property
+    def text_head(self) -> str:
+        """The line after its time."""
         prio = "P?" if self.priority is None else f"P{self.priority}"
-        text = f"{self.time:11.6f}  {prio}  {self.who} {self.function}"
+        text = f"{prio}  {self.who} {self.function}"
         return f"{text}  {self.fields}" if self.fields else text
 
     def __str__(self) -> str:
@@ -237,6 +247,12 @@ class FrameDecoder:
         self.passive = passive
         #: Set when the traffic is known not to be PDCP's: frames are shown raw, no errors.
         self.foreign = False
+        #: Show a frame as a PDCP message only when it fits in context (``_fits``): a
+        #: request to or from a known device, a response to its request. Other frames that
+        #: parse are "unattributed" (the stray frames of another bus in a capture or on a
+        #: shared bus), not commands. Off, every frame that parses is shown as what it
+        #: parses to (a simulated bus, a test).
+        self.context_checked = False
         #: Count bus time (off for a decoder that only probes a capture).
         self.meter_on = True
         self.stats = MonitorStats()
@@ -264,6 +280,49 @@ class FrameDecoder:
     def _changed(self) -> None:
         """What was learned changed: cached link texts are stale."""
         self._version += 1
+
+    @property
+    def version(self) -> int:
+        """Bumped by every change to what the decoder knows (texts cached under an older
+        version are stale)."""
+        return self._version
+
+    @property
+    def t0(self) -> float | None:
+        """The timestamp of the first frame (``time`` counts from it)."""
+        return self._t0
+
+    def relearn(self) -> None:
+        """The caller changed its link map: forget the texts cached from it."""
+        self._changed()
+
+    def channel_texts(self, arbitration_id: int) -> tuple[Any, str, str] | None:
+        """For an identifier just decoded as channel data of a known output: its link, the
+        fields and the line before the data bytes — the same for every frame of that
+        identifier while ``version`` stays."""
+        cached = self._link_cache.get(arbitration_id)
+        if cached is None or cached[0] != self._version:
+            return None
+        return cached[2], cached[3], cached[4]
+
+    def repeatable(self, arbitration_id: int, data: bytes) -> Any:
+        """For a base frame just decoded from the cache of described frames: its message
+        when every frame like it reads and counts the same while ``version`` stays — one
+        the decoder does not follow (not bulk, not a bind). A request or beacon must fit now
+        (what it fits cannot change without a new version: known devices leave only by one,
+        heard ones never); a response fits only after its request, so whoever repeats it
+        asks ``_context`` each time. Else None."""
+        seen = self._described.get((arbitration_id, data))
+        if seen is None or seen[0] != self._version or seen[3] is not None:
+            return None
+        msg = seen[1]
+        code = msg.CODE
+        if code == _BULK_DATA or code == 0x01 or code == 0x81:
+            return None
+        if (code < 0x80 and self.context_checked
+                and not self._fits(code, msg.mode, msg.node_id)):
+            return None
+        return msg
 
     @property
     def channel_node_ids(self) -> frozenset[int]:
@@ -298,10 +357,10 @@ class FrameDecoder:
                 else:
                     stats.note_id(arbitration_id, timestamp, data)
                 return self._channel_data(arbitration_id, node, data, timestamp)
-        return self.decode(msg.arbitration_id, bytes(msg.data), msg.timestamp or 0.0,
-                           is_extended_id=bool(getattr(msg, "is_extended_id", False)),
-                           is_remote_frame=bool(getattr(msg, "is_remote_frame", False)),
-                           is_error_frame=bool(getattr(msg, "is_error_frame", False)))
+        return self.decode(arbitration_id, bytes(msg.data), msg.timestamp or 0.0,
+                           is_extended_id=msg.is_extended_id,
+                           is_remote_frame=msg.is_remote_frame,
+                           is_error_frame=msg.is_error_frame)
 
     def decode(self, arbitration_id: int, data: bytes, timestamp: float = 0.0, *,
                is_extended_id: bool = False, is_remote_frame: bool = False,
@@ -332,8 +391,6 @@ class FrameDecoder:
         if (arbitration_id < 0x600 and not arbitration_id & 0x100 and len(data) <= 8
                 and (node in self.links or node in self.outputs)):
             return self._channel_data(arbitration_id, node, data, timestamp)
-        base = {"timestamp": timestamp, "time": timestamp - self._t0,
-                "arbitration_id": arbitration_id, "data": data}
         key = (arbitration_id, data)
         msg = self._messages.get(key)
         if msg is None:
@@ -345,14 +402,17 @@ class FrameDecoder:
                 self._messages.clear()
             self._messages[key] = msg
         if isinstance(msg, str):
+            base = {"timestamp": timestamp, "time": timestamp - self._t0,
+                    "arbitration_id": arbitration_id, "data": data}
             if node <= 254:
                 base.update(priority=arbitration_id >> 9, node_id=node)
                 if (self.passive and arbitration_id < 0x600 and not arbitration_id & 0x100
                         and node not in self.devices and node not in self.heard):
                     return self._unattributed(base)
             return self._undecodable(base, msg)
-        self._context(msg)
-        base.update(priority=arbitration_id >> 9, node_id=node)
+        if not self._context(msg):  # a foreign frame that happens to parse: not a command
+            return self._unattributed({"timestamp": timestamp, "time": timestamp - self._t0,
+                                       "arbitration_id": arbitration_id, "data": data})
         # A frame seen before while the decoder knew exactly what it knows now reads the
         # same: reuse its text, still learning from it (bulk packets always go through).
         version = self._version
@@ -360,9 +420,12 @@ class FrameDecoder:
         if seen is not None and seen[0] == version and seen[1] is msg:
             if seen[3] is not None:  # a parameter frame: learn as _describe does
                 self._track(msg, self._direction(node, msg.channel, msg.param, seen[3]))
-            frame = _new_frame(DecodedFrame, (timestamp, base["time"], arbitration_id, data,
-                                              *seen[2], msg, ""))
+            frame = _new_frame(DecodedFrame, (timestamp, timestamp - self._t0, arbitration_id,
+                                              data, *seen[2], msg, seen[4]))
         else:
+            base = {"timestamp": timestamp, "time": timestamp - self._t0,
+                    "arbitration_id": arbitration_id, "data": data,
+                    "priority": arbitration_id >> 9, "node_id": node}
             try:
                 frame = self._describe(msg, base)
             except Exception as err:  # a bug here must not stop a monitor: show it raw
@@ -371,8 +434,9 @@ class FrameDecoder:
                     and not isinstance(msg, _UNCACHED)):
                 if len(self._described) >= CACHE_SIZE:
                     self._described.clear()
-                value = getattr(msg, "value", b"") if hasattr(msg, "param") else None
-                self._described[key] = (version, msg, frame[4:12], value)
+                value = getattr(msg, "value", b"") if isinstance(msg, _LEARNING) else None
+                self._described[key] = (version, msg, frame[4:12], value,
+                                        frame.text_head)
         stats.by_function[frame.function] += 1
         if frame.response == _FAILURE:
             stats.failures += 1
@@ -380,32 +444,59 @@ class FrameDecoder:
             stats.bulk_errors += 1
         return frame
 
-    def _context(self, msg: Any) -> None:
-        """Count frames that fit PDCP in context: a response to a request seen before it."""
+    def _context(self, msg: Any) -> bool:
+        """Follow requests and count frames that fit PDCP in context (a response to a request
+        seen before it, a device beaconing again); whether this one may be shown as a PDCP
+        message — always, unless ``context_checked`` (see ``_fits``)."""
         code = msg.CODE
         node = msg.node_id
-        if code == FunctionCode.BEACON:  # a node beaconing again fits (devices beacon)
+        mode = msg.mode
+        if code == _BEACON:  # a node beaconing again fits (devices beacon)
             if node in self._beaconed:
                 self.stats.in_context += 1
             elif len(self._beaconed) < 512:
                 self._beaconed.add(node)
-        if msg.mode is Mode.DEVICE and code != 0x01 and node:
-            self.heard.add(node)
         if code < 0x80:
-            if msg.mode is Mode.ARBITRATOR or code == 0x01:
-                key = (node, code | 0x80)
-                if len(self._pending) >= CACHE_SIZE:
-                    self._pending.clear()
-                self._pending[key] = self._pending.get(key, 0) + 1
-            return
-        key = (node, code)
-        pending = self._pending.get(key)
-        if pending:
-            self.stats.in_context += 1
-            if pending == 1:
-                del self._pending[key]
-            else:
-                self._pending[key] = pending - 1
+            if code != _BEACON and code != _BULK_DATA:  # answered (bulk: after the last)
+                self._expect(node, code | 0x80)
+            fits = not self.context_checked or self._fits(code, mode, node)
+        else:
+            key = (node, code)
+            pending = self._pending.get(key)
+            fits = bool(pending)
+            if pending:
+                self.stats.in_context += 1
+                if pending == 1:
+                    del self._pending[key]
+                else:
+                    self._pending[key] = pending - 1
+            fits = fits or not self.context_checked
+        if fits and mode is _DEVICE and code != 0x01 and node:
+            self.heard.add(node)
+        return fits
+
+    def _expect(self, node: int, response: int) -> None:
+        """A request was seen: its response (from ``node``, or to it) fits."""
+        key = (node, response)
+        if len(self._pending) >= CACHE_SIZE:
+            self._pending.clear()
+        self._pending[key] = self._pending.get(key, 0) + 1
+
+    def _fits(self, code: int, mode: Any, node: int) -> bool:
+        """Whether a request or a beacon fits what the decoder knows: a Bind Device Request
+        and a device's beacon always (exactly as PDCP frames them), bulk data of an
+        announced transfer, the arbitrator's beacon, anything else only to or from a device
+        it knows (bound, named in the node map, or heard answering). Responses fit only
+        their requests."""
+        if code == 0x01 or (code == _BEACON and mode is _DEVICE):
+            return True  # how a device comes in, and says it is still there
+        if code == _BULK_DATA:
+            return (node, mode) in self._bulk
+        if code == _BEACON and mode is _ARBITRATOR:
+            return node == 0
+        if node == 0:
+            return mode is _ARBITRATOR and code != _BEACON
+        return node in self.devices or node in self.heard
 
     def _raw(self, arbitration_id: int, data: bytes, timestamp: float) -> DecodedFrame:
         """A frame of a bus that is not PDCP's: shown as it is, counted, not an error."""
@@ -459,7 +550,7 @@ class FrameDecoder:
         stats.by_function["Channel data"] += 1
         stats.in_context += 1
         hex_data = data.hex(" ").upper() or "(empty)"
-        return _new_frame(DecodedFrame, (  # type: ignore[arg-type]
+        return _new_frame(DecodedFrame, (
             timestamp, timestamp - self._t0, arbitration_id, data,  # type: ignore[operator]
             CHANNEL_DATA, arbitration_id >> 9, node, "Channel data", cached[3] + hex_data,
             None, None, cached[2], None, cached[4] + hex_data))
@@ -689,10 +780,12 @@ class FrameDecoder:
             complete = r.add(msg.packet_id, msg.data)
         except FrameError as err:
             del self._bulk[msg.node_id, msg.mode]
+            self._expect(msg.node_id, _BULK_DATA | 0x80)  # the receiver answers, failing
             parts.append(f"bulk transfer aborted: {err}")
             return str(err)
         if complete:
             del self._bulk[msg.node_id, msg.mode]
+            self._expect(msg.node_id, _BULK_DATA | 0x80)
             value = r.result()
             if len(self.bulk_values) >= CACHE_SIZE:
                 self.bulk_values.clear()
@@ -768,9 +861,17 @@ class JsonFrameWriter:
         self._links: dict[int, tuple[Any, str]] = {}
 
     def write(self, frame: DecodedFrame) -> None:
-        self.stream.write(("[\n" if self.count == 0 else ",\n")
-                          + frame_json(frame, self._links))
-        self.count += 1
+        self.write_records([frame_json(frame, self._links)])
+
+    def write_to(self, records: list[str], frame: DecodedFrame) -> None:
+        """Append ``frame``'s record to ``records`` (to be written by ``write_records``)."""
+        records.append(frame_json(frame, self._links))
+
+    def write_records(self, records: list[str]) -> None:
+        """Write records made by ``write_to`` or ``frame_json``, in order."""
+        if records:
+            self.stream.write(("[\n" if self.count == 0 else ",\n") + ",\n".join(records))
+            self.count += len(records)
 
     def close(self) -> None:
         self.stream.write("\n]\n" if self.count else "[]\n")

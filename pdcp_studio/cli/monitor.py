@@ -87,7 +87,16 @@ def make_filter(specs: list[str]) -> Callable[[Any], bool]:
             tests.append(lambda f, d=_DIRECTIONS[value]: f.direction == d)
         else:
             raise BadInput(f"--filter {spec!r}: expected {FILTER_HELP.split(': ', 1)[1]}")
-    return lambda frame: all(test(frame) for test in tests)
+    if len(tests) == 1:
+        return tests[0]
+
+    def every(frame: Any) -> bool:
+        for test in tests:
+            if not test(frame):
+                return False
+        return True
+
+    return every
 
 
 def _listen_only(spec: Any) -> dict[str, Any]:
@@ -114,20 +123,32 @@ class _ListenOnly:
         self._bus.shutdown()
 
 
-#: Kernel receive buffer asked for a socket-based bus (capped by the system's maximum): a
-#: saturated bus must not lose frames while the monitor waits for a core.
-RECEIVE_BUFFER = 4 << 20
+#: Kernel receive buffer asked for a socket-based bus: a saturated bus (8,000 frames/s, a
+#: kernel buffer entry of about 1 KB each) must not lose frames while the monitor waits for
+#: a core on a busy machine — 16 MB hold about two seconds.
+RECEIVE_BUFFER = 16 << 20
+#: Linux's socket option (asm-generic/socket.h) that Python's socket module does not name.
+SO_RCVBUFFORCE = 33
 
 
-def _enlarge_receive_buffer(bus: Any) -> None:
+def _enlarge_receive_buffer(bus: Any) -> int:
     """Best effort for python-can's udp_multicast bus (a datagram socket): the default
-    ~200 KB holds only a few dozen milliseconds of a saturated bus."""
+    ~200 KB holds only a few dozen milliseconds of a saturated bus, and a datagram that does
+    not fit is dropped by the kernel. Asks beyond the system's maximum where allowed
+    (``SO_RCVBUFFORCE``, Linux, privileged), else up to it. Returns the size granted (0:
+    not a socket bus)."""
     import socket
 
     sock = getattr(getattr(bus, "_multicast", None), "_socket", None)
-    if sock is not None:
-        with contextlib.suppress(OSError):
-            sock.setsockopt(socket.SOL_SOCKET, socket.SO_RCVBUF, RECEIVE_BUFFER)
+    if sock is None:
+        return 0
+    force = getattr(socket, "SO_RCVBUFFORCE", SO_RCVBUFFORCE if sys.platform == "linux" else None)
+    for option in (force, socket.SO_RCVBUF):
+        if option is not None:
+            with contextlib.suppress(OSError):
+                sock.setsockopt(socket.SOL_SOCKET, option, RECEIVE_BUFFER)
+                break
+    return int(sock.getsockopt(socket.SOL_SOCKET, socket.SO_RCVBUF))
 
 
 def _can_frames(spec: Any, stop: Callable[[], bool]) -> Iterator[Any]:
@@ -138,11 +159,21 @@ def _can_frames(spec: Any, stop: Callable[[], bool]) -> Iterator[Any]:
     raw = open_spec(spec, **_listen_only(spec))  # TransportError names the URL
     _enlarge_receive_buffer(raw)
     bus = _ListenOnly(raw)
+    recv = raw.recv  # read directly: the wrapper only guards sending
     yield None  # open: the listening time starts now
     try:
-        while not stop():
-            msg = bus.recv(timeout=POLL_S)
-            yield msg  # None: a quiet poll, so the caller can flush and check the deadline
+        tick = time.monotonic() + POLL_S
+        while True:
+            msg = recv(POLL_S)
+            if msg is not None:
+                yield msg
+                if time.monotonic() < tick:
+                    continue  # a busy bus: a quiet moment is told at most every POLL_S
+            # A quiet poll, or POLL_S of a busy bus: the caller flushes; the deadline.
+            tick = time.monotonic() + POLL_S
+            yield None
+            if stop():
+                break
     finally:
         bus.shutdown()
 
@@ -157,11 +188,11 @@ def learn_links(links: dict, system: Any) -> None:
 
 
 def _session_frames(url: str, stop: Callable[[], bool],
-                    links: dict | None = None) -> Iterator[Any]:
+                    decoder: Any = None) -> Iterator[Any]:
     """Frames a bus session reports (sim:, serial:): its FrameSeen events.
 
-    ``links`` (the decoder's link map) is kept current from the session's system, re-read
-    whenever a device or link comes or goes.
+    The ``decoder``'s link map is kept current from the session's system, re-read whenever
+    a device or link comes or goes (then a ``None`` tells the consumer to look again).
     """
     import can
 
@@ -183,8 +214,9 @@ def _session_frames(url: str, stop: Callable[[], bool],
         wanted = (FrameSeen, DeviceJoined, DeviceLeft, LinkMade, LinkRemoved, ChannelCounts)
         session.subscribe(
             lambda ev: seen.put(ev) if isinstance(ev, wanted) else None)
-        if links is not None:
-            learn_links(links, session.system())
+        if decoder is not None:
+            learn_links(decoder.links, session.system())
+            decoder.relearn()
         yield None  # open: the listening time starts now
         while not stop():
             try:
@@ -196,8 +228,10 @@ def _session_frames(url: str, stop: Callable[[], bool],
                 yield ev
                 continue
             if not isinstance(ev, FrameSeen):
-                if links is not None:
-                    learn_links(links, session.system())
+                if decoder is not None:
+                    learn_links(decoder.links, session.system())
+                    decoder.relearn()
+                    yield None
                 continue
             yield can.Message(timestamp=ev.timestamp, arbitration_id=ev.arbitration_id,
                               data=bytes(ev.data), is_extended_id=False)
@@ -219,8 +253,9 @@ def _probe_foreign(head: list[Any], decoder: Any) -> bool:
     return len(head) >= NOT_PDCP_MIN_FRAMES and probe.stats.in_context == 0
 
 
-def _replay_frames(path: str, decoder: Any) -> Iterator[Any]:
-    """A capture's frames; its saved node map loaded, and foreign traffic recognised."""
+def _replay_frames(path: str, decoder: Any) -> tuple[Iterator[Any], Callable[[], None]]:
+    """A capture's frames and how to close it; its saved node map loaded, and foreign
+    traffic recognised (CaptureError if it is unreadable)."""
     import itertools
 
     from pdcp_studio.bus.monitor import read_capture, read_node_map
@@ -232,10 +267,14 @@ def _replay_frames(path: str, decoder: Any) -> Iterator[Any]:
         except ValueError as err:
             raise BadInput(str(err)) from err
     frames = read_capture(path)
-    head = list(itertools.islice(frames, PROBE_FRAMES))
+    try:
+        head = list(itertools.islice(frames, PROBE_FRAMES))
+    except BaseException:
+        frames.close()
+        raise
     decoder.foreign = _probe_foreign(head, decoder)
-    yield from head
-    yield from frames
+    # The rest straight from the reader: no generator of ours between it and the loop.
+    return itertools.chain(head, frames), frames.close
 
 
 def _load_system_links(links: dict, path: str) -> None:
@@ -245,13 +284,8 @@ def _load_system_links(links: dict, path: str) -> None:
 
 
 def run(args: argparse.Namespace) -> int:
-    from pdcp_studio.bus.monitor import (
-        CaptureError,
-        CaptureWriteError,
-        FrameDecoder,
-        JsonFrameWriter,
-        Recorder,
-    )
+    from pdcp_studio.bus.monitor import CaptureError, CaptureWriteError, FrameDecoder, Recorder
+    from pdcp_studio.bus.trace_pump import TracePump
 
     show = make_filter(args.filter) if args.filter else None
     if args.seconds is not None and args.seconds <= 0:
@@ -261,6 +295,9 @@ def run(args: argparse.Namespace) -> int:
     links: dict = {}
     live = not args.replay
     decoder = FrameDecoder(links)
+    # A capture or a shared CAN bus may carry another bus's frames: none is shown as a PDCP
+    # message unless it fits one in context (a session's bus carries only PDCP's).
+    decoder.context_checked = bool(args.replay) or args.bus.startswith("can:")
     if args.system:
         _load_system_links(links, args.system)
     clock = {"started": time.monotonic(), "open": False}
@@ -269,9 +306,8 @@ def run(args: argparse.Namespace) -> int:
         elapsed = time.monotonic() - clock["started"]
         return args.seconds is not None and elapsed >= args.seconds
 
-    if args.replay:
-        frames: Iterator[Any] = _replay_frames(args.replay, decoder)
-    else:
+    frames: Iterator[Any] | None = None  # a replay is opened below, its errors handled there
+    if not args.replay:
         from pdcp_studio.bus.urls import BusUrlError, parse_bus_url
 
         try:
@@ -282,66 +318,60 @@ def run(args: argparse.Namespace) -> int:
             decoder.passive = True  # it joins a running bus and learns from what it hears
             frames = _can_frames(spec, stop)
         else:
-            frames = _session_frames(args.bus, stop, links)
+            frames = _session_frames(args.bus, stop, decoder)
     out = sys.stdout
-    json_out = JsonFrameWriter(out) if args.json else None
-    limiter = UndecodableLog(sys.stderr) if live else None
-    decode = decoder.decode_message
-    from pdcp_studio.bus.hostlink_client import ChannelCounts
+    limiter = UndecodableFrames(sys.stderr) if live else None
+    reports: Any = ()  # kinds of report a live session sends besides frames
+    if live:
+        from pdcp_studio.bus.hostlink_client import ChannelCounts
+
+        reports = ChannelCounts
 
     counted = ChannelDataCounts()
+    pump: TracePump | None = None
     try:
         with ExitStack() as stack:
-            stack.enter_context(closing(frames))  # shuts a live bus down on any exit
+            if frames is None:
+                frames, close = _replay_frames(args.replay, decoder)
+                stack.callback(close)
+            else:
+                stack.enter_context(closing(frames))  # type: ignore[type-var]  # shuts a bus
             recorder = stack.enter_context(Recorder(
                 args.log, rotate_bytes=int((args.rotate_mb or 0) * 1e6),
                 node_map=decoder.node_map)) if args.log else None
-            lines: list[str] = []
+            pump = TracePump(decoder, out, json=args.json, show=show, recorder=recorder,
+                             on_error=None if limiter is None else limiter.note,
+                             flush_each_chunk=live)
+
+            def other(item: Any) -> None:
+                """A quiet moment on a live bus (None; the first: the bus just opened), or
+                channel data counted by the arbitrator."""
+                if item is None:
+                    if not clock["open"]:
+                        clock.update(started=time.monotonic(), open=True)
+                    out.flush()
+                    if limiter is not None:
+                        limiter.tick()
+                elif isinstance(item, reports):
+                    line = counted.add(item)
+                    if line and not args.json and show is None:
+                        out.write(line + "\n")
+
             try:
-                for msg in frames:
-                    if msg is None:  # a quiet moment on a live bus (or the bus just opened)
-                        if not clock["open"]:
-                            clock.update(started=time.monotonic(), open=True)
-                        if lines:
-                            out.write("\n".join(lines) + "\n")
-                            lines.clear()
-                        out.flush()
-                        if limiter is not None:
-                            limiter.tick()
-                        continue
-                    if isinstance(msg, ChannelCounts):
-                        line = counted.add(msg)
-                        if line and json_out is None and show is None:
-                            lines.append(line)
-                        continue
-                    if recorder is not None:
-                        recorder.write_message(msg)
-                    frame = decode(msg)
-                    if limiter is not None and frame.error is not None:
-                        limiter.note(frame)
-                    if show is not None and not show(frame):
-                        continue
-                    if json_out is not None:
-                        json_out.write(frame)
-                    else:
-                        lines.append(frame.line)
-                        if len(lines) >= 512:
-                            out.write("\n".join(lines) + "\n")
-                            lines.clear()
-                            if live:
-                                out.flush()
+                pump.run(frames, other)
             except KeyboardInterrupt:
                 pass  # Ctrl-C is how a live monitor ends; the capture is still closed
-            if lines:
-                out.write("\n".join(lines) + "\n")
+            pump.flush()
     except CaptureError as err:
-        if json_out is not None and json_out.count:
-            json_out.close()  # stdout stays one JSON document
+        if pump is not None:
+            pump.flush()  # the frames read before the fault
+            if pump.json is not None and pump.json.count:
+                pump.close()  # stdout stays one JSON document
         if isinstance(err, CaptureWriteError):
             raise  # a failure (exit 1) naming the capture, not bad input
         raise BadInput(str(err)) from err
-    if json_out is not None:
-        json_out.close()
+    if pump is not None:
+        pump.close()
     out.flush()
     if limiter is not None:
         limiter.tick(final=True)
@@ -378,29 +408,36 @@ class ChannelDataCounts:
                 f"{len(self.by_output)} output(s) (the host link carries counts, not frames)")
 
 
-class UndecodableLog:
-    """Undecodable frames on stderr: the first of each reason, then a count at most once a
-    second (a hostile bus at 4 kHz writes a line a second, not 4,000). The trace and the
-    statistics still show and count every frame."""
+#: Kinds of undecodable frames told apart on stderr (a hostile bus could bring many more).
+MAX_UNDECODABLE_KINDS = 64
 
-    def __init__(self, stream: Any, interval_s: float = 1.0) -> None:
-        self.stream, self.interval_s = stream, interval_s
-        self.reasons: set[str] = set()
-        self.unreported = 0
-        self.last = time.monotonic()
+
+class UndecodableFrames:
+    """Undecodable frames on stderr, through the one repeat limiter (``bus/log_limit.py``):
+    the first of each reason in full, then at most one a second with a count of the rest (a
+    hostile bus at 4 kHz writes a line a second, not 4,000). The trace and the statistics
+    still show and count every frame."""
+
+    def __init__(self, stream: Any) -> None:
+        import logging
+
+        from pdcp_studio.bus.log_limit import LimitedLog
+
+        logger = logging.Logger("pdcp_studio.monitor")  # private: not the global tree
+        handler = logging.StreamHandler(stream)
+        handler.setFormatter(logging.Formatter("%(message)s"))
+        logger.addHandler(handler)
+        self.log = LimitedLog(logger)
+        self._kinds: set[str] = set()
 
     def note(self, frame: Any) -> None:
         reason = frame.error.split(":")[0]
-        if reason not in self.reasons and len(self.reasons) < 64:
-            self.reasons.add(reason)
-            print(f"undecodable frame {frame.fields}: {frame.error}", file=self.stream)
-        else:
-            self.unreported += 1
-            self.tick()
+        if reason not in self._kinds:
+            if len(self._kinds) >= MAX_UNDECODABLE_KINDS:
+                reason = "other reasons"
+            self._kinds.add(reason)
+        self.log.warning(f"undecodable frames ({reason})", "undecodable frame %s: %s",
+                         frame.fields, frame.error)
 
     def tick(self, final: bool = False) -> None:
-        now = time.monotonic()
-        if self.unreported and (final or now - self.last >= self.interval_s):
-            print(f"{self.unreported} more undecodable frames", file=self.stream)
-            self.unreported = 0
-            self.last = now
+        self.log.flush(final)

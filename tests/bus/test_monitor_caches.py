@@ -61,6 +61,7 @@ def test_caches_change_no_line():
             b = plain.decode(arbitration_id, data, 10.0 + i / 1000)
             assert a.as_json() == b.as_json(), (i, a.line, b.line)
         assert cached.stats.as_json() == plain.stats.as_json()
+        assert cached.node_map() == plain.node_map()  # and they learned the same
 
 
 @settings(max_examples=60, deadline=None)
@@ -72,6 +73,7 @@ def test_caches_change_no_line_on_any_frames(noise, seed):
     for i, (arbitration_id, data) in enumerate(frames):
         assert cached.decode(arbitration_id, data, float(i)).as_json() == \
             plain.decode(arbitration_id, data, float(i)).as_json()
+    assert cached.node_map() == plain.node_map()
 
 
 def test_meter_total_is_the_same_fed_one_by_one_or_read_midway():
