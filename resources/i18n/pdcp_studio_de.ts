@@ -92,6 +92,10 @@
             <source>Scan finished: {devices} device(s), {links} link(s)</source>
             <translation>Lesen beendet: {devices} Gerät(e), {links} Verbindung(en)</translation>
         </message>
+        <message>
+            <source>Bus events</source>
+            <translation>Busereignisse</translation>
+        </message>
     </context>
     <context>
         <name>BusScene</name>
@@ -2115,6 +2119,90 @@ Den PDCP-Bus einer aktiven Prothese ansehen und einrichten.</translation>
         <message>
             <source> · recording to {name}</source>
             <translation> · Aufzeichnung in {name}</translation>
+        </message>
+        <message>
+            <source>Add marker</source>
+            <translation>Markierung setzen</translation>
+        </message>
+        <message>
+            <source>Any node</source>
+            <translation>Jeder Knoten</translation>
+        </message>
+        <message>
+            <source>Broadcast</source>
+            <translation>Rundruf</translation>
+        </message>
+        <message>
+            <source>Filter text, ID or data…</source>
+            <translation>Text, ID oder Daten filtern…</translation>
+        </message>
+        <message>
+            <source>Find text or ID…</source>
+            <translation>Text oder ID suchen…</translation>
+        </message>
+        <message>
+            <source>Find the next frame</source>
+            <translation>Nächsten Frame suchen</translation>
+        </message>
+        <message>
+            <source>Find the previous frame</source>
+            <translation>Vorherigen Frame suchen</translation>
+        </message>
+        <message>
+            <source>Freeze the table; frames are still recorded and counted</source>
+            <translation>Tabelle anhalten; Frames werden weiter aufgezeichnet und gezählt</translation>
+        </message>
+        <message>
+            <source>Go to a marker (times since a marker count from it)</source>
+            <translation>Zu einer Markierung springen (Zeiten seit Markierung zählen ab ihr)</translation>
+        </message>
+        <message>
+            <source>How the Time column counts</source>
+            <translation>Wie die Zeitspalte zählt</translation>
+        </message>
+        <message>
+            <source>Mark the selected frame, or the newest one</source>
+            <translation>Den gewählten oder den neuesten Frame markieren</translation>
+        </message>
+        <message>
+            <source>No markers</source>
+            <translation>Keine Markierungen</translation>
+        </message>
+        <message>
+            <source>Per identifier: frames counted, mean period, last period, last data and what it means. Double-click to show only that identifier.</source>
+            <translation>Je Kennung: gezählte Frames, mittlere Periode, letzte Periode, letzte Daten und ihre Bedeutung. Doppelklick zeigt nur diese Kennung.</translation>
+        </message>
+        <message>
+            <source>Show the frames of one node only</source>
+            <translation>Nur die Frames eines Knotens zeigen</translation>
+        </message>
+        <message>
+            <source>{device} output {index}</source>
+            <translation>{device} Ausgang {index}</translation>
+        </message>
+        <message>
+            <source>{name} (node {node})</source>
+            <translation>{name} (Knoten {node})</translation>
+        </message>
+        <message>
+            <source>Node {node}</source>
+            <translation>Knoten {node}</translation>
+        </message>
+        <message>
+            <source>Marker {n}</source>
+            <translation>Markierung {n}</translation>
+        </message>
+        <message>
+            <source>Filtering…</source>
+            <translation>Filtern…</translation>
+        </message>
+        <message>
+            <source>%1 frames</source>
+            <translation>%1 Frames</translation>
+        </message>
+        <message>
+            <source>frames</source>
+            <translation>Frames</translation>
         </message>
     </context>
     <context>
