@@ -29,12 +29,6 @@ FILTER_HELP = (
 ROTATE_MB = options.number(low=0.0, high=1e6, low_open=True, what="size (MB)")
 #: Frames a replay reads ahead to tell a PDCP capture from another bus's.
 PROBE_FRAMES = 2000
-#: python-can options that make an interface listen only (it never acknowledges nor sends).
-LISTEN_ONLY: dict[str, dict[str, Any]] = {
-    "slcan": {"listen_only": True},
-    "vector": {"listen_only": True},
-    "kvaser": {"driver_mode": False},  # canlib's DRIVER_MODE_SILENT
-}
 _DIRECTIONS = {"to-ba": "device→BA", "from-ba": "BA→device", "data": "channel data"}
 
 
@@ -99,14 +93,6 @@ def make_filter(specs: list[str]) -> Callable[[Any], bool]:
     return every
 
 
-def _listen_only(spec: Any) -> dict[str, Any]:
-    if spec.interface == "pcan":
-        import can
-
-        return {"state": can.BusState.PASSIVE}
-    return dict(LISTEN_ONLY.get(spec.interface, {}))
-
-
 class _ListenOnly:
     """A python-can bus the monitor can only read: sending raises (it never transmits)."""
 
@@ -154,9 +140,9 @@ def _enlarge_receive_buffer(bus: Any) -> int:
 def _can_frames(spec: Any, stop: Callable[[], bool]) -> Iterator[Any]:
     """Frames of a python-can bus, opened only to listen (listen-only where the interface
     has it; the monitor never sends)."""
-    from pdcp_studio.bus.urls import open_spec
+    from pdcp_studio.bus.urls import listen_only_options, open_spec
 
-    raw = open_spec(spec, **_listen_only(spec))  # TransportError names the URL
+    raw = open_spec(spec, **listen_only_options(spec))  # TransportError names the URL
     _enlarge_receive_buffer(raw)
     bus = _ListenOnly(raw)
     recv = raw.recv  # read directly: the wrapper only guards sending
