@@ -315,7 +315,26 @@ class MainWindow(MenusMixin, FileHandlingMixin, ExportMixin, BusMixin, RecoveryM
     def preview_plan(self, mode: str) -> Any:
         self.plan_dock.show()
         self.plan_dock.raise_()
-        return self.plan_panel.preview(mode)
+        plan = self.plan_panel.preview(mode)
+        if plan is not None:
+            QTimer.singleShot(0, self._fit_plan_dock)  # once the rows have their heights
+        return plan
+
+    def _fit_plan_dock(self, tries: int = 4, asked: int = 0) -> None:
+        """Grow the plan dock so an ordinary plan's rows all show (never past half the
+        window, never shrinking what the user made larger). The dock area's size includes
+        its tab bar and the rows wrap anew at the new width, so it looks again until the
+        rows fit."""
+        view = self.plan_panel.actions_view
+        view.resizeRowsToContents()
+        missing = view.verticalHeader().length() - view.viewport().height()
+        if missing <= 0 or self.plan_dock.isFloating() or not self.plan_dock.isVisible():
+            return
+        height = min(max(asked, self.plan_dock.height()) + missing + 2, self.height() // 2)
+        if height > max(asked, self.plan_dock.height()):
+            self.resizeDocks([self.plan_dock], [height], Qt.Orientation.Vertical)
+            if tries > 1:
+                QTimer.singleShot(30, lambda: self._fit_plan_dock(tries - 1, height))
 
     def show_profile_tree(self) -> None:
         from pdcp_studio.app.profile_tree_editor import ProfileTreeDialog

@@ -45,6 +45,20 @@ def test_an_ordinary_plan_reads_without_scrolling(make_window, qtbot):
     assert "0x" in window.plan_panel.detail.toPlainText()
 
 
+def test_the_plan_dock_grows_to_show_an_ordinary_plan(make_window, qtbot):
+    """At the window's default layout (the plan dock shorter than five wrapped rows), a
+    preview makes the dock tall enough for every row, and never taller than half the window."""
+    window = make_window(TRANSRADIAL, size=(1600, 1000))
+    window.show()
+    qtbot.waitExposed(window)
+    view = window.plan_panel.actions_view
+    window.preview_plan("autoconfigure")
+    qtbot.wait(100)
+    assert view.rowCount() == 5
+    qtbot.waitUntil(lambda: view.verticalScrollBar().maximum() == 0, timeout=3000)
+    assert window.plan_dock.height() <= window.height() // 2
+
+
 def test_plan_operations_are_not_duplicated_in_the_toolbar(make_window):
     window = make_window(TRANSRADIAL)
     toolbar = window.findChild(QToolBar, "MainToolBar")
