@@ -30,7 +30,7 @@ from dataclasses import dataclass, field
 from pathlib import Path
 from typing import Any
 
-from PySide6.QtCore import QBuffer, QIODevice, QMarginsF, QSizeF, Qt, QUrl
+from PySide6.QtCore import QT_TRANSLATE_NOOP, QBuffer, QIODevice, QMarginsF, QSizeF, Qt, QUrl
 from PySide6.QtGui import (
     QGuiApplication,
     QImage,
@@ -41,13 +41,16 @@ from PySide6.QtGui import (
     QTextDocument,
 )
 
+from pdcp_studio.app.i18n import translate
 from pdcp_studio.model import profile as prof
 from pdcp_studio.model.configuration import ConfigCollection
 from pdcp_studio.model.profile_tree import ProfileTree
 from pdcp_studio.model.system import System
 from pdcp_studio.storage.atomic import atomic_write_bytes
 
-DEFAULT_TITLE = "PDCP fitting report"
+_CTX = "FittingReport"
+#: The source text; shown translated (``_t``) like every word of the report.
+DEFAULT_TITLE = QT_TRANSLATE_NOOP("FittingReport", "PDCP fitting report")
 LAYOUT_DPI = 96.0
 PDF_DPI = 300
 GRAPH_MAX_HEIGHT_FRACTION = 0.38  # of the page: leaves room for the tables
@@ -71,6 +74,35 @@ class FittingInfo:
     policy: Any = None
 
 
+def _t(text: str) -> str:
+    """``text`` in the app's language (the German build prints a German report)."""
+    return translate(_CTX, text)
+
+
+#: Fitting-history actions and their words, by the action's first words.
+_ACTIONS = (
+    ("config write", QT_TRANSLATE_NOOP("FittingReport", "Stored set-up written")),
+    ("config save", QT_TRANSLATE_NOOP("FittingReport", "Current links stored as the set-up")),
+    ("policy autoconfigure on", QT_TRANSLATE_NOOP("FittingReport", "Autoconfigure turned on")),
+    ("policy autoconfigure off", QT_TRANSLATE_NOOP("FittingReport", "Autoconfigure turned off")),
+    ("add link", QT_TRANSLATE_NOOP("FittingReport", "Link added")),
+    ("remove link", QT_TRANSLATE_NOOP("FittingReport", "Link removed")),
+    ("set parameter", QT_TRANSLATE_NOOP("FittingReport", "Setting changed")),
+    ("write to prosthesis",
+     QT_TRANSLATE_NOOP("FittingReport", "Changes written to the prosthesis")),
+)
+_OUTCOMES = {
+    "applied": QT_TRANSLATE_NOOP("FittingReport", "applied"),
+    "rolled_back": QT_TRANSLATE_NOOP("FittingReport", "rolled back"),
+    "failed": QT_TRANSLATE_NOOP("FittingReport", "failed"),
+}
+_SEVERITIES = {
+    "error": QT_TRANSLATE_NOOP("FittingReport", "Error"),
+    "warning": QT_TRANSLATE_NOOP("FittingReport", "Warning"),
+    "info": QT_TRANSLATE_NOOP("FittingReport", "Info"),
+}
+
+
 def _version(value: int) -> str:
     return f"{value >> 8}.{value & 0xFF}" if value else "—"
 
@@ -82,22 +114,18 @@ def action_words(action: str) -> str:
 
     words = action.strip()
     low = words.lower()
-    for prefix, text in (("undo ", "Undone: "), ("redo ", "Done again: ")):
-        if low.startswith(prefix):
-            return text + action_words(words[len(prefix):])
+    if low.startswith("undo "):
+        return _t("Undone: {0}").format(action_words(words[5:]))
+    if low.startswith("redo "):
+        return _t("Done again: {0}").format(action_words(words[5:]))
     if low.startswith("apply "):
         mode = low.split()[1] if len(low.split()) > 1 else ""
-        title = dict(OPERATIONS).get(mode, mode.replace("-", " "))
-        return f"{title} carried out"
-    for prefix, text in (("config write", "Stored set-up written"),
-                         ("config save", "Current links stored as the set-up"),
-                         ("policy autoconfigure on", "Autoconfigure turned on"),
-                         ("policy autoconfigure off", "Autoconfigure turned off"),
-                         ("add link", "Link added"), ("remove link", "Link removed"),
-                         ("set parameter", "Setting changed"),
-                         ("write to prosthesis", "Changes written to the prosthesis")):
+        known = dict(OPERATIONS).get(mode)
+        title = translate("PlanPanel", known) if known else mode.replace("-", " ")
+        return _t("{0} carried out").format(title)
+    for prefix, text in _ACTIONS:
         if low.startswith(prefix):
-            return text
+            return _t(text)
     return words
 
 
@@ -106,18 +134,22 @@ def _change_rows(changes: list[dict]) -> str:
     for e in changes:
         outcome = e.get("outcome") or {}
         status = outcome.get("status", "")
-        word = {"applied": "applied, verified" if e.get("verified") else "applied",
-                "rolled_back": "rolled back", "failed": "failed"}.get(status, status)
+        word = _t(_OUTCOMES[status]) if status in _OUTCOMES else status
+        if status == "applied" and e.get("verified"):
+            word = _t("applied, verified")
         actions = (e.get("plan") or {}).get("actions") or []
         adds = sum(1 for a in actions if a.get("op") == "add")
         removes = len(actions) - adds
         params = len((e.get("plan") or {}).get("parameters") or [])
-        what = f"+{adds} / −{removes} link(s)" + (f", {params} parameter(s)" if params else "")
+        what = _t("+{adds} / −{removes} link(s)").format(adds=adds, removes=removes)
+        if params:
+            what += _t(", {n} parameter(s)").format(n=params)
         rows.append(f"<tr><td>{_e(e.get('id', ''))}</td>"
                     f"<td>{_e(str(e.get('time', '')).replace('T', ' ').rstrip('Z'))}</td>"
                     f"<td>{_e(action_words(str(e.get('action', ''))))}</td><td>{_e(what)}</td>"
                     f"<td>{_e(word)}</td><td>{_e(e.get('operator') or '')}</td></tr>")
-    return "".join(rows) or "<tr><td colspan=6><i>no change was made in this session</i></td></tr>"
+    return "".join(rows) or (f"<tr><td colspan=6><i>{_e(_t('no change was made in this session'))}"
+                             "</i></td></tr>")
 
 
 def _finding_rows(system: System, autoconfigure: bool = True) -> str:
@@ -125,10 +157,10 @@ def _finding_rows(system: System, autoconfigure: bool = True) -> str:
     from pdcp_studio.engine import check_system
 
     findings = check_system(system, autoconfigure=autoconfigure) if system.devices else []
-    rows = [f"<tr><td>{_e(f.severity.value.capitalize())}</td>"
+    rows = [f"<tr><td>{_e(_t(_SEVERITIES.get(f.severity.value, f.severity.value)))}</td>"
             f"<td>{_e(plain_finding(f, system, autoconfigure))}</td></tr>"
             for f in findings]
-    return "".join(rows) or "<tr><td colspan=2><i>every check passed</i></td></tr>"
+    return "".join(rows) or f"<tr><td colspan=2><i>{_e(_t('every check passed'))}</i></td></tr>"
 
 
 def configuration_checksum(system: System, collection: ConfigCollection | None = None) -> int:
@@ -151,7 +183,7 @@ def _e(text: object) -> str:
 def _profile(tree: ProfileTree, value: int) -> str:
     """What a channel carries, by the profile tree's names (the code is in the detail)."""
     if tree.node(value) is None:
-        return "<i>a kind of signal the profile tree does not name</i>"
+        return f"<i>{_e(_t('a kind of signal the profile tree does not name'))}</i>"
     return _e(tree.name_of(value))
 
 
@@ -168,10 +200,12 @@ def _end(system: System, tree: ProfileTree, ref: Any, compact: bool = False) -> 
     name = _device_name(system, ref.device)
     if compact:
         what = tree.short_name(ch.profile) if ch and tree.node(ch.profile) else ""
-        return f"{_e(name)}, channel {ref.index}" + (f" ({_e(what)})" if what else "")
+        return (_t("{device}, channel {n}").format(device=_e(name), n=ref.index)
+                + (f" ({_e(what)})" if what else ""))
     desc = f" — {ch.descriptor}" if ch and ch.descriptor else ""
     profile = _profile(tree, ch.profile) if ch else "?"
-    return f"<b>{_e(name)}</b>, channel {ref.index}{_e(desc)}<br>{profile}"
+    end = _t("{device}, channel {n}").format(device=f"<b>{_e(name)}</b>", n=ref.index)
+    return f"{end}{_e(desc)}<br>{profile}"
 
 
 def _detail_rows(system: System) -> str:
@@ -181,10 +215,12 @@ def _detail_rows(system: System) -> str:
         ends = []
         for ref in (lk.output, lk.input):
             ch = system.channel(ref)
-            codes = (f"type {prof.fmt(ch.type)}, profile {prof.fmt(ch.profile)}"
-                     if ch else "not on the bus")
-            ends.append(f"VID 0x{ref.vid:04X} PID 0x{ref.pid:04X} serial {ref.serial} "
-                        f"channel {ref.index} ({codes})")
+            codes = (_t("type {type}, profile {profile}").format(
+                type=prof.fmt(ch.type), profile=prof.fmt(ch.profile)) if ch
+                else _t("not on the bus"))
+            ends.append(_t("VID {vid} PID {pid} serial {serial} channel {index} ({codes})")
+                        .format(vid=f"0x{ref.vid:04X}", pid=f"0x{ref.pid:04X}",
+                                serial=ref.serial, index=ref.index, codes=_e(codes)))
         rows.append(f"<tr><td>{i}</td><td>{ends[0]}</td><td>→</td><td>{ends[1]}</td></tr>")
     return "".join(rows)
 
@@ -195,20 +231,21 @@ def _device_rows(system: System, per_row: int) -> str:
     catalog = default_catalog()
     cells = []
     for d in system.devices.values():
-        state = " <i>(missing)</i>" if not d.present else ""
+        state = f" <i>{_e(_t('(missing)'))}</i>" if not d.present else ""
         entry = catalog.lookup(d.vid, d.pid)
-        product = f"{entry.product} ({entry.vendor})" if entry else "not in the catalogue"
+        product = (_t("{product} ({vendor})").format(product=entry.product, vendor=entry.vendor)
+                   if entry else _t("not in the catalogue"))
         cells.append(f"<td>{_e(catalog.device_label(d))}{state}</td><td>{_e(product)}</td>"
                      f"<td>{d.vid} / {d.pid} / {d.serial}</td>"
                      f"<td>{_version(d.fw_version)}</td><td>{_version(d.hw_version)}</td>")
     if not cells:
-        return "<tr><td colspan=5><i>no devices</i></td></tr>"
+        return f"<tr><td colspan=5><i>{_e(_t('no devices'))}</i></td></tr>"
     cells += ["<td></td>" * 5] * (-len(cells) % per_row)
     return "".join("<tr>" + "".join(cells[i:i + per_row]) + "</tr>"
                    for i in range(0, len(cells), per_row))
 
 
-def report_html(system: System, tree: ProfileTree, *, title: str = DEFAULT_TITLE,
+def report_html(system: System, tree: ProfileTree, *, title: str | None = None,
                 date: _dt.date | None = None, graph_size: QSizeF | None = None,
                 checksum: int | None = None, compact: bool = False,
                 stored_note: str = "", fitting: FittingInfo | None = None) -> str:
@@ -217,27 +254,27 @@ def report_html(system: System, tree: ProfileTree, *, title: str = DEFAULT_TITLE
     ``compact`` (for big systems) puts three devices on a row and one line per link.
     """
     date = date or _dt.date.today()
+    title = title or _t(DEFAULT_TITLE)
     blank = "_" * 38
     per_row = 3 if compact else 1
-    heads = ("<th>Name</th><th>Product</th><th>Maker / product / serial no.</th>"
-             "<th>Firmware</th><th>Hardware</th>")
-    if not compact:
-        heads = ("<th width=26%>Name</th><th width=26%>Product</th>"
-                 "<th width=22%>Maker / product / serial no.</th><th width=13%>Firmware</th>"
-                 "<th width=13%>Hardware</th>")
+    columns = (_t("Name"), _t("Product"), _t("Maker / product / serial no."), _t("Firmware"),
+               _t("Hardware"))
+    widths = ("", "", "", "", "") if compact else (" width=26%", " width=26%", " width=22%",
+                                                   " width=13%", " width=13%")
+    heads = "".join(f"<th{w}>{_e(c)}</th>" for w, c in zip(widths, columns, strict=True))
     devices = f"<tr>{heads * per_row}</tr>{_device_rows(system, per_row)}"
 
     def missing(lk: Any) -> str:
         gone = [system.device(r.device) for r in (lk.output, lk.input)]
         if any(d is None or not d.present for d in gone):
-            return " <i style='color:#b00000'>(to a missing device)</i>"
+            return f" <i style='color:#b00000'>{_e(_t('(to a missing device)'))}</i>"
         return ""
 
     links = "".join(
         f"<tr><td>{i}</td><td>{_end(system, tree, lk.output, compact)}</td><td>→</td>"
         f"<td>{_end(system, tree, lk.input, compact)}{missing(lk)}</td></tr>"
         for i, lk in enumerate(system.links, 1)
-    ) or "<tr><td colspan=4><i>no links</i></td></tr>"
+    ) or f"<tr><td colspan=4><i>{_e(_t('no links'))}</i></td></tr>"
     info = fitting
     when = date.isoformat()
     patient = prosthetist = prosthesis = blank
@@ -246,24 +283,27 @@ def report_html(system: System, tree: ProfileTree, *, title: str = DEFAULT_TITLE
     autoconfigure = True
     if info is not None and info.policy is not None:
         autoconfigure = bool(info.policy.autoconfigure)
-        policy_html = ("<p>Autoconfigure: <b>on</b> (the prosthesis may link parts "
-                       "that nothing drives on its own)</p>" if autoconfigure
-                       else "<p>Autoconfigure: <b>off</b> (the prosthesis repairs known "
-                       "links and finds replacements for missing parts, but links nothing new "
-                       "on its own)</p>")
+        policy_html = "<p>" + (
+            _t("Autoconfigure: {on} (the prosthesis may link parts that nothing drives on "
+               "its own)").format(on=f"<b>{_e(_t('on'))}</b>") if autoconfigure
+            else _t("Autoconfigure: {off} (the prosthesis repairs known links and finds "
+                    "replacements for missing parts, but links nothing new on its own)")
+            .format(off=f"<b>{_e(_t('off'))}</b>")) + "</p>"
     if info is not None:
         if info.time is not None:
             when = info.time.strftime("%Y-%m-%d %H:%M UTC")
         patient = _e(info.patient) or blank
         prosthetist = _e(info.prosthetist) or blank
         prosthesis = _e(info.bus) or blank
+        cells = "".join(f"<th>{_e(c)}</th>" for c in (
+            "#", _t("Time (UTC)"), _t("Action"), _t("Change"), _t("Outcome"), _t("By")))
         session_html = (
-            f"<h2>Changes made in this session ({len(info.changes)})</h2>"
-            "<table class=grid width=100%><tr><th>#</th><th>Time (UTC)</th><th>Action</th>"
-            "<th>Change</th><th>Outcome</th><th>By</th></tr>"
+            f"<h2>{_e(_t('Changes made in this session ({n})').format(n=len(info.changes)))}"
+            f"</h2><table class=grid width=100%><tr>{cells}</tr>"
             f"{_change_rows(info.changes)}</table>")
-    findings = ("<h2>Checks</h2><table class=grid width=100%><tr><th width=12%>Finding</th>"
-                f"<th>What</th></tr>{_finding_rows(system, autoconfigure)}</table>")
+    findings = (f"<h2>{_e(_t('Checks'))}</h2><table class=grid width=100%><tr>"
+                f"<th width=12%>{_e(_t('Finding'))}</th><th>{_e(_t('What'))}</th></tr>"
+                f"{_finding_rows(system, autoconfigure)}</table>")
     crc = "—" if checksum is None else f"0x{checksum:04X}"
     detail = _detail_rows(system) if not compact else ""
     graph = ""
@@ -281,31 +321,34 @@ def report_html(system: System, tree: ProfileTree, *, title: str = DEFAULT_TITLE
  .hex {{ color: #555; font-family: 'DejaVu Sans Mono', monospace; }}
 </style>
 <h1>{_e(title)}</h1>
-<p>Date: {when}</p>
+<p>{_e(_t("Date: {0}").format(when))}</p>
 <table cellpadding=3>
- <tr><td>Patient:</td><td>{patient}</td><td>Prosthesis:</td><td>{prosthesis}</td></tr>
- <tr><td>Prosthetist:</td><td>{prosthetist}</td><td>Signature:</td><td>{blank}</td></tr>
+ <tr><td>{_e(_t("Patient:"))}</td><td>{patient}</td><td>{_e(_t("Prosthesis:"))}</td>
+ <td>{prosthesis}</td></tr>
+ <tr><td>{_e(_t("Prosthetist:"))}</td><td>{prosthetist}</td><td>{_e(_t("Signature:"))}</td>
+ <td>{blank}</td></tr>
 </table>
 {policy_html}
-<h2>Devices ({len(system.devices)})</h2>
+<h2>{_e(_t("Devices ({n})").format(n=len(system.devices)))}</h2>
 <table class=grid width=100%>{devices}</table>
-<h2>Links ({len(system.links)})</h2>
+<h2>{_e(_t("Links ({n})").format(n=len(system.links)))}</h2>
 <table class=grid width=100%>
- <tr><th width=4%>#</th><th width=46%>Output</th><th width=3%></th>
- <th width=47%>Input</th></tr>{links}
+ <tr><th width=4%>#</th><th width=46%>{_e(_t("Output"))}</th><th width=3%></th>
+ <th width=47%>{_e(_t("Input"))}</th></tr>{links}
 </table>
-<h2>Stored set-up</h2>
-<p>Check number: <b class=hex>{crc}</b>{stored_note}. A later reading of the prosthesis
-that shows the same number has the same links.</p>
+<h2>{_e(_t("Stored set-up"))}</h2>
+<p>{_t("Check number: {crc}{note}. A later reading of the prosthesis that shows the same "
+       "number has the same links.").format(crc=f"<b class=hex>{crc}</b>",
+                                            note=_e(stored_note))}</p>
 {session_html}
 {findings}
 {graph}
-<h2 style='font-size:8pt'>Technical detail</h2>
-<p style='font-size:7pt; color:#444'>Check number: CRC-16/CCITT-FALSE of the stored
-configuration record. Links by identity (VID, PID, serial number, channel index) with the
-channels' type and profile codes:</p>
+<h2 style='font-size:8pt'>{_e(_t("Technical detail"))}</h2>
+<p style='font-size:7pt; color:#444'>{_e(_t(
+    "Check number: CRC-16/CCITT-FALSE of the stored configuration record. Links by identity "
+    "(VID, PID, serial number, channel index) with the channels' type and profile codes:"))}</p>
 <table style='font-size:7pt; color:#444' cellpadding=1>{detail}</table>
-<p style='color:#777; font-size:7pt'>Generated by PDCP Studio.</p>
+<p style='color:#777; font-size:7pt'>{_e(_t("Generated by PDCP Studio."))}</p>
 """
 
 
@@ -317,7 +360,7 @@ def _ensure_gui_app() -> None:
 
 
 def write_report(path: str | Path, system: System, tree: ProfileTree,
-                 graph_image: QImage | None = None, title: str = DEFAULT_TITLE, *,
+                 graph_image: QImage | None = None, title: str | None = None, *,
                  date: _dt.date | None = None,
                  collection: ConfigCollection | None = None,
                  fitting: FittingInfo | None = None) -> Path:
@@ -328,13 +371,15 @@ def write_report(path: str | Path, system: System, tree: ProfileTree,
     """
     _ensure_gui_app()
     path = Path(path)
+    title = title or _t(DEFAULT_TITLE)
     checksum = configuration_checksum(system, collection)
     if collection is None:
-        note = f" (the {len(system.links)} link(s) above, as they would be stored)"
+        note = _t(" (the {n} link(s) above, as they would be stored)").format(
+            n=len(system.links))
     else:
         n = sum(len(c.links) for c in collection.configurations)
-        note = (f" (what the prosthesis stores: {n} link(s) in "
-                f"{len(collection.configurations)} set-up(s))")
+        note = _t(" (what the prosthesis stores: {n} link(s) in {c} set-up(s))").format(
+            n=n, c=len(collection.configurations))
     buffer = QBuffer()
     buffer.open(QIODevice.OpenModeFlag.WriteOnly)
     writer = QPdfWriter(buffer)
@@ -372,7 +417,7 @@ def write_report(path: str | Path, system: System, tree: ProfileTree,
 
     painter = QPainter()
     if not painter.begin(writer):
-        raise OSError(f"{path}: cannot write the PDF")
+        raise OSError(_t("{path}: cannot write the PDF").format(path=path))
     try:
         painter.scale(px_per_layout * scale, px_per_layout * scale)
         doc.drawContents(painter)

@@ -4443,4 +4443,283 @@ Die Prothese ist wie zuvor.</translation>
             <translation>Noch keine Ausgangskanäle bekannt</translation>
         </message>
     </context>
+    <context>
+        <name>FittingReport</name>
+        <message>
+            <source>PDCP fitting report</source>
+            <translation>PDCP-Anpassungsbericht</translation>
+        </message>
+        <message>
+            <source>Stored set-up written</source>
+            <translation>Gespeicherte Einrichtung geschrieben</translation>
+        </message>
+        <message>
+            <source>Current links stored as the set-up</source>
+            <translation>Aktuelle Verbindungen als Einrichtung gespeichert</translation>
+        </message>
+        <message>
+            <source>Autoconfigure turned on</source>
+            <translation>Autokonfiguration eingeschaltet</translation>
+        </message>
+        <message>
+            <source>Autoconfigure turned off</source>
+            <translation>Autokonfiguration ausgeschaltet</translation>
+        </message>
+        <message>
+            <source>Link added</source>
+            <translation>Verbindung hinzugefügt</translation>
+        </message>
+        <message>
+            <source>Link removed</source>
+            <translation>Verbindung entfernt</translation>
+        </message>
+        <message>
+            <source>Setting changed</source>
+            <translation>Einstellung geändert</translation>
+        </message>
+        <message>
+            <source>Changes written to the prosthesis</source>
+            <translation>Änderungen in die Prothese geschrieben</translation>
+        </message>
+        <message>
+            <source>applied</source>
+            <translation>ausgeführt</translation>
+        </message>
+        <message>
+            <source>rolled back</source>
+            <translation>zurückgenommen</translation>
+        </message>
+        <message>
+            <source>failed</source>
+            <translation>fehlgeschlagen</translation>
+        </message>
+        <message>
+            <source>Error</source>
+            <translation>Fehler</translation>
+        </message>
+        <message>
+            <source>Warning</source>
+            <translation>Warnung</translation>
+        </message>
+        <message>
+            <source>Info</source>
+            <translation>Hinweis</translation>
+        </message>
+        <message>
+            <source>Undone: {0}</source>
+            <translation>Rückgängig gemacht: {0}</translation>
+        </message>
+        <message>
+            <source>Done again: {0}</source>
+            <translation>Wiederholt: {0}</translation>
+        </message>
+        <message>
+            <source>{0} carried out</source>
+            <translation>{0} ausgeführt</translation>
+        </message>
+        <message>
+            <source>applied, verified</source>
+            <translation>ausgeführt, geprüft</translation>
+        </message>
+        <message>
+            <source>+{adds} / −{removes} link(s)</source>
+            <translation>+{adds} / −{removes} Verbindung(en)</translation>
+        </message>
+        <message>
+            <source>, {n} parameter(s)</source>
+            <translation>, {n} Parameter</translation>
+        </message>
+        <message>
+            <source>no change was made in this session</source>
+            <translation>in dieser Sitzung wurde nichts geändert</translation>
+        </message>
+        <message>
+            <source>every check passed</source>
+            <translation>alle Prüfungen bestanden</translation>
+        </message>
+        <message>
+            <source>a kind of signal the profile tree does not name</source>
+            <translation>eine Signalart, die der Profilbaum nicht nennt</translation>
+        </message>
+        <message>
+            <source>{device}, channel {n}</source>
+            <translation>{device}, Kanal {n}</translation>
+        </message>
+        <message>
+            <source>type {type}, profile {profile}</source>
+            <translation>Typ {type}, Profil {profile}</translation>
+        </message>
+        <message>
+            <source>not on the bus</source>
+            <translation>nicht am Bus</translation>
+        </message>
+        <message>
+            <source>VID {vid} PID {pid} serial {serial} channel {index} ({codes})</source>
+            <translation>VID {vid} PID {pid} Seriennummer {serial} Kanal {index} ({codes})</translation>
+        </message>
+        <message>
+            <source>(missing)</source>
+            <translation>(fehlt)</translation>
+        </message>
+        <message>
+            <source>{product} ({vendor})</source>
+            <translation>{product} ({vendor})</translation>
+        </message>
+        <message>
+            <source>not in the catalogue</source>
+            <translation>nicht im Katalog</translation>
+        </message>
+        <message>
+            <source>no devices</source>
+            <translation>keine Geräte</translation>
+        </message>
+        <message>
+            <source>Name</source>
+            <translation>Name</translation>
+        </message>
+        <message>
+            <source>Product</source>
+            <translation>Produkt</translation>
+        </message>
+        <message>
+            <source>Maker / product / serial no.</source>
+            <translation>Hersteller / Produkt / Seriennr.</translation>
+        </message>
+        <message>
+            <source>Firmware</source>
+            <translation>Firmware</translation>
+        </message>
+        <message>
+            <source>Hardware</source>
+            <translation>Hardware</translation>
+        </message>
+        <message>
+            <source>(to a missing device)</source>
+            <translation>(zu einem fehlenden Gerät)</translation>
+        </message>
+        <message>
+            <source>no links</source>
+            <translation>keine Verbindungen</translation>
+        </message>
+        <message>
+            <source>on</source>
+            <translation>an</translation>
+        </message>
+        <message>
+            <source>off</source>
+            <translation>aus</translation>
+        </message>
+        <message>
+            <source>Autoconfigure: {on} (the prosthesis may link parts that nothing drives on its own)</source>
+            <translation>Autokonfiguration: {on} (die Prothese darf Teile, die nichts ansteuert, selbst verbinden)</translation>
+        </message>
+        <message>
+            <source>Autoconfigure: {off} (the prosthesis repairs known links and finds replacements for missing parts, but links nothing new on its own)</source>
+            <translation>Autokonfiguration: {off} (die Prothese repariert bekannte Verbindungen und findet Ersatz für fehlende Teile, verbindet aber nichts Neues von selbst)</translation>
+        </message>
+        <message>
+            <source>Time (UTC)</source>
+            <translation>Zeit (UTC)</translation>
+        </message>
+        <message>
+            <source>Action</source>
+            <translation>Aktion</translation>
+        </message>
+        <message>
+            <source>Change</source>
+            <translation>Änderung</translation>
+        </message>
+        <message>
+            <source>Outcome</source>
+            <translation>Ergebnis</translation>
+        </message>
+        <message>
+            <source>By</source>
+            <translation>Von</translation>
+        </message>
+        <message>
+            <source>Changes made in this session ({n})</source>
+            <translation>Änderungen in dieser Sitzung ({n})</translation>
+        </message>
+        <message>
+            <source>Checks</source>
+            <translation>Prüfungen</translation>
+        </message>
+        <message>
+            <source>Finding</source>
+            <translation>Befund</translation>
+        </message>
+        <message>
+            <source>What</source>
+            <translation>Was</translation>
+        </message>
+        <message>
+            <source>Date: {0}</source>
+            <translation>Datum: {0}</translation>
+        </message>
+        <message>
+            <source>Patient:</source>
+            <translation>Patient:</translation>
+        </message>
+        <message>
+            <source>Prosthesis:</source>
+            <translation>Prothese:</translation>
+        </message>
+        <message>
+            <source>Prosthetist:</source>
+            <translation>Orthopädietechniker:</translation>
+        </message>
+        <message>
+            <source>Signature:</source>
+            <translation>Unterschrift:</translation>
+        </message>
+        <message>
+            <source>Devices ({n})</source>
+            <translation>Geräte ({n})</translation>
+        </message>
+        <message>
+            <source>Links ({n})</source>
+            <translation>Verbindungen ({n})</translation>
+        </message>
+        <message>
+            <source>Output</source>
+            <translation>Ausgang</translation>
+        </message>
+        <message>
+            <source>Input</source>
+            <translation>Eingang</translation>
+        </message>
+        <message>
+            <source>Stored set-up</source>
+            <translation>Gespeicherte Einrichtung</translation>
+        </message>
+        <message>
+            <source>Check number: {crc}{note}. A later reading of the prosthesis that shows the same number has the same links.</source>
+            <translation>Prüfnummer: {crc}{note}. Eine spätere Auslesung der Prothese mit derselben Nummer hat dieselben Verbindungen.</translation>
+        </message>
+        <message>
+            <source>Technical detail</source>
+            <translation>Technische Einzelheiten</translation>
+        </message>
+        <message>
+            <source>Check number: CRC-16/CCITT-FALSE of the stored configuration record. Links by identity (VID, PID, serial number, channel index) with the channels' type and profile codes:</source>
+            <translation>Prüfnummer: CRC-16/CCITT-FALSE des gespeicherten Konfigurationsdatensatzes. Verbindungen nach Identität (VID, PID, Seriennummer, Kanalindex) mit den Typ- und Profilcodes der Kanäle:</translation>
+        </message>
+        <message>
+            <source>Generated by PDCP Studio.</source>
+            <translation>Erstellt mit PDCP Studio.</translation>
+        </message>
+        <message>
+            <source> (the {n} link(s) above, as they would be stored)</source>
+            <translation> (die {n} Verbindung(en) oben, wie sie gespeichert würden)</translation>
+        </message>
+        <message>
+            <source> (what the prosthesis stores: {n} link(s) in {c} set-up(s))</source>
+            <translation> (was die Prothese speichert: {n} Verbindung(en) in {c} Einrichtung(en))</translation>
+        </message>
+        <message>
+            <source>{path}: cannot write the PDF</source>
+            <translation>{path}: Das PDF kann nicht geschrieben werden</translation>
+        </message>
+    </context>
 </TS>
