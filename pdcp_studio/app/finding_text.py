@@ -7,12 +7,13 @@ the engineer's message and the rule's key one hover away (:func:`finding_detail`
 
 from __future__ import annotations
 
+from collections.abc import Mapping
 from html import escape
 
 from pdcp_studio.app.i18n import translate
 from pdcp_studio.engine.checks import Finding
 from pdcp_studio.model.catalog import default_catalog
-from pdcp_studio.model.refs import ChannelRef
+from pdcp_studio.model.refs import ChannelRef, DeviceKey
 from pdcp_studio.model.system import System
 
 _CTX = "Findings"
@@ -53,24 +54,30 @@ _TERMINAL_OFF = ("{a} drives a part of the prosthesis but nothing feeds it, so t
                  "link it on its own: connect a matching output.")
 
 
-def channel_words(system: System, ref: ChannelRef) -> str:
-    """``Multi-grip hand (serial 301), channel 2``: the device's name and the channel."""
+def channel_words(system: System, ref: ChannelRef,
+                  names: Mapping[DeviceKey, str] | None = None) -> str:
+    """``Multi-grip hand (serial 301), channel 2``: the device's name and the channel;
+    ``names`` (device → name) when the caller names the parts itself."""
     device = system.devices.get(ref.device)
-    name = default_catalog().device_label(device) if device is not None else \
-        default_catalog().label(ref.device)
+    name = names.get(ref.device) if names else None
+    if name is None:
+        name = default_catalog().device_label(device) if device is not None else \
+            default_catalog().label(ref.device)
     return translate(_CTX, "{device}, channel {n}").format(device=name, n=ref.index)
 
 
-def plain_finding(finding: Finding, system: System, autoconfigure: bool = True) -> str:
+def plain_finding(finding: Finding, system: System, autoconfigure: bool = True,
+                  names: Mapping[DeviceKey, str] | None = None) -> str:
     """The finding in plain words with what to do; the engine's message if the rule is new.
 
-    ``autoconfigure`` is the prosthesis's policy (the checks were made with it)."""
+    ``autoconfigure`` is the prosthesis's policy (the checks were made with it); ``names``
+    as for :func:`channel_words`."""
     text = _TEXTS.get(finding.code)
     if finding.code == "terminal-unconnected" and not autoconfigure:
         text = _TERMINAL_OFF
     if text is None:
         return finding.message
-    refs = [channel_words(system, r) for r in finding.refs[:2]]
+    refs = [channel_words(system, r, names) for r in finding.refs[:2]]
     refs += [""] * (2 - len(refs))
     return translate(_CTX, text).format(a=refs[0], b=refs[1])
 

@@ -142,3 +142,31 @@ def test_without_a_stored_configuration_the_links_on_the_bus_are_repaired(fitted
     assert not any(lk.input.device == HAND for lk in plan.final_links)
     assert logic.replacement_plan(swapped, ConfigCollection(), [SPARE_HAND]).final_links == \
         plan.final_links  # an empty stored configuration is none
+
+
+def test_two_parts_that_would_read_alike_get_their_serial_numbers(fitted):
+    system, _stored = fitted
+    bus = _swap(system)
+    bus.devices[HAND].present = True
+    bus.devices[HAND].name = bus.devices[SPARE_HAND].name = "Hand"  # two hands named alike
+    names = words.part_names(bus)
+    assert names[HAND] == "Hand (serial 301)" and names[SPARE_HAND] == "Hand (serial 302)"
+    assert names[CONTROL] == "Control unit (serial 201)"  # named by the catalogue
+    assert words.part_words(bus, HAND) == "Hand (serial 301)"
+    bus.devices[SPARE_HAND].name = "Spare hand"  # no longer alike: no serial added
+    assert words.part_words(bus, HAND) == "Hand"
+
+
+def test_restoring_an_empty_stored_configuration_over_a_stored_one_is_flagged(fitted):
+    from pdcp_studio.bus.transaction import Change
+
+    system, stored = fitted
+    empty = Change.links_to(system.links, system.links, "history restore 1")
+    empty.configuration = ConfigCollection()
+    assert logic.clears_stored(empty, stored)
+    assert not logic.clears_stored(empty, ConfigCollection())  # nothing stored: nothing lost
+    assert not logic.clears_stored(empty, None)
+    kept = Change.links_to(system.links, system.links, "history restore 2")
+    assert not logic.clears_stored(kept, stored)  # no configuration written
+    kept.configuration = stored
+    assert not logic.clears_stored(kept, stored)

@@ -415,3 +415,100 @@ def test_a_failed_connect_is_said_on_the_page_and_changes_nothing(live, qtbot):
     assert live.live.url == "sim:transradial" and live.live.is_live
     page.current.setChecked(True)
     _next(w, qtbot, page, w.scan_page)
+
+
+# -- Words for a prosthetist (issue 11) ----------------------------------------------------
+def test_checks_name_the_two_hands_apart(live, qtbot):
+    """Both hands on the bus, nothing linked: each finding names its hand by serial."""
+    from pdcp_studio.bus.transaction import Change
+
+    session = _session(live)
+    session.plug(SPARE)
+    qtbot.waitUntil(lambda: SPARE in session.system().devices
+                    and session.system().devices[SPARE].present, timeout=T)
+    session.wait_settled(5)
+    links = sorted(session.system().links)
+    assert session.transact(Change.links_to(links, [], "clear for the test"),
+                            record=False).written
+    live.live.refresh()
+    w = open_wizard(live, "fitting")
+    _next(w, qtbot, w.connect_page, w.scan_page)
+    _next(w, qtbot, w.scan_page, w.checks_page)
+    _ready(w, qtbot, w.checks_page)
+    text = _text(w.checks_page)
+    assert "Multi-grip hand (serial 301), channel 1" in text
+    assert "Multi-grip hand (serial 302), channel 1" in text
+    findings = [line for line in text.splitlines() if "nothing feeds it" in line]
+    assert len(findings) == len(set(findings)) >= 2  # no two findings read alike
+
+
+def test_restoring_an_entry_from_before_any_stored_configuration_warns_and_asks(live, qtbot):
+    from pdcp_studio.bus.transaction import Change
+
+    session = _session(live)
+    fitted = set(session.system().links)
+    assert not session.read_configuration().configurations  # nothing stored yet
+    assert session.transact(Change.links_to(sorted(fitted), sorted(fitted)[:3],
+                                            "lose two")).written  # entry 1: before storing
+    assert session.transact(Change.links_to(sorted(fitted)[:3], sorted(fitted),
+                                            "links back")).written  # entry 2
+    _store_configuration(live, qtbot)  # entry 3: five links stored
+    live.live.refresh()
+    live.history_panel.refresh()
+    qtbot.waitUntil(lambda: len(live.history_panel.all_entries()) == 3, timeout=T)
+    w = open_wizard(live, "restore")
+    page, diff = w.source_page, w.diff_page
+    qtbot.waitUntil(lambda: len(page.history) == 3, timeout=T)
+    # A later entry (made with the configuration stored): no warning.
+    assert page.choose_entry(page.history[0]["id"])
+    _next(w, qtbot, page, diff)
+    _ready(w, qtbot, diff)
+    assert not diff.clears and diff.warning.isHidden() and diff.isComplete()
+    w.back()
+    # The entry from before anything was stored: warned plainly, Next waits for the tick.
+    earliest = page.history[-1]["id"]
+    assert page.choose_entry(earliest)
+    w.next()
+    qtbot.waitUntil(lambda: w.currentPage() is diff and diff.clears, timeout=T)
+    assert diff.warning.isVisible() and diff.confirm.isVisible()
+    assert "clears the stored configuration" in diff.warning.text()
+    assert not diff.isComplete() and not w.button(w.WizardButton.NextButton).isEnabled()
+    before = _bus_state(live)
+    w.next()  # refused: nothing moves, nothing written
+    assert w.currentPage() is diff and _bus_state(live) == before
+    diff.confirm.setChecked(True)
+    assert diff.isComplete()
+    _next(w, qtbot, diff, w.write_page)
+    w.next()
+    qtbot.waitUntil(lambda: w.currentPage() is w.verify_page, timeout=T)
+    _ready(w, qtbot, w.verify_page)
+    assert w.verify_page.problems == []
+    assert not any(c.links for c in session.read_configuration().configurations)
+    assert len(session.system().links) == 3
+
+
+def test_the_connect_page_speaks_of_prostheses_not_buses(make_window, qtbot):
+    from pdcp_studio.bus.simulator import list_prostheses, prosthesis
+
+    window = make_window()
+    w = open_wizard(window, "fitting")
+    page = w.connect_page
+    shown = [page.sim_page.list.item(i).text() for i in range(page.sim_page.list.count())]
+    assert shown[0] == prosthesis("transradial").description  # the one to try first
+    assert sorted(shown) == sorted(prosthesis(n).description for n in list_prostheses())
+    assert not set(shown) & set(list_prostheses())  # no raw names
+    words = " ".join(b.text() for b in (page.current, page.simulated, page.other))
+    words += " " + page.intro.text()
+    for engineer in ("virtual bus", "in-process", "built-in", "sim:"):
+        assert engineer not in words and engineer not in " ".join(shown), engineer
+    assert page.sim_page.url() == "sim:transradial"
+    page.sim_page.set_url("sim:appendix-d")
+    assert page.sim_page.list.currentItem().text().startswith("Appendix D")
+    w.close()
+
+
+def test_the_connect_page_names_the_connected_prosthesis_plainly(live, qtbot):
+    w = open_wizard(live, "fitting")
+    assert w.connect_page.current.text() == \
+        "The prosthesis connected now: Transradial prosthesis (simulated)"
+    w.close()

@@ -134,6 +134,15 @@ def restore_file_change(system: System, collection: ConfigCollection, name: str)
     return change
 
 
+def clears_stored(change: Change | None, stored: ConfigCollection | None) -> bool:
+    """True when ``change`` writes an empty stored configuration over one that holds links:
+    a history entry made before any configuration was stored puts that emptiness back, and
+    after it the prosthesis links nothing as stored at its next start-up."""
+    configuration = getattr(change, "configuration", None)
+    return (configuration is not None and not stored_links(configuration)
+            and bool(stored_links(stored)))
+
+
 @dataclass(frozen=True)
 class Problem:
     """One way the prosthesis does not hold what was written.

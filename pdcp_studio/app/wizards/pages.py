@@ -15,19 +15,22 @@ from collections.abc import Callable
 from pathlib import Path
 from typing import Any
 
-from PySide6.QtCore import Qt, QTimer
+from PySide6.QtCore import Qt, QTimer, Signal
 from PySide6.QtGui import QCloseEvent, QKeyEvent
 from PySide6.QtWidgets import (
     QButtonGroup,
     QFileDialog,
     QHBoxLayout,
     QLabel,
+    QListWidget,
+    QListWidgetItem,
     QPlainTextEdit,
     QProgressBar,
     QPushButton,
     QRadioButton,
     QTextBrowser,
     QVBoxLayout,
+    QWidget,
     QWizard,
     QWizardPage,
 )
@@ -182,18 +185,65 @@ class Page(QWizardPage):
         done(got)
 
 
+def prosthesis_words(url: str) -> str:
+    """A connection as a prosthetist reads it: a simulated prosthesis by the simulator's
+    description (``Transradial prosthesis (simulated)``), any other by its address."""
+    from pdcp_studio.app.connect_dialog import prosthesis_description
+
+    kind, _, name = url.partition(":")
+    if kind == "sim":
+        head = prosthesis_description(name).partition(":")[0].strip()
+        if head:
+            return _t("{0} (simulated)").format(head)
+    return url
+
+
+class SimChoice(QWidget):
+    """The simulated prostheses by what they are (the simulator's descriptions), the one
+    a new user should try first at the top; ``url()`` is the chosen ``sim:`` address."""
+
+    changed = Signal()
+
+    def __init__(self) -> None:
+        super().__init__()
+        from pdcp_studio.app.connect_dialog import DEFAULT_SIM, prosthesis_description
+        from pdcp_studio.bus.simulator import list_prostheses
+
+        self.list = QListWidget()
+        self.list.setWordWrap(True)
+        names = list_prostheses()
+        for name in sorted(names, key=lambda n: n != DEFAULT_SIM):
+            item = QListWidgetItem(prosthesis_description(name) or name)
+            item.setData(Qt.ItemDataRole.UserRole, name)
+            self.list.addItem(item)
+        self.list.currentRowChanged.connect(lambda _r: self.changed.emit())
+        box = QVBoxLayout(self)
+        box.setContentsMargins(20, 0, 0, 0)
+        box.addWidget(self.list)
+        self.set_url(f"sim:{DEFAULT_SIM}")
+
+    def url(self) -> str | None:
+        item = self.list.currentItem()
+        return f"sim:{item.data(Qt.ItemDataRole.UserRole)}" if item else None
+
+    def set_url(self, url: str) -> None:
+        name = url.partition(":")[2]
+        for row in range(self.list.count()):
+            if self.list.item(row).data(Qt.ItemDataRole.UserRole) == name:
+                self.list.setCurrentRow(row)
+                return
+
+
 class ConnectPage(Page):
     """Which prosthesis: the one connected now, a simulated one, or another connection."""
 
     def __init__(self) -> None:
         super().__init__(_t("Connect"),
                          _t("Choose the prosthesis to work on. Next connects to it."))
-        from pdcp_studio.app.connect_dialog import SimPage
-
         self.view.hide()
         self.current = QRadioButton()
         self.simulated = QRadioButton(_t("A simulated prosthesis, to practise on:"))
-        self.sim_page = SimPage()
+        self.sim_page = SimChoice()
         self.other = QRadioButton(_t("Another connection (CAN adapter or arbitrator "
                                           "cable):"))
         self.other_url: str | None = None
@@ -217,7 +267,8 @@ class ConnectPage(Page):
     def initializePage(self) -> None:
         live = self.task.main.live
         if live.is_live:
-            self.current.setText(_t("The prosthesis connected now ({0})").format(live.url))
+            self.current.setText(_t("The prosthesis connected now: {0}").format(
+                prosthesis_words(live.url)))
             self.current.setEnabled(True)
             self.current.setChecked(True)
         else:
@@ -231,7 +282,7 @@ class ConnectPage(Page):
         url = ConnectDialog.get_url(self)
         if url:
             self.other_url = url
-            self.other.setText(_t("Another connection: {0}").format(url))
+            self.other.setText(_t("Another connection: {0}").format(prosthesis_words(url)))
             self.other.setChecked(True)
 
     def chosen_url(self) -> str | None:
@@ -261,7 +312,7 @@ class ConnectPage(Page):
             return False
         self.connecting = url
         self.completeChanged.emit()
-        self.working(_t("Connecting to {0}…").format(url))
+        self.working(_t("Connecting to {0}…").format(prosthesis_words(url)))
         window.live.connected.connect(self._connected)
         window.live.failed.connect(self._failed)
         window.connect_bus(url)
@@ -280,7 +331,7 @@ class ConnectPage(Page):
             return
         self._disconnect_signals()
         self.connecting = ""
-        self.idle(_t("Connected to {0}.").format(url))
+        self.idle(_t("Connected to {0}.").format(prosthesis_words(url)))
         self.completeChanged.emit()
         if self.task.currentPage() is self:
             QTimer.singleShot(0, self.task.next)
@@ -290,7 +341,7 @@ class ConnectPage(Page):
             return
         self._disconnect_signals()
         self.connecting = ""
-        self.idle(_t("Cannot connect to {0}: {1}").format(url, message))
+        self.idle(_t("Cannot connect to {0}: {1}").format(prosthesis_words(url), message))
         self.completeChanged.emit()
 
 
@@ -337,9 +388,10 @@ class ScanPage(Page):
         self.again.setEnabled(True)
         self.task.system = system
         lines = []
+        names = words.part_names(system)
         for key, device in sorted(system.devices.items()):
             state = "" if device.present else _t(" (not on the bus)")
-            lines.append(f"{words.part_words(system, key)}{state}")
+            lines.append(f"{names[key]}{state}")
         present = sum(1 for d in system.devices.values() if d.present)
         self.view.setHtml(bullets(lines, _t("{0} part(s) found on the bus, {1} link(s) "
                                                  "between them:").format(
@@ -370,7 +422,8 @@ class ChecksPage(Page):
             self.view.setHtml(bullets([_t("No problems found: every part is described "
                                                "and linked as it asks.")]))
         else:
-            lines = [plain_finding(f, task.system, auto) for f in findings]
+            names = words.part_names(task.system)  # two hands read apart
+            lines = [plain_finding(f, task.system, auto, names) for f in findings]
             self.view.setHtml(bullets(lines, _t("{0} thing(s) to look at. The next step "
                                                      "proposes links that fix what can be "
                                                      "fixed automatically:").format(

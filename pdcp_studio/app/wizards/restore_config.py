@@ -14,8 +14,10 @@ from typing import Any
 from PySide6.QtCore import Qt
 from PySide6.QtWidgets import (
     QButtonGroup,
+    QCheckBox,
     QFileDialog,
     QHBoxLayout,
+    QLabel,
     QLineEdit,
     QListWidget,
     QListWidgetItem,
@@ -185,16 +187,60 @@ def restore_step(task: TaskWizard, system: Any, stored: Any) -> tuple[list[str],
     return lines, change, after
 
 
+class DifferencePage(ChangePage):
+    """The difference the restore makes; when it would clear the stored configuration (a
+    history entry from before any was stored), a plain warning and a box to tick before
+    Next: the stored configuration is what the prosthesis links by after a restart or a
+    part swap, so losing it must be chosen, not stumbled into."""
+
+    def __init__(self) -> None:
+        super().__init__(
+            _t("Difference"),
+            _t("What changes on the prosthesis when this configuration is put back. Nothing "
+               "is written yet."), restore_step)
+        self.warning = QLabel(_t(
+            "Warning: this fitting was made before any configuration was stored on the "
+            "prosthesis. Putting it back clears the stored configuration: after a restart, "
+            "or when a part is replaced, the prosthesis will no longer link its parts as "
+            "they are stored now."))
+        self.warning.setWordWrap(True)
+        self.warning.setStyleSheet("color:#b00000; font-weight:bold")
+        self.confirm = QCheckBox(_t("Yes, clear the stored configuration"))
+        self.confirm.toggled.connect(lambda _on: self.completeChanged.emit())
+        self.box.insertWidget(1, self.warning)
+        self.box.insertWidget(2, self.confirm)
+        self.clears = False
+        self._warn(False)
+
+    def _warn(self, clears: bool) -> None:
+        self.clears = clears
+        self.warning.setVisible(clears)
+        self.confirm.setVisible(clears)
+        self.confirm.setChecked(False)
+
+    def initializePage(self) -> None:
+        self._warn(False)
+        super().initializePage()
+
+    def _previewed(self, got: Any) -> None:
+        super()._previewed(got)
+        self._warn(logic.clears_stored(self.task.change, self.task.stored))
+        self.completeChanged.emit()
+
+    def isComplete(self) -> bool:
+        return super().isComplete() and (not self.clears or self.confirm.isChecked())
+
+    def validatePage(self) -> bool:
+        return self.isComplete()  # Next by keyboard or code waits for the tick too
+
+
 class RestoreWizard(TaskWizard):
     """A stored configuration put back, step by step."""
 
     def __init__(self, window: Any) -> None:
         super().__init__(window, _t("Restore a configuration"))
         self.source_page = SourcePage()
-        self.diff_page = ChangePage(
-            _t("Difference"),
-            _t("What changes on the prosthesis when this configuration is put back. Nothing "
-               "is written yet."), restore_step)
+        self.diff_page = DifferencePage()
         self.write_page = WritePage(_t("Write"),
                                     _t("The configuration is written to the prosthesis."),
                                     _t("Write to prosthesis"))

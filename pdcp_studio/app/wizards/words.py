@@ -8,6 +8,8 @@ engineer's text one click away. Everything goes through Qt's translation (contex
 
 from __future__ import annotations
 
+from collections import Counter
+
 from pdcp_studio.app.i18n import translate
 from pdcp_studio.bus.session_api import ChangePreview
 from pdcp_studio.engine import Action, Plan, Rule, Similarity
@@ -25,16 +27,30 @@ def _t(text: str) -> str:
     return translate(_CTX, text)
 
 
-def part_words(system: System, key: DeviceKey) -> str:
-    """``Multi-grip hand (serial 301)``: the part's own name, else its product from the
-    device catalogue with its serial number (two hands of one product stay apart), else
-    what the part calls itself."""
+def _own_words(system: System, key: DeviceKey) -> str:
     device = system.devices.get(key)
     catalogue = default_catalog()
     name = device.name.strip() if device is not None else ""
     if name or catalogue.product_name(key) or device is None or not device.descriptor:
         return catalogue.label(key, name)
     return f"{device.descriptor} (serial {key.serial})"
+
+
+def part_names(system: System) -> dict[DeviceKey, str]:
+    """Every part's words (:func:`part_words`) at once: one pass, for long lists."""
+    own = {key: _own_words(system, key) for key in system.devices}
+    shared = {n for n, count in Counter(own.values()).items() if count > 1}
+    return {key: _t("{name} (serial {serial})").format(name=n, serial=key.serial)
+            if n in shared else n for key, n in own.items()}
+
+
+def part_words(system: System, key: DeviceKey) -> str:
+    """``Multi-grip hand (serial 301)``: the part's own name, else its product from the
+    device catalogue with its serial number, else what the part calls itself; two parts
+    that would read alike (two hands both named "Hand") get their serial numbers."""
+    if key in system.devices:
+        return part_names(system)[key]
+    return _own_words(system, key)
 
 
 def channel_phrase(system: System, ref: ChannelRef) -> str:
