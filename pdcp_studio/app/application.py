@@ -1,4 +1,4 @@
-"""Start the desktop app: a file, a bus, or the built-in simulated prosthesis.
+"""Start the desktop app: a file, a bus, or the start page (no file, no bus).
 
 ``run_app`` is what ``pdcp-studio`` and ``pdcp-studio gui`` call. With ``screenshot`` it
 waits until the first system is on screen and laid out, saves the window as a PNG and
@@ -135,8 +135,11 @@ def run_app(path: str | Path | None = None, bus: str | None = None,
         window.show_opened(opened, Path(path))
     elif not scripted and window.offer_recovery():
         pass  # the recovered document is on screen; connect later from the Bus menu
+    elif bus is None:
+        window.show_start()  # no file, no bus: the start page (tasks, connect, open, recent)
+        QTimer.singleShot(0, _preload_layout)
     else:
-        window.connect_bus(bus or DEFAULT_BUS)
+        window.connect_bus(bus)
         # The graph's layout needs networkx (~0.3 s to import): load it while the bus
         # connects on its worker, not after the bus has answered.
         QTimer.singleShot(0, _preload_layout)

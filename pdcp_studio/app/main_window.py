@@ -32,6 +32,7 @@ from PySide6.QtWidgets import (
     QWidget,
 )
 
+from pdcp_studio.app import start_view
 from pdcp_studio.app.document import Document
 from pdcp_studio.app.graph.scene import BusScene
 from pdcp_studio.app.graph.view import GraphView
@@ -75,6 +76,7 @@ class MainWindow(MenusMixin, FileHandlingMixin, ExportMixin, BusMixin, RecoveryM
         self.scene = BusScene(self.doc, self)
         self.view = GraphView(self.scene, self)
         self.setCentralWidget(self.view)
+        start_view.install(self)  # the start page shares the central area (app/start_view)
         self.live = LiveController(self.doc, self)
         self.live.on_data = self.scene.note_data
         self.live.layout_shape = lambda: self.scene.layout_aspect
@@ -239,7 +241,16 @@ class MainWindow(MenusMixin, FileHandlingMixin, ExportMixin, BusMixin, RecoveryM
     # -- loading ----------------------------------------------------------------------
     def _loaded(self) -> None:
         """The first system is on screen: fit it, then say so once."""
+        start_view.leave_start(self)
         self.view.fit_all()
+        self._mark_ready()
+
+    def show_start(self) -> None:
+        """Nothing to show (no file, no bus): the start page instead of an empty graph."""
+        start_view.show_start(self)
+        self._mark_ready()
+
+    def _mark_ready(self) -> None:
         if not self._is_ready:
             self._is_ready = True
             # Everything alive now (Qt wrappers, modules, the model) lives as long as the
@@ -272,8 +283,10 @@ class MainWindow(MenusMixin, FileHandlingMixin, ExportMixin, BusMixin, RecoveryM
         where = "" if message.startswith(url) else f"{url}: "
         self.error_box(self.tr("Cannot connect"), f"{where}{message}")
         self._update_mode()
-        if not self._is_ready:
-            self._loaded()
+        if not self._is_ready and getattr(self, "quiet", False):
+            self._loaded()  # a scripted run exits on the failure: nothing to offer
+        elif not self._is_ready:
+            self.show_start()  # nothing on screen: what the user can do instead
 
     def open_offline_default(self, why: str) -> None:
         """The shipped transradial system, linked by autoconfigure, with no bus behind it."""

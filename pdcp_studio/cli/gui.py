@@ -20,8 +20,9 @@ def add_subparser(subparsers: argparse._SubParsersAction) -> None:
     p = subparsers.add_parser(
         "gui", help="open the desktop app on a file or a bus",
         description="Open the desktop app on a system file (.json), a stored configuration "
-                    "(.pdcfg) or a live bus; without either, on the simulated prosthesis "
-                    "sim:transradial.")
+                    "(.pdcfg) or a live bus; without either, on the start page (the guided "
+                    "tasks, Connect, Open, the recent files and the simulated prosthesis "
+                    "sim:transradial to practise on).")
     p.add_argument("file", nargs="?", metavar="FILE",
                    help="a pdcp-system/1 file or a stored configuration (.pdcfg)")
     p.add_argument("--bus", metavar="URL",

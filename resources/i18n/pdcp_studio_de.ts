@@ -4741,4 +4741,79 @@ Die Prothese ist wie zuvor.</translation>
             <translation>Ja, die gespeicherte Konfiguration löschen</translation>
         </message>
     </context>
+    <context>
+        <name>StartView</name>
+        <message>
+            <source>New fitting</source>
+            <translation>Neue Versorgung</translation>
+        </message>
+        <message>
+            <source>Connect to a prosthesis, check it, link its parts and store the result, step by step.</source>
+            <translation>Mit einer Prothese verbinden, sie prüfen, ihre Teile verbinden und das Ergebnis speichern, Schritt für Schritt.</translation>
+        </message>
+        <message>
+            <source>Replace a part</source>
+            <translation>Ein Teil ersetzen</translation>
+        </message>
+        <message>
+            <source>Swap a part and link the new one in its place, with how alike it is said in words.</source>
+            <translation>Ein Teil tauschen und das neue an seiner Stelle verbinden; wie ähnlich es ist, wird in Worten gesagt.</translation>
+        </message>
+        <message>
+            <source>Restore a configuration</source>
+            <translation>Eine Konfiguration wiederherstellen</translation>
+        </message>
+        <message>
+            <source>Put a configuration file or an earlier fitting back on the prosthesis.</source>
+            <translation>Eine Konfigurationsdatei oder eine frühere Versorgung wieder auf die Prothese bringen.</translation>
+        </message>
+        <message>
+            <source>PDCP Studio</source>
+            <translation>PDCP Studio</translation>
+        </message>
+        <message>
+            <source>See and set up the parts of a powered prosthesis. Choose what you would like to do:</source>
+            <translation>Die Teile einer elektrisch angetriebenen Prothese sehen und einrichten. Wählen Sie, was Sie tun möchten:</translation>
+        </message>
+        <message>
+            <source>Guided tasks</source>
+            <translation>Geführte Aufgaben</translation>
+        </message>
+        <message>
+            <source>Work directly</source>
+            <translation>Direkt arbeiten</translation>
+        </message>
+        <message>
+            <source>Connect to a prosthesis…</source>
+            <translation>Mit einer Prothese verbinden…</translation>
+        </message>
+        <message>
+            <source>Through a CAN adapter or the arbitrator's cable, to see it live.</source>
+            <translation>Über einen CAN-Adapter oder das Kabel des Arbiters, um sie live zu sehen.</translation>
+        </message>
+        <message>
+            <source>Open a file…</source>
+            <translation>Eine Datei öffnen…</translation>
+        </message>
+        <message>
+            <source>A saved prosthesis or a stored configuration, to look at or prepare.</source>
+            <translation>Eine gespeicherte Prothese oder eine gespeicherte Konfiguration, zum Ansehen oder Vorbereiten.</translation>
+        </message>
+        <message>
+            <source>Try the simulated prosthesis</source>
+            <translation>Die simulierte Prothese ausprobieren</translation>
+        </message>
+        <message>
+            <source>A transradial prosthesis with a spare hand, to practise on without a patient.</source>
+            <translation>Eine transradiale Prothese mit einer Ersatzhand, zum Üben ohne Patienten.</translation>
+        </message>
+        <message>
+            <source>Recent files</source>
+            <translation>Zuletzt geöffnete Dateien</translation>
+        </message>
+        <message>
+            <source>No file opened yet. Files you open or save appear here.</source>
+            <translation>Noch keine Datei geöffnet. Dateien, die Sie öffnen oder speichern, erscheinen hier.</translation>
+        </message>
+    </context>
 </TS>
