@@ -8,7 +8,8 @@ It connects to the simulated prosthesis ``sim:transradial``, clears its links wi
 record (so New fitting has links to propose), then walks New fitting, Replace a part (the
 hand unplugged and the spare hand plugged in through the Simulator panel) and Restore a
 configuration (the original hand back, the first fitting's stored configuration restored
-from the history), and
+from the history; then the fitting's first write, made before anything was stored, which
+warns that it clears the stored configuration), and
 saves ``wizard-<task>-<step>.png`` beside this script (with ``--lang de``: the German build,
 into a temporary folder, to look at): the wizard's window, and for the plug
 step the whole screen with the Simulator panel. The fitting history is a temporary file.
@@ -160,6 +161,20 @@ def main() -> int:
         w.next()
         yield ready(w, w.verify_page)
         shoot(w, "restore-4-verify")
+        w.close()
+
+        # The fitting's first write was made before anything was stored: restoring it
+        # would clear the stored configuration, so the page warns and waits for a tick.
+        w = opened("restore")
+        page = w.source_page
+        yield lambda: len(page.history) >= 3
+        page.choose_entry(next(e["id"] for e in page.history
+                               if e["action"] == "new fitting: connect"))
+        yield lambda: page.isComplete()
+        w.next()
+        yield lambda: w.currentPage() is w.diff_page and w.diff_page.clears
+        w.resize(900, 700)
+        shoot(w, "restore-5-clears-warning")
         w.close()
 
     steps = script()
