@@ -28,6 +28,7 @@ from pdcp_studio.app.i18n import translate
 
 #: What the user is looking at (a dock's or dialog's object/class name) → manual section key.
 VIEW_SECTIONS: dict[str, str] = {
+    "StartView": "start",
     "GraphView": "graph",
     "DevicesDock": "devices",
     "InspectorDock": "inspector",

@@ -171,3 +171,12 @@ def test_folders_under_home_are_shown_from_home(tmp_path, monkeypatch):
     monkeypatch.setattr(Path, "home", staticmethod(lambda: tmp_path))
     assert start_view.folder_words(tmp_path / "Fittings") == str(Path("~") / "Fittings")
     assert start_view.folder_words(Path("/srv/clinic")) == "/srv/clinic"
+
+
+def test_f1_on_the_start_page_opens_the_manual_at_starting(start):
+    from pdcp_studio.app import help_viewer
+
+    assert help_viewer.section_for(start.start_view.task_buttons["fitting"]) == "start"
+    for lang in ("en", "de"):
+        text = help_viewer.manual_path(lang).read_text("utf-8")
+        assert ("start page" if lang == "en" else "Startseite") in text
