@@ -79,7 +79,9 @@ class TracePump:
                 self.json.write_records(parts)
             elif self._bytes_out is not None:
                 self.out.flush()  # what was written as text first
-                self._bytes_out.write(b"\n".join(parts) + b"\n")
+                write = self._bytes_out.write
+                write(b"\n".join(parts))  # no copy of the chunk to add its last newline
+                write(b"\n")
             else:
                 self.out.write("\n".join(parts) + "\n")
             parts.clear()
