@@ -848,6 +848,25 @@ def frame_json(frame: DecodedFrame, links: dict[int, tuple[Any, str]] | None = N
             f'"link": {link_text}, "text": {_json_str(frame.line)}}}')
 
 
+def utf8_buffer(out: Any) -> Any:
+    """The byte buffer under a UTF-8 text stream (sys.stdout), else None: text written
+    there as ``str.encode()`` reads exactly as if the stream had encoded it (and where
+    a text stream writes "\\n" as it is: not on Windows)."""
+    import codecs
+
+    if os.linesep != "\n":
+        return None
+    encoding = getattr(out, "encoding", None)
+    buffer = getattr(out, "buffer", None)
+    if buffer is None or not isinstance(encoding, str):
+        return None
+    try:
+        utf8 = codecs.lookup(encoding).name == "utf-8"
+    except LookupError:
+        return None
+    return buffer if utf8 and getattr(out, "errors", "strict") == "strict" else None
+
+
 class JsonFrameWriter:
     """Writes one JSON list of frames as they come: memory stays flat for any length.
 
@@ -859,6 +878,10 @@ class JsonFrameWriter:
     def __init__(self, stream: Any) -> None:
         self.stream, self.count = stream, 0
         self._links: dict[int, tuple[Any, str]] = {}
+        #: The records go to the stream's byte buffer when it has one that encodes as
+        #: UTF-8 (sys.stdout): a chunk of records is hundreds of kilobytes, and the text
+        #: layer copies it twice more than ``str.encode`` does.
+        self._buffer = utf8_buffer(stream)
 
     def write(self, frame: DecodedFrame) -> None:
         self.write_records([frame_json(frame, self._links)])
@@ -870,7 +893,15 @@ class JsonFrameWriter:
     def write_records(self, records: list[str]) -> None:
         """Write records made by ``write_to`` or ``frame_json``, in order."""
         if records:
-            self.stream.write(("[\n" if self.count == 0 else ",\n") + ",\n".join(records))
+            head = "[\n" if self.count == 0 else ",\n"
+            buffer = self._buffer
+            if buffer is not None:
+                self.stream.flush()  # what was written as text first
+                buffer.write(head.encode())
+                buffer.write(",\n".join(records).encode())
+            else:
+                self.stream.write(head)
+                self.stream.write(",\n".join(records))
             self.count += len(records)
 
     def close(self) -> None:

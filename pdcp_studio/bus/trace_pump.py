@@ -27,24 +27,9 @@ from pdcp_studio.bus.monitor import (
     _json_str,
     _link_json,
     frame_json,
+    utf8_buffer,
 )
 from pdcp_studio.protocol.codes import ResponseCode
-
-
-def _utf8_buffer(out: Any) -> Any:
-    """The byte buffer under a UTF-8 text stream (sys.stdout), else None."""
-    import codecs
-
-    encoding = getattr(out, "encoding", None)
-    buffer = getattr(out, "buffer", None)
-    if buffer is None or not isinstance(encoding, str):
-        return None
-    try:
-        utf8 = codecs.lookup(encoding).name == "utf-8"
-    except LookupError:
-        return None
-    return buffer if utf8 and getattr(out, "errors", "strict") == "strict" else None
-
 
 #: Lines gathered before they are written in one call.
 CHUNK = 512
@@ -73,7 +58,7 @@ class TracePump:
         #: Lines as UTF-8 bytes, written to the stream's byte buffer: a line with an arrow
         #: in it is a str of 2-byte characters, and encoding those costs more than making
         #: the line (JSON records are ASCII, so they stay str).
-        self._bytes_out = None if json else _utf8_buffer(out)
+        self._bytes_out = None if json else utf8_buffer(out)
         self._parts: list[Any] = []
         #: arbitration ID → (stats entry or None, shown, line head, JSON parts or None)
         self._heads: dict[int, tuple[Any, ...]] = {}
@@ -94,7 +79,9 @@ class TracePump:
                 self.json.write_records(parts)
             elif self._bytes_out is not None:
                 self.out.flush()  # what was written as text first
-                self._bytes_out.write(b"\n".join(parts) + b"\n")
+                write = self._bytes_out.write
+                write(b"\n".join(parts))  # no copy of the chunk to add its last newline
+                write(b"\n")
             else:
                 self.out.write("\n".join(parts) + "\n")
             parts.clear()
