@@ -330,7 +330,8 @@ class MainWindow(MenusMixin, FileHandlingMixin, ExportMixin, BusMixin, RecoveryM
         self.plan_dock.raise_()
         plan = self.plan_panel.preview(mode)
         if plan is not None:
-            QTimer.singleShot(0, self._fit_plan_dock)  # once the rows have their heights
+            # once the rows have their heights (never after the table is gone)
+            QTimer.singleShot(0, self.plan_panel.actions_view, self._fit_plan_dock)
         return plan
 
     def _fit_plan_dock(self, tries: int = 4, asked: int = 0) -> None:
@@ -347,7 +348,7 @@ class MainWindow(MenusMixin, FileHandlingMixin, ExportMixin, BusMixin, RecoveryM
         if height > max(asked, self.plan_dock.height()):
             self.resizeDocks([self.plan_dock], [height], Qt.Orientation.Vertical)
             if tries > 1:
-                QTimer.singleShot(30, lambda: self._fit_plan_dock(tries - 1, height))
+                QTimer.singleShot(30, view, lambda: self._fit_plan_dock(tries - 1, height))
 
     def show_profile_tree(self) -> None:
         from pdcp_studio.app.profile_tree_editor import ProfileTreeDialog
