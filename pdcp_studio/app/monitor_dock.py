@@ -56,6 +56,7 @@ from PySide6.QtWidgets import (
 from pdcp_studio.app.i18n import translate
 from pdcp_studio.app.trace_capture import load_capture as _load_into
 from pdcp_studio.app.trace_capture import save_store, stored_rows
+from pdcp_studio.app.trace_disk import FileFrameStore
 from pdcp_studio.app.trace_model import (
     TIME_MODES,
     StatsModel,
@@ -863,7 +864,7 @@ class MonitorDock(QDockWidget):
         """
         self.cancel_load()
         links = dict(self._link_map)  # a capture may start after the set-up that names them
-        store = FrameStore()
+        store = FileFrameStore()  # on disk: memory stays flat however long the capture
         stats = IdStats(store.tables)
 
         def work(progress: Any, cancel: threading.Event) -> int:
@@ -904,6 +905,8 @@ class MonitorDock(QDockWidget):
         """Close the opened capture: the table shows the live frames again."""
         self.cancel_load()
         self.capture_path = None
+        if self.capture_store is not None:
+            self.capture_store.close()  # its temporary files go now
         self.capture_store = self.capture_stats = None
         self.live_button.setVisible(False)
         self.stop_load_button.setVisible(False)
@@ -913,6 +916,8 @@ class MonitorDock(QDockWidget):
         self._reset_view()
 
     def _enter_capture(self, path: str, store: FrameStore, stats: IdStats) -> None:
+        if self.capture_store is not None and self.capture_store is not store:
+            self.capture_store.close()  # the capture shown before: its temporary files go
         self.capture_path = path
         self.capture_total = 0
         self.capture_store, self.capture_stats = store, stats

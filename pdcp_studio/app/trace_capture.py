@@ -117,12 +117,11 @@ def save_store(path: str | Path, store: FrameStore, links: dict | None = None) -
     from pdcp_studio.app.trace_model import decoded_fields
 
     path = Path(path)
-    chunks = list(store.chunks)
-    count = sum(len(c) for c in chunks)
+    first, count = store.base, len(store)
     if path.suffix.lower() == ".txt":
         t0 = store.first_time() or 0.0
         with open(path, "w", encoding="utf-8") as out:
-            for index in range(store.base, store.base + count):
+            for index in range(first, first + count):
                 f = store.frame(index)
                 out.write(f"{f.timestamp - t0:12.6f}  0x{f.arbitration_id:03X}  "
                           f"{who(f.arbitration_id, f.flags):9}  "
@@ -133,7 +132,7 @@ def save_store(path: str | Path, store: FrameStore, links: dict | None = None) -
 
     node_map = FrameDecoder(dict(links or {})).node_map
     with Recorder(path, node_map=node_map) as recorder:
-        for chunk in chunks:
+        for _first, chunk in store.iter_chunks(first, first + count):
             ts, aid, dlc = chunk.ts.tolist(), chunk.aid.tolist(), chunk.dlc.tolist()
             data = chunk.data
             for k in range(len(ts)):
