@@ -131,12 +131,16 @@ def save_store(path: str | Path, store: FrameStore, links: dict | None = None) -
     from pdcp_studio.bus.monitor import FrameDecoder, Recorder  # python-can loads only here
 
     node_map = FrameDecoder(dict(links or {})).node_map
+    written = 0
     with Recorder(path, node_map=node_map) as recorder:
         for _first, chunk in store.iter_chunks(first, first + count):
             ts, aid, dlc = chunk.ts.tolist(), chunk.aid.tolist(), chunk.dlc.tolist()
             data = chunk.data
             for k in range(len(ts)):
                 recorder.write(aid[k], data[k, :min(dlc[k], 8)].tobytes(), ts[k])
+            written += len(ts)
+        if written != count:  # an opened capture closed meanwhile: keep the old file
+            raise OSError(f"only {written:,} of {count:,} frames could be read back")
     return count
 
 

@@ -8,6 +8,7 @@ import os
 import threading
 
 import numpy as np
+import pytest
 
 from pdcp_studio.app.trace_capture import load_capture, save_store
 from pdcp_studio.app.trace_disk import CACHED_TEXTS, RECENT_TEXTS, FileFrameStore, FileTexts
@@ -125,3 +126,14 @@ def test_a_capture_file_opens_into_the_disk_store_and_saves_back(tmp_path):
     folder = store.folder
     store.close()
     assert not os.path.exists(folder)
+
+
+def test_saving_a_capture_closed_meanwhile_keeps_the_old_file(tmp_path):
+    store = synthetic_store(5000, store=FileFrameStore(str(tmp_path)))
+    out = tmp_path / "kept.asc"
+    out.write_text("old")
+    paused = store.snapshot()  # what a save works from
+    store.close()
+    with pytest.raises(OSError, match="0 of 5,000"):
+        save_store(out, paused)
+    assert out.read_text() == "old"
