@@ -27,7 +27,10 @@ large store run on a worker and return row lists; small ones are filtered at onc
 
 from __future__ import annotations
 
+import shutil
+import tempfile
 import threading
+import weakref
 from collections.abc import Iterable
 from pathlib import Path
 from typing import Any, NamedTuple
@@ -56,7 +59,7 @@ from PySide6.QtWidgets import (
 from pdcp_studio.app.i18n import translate
 from pdcp_studio.app.trace_capture import load_capture as _load_into
 from pdcp_studio.app.trace_capture import save_store, stored_rows
-from pdcp_studio.app.trace_disk import FileFrameStore
+from pdcp_studio.app.trace_disk import FileFrameStore, FileTexts
 from pdcp_studio.app.trace_model import (
     TIME_MODES,
     StatsModel,
@@ -121,6 +124,19 @@ def make_row(frame: Any, channel_nodes: frozenset[int] | set[int] = frozenset())
 
 
 _ROW_TABLES = Tables()
+
+
+def live_tables(owner: object) -> Tables:
+    """String tables whose decoded texts are in a temporary folder removed with ``owner``."""
+    folder = tempfile.mkdtemp(prefix="pdcp-live-")
+    texts = FileTexts(folder)
+    weakref.finalize(owner, _remove_texts, texts, folder)
+    return Tables(texts)
+
+
+def _remove_texts(texts: FileTexts, folder: str) -> None:
+    texts.close()
+    shutil.rmtree(folder, ignore_errors=True)
 
 
 _WARM: list[threading.Thread] = []
@@ -190,7 +206,9 @@ class MonitorDock(QDockWidget):
         super().__init__(translate("MonitorDock", "Bus monitor"), parent)
         self.setObjectName("MonitorDock")
         self.capacity = capacity
-        self.live_store = FrameStore(max_rows=capacity)
+        # the ring is bounded by ``capacity``; its decoded texts, which a long session keeps
+        # adding, are on disk (a bounded window of them in memory), removed with the dock
+        self.live_store = FrameStore(live_tables(self), max_rows=capacity)
         self.live_stats = IdStats(self.live_store.tables)
         self._builder = ChunkBuilder(self.live_store.tables)
         self._incoming: list[Any] = []

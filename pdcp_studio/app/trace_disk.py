@@ -83,6 +83,7 @@ class FileTexts:
     """
 
     def __init__(self, directory: str) -> None:
+        self.folder = directory
         self._heap = _File(os.path.join(directory, "texts.txt"))
         self._offsets = _File(os.path.join(directory, "offsets.bin"))
         self._lock = threading.Lock()
