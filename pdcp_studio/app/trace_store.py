@@ -7,8 +7,11 @@ index into a table of distinct texts, flags) — about 30 bytes a frame — and 
 numbered absolutely (0 = the first frame ever stored), so a live ring that drops its oldest
 chunks keeps the numbers of the rest.
 
-Filtering and search are vectorised over the columns (``FrameStore.select``): the text
-needle is tried once on each distinct text, then matched by index. Nothing here imports Qt,
+This is the in-memory store (the live ring, bounded by its capacity); an opened capture goes
+to ``trace_disk.FileFrameStore``, the same interface with the columns in a temporary file
+(``iter_chunks`` reads them a chunk at a time). Filtering and search are vectorised over the
+columns (``FrameStore.select``): the text needle is tried once on each distinct text (a mask
+by text number), then matched by index. Nothing here imports Qt,
 so the worker threads that load captures and filter them use it directly.
 
 Public API: ``TraceFilter``, ``FrameStore``, ``ChunkBuilder``, ``IdStats``,
