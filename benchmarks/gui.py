@@ -421,6 +421,7 @@ def print_capture() -> None:
     if "--frames" in sys.argv:
         sizes = tuple(int(n) for n in sys.argv[sys.argv.index("--frames") + 1].split(","))
     for frames in sizes:
+        capture_path(frames)  # written here: making it holds every frame, the app need not
         subprocess.run([sys.executable, __file__, "--capture-frames", str(frames)], check=True)
 
 
