@@ -27,7 +27,10 @@ large store run on a worker and return row lists; small ones are filtered at onc
 
 from __future__ import annotations
 
+import shutil
+import tempfile
 import threading
+import weakref
 from collections.abc import Iterable
 from pathlib import Path
 from typing import Any, NamedTuple
@@ -56,6 +59,7 @@ from PySide6.QtWidgets import (
 from pdcp_studio.app.i18n import translate
 from pdcp_studio.app.trace_capture import load_capture as _load_into
 from pdcp_studio.app.trace_capture import save_store, stored_rows
+from pdcp_studio.app.trace_disk import FileFrameStore, FileTexts
 from pdcp_studio.app.trace_model import (
     TIME_MODES,
     StatsModel,
@@ -120,6 +124,19 @@ def make_row(frame: Any, channel_nodes: frozenset[int] | set[int] = frozenset())
 
 
 _ROW_TABLES = Tables()
+
+
+def live_tables(owner: object) -> Tables:
+    """String tables whose decoded texts are in a temporary folder removed with ``owner``."""
+    folder = tempfile.mkdtemp(prefix="pdcp-live-")
+    texts = FileTexts(folder)
+    weakref.finalize(owner, _remove_texts, texts, folder)
+    return Tables(texts)
+
+
+def _remove_texts(texts: FileTexts, folder: str) -> None:
+    texts.close()
+    shutil.rmtree(folder, ignore_errors=True)
 
 
 _WARM: list[threading.Thread] = []
@@ -189,7 +206,9 @@ class MonitorDock(QDockWidget):
         super().__init__(translate("MonitorDock", "Bus monitor"), parent)
         self.setObjectName("MonitorDock")
         self.capacity = capacity
-        self.live_store = FrameStore(max_rows=capacity)
+        # the ring is bounded by ``capacity``; its decoded texts, which a long session keeps
+        # adding, are on disk (a bounded window of them in memory), removed with the dock
+        self.live_store = FrameStore(live_tables(self), max_rows=capacity)
         self.live_stats = IdStats(self.live_store.tables)
         self._builder = ChunkBuilder(self.live_store.tables)
         self._incoming: list[Any] = []
@@ -863,7 +882,7 @@ class MonitorDock(QDockWidget):
         """
         self.cancel_load()
         links = dict(self._link_map)  # a capture may start after the set-up that names them
-        store = FrameStore()
+        store = FileFrameStore()  # on disk: memory stays flat however long the capture
         stats = IdStats(store.tables)
 
         def work(progress: Any, cancel: threading.Event) -> int:
@@ -904,6 +923,8 @@ class MonitorDock(QDockWidget):
         """Close the opened capture: the table shows the live frames again."""
         self.cancel_load()
         self.capture_path = None
+        if self.capture_store is not None:
+            self.capture_store.close()  # its temporary files go now
         self.capture_store = self.capture_stats = None
         self.live_button.setVisible(False)
         self.stop_load_button.setVisible(False)
@@ -913,6 +934,8 @@ class MonitorDock(QDockWidget):
         self._reset_view()
 
     def _enter_capture(self, path: str, store: FrameStore, stats: IdStats) -> None:
+        if self.capture_store is not None and self.capture_store is not store:
+            self.capture_store.close()  # the capture shown before: its temporary files go
         self.capture_path = path
         self.capture_total = 0
         self.capture_store, self.capture_stats = store, stats

@@ -117,12 +117,11 @@ def save_store(path: str | Path, store: FrameStore, links: dict | None = None) -
     from pdcp_studio.app.trace_model import decoded_fields
 
     path = Path(path)
-    chunks = list(store.chunks)
-    count = sum(len(c) for c in chunks)
+    first, count = store.base, len(store)
     if path.suffix.lower() == ".txt":
         t0 = store.first_time() or 0.0
         with open(path, "w", encoding="utf-8") as out:
-            for index in range(store.base, store.base + count):
+            for index in range(first, first + count):
                 f = store.frame(index)
                 out.write(f"{f.timestamp - t0:12.6f}  0x{f.arbitration_id:03X}  "
                           f"{who(f.arbitration_id, f.flags):9}  "
@@ -132,12 +131,16 @@ def save_store(path: str | Path, store: FrameStore, links: dict | None = None) -
     from pdcp_studio.bus.monitor import FrameDecoder, Recorder  # python-can loads only here
 
     node_map = FrameDecoder(dict(links or {})).node_map
+    written = 0
     with Recorder(path, node_map=node_map) as recorder:
-        for chunk in chunks:
+        for _first, chunk in store.iter_chunks(first, first + count):
             ts, aid, dlc = chunk.ts.tolist(), chunk.aid.tolist(), chunk.dlc.tolist()
             data = chunk.data
             for k in range(len(ts)):
                 recorder.write(aid[k], data[k, :min(dlc[k], 8)].tobytes(), ts[k])
+            written += len(ts)
+        if written != count:  # an opened capture closed meanwhile: keep the old file
+            raise OSError(f"only {written:,} of {count:,} frames could be read back")
     return count
 
 

@@ -7,8 +7,11 @@ index into a table of distinct texts, flags) — about 30 bytes a frame — and 
 numbered absolutely (0 = the first frame ever stored), so a live ring that drops its oldest
 chunks keeps the numbers of the rest.
 
-Filtering and search are vectorised over the columns (``FrameStore.select``): the text
-needle is tried once on each distinct text, then matched by index. Nothing here imports Qt,
+This is the in-memory store (the live ring, bounded by its capacity); an opened capture goes
+to ``trace_disk.FileFrameStore``, the same interface with the columns in a temporary file
+(``iter_chunks`` reads them a chunk at a time). Filtering and search are vectorised over the
+columns (``FrameStore.select``): the text needle is tried once on each distinct text (a mask
+by text number), then matched by index. Nothing here imports Qt,
 so the worker threads that load captures and filter them use it directly.
 
 Public API: ``TraceFilter``, ``FrameStore``, ``ChunkBuilder``, ``IdStats``,
@@ -19,12 +22,15 @@ from __future__ import annotations
 
 import threading
 from bisect import bisect_right
-from collections.abc import Callable, Iterable
-from typing import Any, NamedTuple
+from collections.abc import Callable, Iterable, Iterator
+from typing import TYPE_CHECKING, Any, NamedTuple
 
 import numpy as np
 
 from pdcp_studio.protocol.codes import FunctionCode
+
+if TYPE_CHECKING:
+    from pdcp_studio.app.trace_disk import FileTexts
 
 CHANNEL_DATA = "Channel data"
 #: Rows per chunk of an opened capture (the first chunk is small so rows show at once).
@@ -70,17 +76,21 @@ class Interner:
         return len(self.values)
 
     def matching(self, needle: str) -> np.ndarray:
-        """Indices of the strings that contain ``needle`` (lower case, case-insensitive)."""
+        """Which strings contain ``needle`` (lower case): a mask indexed by string number."""
         lower = self._lower[:len(self.values)]
-        return np.fromiter((i for i, s in enumerate(lower) if needle in s), dtype=np.uint32)
+        return np.fromiter((needle in s for s in lower), dtype=bool, count=len(lower))
+
+    def close(self) -> None:
+        """Nothing to release (the file-backed table removes its files)."""
 
 
 class Tables:
-    """The string tables a store's columns point into: functions and decoded texts."""
+    """The string tables a store's columns point into: functions and decoded texts
+    (``texts`` may be a ``FileTexts``, on disk, for an opened capture)."""
 
-    def __init__(self) -> None:
+    def __init__(self, texts: Interner | FileTexts | None = None) -> None:
         self.functions = Interner()
-        self.texts = Interner()
+        self.texts = texts if texts is not None else Interner()
         by_byte = []
         for b in range(256):
             try:
@@ -232,8 +242,8 @@ class TraceFilter(NamedTuple):
 
 
 class _Needle(NamedTuple):
-    texts: np.ndarray
-    functions: np.ndarray
+    texts: np.ndarray  # mask by text number
+    functions: np.ndarray  # mask by function number
     ident: int | None
     data: bytes | None
 
@@ -268,6 +278,13 @@ def _has_bytes(chunk: Chunk, needle: bytes) -> np.ndarray:
             hit &= chunk.data[:, start + j] == b
         found |= hit
     return found
+
+
+def _masked(mask: np.ndarray, numbers: np.ndarray) -> np.ndarray:
+    """``mask[numbers]``, with numbers past the mask's end (added since) False."""
+    if len(numbers) and int(numbers.max()) >= len(mask):
+        mask = np.concatenate((mask, np.zeros(int(numbers.max()) + 1 - len(mask), dtype=bool)))
+    return mask[numbers]
 
 
 class FrameStore:
@@ -349,25 +366,36 @@ class FrameStore:
             return f"{frame.text}  {hexed}" if frame.text else hexed
         return frame.text
 
+    def iter_chunks(self, start: int | None = None,
+                    stop: int | None = None) -> Iterator[tuple[int, Chunk]]:
+        """``(first row, columns)`` of the stored frames in ``start … stop-1``, chunk by
+        chunk (the chunks held when called; safe while another thread appends)."""
+        start = self.base if start is None else max(start, self.base)
+        stop = self.end if stop is None else min(stop, self.end)
+        for chunk, first in zip(list(self.chunks), list(self.starts), strict=False):
+            last = first + len(chunk)
+            if last <= start or first >= stop:
+                continue
+            lo, hi = max(start, first) - first, min(stop, last) - first
+            yield first + lo, (chunk if (lo, hi) == (0, len(chunk))
+                               else Chunk(*(c[lo:hi] for c in chunk)))
+
+    def close(self) -> None:
+        """Release what the store holds outside memory (nothing here; see ``trace_disk``)."""
+
     def select(self, flt: TraceFilter, start: int | None = None, stop: int | None = None,
                cancel: threading.Event | None = None,
                progress: Callable[[int, int], None] | None = None) -> np.ndarray:
         """Absolute indices of the rows in ``start … stop-1`` that pass ``flt`` (sorted)."""
         start = self.base if start is None else max(start, self.base)
         stop = self.end if stop is None else min(stop, self.end)
-        chunks, starts = list(self.chunks), list(self.starts)
         tables = self.tables
         needle = _needle(tables, flt.text) if flt.text else None
         function = tables.functions._index.get(flt.function, -1) if flt.function else None
         out: list[np.ndarray] = []
-        for chunk, first in zip(chunks, starts, strict=False):
-            last = first + len(chunk)
-            if last <= start or first >= stop:
-                continue
+        for first, part in self.iter_chunks(start, stop):
             if cancel is not None and cancel.is_set():
                 break
-            lo, hi = max(start, first) - first, min(stop, last) - first
-            part = chunk if (lo, hi) == (0, len(chunk)) else Chunk(*(c[lo:hi] for c in chunk))
             mask = np.ones(len(part), dtype=bool)
             if flt.node is not None:
                 mask &= (part.aid & 0xFF) == flt.node
@@ -376,15 +404,15 @@ class FrameStore:
             if function is not None:
                 mask &= part.func == function
             if needle is not None:
-                hit = np.isin(part.text, needle.texts) | np.isin(part.func, needle.functions)
+                hit = _masked(needle.texts, part.text) | _masked(needle.functions, part.func)
                 if needle.ident is not None:
                     hit |= part.aid == needle.ident
                 if needle.data is not None:
                     hit |= _has_bytes(part, needle.data)
                 mask &= hit
-            out.append(np.flatnonzero(mask) + (first + lo))
+            out.append(np.flatnonzero(mask) + first)
             if progress is not None:
-                progress(min(last, stop) - start, stop - start)
+                progress(first + len(part) - start, stop - start)
         return np.concatenate(out).astype(np.int64) if out else np.zeros(0, dtype=np.int64)
 
 

@@ -14,11 +14,14 @@ BEACON_EVERY = 100  # node 5 beacons; the rest is channel data of node 6
 BROADCAST_EVERY = 1000  # BA→all (a release to every node)
 
 
-def synthetic_store(n: int, rate_hz: float = 8000.0, t0: float = 1000.0) -> FrameStore:
+def synthetic_store(n: int, rate_hz: float = 8000.0, t0: float = 1000.0,
+                    store: FrameStore | None = None, distinct_every: int = 0) -> FrameStore:
     """``n`` frames at ``rate_hz``: channel data of node 6 (a 16-bit counter), a beacon of
     node 5 every ``BEACON_EVERY`` frames, a broadcast every ``BROADCAST_EVERY``, and one
-    frame with ID ``NEEDLE_ID`` and data ``NEEDLE_DATA`` 17 frames from the end."""
-    store = FrameStore()
+    frame with ID ``NEEDLE_ID`` and data ``NEEDLE_DATA`` 17 frames from the end. Appended
+    to ``store`` (a new one by default); with ``distinct_every`` every such channel-data
+    frame gets a text of its own (``… value <frame number>``), as parameter values do."""
+    store = FrameStore() if store is None else store
     t = store.tables
     beacon_text = t.texts.add("P0  #5→BA Device Beacon")
     data_text = t.texts.add("P0  #6 data Channel data  Hand output 1 → Control unit input 1")
@@ -48,6 +51,10 @@ def synthetic_store(n: int, rate_hz: float = 8000.0, t0: float = 1000.0) -> Fram
         text = np.full(k, data_text, dtype=np.uint32)
         text[beacon] = beacon_text
         text[broadcast] = release_text
+        if distinct_every:
+            own = np.flatnonzero((idx % distinct_every == 2) & ~beacon & ~broadcast)
+            add = t.texts.add
+            text[own] = [add(f"P0  #6 data Channel data  value {i}") for i in (own + start)]
         flags = np.full(k, F_CHANNEL | F_HEX, dtype=np.uint8)
         flags[beacon | broadcast] = 0
         if start <= needle_at < start + k:
