@@ -39,6 +39,19 @@ _CHANNEL_DATA = "Channel data"
 _FAILURE = ResponseCode.FAILURE.title
 
 
+def json_times(t: float) -> tuple[str, str]:
+    """A record's time as the list shows it (``%.6f``) and as JSON writes it:
+    ``repr(round(t, 6))`` without rounding twice — the same digits where repr writes no
+    exponent and 15 digits round-trip."""
+    fixed = f"{t:.6f}"
+    short = fixed.rstrip("0")
+    if short[-1] == ".":
+        short += "0"
+    if not 1e-4 <= t < 1e9:
+        short = repr(round(t, 6))
+    return fixed, short
+
+
 class TracePump:
     """Feeds frames to a decoder and writes what ``show`` lets through to ``out``.
 
@@ -85,6 +98,12 @@ class TracePump:
             else:
                 self.out.write("\n".join(parts) + "\n")
             parts.clear()
+
+    def _chunk_full(self) -> None:
+        """A chunk is gathered: write it (and flush ``out`` when asked to per chunk)."""
+        self.flush()
+        if self.flush_each_chunk:
+            self.out.flush()
 
     def close(self) -> None:
         """Write the rest; a JSON list is ended (also after a failure: one document)."""
@@ -182,30 +201,19 @@ class TracePump:
                                 append(b"%11.6f  %b%b" % (t, head[4], hexlify(data, b" ").upper()
                                                           or b"(empty)"))
                                 if len(parts) >= CHUNK:
-                                    self.flush()
-                                    if self.flush_each_chunk:
-                                        self.out.flush()
+                                    self._chunk_full()
                                 continue
                             upper = data.hex(" ").upper() or "(empty)"
                             if as_json:
                                 j = head[3]
-                                fixed = f"{t:.6f}"
-                                # repr(round(t, 6)) without rounding twice: the same digits
-                                # where repr writes no exponent and 15 digits round-trip
-                                short = fixed.rstrip("0")
-                                if short[-1] == ".":
-                                    short += "0"
-                                if not 1e-4 <= t < 1e9:
-                                    short = repr(round(t, 6))
+                                fixed, short = json_times(t)
                                 append(f'{{"timestamp": {timestamp!r}, "time": {short}{j[0]}'
                                        f'{data.hex()}{j[1]}{upper}{j[2]}{fixed:>11}{j[3]}'
                                        f'{upper}"}}')
                             else:
                                 append(f"{t:11.6f}  {head[2]}{upper}")
                             if len(parts) >= CHUNK:
-                                self.flush()
-                                if self.flush_each_chunk:
-                                    self.out.flush()
+                                self._chunk_full()
                         continue
                 key = frame = None
                 if not (msg.is_extended_id or msg.is_remote_frame or msg.is_error_frame):
@@ -246,12 +254,7 @@ class TracePump:
                             t = timestamp - t0
                             if as_json:
                                 j = rep[5]
-                                fixed = f"{t:.6f}"
-                                short = fixed.rstrip("0")
-                                if short[-1] == ".":
-                                    short += "0"
-                                if not 1e-4 <= t < 1e9:
-                                    short = repr(round(t, 6))
+                                fixed, short = json_times(t)
                                 append(f'{{"timestamp": {timestamp!r}, "time": {short}{j[1]}'
                                        f'{fixed:>11}{j[2]}"}}')
                             elif as_bytes:
@@ -259,9 +262,7 @@ class TracePump:
                             else:
                                 append(f"{t:11.6f}  {rep[4]}")
                             if len(parts) >= CHUNK:
-                                self.flush()
-                                if self.flush_each_chunk:
-                                    self.out.flush()
+                                self._chunk_full()
                         continue
                 if frame is None:
                     managed_at_decode = managed
@@ -286,17 +287,15 @@ class TracePump:
                             if len(json_cache) >= CACHE_SIZE:
                                 json_cache.clear()
                             j = json_cache[id(cached_head)] = self._json_parts(frame)
-                        t = frame.time
+                        fixed, short = json_times(frame.time)
                         append(f'{{"timestamp": {frame.timestamp!r}, "time": '
-                               f'{round(t, 6)!r}{j[1]}{t:11.6f}{j[2]}"}}')
+                               f'{short}{j[1]}{fixed:>11}{j[2]}"}}')
                     elif as_bytes:
                         append(b"%11.6f  %b" % (frame.time, cached_head.encode()))
                     else:
                         append(f"{frame.time:11.6f}  {cached_head}")
                     if len(parts) >= CHUNK:
-                        self.flush()
-                        if self.flush_each_chunk:
-                            self.out.flush()
+                        self._chunk_full()
                 if self._version != decoder.version:
                     heads.clear()
                     repeats.clear()
