@@ -3984,6 +3984,22 @@ Die Prothese ist wie zuvor.</translation>
             <source>When it is written:</source>
             <translation>Beim Schreiben:</translation>
         </message>
+        <message>
+            <source>{name} (serial {serial})</source>
+            <translation>{name} (Seriennummer {serial})</translation>
+        </message>
+        <message>
+            <source>{0} (simulated)</source>
+            <translation>{0} (simuliert)</translation>
+        </message>
+        <message>
+            <source>Warning: this fitting was made before any configuration was stored on the prosthesis. Putting it back clears the stored configuration: after a restart, or when a part is replaced, the prosthesis will no longer link its parts as they are stored now.</source>
+            <translation>Achtung: Diese Versorgung wurde gemacht, bevor eine Konfiguration in der Prothese gespeichert war. Sie wiederherzustellen löscht die gespeicherte Konfiguration: Nach einem Neustart oder wenn ein Teil ersetzt wird, verbindet die Prothese ihre Teile nicht mehr so, wie sie jetzt gespeichert sind.</translation>
+        </message>
+        <message>
+            <source>Yes, clear the stored configuration</source>
+            <translation>Ja, die gespeicherte Konfiguration löschen</translation>
+        </message>
     </context>
     <context>
         <name>ArbitratorFoundDialog</name>
@@ -4720,25 +4736,6 @@ Die Prothese ist wie zuvor.</translation>
         <message>
             <source>{path}: cannot write the PDF</source>
             <translation>{path}: Das PDF kann nicht geschrieben werden</translation>
-        </message>
-    </context>
-    <context>
-        <name>Wizards</name>
-        <message>
-            <source>{name} (serial {serial})</source>
-            <translation>{name} (Seriennummer {serial})</translation>
-        </message>
-        <message>
-            <source>{0} (simulated)</source>
-            <translation>{0} (simuliert)</translation>
-        </message>
-        <message>
-            <source>Warning: this fitting was made before any configuration was stored on the prosthesis. Putting it back clears the stored configuration: after a restart, or when a part is replaced, the prosthesis will no longer link its parts as they are stored now.</source>
-            <translation>Achtung: Diese Versorgung wurde gemacht, bevor eine Konfiguration in der Prothese gespeichert war. Sie wiederherzustellen löscht die gespeicherte Konfiguration: Nach einem Neustart oder wenn ein Teil ersetzt wird, verbindet die Prothese ihre Teile nicht mehr so, wie sie jetzt gespeichert sind.</translation>
-        </message>
-        <message>
-            <source>Yes, clear the stored configuration</source>
-            <translation>Ja, die gespeicherte Konfiguration löschen</translation>
         </message>
     </context>
     <context>
