@@ -91,8 +91,6 @@ REFRESH_MS = 100
 FILTER_AT_ONCE = 200_000
 #: The per-ID statistics are refreshed this often.
 STATS_MS = 500
-#: Interpreter switch interval while a trace is open (see ``_share_the_interpreter``).
-SWITCH_INTERVAL_S = 0.001
 ANY = QT_TRANSLATE_NOOP("MonitorDock", "(any)")
 FrameFilter = TraceFilter
 
@@ -155,20 +153,6 @@ def _warm_up() -> None:
 
     _WARM.append(threading.Thread(target=load, name="trace warm-up", daemon=True))
     _WARM[0].start()
-
-
-def _share_the_interpreter() -> None:
-    """Let the GUI thread take the interpreter sooner from the session's decoding thread.
-
-    Qt calls into Python for every cell it paints, and each call waits for the interpreter
-    lock; with the session thread decoding a saturated bus, CPython hands the lock over only
-    every switch interval (5 ms by default), so painting a table took hundreds of ms
-    (benchmarks/gui.py, trace case: 196 ms gaps at 5 ms, 56 ms at 0.5 ms on a loaded
-    2-core machine). Shorter intervals cost the decoding thread little."""
-    import sys
-
-    if sys.getswitchinterval() > SWITCH_INTERVAL_S:
-        sys.setswitchinterval(SWITCH_INTERVAL_S)
 
 
 def _decoded(text: str) -> str:
@@ -245,7 +229,6 @@ class MonitorDock(QDockWidget):
         self._stats_timer.setInterval(STATS_MS)
         self._stats_timer.timeout.connect(self._refresh_stats)
         QTimer.singleShot(REFRESH_MS // 2, self._stats_timer.start)
-        _share_the_interpreter()
         _warm_up()
         self._refilter = QTimer(self)  # typing in the filter: refilter once it pauses
         self._refilter.setSingleShot(True)

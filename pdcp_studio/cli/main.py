@@ -50,7 +50,8 @@ class BadInput(PdcpError):
     """Raised by a command for input the user must fix (exit status 2)."""
 
 
-def build_parser() -> argparse.ArgumentParser:
+def build_parser(commands: Sequence[str] = COMMAND_MODULES) -> argparse.ArgumentParser:
+    """The parser of ``commands`` (all of them unless the desktop app alone is asked for)."""
     parser = argparse.ArgumentParser(
         prog="pdcp-studio",
         description="See, configure and repair the PDCP bus inside a powered prosthesis.",
@@ -59,7 +60,7 @@ def build_parser() -> argparse.ArgumentParser:
     parser.add_argument("--lang", metavar="LANG", default=None,
                         help="the desktop app's language, e.g. de or en (default: the system's)")
     subparsers = parser.add_subparsers(dest="command", metavar="COMMAND")
-    for name in COMMAND_MODULES:
+    for name in commands:
         importlib.import_module(f"pdcp_studio.cli.{name}").add_subparser(subparsers)
     return parser
 
@@ -85,9 +86,18 @@ def _warnings_to_stderr() -> None:
         logger.addHandler(_StderrWarnings())
 
 
+def _commands_for(argv: Sequence[str]) -> Sequence[str]:
+    """Only ``gui`` for the desktop app (``gui …`` or bare): starting it does not load the
+    other commands' modules. Its usage, help and errors read the same either way (the
+    command list shows as ``COMMAND``); anything else gets every command."""
+    if not argv or argv[0] == "gui":
+        return ("gui",)
+    return COMMAND_MODULES
+
+
 def main(argv: Sequence[str] | None = None) -> int:
     _warnings_to_stderr()
-    parser = build_parser()
+    parser = build_parser(_commands_for(sys.argv[1:] if argv is None else argv))
     args = parser.parse_args(argv)
     if args.command is None:
         # Bare `pdcp-studio` opens the desktop app on the simulated prosthesis.
