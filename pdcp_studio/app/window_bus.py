@@ -11,9 +11,12 @@ import logging
 from collections.abc import Callable
 from typing import TYPE_CHECKING, Any
 
-from PySide6.QtCore import Qt
+from PySide6.QtCore import Qt, QTimer
 
 log = logging.getLogger("pdcp_studio.app.main_window")  # the name it always logged under
+#: The trace and live plot docks are made this long after the window is up (they are
+#: hidden tabs; made at once, they held the first window back ~0.3 s).
+TRACE_DOCKS_AFTER_MS = 100
 
 
 class BusMixin:
@@ -49,29 +52,31 @@ class BusMixin:
             self.show_message(self.tr("Some bus panels are unavailable: {err}").format(err=err))
 
     def _attach_bus_docks(self, bridge: Any) -> None:
-        """Monitor, live plot and simulator panel for a new bridge (made once, reused)."""
-        from pdcp_studio.app import live_plot, monitor_dock, sim_panel
+        """Bus events, simulator panel, trace and live plot for a new bridge (made once,
+        reused). The trace and the plot are hidden tabs at first and the costliest part of
+        the window (numpy, the trace store: ~0.3 s of a 2-core machine): the first ones are
+        made just after the window is up (:meth:`_make_trace_docks`), or at once when the
+        selection asks the plot for a signal; the trace then shows every frame since the
+        session started, kept meanwhile."""
+        from pdcp_studio.app import sim_panel
 
-        dock = self._leaf_docks.get("monitor")
-        if dock is None:
-            dock = monitor_dock.MonitorDock(self)
-            self.addDockWidget(Qt.DockWidgetArea.BottomDockWidgetArea, dock)
-            self.tabifyDockWidget(self.plan_dock, dock)
-            self.plan_dock.raise_()
-            self.view_menu.addAction(dock.toggleViewAction())
-            self._leaf_docks["monitor"] = dock
-        bridge.frameSeen.connect(dock.add_frames)
-        dock = self._leaf_docks.get("plot")
-        if dock is None:
-            plot = live_plot.LivePlot()
-            dock = self._dock(self.tr("Live plot"), "LivePlotDock", plot,
-                              Qt.DockWidgetArea.BottomDockWidgetArea)
-            self.tabifyDockWidget(self.plan_dock, dock)
-            self.plan_dock.raise_()
-            self.view_menu.addAction(dock.toggleViewAction())
-            self._leaf_docks["plot"] = dock
+        self._keep_frames(None)  # an earlier bridge's, whose docks were never made
+        self._trace_bridge = None
+        monitor, plot = self._leaf_docks.get("monitor"), self._leaf_docks.get("plot")
+        if monitor is not None:
+            bridge.frameSeen.connect(monitor.add_frames)
+        if plot is not None:
+            bridge.channelValues.connect(plot.widget().add_values)
+        if monitor is None or plot is None:
+            self._trace_bridge = bridge
+            if monitor is None:
+                self._keep_frames(bridge)
+            if getattr(self, "is_ready", False):
+                self._trace_docks_soon()
+        if not getattr(self, "_trace_docks_wired", False):
+            self._trace_docks_wired = True
+            self.ready.connect(self._trace_docks_soon)  # the first system is on screen
             self.doc.selectionChanged.connect(self._plot_selection)
-        bridge.channelValues.connect(dock.widget().add_values)
         events = self._events_dock()
         bridge.busEvent.connect(events.widget().add_event)
         bridge.scanned.connect(self._scan_finished)  # any scan's end is said in the status bar
@@ -105,6 +110,85 @@ class BusMixin:
         device = self.doc.system.devices.get(key)
         return self.scene.device_label(device) if device is not None else None
 
+    def _trace_docks_soon(self) -> None:
+        if getattr(self, "_trace_bridge", None) is not None:
+            QTimer.singleShot(TRACE_DOCKS_AFTER_MS, self, self._make_trace_docks)
+
+    def _keep_frames(self, bridge: Any) -> None:
+        """Keep ``bridge``'s frames until the trace exists (None: stop keeping them)."""
+        old = getattr(self, "_keeping_from", None)
+        if old is not None:
+            old.frameSeen.disconnect(self._kept)
+        self._keeping_from = bridge
+        self._early_frames: list[Any] = []
+        if bridge is not None:
+            bridge.frameSeen.connect(self._kept)
+
+    def _kept(self, frames: Any) -> None:
+        self._early_frames.append(frames)
+
+    def _make_trace_docks(self) -> None:
+        """The trace (monitor) and live plot docks, if not made yet, fed by the bridge
+        they were made for: the trace gets the frames kept since its session started."""
+        from pdcp_studio.app import live_plot, monitor_dock
+
+        bridge, self._trace_bridge = getattr(self, "_trace_bridge", None), None
+        if bridge is None:
+            return  # made already (on demand), or a later bridge has them
+        keeping = self._keeping_from is bridge  # the trace did not exist for it
+        early = self._early_frames if keeping else []
+        self._keep_frames(None)
+        live = bridge is self.live.bridge
+        started = live and self.doc.session is bridge  # its first snapshot is on screen
+        events = self._leaf_docks.get("events")
+        made = []
+        monitor = self._leaf_docks.get("monitor")  # (a capture dropped meanwhile makes it)
+        if monitor is None:
+            monitor = monitor_dock.MonitorDock(self)
+            self.addDockWidget(Qt.DockWidgetArea.BottomDockWidgetArea, monitor)
+            self.tabifyDockWidget(self.plan_dock, monitor)
+            self._view_action_before(events, monitor)
+            self._leaf_docks["monitor"] = monitor
+            made.append(monitor)
+            if started:
+                monitor.reset_for_session(self.doc.system)  # as _session_started does
+        if keeping:
+            for frames in early:
+                monitor.add_frames(frames)
+            if live:
+                bridge.frameSeen.connect(monitor.add_frames)
+        if "plot" not in self._leaf_docks:
+            plot = live_plot.LivePlot()
+            dock = self._dock(self.tr("Live plot"), "LivePlotDock", plot,
+                              Qt.DockWidgetArea.BottomDockWidgetArea)
+            self.tabifyDockWidget(self.plan_dock, dock)
+            self._view_action_before(events, dock)
+            self._leaf_docks["plot"] = dock
+            made.append(dock)
+            if started:
+                plot.set_system(self.doc.system)  # as _session_started does
+            if live:
+                bridge.channelValues.connect(plot.add_values)
+        if events is not None and made:
+            self.tabifyDockWidget(made[-1], events)  # the tabs in their usual order
+        self.plan_dock.raise_()
+        if made:  # where they were last time, once laid out (as window_desktop does)
+            QTimer.singleShot(0, self, lambda: self._restore_made_docks(made))
+
+    def _restore_made_docks(self, docks: list[Any]) -> None:
+        from pdcp_studio.app.window_desktop import name_controls
+
+        for dock in docks:
+            self.restoreDockWidget(dock)
+            name_controls(dock)
+
+    def _view_action_before(self, before: Any, dock: Any) -> None:
+        """``dock``'s entry in the View menu, before ``before``'s (None: last)."""
+        if before is None:
+            self.view_menu.addAction(dock.toggleViewAction())
+        else:
+            self.view_menu.insertAction(before.toggleViewAction(), dock.toggleViewAction())
+
     def _events_dock(self) -> Any:
         """The bus events list (made once): which link the bus made, why, how similar."""
         from pdcp_studio.app.events_panel import EventsPanel
@@ -127,6 +211,8 @@ class BusMixin:
 
         stop_watching(self)  # a passive monitor of another bus gives way to the session
         system = self.doc.system
+        if getattr(self, "_keeping_from", None) is bridge:
+            self._early_frames.clear()  # the trace starts afresh with the session too
         monitor = self._leaf_docks.get("monitor")
         if monitor is not None and hasattr(monitor, "reset_for_session"):
             monitor.reset_for_session(system)
@@ -229,6 +315,8 @@ class BusMixin:
         from pdcp_studio.model.refs import ChannelRef
         from pdcp_studio.model.system import Link
 
+        if obj is not None and getattr(self, "_trace_bridge", None) is not None:
+            self._make_trace_docks()  # the plot follows the selection from the start
         dock = self._leaf_docks.get("plot")
         if dock is None:
             return
