@@ -13,6 +13,10 @@ import os
 import sys
 import time
 from pathlib import Path
+from typing import TYPE_CHECKING
+
+if TYPE_CHECKING:
+    from concurrent.futures import Future
 
 PROBE_ENV = "PDCP_STUDIO_STARTUP_PROBE"
 #: A screenshot run gives up after this long (a bus that never answers must not hang CI).
@@ -55,12 +59,21 @@ def run_app(path: str | Path | None = None, bus: str | None = None,
     i18n.install(app, lang)  # the system's language, or --lang
     _set_icon(app)
 
-    from pdcp_studio.app.main_window import DEFAULT_BUS, MainWindow
     from pdcp_studio.app.smoke import SMOKE_ENV
 
     smoke_report = os.environ.get(SMOKE_ENV)
     scripted = screenshot is not None or bool(os.environ.get(PROBE_ENV)) or bool(smoke_report)
-    window = MainWindow(recovery=None if scripted else _recovery())
+    recovery = None if scripted else _recovery()
+    opening = None
+    if bus is not None and path is None and not _has_pending(recovery):
+        # The bus opens on a thread of its own from now on, while the window is made: a
+        # simulated prosthesis spends most of its ~0.3 s start-up waiting for its threads'
+        # frames, time the window's construction can use. (Not while unsaved work waits
+        # to be recovered: the user may take that instead of the bus.)
+        opening = open_early(bus)
+    from pdcp_studio.app.main_window import DEFAULT_BUS, MainWindow
+
+    window = MainWindow(recovery=recovery)
     window.quiet = scripted
     if not scripted:
         from pdcp_studio.app.window_desktop import remember_layout
@@ -137,12 +150,12 @@ def run_app(path: str | Path | None = None, bus: str | None = None,
     if opened is not None:
         window.show_opened(opened, Path(path))
     elif not scripted and window.offer_recovery():
-        pass  # the recovered document is on screen; connect later from the Bus menu
+        _discard(opening)  # the recovered document is on screen; connect later (Bus menu)
     elif bus is None:
         window.show_start()  # no file, no bus: the start page (tasks, connect, open, recent)
         QTimer.singleShot(0, _preload_layout)
     else:
-        window.connect_bus(bus)
+        window.connect_bus(bus, opening)
         # The graph's layout needs networkx (~0.3 s to import): load it while the bus
         # connects on its worker, not after the bus has answered.
         QTimer.singleShot(0, _preload_layout)
@@ -151,6 +164,40 @@ def run_app(path: str | Path | None = None, bus: str | None = None,
     code = app.exec()
     window.live.disconnect_bus()
     return status["code"] or int(code)
+
+
+def open_early(url: str) -> Future:
+    """Start opening ``url``'s session on a thread of its own (no Qt there); the window's
+    connection takes it (``LiveController.connect_bus``). Its failure is the connection's."""
+    import threading
+    from concurrent.futures import Future
+
+    opening: Future = Future()
+
+    def run() -> None:
+        if not opening.set_running_or_notify_cancel():
+            return
+        try:
+            from pdcp_studio.bus.session import open_session
+
+            opening.set_result(open_session(url))
+        except BaseException as err:  # the worker that takes it raises it (as open_session)
+            opening.set_exception(err)
+
+    threading.Thread(target=run, name=f"open {url}", daemon=True).start()
+    return opening
+
+
+def _has_pending(recovery: object | None) -> bool:
+    """Is there unsaved work from a crash to offer back?"""
+    return recovery is not None and bool(recovery.pending())  # type: ignore[attr-defined]
+
+
+def _discard(opening: Future | None) -> None:
+    """Close the early session nobody takes, once it has opened."""
+    if opening is not None:
+        opening.add_done_callback(
+            lambda done: done.exception() is None and done.result().close())
 
 
 def share_the_interpreter() -> None:

@@ -14,6 +14,7 @@ session you have until the new one answers: a failed Connect changes nothing.
 from __future__ import annotations
 
 import logging
+from concurrent.futures import Future
 from typing import Any
 
 from PySide6.QtCore import QObject, Signal
@@ -34,6 +35,14 @@ def open_session_blocking(url: str, progress: Any = None, cancel: Any = None) ->
     if progress is not None:
         progress(0, 0, f"Connecting to {url}…")
     return open_session(url)
+
+
+def opened_early(opening: Future, url: str, progress: Any = None) -> Any:
+    """The session ``opening`` opens (on a thread of its own since start-up,
+    ``application.open_early``); what it raised, raised here."""
+    if progress is not None:
+        progress(0, 0, f"Connecting to {url}…")
+    return opening.result()
 
 
 def read_and_place(session: Any, shape: float = 1.0) -> tuple[Any, dict]:
@@ -91,11 +100,12 @@ class LiveController(QObject):
             self.state = state
             self.stateChanged.emit(state)
 
-    def connect_bus(self, url: str) -> Worker:
+    def connect_bus(self, url: str, opening: Future | None = None) -> Worker:
         """Open ``url`` on a worker; ``connected`` or ``failed`` follows.
 
         The current session (if any) stays until the new one has opened: a failed Connect
-        leaves the window as it was.
+        leaves the window as it was. ``opening``: the session already being opened (at
+        start-up, while the window is built), taken instead of opening another.
         """
         if self.connecting is not None and self.connecting.is_running:
             self.connecting.cancel()  # its session, if it still opens, is closed unused
@@ -104,7 +114,8 @@ class LiveController(QObject):
         self.busyChanged.emit(True)
 
         def work(p: Any, cancel: Any) -> Any:
-            session = open_session_blocking(url, p, cancel)
+            session = (open_session_blocking(url, p, cancel) if opening is None
+                       else opened_early(opening, url, p))
             if cancel.is_set():  # superseded by another Connect: nobody will use it
                 session.close()
             return session

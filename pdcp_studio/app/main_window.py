@@ -263,9 +263,10 @@ class MainWindow(MenusMixin, FileHandlingMixin, ExportMixin, BusMixin, RecoveryM
     def is_ready(self) -> bool:
         return self._is_ready
 
-    def connect_bus(self, url: str) -> None:
-        """Connect on a worker; the document switches to the bus when it answers."""
-        self.live.connect_bus(url)
+    def connect_bus(self, url: str, opening: Any = None) -> None:
+        """Connect on a worker; the document switches to the bus when it answers
+        (``opening``: the session already being opened, see ``LiveController``)."""
+        self.live.connect_bus(url, opening)
 
     def _on_connected(self, url: str) -> None:
         self._update_mode()
