@@ -322,26 +322,41 @@ def with_spare_hand(load: Callable[[], System]) -> Callable[[], System]:
 
 
 @cache
-def _registry() -> dict[str, Prosthesis]:
+def _files() -> dict[str, Path]:
+    """The shipped system files by name, in the registry's order."""
     from pdcp_studio.paths import systems_dir
 
-    entries: dict[str, Prosthesis] = {}
     files = {p.stem: p for p in systems_dir().glob("*.json")}
-    for name in sorted(files, key=lambda n: (_ORDER.index(n) if n in _ORDER else 99, n)):
-        scripts = _THESIS_SCRIPTS.get(name)
-        if scripts is None:
-            scripts = _scripts_from_file(files[name])
-        load = _file_loader(files[name])
-        if name == "transradial":
-            load = with_spare_hand(load)
-        entries[name] = Prosthesis(name, _DESCRIPTIONS.get(name, f"System file {name}.json"),
-                                   load, scripts,
-                                   _DATA_RATES_HZ.get(name))
-    large = large_system()
-    keys = list(large.devices)
-    entries[LARGE] = Prosthesis(LARGE, _DESCRIPTIONS[LARGE], large_system,
-                                _generic_scripts(keys[0], keys[-1]))
-    return entries
+    return {name: files[name] for name in
+            sorted(files, key=lambda n: (_ORDER.index(n) if n in _ORDER else 99, n))}
+
+
+@cache
+def _entry(name: str) -> Prosthesis:
+    """One registry entry, made when first asked for: opening ``sim:transradial`` reads
+    its own file, not every shipped one (``full``'s 254 devices among them)."""
+    if name == LARGE:
+        large = large_system()
+        keys = list(large.devices)
+        return Prosthesis(LARGE, _DESCRIPTIONS[LARGE], large_system,
+                          _generic_scripts(keys[0], keys[-1]))
+    path = _files()[name]
+    scripts = _THESIS_SCRIPTS.get(name)
+    if scripts is None:
+        scripts = _scripts_from_file(path)
+    load = _file_loader(path)
+    if name == "transradial":
+        load = with_spare_hand(load)
+    return Prosthesis(name, _DESCRIPTIONS.get(name, f"System file {name}.json"), load, scripts,
+                      _DATA_RATES_HZ.get(name))
+
+
+def _names() -> list[str]:
+    return [*_files(), LARGE]
+
+
+def _registry() -> dict[str, Prosthesis]:
+    return {name: _entry(name) for name in _names()}
 
 
 def _scripts_from_file(path: Path) -> tuple[Script, ...]:
@@ -359,28 +374,24 @@ def scripts_for(system: System) -> tuple[Script, ...]:
 
 def list_prostheses() -> list[str]:
     """The built-in prostheses' names: thesis-test1 … thesis-test5, transradial, large, …"""
-    names = list(_registry())
+    names = _names()
     return sorted(names, key=lambda n: (_ORDER.index(n) if n in _ORDER else len(_ORDER), n))
 
 
 def prosthesis(name: str) -> Prosthesis:
     """The registry entry ``name``; UnknownProsthesisError names the choices."""
-    entries = _registry()
-    try:
-        return entries[name]
-    except KeyError:
-        raise UnknownProsthesisError(
-            f"no built-in prosthesis {name!r} (one of {', '.join(list_prostheses())})"
-        ) from None
+    if name in _names():
+        return _entry(name)
+    raise UnknownProsthesisError(
+        f"no built-in prosthesis {name!r} (one of {', '.join(list_prostheses())})")
 
 
 def resolve_prosthesis(name_or_path: str | Path) -> Prosthesis:
     """A built-in prosthesis by name, or one made from a ``pdcp-system/1`` file (with the
     generic scripts)."""
     text = str(name_or_path)
-    entries = _registry()
-    if text in entries:
-        return entries[text]
+    if text in _names():
+        return _entry(text)
     path = Path(text)
     if path.is_file():
         from pdcp_studio.storage import system_file
