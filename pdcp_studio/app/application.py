@@ -71,6 +71,7 @@ def run_app(path: str | Path | None = None, bus: str | None = None,
         # frames, time the window's construction can use. (Not while unsaved work waits
         # to be recovered: the user may take that instead of the bus.)
         opening = open_early(bus)
+        _preload_layout()  # networkx too: the bus's first snapshot is laid out with it
     from pdcp_studio.app.main_window import DEFAULT_BUS, MainWindow
 
     window = MainWindow(recovery=recovery)
@@ -156,9 +157,10 @@ def run_app(path: str | Path | None = None, bus: str | None = None,
         QTimer.singleShot(0, _preload_layout)
     else:
         window.connect_bus(bus, opening)
-        # The graph's layout needs networkx (~0.3 s to import): load it while the bus
-        # connects on its worker, not after the bus has answered.
-        QTimer.singleShot(0, _preload_layout)
+        if opening is None:
+            # The graph's layout needs networkx (~0.3 s to import): load it while the bus
+            # connects on its worker, not after the bus has answered.
+            QTimer.singleShot(0, _preload_layout)
     if screenshot is not None or os.environ.get(PROBE_ENV) or smoke_report:
         QTimer.singleShot(SCREENSHOT_TIMEOUT_MS, give_up)
     code = app.exec()
