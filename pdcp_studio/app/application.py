@@ -122,8 +122,8 @@ def run_app(path: str | Path | None = None, bus: str | None = None,
     def probe() -> None:
         app.processEvents()
         print(f"startup_s={time.perf_counter() - started:.3f} "
-              f"devices={len(window.doc.system.devices)} live={window.live.is_live}",
-              flush=True)
+              f"devices={len(window.doc.system.devices)} live={window.live.is_live} "
+              f"cpu_s={time.process_time():.3f}", flush=True)  # the process's, all threads
         window.doc.mark_saved()
         window.close()
         app.quit()
