@@ -9,6 +9,15 @@ import pytest
 os.environ.setdefault("QT_QPA_PLATFORM", "offscreen")
 
 
+@pytest.fixture(autouse=True, scope="session")
+def interpreter_shared_as_in_the_app():
+    """The app sets the interpreter's switch interval once at start-up (``run_app``); these
+    tests build its windows and docks without it, so they set it the same way."""
+    from pdcp_studio.app.application import share_the_interpreter
+
+    share_the_interpreter()
+
+
 @pytest.fixture(autouse=True)
 def fitting_environment(tmp_path, monkeypatch):
     """Every app test records into its own fitting history, as a named operator, with its
