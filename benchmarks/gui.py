@@ -76,27 +76,29 @@ def startup(root: Path = ROOT) -> list[tuple[float, float, float]]:
 
 
 def print_startup() -> None:
-    """As installed (the package's bytecode compiled, as pip and the packaged app have it),
-    or with ``--source`` from a copy without bytecode whose every run compiles the app's
-    ~1 MB of source again (what an editable checkout does under PYTHONDONTWRITEBYTECODE)."""
+    """Start-up as installed: a copy of the package with its bytecode compiled, as pip and
+    the packaged app have it; with ``--source``, a copy without bytecode whose every run
+    compiles the app's ~1 MB of source again (an editable checkout under
+    PYTHONDONTWRITEBYTECODE). Either way nothing is written into the source tree."""
     import compileall
     import shutil
 
-    if "--source" in sys.argv:
-        copy = Path(tempfile.mkdtemp(prefix="pdcp-source-"))
+    source = "--source" in sys.argv
+    copy = Path(tempfile.mkdtemp(prefix="pdcp-startup-"))
+    env_before = os.environ.get("PYTHONDONTWRITEBYTECODE")
+    try:
         shutil.copytree(ROOT / "pdcp_studio", copy / "pdcp_studio",
                         ignore=shutil.ignore_patterns("__pycache__"))  # resources copied too
-        env_before = os.environ.get("PYTHONDONTWRITEBYTECODE")
-        os.environ["PYTHONDONTWRITEBYTECODE"] = "1"
-        try:
-            runs, how = startup(copy), "source compiled on every run"
-        finally:
-            if env_before is None:
-                os.environ.pop("PYTHONDONTWRITEBYTECODE")
-            shutil.rmtree(copy, ignore_errors=True)
-    else:
-        compileall.compile_dir(ROOT / "pdcp_studio", quiet=1)
-        runs, how = startup(), "bytecode compiled beforehand, as installed"
+        if source:
+            os.environ["PYTHONDONTWRITEBYTECODE"] = "1"
+        else:
+            compileall.compile_dir(copy / "pdcp_studio", quiet=1)
+        runs = startup(copy)
+    finally:
+        if env_before is None:
+            os.environ.pop("PYTHONDONTWRITEBYTECODE", None)
+        shutil.rmtree(copy, ignore_errors=True)
+    how = "source compiled on every run" if source else "bytecode compiled, as installed"
     times, cpu, to_exit = ([r[i] for r in runs] for i in range(3))
     print(f"start-up to window shown, laid out, live on sim:transradial ({how}): "
           f"median {statistics.median(times):.3f} s, best {min(times):.3f} s, "
