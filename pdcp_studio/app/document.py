@@ -199,7 +199,7 @@ class Document(QObject):
             if self.is_live_view:  # as this prosthesis was last laid out, where remembered
                 from pdcp_studio.app import live_layout
 
-                self.positions.update(live_layout.load(self.live_url))
+                self.positions = live_layout.restore(system, self.positions, self.live_url)
         self.undo_stack.clear()
         self.undo_stack.setClean()
         self._extra_dirty = dirty
@@ -327,7 +327,7 @@ class Document(QObject):
         if self.is_live_view:
             from pdcp_studio.app import live_layout
 
-            live_layout.save(self.live_url, self.positions)
+            live_layout.save(self.system, self.positions, self.live_url)
 
     def _only_moves_since_clean(self) -> bool:
         stack = self.undo_stack
