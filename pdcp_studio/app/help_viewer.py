@@ -93,13 +93,15 @@ class ManualBrowser(QTextBrowser):
         self.folder = folder
         self.setSearchPaths([str(folder)])
 
-    def picture_path(self, url: QUrl) -> Path:
+    def picture_path(self, url: QUrl | str) -> Path:
         """Where the picture ``url`` (as the manual writes it, e.g. ``images/x.png``) is."""
+        url = QUrl(url)
         return Path(url.toLocalFile()) if url.isLocalFile() else self.folder / url.path()
 
-    def loadResource(self, kind: int, url: QUrl) -> object:
+    def loadResource(self, kind: int, url: QUrl | str) -> object:
         if kind != QTextDocument.ResourceType.ImageResource.value:
             return super().loadResource(kind, url)
+        url = QUrl(url)
         image = QImage(str(self.picture_path(url)))
         if image.isNull():
             return missing_picture(url.fileName())
