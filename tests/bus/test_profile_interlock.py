@@ -9,6 +9,8 @@ to hold still stops the plan before anything is written.
 from __future__ import annotations
 
 import time
+from collections.abc import Iterator
+from contextlib import contextmanager
 
 from pdcp_studio.bus import events as ev
 from pdcp_studio.bus.session_api import open_session
@@ -48,11 +50,23 @@ def _held_around(msgs, writes):
     return {msgs[i].node_id for i in suspends}, {msgs[i].node_id for i in releases}
 
 
-def test_start_up_holds_the_devices_feeding_terminal_channels_while_it_links():
+@contextmanager
+def recorded(prosthesis: str) -> Iterator[tuple[object, FrameRecorder]]:
+    """A simulated prosthesis on a virtual channel of its own, every frame recorded."""
     channel = unique_virtual_channel("profile-hold")
     recorder = FrameRecorder(channel)
-    session = open_session("sim:thesis-test2", channel=channel)
     try:
+        session = open_session(prosthesis, channel=channel)
+        try:
+            yield session, recorder
+        finally:
+            session.close()
+    finally:
+        recorder.close()
+
+
+def test_start_up_holds_the_devices_feeding_terminal_channels_while_it_links():
+    with recorded("sim:thesis-test2") as (session, recorder):
         assert session.system().links  # start-up autoconfigured appendix D's links
         time.sleep(0.1)
         msgs = recorder.messages()
@@ -60,16 +74,10 @@ def test_start_up_holds_the_devices_feeding_terminal_channels_while_it_links():
         assert writes
         held, released = _held_around(msgs, writes)
         assert held <= released  # every held device was let go again
-    finally:
-        session.close()
-        recorder.close()
 
 
 def test_a_hot_swap_repair_holds_the_feeders_then_releases_them():
-    channel = unique_virtual_channel("profile-hold")
-    recorder = FrameRecorder(channel)
-    session = open_session("sim:thesis-test4", channel=channel)
-    try:
+    with recorded("sim:thesis-test4") as (session, recorder):
         start = len(recorder.messages())
         assert session.run_script("hot-swap").ok
         time.sleep(0.1)
@@ -78,17 +86,11 @@ def test_a_hot_swap_repair_holds_the_feeders_then_releases_them():
         assert writes, "the duty cycle made no link"
         held, released = _held_around(msgs, writes)
         assert held <= released
-    finally:
-        session.close()
-        recorder.close()
 
 
 def test_a_device_that_will_not_hold_still_stops_the_repair_before_any_write():
-    channel = unique_virtual_channel("profile-hold")
-    recorder = FrameRecorder(channel)
-    session = open_session("sim:thesis-test4", channel=channel)
     errors: list[str] = []
-    try:
+    with recorded("sim:thesis-test4") as (session, recorder):
         assert session.wait_settled(10)
         before = session.system().links
         for key in session.host.keys():  # the new part too: nobody holds still
@@ -103,6 +105,3 @@ def test_a_device_that_will_not_hold_still_stops_the_repair_before_any_write():
         assert not _link_writes(msgs), "a link was written with a device not held"
         assert any("not written" in e and "did not suspend" in e for e in errors), errors
         assert session.system().links == before  # no replacement link was made
-    finally:
-        session.close()
-        recorder.close()
