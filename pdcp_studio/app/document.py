@@ -225,6 +225,9 @@ class Document(QObject):
         as last seen and the project follows from it unchanged (a rescan that finds the
         same bus): the views then have nothing to redraw, so back-to-back scans cost the
         GUI thread a comparison, not a rebuild of every card, row and check.
+
+        The snapshot becomes ``bus_system`` as it is (a fresh copy from the session, never
+        changed afterwards: copying it again cost the GUI thread ~4 ms per 254 devices).
         """
         system, base = self.system, self.bus_system or System()
         same_bus = self.bus_system is not None and same_system(snapshot, self.bus_system)
@@ -237,6 +240,8 @@ class Document(QObject):
                 system.add_device(copy.deepcopy(device))
                 added = True
                 continue
+            if mine == device:
+                continue  # every field and channel as on the bus: nothing to merge
             old = base.devices.get(key)
             if _merge_fields(mine, device, old, BUS_DEVICE_FIELDS, WRITABLE_DEVICE_FIELDS):
                 changed_devices.append(key)
@@ -260,7 +265,7 @@ class Document(QObject):
         links_changed = set(links) != mine_links
         if same_bus and not (added or changed_devices or changed_channels or links_changed):
             return False  # bus_system stays: it equals the snapshot
-        self.bus_system = snapshot.copy()
+        self.bus_system = snapshot
         if added:
             system.clear_links()
             for link in links:
