@@ -90,3 +90,28 @@ def test_rescanning_the_same_prosthesis_rebuilds_nothing(make_window, qtbot):
                                                for k, c in cards.items())
     assert any(m.startswith("Scan finished: 4 device(s)") for m in messages)
     window.live.disconnect_bus()
+
+
+def test_a_scans_progress_reaches_the_window_once_not_twice(make_window, qtbot):
+    """The session reports a scan's progress as events (coalesced per drain); the worker's
+    own reports stay with the worker (the setup wizard follows them) and are not sent on
+    to the window as well."""
+    window = make_window()
+    with qtbot.waitSignal(window.ready, timeout=20000):
+        window.connect_bus("sim:transradial")
+    bridge = window.live.bridge
+    window.live.wait_idle()
+    seen: list[tuple[int, int, str]] = []
+    bridge.progress.connect(lambda *a: seen.append(a))
+    worker = bridge.scan()
+    mine: list[tuple[int, int, str]] = []
+    worker.progress.connect(lambda *a: mine.append(a))
+    with qtbot.waitSignal(bridge.scanned, timeout=30000):
+        pass
+    qtbot.wait(120)  # the last Progress event is drained
+    assert mine and seen  # both still report
+    assert seen[-1][0] == seen[-1][1]  # the window hears the scan end
+    before = len(seen)
+    worker.progress.emit(1, 2, "a worker's report")
+    assert len(seen) == before
+    window.live.disconnect_bus()
