@@ -210,8 +210,12 @@ class SessionBridge(QObject):
         most one per drain): the worker's own reports (its ``progress``, for a caller that
         follows this scan alone) are not sent on as well — twice the status bar updates
         on the GUI thread for the same news."""
-        return self.run(lambda p, c: self.session.scan(p, c), "Scan", self.scanned.emit,
+        return self.run(lambda p, c: self.session.scan(p, c), "Scan", self._scanned,
                         forward_progress=False)
+
+    def _scanned(self, system: Any) -> None:
+        self.drain()  # the scan's own events (its last Progress) come before its result
+        self.scanned.emit(system)
 
     def read_configuration(self) -> Worker | None:
         """The arbitrator's stored configuration arrives as ``configurationRead``."""
