@@ -72,7 +72,9 @@ def test_rescanning_the_same_prosthesis_rebuilds_nothing(make_window, qtbot):
         window.connect_bus("sim:transradial")
     bridge = window.live.bridge
     window.live.wait_idle()
-    qtbot.wait(100)  # the first snapshot's follow-ups (policy, configuration) settle
+    with qtbot.waitSignal(bridge.scanned, timeout=30000):
+        window.scan_bus()  # the first scan may read more than the first snapshot had
+    qtbot.wait(100)  # its follow-ups (and the policy, configuration reads) settle
     said = _record(window.doc)
     work: list[str] = []
     window.live.snapshotTaken.connect(lambda _s: work.append("snapshotTaken"))
