@@ -108,9 +108,9 @@ class Inspector(QScrollArea):
         self._refresh_timer.setSingleShot(True)
         self._refresh_timer.setInterval(0)
         self._refresh_timer.timeout.connect(self._refresh_now)
-        #: Findings checked on a worker for the overview being refreshed (else None), and
-        #: the number of the newest check: an older check's findings are dropped.
-        self._checked: list[Any] | None = None
+        #: Findings and their words checked on a worker for the overview being refreshed
+        #: (else None), and the number of the newest check: an older check is dropped.
+        self._checked: tuple[list[Any], Any] | None = None
         self._check_number = 0
         doc.selectionChanged.connect(self.show_object)
         doc.channelChanged.connect(self._on_channel_changed)
@@ -226,8 +226,7 @@ class Inspector(QScrollArea):
     # -- the whole system (nothing selected) ---------------------------------------
     def _build_system(self, box: QVBoxLayout) -> None:
         """An overview and the engine's checks; a finding selects its channel."""
-        from pdcp_studio.app.finding_text import finding_detail, plain_finding
-        from pdcp_studio.engine import check_system
+        from pdcp_studio.app.inspector_checks import checked_findings
 
         system = self.doc.system
         missing = sum(1 for d in system.devices.values() if not d.present)
@@ -241,10 +240,10 @@ class Inspector(QScrollArea):
         hint.setWordWrap(True)
         hint.setStyleSheet(DIM_STYLE)
         box.addWidget(hint)
-        findings = self._checked
-        if findings is None:
-            findings = (check_system(system, autoconfigure=self.doc.autoconfigure)
-                        if system.devices else [])
+        checked = self._checked
+        if checked is None:
+            checked = checked_findings(system, self.doc.autoconfigure)
+        findings, texts = checked
         box.addWidget(
             QLabel(
                 self.tr("<b>Checks</b> — {v0} finding{v1}").format(
@@ -257,12 +256,11 @@ class Inspector(QScrollArea):
         colours = {"error": "#b91c1c", "warning": "#b45309", "info": "#475569"}
         severity = {"error": self.tr("Error"), "warning": self.tr("Warning"),
                     "info": self.tr("Note")}
-        for f in findings:
-            plain = plain_finding(f, system, self.doc.autoconfigure)
+        for f, (plain, detail) in zip(findings, texts, strict=True):
             item = QListWidgetItem(f"{severity[f.severity.value]}: {plain}")
             item.setForeground(QColor(colours.get(f.severity.value, "#1f2933")))
             item.setData(Qt.ItemDataRole.UserRole, f.refs[0] if f.refs else None)
-            item.setToolTip(finding_detail(f))
+            item.setToolTip(detail)
             lst.addItem(item)
         if not findings:
             lst.addItem(self.tr("Nothing to report: every check passed."))
@@ -627,22 +625,22 @@ class Inspector(QScrollArea):
         if self._pending is not None or self.doc.session is None or not self.doc.system.devices:
             self.show_object(self._pending)
             return
+        from pdcp_studio.app.inspector_checks import checked_findings
         from pdcp_studio.app.workers import Worker
-        from pdcp_studio.engine import check_system
 
         self._check_number += 1
         number, system = self._check_number, self.doc.system.copy()
         autoconfigure = self.doc.autoconfigure
-        worker = Worker(lambda _p, _c: check_system(system, autoconfigure=autoconfigure),
+        worker = Worker(lambda _p, _c: checked_findings(system, autoconfigure),
                         "Check the system")
-        worker.finished.connect(lambda findings: self._show_checked(number, findings))
+        worker.finished.connect(lambda checked: self._show_checked(number, checked))
         worker.start()
 
-    def _show_checked(self, number: int, findings: list[Any]) -> None:
+    def _show_checked(self, number: int, checked: tuple[list[Any], Any]) -> None:
         """A worker's checks arrived: show them unless something newer was asked for."""
         if not isValid(self) or number != self._check_number or self.doc.selection is not None:
             return
-        self._checked = findings
+        self._checked = checked
         try:
             self.show_object(None)
         finally:

@@ -82,3 +82,22 @@ def test_checks_that_arrive_after_a_selection_are_dropped(qtbot, monkeypatch):
     release.set()
     qtbot.wait(300)  # the late checks arrive and are not shown
     assert inspector.subject == key and "findings" not in inspector.editors
+
+
+def test_the_words_are_those_of_each_finding_with_the_catalogue_asked_once(monkeypatch):
+    from pdcp_studio.app import finding_text
+    from pdcp_studio.app.inspector_checks import checked_findings
+    from pdcp_studio.model import catalog
+
+    system = big_system(40)
+    system.clear_links()
+    expected_findings = engine.check_system(system, autoconfigure=False)
+    expected = [(finding_text.plain_finding(f, system, False), finding_text.finding_detail(f))
+                for f in expected_findings]
+    asked: list[int] = []
+    real = catalog.default_catalog
+    monkeypatch.setattr(catalog, "default_catalog", lambda: asked.append(1) or real())
+    monkeypatch.setattr(finding_text, "default_catalog", catalog.default_catalog)
+    findings, texts = checked_findings(system, False)
+    assert findings == expected_findings and texts == expected
+    assert len(findings) > 10 and asked == [1]
