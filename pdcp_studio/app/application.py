@@ -37,6 +37,9 @@ def run_app(path: str | Path | None = None, bus: str | None = None,
     """
     started = time.perf_counter() if started is None else started
     share_the_interpreter()
+    from pdcp_studio.app.pyside_import_scan import spare_source_scan
+
+    spare_source_scan()  # before the app's imports: PySide6 would read each one's source
     opened = None
     if path is not None:
         from pdcp_studio.app import files
