@@ -33,6 +33,7 @@ from collections.abc import Iterable
 from typing import Any
 
 import numpy as np
+import shiboken6
 from PySide6.QtCore import QPointF, QRectF, Qt, QTimer, Signal
 from PySide6.QtGui import QColor, QMouseEvent, QPainter, QPaintEvent, QPen, QPolygonF
 from PySide6.QtWidgets import (
@@ -143,6 +144,21 @@ class Series:
 
 
 _LANE_EDGE = QColor(128, 128, 128, 110)
+
+
+def _polygon(xs: np.ndarray, ys: np.ndarray) -> QPolygonF:
+    """A polygon of the points ``(xs[i], ys[i])``, written straight into Qt's array of
+    ``QPointF`` (two doubles each): a QPointF per point made in Python cost ~2 ms a lane
+    of 1,200 points, a fifth of a repaint; this ~0.01 ms."""
+    n = len(xs)
+    polygon = QPolygonF()
+    polygon.resize(n)
+    if n:
+        points = np.frombuffer(shiboken6.VoidPtr(polygon.data(), n * 16, True),
+                               dtype=np.float64).reshape(n, 2)
+        points[:, 0] = xs
+        points[:, 1] = ys
+    return polygon
 
 
 # Grid lines and lane edges as one-pixel rectangles: translucent lines take the raster
@@ -323,18 +339,16 @@ class PlotCanvas(QWidget):
             xs = np.repeat(cols[starts].astype(np.float64), 2)
             vs = np.empty(2 * len(starts))
             vs[0::2], vs[1::2] = lows, highs
-        px = (body.left() + xs).tolist()
-        py = (body.bottom() - (vs - lo) * sy).tolist()
-        points = [QPointF(x, y) for x, y in zip(px, py, strict=True)]
+        polygon = _polygon(body.left() + xs, body.bottom() - (vs - lo) * sy)
         p.save()
         p.setClipRect(body)
         # Antialiased lines cost ~10× more to draw: only for a sparse trace.
-        p.setRenderHint(QPainter.RenderHint.Antialiasing, len(points) < 400)
-        p.setPen(QPen(color, 1.5 if len(points) < 400 else 1.0))
-        if len(points) == 1:
-            p.drawEllipse(points[0], 2.0, 2.0)
+        p.setRenderHint(QPainter.RenderHint.Antialiasing, len(polygon) < 400)
+        p.setPen(QPen(color, 1.5 if len(polygon) < 400 else 1.0))
+        if len(polygon) == 1:
+            p.drawEllipse(polygon[0], 2.0, 2.0)
         else:
-            p.drawPolyline(QPolygonF(points))
+            p.drawPolyline(polygon)
         p.restore()
 
 
