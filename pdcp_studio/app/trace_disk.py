@@ -30,13 +30,15 @@ from pdcp_studio.app.trace_store import Chunk, Frame, FrameStore, Tables
 #: One frame on disk (packed, 28 bytes), the fields of ``trace_store.Chunk``.
 RECORD = np.dtype([("ts", "<f8"), ("aid", "<u4"), ("dlc", "u1"), ("data", "u1", (8,)),
                    ("func", "<u2"), ("text", "<u4"), ("flags", "u1")])
-#: Recent distinct texts remembered to number their repeats alike (older repeats get a new
-#: number: the table grows on disk, never in memory).
-RECENT_TEXTS = 1 << 16
-#: Texts kept in memory for reading (rows on screen, statistics).
-CACHED_TEXTS = 1 << 14
+#: Recently used distinct texts remembered to number their repeats alike (a text unused for
+#: longer gets a new number when it comes back: the table grows on disk, never in memory).
+#: ~250 bytes each: 16,384 of them ~4 MB (65,536 held ~16 MB by 5,000,000 frames).
+RECENT_TEXTS = 1 << 14
+#: Texts kept in memory for reading (rows on screen, statistics on screen).
+CACHED_TEXTS = 1 << 12
 _TEXT_BATCH = 4096
-_SCAN_BYTES = 1 << 22
+#: Searched a block at a time: a block's lines as strings take ~5× the block's bytes.
+_SCAN_BYTES = 1 << 20
 
 
 class _File:
@@ -96,8 +98,10 @@ class FileTexts:
         self._count = 1
 
     def add(self, text: str) -> int:
-        found = self._recent.get(text)
+        recent = self._recent
+        found = recent.get(text)
         if found is not None:
+            recent.move_to_end(text)  # in use: kept (the oldest unused go first)
             return found
         if "\n" in text:
             text = text.replace("\n", " ")
@@ -107,7 +111,6 @@ class FileTexts:
             self._count += 1
             if len(self._tail) >= _TEXT_BATCH:
                 self._flush()
-        recent = self._recent
         recent[text] = n
         if len(recent) > RECENT_TEXTS:
             recent.popitem(last=False)
