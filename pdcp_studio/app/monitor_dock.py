@@ -20,10 +20,11 @@ the GUI thread). Every ``REFRESH_MS`` a timer turns the queued frames into one c
 of the live ring (``trace_store``; bounded to ``capacity`` frames), updates the per-ID
 statistics with vectorised counts, and lets the virtual-row table (``trace_model``) insert
 the new rows at once; a larger backlog is taken ``INGEST_SLICE`` frames per turn of the
-event loop. The statistics view makes a row only for the identifiers it paints. An opened capture is decoded on a worker into its own store (shown
-apart from the live frames, which keep being recorded); its first rows show at once and
-the rest follow chunk by chunk with progress and a Stop button. Filters and search over a
-large store run on a worker and return row lists; small ones are filtered at once.
+event loop. The statistics view makes a row only for the identifiers it paints. An opened
+capture is decoded on a worker into its own store (shown apart from the live frames, which
+keep being recorded); its first rows show at once and the rest follow chunk by chunk with
+progress and a Stop button. Filters and search over a large store run on a worker and return
+row lists; small ones are filtered at once.
 """
 
 from __future__ import annotations

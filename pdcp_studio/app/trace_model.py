@@ -228,6 +228,16 @@ class TraceModel(QAbstractTableModel):
             return _MARKED if role == Qt.ItemDataRole.BackgroundRole else name
         return None
 
+    def prefetch(self, first: int, last: int) -> None:
+        """Read the frames of table rows ``first … last`` ahead of painting them."""
+        try:
+            lo, hi = self.absolute(first), self.absolute(last)
+        except IndexError:
+            return
+        if first > 0 and self.time_mode == TIME_PREVIOUS:
+            lo = self.absolute(first - 1)  # the row above: its time is subtracted
+        self.store.prefetch(lo, hi + 1)
+
     def row_brush(self, row: int) -> QBrush | None:
         """The tint of a marked row (None: none)."""
         if not self.markers:
@@ -412,6 +422,9 @@ class TraceView(QTableView):
         ascent, descent = metrics.ascent(), metrics.descent()
         p.setPen(text_pen)
         grid = []  # the rows' bottom edges
+        prefetch = getattr(model, "prefetch", None)
+        if prefetch is not None:
+            prefetch(first, last)
         for row in range(first, last + 1):
             y = self.rowViewportPosition(row)
             h = self.rowHeight(row)

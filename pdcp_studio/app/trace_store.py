@@ -380,6 +380,10 @@ class FrameStore:
             yield first + lo, (chunk if (lo, hi) == (0, len(chunk))
                                else Chunk(*(c[lo:hi] for c in chunk)))
 
+    def prefetch(self, start: int, stop: int) -> None:
+        """Make frames ``start … stop-1`` quick to read (in memory already: nothing to do;
+        see ``trace_disk``)."""
+
     def close(self) -> None:
         """Release what the store holds outside memory (nothing here; see ``trace_disk``)."""
 

@@ -143,3 +143,33 @@ def test_remembered_texts_stay_bounded_and_texts_in_use_keep_their_number(tmp_pa
         assert texts[last + 2] == f"P0  #6 data Channel data  value {last}"
     finally:
         texts.close()
+
+
+@pytest.mark.gui
+def test_a_repaint_reads_the_frames_on_screen_at_once(qtbot, tmp_path, monkeypatch):
+    from pdcp_studio.app.trace_disk import FileFrameStore
+
+    from .trace_frames import synthetic_store
+
+    dock = MonitorDock()
+    qtbot.addWidget(dock)
+    dock.resize(900, 500)
+    dock.show()
+    store = synthetic_store(20_000, store=FileFrameStore(str(tmp_path)))
+    dock.show_frames(store, title="capture")
+    reads: list[int] = []
+    records = store._records
+    monkeypatch.setattr(store, "_records",
+                        lambda start, stop: reads.append(stop - start) or records(start, stop))
+    view = dock.view
+    view.scrollTo(dock.model.index(12_345, 0))
+    view.grab()
+    first, last = view.rowAt(0), view.rowAt(view.viewport().height() - 1)
+    assert first <= 12_345 <= last and last - first > 5
+    assert reads == [last - first + 1]  # one read for the screenful, not one a row
+    shown = {r: dock.model.row_texts(r) for r in range(first, last + 1)}  # read ahead already
+    assert len(reads) == 1
+    assert shown[12_345][4] == store.frame(12_345).data.hex(" ").upper()
+    store.clear()  # what was read ahead goes with the frames
+    with pytest.raises(IndexError):
+        store.frame(12_345)
