@@ -30,7 +30,7 @@ from __future__ import annotations
 import math
 from array import array
 from collections.abc import Iterable
-from typing import Any
+from typing import Any, cast
 
 import numpy as np
 import shiboken6
@@ -154,8 +154,8 @@ def _polygon(xs: np.ndarray, ys: np.ndarray) -> QPolygonF:
     polygon = QPolygonF()
     polygon.resize(n)
     if n:
-        points = np.frombuffer(shiboken6.VoidPtr(polygon.data(), n * 16, True),
-                               dtype=np.float64).reshape(n, 2)
+        memory: Any = cast(Any, shiboken6.VoidPtr)(polygon.data(), n * 16, True)  # writable
+        points = np.frombuffer(memory, dtype=np.float64).reshape(n, 2)
         points[:, 0] = xs
         points[:, 1] = ys
     return polygon
@@ -343,10 +343,10 @@ class PlotCanvas(QWidget):
         p.save()
         p.setClipRect(body)
         # Antialiased lines cost ~10× more to draw: only for a sparse trace.
-        p.setRenderHint(QPainter.RenderHint.Antialiasing, len(polygon) < 400)
-        p.setPen(QPen(color, 1.5 if len(polygon) < 400 else 1.0))
-        if len(polygon) == 1:
-            p.drawEllipse(polygon[0], 2.0, 2.0)
+        p.setRenderHint(QPainter.RenderHint.Antialiasing, polygon.size() < 400)
+        p.setPen(QPen(color, 1.5 if polygon.size() < 400 else 1.0))
+        if polygon.size() == 1:
+            p.drawEllipse(polygon.at(0), 2.0, 2.0)
         else:
             p.drawPolyline(polygon)
         p.restore()
