@@ -196,10 +196,14 @@ class _Heart:
     2-core machine a gap can be the machine's other work, not the app's: both are printed."""
 
     def __init__(self) -> None:
+        from array import array
+
         from PySide6.QtCore import QElapsedTimer, QTimer
 
-        self.gaps: list[float] = []
-        self.waits: list[float] = []  # ms of each gap spent runnable but not running
+        # arrays of doubles: a list of floats would add 3 MB to the peak RSS measured over the
+        # 52,000 beats of a 5,000,000-frame capture
+        self.gaps = array("d")
+        self.waits = array("d")  # ms of each gap spent runnable but not running
         self._clock = QElapsedTimer()
         self._timer = QTimer()
         self._timer.setInterval(HEARTBEAT_MS)
