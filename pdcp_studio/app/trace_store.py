@@ -417,7 +417,9 @@ class FrameStore:
             out.append(np.flatnonzero(mask) + first)
             if progress is not None:
                 progress(first + len(part) - start, stop - start)
-        return np.concatenate(out).astype(np.int64, copy=False) if out else np.zeros(0, dtype=np.int64)
+        if not out:
+            return np.zeros(0, dtype=np.int64)
+        return np.concatenate(out).astype(np.int64, copy=False)
 
 
 class IdStat(NamedTuple):
