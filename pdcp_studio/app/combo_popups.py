@@ -1,14 +1,20 @@
 """Dropdown lists wide enough for their entries: never cut in the middle.
 
 Qt's combo box popup is as wide as the box and elides long entries in the middle
-("Multi-gr…rotator"). One application-wide event filter widens every popup to its longest
-entry (up to the screen's width) when it opens and turns eliding off, so no dialog or
-panel has to remember to do it.
+("Multi-gr…rotator"). When any popup list takes the keyboard focus (it does as it opens),
+the application-wide hook widens it to its longest entry (up to the screen's width) and
+turns eliding off, so no dialog or panel has to remember to do it.
+
+The hook is the application's ``focusChanged`` signal, not an application-wide event
+filter: a filter written in Python is entered for every event of every object on the GUI
+thread (about 1,100 a second while the bus is scanned, three quarters of all the GUI
+thread's entries into Python), and each entry waits for the interpreter lock the bus
+threads hold — the longest part of the GUI thread's gaps during scans (benchmarks/gui.py).
 """
 
 from __future__ import annotations
 
-from PySide6.QtCore import QEvent, QObject, Qt
+from PySide6.QtCore import QObject, Qt
 from PySide6.QtWidgets import QApplication, QComboBox, QStyle, QWidget
 
 _INSTALLED = "_pdcp_combo_popups"
@@ -30,21 +36,22 @@ def fit_popup(combo: QComboBox, container: QWidget | None = None) -> int:
 
 
 class _FitPopups(QObject):
-    """Widens a combo box's popup container when it is shown."""
+    """Widens a combo box's popup when its list takes the focus (it does as it opens)."""
 
-    def eventFilter(self, watched: QObject, event: QEvent) -> bool:
-        if event.type() == QEvent.Type.Show and isinstance(watched, QWidget):
-            parent = watched.parentWidget()
-            if isinstance(parent, QComboBox) and watched.isWindow():
-                fit_popup(parent, watched)
-        return False
+    def fit(self, _old: QWidget | None, new: QWidget | None) -> None:
+        container = new.parentWidget() if new is not None else None
+        if container is None or not container.isWindow():
+            return
+        combo = container.parentWidget()
+        if isinstance(combo, QComboBox) and combo.view() is new:
+            fit_popup(combo, container)
 
 
 def install(app: QApplication | None = None) -> None:
-    """Install the filter once on the application."""
+    """Install the hook once on the application."""
     app = app or QApplication.instance()  # type: ignore[assignment]
     if app is None or getattr(app, _INSTALLED, None) is not None:
         return
     popups = _FitPopups(app)
-    app.installEventFilter(popups)
+    app.focusChanged.connect(popups.fit)
     setattr(app, _INSTALLED, popups)

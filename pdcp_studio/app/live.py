@@ -55,7 +55,8 @@ class LiveController(QObject):
     stateChanged = Signal(str)
     #: A new session's bridge replaced the old one and its first snapshot is on screen.
     sessionStarted = Signal(object)
-    #: The bus as it is now (a snapshot merged into the document), after any bus event.
+    #: The bus as it is now (a snapshot merged into the document), after any bus event
+    #: that changed it (a snapshot showing the bus exactly as last seen is not passed on).
     snapshotTaken = Signal(object)
     statusMessage = Signal(str)
     progress = Signal(int, int, str)
@@ -230,9 +231,11 @@ class LiveController(QObject):
             self.refresh()
 
     def _on_snapshot(self, system: Any) -> None:
+        """Merge a snapshot; one that shows the bus exactly as last seen changes nothing
+        and is not passed on (a rescan of the same bus costs the GUI thread ~nothing)."""
         if self.bridge is not None and self.doc.session is self.bridge:
-            self.doc.sync_live(system)
-            self.snapshotTaken.emit(system)
+            if self.doc.sync_live(system):
+                self.snapshotTaken.emit(system)
 
     def _on_bus_event(self, event: Any) -> None:
         """Any other event that may change the bus (an arbitrator reset, a stored

@@ -160,9 +160,12 @@ class SessionBridge(QObject):
 
     # -- calls on the worker -----------------------------------------------------------
     def run(self, fn: Callable[[Any, threading.Event], Any], description: str,
-            on_result: Callable[[Any], None] | None = None) -> Worker | None:
+            on_result: Callable[[Any], None] | None = None, *,
+            forward_progress: bool = True) -> Worker | None:
         """Run ``fn(progress, cancel)`` on the bridge's worker; failures go to ``error``.
 
+        Its progress reports become ``progress`` signals unless ``forward_progress`` is
+        False (a call whose session reports ``Progress`` events itself: they already do).
         Returns the worker (to cancel it or connect more) or None once closed.
         """
         if self._closed:
@@ -173,7 +176,8 @@ class SessionBridge(QObject):
             )
             return None
         worker = Worker(fn, description)
-        worker.progress.connect(self.progress)
+        if forward_progress:
+            worker.progress.connect(self.progress)
         worker.failed.connect(lambda msg: self.error.emit(f"{description}: {msg}"))
         if on_result is not None:
             worker.finished.connect(on_result)
@@ -200,8 +204,18 @@ class SessionBridge(QObject):
         return self.session.system()
 
     def scan(self) -> Worker | None:
-        """Read the whole bus; the result arrives as ``scanned(System)``."""
-        return self.run(lambda p, c: self.session.scan(p, c), "Scan", self.scanned.emit)
+        """Read the whole bus; the result arrives as ``scanned(System)``.
+
+        The session reports the scan's progress as ``Progress`` events (``progress``, at
+        most one per drain): the worker's own reports (its ``progress``, for a caller that
+        follows this scan alone) are not sent on as well — twice the status bar updates
+        on the GUI thread for the same news."""
+        return self.run(lambda p, c: self.session.scan(p, c), "Scan", self._scanned,
+                        forward_progress=False)
+
+    def _scanned(self, system: Any) -> None:
+        self.drain()  # the scan's own events (its last Progress) come before its result
+        self.scanned.emit(system)
 
     def read_configuration(self) -> Worker | None:
         """The arbitrator's stored configuration arrives as ``configurationRead``."""

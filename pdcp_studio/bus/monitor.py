@@ -1010,8 +1010,8 @@ class Recorder:
         self.rotate_bytes, self.node_map = rotate_bytes, node_map
         self.parts: list[Path] = []  # finished rotated parts
         self._closed = False
-        if self.path.is_dir():
-            raise CaptureError(self.path, "is a folder, not a capture file")
+        if self.path.is_dir():  # a failed write (exit 1), as for every file a command writes
+            raise CaptureWriteError(self.path, "is a folder, not a capture file")
         try:
             self._writer = _writer_for(self.path, self.partial)
         except (ValueError, ImportError, NotImplementedError) as err:

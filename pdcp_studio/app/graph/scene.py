@@ -108,7 +108,13 @@ class BusScene(QGraphicsScene):
         self._states_timer = QTimer(self)
         self._states_timer.setSingleShot(True)
         self._states_timer.setInterval(0)
-        self._states_timer.timeout.connect(self.refresh_states)
+        self._states_timer.timeout.connect(self._refresh_states_in_slices)
+        #: The states being shown a slice at a time (a live snapshot's), or None.
+        self._state_slices: Iterator[None] | None = None
+        self._slice_timer = QTimer(self)
+        self._slice_timer.setSingleShot(True)
+        self._slice_timer.setInterval(0)
+        self._slice_timer.timeout.connect(self._state_slice)
         self._to_build: list[DeviceKey] = []
         self._chunked = False
         self._steps: Iterator[None] | None = None
@@ -132,6 +138,7 @@ class BusScene(QGraphicsScene):
         try:
             self._build_timer.stop()
             self._steps = None
+            self._stop_state_slices()
             self._cancel_drag()
             self.clear()
             self.cards.clear()
@@ -358,7 +365,9 @@ class BusScene(QGraphicsScene):
             return  # finish_building shows the system as it is then
         self._pending_cache = None
         self._show_unwritten()
-        self._apply_states()
+        if self._states_timer.isActive():
+            return  # a changed device's states follow at once: shown once, not twice
+        self._start_state_slices()
 
     def _show_unwritten(self) -> None:
         """Ghost links: on the prosthesis, removed in the project (not yet written)."""
@@ -401,6 +410,13 @@ class BusScene(QGraphicsScene):
         self.states = compute_states(self.doc.system)
         self._apply_states()
 
+    def _refresh_states_in_slices(self) -> None:
+        """:meth:`refresh_states` for a live snapshot: the items over several turns."""
+        if self.building:
+            return
+        self.states = compute_states(self.doc.system)
+        self._start_state_slices()
+
     def _on_position_changed(self, key: DeviceKey) -> None:
         card = self.cards.get(key)
         pos = self.doc.positions.get(key)
@@ -420,8 +436,33 @@ class BusScene(QGraphicsScene):
         return marks
 
     def _apply_states(self) -> None:
+        """Show the states on every item now (a pass in slices is superseded)."""
+        self._stop_state_slices()
         for _step in self._state_steps():
             pass
+
+    def _start_state_slices(self) -> None:
+        """Show the states on every item, ``BUILD_BUDGET_S`` of them per turn of the event
+        loop: after a live snapshot a large bus's items (93 devices: ~25 ms, more while the
+        bus threads hold the GIL) must not stop the GUI thread in one go."""
+        self._state_slices = self._state_steps()
+        self._state_slice()
+
+    def _state_slice(self) -> None:
+        steps = self._state_slices
+        if steps is None:
+            return
+        start = time.perf_counter()
+        for _step in steps:
+            if time.perf_counter() - start > BUILD_BUDGET_S:
+                self._slice_timer.start()
+                return
+        if self._state_slices is steps:
+            self._state_slices = None
+
+    def _stop_state_slices(self) -> None:
+        self._state_slices = None
+        self._slice_timer.stop()
 
     def _state_steps(self) -> Iterator[None]:
         """Show the states on every item, one item per step (a large bus being built
@@ -431,7 +472,7 @@ class BusScene(QGraphicsScene):
         if self._pending_cache is None:  # not on every data tick: only after a change
             self._pending_cache = self._pending_rows()
         pending_rows = self._pending_cache
-        for key, card in self.cards.items():
+        for key, card in list(self.cards.items()):
             card.role = st.roles.get(key, card.role)
             card.problems = st.device_problems(key)
             card.pending_rows = pending_rows.get(key, set())
@@ -451,7 +492,7 @@ class BusScene(QGraphicsScene):
         dim = bool(self.preview_items)
         bus = self.doc.bus_system
         on_bus = set(bus.links) if bus is not None else None
-        for link, item in self.link_items.items():
+        for link, item in list(self.link_items.items()):
             item.pending = on_bus is not None and link not in on_bus
             item.conflict = link in st.conflict_links
             item.missing = link in st.missing_links
