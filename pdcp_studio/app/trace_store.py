@@ -441,7 +441,7 @@ class IdStats:
 
     A loading worker updates while the window reads: each entry is replaced whole (one dict
     store), so a reader needs no lock to see a consistent entry, and the statistics view
-    asks only for the rows it paints (``view()``): refreshing 4,096 identifiers four times a
+    asks only for the rows it paints (``view()``): refreshing 4,096 identifiers twice a
     second on the GUI thread made ~12,000 objects each time, stalled it 20-120 ms and fed
     the cyclic collector's full collections (benchmarks/gui.py, capture case)."""
 
@@ -464,8 +464,7 @@ class IdStats:
     def update(self, chunk: Chunk | None) -> None:
         if chunk is None or not len(chunk):
             return
-        # Vectorised per chunk (a stable sort groups each identifier's frames in order);
-        # the lock is held only to merge the few per-ID results.
+        # Vectorised per chunk (a stable sort groups each identifier's frames in order).
         aids = chunk.aid
         n = len(aids)
         order = np.argsort(aids, kind="stable")
@@ -482,22 +481,30 @@ class IdStats:
         dlc, data, text, func, flags = (chunk.dlc[last].tolist(), chunk.data[last],
                                         chunk.text[last].tolist(), chunk.func[last].tolist(),
                                         chunk.flags[last].tolist())
+        # One thread updates. Each entry is replaced by one dict store, which a reader sees
+        # whole, so the merge needs no lock: held through it (up to 4,096 identifiers a
+        # chunk), the lock kept the window's statistics refresh waiting for the loading
+        # thread's turns at the interpreter.
+        entries = self.entries
+        others, new_ids = 0, False
+        for j, (aid, c, t_first, t_last, t_prev) in enumerate(rows):
+            e = entries.get(aid)
+            last_data = data[j, :min(dlc[j], 8)].tobytes()
+            if e is None:
+                if len(entries) >= self.limit:
+                    others += c
+                    continue
+                entries[aid] = [c, t_first, t_last, t_prev if c > 1 else None, last_data,
+                                text[j], func[j], flags[j]]
+                new_ids = True
+            else:
+                entries[aid] = [e[0] + c, e[1], t_last, t_prev if c > 1 else e[2],
+                                last_data, text[j], func[j], flags[j]]
         with self._lock:
             self.frames += n
-            entries = self.entries
-            for j, (aid, c, t_first, t_last, t_prev) in enumerate(rows):
-                e = entries.get(aid)
-                last_data = data[j, :min(dlc[j], 8)].tobytes()
-                if e is None:
-                    if len(entries) >= self.limit:
-                        self.others += c
-                        continue
-                    entries[aid] = [c, t_first, t_last, t_prev if c > 1 else None, last_data,
-                                    text[j], func[j], flags[j]]
-                    self._sorted = None
-                else:  # replaced whole: a reader never sees half an update
-                    entries[aid] = [e[0] + c, e[1], t_last, t_prev if c > 1 else e[2],
-                                    last_data, text[j], func[j], flags[j]]
+            self.others += others
+            if new_ids:
+                self._sorted = None
 
     def ids(self) -> list[int]:
         """The identifiers seen (safe while a worker updates)."""
