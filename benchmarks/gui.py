@@ -250,13 +250,15 @@ class _Heart:
         longest = max(range(len(gaps)), key=gaps.__getitem__)
         return {"max_gap_ms": ordered[-1], "p99_gap_ms": ordered[int(len(ordered) * 0.99) - 1],
                 "max_gap_cpu_wait_ms": waits[longest],
+                "max_gap_at_s": (sum(self.gaps[:longest + 2])) / 1000,  # when it ended
                 "max_gap_less_cpu_wait_ms": max(g - w for g, w in zip(gaps, waits, strict=True)),
                 "beats": len(gaps)}
 
 
 def _gap_text(r: dict[str, float]) -> str:
-    return (f"longest gap between {HEARTBEAT_MS} ms heartbeats {r['max_gap_ms']:.1f} ms (of it "
-            f"{r['max_gap_cpu_wait_ms']:.0f} ms waiting for a CPU), p99 {r['p99_gap_ms']:.1f} ms; "
+    return (f"longest gap between {HEARTBEAT_MS} ms heartbeats {r['max_gap_ms']:.1f} ms (ending "
+            f"{r['max_gap_at_s']:.1f} s in; of it {r['max_gap_cpu_wait_ms']:.0f} ms waiting for a "
+            f"CPU), p99 {r['p99_gap_ms']:.1f} ms; "
             f"longest without the waits for a CPU {r['max_gap_less_cpu_wait_ms']:.1f} ms "
             "(target: never > 50 ms)")
 
