@@ -30,9 +30,10 @@ from __future__ import annotations
 import math
 from array import array
 from collections.abc import Iterable
-from typing import Any
+from typing import Any, cast
 
 import numpy as np
+import shiboken6
 from PySide6.QtCore import QPointF, QRectF, Qt, QTimer, Signal
 from PySide6.QtGui import QColor, QMouseEvent, QPainter, QPaintEvent, QPen, QPolygonF
 from PySide6.QtWidgets import (
@@ -142,6 +143,42 @@ class Series:
         return None if i < 0 else self.vs[i] * self.scale
 
 
+_LANE_EDGE = QColor(128, 128, 128, 110)
+
+
+def _polygon(xs: np.ndarray, ys: np.ndarray) -> QPolygonF:
+    """A polygon of the points ``(xs[i], ys[i])``, written straight into Qt's array of
+    ``QPointF`` (two doubles each): a QPointF per point made in Python cost ~2 ms a lane
+    of 1,200 points, a fifth of a repaint; this ~0.01 ms."""
+    n = len(xs)
+    polygon = QPolygonF()
+    polygon.resize(n)
+    if n:
+        memory: Any = cast(Any, shiboken6.VoidPtr)(polygon.data(), n * 16, True)  # writable
+        points = np.frombuffer(memory, dtype=np.float64).reshape(n, 2)
+        points[:, 0] = xs
+        points[:, 1] = ys
+    return polygon
+
+
+# Grid lines and lane edges as one-pixel rectangles: translucent lines take the raster
+# engine's slow path (a lane's edge 1.5 ms, each grid line 0.5 ms; as rectangles ~0.02 ms).
+def _hline(p: QPainter, x0: float, x1: float, y: float, color: QColor) -> None:
+    p.fillRect(QRectF(round(x0), round(y), round(x1) - round(x0) + 1, 1), color)
+
+
+def _vline(p: QPainter, x: float, y0: float, y1: float, color: QColor) -> None:
+    p.fillRect(QRectF(round(x), round(y0), 1, round(y1) - round(y0) + 1), color)
+
+
+def _frame(p: QPainter, r: QRectF, color: QColor) -> None:
+    """The outline ``QPainter.drawRect(r)`` draws with a one-pixel pen."""
+    _hline(p, r.left(), r.right(), r.top(), color)
+    _hline(p, r.left(), r.right(), r.bottom(), color)
+    _vline(p, r.left(), r.top() + 1, r.bottom() - 1, color)
+    _vline(p, r.right(), r.top() + 1, r.bottom() - 1, color)
+
+
 class PlotCanvas(QWidget):
     """Lanes of signals over a shared time axis, with two cursors (see the module doc)."""
 
@@ -210,7 +247,7 @@ class PlotCanvas(QWidget):
         p.fillRect(self.rect(), pal.base())
         m = p.fontMetrics()
         text_pen = QPen(pal.text().color())
-        grid_pen = QPen(QColor(128, 128, 128, 60))
+        grid = QColor(128, 128, 128, 60)
         area = self._area()
         series = plot.series
         end, window = plot.t_end(), plot.window_s
@@ -226,8 +263,7 @@ class PlotCanvas(QWidget):
         t_step = step_t[1] - step_t[0] if len(step_t) > 1 else window
         for rel in step_t:
             x = area.left() + (rel + window) / window * area.width()
-            p.setPen(grid_pen)
-            p.drawLine(QPointF(x, area.top()), QPointF(x, area.bottom()))
+            _vline(p, x, area.top(), area.bottom(), grid)
             p.setPen(text_pen)
             label = tick_text(rel, t_step) + (" s" if rel == step_t[-1] else "")
             p.drawText(QRectF(x - 40, area.bottom() + 2, 80, m.height()),
@@ -239,7 +275,7 @@ class PlotCanvas(QWidget):
         lane_h = area.height() / len(series)
         for i, s in enumerate(series):
             lane = QRectF(area.left(), area.top() + i * lane_h, area.width(), lane_h)
-            self._paint_lane(p, s, lane, start, end, text_pen, grid_pen)
+            self._paint_lane(p, s, lane, start, end, text_pen, grid)
         for name, t in (("A", plot.cursor_a), ("B", plot.cursor_b)):
             if t is None or not start <= t <= end:
                 continue
@@ -252,15 +288,15 @@ class PlotCanvas(QWidget):
                        Qt.AlignmentFlag.AlignLeft, name)
 
     def _paint_lane(self, p: QPainter, s: Series, lane: QRectF, start: float, end: float,
-                    text_pen: QPen, grid_pen: QPen) -> None:
+                    text_pen: QPen, grid: QColor) -> None:
         m = p.fontMetrics()
-        p.setPen(QPen(QColor(128, 128, 128, 110)))
-        p.drawRect(lane)
-        ts = np.array(s.ts, dtype=np.float64)
-        vs = np.array(s.vs, dtype=np.float64) * s.scale
-        first = int(np.searchsorted(ts, start, side="left"))
+        _frame(p, lane, _LANE_EDGE)
+        all_ts = np.frombuffer(s.ts, dtype=np.float64)  # views: no copy of 200,000 values
+        first = int(np.searchsorted(all_ts, start, side="left"))
         first = max(0, first - 1)  # the line comes in from the left edge
-        ts, vs = ts[first:], vs[first:]
+        ts = all_ts[first:].copy()  # the window only (the arrays stay resizable)
+        vs = np.frombuffer(s.vs, dtype=np.float64)[first:] * s.scale
+        del all_ts
         if s.boolean:
             lo, hi = -0.2, 1.2
         elif len(vs):
@@ -278,8 +314,7 @@ class PlotCanvas(QWidget):
         step = ticks[1] - ticks[0] if len(ticks) > 1 else 1.0
         for v in ticks:
             y = body.bottom() - (v - lo) / (hi - lo) * body.height()
-            p.setPen(grid_pen)
-            p.drawLine(QPointF(body.left(), y), QPointF(body.right(), y))
+            _hline(p, body.left(), body.right(), y, grid)
             p.setPen(text_pen)
             text = (translate("LivePlot", "on") if v else translate("LivePlot", "off")) \
                 if s.boolean else tick_text(v, step)
@@ -304,18 +339,16 @@ class PlotCanvas(QWidget):
             xs = np.repeat(cols[starts].astype(np.float64), 2)
             vs = np.empty(2 * len(starts))
             vs[0::2], vs[1::2] = lows, highs
-        px = (body.left() + xs).tolist()
-        py = (body.bottom() - (vs - lo) * sy).tolist()
-        points = [QPointF(x, y) for x, y in zip(px, py, strict=True)]
+        polygon = _polygon(body.left() + xs, body.bottom() - (vs - lo) * sy)
         p.save()
         p.setClipRect(body)
         # Antialiased lines cost ~10× more to draw: only for a sparse trace.
-        p.setRenderHint(QPainter.RenderHint.Antialiasing, len(points) < 400)
-        p.setPen(QPen(color, 1.5 if len(points) < 400 else 1.0))
-        if len(points) == 1:
-            p.drawEllipse(points[0], 2.0, 2.0)
+        p.setRenderHint(QPainter.RenderHint.Antialiasing, polygon.size() < 400)
+        p.setPen(QPen(color, 1.5 if polygon.size() < 400 else 1.0))
+        if polygon.size() == 1:
+            p.drawEllipse(polygon.at(0), 2.0, 2.0)
         else:
-            p.drawPolyline(QPolygonF(points))
+            p.drawPolyline(polygon)
         p.restore()
 
 

@@ -19,10 +19,12 @@ How it keeps up (issue 16): ``add_frames`` only queues the batch (the session de
 the GUI thread). Every ``REFRESH_MS`` a timer turns the queued frames into one column chunk
 of the live ring (``trace_store``; bounded to ``capacity`` frames), updates the per-ID
 statistics with vectorised counts, and lets the virtual-row table (``trace_model``) insert
-the new rows at once. An opened capture is decoded on a worker into its own store (shown
-apart from the live frames, which keep being recorded); its first rows show at once and
-the rest follow chunk by chunk with progress and a Stop button. Filters and search over a
-large store run on a worker and return row lists; small ones are filtered at once.
+the new rows at once; a larger backlog is taken ``INGEST_SLICE`` frames per turn of the
+event loop. The statistics view makes a row only for the identifiers it paints. An opened
+capture is decoded on a worker into its own store (shown apart from the live frames, which
+keep being recorded); its first rows show at once and the rest follow chunk by chunk with
+progress and a Stop button. Filters and search over a large store run on a worker and return
+row lists; small ones are filtered at once.
 """
 
 from __future__ import annotations
@@ -89,6 +91,10 @@ REFRESH_MS = 100
 #: Stores up to this many frames are filtered on the GUI thread (a few ms); larger ones on
 #: a worker.
 FILTER_AT_ONCE = 200_000
+#: Queued live frames taken per turn of the event loop (~3 ms of work on a quiet machine):
+#: a backlog (a burst, or the window busy elsewhere) is taken slice by slice with the
+#: window's other events in between, not in one long stall.
+INGEST_SLICE = 1000
 #: The per-ID statistics are refreshed this often.
 STATS_MS = 500
 ANY = QT_TRANSLATE_NOOP("MonitorDock", "(any)")
@@ -151,8 +157,43 @@ def _warm_up() -> None:
 
         import pdcp_studio.bus.monitor  # noqa: F401
 
+        _drop_read_sources()
+
     _WARM.append(threading.Thread(target=load, name="trace warm-up", daemon=True))
     _WARM[0].start()
+
+
+def _drop_read_sources() -> None:
+    """Forget the source files PySide6's import hook read.
+
+    PySide6 reads the source of every module imported after it (``inspect.getsource``, to
+    see whether it uses PySide6), and Python's ``linecache`` keeps each file's lines: ~250
+    files, ~9 MB, once the capture readers are in. The app's start-up replaces that scan
+    (``app/pyside_import_scan.py``); this still frees what a window made without it (tests,
+    benchmarks) read. They are read again only if a traceback is printed."""
+    import linecache
+
+    linecache.clearcache()
+
+
+_FROZEN: list[bool] = []
+
+
+def _spare_the_collector() -> None:
+    """Move what the app has made so far out of the cyclic collector's sight, once, when
+    the trace first gets busy (live frames, or a capture being read).
+
+    Python's full collections walk every tracked object — 50,000-100,000 once the window
+    is up, 15-40 ms on a quiet machine and several times that while a thread decodes a bus
+    or a capture; every frame and decoded text made afterwards keeps triggering them.
+    Objects made before this (modules, widgets, tables) live as long as the app anyway;
+    they are still freed when no longer referenced, only cycles among them are not looked
+    for again (``gc.freeze``)."""
+    if not _FROZEN:
+        _FROZEN.append(True)
+        import gc
+
+        gc.freeze()
 
 
 def _decoded(text: str) -> str:
@@ -224,6 +265,10 @@ class MonitorDock(QDockWidget):
         self._tick_timer.setInterval(REFRESH_MS)
         self._tick_timer.timeout.connect(self._tick)
         self._tick_timer.start()
+        self._more = QTimer(self)  # the next slice of a large backlog, once events ran
+        self._more.setSingleShot(True)
+        self._more.setInterval(0)
+        self._more.timeout.connect(self._tick)
         # The statistics repaint on their own, slower beat, between the table's.
         self._stats_timer = QTimer(self)
         self._stats_timer.setInterval(STATS_MS)
@@ -434,13 +479,19 @@ class MonitorDock(QDockWidget):
     def flush(self) -> None:
         """Take the queued frames and bring the table and statistics up to date now (else:
         on the next tick)."""
+        self._ingest()  # all of them, not a slice
         self._tick()
         self._refresh_stats()
 
-    def _ingest(self) -> None:
+    def _ingest(self, limit: int | None = None) -> None:
+        """Turn the queued frames (at most ``limit`` of them) into rows and statistics."""
         if not self._incoming:
             return
-        frames, self._incoming = self._incoming, []
+        if limit is not None and len(self._incoming) > limit:
+            frames, self._incoming = self._incoming[:limit], self._incoming[limit:]
+        else:
+            frames, self._incoming = self._incoming, []
+        _spare_the_collector()
         if self.recorder is not None:
             self.recorder.feed([(f.timestamp, f.arbitration_id, f.data) for f in frames])
         add = self._builder.add
@@ -458,7 +509,9 @@ class MonitorDock(QDockWidget):
         if not self._incoming and self.model.end == self.store.end and \
                 self._load_worker is None:
             return  # nothing came: nothing to do
-        self._ingest()
+        self._ingest(INGEST_SLICE)
+        if self._incoming:  # more than a slice waits: the rest after the events queued now
+            self._more.start()
         if not self.paused and self._filter_worker is None:
             added = self.model.sync()
             if added and self.autoscroll_box.isChecked() and self.capture_store is None:
@@ -467,7 +520,7 @@ class MonitorDock(QDockWidget):
 
     def _refresh_stats(self) -> None:
         if self.stats_view.isVisible() or not self.isVisible():
-            self.stats_model.refresh(self.stats.rows())
+            self.stats_model.refresh(self.stats.view())
         self._list_new_nodes()
 
     def set_paused(self, paused: bool) -> None:
@@ -864,6 +917,7 @@ class MonitorDock(QDockWidget):
         being recorded and come back with ``show_live()``. ``loaded(path)`` or ``error``.
         """
         self.cancel_load()
+        _spare_the_collector()
         links = dict(self._link_map)  # a capture may start after the set-up that names them
         store = FileFrameStore()  # on disk: memory stays flat however long the capture
         stats = IdStats(store.tables)

@@ -30,13 +30,19 @@ from pdcp_studio.app.trace_store import Chunk, Frame, FrameStore, Tables
 #: One frame on disk (packed, 28 bytes), the fields of ``trace_store.Chunk``.
 RECORD = np.dtype([("ts", "<f8"), ("aid", "<u4"), ("dlc", "u1"), ("data", "u1", (8,)),
                    ("func", "<u2"), ("text", "<u4"), ("flags", "u1")])
-#: Recent distinct texts remembered to number their repeats alike (older repeats get a new
-#: number: the table grows on disk, never in memory).
-RECENT_TEXTS = 1 << 16
-#: Texts kept in memory for reading (rows on screen, statistics).
-CACHED_TEXTS = 1 << 14
+#: Recently used distinct texts remembered to number their repeats alike (a text unused for
+#: longer gets a new number when it comes back: the table grows on disk, never in memory).
+#: ~250 bytes each: 16,384 of them ~4 MB (65,536 held ~16 MB by 5,000,000 frames).
+RECENT_TEXTS = 1 << 14
+#: Texts kept in memory for reading (rows on screen, statistics on screen).
+CACHED_TEXTS = 1 << 12
+#: Rows read at once for painting (a screenful or two).
+PREFETCH_ROWS = 512
 _TEXT_BATCH = 4096
-_SCAN_BYTES = 1 << 22
+#: Searched a block at a time: a block's lines as strings (decoded, lower-cased, split; two
+#: bytes a character once a text has an arrow) take ~9× the block's bytes: 1 MB blocks added
+#: 11 MB to the peak of a search through a 5,000,000-frame capture.
+_SCAN_BYTES = 1 << 18
 
 
 class _File:
@@ -96,8 +102,10 @@ class FileTexts:
         self._count = 1
 
     def add(self, text: str) -> int:
-        found = self._recent.get(text)
+        recent = self._recent
+        found = recent.get(text)
         if found is not None:
+            recent.move_to_end(text)  # in use: kept (the oldest unused go first)
             return found
         if "\n" in text:
             text = text.replace("\n", " ")
@@ -107,7 +115,6 @@ class FileTexts:
             self._count += 1
             if len(self._tail) >= _TEXT_BATCH:
                 self._flush()
-        recent = self._recent
         recent[text] = n
         if len(recent) > RECENT_TEXTS:
             recent.popitem(last=False)
@@ -210,6 +217,7 @@ class FileFrameStore(FrameStore):
         texts = FileTexts(self.folder)
         super().__init__(Tables(texts))
         self._row0 = 0  # the row at the file's start
+        self._block: tuple[int, np.ndarray] | None = None  # rows read ahead for painting
         self._first_ts: float | None = None
         self._parent: FileFrameStore | None = None
         self._remove = weakref.finalize(self, _remove, self._file, texts, self.folder)
@@ -236,6 +244,7 @@ class FileFrameStore(FrameStore):
         self.end += len(chunk)
 
     def clear(self) -> None:
+        self._block = None
         self.starts = []
         self.base = self._row0 = self.end
         self._first_ts = None
@@ -261,10 +270,22 @@ class FileFrameStore(FrameStore):
     def _record(self, index: int) -> np.void:
         if not self.base <= index < self.end:
             raise IndexError(index)
+        block = self._block
+        if block is not None and block[0] <= index < block[0] + len(block[1]):
+            return block[1][index - block[0]]
         rec = self._records(index, index + 1)
         if not len(rec):
             raise IndexError(index)
         return rec[0]
+
+    def prefetch(self, start: int, stop: int) -> None:
+        """Read frames ``start … stop-1`` at once for the rows about to be painted (up to
+        ``PREFETCH_ROWS``). Each read lets another thread take the interpreter, and getting
+        it back waits for that thread's turn: a read per row made a repaint of 30 rows wait
+        up to 30 turns while a capture loads."""
+        start, stop = max(start, self.base), min(stop, self.end)
+        if 0 < stop - start <= PREFETCH_ROWS:  # (filtered rows far apart: read one by one)
+            self._block = (start, self._records(start, stop))
 
     def frame(self, index: int) -> Frame:
         r = self._record(index)

@@ -14,7 +14,7 @@ columns (``FrameStore.select``): the text needle is tried once on each distinct 
 by text number), then matched by index. Nothing here imports Qt,
 so the worker threads that load captures and filter them use it directly.
 
-Public API: ``TraceFilter``, ``FrameStore``, ``ChunkBuilder``, ``IdStats``,
+Public API: ``TraceFilter``, ``FrameStore``, ``ChunkBuilder``, ``IdStats`` (``StatRows``),
 ``line_head(line)``, ``who(aid, flags)``, ``CHANNEL_DATA``.
 """
 
@@ -22,8 +22,8 @@ from __future__ import annotations
 
 import threading
 from bisect import bisect_right
-from collections.abc import Callable, Iterable, Iterator
-from typing import TYPE_CHECKING, Any, NamedTuple
+from collections.abc import Callable, Iterable, Iterator, Sequence
+from typing import TYPE_CHECKING, Any, NamedTuple, overload
 
 import numpy as np
 
@@ -380,6 +380,10 @@ class FrameStore:
             yield first + lo, (chunk if (lo, hi) == (0, len(chunk))
                                else Chunk(*(c[lo:hi] for c in chunk)))
 
+    def prefetch(self, start: int, stop: int) -> None:
+        """Make frames ``start … stop-1`` quick to read (in memory already: nothing to do;
+        see ``trace_disk``)."""
+
     def close(self) -> None:
         """Release what the store holds outside memory (nothing here; see ``trace_disk``)."""
 
@@ -413,7 +417,9 @@ class FrameStore:
             out.append(np.flatnonzero(mask) + first)
             if progress is not None:
                 progress(first + len(part) - start, stop - start)
-        return np.concatenate(out).astype(np.int64) if out else np.zeros(0, dtype=np.int64)
+        if not out:
+            return np.zeros(0, dtype=np.int64)
+        return np.concatenate(out).astype(np.int64, copy=False)
 
 
 class IdStat(NamedTuple):
@@ -431,7 +437,13 @@ class IdStat(NamedTuple):
 
 class IdStats:
     """Count, first/last time, last data and meaning per identifier, updated per chunk
-    (vectorised); bounded by the identifiers a bus can use."""
+    (vectorised); bounded by the identifiers a bus can use.
+
+    A loading worker updates while the window reads: each entry is replaced whole (one dict
+    store), so a reader needs no lock to see a consistent entry, and the statistics view
+    asks only for the rows it paints (``view()``): refreshing 4,096 identifiers twice a
+    second on the GUI thread made ~12,000 objects each time, stalled it 20-120 ms and fed
+    the cyclic collector's full collections (benchmarks/gui.py, capture case)."""
 
     def __init__(self, tables: Tables, limit: int = 4096) -> None:
         self.tables = tables
@@ -440,18 +452,19 @@ class IdStats:
         self.entries: dict[int, list[Any]] = {}
         self.others = 0
         self.frames = 0
+        self._sorted: list[int] | None = []  # the identifiers in order; None: re-sort
         self._lock = threading.Lock()  # a loading worker updates, the window reads
 
     def clear(self) -> None:
         with self._lock:
             self.entries.clear()
+            self._sorted = []
             self.others = self.frames = 0
 
     def update(self, chunk: Chunk | None) -> None:
         if chunk is None or not len(chunk):
             return
-        # Vectorised per chunk (a stable sort groups each identifier's frames in order);
-        # the lock is held only to merge the few per-ID results.
+        # Vectorised per chunk (a stable sort groups each identifier's frames in order).
         aids = chunk.aid
         n = len(aids)
         order = np.argsort(aids, kind="stable")
@@ -464,42 +477,85 @@ class IdStats:
         prev = order[np.maximum(ends - 2, starts)]
         ts = chunk.ts
         rows = zip(grouped[starts].tolist(), counts, ts[first].tolist(), ts[last].tolist(),
-                   ts[prev].tolist(), last.tolist(), strict=True)
-        dlc, data, text, func, flags = chunk.dlc, chunk.data, chunk.text, chunk.func, chunk.flags
+                   ts[prev].tolist(), strict=True)
+        dlc, data, text, func, flags = (chunk.dlc[last].tolist(), chunk.data[last],
+                                        chunk.text[last].tolist(), chunk.func[last].tolist(),
+                                        chunk.flags[last].tolist())
+        # One thread updates. Each entry is replaced by one dict store, which a reader sees
+        # whole, so the merge needs no lock: held through it (up to 4,096 identifiers a
+        # chunk), the lock kept the window's statistics refresh waiting for the loading
+        # thread's turns at the interpreter.
+        entries = self.entries
+        others, new_ids = 0, False
+        for j, (aid, c, t_first, t_last, t_prev) in enumerate(rows):
+            e = entries.get(aid)
+            last_data = data[j, :min(dlc[j], 8)].tobytes()
+            if e is None:
+                if len(entries) >= self.limit:
+                    others += c
+                    continue
+                entries[aid] = [c, t_first, t_last, t_prev if c > 1 else None, last_data,
+                                text[j], func[j], flags[j]]
+                new_ids = True
+            else:
+                entries[aid] = [e[0] + c, e[1], t_last, t_prev if c > 1 else e[2],
+                                last_data, text[j], func[j], flags[j]]
         with self._lock:
             self.frames += n
-            entries = self.entries
-            for aid, c, t_first, t_last, t_prev, k in rows:
-                e = entries.get(aid)
-                last_data = data[k, :min(int(dlc[k]), 8)].tobytes()
-                if e is None:
-                    if len(entries) >= self.limit:
-                        self.others += c
-                        continue
-                    entries[aid] = [c, t_first, t_last, t_prev if c > 1 else None, last_data,
-                                    int(text[k]), int(func[k]), int(flags[k])]
-                else:
-                    e[3] = t_prev if c > 1 else e[2]
-                    e[0] += c
-                    e[2] = t_last
-                    e[4:8] = last_data, int(text[k]), int(func[k]), int(flags[k])
+            self.others += others
+            if new_ids:
+                self._sorted = None
 
     def ids(self) -> list[int]:
         """The identifiers seen (safe while a worker updates)."""
         with self._lock:
             return list(self.entries)
 
+    def sorted_ids(self) -> list[int]:
+        """The identifiers seen, in order (sorted again only when new ones came)."""
+        with self._lock:
+            if self._sorted is None:
+                self._sorted = sorted(self.entries)
+            return self._sorted
+
+    def row(self, aid: int) -> IdStat:
+        """The statistics of identifier ``aid`` (KeyError if it was not seen)."""
+        count, first, last, prev, data, text, func, flags = self.entries[aid]
+        head = self.tables.texts[text]
+        if flags & F_HEX:
+            hexed = data.hex(" ").upper()
+            head = f"{head}  {hexed}" if head else hexed
+        return IdStat(aid, count, (last - first) / (count - 1) if count > 1 else None,
+                      None if prev is None else last - prev, last, data,
+                      self.tables.functions[func], head)
+
+    def view(self) -> StatRows:
+        """The rows by identifier, each made when asked for (see the class doc)."""
+        return StatRows(self, self.sorted_ids())
+
     def rows(self) -> list[IdStat]:
         """Every identifier seen, by identifier."""
-        out = []
-        with self._lock:
-            entries = sorted((aid, list(e)) for aid, e in self.entries.items())
-        for aid, (count, first, last, prev, data, text, func, flags) in entries:
-            head = self.tables.texts[text]
-            if flags & F_HEX:
-                hexed = data.hex(" ").upper()
-                head = f"{head}  {hexed}" if head else hexed
-            out.append(IdStat(aid, count, (last - first) / (count - 1) if count > 1 else None,
-                              None if prev is None else last - prev, last, data,
-                              self.tables.functions[func], head))
-        return out
+        return list(self.view())
+
+
+class StatRows(Sequence[IdStat]):
+    """``IdStats`` rows by identifier: the identifiers fixed when made, each row's figures
+    read when it is asked for (the statistics view asks for the rows it paints)."""
+
+    def __init__(self, stats: IdStats, ids: list[int]) -> None:
+        self.stats = stats
+        self.ids = ids
+
+    def __len__(self) -> int:
+        return len(self.ids)
+
+    @overload
+    def __getitem__(self, i: int) -> IdStat: ...
+
+    @overload
+    def __getitem__(self, i: slice) -> list[IdStat]: ...
+
+    def __getitem__(self, i: int | slice) -> IdStat | list[IdStat]:
+        if isinstance(i, slice):
+            return [self.stats.row(aid) for aid in self.ids[i]]
+        return self.stats.row(self.ids[i])
