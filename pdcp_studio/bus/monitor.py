@@ -925,6 +925,9 @@ def _loggable(msg: Any, fallback: str | int | None) -> Any:
     """
     from can.util import channel2int
 
+    to_message = getattr(msg, "to_message", None)
+    if to_message is not None:  # a frame read without its can.Message (blf_read)
+        msg = to_message()
     channel = msg.channel
     if channel is None or (isinstance(channel, int) and 0 <= channel <= MAX_LOG_CHANNEL):
         return msg
@@ -1102,8 +1105,13 @@ class Recorder:
             self.abandon()
 
 
-def read_capture(path: str | Path) -> Iterator[Any]:
-    """The ``can.Message`` frames of a capture; CaptureError (naming the file) if unreadable."""
+def read_capture(path: str | Path, *, plain_frames: bool = False) -> Iterator[Any]:
+    """The ``can.Message`` frames of a capture; CaptureError (naming the file) if unreadable.
+
+    ``plain_frames``: a BLF capture's classical 11-bit data frames may come as
+    ``blf_read.PlainFrame`` (the same attributes, ``to_message()`` for the message itself),
+    read in a third of the time.
+    """
     import can
 
     path = Path(path)
@@ -1117,7 +1125,12 @@ def read_capture(path: str | Path) -> Iterator[Any]:
     # ASC stores times relative to its header; ask for absolute ones like the other formats.
     kwargs = {"relative_timestamp": False} if ".asc" in path.suffixes[-2:] else {}
     try:
-        reader = can.LogReader(str(path), **kwargs)
+        if plain_frames and path.suffix.lower() == ".blf":
+            from pdcp_studio.bus.blf_read import FastBLFReader
+
+            reader = FastBLFReader(path)
+        else:
+            reader = can.LogReader(str(path), **kwargs)
         with reader:
             yield from reader
     except CaptureError:
@@ -1130,5 +1143,5 @@ def read_capture(path: str | Path) -> Iterator[Any]:
 def replay(path: str | Path, decoder: FrameDecoder | None = None) -> Iterator[DecodedFrame]:
     """Decode a capture frame by frame (pass a decoder to read its statistics afterwards)."""
     decoder = decoder if decoder is not None else FrameDecoder()
-    for msg in read_capture(path):
+    for msg in read_capture(path, plain_frames=True):
         yield decoder.decode_message(msg)

@@ -252,7 +252,7 @@ def _replay_frames(path: str, decoder: Any) -> tuple[Iterator[Any], Callable[[],
             decoder.load_node_map(node_map, f"{path}.nodemap.json")
         except ValueError as err:
             raise BadInput(str(err)) from err
-    frames = read_capture(path)
+    frames = read_capture(path, plain_frames=True)
     try:
         head = list(itertools.islice(frames, PROBE_FRAMES))
     except BaseException:
