@@ -31,6 +31,7 @@ from __future__ import annotations
 import struct
 import zlib
 from collections.abc import Iterator
+from itertools import chain
 from typing import Any
 
 from can import Message
@@ -98,16 +99,22 @@ class FastBLFReader(BLFReader):
     python-can's) for every other frame."""
 
     def __iter__(self) -> Iterator[Any]:  # type: ignore[override]
+        return chain.from_iterable(self.batches())
+
+    def batches(self) -> Iterator[list[Any]]:
+        """The frames, a list per container (flattened in C by ``__iter__``: no generator
+        resumed per frame). A damaged file raises ``BLFParseError`` naming how far into
+        the file the reader had got, after the frames before the damage."""
         try:
-            yield from super().__iter__()
+            yield from super().__iter__()  # type: ignore[misc]  # lists: _parse_data's
         except (BLFParseError, struct.error, zlib.error) as err:
             where = "" if self.file.closed else f" (before byte {self.file.tell()})"
             raise BLFParseError(f"{err or type(err).__name__}{where}") from err
 
-    def _parse_data(self, data: bytes) -> Iterator[Any]:
-        """The objects of ``data`` (one container, after the tail of the one before) as
-        python-can's ``BLFReader._parse_data`` reads them; ``self._pos``: where the first
-        object not read starts (it ends in the next container)."""
+    def _parse_data(self, data: bytes) -> Iterator[list[Any]]:  # type: ignore[override]
+        """The frames of ``data`` (one container, after the tail of the one before) as
+        python-can's ``BLFReader._parse_data`` reads them, in one list; ``self._pos``:
+        where the first object not read starts (it ends in the next container)."""
         unpack_v1_can = _V1_CAN_MSG.unpack_from
         unpack_base = OBJ_HEADER_BASE_STRUCT.unpack_from
         new = object.__new__
@@ -115,6 +122,8 @@ class FastBLFReader(BLFReader):
         start_timestamp = self.start_timestamp
         max_pos = len(data)
         pos = start = 0
+        frames: list[Any] = []
+        append = frames.append
         try:
             while True:
                 start = pos
@@ -125,25 +134,25 @@ class FastBLFReader(BLFReader):
                             and (obj_type == CAN_MESSAGE or obj_type == CAN_MESSAGE2)):
                         next_pos = pos + obj_size
                         if next_pos > max_pos:
-                            return  # it ends in the next container
+                            break  # it ends in the next container
                         timestamp = (ticks / 100_000 if flags == 1
                                      else ticks / 1_000_000_000) + start_timestamp
                         if can_id > _ID_MASK or msg_flags & REMOTE_FLAG:
-                            yield Message(
+                            append(Message(
                                 timestamp=timestamp, arbitration_id=can_id & _ID_MASK,
                                 is_extended_id=bool(can_id & CAN_MSG_EXT),
                                 is_remote_frame=bool(msg_flags & REMOTE_FLAG),
                                 is_rx=not msg_flags & DIR, dlc=dlc, data=can_data[:dlc],
-                                channel=channel - 1)
+                                channel=channel - 1))
                         else:
                             frame = new(frame_type)
                             frame.timestamp = timestamp
-                            frame.arbitration_id = can_id  # no bit above the 29 of an identifier
+                            frame.arbitration_id = can_id  # no bit above an identifier's 29
                             frame.data = can_data[:dlc]
                             frame.dlc = dlc
                             frame.channel = channel - 1
                             frame.is_rx = not msg_flags & DIR
-                            yield frame
+                            append(frame)
                         pos = next_pos
                         continue
                 # Anything else, as python-can reads it.
@@ -151,22 +160,30 @@ class FastBLFReader(BLFReader):
                     pos = data.index(b"LOBJ", pos, pos + 8)  # after the padding
                 except ValueError:
                     if pos + 8 > max_pos:
-                        return  # not enough data in this container
+                        break  # not enough data in this container
                     raise BLFParseError("Could not find next object") from None
                 signature, header_size, header_version, obj_size, obj_type = \
                     unpack_base(data, pos)
                 next_pos = pos + obj_size
                 if next_pos > max_pos:
-                    return
+                    break
                 if not obj_size:
                     raise BLFParseError(f"an object of 0 bytes at {pos} of a container")
                 message = self._other_object(data, pos, header_size, header_version,
                                              obj_size, obj_type)
                 if message is not None:
-                    yield message
+                    append(message)
                 pos = next_pos
-        finally:
+        except struct.error:
+            pass  # the container ends inside a struct: python-can's _parse_container's case
+        except BLFParseError:
             self._pos = start
+            if frames:
+                yield frames  # the frames before the damage, then the failure
+            raise
+        self._pos = start
+        if frames:
+            yield frames
 
     def _other_object(self, data: bytes, pos: int, header_size: int, header_version: int,
                       obj_size: int, obj_type: int) -> Message | None:
