@@ -1,29 +1,36 @@
-"""BLF captures read as python-can's ``BLFReader`` reads them, in a third of its time.
+"""BLF captures read as python-can's ``BLFReader`` reads them, in about a quarter of its time.
 
-A replay of a BLF capture spends most of its time in the reader: for every object python-can
+A replay of a BLF capture spent most of its time in python-can's reader: for every object it
 unpacks three structs, converts the time through ``Decimal`` and builds a ``can.Message``.
-``FastBLFReader`` is that reader with one method replaced — the loop over a container's
-objects (``_parse_data``); the file header, the containers, their decompression and the
-objects split between two containers stay python-can's own code. In the new loop:
+``FastBLFReader`` is that reader with its loop over a container's objects (``_parse_data``)
+replaced; the file header, the containers, their decompression and the objects split
+between two containers stay python-can's own code. In the new loop:
 
 - the most common object, a classical CAN frame (CAN_MESSAGE, CAN_MESSAGE2) with a
-  version-1 header, is unpacked by one struct (the three of python-can's layouts in a row);
+  version-1 header, is unpacked by one struct (python-can's three layouts in a row);
 - its time is ``ticks / 100000`` (or ``/ 10**9``) plus the file's start: Python divides two
   integers correctly rounded, and ``float(Decimal(ticks) * Decimal("1e-5"))`` is the same
   correctly rounded quotient (the product of a 20-digit integer and 1e-5 is exact in
   Decimal's 28 digits), so the float is the same to the last bit;
-- a data frame with an 11-bit identifier becomes a ``PlainFrame``: the attributes of the
+- a data frame not marked extended becomes a ``PlainFrame``: the attributes of the
   ``can.Message`` python-can would build (``data`` as ``bytes``), without its constructor;
-  ``to_message()`` builds that message (the recorder writes one).
+  ``to_message()`` builds that message (a recorder writes one);
 - every other object (extended and remote frames, CAN FD, error frames, version-2 headers,
-  types python-can skips) goes the way python-can's loop goes, field by field.
+  types python-can skips) is read the way python-can's loop reads it, field by field;
+- a container's frames come as one list, flattened in C by ``__iter__`` (``batches()``
+  gives the lists), so no generator is resumed per frame.
 
-The frames are the same as python-can's, in the same order, with the same times
+The frames are python-can's, in the same order, with the same times
 (``tests/bus/test_blf_read.py`` compares both readers on files python-can writes, on hand-built
-object streams and with hypothesis). A damaged file fails where python-can's reader fails,
-with its exception (``BLFParseError``, ``struct.error``, ``zlib.error``) and the byte of the
-file the reader had reached; one that would make python-can's loop run forever (an object
-declaring zero bytes) fails there too.
+object streams, with hypothesis, and on truncated and corrupted files). A damaged file gives
+the frames python-can's reader gives and then fails where it fails, as a ``BLFParseError``
+that adds to python-can's reason the byte of the file the reader had reached (a container
+is read whole). An object declaring 0 bytes, which would keep python-can's loop running
+forever, fails there.
+
+It relies on ``BLFReader._parse_data`` and ``_parse_container`` (python-can 4.x);
+``COMPATIBLE`` is False where python-can has neither, and the monitor then reads with
+python-can's own reader.
 """
 
 from __future__ import annotations
@@ -63,6 +70,9 @@ from can.util import dlc2len
 _V1_CAN_MSG = struct.Struct("<" + "".join(
     s.format.lstrip("<") for s in (OBJ_HEADER_BASE_STRUCT, OBJ_HEADER_V1_STRUCT, CAN_MSG_STRUCT)))
 _ID_MASK = 0x1FFFFFFF
+#: python-can's reader has the two methods this one builds on.
+COMPATIBLE = all(callable(getattr(BLFReader, name, None))
+                 for name in ("_parse_data", "_parse_container"))
 
 
 class PlainFrame:

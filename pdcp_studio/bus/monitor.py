@@ -1132,7 +1132,7 @@ def read_capture(path: str | Path, *, plain_frames: bool = False) -> Iterator[An
     """
     import can
 
-    if plain_frames and Path(path).suffix.lower() == ".blf":
+    if plain_frames and _fast_blf(path):
         for batch in _blf_batches(path):
             yield from batch
         return
@@ -1146,6 +1146,15 @@ def read_capture(path: str | Path, *, plain_frames: bool = False) -> Iterator[An
         raise
     except Exception as err:  # readers raise anything from struct.error to sqlite3 errors
         raise _unreadable(path, err) from err
+
+
+def _fast_blf(path: str | Path) -> bool:
+    """Whether ``path`` is a BLF capture the monitor's own reader reads."""
+    if Path(path).suffix.lower() != ".blf":
+        return False
+    from pdcp_studio.bus.blf_read import COMPATIBLE
+
+    return COMPATIBLE
 
 
 def _blf_batches(path: str | Path) -> Generator[list[Any], None, None]:
@@ -1167,7 +1176,7 @@ def open_capture(path: str | Path, *,
     resumed per frame between the reader and the loop that takes them."""
     import itertools
 
-    if plain_frames and Path(path).suffix.lower() == ".blf":
+    if plain_frames and _fast_blf(path):
         batches = _blf_batches(path)
         return itertools.chain.from_iterable(batches), batches.close
     frames = read_capture(path)

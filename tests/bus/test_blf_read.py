@@ -344,3 +344,13 @@ def test_read_capture_plain_frames(tmp_path: Path) -> None:
     assert any(isinstance(f, PlainFrame) for f in plain)
     assert all(isinstance(m, can.Message) for m in read_capture(path))
     assert [fields(f) for f in plain] == [fields(m) for m in read_capture(path)]
+
+
+def test_another_python_can_falls_back_to_its_reader(tmp_path: Path, monkeypatch) -> None:
+    """Where python-can's reader lacks the methods the fast one builds on, its own reads."""
+    from pdcp_studio.bus import blf_read
+
+    path = write(tmp_path / "f.blf", sample_messages())
+    assert blf_read.COMPATIBLE
+    monkeypatch.setattr(blf_read, "COMPATIBLE", False)
+    assert all(isinstance(m, can.Message) for m in read_capture(path, plain_frames=True))
