@@ -33,7 +33,7 @@ from PySide6.QtGui import QUndoStack
 
 from pdcp_studio.errors import ModelError, ProfileError
 from pdcp_studio.model import profile as prof
-from pdcp_studio.model.profile_tree import ProfileTree, best_tree
+from pdcp_studio.model.profile_tree import ProfileNames, ProfileTree
 from pdcp_studio.model.refs import ChannelRef, DeviceKey
 from pdcp_studio.model.system import Channel, Device, Link, System
 
@@ -109,17 +109,19 @@ def load_profile_trees(extra: Iterable[Path] = (), *,
 
 def load_profile_tree(extra: Iterable[Path] = (), *, user_dir: bool = True,
                       system: System | None = None) -> ProfileTree:
-    """The tree that names ``system``'s channels (the prosthetic tree without a system)."""
+    """The names of ``system``'s profiles from every named tree (:func:`tree_for`); without a
+    system the prosthetic tree comes first."""
     return tree_for(load_profile_trees(extra, user_dir=user_dir), system)
 
 
-def tree_for(trees: list[ProfileTree], system: System | None) -> ProfileTree:
-    """Of the named trees, the one that names the most of ``system``'s channel profiles."""
-    profiles: list[int] = []
-    if system is not None:
-        for _ref, ch in system.channels():
-            profiles += [ch.profile, ch.terminal_profile]
-    return best_tree(trees, profiles)
+def tree_for(trees: list[ProfileTree], system: System | None) -> ProfileNames:
+    """The names of ``system``'s profiles from all the named trees, each profile from the
+    tree that knows it (:class:`ProfileNames`: a system mixing thesis test devices and
+    prosthetic devices is named by both shipped trees)."""
+    devices = [] if system is None else [
+        [p for ch in device.channels.values() for p in (ch.profile, ch.terminal_profile)]
+        for device in system.devices.values()]
+    return ProfileNames(trees, devices)
 
 
 class Document(QObject):
@@ -146,7 +148,7 @@ class Document(QObject):
         #: The named profile trees (prosthetic, thesis test rig, the user's and vendors').
         self.trees: list[ProfileTree] = [tree] if tree is not None else load_profile_trees()
         #: The tree that names this system's channels (one of ``trees``).
-        self.tree: ProfileTree = tree_for(self.trees, self.system)
+        self.tree: ProfileNames = tree_for(self.trees, self.system)
         self.undo_stack = QUndoStack(self)
         self.path: Path | None = None
         self.session: Any = None
@@ -199,7 +201,7 @@ class Document(QObject):
             if self.is_live_view:  # as this prosthesis was last laid out, where remembered
                 from pdcp_studio.app import live_layout
 
-                self.positions.update(live_layout.load(self.live_url))
+                self.positions = live_layout.restore(system, self.positions, self.live_url)
         self.undo_stack.clear()
         self.undo_stack.setClean()
         self._extra_dirty = dirty
@@ -327,7 +329,7 @@ class Document(QObject):
         if self.is_live_view:
             from pdcp_studio.app import live_layout
 
-            live_layout.save(self.live_url, self.positions)
+            live_layout.save(self.system, self.positions, self.live_url)
 
     def _only_moves_since_clean(self) -> bool:
         stack = self.undo_stack

@@ -2,7 +2,10 @@
 ``resources/manual/<language>.md``) shown in the app, and About with versions.
 
 F1 opens the manual at the section for what the user is looking at (:func:`section_for`):
-the graph, a dock, or the dialog in front.
+the graph, a dock, or the dialog in front. The manual's pictures (``images/NAME.png`` beside
+it, package data like the manual, so a source checkout and an installed wheel find them the
+same way) are loaded by :class:`ManualBrowser`, which scales them to the page and shows a
+plain placeholder for a picture an installation lacks.
 """
 
 from __future__ import annotations
@@ -12,8 +15,8 @@ import re
 from importlib import metadata
 from pathlib import Path
 
-from PySide6.QtCore import QLocale, Qt
-from PySide6.QtGui import QTextCursor
+from PySide6.QtCore import QLocale, QRect, Qt, QUrl
+from PySide6.QtGui import QColor, QImage, QPainter, QTextCursor, QTextDocument
 from PySide6.QtWidgets import (
     QApplication,
     QDialog,
@@ -78,6 +81,56 @@ def section_for(widget: QWidget | None) -> str:
     return "start"
 
 
+#: The manual's pictures are shown at most this wide (px), so the page needs no side scrolling.
+PICTURE_WIDTH = 720
+
+
+class ManualBrowser(QTextBrowser):
+    """The manual's pane: finds its pictures beside the manual file (``folder``)."""
+
+    def __init__(self, folder: Path, parent: QWidget | None = None) -> None:
+        super().__init__(parent)
+        self.folder = folder
+        self.setSearchPaths([str(folder)])
+
+    def picture_path(self, url: QUrl | str) -> Path:
+        """Where the picture ``url`` (as the manual writes it, e.g. ``images/x.png``) is."""
+        url = QUrl(url)
+        return Path(url.toLocalFile()) if url.isLocalFile() else self.folder / url.path()
+
+    def loadResource(self, kind: int, url: QUrl | str) -> object:
+        if kind != QTextDocument.ResourceType.ImageResource.value:
+            return super().loadResource(kind, url)
+        url = QUrl(url)
+        image = QImage(str(self.picture_path(url)))
+        if image.isNull():
+            return missing_picture(url.fileName())
+        if image.width() > PICTURE_WIDTH:
+            image = image.scaledToWidth(PICTURE_WIDTH, Qt.TransformationMode.SmoothTransformation)
+        image = image.convertToFormat(QImage.Format.Format_RGB32)
+        painter = QPainter(image)  # a thin frame: a picture of a window, not part of the page
+        painter.setPen(QColor("#9a9a9a"))
+        painter.drawRect(image.rect().adjusted(0, 0, -1, -1))
+        painter.end()
+        return image
+
+
+def missing_picture(name: str) -> QImage:
+    """A plain grey box that says which picture this installation lacks."""
+    image = QImage(PICTURE_WIDTH // 2, 64, QImage.Format.Format_RGB32)
+    image.fill(QColor("#eeeeee"))
+    painter = QPainter(image)
+    painter.setPen(QColor("#888888"))
+    painter.drawRect(image.rect().adjusted(0, 0, -1, -1))
+    painter.setPen(QColor("#444444"))
+    text = translate("HelpViewer", "Picture not included in this installation: {name}")
+    painter.drawText(QRect(8, 4, image.width() - 16, image.height() - 8),
+                     Qt.AlignmentFlag.AlignCenter | Qt.TextFlag.TextWordWrap,
+                     text.format(name=name))
+    painter.end()
+    return image
+
+
 class HelpViewer(QDialog):
     """The manual in a browser pane; :meth:`show_section` scrolls to one section."""
 
@@ -86,12 +139,12 @@ class HelpViewer(QDialog):
         self.setObjectName("HelpViewer")
         self.setWindowTitle(self.tr("PDCP Studio — User manual"))
         self.resize(820, 760)
-        self.browser = QTextBrowser(self)
+        self.path = manual_path(language)
+        self.browser = ManualBrowser(self.path.parent, self)
         self.browser.setOpenExternalLinks(True)
         self.browser.setAccessibleName(self.tr("User manual"))
         self.browser.setAccessibleDescription(
             self.tr("The user manual for prosthetists; F1 opens the part for the current view"))
-        self.path = manual_path(language)
         self.text = self.path.read_text("utf-8")
         self.browser.setMarkdown(re.sub(r"<!-- section: \w+ -->\n", "", self.text))
         self.headings = sections(self.text)

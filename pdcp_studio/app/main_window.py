@@ -354,8 +354,9 @@ class MainWindow(MenusMixin, FileHandlingMixin, ExportMixin, BusMixin, RecoveryM
         from pdcp_studio.app.profile_tree_editor import ProfileTreeDialog
 
         dialog = ProfileTreeDialog(parent=self, trees=self.doc.trees)  # edited in place
-        dialog.tabs.setCurrentIndex(self.doc.trees.index(self.doc.tree)
-                                    if self.doc.tree in self.doc.trees else 0)
+        primary = self.doc.tree.primary  # the tree naming most of this system
+        dialog.tabs.setCurrentIndex(self.doc.trees.index(primary)
+                                    if primary in self.doc.trees else 0)
         dialog.treesChanged.connect(self._tree_changed)
         dialog.show()
         self.profile_tree_dialog = dialog

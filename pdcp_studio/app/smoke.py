@@ -42,7 +42,7 @@ def _dialogs(window: Any) -> list[tuple[str, Callable[[], QWidget]]]:
         ("connect dialog", lambda: ConnectDialog(window)),
         ("compare dialog", lambda: CompareDialog(window.doc.system, bridge=window.live.bridge,
                                                  parent=window)),
-        ("profile tree", lambda: ProfileTreeDialog(window.doc.tree, None, window)),
+        ("profile tree", lambda: ProfileTreeDialog(window.doc.tree.primary, None, window)),
         ("recovery dialog", lambda: RecoveryDialog([], window)),
         ("user manual", lambda: HelpViewer(window)),
     ]

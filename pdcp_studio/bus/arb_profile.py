@@ -6,21 +6,36 @@ latest ``startup_max_wait_s`` after the arbitrator started; the duty cycle (list
 and :meth:`ProfileDriver.duty_due` from ``now`` and the arbitrator's business (pure); the plans
 themselves come from :mod:`pdcp_studio.engine` and are carried out by the link writer on the
 profile thread the arbitrator starts (:meth:`ProfileDriver.loop`).
+
+Start-up implements a stored configuration and the duty cycle makes and removes links on a
+prosthesis that may be worn and moving: both are changes reference §5's motion interlock
+covers. So the devices whose outputs feed a terminal channel before or after the plan are held
+(Suspend Device, bounded and renewed) while the plan is written, and released after; one that
+refuses to hold still stops the plan before anything is written (said as an error; the
+channels it would have replaced are planned for again at the next join or leave). A plan
+that changes no link writes nothing and holds nothing.
 """
 
 from __future__ import annotations
 
+import contextlib
 import logging
 import threading
 import time
-from collections.abc import Callable
+from collections.abc import Callable, Iterator
 from typing import TYPE_CHECKING, Any, Literal
 
 from pdcp_studio.bus import events as ev
-from pdcp_studio.bus.transaction import Status, TransactionResult
+from pdcp_studio.bus.transaction import (
+    INTERLOCK_MS,
+    Status,
+    TransactionResult,
+    describe_interlock,
+    interlocked_devices,
+)
 from pdcp_studio.errors import PdcpError
 from pdcp_studio.model.configuration import ConfigCollection
-from pdcp_studio.model.refs import ChannelRef
+from pdcp_studio.model.refs import ChannelRef, DeviceKey
 from pdcp_studio.model.system import System
 
 if TYPE_CHECKING:
@@ -28,6 +43,10 @@ if TYPE_CHECKING:
     from pdcp_studio.engine.plan import Plan
 
 log = logging.getLogger("pdcp_studio.bus.arbitrator")  # one logger for the arbitrator
+
+
+class HoldRefused(PdcpError):
+    """A device did not suspend for the motion interlock: the plan was not written."""
 
 
 def present_refs(system: System) -> set[ChannelRef]:
@@ -110,8 +129,9 @@ class ProfileDriver:
 
     # -- plans ----------------------------------------------------------------------------
     def apply_plan(self, plan: Plan, progress: Callable[[int, int, str], Any] | None = None,
-                   cancel: threading.Event | None = None) -> TransactionResult:
-        """See :meth:`Arbitrator.apply_plan`."""
+                   cancel: threading.Event | None = None, *,
+                   interlock: str = "not used") -> TransactionResult:
+        """See :meth:`Arbitrator.apply_plan` (``interlock``: what held the prosthesis)."""
         from pdcp_studio.engine.plan import Op
 
         arb = self.arb
@@ -160,7 +180,7 @@ class ProfileDriver:
                     after = arb._system.links
         arb._emit(ev.PlanApplied(plan))
         result = TransactionResult(Status.APPLIED, f"apply {plan.mode}", links_before=before,
-                                   links_after=after, verified=False, interlock="not used")
+                                   links_after=after, verified=False, interlock=interlock)
         if failures or cancelled:
             result.status, result.step = Status.FAILED, "write"
             result.reason = "; ".join(([cancelled] if cancelled else [])
@@ -186,9 +206,10 @@ class ProfileDriver:
                            f"own source fields: {err}", "plan")
                 stored = ConfigCollection([])
             autoconfigure = self._policy_for_plans()
-            plan = plan_on_bus("startup", arb.system(), stored, autoconfigure=autoconfigure)
+            snapshot = arb.system()
+            plan = plan_on_bus("startup", snapshot, stored, autoconfigure=autoconfigure)
             try:
-                self.apply_plan(plan)
+                self._apply_held(plan, snapshot)
                 self._report_policy(plan, autoconfigure)
                 # What the stored configuration names and the bus lacks is shown as missing.
                 stored_cfg = plan.configuration if plan.configuration_source == "stored" else None
@@ -213,14 +234,69 @@ class ProfileDriver:
             snapshot = arb.system()
             autoconfigure = self._policy_for_plans()
             plan = plan_duty_cycle(snapshot, before, autoconfigure=autoconfigure)
+            written = True
             try:
                 if plan.actions:
-                    self.apply_plan(plan)
-                self._report_policy(plan, autoconfigure)
+                    written = self._apply_held(plan, snapshot)
+                if written:
+                    self._report_policy(plan, autoconfigure)
             finally:
-                with arb._lock:
-                    self.last_present = present_refs(arb._system)
+                if written:  # else the channels that left are still owed a replacement:
+                    with arb._lock:  # the next join or leave plans for them too
+                        self.last_present = present_refs(arb._system)
         return plan
+
+    def _apply_held(self, plan: Plan, snapshot: System) -> bool:
+        """Write ``plan`` with the motion interlock holding its devices; False (and an error
+        said) when a device would not hold still and nothing was written."""
+        if not plan.actions:
+            return True
+        arb = self.arb
+        with arb._lock:
+            self.plan_running += 1  # busy from the first hold on: the bus is not settled
+        try:
+            with self.holding(snapshot, snapshot.links, plan.final_links) as held:
+                self.apply_plan(plan, interlock=describe_interlock(held))
+        except HoldRefused as err:
+            arb._error(f"plan {plan.mode} not written: {err}", "plan")
+            return False
+        finally:
+            with arb._lock:
+                self.plan_running -= 1
+        return True
+
+    @contextlib.contextmanager
+    def holding(self, system: System, before: list[Any], after: list[Any]
+                ) -> Iterator[list[DeviceKey]]:
+        """Hold (Suspend Device, renewed) the devices reference §5's interlock names for a
+        change from ``before`` to ``after`` links; release them afterwards, whatever happens.
+        HoldRefused, with every device already held released, when one does not suspend."""
+        from pdcp_studio.bus.arb_transaction import Renewer
+
+        arb = self.arb
+        held: list[DeviceKey] = []
+        try:
+            for key in interlocked_devices(system, before, after):
+                try:
+                    arb.suspend(key, INTERLOCK_MS)
+                except PdcpError as err:
+                    raise HoldRefused(f"device {key} did not suspend ({err}); the prosthesis "
+                                      "was left as it was") from err
+                held.append(key)
+            renewer = Renewer(arb.suspend, held, arb.interlock_renew_s, arb.name)
+            try:
+                yield held
+            finally:
+                renewer.stop()
+                for failure in renewer.failures:
+                    log.warning("%s: %s", arb.name, failure)
+        finally:
+            for key in held:
+                try:
+                    arb.release(key)
+                except PdcpError as err:  # its bounded suspension runs out on its own
+                    log.warning("%s: release of %s failed (%s); its suspension ends within "
+                                "%d ms on its own", arb.name, key, err, INTERLOCK_MS)
 
     def _policy_for_plans(self) -> bool:
         """The stored autoconfigure policy; the thesis's default (on) when the memory cannot

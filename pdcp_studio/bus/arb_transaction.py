@@ -60,7 +60,7 @@ class _Stop(Exception):
     """The change was cancelled between two writes."""
 
 
-class _Renewer:
+class Renewer:
     """Renews the interlock's bounded suspension until stopped."""
 
     def __init__(self, suspend: Callable[[DeviceKey, int], None], keys: list[DeviceKey],
@@ -154,7 +154,7 @@ class Transactions:
             suspended.append(key)
         result.held = list(suspended)
         result.interlock = describe_interlock(suspended)
-        renewer = _Renewer(self.arb.suspend, suspended, self.arb.interlock_renew_s, self.arb.name)
+        renewer = Renewer(self.arb.suspend, suspended, self.arb.interlock_renew_s, self.arb.name)
         try:
             self._write_verify_restore(change, after, cfg_before, policy_before, result,
                                        progress, cancel)

@@ -460,8 +460,9 @@ class Arbitrator:
 
     def apply_plan(self, plan: Plan, progress: Callable[[int, int, str], Any] | None = None,
                    cancel: threading.Event | None = None) -> TransactionResult:
-        """Carry out an engine plan's actions on the bus, in order, with no interlock (the
-        profile layer's own start-up and duty cycle); log it and return what came of it.
+        """Carry out an engine plan's actions on the bus, in order; log it and return what
+        came of it. The profile layer's own start-up and duty cycle call it inside their
+        motion interlock (``ProfileDriver.holding``); it holds nothing itself.
 
         An action that fails on the wire is reported and skipped, the others go on (status
         ``failed``, reason naming them). ``cancel`` stops between actions. Changes a person

@@ -107,12 +107,20 @@ def refused(url: str, interface: str, why: str) -> Exception:
 
 def check_channel(url: str, interface: str, channel: str, options: dict) -> None:
     """Raise BusUrlError for what python-can would refuse when opening, checked without
-    opening: its own option checks (``can.util.load_config``: port range, state, fd, bit
-    timing) and a ``udp_multicast`` group that is not a multicast address."""
+    opening: an option the interface does not know (``bus/can_options.py``; python-can would
+    drop it silently), its own option checks (``can.util.load_config``: port range, state,
+    fd, bit timing) and a ``udp_multicast`` group that is not a multicast address."""
     import ipaddress
 
     import can.util
 
+    from pdcp_studio.bus.can_options import unknown_option
+
+    why = unknown_option(interface, {k: v for k, v in options.items() if k != "bitrate"})
+    if why:
+        from pdcp_studio.bus.urls import BusUrlError
+
+        raise BusUrlError(f"bus URL {url!r}: {why}")
     try:
         can.util.load_config(config={"interface": interface, "channel": channel, **options})
     except (ValueError, TypeError, KeyError) as err:

@@ -14,8 +14,10 @@ other failure.
 from __future__ import annotations
 
 import argparse
+import errno
 import importlib
 import logging
+import os
 import sys
 from collections.abc import Sequence
 
@@ -107,8 +109,25 @@ def main(argv: Sequence[str] | None = None) -> int:
         print("pdcp-studio: interrupted", file=sys.stderr)
         return 130
     except OSError as err:
-        print(f"pdcp-studio: error: {err}", file=sys.stderr)
+        print(f"pdcp-studio: error: {os_error_text(err)}", file=sys.stderr)
         return EXIT_FAILURE
+
+
+def os_error_text(err: OSError) -> str:
+    """An operating-system failure in words that name the file and, for a path that
+    cannot exist, the folder that is missing (not "[Errno 2] …")."""
+    if not err.filename:
+        return str(err)
+    name = os.fsdecode(err.filename)
+    why = err.strerror or str(err)
+    parent = os.path.dirname(os.path.abspath(name))
+    if err.errno == errno.ENOENT and not os.path.isdir(parent):
+        why = f"the folder {parent} does not exist"
+    elif err.errno == errno.ENOTDIR:
+        why = "a part of the path is a file, not a folder"
+    elif err.errno == errno.EISDIR:
+        why = "is a folder, not a file"
+    return f"{name}: {why}"
 
 
 if __name__ == "__main__":  # pragma: no cover

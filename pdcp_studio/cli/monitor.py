@@ -270,7 +270,13 @@ def _load_system_links(links: dict, path: str) -> None:
 
 
 def run(args: argparse.Namespace) -> int:
-    from pdcp_studio.bus.monitor import CaptureError, CaptureWriteError, FrameDecoder, Recorder
+    from pdcp_studio.bus.monitor import (
+        PARTIAL_SUFFIX,
+        CaptureError,
+        CaptureWriteError,
+        FrameDecoder,
+        Recorder,
+    )
     from pdcp_studio.bus.trace_pump import TracePump
 
     show = make_filter(args.filter) if args.filter else None
@@ -315,6 +321,7 @@ def run(args: argparse.Namespace) -> int:
 
     counted = ChannelDataCounts()
     pump: TracePump | None = None
+    cut_short = False  # Ctrl-C before --seconds had passed
     try:
         with ExitStack() as stack:
             if frames is None:
@@ -346,7 +353,13 @@ def run(args: argparse.Namespace) -> int:
             try:
                 pump.run(frames, other)
             except KeyboardInterrupt:
-                pass  # Ctrl-C is how a live monitor ends; the capture is still closed
+                # Ctrl-C is how a live monitor without --seconds ends: its capture is
+                # complete. A replay before its end, or a live one before --seconds have
+                # passed, is interrupted: FILE stays as it was (contracts §2) and the
+                # frames so far stay in FILE.partial.
+                cut_short = bool(args.replay) or (args.seconds is not None and not stop())
+                if cut_short and recorder is not None:
+                    recorder.abandon()
             pump.flush()
     except CaptureError as err:
         if pump is not None:
@@ -365,6 +378,13 @@ def run(args: argparse.Namespace) -> int:
     print(decoder.stats.summary(elapsed), file=sys.stderr)
     if counted.total:
         print(counted.summary(), file=sys.stderr)
+    if cut_short:
+        when = ("before the end of the capture" if args.replay else
+                f"after {time.monotonic() - clock['started']:.1f} of {args.seconds:g} seconds")
+        kept = (f"; {args.log} is as it was, the frames so far are in "
+                f"{args.log}{PARTIAL_SUFFIX}" if args.log else "")
+        print(f"pdcp-studio: monitor interrupted {when}{kept}", file=sys.stderr)
+        return 1
     if args.log:
         print(f"wrote {args.log}", file=sys.stderr)
     return 0

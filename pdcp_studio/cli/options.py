@@ -13,6 +13,7 @@ from __future__ import annotations
 
 import argparse
 import math
+import os
 from collections.abc import Callable
 
 #: Longer than any fitting session, short enough that deadline arithmetic stays exact.
@@ -51,6 +52,8 @@ def file_name(text: str) -> str:
         raise argparse.ArgumentTypeError("an empty file name")
     if "\0" in text:
         raise argparse.ArgumentTypeError("a file name cannot contain a NUL character")
+    if os.path.isdir(text):
+        raise argparse.ArgumentTypeError(f"{text} is a folder; give a file name in it")
     return text
 
 

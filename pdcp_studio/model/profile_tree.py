@@ -4,7 +4,9 @@ Trees are JSON resources (``pdcp-profile-tree/1``) that users edit and extend wi
 vendor trees. Two are shipped, each named and standing alone: the prosthetic tree (hand,
 wrist, elbow, EMG, control unit…, figure 4.6's example extended) and the thesis test
 tree (chapter 6's LEDs and joystick). Their values overlap (both use the root ``0x2``), so
-they are never merged: :func:`best_tree` picks the one that names a system's channels.
+they are never merged into one tree: :class:`ProfileNames` names each profile from the
+tree that knows it, whole paths from one tree (never ``Terminal Device › Axis``), so a
+system that mixes thesis test devices and prosthetic devices has every channel named.
 
 A tree may say who assigns its odd components (``vendor``): odd components are reserved
 for vendors (reference §1), so a tree's odd nodes are "vendor-reserved" only when it does
@@ -240,12 +242,85 @@ class ProfileTree:
                    doc.get("vendor", ""), doc.get("description", ""))
 
 
-def best_tree(trees: list[ProfileTree], profiles: Iterable[int]) -> ProfileTree:
-    """The tree that names the most of ``profiles`` exactly (ties: the earlier tree); the
-    first tree when none names any. Never a mix: two trees' overlapping values would give
-    names from both (``Terminal Device › Axis``)."""
-    if not trees:
-        return ProfileTree("profiles")
+def ranked_trees(trees: list[ProfileTree], profiles: Iterable[int]) -> list[ProfileTree]:
+    """``trees``, the one naming the most of ``profiles`` exactly first (ties: the order
+    given, the shipped trees before the user's and vendors')."""
     wanted = [p for p in profiles if p]
     scores = [sum(1 for p in wanted if t.names_exactly(p)) for t in trees]
-    return trees[max(range(len(trees)), key=lambda i: (scores[i], -i))]
+    order = sorted(range(len(trees)), key=lambda i: (-scores[i], i))
+    return [trees[i] for i in order]
+
+
+def best_tree(trees: list[ProfileTree], profiles: Iterable[int]) -> ProfileTree:
+    """The tree that names the most of ``profiles`` exactly (ties: the earlier tree); the
+    first tree when none names any."""
+    return ranked_trees(trees, profiles)[0] if trees else ProfileTree("profiles")
+
+
+class ProfileNames(ProfileTree):
+    """The names of one system's profiles, each from the tree that knows it.
+
+    Every lookup (``name_of``, ``short_name``, ``node``, ``names_exactly``, ``walk``) takes
+    a profile's whole path from one tree. Which tree, when several could:
+
+    1. a code only one tree names exactly is named by that tree;
+    2. a code several trees name (the thesis test tree's ``0x2200`` Push Button is the
+       prosthetic tree's Grip) is named by the tree that names the most profiles of the
+       devices carrying it — a device's other channels tell which family it belongs to;
+       a tie there goes to the tree that names the most of the whole system, then to the
+       order the trees were given (shipped before the user's and vendors');
+    3. a code no tree names exactly is named by the tree that knows the longest start of
+       its path (same ties), the rest in hex.
+
+    So a thesis joystick on a prosthesis reads "Joystick › Push Button" while the hand
+    next to it reads "Terminal Device › Grip › Power Grip". The attributes of a single
+    tree (``name``, ``roots``, ``vendor``) are those of :attr:`primary`, the tree that names
+    the most of the system. A view for reading: edit the trees themselves.
+    """
+
+    def __init__(self, trees: list[ProfileTree],
+                 devices: Iterable[Iterable[int]] = ()) -> None:
+        groups = [[p for p in g if p] for g in devices]
+        self.trees = ranked_trees(trees, [p for g in groups for p in g]) or [
+            ProfileTree("profiles")]
+        self.primary = self.trees[0]
+        super().__init__(self.primary.name, self.primary.roots, self.primary.vendor,
+                         self.primary.description)
+        #: Codes several trees name, settled by the devices that carry them (rule 2).
+        self._settled: dict[int, ProfileTree] = {}
+        for code in {p for g in groups for p in g}:
+            knowing = [t for t in self.trees if t.names_exactly(code)]
+            if len(knowing) < 2:
+                continue
+            around = [p for g in groups if code in g for p in g]
+            self._settled[code] = max(
+                knowing, key=lambda t: (sum(1 for p in around if t.names_exactly(p)),
+                                        -self.trees.index(t)))
+
+    def tree_of(self, profile: int) -> ProfileTree:
+        """The tree that names ``profile`` (see the class's rules)."""
+        settled = self._settled.get(profile)
+        if settled is not None:
+            return settled
+        for tree in self.trees:
+            if tree.names_exactly(profile):
+                return tree
+        return max(self.trees, key=lambda t: (len(t.node_path(profile)), -self.trees.index(t)))
+
+    def node_path(self, profile: int) -> list[ProfileNode]:
+        return self.tree_of(profile).node_path(profile)
+
+    def walk(self) -> list[tuple[int, ProfileNode]]:
+        """Every named profile once, by the tree that names it, in profile order."""
+        seen: dict[int, ProfileNode] = {}
+        for tree in self.trees:
+            for value, node in tree.walk():
+                if value not in seen and self.tree_of(value) is tree:
+                    seen[value] = node
+        return sorted(seen.items(), key=lambda item: item[0])
+
+    def children_of(self, profile: int) -> list[ProfileNode]:
+        raise ProfileError("these names come from several profile trees: edit one of them")
+
+    def rename(self, profile: int, name: str) -> None:
+        raise ProfileError("these names come from several profile trees: edit one of them")

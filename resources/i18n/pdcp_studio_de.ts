@@ -1106,6 +1106,11 @@ Ihr Name (wird einmal erfragt):</translation>
             <source>About PDCP Studio</source>
             <translation>Über PDCP Studio</translation>
         </message>
+        <message>
+            <location filename="../../pdcp_studio/app/help_viewer.py" line="119" />
+            <source>Picture not included in this installation: {name}</source>
+            <translation>Bild in dieser Installation nicht enthalten: {name}</translation>
+        </message>
     </context>
     <context>
         <name>HistoryPanel</name>

@@ -2,11 +2,14 @@
 
 from __future__ import annotations
 
+import re
+
 import pytest
 
 from pdcp_studio.bus.urls import (
     DEFAULT_BAUD,
     BusUrlError,
+    check_bus_url,
     open_can_bus,
     open_spec,
     parse_bus_url,
@@ -68,3 +71,47 @@ def test_open_virtual_and_missing_interfaces():
         open_can_bus("nosuch", "x", url="can:nosuch:x")  # bad input (contracts §2): exit 2
     with pytest.raises(TransportError, match="not a can: bus"):
         open_spec(parse_bus_url("sim:thesis-test1"))
+
+
+@pytest.mark.parametrize("url, says", [
+    ("can:virtual:bus0?bogus=3", "the virtual interface has no option 'bogus'"),
+    ("can:virtual:bus0?recieve_own_messages=1", "did you mean 'receive_own_messages'?"),
+    ("can:pcan:PCAN_USBBUS1?fclock=80", "did you mean 'f_clock'?"),
+    ("can:slcan:/dev/ttyACM0?tty_baud=115200", "the slcan interface has no option"),
+])
+def test_an_option_the_interface_does_not_know_is_refused(url, says):
+    """python-can would drop it silently and open another bus than the one asked for."""
+    with pytest.raises(BusUrlError, match=re.escape(says)):
+        check_bus_url(url)
+
+
+@pytest.mark.parametrize("url", [
+    "can:virtual:bus0?rx_queue_size=10&preserve_timestamps=1",
+    "can:slcan:/dev/ttyACM0?tty_baudrate=115200",
+    "can:pcan:PCAN_USBBUS1?f_clock_mhz=80",  # read from **kwargs by python-can's pcan
+    "can:udp_multicast:239.74.163.2?port=43200&hop_limit=2",
+    "can:socketcan:vcan0?local_loopback=0",
+    "can:vector:0?app_name=CANalyzer",
+])
+def test_options_python_can_reads_pass(url):
+    assert check_bus_url(url).options
+
+
+def test_known_options_are_read_from_python_cans_source_not_a_list():
+    from pdcp_studio.bus.can_options import known_options
+
+    virtual = known_options("virtual")
+    assert virtual is not None and {"rx_queue_size", "preserve_timestamps"} <= virtual
+    assert "tty_baudrate" not in virtual
+    assert known_options("no-such-plugin") is None  # a plug-in is not checked
+
+
+def test_scan_exits_2_on_an_unknown_option(tmp_path):
+    import subprocess
+    import sys
+
+    done = subprocess.run([sys.executable, "-m", "pdcp_studio", "scan", "--bus",
+                           "can:virtual:bus0?bogus=3"], capture_output=True, text=True,
+                          timeout=60)
+    assert done.returncode == 2
+    assert "no option 'bogus'" in done.stderr and "Traceback" not in done.stderr

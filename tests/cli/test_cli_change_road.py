@@ -229,8 +229,17 @@ def test_every_frame_of_apply_yes_shows_the_interlock_and_none_without_yes(monke
             (m.param == P.CH_DATA_ENABLED and m.value == b"\x00")
             or (m.param == P.IN_SOURCE_NODE_IDS and m.value == b"\0\0"))
 
+    def is_link(m) -> bool:  # what start-up writes to make a link
+        return isinstance(m, SetParameter) and (
+            (m.param == P.CH_DATA_ENABLED and m.value == b"\x01")
+            or (m.param == P.IN_SOURCE_NODE_IDS and any(m.value)))
+
     quiet = record(["apply", "clear", "--bus", "sim:thesis-test2"])
-    assert not [m for m in quiet if isinstance(m, Suspend | Release) or is_unlink(m)]
+    assert not [m for m in quiet if is_unlink(m)]
+    # Start-up's own interlock holds the prosthesis while it links (reference §5); after
+    # start-up's last link nothing is held again without --yes.
+    last_link = max(i for i, m in enumerate(quiet) if is_link(m))
+    assert not [m for m in quiet[last_link:] if isinstance(m, Suspend)]
     frames = record(["apply", "clear", "--bus", "sim:thesis-test2", "--yes"])
     suspends = [i for i, m in enumerate(frames) if isinstance(m, Suspend)]
     releases = [i for i, m in enumerate(frames) if isinstance(m, Release)]
