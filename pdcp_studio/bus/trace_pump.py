@@ -206,7 +206,10 @@ class TracePump:
                             upper = data.hex(" ").upper() or "(empty)"
                             if as_json:
                                 j = head[3]
-                                fixed, short = json_times(t)
+                                fixed = f"{t:.6f}"  # json_times(t), inline: the hot path
+                                short = fixed.rstrip("0")
+                                if short[-1] == "." or not 1e-4 <= t < 1e9:
+                                    short = json_times(t)[1]
                                 append(f'{{"timestamp": {timestamp!r}, "time": {short}{j[0]}'
                                        f'{data.hex()}{j[1]}{upper}{j[2]}{fixed:>11}{j[3]}'
                                        f'{upper}"}}')
@@ -254,7 +257,10 @@ class TracePump:
                             t = timestamp - t0
                             if as_json:
                                 j = rep[5]
-                                fixed, short = json_times(t)
+                                fixed = f"{t:.6f}"  # json_times(t), inline
+                                short = fixed.rstrip("0")
+                                if short[-1] == "." or not 1e-4 <= t < 1e9:
+                                    short = json_times(t)[1]
                                 append(f'{{"timestamp": {timestamp!r}, "time": {short}{j[1]}'
                                        f'{fixed:>11}{j[2]}"}}')
                             elif as_bytes:

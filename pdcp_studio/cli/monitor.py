@@ -244,7 +244,7 @@ def _replay_frames(path: str, decoder: Any) -> tuple[Iterator[Any], Callable[[],
     traffic recognised (CaptureError if it is unreadable)."""
     import itertools
 
-    from pdcp_studio.bus.monitor import read_capture, read_node_map
+    from pdcp_studio.bus.monitor import open_capture, read_node_map
 
     node_map = read_node_map(path)
     if node_map is not None:
@@ -252,15 +252,15 @@ def _replay_frames(path: str, decoder: Any) -> tuple[Iterator[Any], Callable[[],
             decoder.load_node_map(node_map, f"{path}.nodemap.json")
         except ValueError as err:
             raise BadInput(str(err)) from err
-    frames = read_capture(path)
+    frames, close = open_capture(path, plain_frames=True)
     try:
         head = list(itertools.islice(frames, PROBE_FRAMES))
     except BaseException:
-        frames.close()
+        close()
         raise
     decoder.foreign = _probe_foreign(head, decoder)
     # The rest straight from the reader: no generator of ours between it and the loop.
-    return itertools.chain(head, frames), frames.close
+    return itertools.chain(head, frames), close
 
 
 def _load_system_links(links: dict, path: str) -> None:
