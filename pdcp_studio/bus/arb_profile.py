@@ -72,19 +72,31 @@ class ProfileDriver:
         self.last_present: set[ChannelRef] = set()  # before the joins and leaves since
         self.plan_running = 0
         self.applied_plans: list[Plan] = []
+        #: The devices the first start-up may stop waiting for (:meth:`expect`).
+        self.expected: frozenset[DeviceKey] = frozenset()
+
+    def expect(self, keys: set[DeviceKey] | frozenset[DeviceKey]) -> None:
+        """The devices on the bus are known beforehand (a simulated prosthesis knows what
+        it simulates): the first start-up runs once they have all joined and nothing is
+        being set up, without waiting out the quiet time after the last bind request. A
+        restart waits the quiet time again (who comes back after a reset is the bus's news)."""
+        self.expected = frozenset(keys)
 
     # -- when (pure) ----------------------------------------------------------------------
-    def startup_due(self, now: float, busy: bool, setting_up: bool, caught_up: bool
+    def startup_due(self, now: float, busy: bool, setting_up: bool, caught_up: bool,
+                    present: frozenset[DeviceKey] | set[DeviceKey] = frozenset()
                     ) -> Literal["", "due", "late"]:
         """Listing 4.1's wait: no bind request for ``startup_quiet_s``, nothing being set up
         (``busy``: binds held or deferred, set-ups, jobs) and every frame handled
         (``caught_up``); but never longer than ``startup_max_wait_s`` (a device that keeps
         asking for a taken ID and ignores the suggestion must not hold the prosthesis up):
-        then ``late`` while binding has not settled."""
+        then ``late`` while binding has not settled. With :meth:`expect`'s devices all
+        ``present`` the quiet time is not waited out."""
         if now - self.started >= self.startup_max_wait_s and not setting_up:
             return "late" if busy else "due"
         since = max(self.started, self.last_bind, self.listen_until)
-        quiet = now - since >= self.startup_quiet_s
+        quiet = now - since >= self.startup_quiet_s or (
+            bool(self.expected) and self.expected <= present and now >= self.listen_until)
         return "due" if quiet and not busy and caught_up else ""
 
     def duty_due(self, now: float, busy: bool) -> bool:
@@ -97,6 +109,7 @@ class ProfileDriver:
         self.startup_done = False
         self.duty_needed = False
         self.last_present = set()
+        self.expected = frozenset()
         self.started = self.last_bind = self.last_change = now
 
     # -- the profile thread ---------------------------------------------------------------
@@ -112,8 +125,10 @@ class ProfileDriver:
                 if not self.startup_done:
                     with arb._lock:
                         setting_up = bool(arb.setup.in_flight)
+                    present = frozenset(arb.devices_present()) if self.expected \
+                        else frozenset()
                     due = self.startup_due(now, arb._busy(), setting_up,
-                                           arb.conn.inbound.empty())
+                                           arb.conn.inbound.empty(), present)
                     if due == "late":
                         arb._error(f"start-up runs after {self.startup_max_wait_s:g} s although "
                                    "binding has not settled (a device keeps asking for an ID "

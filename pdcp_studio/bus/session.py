@@ -443,6 +443,8 @@ def open_sim_session(name: str, *, url: str = "", settle_timeout: float = SIM_SE
     url = url or f"sim:{name}"
     arbitrator = Arbitrator(open_can_bus("virtual", channel, url=url), name=f"{url} arbitrator",
                             **arb_opts)
+    # The simulated parts are known: start-up need not wait out the quiet time after them.
+    arbitrator.profile.expect({key for key, dev in system.devices.items() if dev.present})
     host = None
     try:
         kwargs = {} if data_rate_hz is None else {"data_rate_hz": data_rate_hz}

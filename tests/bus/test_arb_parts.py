@@ -283,3 +283,24 @@ def test_the_reader_names_a_device_that_answers_as_another():
     bus.table[P.CH_TRANSFER_TYPE, 1] = b"\x07"
     reader.read_channels(K5, 7, SETUP, values, problems.append)
     assert problems and "neither input" in problems[0]
+
+
+def test_a_first_start_up_with_every_expected_device_does_not_wait_out_the_quiet_time():
+    """A simulated prosthesis knows its parts: once they have all joined and nothing is
+    being set up, start-up is due at once; a restart waits the quiet time again."""
+    from pdcp_studio.bus.arb_profile import ProfileDriver
+    from pdcp_studio.model.refs import DeviceKey
+
+    a, b = DeviceKey(1, 1, 1), DeviceKey(1, 1, 2)
+    driver = ProfileDriver(None, 0.0, quiet_s=0.2, duty_quiet_s=0.1, max_wait_s=10.0,  # type: ignore[arg-type]
+                           listen_until=0.0)
+    driver.last_bind = 0.05
+    assert driver.startup_due(0.1, False, False, True, {a, b}) == ""  # nothing expected
+    driver.expect({a, b})
+    assert driver.startup_due(0.1, False, False, True, {a}) == ""  # b has not joined
+    assert driver.startup_due(0.1, True, False, True, {a, b}) == ""  # still setting up
+    assert driver.startup_due(0.1, False, False, False, {a, b}) == ""  # frames unread
+    assert driver.startup_due(0.1, False, False, True, {a, b}) == "due"
+    driver.restart(1.0)
+    assert driver.startup_due(1.1, False, False, True, {a, b}) == ""  # quiet time again
+    assert driver.startup_due(1.25, False, False, True, {a, b}) == "due"
