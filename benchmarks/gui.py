@@ -198,6 +198,11 @@ def heartbeat_during_scans() -> dict[str, float]:
     if not window.live.is_live:
         raise SystemExit("the simulated prosthesis did not connect: "
                          + window.statusBar().currentMessage())
+    # The trace docks are made just after the window is up (start-up's last step, ~30 ms on
+    # the GUI thread once their imports are done on a thread): the scans come after it.
+    while "monitor" not in window._leaf_docks and time.monotonic() < deadline:
+        app.processEvents()
+        time.sleep(0.005)
     bridge = window.live.bridge
     gaps: list[float] = []
     clock = QElapsedTimer()

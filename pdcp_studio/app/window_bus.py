@@ -8,6 +8,7 @@ reads in one place; the connection itself is :mod:`pdcp_studio.app.live`.
 from __future__ import annotations
 
 import logging
+import threading
 from collections.abc import Callable
 from typing import TYPE_CHECKING, Any
 
@@ -17,6 +18,14 @@ log = logging.getLogger("pdcp_studio.app.main_window")  # the name it always log
 #: The trace and live plot docks are made this long after the window is up (they are
 #: hidden tabs; made at once, they held the first window back ~0.3 s).
 TRACE_DOCKS_AFTER_MS = 100
+#: How often the window looks whether the trace docks' modules have been imported.
+TRACE_IMPORT_POLL_MS = 20
+
+
+def _import_trace_modules() -> None:
+    """Import what the trace and live plot docks need (on a thread; no widget is made)."""
+    import pdcp_studio.app.live_plot
+    import pdcp_studio.app.monitor_dock  # noqa: F401
 
 
 class BusMixin:
@@ -111,8 +120,22 @@ class BusMixin:
         return self.scene.device_label(device) if device is not None else None
 
     def _trace_docks_soon(self) -> None:
-        if getattr(self, "_trace_bridge", None) is not None:
-            QTimer.singleShot(TRACE_DOCKS_AFTER_MS, self, self._make_trace_docks)
+        """Make the trace docks shortly: their modules (numpy, the trace store: ~0.2 s of
+        imports) are imported on a thread first, so the GUI thread only builds the widgets
+        (~30 ms) — importing them there froze the new window for 0.1-0.45 s."""
+        if getattr(self, "_trace_bridge", None) is None:
+            return
+        loader = threading.Thread(target=_import_trace_modules, name="import trace docks",
+                                  daemon=True)
+        loader.start()
+
+        def when_imported() -> None:
+            if loader.is_alive():
+                QTimer.singleShot(TRACE_IMPORT_POLL_MS, self, when_imported)
+            else:
+                self._make_trace_docks()
+
+        QTimer.singleShot(TRACE_DOCKS_AFTER_MS, self, when_imported)
 
     def _keep_frames(self, bridge: Any) -> None:
         """Keep ``bridge``'s frames until the trace exists (None: stop keeping them)."""
