@@ -127,7 +127,6 @@ class BusMixin:
             return
         loader = threading.Thread(target=_import_trace_modules, name="import trace docks",
                                   daemon=True)
-        loader.start()
 
         def when_imported() -> None:
             if loader.is_alive():
@@ -135,7 +134,11 @@ class BusMixin:
             else:
                 self._make_trace_docks()
 
-        QTimer.singleShot(TRACE_DOCKS_AFTER_MS, self, when_imported)
+        def start() -> None:  # once the window has been painted and is in the user's hands
+            loader.start()
+            when_imported()
+
+        QTimer.singleShot(TRACE_DOCKS_AFTER_MS, self, start)
 
     def _keep_frames(self, bridge: Any) -> None:
         """Keep ``bridge``'s frames until the trace exists (None: stop keeping them)."""
