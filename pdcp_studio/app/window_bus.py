@@ -153,6 +153,13 @@ class BusMixin:
     def _kept(self, frames: Any) -> None:
         self._early_frames.append(frames)
 
+    def _tab_beside_plan(self, key: str, dock: Any, events: Any, made: list[Any]) -> None:
+        """A bottom dock as a tab beside the plan's, in the View menu before the events'."""
+        self.tabifyDockWidget(self.plan_dock, dock)
+        self._view_action_before(events, dock)
+        self._leaf_docks[key] = dock
+        made.append(dock)
+
     def _make_trace_docks(self) -> None:
         """The trace (monitor) and live plot docks, if not made yet, fed by the bridge
         they were made for: the trace gets the frames kept since its session started."""
@@ -172,10 +179,7 @@ class BusMixin:
         if monitor is None:
             monitor = monitor_dock.MonitorDock(self)
             self.addDockWidget(Qt.DockWidgetArea.BottomDockWidgetArea, monitor)
-            self.tabifyDockWidget(self.plan_dock, monitor)
-            self._view_action_before(events, monitor)
-            self._leaf_docks["monitor"] = monitor
-            made.append(monitor)
+            self._tab_beside_plan("monitor", monitor, events, made)
             if started:
                 monitor.reset_for_session(self.doc.system)  # as _session_started does
         if keeping:
@@ -187,10 +191,7 @@ class BusMixin:
             plot = live_plot.LivePlot()
             dock = self._dock(self.tr("Live plot"), "LivePlotDock", plot,
                               Qt.DockWidgetArea.BottomDockWidgetArea)
-            self.tabifyDockWidget(self.plan_dock, dock)
-            self._view_action_before(events, dock)
-            self._leaf_docks["plot"] = dock
-            made.append(dock)
+            self._tab_beside_plan("plot", dock, events, made)
             if started:
                 plot.set_system(self.doc.system)  # as _session_started does
             if live:
