@@ -88,6 +88,8 @@ def run_app(path: str | Path | None = None, bus: str | None = None,
     status = {"code": 0}
 
     def finish_screenshot() -> None:
+        window._make_trace_docks()  # made just after the window is up: in the picture too
+        app.processEvents()  # their tabs are laid out
         window.view.fit_all()
         bridge = window.live.bridge
         if window.progress.isVisible() and (bridge is None or not bridge.busy):
