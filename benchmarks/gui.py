@@ -43,8 +43,10 @@ sys.path.insert(0, str(ROOT))
 # The app decides the interpreter's switch interval at start-up (app/application.py); the
 # in-process cases build its window without run_app, so they set it as it does.
 from pdcp_studio.app.application import share_the_interpreter  # noqa: E402
+from pdcp_studio.app.pyside_import_scan import spare_source_scan  # noqa: E402
 
 share_the_interpreter()
+spare_source_scan()  # as the app's start-up does: windows here are made without run_app
 
 STARTUP_RUNS = 5
 SCAN_SECONDS = 4.0

@@ -157,23 +157,8 @@ def _warm_up() -> None:
 
         import pdcp_studio.bus.monitor  # noqa: F401
 
-        _drop_read_sources()
-
     _WARM.append(threading.Thread(target=load, name="trace warm-up", daemon=True))
     _WARM[0].start()
-
-
-def _drop_read_sources() -> None:
-    """Forget the source files PySide6's import hook read.
-
-    PySide6 reads the source of every module imported after it (``inspect.getsource``, to
-    see whether it uses PySide6), and Python's ``linecache`` keeps each file's lines: ~250
-    files, ~9 MB, once the capture readers are in. The app's start-up replaces that scan
-    (``app/pyside_import_scan.py``); this still frees what a window made without it (tests,
-    benchmarks) read. They are read again only if a traceback is printed."""
-    import linecache
-
-    linecache.clearcache()
 
 
 _FROZEN: list[bool] = []

@@ -18,16 +18,14 @@ that changes no link writes nothing and holds nothing.
 
 from __future__ import annotations
 
-import contextlib
 import logging
 import threading
 import time
-from collections.abc import Callable, Iterator
+from collections.abc import Callable
 from typing import TYPE_CHECKING, Any, Literal
 
 from pdcp_studio.bus import events as ev
 from pdcp_studio.bus.transaction import (
-    INTERLOCK_MS,
     Status,
     TransactionResult,
     describe_interlock,
@@ -43,10 +41,6 @@ if TYPE_CHECKING:
     from pdcp_studio.engine.plan import Plan
 
 log = logging.getLogger("pdcp_studio.bus.arbitrator")  # one logger for the arbitrator
-
-
-class HoldRefused(PdcpError):
-    """A device did not suspend for the motion interlock: the plan was not written."""
 
 
 def present_refs(system: System) -> set[ChannelRef]:
@@ -264,54 +258,28 @@ class ProfileDriver:
     def _apply_held(self, plan: Plan, snapshot: System) -> bool:
         """Write ``plan`` with the motion interlock holding its devices; False (and an error
         said) when a device would not hold still and nothing was written."""
+        from pdcp_studio.bus.arb_transaction import HoldRefused, holding
+
         if not plan.actions:
             return True
         arb = self.arb
+        notes: list[str] = []
+        keys = interlocked_devices(snapshot, snapshot.links, plan.final_links)
         with arb._lock:
             self.plan_running += 1  # busy from the first hold on: the bus is not settled
         try:
-            with self.holding(snapshot, snapshot.links, plan.final_links) as held:
+            with holding(arb, keys, notes) as held:
                 self.apply_plan(plan, interlock=describe_interlock(held))
         except HoldRefused as err:
-            arb._error(f"plan {plan.mode} not written: {err}", "plan")
+            arb._error(f"plan {plan.mode} not written: {err}; the prosthesis was left as it "
+                       "was", "plan")
             return False
         finally:
             with arb._lock:
                 self.plan_running -= 1
+            for note in notes:
+                log.warning("%s: %s", arb.name, note)
         return True
-
-    @contextlib.contextmanager
-    def holding(self, system: System, before: list[Any], after: list[Any]
-                ) -> Iterator[list[DeviceKey]]:
-        """Hold (Suspend Device, renewed) the devices reference §5's interlock names for a
-        change from ``before`` to ``after`` links; release them afterwards, whatever happens.
-        HoldRefused, with every device already held released, when one does not suspend."""
-        from pdcp_studio.bus.arb_transaction import Renewer
-
-        arb = self.arb
-        held: list[DeviceKey] = []
-        try:
-            for key in interlocked_devices(system, before, after):
-                try:
-                    arb.suspend(key, INTERLOCK_MS)
-                except PdcpError as err:
-                    raise HoldRefused(f"device {key} did not suspend ({err}); the prosthesis "
-                                      "was left as it was") from err
-                held.append(key)
-            renewer = Renewer(arb.suspend, held, arb.interlock_renew_s, arb.name)
-            try:
-                yield held
-            finally:
-                renewer.stop()
-                for failure in renewer.failures:
-                    log.warning("%s: %s", arb.name, failure)
-        finally:
-            for key in held:
-                try:
-                    arb.release(key)
-                except PdcpError as err:  # its bounded suspension runs out on its own
-                    log.warning("%s: release of %s failed (%s); its suspension ends within "
-                                "%d ms on its own", arb.name, key, err, INTERLOCK_MS)
 
     def _policy_for_plans(self) -> bool:
         """The stored autoconfigure policy; the thesis's default (on) when the memory cannot

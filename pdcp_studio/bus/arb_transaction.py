@@ -25,9 +25,10 @@ The whole transaction holds the plan lock: no start-up, duty cycle or other plan
 
 from __future__ import annotations
 
+import contextlib
 import logging
 import threading
-from collections.abc import Callable
+from collections.abc import Callable, Iterator
 from typing import TYPE_CHECKING, Any
 
 from pdcp_studio.bus import events as ev
@@ -87,6 +88,45 @@ class Renewer:
             self._thread.join(timeout=5.0)
 
 
+class HoldRefused(PdcpError):
+    """A device did not suspend for the motion interlock; those held before it are released."""
+
+    def __init__(self, key: DeviceKey, why: PdcpError) -> None:
+        self.key, self.why = key, why
+        super().__init__(f"device {key} did not suspend ({why})")
+
+
+@contextlib.contextmanager
+def holding(arb: Arbitrator, keys: list[DeviceKey], notes: list[str]
+            ) -> Iterator[list[DeviceKey]]:
+    """Reference §5's motion interlock around a block: each of ``keys`` suspended (bounded,
+    renewed), every one held released afterwards whatever happens; HoldRefused when one does
+    not suspend. Renewal and release failures are added to ``notes`` (a lost release ends
+    on its own within ``INTERLOCK_MS``). Transactions and the profile layer's own plans use
+    it alike."""
+    held: list[DeviceKey] = []
+    try:
+        for key in keys:
+            try:
+                arb.suspend(key, INTERLOCK_MS)
+            except PdcpError as err:
+                raise HoldRefused(key, err) from err
+            held.append(key)
+        renewer = Renewer(arb.suspend, held, arb.interlock_renew_s, arb.name)
+        try:
+            yield held
+        finally:
+            renewer.stop()
+            notes += renewer.failures
+    finally:
+        for key in held:
+            try:
+                arb.release(key)
+            except PdcpError as err:
+                notes.append(f"release of {key} failed ({err}); its suspension ends within "
+                             f"{INTERLOCK_MS} ms on its own")
+
+
 class Transactions:
     """``transact`` and the policy of an :class:`Arbitrator` (no state of its own: what it
     changes is the bus's, the memory's and the system's)."""
@@ -139,29 +179,19 @@ class Transactions:
         if problem:  # the change does not fit the bus as it is now
             result.step, result.reason = "preview", f"{problem}; nothing was written"
             return result
-        held = interlocked_devices(system, before, after, change.parameters) \
+        keys = interlocked_devices(system, before, after, change.parameters) \
             if change.moves else []
-        suspended: list[DeviceKey] = []
-        for key in held:
-            try:
-                self.arb.suspend(key, INTERLOCK_MS)
-            except PdcpError as err:
-                self._release_all(suspended, result)
-                result.step = "interlock"
-                result.reason = (f"device {key} did not suspend ({err}); nothing was written")
-                result.interlock = describe_interlock(suspended, refused=key)
-                return result
-            suspended.append(key)
-        result.held = list(suspended)
-        result.interlock = describe_interlock(suspended)
-        renewer = Renewer(self.arb.suspend, suspended, self.arb.interlock_renew_s, self.arb.name)
         try:
-            self._write_verify_restore(change, after, cfg_before, policy_before, result,
-                                       progress, cancel)
-        finally:
-            renewer.stop()
-            result.notes += renewer.failures
-            self._release_all(suspended, result)
+            with holding(self.arb, keys, result.notes) as held:
+                result.held = list(held)
+                result.interlock = describe_interlock(held)
+                self._write_verify_restore(change, after, cfg_before, policy_before, result,
+                                           progress, cancel)
+        except HoldRefused as err:
+            result.step = "interlock"
+            result.reason = f"device {err.key} did not suspend ({err.why}); nothing was written"
+            result.interlock = describe_interlock([], refused=err.key)
+            return result
         result.links_after = self.arb.system().links
         result.config_crc_after = crc_of_bytes(self.arb.memory.read_bytes())
         result.policy_after = self.read_policy()
@@ -331,14 +361,6 @@ class Transactions:
             except (PdcpError, OSError) as err:
                 errors.append(f"the policy: {err}")
         return errors
-
-    def _release_all(self, keys: list[DeviceKey], result: TransactionResult) -> None:
-        for key in keys:
-            try:
-                self.arb.release(key)
-            except PdcpError as err:  # its suspension runs out on its own within 2 s
-                result.notes.append(f"release of {key} failed ({err}); its suspension ends "
-                                    f"within {INTERLOCK_MS} ms on its own")
 
 
 def _check_cancel(cancel: threading.Event | None, done: int, total: int) -> None:

@@ -462,7 +462,7 @@ class Arbitrator:
                    cancel: threading.Event | None = None) -> TransactionResult:
         """Carry out an engine plan's actions on the bus, in order; log it and return what
         came of it. The profile layer's own start-up and duty cycle call it inside their
-        motion interlock (``ProfileDriver.holding``); it holds nothing itself.
+        motion interlock (``arb_transaction.holding``); it holds nothing itself.
 
         An action that fails on the wire is reported and skipped, the others go on (status
         ``failed``, reason naming them). ``cancel`` stops between actions. Changes a person
