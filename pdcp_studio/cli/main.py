@@ -102,8 +102,12 @@ def main(argv: Sequence[str] | None = None) -> int:
     parser = build_parser(_commands_for(sys.argv[1:] if argv is None else argv))
     args = parser.parse_args(argv)
     if args.command is None:
-        # Bare `pdcp-studio` opens the desktop app on the simulated prosthesis.
-        args = parser.parse_args(["gui", *(["--lang", args.lang] if args.lang else [])])
+        # Bare `pdcp-studio` opens the desktop app on the built-in simulated prosthesis
+        # (contracts §2); `pdcp-studio gui` alone keeps the start page.
+        from pdcp_studio.app.window_support import DEFAULT_BUS  # Qt-free
+
+        args = parser.parse_args(["gui", "--bus", DEFAULT_BUS,
+                                  *(["--lang", args.lang] if args.lang else [])])
         if getattr(args, "func", None) is None:
             parser.print_help()
             return EXIT_OK
