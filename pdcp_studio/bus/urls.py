@@ -149,6 +149,11 @@ def check_bus_url(url: str) -> BusSpec:
         if spec.bitrate is not None and spec.interface not in _NO_BITRATE:
             options["bitrate"] = spec.bitrate
         check_channel(url, spec.interface, spec.channel, options)
+    if spec.kind == "serial":
+        from pdcp_studio.bus.serial_ports import unknown_protocol
+
+        if why := unknown_protocol(spec.port):
+            raise BusUrlError(f"bus URL {url!r}: {why}")
     if spec.kind == "sim":
         from pdcp_studio.bus.simulator import UnknownProsthesisError, resolve_prosthesis
 
