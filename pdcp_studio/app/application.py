@@ -102,7 +102,9 @@ def run_app(path: str | Path | None = None, bus: str | None = None,
         if status["code"]:
             pass  # what was asked for is not on screen: no picture of an empty window
         elif not image.save(str(screenshot), "PNG"):
-            print(f"pdcp-studio: error: cannot write {screenshot}", file=sys.stderr)
+            from pdcp_studio.cli.unwritable import why_not_written  # the CLI's plain reasons
+
+            print(f"pdcp-studio: error: {why_not_written(screenshot)}", file=sys.stderr)
             status["code"] = 1
         window.doc.mark_saved()  # nothing to ask about on the way out
         window.close()
