@@ -112,7 +112,11 @@ def main(argv: Sequence[str] | None = None) -> int:
             parser.print_help()
             return EXIT_OK
     try:
-        return int(args.func(args) or 0)
+        code = int(args.func(args) or 0)
+        sys.stdout.flush()  # a reader that has gone shows here, not at the interpreter's exit
+        return code
+    except BrokenPipeError:
+        return _reader_gone()
     except (BadInput, BusUrlError, ConfigFormatError, SystemFileError) as err:
         print(f"pdcp-studio: {err}", file=sys.stderr)
         return EXIT_BAD_INPUT
@@ -125,6 +129,20 @@ def main(argv: Sequence[str] | None = None) -> int:
     except OSError as err:
         print(f"pdcp-studio: error: {os_error_text(err)}", file=sys.stderr)
         return EXIT_FAILURE
+
+
+def _reader_gone() -> int:
+    """Output piped to a reader that stopped reading (``| head``): exit quietly, as command
+    line tools do, with the failure status (not everything was delivered). What is still
+    buffered goes to the null device, so the interpreter's own flush at exit does not
+    complain either."""
+    try:
+        devnull = os.open(os.devnull, os.O_WRONLY)
+        os.dup2(devnull, sys.stdout.fileno())
+        os.close(devnull)
+    except (OSError, ValueError):  # stdout is not a file descriptor (a test's capture)
+        pass
+    return EXIT_FAILURE
 
 
 def os_error_text(err: OSError) -> str:
