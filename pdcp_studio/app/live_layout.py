@@ -230,19 +230,20 @@ def swap_in(left: Mapping[DeviceKey, str], newcomers: Mapping[DeviceKey, str],
 
 def to_remember(on_bus: Mapping[str, Position], off_bus: Iterable[str],
                 before: Mapping[str, Position], heights: Mapping[str, float],
-                width: float) -> dict[str, Position]:
+                width: float, height: float = 0.0) -> dict[str, Position]:
     """What a prosthesis's layout keeps (identity → position): the parts on the bus where
-    they stand; a part off the bus at its place as remembered ``before``, unless a card on
-    the bus stands there now (its replacement, which a connect would give that place) —
-    never where its card was put aside, and not at all when never remembered: a connect
-    shows only the parts on the bus."""
+    they stand; a part off the bus (unplugged, or not seen this session) at its place as
+    remembered ``before``, unless a card on the bus stands there now (its replacement,
+    which a connect would give that place) — never where its card was put aside, and not
+    at all when never remembered: a connect shows only the parts on the bus. ``heights``:
+    the cards' heights by identity (``height`` for a part not known here)."""
     out = dict(on_bus)
     for ident in off_bus:
         xy = before.get(ident)
         if xy is None or ident in out:
             continue
-        if not any(_overlap(xy, heights.get(ident, 0.0), other, heights.get(p, 0.0), width)
-                   for p, other in on_bus.items()):
+        if not any(_overlap(xy, heights.get(ident, height), other, heights.get(p, height),
+                            width) for p, other in on_bus.items()):
             out[ident] = xy
     return out
 
@@ -297,10 +298,12 @@ def _legacy_positions(url: str, settings: QSettings) -> dict[str, Position]:
         return {}
 
 
-def remembered_elsewhere(parts: Iterable[str], on_screen: Iterable[str]) -> dict[str, Position]:
+def remembered_elsewhere(parts: Iterable[str], on_screen: Iterable[str],
+                         layouts: Iterable[Layout] | None = None) -> dict[str, Position]:
     """The remembered positions of the prosthesis made of ``parts`` for the parts that are
-    not ``on_screen`` (empty when no layout is remembered for it)."""
-    layout = best_layout(stored_layouts(), parts)
+    not ``on_screen`` (empty when no layout is remembered for it); ``layouts``: the
+    remembered layouts as read (read now when None)."""
+    layout = best_layout(stored_layouts() if layouts is None else layouts, parts)
     if layout is None:
         return {}
     shown = set(on_screen)
@@ -350,11 +353,15 @@ def save(system: System, positions: Mapping[Any, Position], url: str = "") -> No
     from pdcp_studio.app.graph.style import CARD_WIDTH
 
     devices = system.devices
+    before = layout.at if layout is not None else {}
+    shown = set(parts.values())
+    off_bus = [parts[k] for k, d in devices.items() if not d.present]
+    off_bus += [p for p in before if p not in shown]  # not seen this session
     at = to_remember({parts[k]: (float(x), float(y)) for k, (x, y) in positions.items()
                       if k in devices and devices[k].present},
-                     [parts[k] for k, d in devices.items() if not d.present],
-                     layout.at if layout is not None else {},
-                     {parts[k]: card_height(d) for k, d in devices.items()}, CARD_WIDTH)
+                     off_bus, before,
+                     {parts[k]: card_height(d) for k, d in devices.items()}, CARD_WIDTH,
+                     card_height(Device(0, 0, 0)))
     if not at:
         return
     if layout is None:

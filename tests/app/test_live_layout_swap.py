@@ -97,6 +97,30 @@ def test_a_layout_keeps_the_parts_off_the_bus_only_where_no_replacement_stands()
     assert to_remember({"e": (0.0, 0.0)}, ["h"], {}, heights, 200.0) == {"e": (0.0, 0.0)}
 
 
+def test_a_part_not_seen_for_a_session_keeps_its_remembered_place():
+    """Saved without the hand (unplugged before the connect), the layout still knows where
+    the hand was: a spare plugged in later is given that place; once the spare stands
+    there, the layout gives it to whichever hand comes."""
+    from pdcp_studio.app import live_layout
+    from pdcp_studio.bus.simulator import load_prosthesis
+
+    arm = load_prosthesis("transradial")
+    spare = arm.remove_device(SPARE)
+    spare.present = True
+    at = {k: (float(i * 300), 0.0) for i, k in enumerate(arm.devices)}
+    live_layout.save(arm, at)
+    hand = arm.remove_device(HAND)
+    live_layout.save(arm, {k: (x, y + 5.0) for k, (x, y) in at.items() if k != HAND})
+    arm.add_device(spare)
+    assert live_layout.load(arm)[SPARE] == at[HAND]
+    live_layout.save(arm, live_layout.load(arm))  # the spare at the hand's place: the hand
+    arm.remove_device(SPARE)                      # is not remembered over it
+    arm.add_device(hand)
+    assert live_layout.load(arm)[HAND] == at[HAND]
+    assert len(live_layout.stored_layouts()) == 1
+    assert len(live_layout.stored_layouts()[0].at) == len(arm.devices)
+
+
 def test_cards_overlap():
     assert _overlap((0, 0), 100, (50, 50), 100, 200)
     assert not _overlap((0, 0), 100, (0, 110), 100, 200)  # one under the other
@@ -159,7 +183,8 @@ def test_the_spare_hand_swapped_in_from_the_simulator_panel_takes_the_hands_plac
     for key in [k for k, d in bus.devices.items() if not d.present]:
         bus.remove_device(key)
     assert set(bus.devices) == set(others) | {SPARE}
-    assert live_layout.load(bus) == {k: doc.positions[k] for k in bus.devices}
+    qtbot.waitUntil(lambda: live_layout.load(bus) == {k: doc.positions[k] for k in bus.devices},
+                    timeout=5000)
     window.live.disconnect_bus()
 
     # the simulator starts again with the first hand plugged in: it takes the spare's place
