@@ -43,7 +43,7 @@ def open_session_blocking(url: str, progress: Any = None, cancel: Any = None) ->
     return open_session(url)
 
 
-def opened_early(opening: Future, url: str, progress: Any = None) -> Any:
+def opened_early(opening: Future[Any], url: str, progress: Any = None) -> Any:
     """The session ``opening`` opens (on a thread of its own since start-up,
     ``application.open_early``); what it raised, raised here."""
     if progress is not None:
@@ -56,7 +56,7 @@ def _on_bus(snapshot: Any, key: Any) -> bool:
     return device is not None and bool(device.present)
 
 
-def read_and_place(session: Any, shape: float = 1.0) -> tuple[Any, dict]:
+def read_and_place(session: Any, shape: float = 1.0) -> tuple[Any, dict[Any, Any]]:
     """The bus's first snapshot and its cards' layout (on the worker: the layout imports
     networkx and walks the whole bus, which stalled the GUI thread on ``sim:full``)."""
     from pdcp_studio.app.graph import layout
@@ -104,7 +104,7 @@ class LiveController(QObject):
         #: Parts that joined this session as newcomers: identity, place given, when.
         self._newcomers: dict[Any, tuple[str, tuple[float, float], float]] = {}
         #: The remembered layouts, read once a session when a part joins (None: not yet).
-        self._layouts: list | None = None
+        self._layouts: list[Any] | None = None
         self._remember_timer = QTimer(self)
         self._remember_timer.setSingleShot(True)
         self._remember_timer.setInterval(REMEMBER_MS)
@@ -120,7 +120,7 @@ class LiveController(QObject):
             self.state = state
             self.stateChanged.emit(state)
 
-    def connect_bus(self, url: str, opening: Future | None = None) -> Worker:
+    def connect_bus(self, url: str, opening: Future[Any] | None = None) -> Worker:
         """Open ``url`` on a worker; ``connected`` or ``failed`` follows.
 
         The current session (if any) stays until the new one has opened: a failed Connect
@@ -281,7 +281,7 @@ class LiveController(QObject):
             if joined or left:
                 self._remember_soon()
 
-    def _place_joined(self, snapshot: Any) -> list:
+    def _place_joined(self, snapshot: Any) -> list[Any]:
         """Before ``snapshot`` is merged: places for the parts new to the view, as a
         connect would give them (:func:`live_layout.place_joined`) — a replacement where
         the part it replaces was, that part put aside. Returns the parts placed as any
@@ -321,7 +321,7 @@ class LiveController(QObject):
         if self.doc.is_live_view:
             self._remember_timer.start()
 
-    def _note_newcomers(self, keys: list) -> None:
+    def _note_newcomers(self, keys: list[Any]) -> None:
         """Parts placed as newcomers (after the scene placed them): a part that leaves
         soon after may be the one they replace (:meth:`_swap_in`)."""
         from pdcp_studio.app.live_layout import part_identity
@@ -333,7 +333,7 @@ class LiveController(QObject):
                 self._newcomers[key] = (part_identity(key, device), self.doc.positions[key],
                                         now)
 
-    def _swap_in(self, left: list) -> bool:
+    def _swap_in(self, left: list[Any]) -> bool:
         """Parts left the bus: a part that joined just before as a newcomer and replaces
         one of them takes its place, the two cards swapping (:func:`live_layout.swap_in`)."""
         from pdcp_studio.app import live_layout
@@ -390,7 +390,7 @@ class LiveController(QObject):
             "see Bus events").format(why=why, added=added, removed=removed))
         self.refresh()
 
-    def _on_values(self, values: list) -> None:
+    def _on_values(self, values: list[Any]) -> None:
         if self.on_data is None:
             return
         for ref in {v.ref for v in values}:
