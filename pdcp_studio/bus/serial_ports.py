@@ -40,14 +40,16 @@ def example_port(platform: str = sys.platform) -> str:
     return "/dev/ttyUSB0"
 
 
-def _which_port(ports: Sequence[str], platform: str) -> str:
-    """The fix's ending: the ports this computer has, or that none is plugged in."""
+def _which_port(ports: Sequence[str], platform: str, form: str) -> str:
+    """The fix's ending: the ports this computer has, or that none is plugged in, written as
+    the user names a port there (``form``: ``serial:`` in a bus URL, nothing after
+    ``--host-serial``)."""
     if not ports:
-        return ("no serial port is plugged in: plug the arbitrator's cable in, then name its "
-                f"port (e.g. serial:{example_port(platform)})")
-    shown = ", ".join(f"serial:{p}" for p in ports[:PORTS_SHOWN])
+        return ("no serial port is plugged in: plug the serial cable in, then name its port "
+                f"(e.g. {form}{example_port(platform)})")
+    shown = ", ".join(f"{form}{p}" for p in ports[:PORTS_SHOWN])
     more = f" and {len(ports) - PORTS_SHOWN} more" if len(ports) > PORTS_SHOWN else ""
-    return f"plug the arbitrator's cable in and name one of this computer's ports: {shown}{more}"
+    return f"plug the serial cable in and name one of this computer's ports: {shown}{more}"
 
 
 def url_protocols() -> list[str]:
@@ -105,9 +107,11 @@ def _reason(err: BaseException) -> str:
 
 def open_failure(where: str, name: str, err: BaseException, ports: Sequence[str],
                  platform: str = sys.platform) -> str:
-    """One line: ``where`` (the bus URL), the port, why it did not open and the fix."""
+    """One line: ``where`` (the bus URL, or what the port is for), the port, why it did not
+    open and the fix."""
     code = _errno(err)
     why = _reason(err)
+    form = "serial:" if where.startswith("serial:") else ""
     network = "://" in name and not name.startswith(("loop://", "spy://"))
     if isinstance(err, ValueError) and "://" in name:
         fix = ("name a serial port or a pyserial URL such as socket://HOST:PORT or "
@@ -122,10 +126,10 @@ def open_failure(where: str, name: str, err: BaseException, ports: Sequence[str]
     elif code == errno.EBUSY:
         fix = "close the other program that has the port open"
     elif code == errno.ENOTTY:
-        fix = f"{name} is not a serial port; " + _which_port(ports, platform)
+        fix = f"{name} is not a serial port; " + _which_port(ports, platform, form)
     elif code in (errno.ENOENT, errno.ENODEV, errno.ENXIO) or "not found" in why.lower() \
             or "cannot find" in why.lower():
-        return f"{where}: serial port {name!r} not found; fix: {_which_port(ports, platform)}"
+        return f"{where}: serial port {name!r} not found; fix: {_which_port(ports, platform, form)}"
     else:
-        fix = _which_port(ports, platform)
+        fix = _which_port(ports, platform, form)
     return f"{where}: cannot open serial port {name!r} ({why}); fix: {fix}"

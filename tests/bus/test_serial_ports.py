@@ -41,8 +41,16 @@ def test_a_missing_device_names_the_ports_this_computer_has():
     err = _pyserial_error("/dev/ttyNONE")
     line = open_failure("serial:/dev/ttyNONE", "/dev/ttyNONE", err, ["/dev/ttyUSB1"])
     assert line == ("serial:/dev/ttyNONE: serial port '/dev/ttyNONE' not found; fix: plug the "
-                    "arbitrator's cable in and name one of this computer's ports: "
+                    "serial cable in and name one of this computer's ports: "
                     "serial:/dev/ttyUSB1")
+
+
+def test_a_port_named_without_a_url_is_shown_the_same_way():
+    err = _pyserial_error("/dev/ttyNONE")  # arbitrator --host-serial PORT
+    line = open_failure("host link", "/dev/ttyNONE", err, ["/dev/ttyUSB1"])
+    assert line.endswith("name one of this computer's ports: /dev/ttyUSB1")
+    assert open_failure("host link", "/dev/ttyNONE", err, [], "linux").endswith(
+        "(e.g. /dev/ttyUSB0)")
 
 
 @pytest.mark.parametrize(("platform", "example"), [
@@ -95,7 +103,7 @@ def test_windows_wording_of_a_missing_port_is_read_too():
     err = serial.SerialException("could not open port 'COM7': FileNotFoundError(2, 'The "
                                  "system cannot find the file specified.', None, 2)")
     line = open_failure("serial:COM7", "COM7", err, ["COM1"], "win32")
-    assert line.endswith("serial port 'COM7' not found; fix: plug the arbitrator's cable in "
+    assert line.endswith("serial port 'COM7' not found; fix: plug the serial cable in "
                          "and name one of this computer's ports: serial:COM1")
 
 
@@ -146,3 +154,15 @@ def test_the_cli_exits_2_for_a_url_pyserial_does_not_have():
                            "serial:foo://x"], capture_output=True, text=True, timeout=60,
                           cwd=ROOT)
     assert done.returncode == 2 and "pyserial has no 'foo' URL" in done.stderr
+
+
+def test_arbitrator_host_serial_on_a_missing_port_exits_1_with_the_fix(tmp_path):
+    done = subprocess.run([sys.executable, "-m", "pdcp_studio", "arbitrator", "--bus",
+                           f"can:virtual:clifix-{os.getpid()}", "--memory",
+                           str(tmp_path / "memory.json"), "--host-serial", "/dev/ttyNONE",
+                           "--seconds", "1"], capture_output=True, text=True, timeout=60,
+                          cwd=ROOT)
+    assert done.returncode == 1, done.stderr
+    lines = done.stderr.strip().splitlines()
+    assert len(lines) == 1 and "serial port '/dev/ttyNONE' not found; fix: " in lines[0]
+    assert "serial:/dev" not in lines[0]  # --host-serial takes the port without serial:
