@@ -102,7 +102,7 @@ def run_app(path: str | Path | None = None, bus: str | None = None,
         if status["code"]:
             pass  # what was asked for is not on screen: no picture of an empty window
         elif not image.save(str(screenshot), "PNG"):
-            from pdcp_studio.cli.unwritable import why_not_written  # the CLI's plain reasons
+            from pdcp_studio.storage.write_failure import why_not_written  # the CLI's words
 
             print(f"pdcp-studio: error: {why_not_written(screenshot)}", file=sys.stderr)
             status["code"] = 1

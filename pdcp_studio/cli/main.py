@@ -14,7 +14,6 @@ other failure.
 from __future__ import annotations
 
 import argparse
-import errno
 import importlib
 import logging
 import os
@@ -147,19 +146,11 @@ def _reader_gone() -> int:
 
 def os_error_text(err: OSError) -> str:
     """An operating-system failure in words that name the file and, for a path that
-    cannot exist, the folder that is missing (not "[Errno 2] …")."""
-    if not err.filename:
-        return str(err)
-    name = os.fsdecode(err.filename)
-    why = err.strerror or str(err)
-    parent = os.path.dirname(os.path.abspath(name))
-    if err.errno == errno.ENOENT and not os.path.isdir(parent):
-        why = f"the folder {parent} does not exist"
-    elif err.errno == errno.ENOTDIR:
-        why = "a part of the path is a file, not a folder"
-    elif err.errno == errno.EISDIR:
-        why = "is a folder, not a file"
-    return f"{name}: {why}"
+    cannot exist, the folder that is missing (not "[Errno 2] …"); the app uses the same
+    words (``storage/write_failure.py``)."""
+    from pdcp_studio.storage.write_failure import os_error_text as plain_words
+
+    return plain_words(err)
 
 
 if __name__ == "__main__":  # pragma: no cover

@@ -8,7 +8,7 @@ import subprocess
 import sys
 from pathlib import Path
 
-from pdcp_studio.cli.unwritable import why_not_written
+from pdcp_studio.storage.write_failure import why_not_written
 
 ROOT = Path(__file__).resolve().parents[2]
 
