@@ -417,6 +417,8 @@ def _restore_docks(window: Any) -> None:
     """Docks made after start-up (monitor, plot, simulator) go where they were last time
     (if the last session's layout was restored: else there is nowhere to put them back)."""
     restored = getattr(window, "_layout_restored", False)
+    if not restored and not _is_live(window):
+        return  # nothing to put back; named with the rest of the window once it is live
     for dock in window.findChildren(QDockWidget):
         if restored:
             window.restoreDockWidget(dock)
