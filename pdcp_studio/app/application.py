@@ -40,7 +40,15 @@ def run_app(path: str | Path | None = None, bus: str | None = None,
     (``SystemFileError`` / ``ConfigFormatError`` → exit 2 in the CLI).
     """
     started = time.perf_counter() if started is None else started
-    start_up_quietly()  # until the window is live (start_up_over, below)
+    start_up_quietly()  # until the window is live (start_up_over, connected in _run_app)
+    try:
+        return _run_app(path, bus, screenshot, size=size, started=started, lang=lang)
+    finally:
+        start_up_over()  # however it ended (a bad file, a window never ready)
+
+
+def _run_app(path: str | Path | None, bus: str | None, screenshot: str | Path | None, *,
+             size: tuple[int, int] | None, started: float, lang: str | None) -> int:
     from pdcp_studio.app.pyside_import_scan import spare_source_scan
 
     spare_source_scan()  # before the app's imports: PySide6 would read each one's source

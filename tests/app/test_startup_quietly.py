@@ -54,3 +54,17 @@ def test_the_collector_waits_and_the_interval_is_the_default_until_the_window_is
     assert seen["live_gc"] is True
     assert seen["live_interval"] == pytest.approx(seen["app"])
     assert seen["frozen"] > 10_000  # what start-up made is out of the collector's sight
+
+
+def test_a_start_up_that_ends_early_gives_the_collector_back(tmp_path):
+    import gc
+
+    from pdcp_studio.app.application import SWITCH_INTERVAL_S, run_app
+    from pdcp_studio.errors import PdcpError
+
+    bad = tmp_path / "broken.json"
+    bad.write_text("{ not json", "utf-8")
+    with pytest.raises(PdcpError):
+        run_app(bad)  # fails before any window: bad input
+    assert gc.isenabled()
+    assert sys.getswitchinterval() == pytest.approx(SWITCH_INTERVAL_S)
