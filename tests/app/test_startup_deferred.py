@@ -1,6 +1,7 @@
 """What a new window leaves until it is live (issue 11, start-up < 1.5 s), and that it then
-comes: the accessible names of its controls (a screen reader's, never seen) and the
-toolbar's Undo/Redo, shortcuts and Help menu made without looking at every child."""
+comes: the accessible names of its controls (a screen reader's, never seen), the fitting
+history (a hidden tab); and the toolbar's Undo/Redo, shortcuts and Help menu made without
+looking at every child."""
 
 from __future__ import annotations
 
@@ -24,6 +25,20 @@ def test_controls_are_named_once_the_window_is_live_not_while_it_is_made(make_wi
         window.connect_bus("sim:transradial")
     qtbot.waitUntil(lambda: bool(tree.accessibleName()), timeout=5000)
     assert window_desktop.name_controls(window) == []  # all of them, docks made since too
+    window.live.disconnect_bus()
+
+
+def test_the_fitting_history_is_read_once_the_window_is_live(make_window, qtbot):
+    window = make_window()
+    read_at_ready = []
+    window.ready.connect(lambda: read_at_ready.append(window.history_panel.path))
+    with qtbot.waitSignal(window.history_panel.loaded, timeout=20000):
+        window.connect_bus("sim:transradial")
+    assert read_at_ready == [""]  # not read while the window was being made
+    assert window.history_panel.path.endswith("history.sqlite3")  # then read, verified
+    assert window.history_panel.verify_report.ok
+    with qtbot.waitSignal(window.history_panel.loaded, timeout=10000):
+        window._load_patient_reference()  # as a later session starts: read at once
     window.live.disconnect_bus()
 
 
