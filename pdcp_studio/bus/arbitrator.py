@@ -171,7 +171,8 @@ class Arbitrator:
                  node_ids: tuple[int, int] = (NODE_ID_MIN, NODE_ID_MAX),
                  frame_events: bool = False, channel_events: bool = True,
                  reset_on_start: bool = True, autoconfigure: bool | None = None,
-                 drop_own: bool | None = None, listen_s: float = 0.0) -> None:
+                 drop_own: bool | None = None, listen_s: float = 0.0,
+                 direct: bool = False) -> None:
         self.name = name
         self.profile_layer = profile_layer
         self.retries = retries
@@ -184,7 +185,7 @@ class Arbitrator:
         self.bad_frames = 0
         self.error_frames = 0
         self.data_frames = 0
-        self.conn = Connection(bus, name=name, pace_s=pace_s, drop_own=drop_own)
+        self.conn = Connection(bus, name=name, pace_s=pace_s, drop_own=drop_own, direct=direct)
         self._errors = RepeatLimiter(burst=ERROR_BURST)
         self._crashes = LimitedLog(log, f"{name}: ")
         self._disconnected = False  # the adapter was pulled (a ReopeningBus says so)

@@ -11,6 +11,13 @@ remembers what it sent and drops the first identical frame that comes back withi
 ``ECHO_WINDOW_S``, so every role sees only the others' frames, as on a real CAN bus. The
 memory of sent frames is bounded (:class:`EchoFilter`): at most ``ECHO_MAX_PENDING`` frames,
 none older than the window, whatever the number of frames a long run sends.
+
+An in-process simulation (``direct=True``, issue 11) skips the Notifier: on python-can's
+``virtual`` bus, the frames another bus of the channel sends go straight from the sender's
+thread into this connection's queue (:func:`attach_direct`), through the same listener and its
+flood bound. Each frame then wakes one thread instead of two, and a simulated prosthesis
+that opens ~450 frames at start-up no longer waits for a Notifier thread to get the
+interpreter between its sender and its reader. Real adapters always have a Notifier.
 """
 
 from __future__ import annotations
@@ -85,6 +92,73 @@ class _Enqueue:
         pass
 
 
+class _DirectInbound:
+    """Stands in a python-can ``VirtualBus``'s receive queue: ``VirtualBus.send`` of another
+    bus on the channel calls ``put`` on the sender's thread, and the frame goes through the
+    connection's listener (its flood bound) into the connection's queue at once.
+
+    Nothing reads the bus itself in this mode; a stray ``recv()`` finds nothing (it waits out
+    its timeout, or a short while, instead of spinning)."""
+
+    def __init__(self, listener: _Enqueue) -> None:
+        self._listener = listener
+
+    def put(self, item: Any, block: bool = True, timeout: float | None = None) -> None:
+        self._listener(item)
+
+    def get(self, block: bool = True, timeout: float | None = None) -> Any:
+        if block:
+            time.sleep(NOTIFIER_POLL_S if timeout is None else max(0.0, timeout))
+        raise queue.Empty
+
+    def get_nowait(self) -> Any:
+        raise queue.Empty
+
+    def qsize(self) -> int:
+        return 0
+
+    def empty(self) -> bool:
+        return True
+
+
+def attach_direct(bus: object, listener: _Enqueue) -> bool:
+    """Make ``bus`` hand the frames it receives to ``listener`` on the sender's thread.
+
+    Only an exact python-can ``VirtualBus`` whose receive queue is where this version of
+    python-can keeps it (``bus.queue``, a member of the channel's list ``bus.channel``) is
+    attached: its queue is swapped for a :class:`_DirectInbound` under python-can's channel
+    lock, and frames already waiting in the old queue are passed on first. False (nothing
+    changed) for any other bus, and for a python-can whose virtual bus is laid out otherwise:
+    the caller then reads it with a Notifier. A frame that another thread is sending at the
+    very moment of the swap may land in the old queue and be lost: attach while the channel
+    is quiet (the simulator attaches its buses before its devices are plugged in)."""
+    try:
+        from can.interfaces import virtual
+    except ImportError:  # pragma: no cover - python-can always has it
+        return False
+    if type(bus) is not virtual.VirtualBus:
+        return False
+    lock = getattr(virtual, "channels_lock", None)
+    old = getattr(bus, "queue", None)
+    channel = getattr(bus, "channel", None)
+    if lock is None or not isinstance(old, queue.Queue) or not isinstance(channel, list):
+        return False
+    adapter = _DirectInbound(listener)
+    with lock:
+        for i, q in enumerate(channel):
+            if q is old:
+                channel[i] = adapter
+                break
+        else:
+            return False
+        bus.queue = adapter  # type: ignore[assignment]  # what shutdown() removes
+    while True:
+        try:
+            listener(old.get_nowait())
+        except queue.Empty:
+            return True
+
+
 class EchoFilter:
     """The frames this process sent and has not seen come back yet; bounded, thread-safe.
 
@@ -154,11 +228,13 @@ class Connection:
     """A bus owned by one role (arbitrator, device host); ``inbound`` yields can.Message.
 
     ``inbound`` may also carry an Exception when the driver failed (adapter unplugged); the
-    consumer reports it. ``pace_s`` is the least time between two sends.
+    consumer reports it. ``pace_s`` is the least time between two sends. ``direct``: an
+    in-process simulation's virtual bus delivers into ``inbound`` without a Notifier
+    (:func:`attach_direct`; any other bus is read by a Notifier all the same).
     """
 
     def __init__(self, bus: can.BusABC, *, name: str = "bus", pace_s: float = 0.0,
-                 drop_own: bool | None = None) -> None:
+                 drop_own: bool | None = None, direct: bool = False) -> None:
         import can
 
         self.bus = bus
@@ -174,13 +250,20 @@ class Connection:
         self.drop_own = (kind in _ECHOING) if drop_own is None else drop_own
         self._echoes = EchoFilter()
         self._listener = _Enqueue(self.inbound)
-        self._notifier = can.Notifier(bus, [self._listener], timeout=NOTIFIER_POLL_S)
+        self._notifier: can.Notifier | None = None
+        if not (direct and attach_direct(bus, self._listener)):
+            self._notifier = can.Notifier(bus, [self._listener], timeout=NOTIFIER_POLL_S)
         with _open_lock:
             _open.add(self)
 
     @property
     def closed(self) -> bool:
         return self._closed
+
+    @property
+    def direct(self) -> bool:
+        """True when frames arrive without a Notifier thread (:func:`attach_direct`)."""
+        return self._notifier is None
 
     @property
     def dropped(self) -> int:
@@ -256,7 +339,8 @@ class Connection:
             return
         self._closed = True
         try:
-            self._notifier.stop(timeout=NOTIFIER_STOP_S)
+            if self._notifier is not None:
+                self._notifier.stop(timeout=NOTIFIER_STOP_S)
         except Exception as err:  # a dying driver must not keep the bus open
             log.warning("%s: stopping the notifier failed: %s", self.name, err)
         try:

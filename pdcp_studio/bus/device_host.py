@@ -40,8 +40,8 @@ class DeviceHost:
 
     def __init__(self, bus: can.BusABC, devices: Iterable[SimulatedDevice] = (), *,
                  name: str = "devices", plugged: bool = True,
-                 drop_own: bool | None = None) -> None:
-        self.conn = Connection(bus, name=name, drop_own=drop_own)
+                 drop_own: bool | None = None, direct: bool = False) -> None:
+        self.conn = Connection(bus, name=name, drop_own=drop_own, direct=direct)
         self.name = name
         self.bad_frames = 0
         self.failures = 0

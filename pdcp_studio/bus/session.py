@@ -441,25 +441,28 @@ def open_sim_session(name: str, *, url: str = "", settle_timeout: float = SIM_SE
     arb_opts.setdefault("frame_events", True)
     channel = channel or unique_virtual_channel(f"pdcp-sim-{entry.name}")
     url = url or f"sim:{name}"
-    arbitrator = Arbitrator(open_can_bus("virtual", channel, url=url), name=f"{url} arbitrator",
-                            **arb_opts)
-    # The simulated parts are known: start-up need not wait out the quiet time after them.
-    arbitrator.profile.expect({key for key, dev in system.devices.items() if dev.present})
-    host = None
+    # Both parts take their frames straight from the virtual bus (Connection ``direct``: no
+    # Notifier threads); each attaches while the channel is quiet: the devices first, all
+    # unplugged, then the arbitrator, and only then are the devices plugged in.
+    kwargs = {} if data_rate_hz is None else {"data_rate_hz": data_rate_hz}
+    devices = [SimulatedDevice(d, **kwargs) for d in system.copy().devices.values()]
+    host = DeviceHost(open_can_bus("virtual", channel, url=url), devices,
+                      name=f"{url} devices", plugged=False, direct=True)
+    arbitrator = None
     try:
-        kwargs = {} if data_rate_hz is None else {"data_rate_hz": data_rate_hz}
-        devices = [SimulatedDevice(d, **kwargs) for d in system.copy().devices.values()]
-        host = DeviceHost(open_can_bus("virtual", channel, url=url), devices,
-                          name=f"{url} devices", plugged=False)
+        arbitrator = Arbitrator(open_can_bus("virtual", channel, url=url),
+                                name=f"{url} arbitrator", direct=True, **arb_opts)
+        # The simulated parts are known: start-up need not wait out the quiet time after them.
+        arbitrator.profile.expect({key for key, dev in system.devices.items() if dev.present})
         for dev in system.devices.values():
             if dev.present:
                 host.plug(dev.key)
         session = SimSession(arbitrator, host, entry, system, url=url,
                              data_rate_hz=data_rate_hz, **options)
     except BaseException:
-        arbitrator.close()
-        if host is not None:
-            host.close()
+        if arbitrator is not None:
+            arbitrator.close()
+        host.close()
         raise
     # Settled means every device that is plugged in has joined (on a starved machine a
     # device's first bind request can come after the start-up quiet time) and start-up ran.
