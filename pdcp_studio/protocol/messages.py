@@ -13,7 +13,13 @@ from dataclasses import dataclass, field, fields
 from typing import TYPE_CHECKING, ClassVar, Self
 
 from pdcp_studio.errors import FrameError
-from pdcp_studio.protocol.codes import DLC_RANGE, FunctionCode, ResponseCode, describe_code
+from pdcp_studio.protocol.codes import (
+    DLC_RANGE,
+    FUNCTION_CODES,
+    FunctionCode,
+    ResponseCode,
+    describe_code,
+)
 from pdcp_studio.protocol.identifier import NODE_ID_MAX, Mode, Priority, make_id, split_id
 
 if TYPE_CHECKING:
@@ -49,12 +55,26 @@ _SIDE = {Mode.DEVICE: "a device", Mode.ARBITRATOR: "the bus arbitrator"}
 
 
 def _int_field(where: str, name: str, value: object, kind: str) -> int:
+    """``value`` if it is an integer in ``kind``'s range; else FrameError naming the field
+    (``name`` as a field is spelt, ``granted_node_id``, or as shown, ``node ID``)."""
     if not isinstance(value, int) or isinstance(value, bool):
-        raise FrameError(f"{where}: {name} {value!r} is not an integer")
+        raise FrameError(f"{where}: {_shown(name)} {value!r} is not an integer")
     lo, hi = _RANGES[kind]
     if not lo <= value <= hi:
-        raise FrameError(f"{where}: {name} {value} is out of range ({lo}–{hi})")
+        raise FrameError(f"{where}: {_shown(name)} {value} is out of range ({lo}–{hi})")
     return value
+
+
+def _shown(name: str) -> str:
+    return name.replace("_", " ").replace(" id", " ID")
+
+
+#: Each enum's members by value (``enum(value)`` for a value known to be in range, as one
+#: dict look-up: every message built or decoded converts two or three fields).
+_MEMBERS: dict[type, dict[int, object]] = {
+    enum: {member.value: member for member in enum}
+    for enum in (Priority, Mode, ResponseCode)
+}
 
 
 def _enum_field(where: str, name: str, value: object, enum: type, allowed: range) -> object:
@@ -62,7 +82,7 @@ def _enum_field(where: str, name: str, value: object, enum: type, allowed: range
         choices = ", ".join(f"{v} {enum(v).name}" for v in allowed)
         shown = int(value) if isinstance(value, int) and not isinstance(value, bool) else value
         raise FrameError(f"{where}: {name} {shown!r} is not one of {choices}")
-    return enum(value)
+    return _MEMBERS[enum][value]
 
 
 def _dlc_text(lo: int, hi: int) -> str:
@@ -109,7 +129,9 @@ class _FunctionMessage:
                 allowed = range(3) if kind == "response_bulk" else range(2)
                 put(self, name, _enum_field(where, "response code", value, ResponseCode, allowed))
             else:
-                _int_field(where, name.replace("_", " ").replace(" id", " ID"), value, kind)
+                if (not isinstance(value, int) or isinstance(value, bool)
+                        or not _RANGES[kind][0] <= value <= _RANGES[kind][1]):
+                    _int_field(where, name, value, kind)  # raises, naming the field
         if self._TAIL is not None:
             tail = getattr(self, self._TAIL)
             if not isinstance(tail, bytes | bytearray | memoryview):
@@ -440,10 +462,9 @@ def decode(arbitration_id: int, data: bytes, *,
         return ChannelData.decode(arbitration_id, data)
     if not data:
         raise FrameError(f"{ident}: an empty frame has no function code")
-    try:
-        code = FunctionCode(data[0])
-    except ValueError:
-        raise FrameError(f"{ident}: function code {describe_code(data[0])}") from None
+    code = FUNCTION_CODES.get(data[0])
+    if code is None:
+        raise FrameError(f"{ident}: function code {describe_code(data[0])}")
     return MESSAGE_TYPES[code].decode(arbitration_id, data)  # type: ignore[return-value]
 
 
