@@ -89,7 +89,10 @@ class Session(TransactingMixin):
         self._subs = ev.Subscribers(url or "session")
         self._closed = threading.Event()
         self._close_lock = threading.Lock()
-        self._unsubscribe = arbitrator.subscribe(self._on_event)
+        # Frames are decoded for display only while someone subscribed here (a simulated
+        # prosthesis opens with ~450 frames nobody watches yet).
+        self._unsubscribe = arbitrator.subscribe(self._on_event,
+                                                 wants_frames=self._has_subscribers)
         self._state = "arbitrating"
         self._state_message = ""
 
@@ -117,6 +120,9 @@ class Session(TransactingMixin):
 
     def _emit(self, event: object) -> None:
         self._subs.emit(event)
+
+    def _has_subscribers(self) -> bool:
+        return len(self._subs) > 0
 
     def _on_event(self, event: object) -> None:
         if isinstance(event, ev.BusState):
