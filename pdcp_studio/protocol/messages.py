@@ -1,5 +1,8 @@
 """One frozen dataclass per function code, plus ``ChannelData`` for data-channel frames.
 
+Their equality, hash and repr are :class:`~pdcp_studio.protocol.records.Record`'s, the same
+as ``dataclass(frozen=True)`` generates, written once instead of per class (issue 11).
+
 Every message knows its identifier fields (``node_id``, ``priority``, ``mode``) and encodes to
 ``(arbitration_id, data)``; ``decode()`` turns any frame back into a message or raises
 FrameError naming the function and what is wrong. DLCs follow reference §1 (the restated,
@@ -21,6 +24,7 @@ from pdcp_studio.protocol.codes import (
     describe_code,
 )
 from pdcp_studio.protocol.identifier import NODE_ID_MAX, Mode, Priority, make_id, split_id
+from pdcp_studio.protocol.records import Record
 
 if TYPE_CHECKING:
     from pdcp_studio.model.refs import Direction
@@ -89,8 +93,8 @@ def _dlc_text(lo: int, hi: int) -> str:
     return f"{lo} expected" if lo == hi else f"{lo}–{hi} expected"
 
 
-@dataclass(frozen=True)
-class _FunctionMessage:
+@dataclass(frozen=True, eq=False, repr=False)
+class _FunctionMessage(Record):
     """Shared encode / decode / validation, driven by each class's layout constants.
 
     ``priority`` (and ``mode``, where either side may send) are keyword-only fields.
@@ -191,7 +195,7 @@ _PARAM_FIELDS = (("param", "u8"), ("channel", "u8"))
 _CODE_FIELD = (("code", "response"),)
 
 
-@dataclass(frozen=True)
+@dataclass(frozen=True, eq=False, repr=False)
 class BindRequest(_OneSided):
     """0x01: a device asks for ``node_id`` (the identifier's node ID), at priority 3."""
 
@@ -203,7 +207,7 @@ class BindRequest(_OneSided):
     priority: Priority = field(default=Priority.BINDING, kw_only=True)
 
 
-@dataclass(frozen=True)
+@dataclass(frozen=True, eq=False, repr=False)
 class BindResponse(_OneSided):
     """0x81: ``node_id`` is the ID the request used; ``granted_node_id`` (byte 1) the answer.
 
@@ -222,14 +226,14 @@ class BindResponse(_OneSided):
         return self.granted_node_id == self.node_id
 
 
-@dataclass(frozen=True)
+@dataclass(frozen=True, eq=False, repr=False)
 class GetParameter(_OneSided):
     CODE, MODE, _HEAD, _FIELDS = FunctionCode.GET_PARAMETER, _BA, _PARAM, _PARAM_FIELDS
     param: int
     channel: int
 
 
-@dataclass(frozen=True)
+@dataclass(frozen=True, eq=False, repr=False)
 class GetParameterResponse(_OneSided):
     """0x83: ``value`` is 0–4 bytes (empty with USE_BULK or FAILURE)."""
 
@@ -241,7 +245,7 @@ class GetParameterResponse(_OneSided):
     value: bytes = b""
 
 
-@dataclass(frozen=True)
+@dataclass(frozen=True, eq=False, repr=False)
 class SetParameter(_OneSided):
     """0x04: ``value`` is 1–4 bytes; longer values go by Configure Set Bulk."""
 
@@ -252,7 +256,7 @@ class SetParameter(_OneSided):
     value: bytes
 
 
-@dataclass(frozen=True)
+@dataclass(frozen=True, eq=False, repr=False)
 class SetParameterResponse(_OneSided):
     """0x84: echoes 1–4 value bytes whatever the response code (reference DLC 5–8)."""
 
@@ -264,7 +268,7 @@ class SetParameterResponse(_OneSided):
     value: bytes
 
 
-@dataclass(frozen=True)
+@dataclass(frozen=True, eq=False, repr=False)
 class Suspend(_OneSided):
     """0x08: stop transmitting for ``ms`` milliseconds (0 = until released)."""
 
@@ -272,7 +276,7 @@ class Suspend(_OneSided):
     ms: int
 
 
-@dataclass(frozen=True)
+@dataclass(frozen=True, eq=False, repr=False)
 class SuspendResponse(_OneSided):
     CODE, MODE, _HEAD = FunctionCode.SUSPEND_RESPONSE, _DEV, _SUSPEND_RESPONSE
     _FIELDS = (*_CODE_FIELD, ("ms", "u16"))
@@ -280,18 +284,18 @@ class SuspendResponse(_OneSided):
     ms: int
 
 
-@dataclass(frozen=True)
+@dataclass(frozen=True, eq=False, repr=False)
 class Release(_OneSided):
     CODE, MODE, _HEAD = FunctionCode.RELEASE, _BA, _CODE_ONLY
 
 
-@dataclass(frozen=True)
+@dataclass(frozen=True, eq=False, repr=False)
 class ReleaseResponse(_OneSided):
     CODE, MODE, _HEAD, _FIELDS = FunctionCode.RELEASE_RESPONSE, _DEV, _RESPONSE, _CODE_FIELD
     code: ResponseCode
 
 
-@dataclass(frozen=True)
+@dataclass(frozen=True, eq=False, repr=False)
 class Beacon(_FunctionMessage):
     """0x0A: "still here", from a device (mode 0) or the arbitrator (mode 1).
 
@@ -303,25 +307,25 @@ class Beacon(_FunctionMessage):
     priority: Priority = field(default=Priority.HIGH, kw_only=True)
 
 
-@dataclass(frozen=True)
+@dataclass(frozen=True, eq=False, repr=False)
 class Reset(_OneSided):
     CODE, MODE, _HEAD = FunctionCode.RESET, _BA, _CODE_ONLY
 
 
-@dataclass(frozen=True)
+@dataclass(frozen=True, eq=False, repr=False)
 class ResetResponse(_OneSided):
     CODE, MODE, _HEAD, _FIELDS = FunctionCode.RESET_RESPONSE, _DEV, _RESPONSE, _CODE_FIELD
     code: ResponseCode
 
 
-@dataclass(frozen=True)
+@dataclass(frozen=True, eq=False, repr=False)
 class ConfigureGetBulk(_OneSided):
     CODE, MODE, _HEAD, _FIELDS = FunctionCode.CONFIGURE_GET_BULK, _BA, _PARAM, _PARAM_FIELDS
     param: int
     channel: int
 
 
-@dataclass(frozen=True)
+@dataclass(frozen=True, eq=False, repr=False)
 class ConfigureGetBulkResponse(_OneSided):
     """0x8C: the device will send ``size`` bytes in 0x0E packets."""
 
@@ -333,7 +337,7 @@ class ConfigureGetBulkResponse(_OneSided):
     size: int
 
 
-@dataclass(frozen=True)
+@dataclass(frozen=True, eq=False, repr=False)
 class ConfigureSetBulk(_OneSided):
     """0x0D: the arbitrator will send ``size`` bytes in 0x0E packets."""
 
@@ -344,7 +348,7 @@ class ConfigureSetBulk(_OneSided):
     size: int
 
 
-@dataclass(frozen=True)
+@dataclass(frozen=True, eq=False, repr=False)
 class ConfigureSetBulkResponse(_OneSided):
     CODE, MODE, _HEAD = FunctionCode.CONFIGURE_SET_BULK_RESPONSE, _DEV, _BULK_RESPONSE
     _FIELDS = (*_CODE_FIELD, *_PARAM_FIELDS, ("size", "u16"))
@@ -354,7 +358,7 @@ class ConfigureSetBulkResponse(_OneSided):
     size: int
 
 
-@dataclass(frozen=True)
+@dataclass(frozen=True, eq=False, repr=False)
 class BulkData(_FunctionMessage):
     """0x0E: one packet of 1–6 bytes; ``mode`` (keyword) says which side sends the data."""
 
@@ -365,7 +369,7 @@ class BulkData(_FunctionMessage):
     mode: Mode = field(kw_only=True)
 
 
-@dataclass(frozen=True)
+@dataclass(frozen=True, eq=False, repr=False)
 class BulkDataResponse(_FunctionMessage):
     """0x8E: sent by the receiver of the data after the last packet."""
 
@@ -374,7 +378,7 @@ class BulkDataResponse(_FunctionMessage):
     mode: Mode = field(kw_only=True)
 
 
-@dataclass(frozen=True)
+@dataclass(frozen=True, eq=False, repr=False)
 class UpdateDataChannel(_OneSided):
     """0x0F: a device asks the arbitrator to (re)choose the source of input ``channel``."""
 
@@ -383,7 +387,7 @@ class UpdateDataChannel(_OneSided):
     channel: int
 
 
-@dataclass(frozen=True)
+@dataclass(frozen=True, eq=False, repr=False)
 class UpdateDataChannelResponse(_OneSided):
     CODE, MODE, _HEAD = FunctionCode.UPDATE_DATA_CHANNEL_RESPONSE, _BA, _CHANNEL_RESPONSE
     _FIELDS = (*_CODE_FIELD, ("channel", "u8"))
@@ -391,8 +395,8 @@ class UpdateDataChannelResponse(_OneSided):
     channel: int
 
 
-@dataclass(frozen=True)
-class ChannelData:
+@dataclass(frozen=True, eq=False, repr=False)
+class ChannelData(Record):
     """A data-channel frame: mode 0, an output channel's node ID, 0–8 bytes, no function code."""
 
     MODE: ClassVar[Mode] = Mode.DEVICE
