@@ -7,6 +7,8 @@ was half of importing them, and the app imports them while it opens the simulate
 from :class:`Record` behaves exactly as ``@dataclass(frozen=True)`` would: equal to an instance
 of the same class whose compared fields are equal, hashed by the same fields, shown as
 ``Name(field=value, …)``; ``fields``, ``replace`` and ``asdict`` work as on any dataclass.
+A mutable one (``@dataclass(eq=False, repr=False)`` deriving from :class:`MutableRecord`)
+behaves as ``@dataclass``: compared and shown the same way, and unhashable.
 """
 
 from __future__ import annotations
@@ -51,3 +53,10 @@ class Record:
         shown = ", ".join(f"{n}={getattr(self, n)!r}" for n in _names(self.__class__)[2])
         return f"{self.__class__.__qualname__}({shown})"
 
+
+
+class MutableRecord(Record):
+    """What ``dataclass()`` generates for a mutable class: equality and repr; no hash."""
+
+    __slots__ = ()
+    __hash__ = None  # type: ignore[assignment]

@@ -1,5 +1,6 @@
-"""Bus events share their equality, hash and repr (``protocol/records.py``, issue 11) and
-behave exactly as ``dataclass(frozen=True)`` made them before."""
+"""Bus events, transactions' parts and the log limiter's records share their equality, hash
+and repr (``protocol/records.py``, issue 11) and behave exactly as ``dataclass`` made them
+before."""
 
 from __future__ import annotations
 
@@ -9,6 +10,8 @@ import dataclasses
 import pytest
 
 from pdcp_studio.bus import events as ev
+from pdcp_studio.bus import log_limit
+from pdcp_studio.bus import transaction as tr
 from pdcp_studio.model.refs import ChannelRef, DeviceKey
 from pdcp_studio.model.system import Link
 from pdcp_studio.protocol.records import Record
@@ -49,3 +52,37 @@ def test_an_unhashable_field_makes_the_event_unhashable_as_before():
         hash(ev.PlanApplied(["a", "list"]))
     with pytest.raises(TypeError):
         hash(_reference(ev.PlanApplied(["a", "list"])))
+
+
+LINK = Link(REF, ChannelRef(2, 2, 5, 2))
+FROZEN = [tr.LinkAction("add", LINK, "why"), tr.ParameterWrite(DeviceKey(2, 2, 4), 3, 0, b"\x01"),
+          tr.Policy(False), log_limit.Summary("bad_frame", 3, 1.0, "last")]
+MUTABLE = [tr.Change("links", [tr.LinkAction("add", LINK)], policy=tr.Policy()),
+           tr.TransactionResult(tr.Status.APPLIED, "apply", links_after=[LINK], notes=["n"]),
+           log_limit._Kind(1.0, 2.0, 3)]
+
+
+@pytest.mark.parametrize("obj", FROZEN, ids=lambda o: type(o).__name__)
+def test_frozen_bus_records_behave_as_before(obj):
+    ref = _reference(obj)
+    assert repr(obj) == repr(ref) and hash(obj) == hash(ref)
+    assert copy.copy(obj) == obj and obj != ref
+    with pytest.raises(dataclasses.FrozenInstanceError):
+        obj.anything = 1  # type: ignore[attr-defined]
+
+
+@pytest.mark.parametrize("obj", MUTABLE, ids=lambda o: type(o).__name__)
+def test_mutable_bus_records_compare_and_show_as_before_and_stay_unhashable(obj):
+    ref = _reference(obj)
+    assert repr(obj) == repr(ref)
+    twin = copy.deepcopy(obj)
+    assert twin == obj and obj != ref
+    for f in dataclasses.fields(obj):
+        setattr(twin, f.name, "something else")
+        assert twin != obj
+        setattr(twin, f.name, getattr(obj, f.name))
+        assert twin == obj
+    with pytest.raises(TypeError):
+        hash(obj)
+    with pytest.raises(TypeError):
+        hash(ref)

@@ -52,11 +52,12 @@ MESSAGES = [
 
 
 def _reference(obj: Any) -> Any:
-    """The same values in a plain ``dataclass(frozen=True)`` of the same name and fields."""
+    """The same values in a plain dataclass of the same name, fields and frozenness."""
     cls = type(obj)
     spec = [(f.name, Any, dataclasses.field(compare=f.compare, hash=f.hash, repr=f.repr))
             for f in dataclasses.fields(cls)]
-    plain = dataclasses.make_dataclass(cls.__name__, spec, frozen=True)
+    frozen = cls.__dataclass_params__.frozen  # type: ignore[attr-defined]
+    plain = dataclasses.make_dataclass(cls.__name__, spec, frozen=frozen)
     return plain(**{f.name: getattr(obj, f.name) for f in dataclasses.fields(cls)})
 
 
