@@ -27,6 +27,7 @@ import logging
 import queue
 import threading
 import time
+from collections.abc import Callable
 from typing import TYPE_CHECKING, Any
 
 from pdcp_studio.errors import TransportError
@@ -100,11 +101,11 @@ class _DirectInbound:
     Nothing reads the bus itself in this mode; a stray ``recv()`` finds nothing (it waits out
     its timeout, or a short while, instead of spinning)."""
 
-    def __init__(self, listener: _Enqueue) -> None:
-        self._listener = listener
+    def __init__(self, listener: Callable[[Any], None]) -> None:
+        self.listener = listener
 
     def put(self, item: Any, block: bool = True, timeout: float | None = None) -> None:
-        self._listener(item)
+        self.listener(item)
 
     def get(self, block: bool = True, timeout: float | None = None) -> Any:
         if block:
@@ -121,28 +122,29 @@ class _DirectInbound:
         return True
 
 
-def attach_direct(bus: object, listener: _Enqueue) -> bool:
+def attach_direct(bus: object, listener: _Enqueue) -> _DirectInbound | None:
     """Make ``bus`` hand the frames it receives to ``listener`` on the sender's thread.
 
     Only an exact python-can ``VirtualBus`` whose receive queue is where this version of
     python-can keeps it (``bus.queue``, a member of the channel's list ``bus.channel``) is
     attached: its queue is swapped for a :class:`_DirectInbound` under python-can's channel
-    lock, and frames already waiting in the old queue are passed on first. False (nothing
-    changed) for any other bus, and for a python-can whose virtual bus is laid out otherwise:
-    the caller then reads it with a Notifier. A frame that another thread is sending at the
-    very moment of the swap may land in the old queue and be lost: attach while the channel
-    is quiet (the simulator attaches its buses before its devices are plugged in)."""
+    lock, and frames already waiting in the old queue are passed on first; returns the
+    stand-in. None (nothing changed) for any other bus, and for a python-can whose virtual bus
+    is laid out otherwise: the caller then reads it with a Notifier. A frame that another
+    thread is sending at the very moment of the swap may land in the old queue and be lost:
+    attach while the channel is quiet (the simulator attaches its buses before its devices are
+    plugged in)."""
     try:
         from can.interfaces import virtual
     except ImportError:  # pragma: no cover - python-can always has it
-        return False
+        return None
     if type(bus) is not virtual.VirtualBus:
-        return False
+        return None
     lock = getattr(virtual, "channels_lock", None)
     old = getattr(bus, "queue", None)
     channel = getattr(bus, "channel", None)
     if lock is None or not isinstance(old, queue.Queue) or not isinstance(channel, list):
-        return False
+        return None
     adapter = _DirectInbound(listener)
     with lock:
         for i, q in enumerate(channel):
@@ -150,13 +152,13 @@ def attach_direct(bus: object, listener: _Enqueue) -> bool:
                 channel[i] = adapter
                 break
         else:
-            return False
+            return None
         bus.queue = adapter  # type: ignore[assignment]  # what shutdown() removes
     while True:
         try:
             listener(old.get_nowait())
         except queue.Empty:
-            return True
+            return adapter
 
 
 class EchoFilter:
@@ -251,8 +253,10 @@ class Connection:
         self._echoes = EchoFilter()
         self._listener = _Enqueue(self.inbound)
         self._notifier: can.Notifier | None = None
-        if not (direct and attach_direct(bus, self._listener)):
+        self._direct = attach_direct(bus, self._listener) if direct else None
+        if self._direct is None:
             self._notifier = can.Notifier(bus, [self._listener], timeout=NOTIFIER_POLL_S)
+        self._count_lock = threading.Lock()
         with _open_lock:
             _open.add(self)
 
@@ -263,7 +267,26 @@ class Connection:
     @property
     def direct(self) -> bool:
         """True when frames arrive without a Notifier thread (:func:`attach_direct`)."""
-        return self._notifier is None
+        return self._direct is not None
+
+    def hand_over(self, handler: Callable[[can.Message], None]) -> bool:
+        """Direct mode only: from now on each frame received is given to ``handler`` on the
+        thread that sent it (the in-process simulator's device host, issue 11), instead of
+        being queued for the consumer thread; own echoes are still dropped and frames
+        counted. ``handler`` must not block: the sender waits for it. False (frames keep
+        being queued) when this connection has a Notifier."""
+        if self._direct is None:
+            return False
+
+        def take(msg: can.Message) -> None:
+            if self.drop_own and self._is_own(msg):
+                return
+            with self._count_lock:
+                self.received += 1
+            handler(msg)
+
+        self._direct.listener = take
+        return True
 
     @property
     def dropped(self) -> int:

@@ -180,7 +180,7 @@ def test_a_virtual_bus_laid_out_otherwise_is_left_alone(channel):
     saved = bus.queue
     bus.queue = None  # a python-can that keeps its receive queue elsewhere
     try:
-        assert connection.attach_direct(bus, listener) is False
+        assert connection.attach_direct(bus, listener) is None
         assert saved in bus.channel
     finally:
         bus.queue = saved
@@ -196,3 +196,67 @@ def test_a_simulated_prosthesis_runs_without_notifier_threads():
         assert _notifier_threads(channel) == []
         assert len(session.system().links) == 3  # appendix D's links: it works end to end
         assert session.host.bad_frames == 0 and session.arbitrator.bad_frames == 0  # type: ignore[attr-defined]
+
+
+# -- the device host answers on the sender's thread (direct mode) ---------------------------
+def _next(conn: Connection, kind: type, timeout: float = 2.0):
+    from pdcp_studio.protocol import decode
+
+    deadline = time.monotonic() + timeout
+    while time.monotonic() < deadline:
+        item = conn.get(max(0.0, deadline - time.monotonic()))
+        if isinstance(item, can.Message):
+            message = decode(item.arbitration_id, bytes(item.data))
+            if isinstance(message, kind):
+                return message
+    raise AssertionError(f"no {kind.__name__} within {timeout} s")
+
+
+def test_devices_answer_on_the_senders_thread_and_their_timers_still_run(monkeypatch, channel):
+    from pdcp_studio.bus import device_host
+    from pdcp_studio.bus.device_host import DeviceHost
+    from pdcp_studio.bus.device_sim import SimulatedDevice
+    from pdcp_studio.model.system import Device
+    from pdcp_studio.protocol import (
+        Beacon,
+        BindRequest,
+        BindResponse,
+        GetParameter,
+        GetParameterResponse,
+        Reset,
+        ResetResponse,
+        decode,
+    )
+
+    # The host thread would sleep 5 s between timers: only the wake-up of a frame handled
+    # on another thread brings a timer that frame set (the reset's power-on) in time.
+    monkeypatch.setattr(device_host, "IDLE_WAKE_S", 5.0)
+    arb = Connection(can.Bus(interface="virtual", channel=channel), name="arb", direct=True)
+    quiet = Device(0x0A51, 0x0101, 77, name="quiet", beacon_interval=60000)
+    host = DeviceHost(can.Bus(interface="virtual", channel=channel), [SimulatedDevice(quiet)],
+                      name="devices", direct=True)
+    try:
+        assert host.inline and host.conn.direct
+        req = _next(arb, BindRequest)
+        arb.send(*BindResponse(req.node_id, req.node_id, req.vid, req.pid, req.serial).encode())
+        _next(arb, Beacon)  # bound
+        while arb.get(0.05) is not None:  # bind retries sent before the answer
+            pass
+        arb.send(*GetParameter(req.node_id, 1, 0).encode())
+        answer = arb.inbound.get_nowait()  # already there when send() returned
+        assert isinstance(decode(answer.arbitration_id, bytes(answer.data)),
+                          GetParameterResponse)
+        deadline = time.monotonic() + 5.0  # until the host thread sleeps its long sleep
+        while host._wake_at - time.monotonic() < 2.0 and time.monotonic() < deadline:
+            time.sleep(0.01)
+        assert host._wake_at - time.monotonic() >= 2.0
+        arb.send(*Reset(req.node_id).encode())
+        answer = arb.inbound.get_nowait()
+        assert isinstance(decode(answer.arbitration_id, bytes(answer.data)), ResetResponse)
+        t0 = time.monotonic()
+        again = _next(arb, BindRequest, timeout=1.5)  # power-on 2 ms after the reset
+        assert again.serial == 77 and time.monotonic() - t0 < 1.5
+        assert host.conn.received == 3 and host.failures == 0
+    finally:
+        host.close()
+        arb.close()
