@@ -31,9 +31,13 @@ def _own_words(system: System, key: DeviceKey) -> str:
     device = system.devices.get(key)
     catalogue = default_catalog()
     name = device.name.strip() if device is not None else ""
-    if name or catalogue.product_name(key) or device is None or not device.descriptor:
+    if name:
+        return name
+    product = catalogue.product_name(key) or (device.descriptor if device is not None
+                                              else "")
+    if not product:
         return catalogue.label(key, name)
-    return f"{device.descriptor} (serial {key.serial})"
+    return _t("{name} (serial {serial})").format(name=product, serial=key.serial)
 
 
 def part_names(system: System) -> dict[DeviceKey, str]:
