@@ -161,6 +161,21 @@ def attach_direct(bus: object, listener: _Enqueue) -> _DirectInbound | None:
             return adapter
 
 
+def virtual_channel_in_use(channel: object) -> bool:
+    """True when python-can's virtual bus already has a bus on ``channel`` (and when this
+    python-can does not say): the simulator then reads its buses with Notifiers, as a direct
+    attach wants a quiet channel, and two device hosts answering on each other's threads
+    could wait for each other."""
+    try:
+        from can.interfaces import virtual
+
+        channels, lock = virtual.channels, virtual.channels_lock
+    except (ImportError, AttributeError):  # pragma: no cover - laid out otherwise
+        return True
+    with lock:
+        return bool(channels.get(channel))  # type: ignore[call-overload]
+
+
 class EchoFilter:
     """The frames this process sent and has not seen come back yet; bounded, thread-safe.
 

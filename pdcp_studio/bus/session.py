@@ -433,6 +433,7 @@ def open_sim_session(name: str, *, url: str = "", settle_timeout: float = SIM_SE
                      **options: Any) -> SimSession:
     """A built-in prosthesis (or a system file) on a new in-process virtual bus."""
     from pdcp_studio.bus.arbitrator import Arbitrator
+    from pdcp_studio.bus.connection import virtual_channel_in_use
     from pdcp_studio.bus.device_host import DeviceHost
     from pdcp_studio.bus.device_sim import SimulatedDevice
     from pdcp_studio.bus.simulator import resolve_prosthesis
@@ -447,17 +448,20 @@ def open_sim_session(name: str, *, url: str = "", settle_timeout: float = SIM_SE
     arb_opts.setdefault("frame_events", True)
     channel = channel or unique_virtual_channel(f"pdcp-sim-{entry.name}")
     url = url or f"sim:{name}"
-    # Both parts take their frames straight from the virtual bus (Connection ``direct``: no
-    # Notifier threads); each attaches while the channel is quiet: the devices first, all
-    # unplugged, then the arbitrator, and only then are the devices plugged in.
+    # On a channel of its own, both parts take their frames straight from the virtual bus
+    # (Connection ``direct``: no Notifier threads; the devices answer on the sender's thread).
+    # Each attaches while the channel is quiet: the devices first, all unplugged, then the
+    # arbitrator, and only then are the devices plugged in. A channel others already use
+    # (a caller's ``channel``) is read with Notifiers, as any bus.
+    direct = not virtual_channel_in_use(channel)
     kwargs = {} if data_rate_hz is None else {"data_rate_hz": data_rate_hz}
     devices = [SimulatedDevice(d, **kwargs) for d in system.copy().devices.values()]
     host = DeviceHost(open_can_bus("virtual", channel, url=url), devices,
-                      name=f"{url} devices", plugged=False, direct=True)
+                      name=f"{url} devices", plugged=False, direct=direct)
     arbitrator = None
     try:
         arbitrator = Arbitrator(open_can_bus("virtual", channel, url=url),
-                                name=f"{url} arbitrator", direct=True, **arb_opts)
+                                name=f"{url} arbitrator", direct=direct, **arb_opts)
         # The simulated parts are known: start-up need not wait out the quiet time after them.
         arbitrator.profile.expect({key for key, dev in system.devices.items() if dev.present})
         for dev in system.devices.values():

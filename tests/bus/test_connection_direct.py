@@ -260,3 +260,24 @@ def test_devices_answer_on_the_senders_thread_and_their_timers_still_run(monkeyp
     finally:
         host.close()
         arb.close()
+
+
+def test_a_simulated_prosthesis_on_a_channel_already_in_use_is_read_with_notifiers():
+    """Two simulated prostheses on one channel: the second's parts have Notifiers (its
+    devices could otherwise answer on the first's host thread while that one answers on
+    theirs), and both work."""
+    from pdcp_studio.bus.connection import virtual_channel_in_use
+    from pdcp_studio.bus.session import open_sim_session
+
+    channel = unique_virtual_channel("pdcp-sim-shared")
+    assert not virtual_channel_in_use(channel)
+    tap = can.Bus(interface="virtual", channel=channel)
+    try:
+        assert virtual_channel_in_use(channel)
+        with open_sim_session("thesis-test2", channel=channel) as session:
+            assert not session.arbitrator.conn.direct and not session.host.inline
+            assert _notifier_threads(channel)
+            assert len(session.system().links) == 3
+    finally:
+        tap.shutdown()
+    assert not virtual_channel_in_use(channel)
