@@ -182,9 +182,11 @@ class Dispatcher:
             decision = arb.nodes.on_bind_request(req, now, arb.presence.duplicates)
             set_up = self._bound(decision.key, decision.node_id, now) \
                 if decision.kind == "grant" else None
-        self._answer(decision)
-        if set_up is not None:
-            set_up()  # after the answer: the set-up's first request must not overtake it
+        try:
+            self._answer(decision)
+        finally:
+            if set_up is not None:
+                set_up()  # after the answer: the set-up's first request must not overtake it
 
     def _answer_bind(self, req: BindRequest, now: float) -> None:
         arb = self.arb
@@ -192,9 +194,11 @@ class Dispatcher:
             decision = arb.nodes.decide_bind(req, now)
             set_up = self._bound(decision.key, decision.node_id, now) \
                 if decision.kind == "grant" else None
-        self._answer(decision)
-        if set_up is not None:
-            set_up()
+        try:
+            self._answer(decision)
+        finally:
+            if set_up is not None:
+                set_up()
 
     def _answer(self, decision: BindDecision) -> None:
         arb = self.arb
