@@ -13,7 +13,9 @@ The physical bound: the devices' bind requests, the arbitrator's set-up reads an
 link writes are ~450 frames of 8 bytes, 60 ms on a 1 Mbit/s bus; the in-process bus has no
 wire, so what is left is Python's work per frame and per thread hop.
 
-Run: ``python benchmarks/sim_open.py [--runs N] [--busy] [--url sim:NAME]``.
+Run: ``python benchmarks/sim_open.py [--runs N] [--busy] [--url sim:NAME] [--compare REF]``;
+``--compare REF`` (a git commit, e.g. the one before a change) measures that version too,
+interleaved with this one run by run (the machine's speed drifts), and prints both.
 """
 
 from __future__ import annotations
@@ -72,35 +74,58 @@ def one_process(url: str, busy: bool) -> None:
     stop.set()
 
 
+def _export(ref: str, into: Path) -> Path:
+    """The package (and its resources) as of git commit ``ref``, compiled, under ``into``."""
+    import compileall
+    import tarfile
+
+    archive = into / "tree.tar"
+    subprocess.run(["git", "archive", "-o", str(archive), ref, "pdcp_studio", "resources"],
+                   cwd=ROOT, check=True)
+    with tarfile.open(archive) as tar:
+        tar.extractall(into, filter="fully_trusted")
+    compileall.compile_dir(into / "pdcp_studio", quiet=1)
+    return into
+
+
 def main() -> None:
     if "--child" in sys.argv:
         one_process(sys.argv[sys.argv.index("--child") + 1], "--busy" in sys.argv)
         return
+    import tempfile
+
     runs = int(sys.argv[sys.argv.index("--runs") + 1]) if "--runs" in sys.argv else RUNS
     url = sys.argv[sys.argv.index("--url") + 1] if "--url" in sys.argv else "sim:transradial"
     busy = "--busy" in sys.argv
-    env = dict(os.environ, PYTHONPATH=str(ROOT))
-    first: list[dict[str, float]] = []
-    later: list[dict[str, float]] = []
-    for _ in range(runs):
-        out = subprocess.run([sys.executable, __file__, "--child", url]
-                             + (["--busy"] if busy else []), capture_output=True, text=True,
-                             env=env, cwd=ROOT, timeout=120, check=True).stdout
-        for line in out.splitlines():
-            fields = dict(kv.split("=") for kv in line.split())
-            row = {k: float(v) for k, v in fields.items()}
-            (first if row["open"] == 0 else later).append(row)
+    ref = sys.argv[sys.argv.index("--compare") + 1] if "--compare" in sys.argv else None
+    with tempfile.TemporaryDirectory(prefix="pdcp-sim-open-") as tmp:
+        trees = {"this version": ROOT}
+        if ref is not None:
+            trees[ref] = _export(ref, Path(tmp))
+        rows: dict[str, tuple[list[dict[str, float]], list[dict[str, float]]]] = {
+            name: ([], []) for name in trees}
+        for _ in range(runs):
+            for name, root in trees.items():
+                out = subprocess.run([sys.executable, __file__, "--child", url]
+                                     + (["--busy"] if busy else []), capture_output=True,
+                                     text=True, env=dict(os.environ, PYTHONPATH=str(root)),
+                                     cwd=root, timeout=120, check=True).stdout
+                for line in out.splitlines():
+                    row = {k: float(v) for k, v in (kv.split("=") for kv in line.split())}
+                    rows[name][0 if row["open"] == 0 else 1].append(row)
 
-    def show(label: str, rows: list[dict[str, float]]) -> None:
-        med = {k: statistics.median(r[k] for r in rows) for k in rows[0]}
-        print(f"{label}: CPU {med['cpu']:.3f} s, wall {med['wall']:.3f} s, "
+    def show(label: str, got: list[dict[str, float]]) -> None:
+        med = {k: statistics.median(r[k] for r in got) for k in got[0]}
+        print(f"    {label}: CPU {med['cpu']:.3f} s, wall {med['wall']:.3f} s, "
               f"{med['frames']:.0f} frames, {med['wakeups']:.0f} thread wake-ups, "
-              f"close {med['close']:.3f} s (medians of {len(rows)})")
+              f"close {med['close']:.3f} s (medians of {len(got)})")
 
     print(f"open_session({url!r}){' beside a busy thread' if busy else ''}, switch interval "
           f"{SWITCH_INTERVAL_S * 1000:g} ms; bound: the frames' 60 ms on a 1 Mbit/s wire")
-    show("  first open (imports included)", first)
-    show("  later opens", later)
+    for name, (first, later) in rows.items():
+        print(f"  {name}:")
+        show("first open (imports included)", first)
+        show("later opens", later)
 
 
 if __name__ == "__main__":
