@@ -1,7 +1,7 @@
 """Desktop app performance (issue 5): start-up, a 254-device system, a responsive GUI.
 
-1. Start-up: ``python -m pdcp_studio gui --bus sim:transradial`` (the simulated prosthesis;
-   bare, the app opens on its start page) from process spawn until the window is shown, laid out and bound to the bus — the app
+1. Start-up: ``python -m pdcp_studio gui --bus sim:transradial`` (the simulated prosthesis, as
+   bare ``pdcp-studio`` opens it; ``gui`` alone opens on the start page) from process spawn until the window is shown, laid out and bound to the bus — the app
    prints a line then (``PDCP_STUDIO_STARTUP_PROBE``) and exits. Target < 1.5 s.
 2. A 254-device system: load the file, lay it out, build the scene and render it once.
    Target < 1 s (layered layout, no force-directed step).

@@ -132,7 +132,8 @@ class ProfileDriver:
                 elif self.duty_due(now, arb._busy()):
                     self.run_duty_cycle()
             except PdcpError as err:
-                arb._error(f"profile layer: {err}", "plan")
+                if not arb.closed:  # a plan cut off by closing the session is no news
+                    arb._error(f"profile layer: {err}", "plan")
             except Exception:
                 log.exception("%s: the profile layer failed", arb.name)
 
@@ -171,6 +172,9 @@ class ProfileDriver:
                             if exists:
                                 arb.links.remove(action.link)
                     except PdcpError as err:
+                        if arb.closed:  # closing the session cut the plan off: no error
+                            cancelled = f"the bus was closed after {done} of {total} actions"
+                            break
                         failures.append(f"{action.op.value} {action.link}: {err}")
                         arb._error(f"plan {plan.mode}: {failures[-1]}", "plan")
                 else:
@@ -277,8 +281,8 @@ class ProfileDriver:
         finally:
             with arb._lock:
                 self.plan_running -= 1
-            for note in notes:
-                log.warning("%s: %s", arb.name, note)
+            for note in notes:  # a release cut off by closing the session is no news
+                (log.debug if arb.closed else log.warning)("%s: %s", arb.name, note)
         return True
 
     def _policy_for_plans(self) -> bool:

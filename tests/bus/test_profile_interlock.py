@@ -105,3 +105,23 @@ def test_a_device_that_will_not_hold_still_stops_the_repair_before_any_write():
         assert not _link_writes(msgs), "a link was written with a device not held"
         assert any("not written" in e and "did not suspend" in e for e in errors), errors
         assert session.system().links == before  # no replacement link was made
+
+
+def test_a_plan_cut_off_by_closing_the_session_is_no_error(caplog):
+    """Closing a session while the profile layer writes (a duty-cycle repair on a busy
+    machine) stops the plan quietly: no warning for the writes and releases the closed bus
+    refuses, and the result says the bus was closed."""
+    import logging
+
+    from pdcp_studio.engine.modes import plan_clear
+
+    with recorded("sim:thesis-test4") as (session, _recorder):
+        arb = session.arbitrator
+        plan = plan_clear(arb.system())
+        assert plan.actions
+        arb.close()
+        with caplog.at_level(logging.WARNING):
+            result = arb.profile.apply_plan(plan)
+    assert result.status.value == "failed"
+    assert "the bus was closed after 0 of" in result.reason
+    assert not [r for r in caplog.records if r.levelno >= logging.WARNING], caplog.text
