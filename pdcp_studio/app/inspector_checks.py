@@ -19,15 +19,13 @@ def checked_findings(system: System, autoconfigure: bool) -> tuple[list[Any], Te
     once, not once per finding (each lookup finds the user's folder again: 252 findings
     of a 254-device bus took ~60 ms)."""
     from pdcp_studio.app.finding_text import finding_detail, plain_finding
+    from pdcp_studio.app.part_names import part_names
     from pdcp_studio.engine import check_system
-    from pdcp_studio.model.catalog import default_catalog
 
     findings = check_system(system, autoconfigure=autoconfigure) if system.devices else []
     if not findings:
         return [], []
-    catalog = default_catalog()
-    names = {r.device: catalog.device_label(system.devices[r.device])
-             for f in findings for r in f.refs[:2] if r.device in system.devices}
+    names = part_names(system)
     texts = [(plain_finding(f, system, autoconfigure, names), finding_detail(f))
              for f in findings]
     return findings, texts

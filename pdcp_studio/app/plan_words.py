@@ -13,7 +13,6 @@ from typing import Any
 from PySide6.QtCore import QT_TRANSLATE_NOOP
 
 from pdcp_studio.app.i18n import translate
-from pdcp_studio.model.catalog import default_catalog
 from pdcp_studio.model.refs import ChannelRef, DeviceKey
 
 _CTX = "PlanWords"
@@ -88,9 +87,9 @@ def refusal_words(kind: Any) -> str:
 
 def device_words(system: Any, key: DeviceKey) -> str:
     """The device's product name from the catalogue (its own name if it has one)."""
-    device = system.devices.get(key) if system is not None else None
-    catalog = default_catalog()
-    return catalog.device_label(device) if device is not None else catalog.label(key)
+    from pdcp_studio.app.part_names import part_name
+
+    return part_name(system, key)
 
 
 def channel_words(system: Any, ref: ChannelRef, profile_name: str = "") -> str:

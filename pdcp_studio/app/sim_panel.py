@@ -51,13 +51,35 @@ def default_name(key: DeviceKey) -> str:
     return default_catalog().label(key)
 
 
-def _catalogue_name(key: DeviceKey, label: str) -> str:
-    """The name the graph and the tree give the device (its own name, else the catalogue's
-    product with its serial): one name for one device in every panel."""
+def _bus_name(key: DeviceKey, model: Any, label: str) -> str:
+    """What the graph will call a simulated device once it is on the bus: the name it
+    tells the bus (its descriptor), else its product from the catalogue. The simulator's
+    own label ("Spare hand") is never read from the bus, so it is not the part's name."""
     from pdcp_studio.model.catalog import default_catalog
 
+    catalog = default_catalog()
+    if model is not None:
+        own = (getattr(model, "descriptor", "") or "").strip()
+        return own or catalog.product_name(key) or catalog.label(key)
     own = "" if label in (str(key), f"Device {key}") else label
-    return default_catalog().label(key, own)
+    return catalog.product_name(key) or catalog.label(key, own)
+
+
+def sim_names(keys_labels: list[tuple[DeviceKey, str]], name_of: Any,
+              models: dict[DeviceKey, Any]) -> dict[DeviceKey, str]:
+    """The Simulator panel's names: the graph's name for a part on it (``name_of``); for
+    the others the name the graph will give them (:func:`_bus_name`), with the serial
+    number where it would read like another part's (the spare hand beside the hand)."""
+    from pdcp_studio.app.part_names import twin_format
+
+    shown = {k: name_of(k) for k, _lb in keys_labels} if name_of is not None else {}
+    names = {k: n for k, n in shown.items() if n}
+    rest = {k: _bus_name(k, models.get(k), lb) for k, lb in keys_labels if k not in names}
+    taken = list(names.values()) + list(rest.values())
+    for k, base in rest.items():
+        names[k] = (twin_format().format(name=base, serial=k.serial)
+                    if taken.count(base) > 1 else base)
+    return {k: names[k] for k, _lb in keys_labels}
 
 
 class SimPanel(QWidget):
@@ -206,14 +228,15 @@ class SimPanel(QWidget):
         """Name the devices again (the graph's names changed: a new snapshot of the bus)."""
         raw = getattr(self, "_raw", None)
         if raw is not None:
-            names = {DeviceKey(*k): self._name(DeviceKey(*k), str(lb)) for k, lb, _p in raw}
-            if names != {k: v[0] for k, v in self._devices.items()}:
+            if self._names(raw) != {k: v[0] for k, v in self._devices.items()}:
                 self._show_devices(raw)
 
-    def _name(self, key: DeviceKey, label: str) -> str:
-        """The graph's name for a device on it; else the catalogue's rule on the simulator's."""
-        shown = self.name_of(key) if self.name_of is not None else None
-        return shown or _catalogue_name(key, label)
+    def _names(self, devices: list[Any]) -> dict[DeviceKey, str]:
+        """Every simulated device's name (:func:`sim_names`)."""
+        system = getattr(getattr(self.bridge, "session", None), "initial_system", None)
+        models = dict(getattr(system, "devices", {}) or {})
+        return sim_names([(DeviceKey(*k), str(lb)) for k, lb, _p in devices], self.name_of,
+                         models)
 
     def _label(self, key: DeviceKey) -> str:
         entry = self._devices.get(key)
@@ -230,9 +253,9 @@ class SimPanel(QWidget):
     def _show_devices(self, devices: list[Any]) -> None:
         selected = self.selected_key()
         self._raw = list(devices)
-        self._devices = {DeviceKey(*key): (self._name(DeviceKey(*key), str(label)),
-                                           bool(plugged))
-                         for key, label, plugged in devices}
+        names = self._names(self._raw)
+        self._devices = {DeviceKey(*key): (names[DeviceKey(*key)], bool(plugged))
+                         for key, _label, plugged in devices}
         self.tree.clear()
         for key, (label, _plugged) in self._devices.items():
             item = QTreeWidgetItem(self.tree)

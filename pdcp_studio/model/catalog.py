@@ -76,6 +76,23 @@ class Catalog:
         """A device's name to show: its own name or descriptor, else the catalogue's."""
         return self.label(device.key, device.name or device.descriptor or "")
 
+    def own_name(self, device: Device) -> str:
+        """What a part is called before any serial number is added: its own name or
+        descriptor, else its product from the catalogue, else ``unknown device (…)``."""
+        own = (device.name or device.descriptor or "").strip()
+        return own or self.product_name(device.key) or unknown_device_label(device.key)
+
+    def part_names(self, devices: Iterable[Device],
+                   twin: str = "{name} (serial {serial})") -> dict[DeviceKey, str]:
+        """One name per part (:meth:`own_name`); the serial number (``twin``) only where
+        two of ``devices`` would otherwise read the same."""
+        own = {d.key: self.own_name(d) for d in devices}
+        seen: dict[str, int] = {}
+        for name in own.values():
+            seen[name] = seen.get(name, 0) + 1
+        return {key: twin.format(name=name, serial=key.serial) if seen[name] > 1 else name
+                for key, name in own.items()}
+
     def add(self, entries: Iterable[CatalogEntry]) -> Catalog:
         merged = dict(self.entries)
         merged.update({(e.vid, e.pid): e for e in entries})

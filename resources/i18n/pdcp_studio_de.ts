@@ -4818,4 +4818,15 @@ Die Prothese ist wie zuvor.</translation>
             <translation>Noch keine Datei geöffnet. Dateien, die Sie öffnen oder speichern, erscheinen hier.</translation>
         </message>
     </context>
+    <context>
+        <name>PartNames</name>
+        <message>
+            <source>{name} (serial {serial})</source>
+            <translation>{name} (Seriennummer {serial})</translation>
+        </message>
+        <message>
+            <source>VID {vid} · PID {pid} · serial {serial}</source>
+            <translation>VID {vid} · PID {pid} · Seriennummer {serial}</translation>
+        </message>
+    </context>
 </TS>

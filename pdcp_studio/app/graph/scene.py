@@ -338,8 +338,15 @@ class BusScene(QGraphicsScene):
         """The device's own name, else its product from the device catalogue (looked up
         once per rebuild: finding the catalogue reads the user's folder)."""
         if self._catalog is None:
-            self._catalog = default_catalog()
-        return self._catalog.device_label(device)
+            from pdcp_studio.app.part_names import part_names
+
+            self._catalog = part_names(self.doc.system)
+        name = self._catalog.get(device.key)
+        if name is None:  # a device just added: name the system again
+            from pdcp_studio.app.part_names import part_name
+
+            name = part_name(self.doc.system, device.key)
+        return name
 
     def profile_name(self, profile: int) -> str:
         return self.doc.profile_name(profile)
@@ -398,6 +405,11 @@ class BusScene(QGraphicsScene):
             self.rebuild()
             return
         card.set_device(device, card.role)
+        before, self._catalog = self._catalog, None
+        if before is not None and before.get(key) != self.device_label(device):
+            for other, name in before.items():  # two parts now read alike, or no longer
+                if other != key and other in self.cards and self._catalog.get(other) != name:
+                    self.cards[other].refresh()
         # A live snapshot changes many devices at once: recompute the states (O(system))
         # once, when the event loop is free, not once per device.
         self._states_timer.start()
