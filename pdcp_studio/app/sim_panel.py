@@ -98,7 +98,7 @@ class SimPanel(QWidget):
 
         self.tree = QTreeWidget()
         self.tree.setHeaderLabels(
-            [self.tr("Device"), self.tr("VID/PID/SN"), self.tr("Power"), self.tr("On bus")]
+            [self.tr("Device"), self.tr("Product"), self.tr("Power"), self.tr("On bus")]
         )
         self.tree.setRootIsDecorated(False)
         header = self.tree.header()  # the name takes the room the other columns leave
@@ -262,7 +262,12 @@ class SimPanel(QWidget):
             item.setData(COL_NAME, KEY_ROLE, key)
             item.setText(COL_NAME, label)
             item.setToolTip(COL_NAME, label)  # whole, when the column is narrower
-            item.setText(COL_KEY, str(key))
+            from pdcp_studio.app.kind_icons import entry_of
+            from pdcp_studio.app.part_names import numbers
+
+            entry = entry_of(key)  # the numbers are the engineer's: in the tooltip
+            item.setText(COL_KEY, entry.product if entry is not None else self.tr("unknown"))
+            item.setToolTip(COL_KEY, numbers(key))
             self._paint(item, key)
         self._fill_replacements()
         self.select(selected)
@@ -313,12 +318,15 @@ class SimPanel(QWidget):
                       .format(name=name, diff=result.mismatch()))
 
     def _fill_replacements(self) -> None:
+        from pdcp_studio.app.part_names import numbers
+
         current = self.replace_combo.currentData()
         self.replace_combo.clear()
         for key, (label, plugged) in self._devices.items():
             if not plugged:
                 self.replace_combo.addItem(label, key)
-                self.replace_combo.setItemData(self.replace_combo.count() - 1, str(key),
+                self.replace_combo.setItemData(self.replace_combo.count() - 1,
+                                               f"{label}\n{numbers(key)}",
                                                Qt.ItemDataRole.ToolTipRole)
         index = self.replace_combo.findData(current)
         if index >= 0:

@@ -82,6 +82,9 @@ class DeviceTree(QTreeWidget):
         item.setData(0, ROLE, key)
         self._signatures[key] = self._shown(key)
         item.setToolTip(0, numbers(key))
+        from pdcp_studio.app.kind_icons import icon_for
+
+        item.setIcon(0, icon_for(key))
         colour = style.MISSING_TEXT if not device.present else style.ROLE_COLOURS[role]
         item.setForeground(1, QBrush(colour))
         if not device.present:

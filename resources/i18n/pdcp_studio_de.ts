@@ -4829,4 +4829,15 @@ Die Prothese ist wie zuvor.</translation>
             <translation>VID {vid} · PID {pid} · Seriennummer {serial}</translation>
         </message>
     </context>
+    <context>
+        <name>SimPanel</name>
+        <message>
+            <source>Product</source>
+            <translation>Produkt</translation>
+        </message>
+        <message>
+            <source>unknown</source>
+            <translation>unbekannt</translation>
+        </message>
+    </context>
 </TS>

@@ -20,7 +20,7 @@ from pdcp_studio.app import commands
 from pdcp_studio.app.document import Document
 from pdcp_studio.app.graph import layout, style
 from pdcp_studio.app.graph.analysis import SystemStates, compute_states, link_refusal
-from pdcp_studio.app.graph.items import DETAIL_ZOOM, DeviceItem, PortItem
+from pdcp_studio.app.graph.items import DETAIL_ZOOM, DeviceItem, PortItem, forget_catalogue
 from pdcp_studio.app.graph.links import DragLinkItem, LinkItem
 from pdcp_studio.model import profile as prof
 from pdcp_studio.model.catalog import default_catalog
@@ -144,6 +144,7 @@ class BusScene(QGraphicsScene):
             self.cards.clear()
             self._to_render.clear()
             self._catalog = None
+            forget_catalogue()
             self.link_items.clear()
             self.preview_items.clear()
             self.unwritten_items.clear()
