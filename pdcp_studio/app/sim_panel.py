@@ -175,6 +175,7 @@ class SimPanel(QWidget):
         bridge.deviceLeft.connect(self._left)
         bridge.simDevices.connect(self._show_devices)
         bridge.simChanged.connect(self._sim_changed)
+        bridge.namer = lambda key: self._label(DeviceKey(*key))
         bridge.scriptFinished.connect(self._script_finished)
         bridge.busyChanged.connect(self._busy_changed)
         bridge.error.connect(self._error)
@@ -305,7 +306,7 @@ class SimPanel(QWidget):
                 self._paint(item, key)
 
     def _sim_changed(self, what: str) -> None:
-        self._log(self.tr("Done: {what}").format(what=what))
+        self._log(what)  # the bridge's sentence, with the part's name
         self.refresh()
 
     def _script_finished(self, result: Any) -> None:
@@ -399,7 +400,7 @@ class SimPanel(QWidget):
         return self._started(worker, self.tr("Storing the current links…"))
 
     def _links_stored(self, _read_back: Any) -> None:
-        self._log("stored the current links in the arbitrator's memory")
+        self._log(self.tr("Stored the current links in the arbitrator's memory"))
 
     def run_script(self, name: str) -> Worker | None:
         """Run the simulator script ``name``."""

@@ -4840,4 +4840,62 @@ Die Prothese ist wie zuvor.</translation>
             <translation>unbekannt</translation>
         </message>
     </context>
+    <context>
+        <name>SessionBridge</name>
+        <message>
+            <source>Plugging in {device}</source>
+            <translation>{device} wird eingesteckt</translation>
+        </message>
+        <message>
+            <source>Plugged in {device}</source>
+            <translation>{device} eingesteckt</translation>
+        </message>
+        <message>
+            <source>Unplugging {device}</source>
+            <translation>{device} wird ausgesteckt</translation>
+        </message>
+        <message>
+            <source>Unplugged {device}</source>
+            <translation>{device} ausgesteckt</translation>
+        </message>
+        <message>
+            <source>Replacing {old} by {new}</source>
+            <translation>{old} wird durch {new} ersetzt</translation>
+        </message>
+        <message>
+            <source>Replaced {old} by {new}</source>
+            <translation>{old} durch {new} ersetzt</translation>
+        </message>
+        <message>
+            <source>Restarting the arbitrator, keeping its memory</source>
+            <translation>Der Arbiter wird neu gestartet, sein Speicher bleibt erhalten</translation>
+        </message>
+        <message>
+            <source>Restarting the arbitrator, erasing its memory</source>
+            <translation>Der Arbiter wird neu gestartet, sein Speicher wird gelöscht</translation>
+        </message>
+        <message>
+            <source>The arbitrator restarted; its stored configuration was kept</source>
+            <translation>Der Arbiter wurde neu gestartet; seine gespeicherte Konfiguration blieb erhalten</translation>
+        </message>
+        <message>
+            <source>The arbitrator restarted with its memory erased</source>
+            <translation>Der Arbiter wurde mit gelöschtem Speicher neu gestartet</translation>
+        </message>
+        <message>
+            <source>Script {name} finished</source>
+            <translation>Skript {name} beendet</translation>
+        </message>
+        <message>
+            <source>Script {name}</source>
+            <translation>Skript {name}</translation>
+        </message>
+    </context>
+    <context>
+        <name>SimPanel</name>
+        <message>
+            <source>Stored the current links in the arbitrator&apos;s memory</source>
+            <translation>Die aktuellen Verbindungen wurden im Speicher des Arbiters abgelegt</translation>
+        </message>
+    </context>
 </TS>

@@ -138,7 +138,8 @@ def test_failures_become_error_messages(qtbot, make_bridge):
     bridge = make_bridge()
     with qtbot.waitSignal(bridge.error, timeout=5000) as blocker:
         bridge.plug(DeviceKey(9, 9, 9))
-    assert blocker.args[0].startswith("Plug 9/9/9: no simulated device 9/9/9")
+    assert blocker.args[0].startswith(
+        "Plugging in unknown device (9/9/9): no simulated device 9/9/9")
     failed: list[str] = []
     worker = bridge.run(lambda p, c: 1 / 0, "Divide")
     worker.failed.connect(failed.append)
@@ -231,7 +232,7 @@ def test_sim_panel_resets_the_arbitrator_with_and_without_memory(qtbot, make_bri
     assert len(stored.args[0].configurations[0].links) == 3
     with qtbot.waitSignal(bridge.simChanged, timeout=10_000) as changed:
         panel.reset(keep_memory=True)
-    assert changed.args[0] == "Reset arbitrator (memory kept)"
+    assert changed.args[0] == "The arbitrator restarted; its stored configuration was kept"
     assert bridge.session.wait_settled(10)
     assert bridge.system().links == links
     done = threading.Event()
