@@ -4898,4 +4898,70 @@ Die Prothese ist wie zuvor.</translation>
             <translation>Die aktuellen Verbindungen wurden im Speicher des Arbiters abgelegt</translation>
         </message>
     </context>
+    <context>
+        <name>BusScene</name>
+        <message>
+            <source>Missing from the bus</source>
+            <translation>Fehlt am Bus</translation>
+        </message>
+        <message>
+            <source>node ID {0}</source>
+            <translation>Knoten-ID {0}</translation>
+        </message>
+        <message>
+            <source>Input {n}</source>
+            <translation>Eingang {n}</translation>
+        </message>
+        <message>
+            <source>Output {n}</source>
+            <translation>Ausgang {n}</translation>
+        </message>
+        <message>
+            <source>Fed by {0}</source>
+            <translation>Gespeist von {0}</translation>
+        </message>
+        <message>
+            <source>Nothing feeds it</source>
+            <translation>Nichts speist ihn</translation>
+        </message>
+        <message>
+            <source>Feeds {0}</source>
+            <translation>Speist {0}</translation>
+        </message>
+        <message>
+            <source>Feeds nothing</source>
+            <translation>Speist nichts</translation>
+        </message>
+        <message>
+            <source>profile {profile} · signal type {type}: {description}</source>
+            <translation>Profil {profile} · Signaltyp {type}: {description}</translation>
+        </message>
+        <message>
+            <source>drives the part with profile {0}</source>
+            <translation>treibt das Teil mit Profil {0}</translation>
+        </message>
+    </context>
+    <context>
+        <name>PlanWords</name>
+        <message>
+            <source> (missing)</source>
+            <translation> (fehlt)</translation>
+        </message>
+        <message>
+            <source>The plan adds this link:</source>
+            <translation>Der Plan fügt diese Verbindung hinzu:</translation>
+        </message>
+        <message>
+            <source>The plan removes this link:</source>
+            <translation>Der Plan entfernt diese Verbindung:</translation>
+        </message>
+        <message>
+            <source>Why: {0}</source>
+            <translation>Warum: {0}</translation>
+        </message>
+        <message>
+            <source>How similar: {0}</source>
+            <translation>Wie ähnlich: {0}</translation>
+        </message>
+    </context>
 </TS>
