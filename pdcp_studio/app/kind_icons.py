@@ -50,3 +50,15 @@ def product_line(key: DeviceKey) -> str:
     if entry is None:
         return ""
     return " · ".join(x for x in (entry.product, entry.vendor) if x)
+
+
+@cache
+def kind_renderer(name: str) -> object | None:
+    """An SVG renderer of the icon (vectors, for a vector export of the graph), or None."""
+    path = _icon_path(name)
+    if path is None:
+        return None
+    from PySide6.QtSvg import QSvgRenderer
+
+    renderer = QSvgRenderer(path)
+    return renderer if renderer.isValid() else None

@@ -4964,4 +4964,99 @@ Die Prothese ist wie zuvor.</translation>
             <translation>Wie ähnlich: {0}</translation>
         </message>
     </context>
+    <context>
+        <name>Inspector</name>
+        <message>
+            <source>Details for engineers</source>
+            <translation>Details für Techniker</translation>
+        </message>
+        <message>
+            <source>{product} by {vendor}</source>
+            <translation>{product} von {vendor}</translation>
+        </message>
+        <message>
+            <source>a product no device catalogue knows</source>
+            <translation>ein Produkt, das kein Gerätekatalog kennt</translation>
+        </message>
+        <message>
+            <source>missing from the bus</source>
+            <translation>fehlt am Bus</translation>
+        </message>
+        <message>
+            <source>Name (PDCP Studio)</source>
+            <translation>Name (PDCP Studio)</translation>
+        </message>
+        <message>
+            <source>Product</source>
+            <translation>Produkt</translation>
+        </message>
+        <message>
+            <source>not in the catalogue</source>
+            <translation>nicht im Katalog</translation>
+        </message>
+        <message>
+            <source>Maker</source>
+            <translation>Hersteller</translation>
+        </message>
+        <message>
+            <source>Kind</source>
+            <translation>Art</translation>
+        </message>
+        <message>
+            <source>Identity</source>
+            <translation>Kennung</translation>
+        </message>
+        <message>
+            <source>VID/PID/serial</source>
+            <translation>VID/PID/Seriennummer</translation>
+        </message>
+        <message>
+            <source>Input {n}: {what}</source>
+            <translation>Eingang {n}: {what}</translation>
+        </message>
+        <message>
+            <source>Output {n}: {what}</source>
+            <translation>Ausgang {n}: {what}</translation>
+        </message>
+        <message>
+            <source>Profile code</source>
+            <translation>Profilcode</translation>
+        </message>
+        <message>
+            <source>parameter 1, bytes 2–3</source>
+            <translation>Parameter 1, Bytes 2–3</translation>
+        </message>
+        <message>
+            <source>Control mode</source>
+            <translation>Steuerungsart</translation>
+        </message>
+        <message>
+            <source>Channel type</source>
+            <translation>Kanaltyp</translation>
+        </message>
+        <message>
+            <source>code {code} (suggested ×{hint})</source>
+            <translation>Code {code} (vorgeschlagen ×{hint})</translation>
+        </message>
+        <message>
+            <source>The prescaler&apos;s raw 3-bit code; the factor is the thesis&apos;s suggestion only and nothing is computed from it</source>
+            <translation>Der rohe 3-Bit-Code des Vorteilers; der Faktor ist nur der Vorschlag der Arbeit, nichts wird daraus berechnet</translation>
+        </message>
+        <message>
+            <source>Fed by {0}</source>
+            <translation>Gespeist von {0}</translation>
+        </message>
+        <message>
+            <source>Nothing feeds it (not linked)</source>
+            <translation>Nichts speist ihn (nicht verbunden)</translation>
+        </message>
+        <message>
+            <source>Feeds {0}</source>
+            <translation>Speist {0}</translation>
+        </message>
+        <message>
+            <source>Feeds nothing</source>
+            <translation>Speist nichts</translation>
+        </message>
+    </context>
 </TS>

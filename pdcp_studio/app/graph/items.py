@@ -104,6 +104,14 @@ def _card_catalogue(vid: int, pid: int) -> tuple[str, QPixmap | None]:
     return entry.product, None if pixmap is None or pixmap.isNull() else pixmap
 
 
+def card_icon_vectors(key: Any) -> Any:
+    """The kind's icon as an SVG renderer (for vectors), None if it has none."""
+    from pdcp_studio.app.kind_icons import entry_of, kind_renderer
+
+    entry = entry_of(key)
+    return kind_renderer(entry.icon) if entry is not None and entry.icon else None
+
+
 def forget_catalogue() -> None:
     """Look the products up again (a catalogue file was added or changed)."""
     _card_catalogue.cache_clear()
@@ -476,7 +484,11 @@ class DeviceItem(QGraphicsRectItem):
         icon = card_icon(d.key)
         left = 11.0
         if icon is not None:
-            p.drawPixmap(QRectF(left, 23, 12, 12), icon, QRectF(icon.rect()))
+            renderer = card_icon_vectors(d.key) if self.vector else None
+            if renderer is not None:  # a vector file gets vectors, not a picture
+                renderer.render(p, QRectF(left, 23, 12, 12))
+            else:
+                p.drawPixmap(QRectF(left, 23, 12, 12), icon, QRectF(icon.rect()))
             left += 15
         role_line = small_m.elidedText(f"{role}  ·  {product}" if product else role,
                                        Qt.TextElideMode.ElideRight, w - 9 - left)
