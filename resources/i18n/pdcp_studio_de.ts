@@ -5059,4 +5059,15 @@ Die Prothese ist wie zuvor.</translation>
             <translation>Speist nichts</translation>
         </message>
     </context>
+    <context>
+        <name>LivePlot</name>
+        <message>
+            <source>{quantity} (raw)</source>
+            <translation>{quantity} (roh)</translation>
+        </message>
+        <message>
+            <source>suggested {factor}</source>
+            <translation>vorgeschlagen {factor}</translation>
+        </message>
+    </context>
 </TS>
