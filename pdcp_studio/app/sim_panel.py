@@ -36,6 +36,7 @@ from PySide6.QtWidgets import (
     QWidget,
 )
 
+from pdcp_studio.app.combo_popups import keep_whole
 from pdcp_studio.app.workers import Worker
 from pdcp_studio.model.refs import DeviceKey
 
@@ -150,7 +151,9 @@ class SimPanel(QWidget):
         grid.addWidget(self.plug_button, 1, 0)
         grid.addWidget(self.unplug_button, 1, 1)
         grid.addWidget(self.replace_button, 1, 2)
-        grid.addWidget(self.replace_combo, 1, 3)
+        grid.addWidget(self.replace_combo, 2, 0, 1, 4)  # a row of its own: the whole name
+        keep_whole(self.replace_combo)
+        keep_whole(self.script_combo)
         arbitrator = QGroupBox(self.tr("Arbitrator"))
         row = QHBoxLayout(arbitrator)
         for w in (self.reset_keep_button, self.reset_erase_button, self.save_button):

@@ -5070,4 +5070,100 @@ Die Prothese ist wie zuvor.</translation>
             <translation>vorgeschlagen {factor}</translation>
         </message>
     </context>
+    <context>
+        <name>Wizards</name>
+        <message numerus="yes">
+            <source>%n link(s) could not be made (the engineer&apos;s detail says why).</source>
+            <translation>
+                <numerusform>%n Verbindung konnte nicht hergestellt werden (die Details für Techniker sagen, warum).</numerusform>
+                <numerusform>%n Verbindungen konnten nicht hergestellt werden (die Details für Techniker sagen, warum).</numerusform>
+            </translation>
+        </message>
+        <message numerus="yes">
+            <source>%n part(s) found on the bus</source>
+            <translation>
+                <numerusform>%n Teil am Bus gefunden</numerusform>
+                <numerusform>%n Teile am Bus gefunden</numerusform>
+            </translation>
+        </message>
+        <message numerus="yes">
+            <source>%n link(s) between them:</source>
+            <translation>
+                <numerusform>%n Verbindung zwischen ihnen:</numerusform>
+                <numerusform>%n Verbindungen zwischen ihnen:</numerusform>
+            </translation>
+        </message>
+        <message numerus="yes">
+            <source>%n thing(s) to look at. The next step proposes links that fix what can be fixed automatically:</source>
+            <translation>
+                <numerusform>%n Punkt zu prüfen. Der nächste Schritt schlägt Verbindungen vor, die automatisch behebbare Probleme beheben:</numerusform>
+                <numerusform>%n Punkte zu prüfen. Der nächste Schritt schlägt Verbindungen vor, die automatisch behebbare Probleme beheben:</numerusform>
+            </translation>
+        </message>
+        <message numerus="yes">
+            <source>On the prosthesis as planned: %n link(s).</source>
+            <translation>
+                <numerusform>Wie geplant auf der Prothese: %n Verbindung.</numerusform>
+                <numerusform>Wie geplant auf der Prothese: %n Verbindungen.</numerusform>
+            </translation>
+        </message>
+        <message>
+            <source>{0}: written and verified ({1}, {2})</source>
+            <translation>{0}: geschrieben und geprüft ({1}, {2})</translation>
+        </message>
+        <message numerus="yes">
+            <source>%n link(s) on the prosthesis</source>
+            <translation>
+                <numerusform>%n Verbindung auf der Prothese</numerusform>
+                <numerusform>%n Verbindungen auf der Prothese</numerusform>
+            </translation>
+        </message>
+        <message>
+            <source>{0} is not on the bus; {1}</source>
+            <translation>{0} ist nicht am Bus; {1}</translation>
+        </message>
+        <message numerus="yes">
+            <source>%n link(s) led to it.</source>
+            <translation>
+                <numerusform>%n Verbindung führte zu ihm.</numerusform>
+                <numerusform>%n Verbindungen führten zu ihm.</numerusform>
+            </translation>
+        </message>
+        <message numerus="yes">
+            <source>The prosthesis made %n link(s) of these on its own when the part was plugged in; the write makes them part of the fitting.</source>
+            <translation>
+                <numerusform>Die Prothese hat %n dieser Verbindungen beim Einstecken des Teils selbst hergestellt; das Schreiben macht sie zum Teil der Versorgung.</numerusform>
+                <numerusform>Die Prothese hat %n dieser Verbindungen beim Einstecken des Teils selbst hergestellt; das Schreiben macht sie zum Teil der Versorgung.</numerusform>
+            </translation>
+        </message>
+        <message numerus="yes">
+            <source>Already on the prosthesis and kept as they are: %n link(s).</source>
+            <translation>
+                <numerusform>Schon auf der Prothese und unverändert beibehalten: %n Verbindung.</numerusform>
+                <numerusform>Schon auf der Prothese und unverändert beibehalten: %n Verbindungen.</numerusform>
+            </translation>
+        </message>
+        <message>
+            <source>Entry {0} — {1} — {2} ({3})</source>
+            <translation>Eintrag {0} — {1} — {2} ({3})</translation>
+        </message>
+        <message numerus="yes">
+            <source>%n link(s)</source>
+            <translation>
+                <numerusform>%n Verbindung</numerusform>
+                <numerusform>%n Verbindungen</numerusform>
+            </translation>
+        </message>
+        <message>
+            <source>{0}: {1}</source>
+            <translation>{0}: {1}</translation>
+        </message>
+        <message numerus="yes">
+            <source>%n stored link(s).</source>
+            <translation>
+                <numerusform>%n gespeicherte Verbindung.</numerusform>
+                <numerusform>%n gespeicherte Verbindungen.</numerusform>
+            </translation>
+        </message>
+    </context>
 </TS>

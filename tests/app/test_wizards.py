@@ -87,7 +87,7 @@ def test_new_fitting_from_scratch_to_a_recorded_history_entry_and_report(live, q
     _next(w, qtbot, w.connect_page, w.scan_page)
     _ready(w, qtbot, w.scan_page)
     text = _text(w.scan_page)
-    assert "4 part(s) found" in text and "Multi-grip hand with wrist rotator" in text
+    assert "4 parts found on the bus" in text and "Multi-grip hand with wrist rotator" in text
     assert "302" not in text  # the spare hand is not on the bus until plugged in
     _next(w, qtbot, w.scan_page, w.checks_page)
     _ready(w, qtbot, w.checks_page)
@@ -207,7 +207,8 @@ def test_replace_a_part_unplug_the_hand_plug_the_spare(live, qtbot, tmp_path):
     panel.select(HAND)
     panel.unplug_selected()  # the Simulator panel's Unplug: the page follows the bus
     _ready(w, qtbot, w.missing_page)
-    assert "Multi-grip hand with wrist rotator is not on the bus; 3 link(s)" in _text(w.missing_page)
+    assert "Multi-grip hand with wrist rotator is not on the bus; 3 links led to it" in \
+        _text(w.missing_page)
     _next(w, qtbot, w.missing_page, w.plug_page)
     qtbot.waitUntil(lambda: "Waiting for the new part" in _text(w.plug_page), timeout=T)
     assert not w.plug_page.isComplete()
@@ -232,7 +233,7 @@ def test_replace_a_part_unplug_the_hand_plug_the_spare(live, qtbot, tmp_path):
     qtbot.waitUntil(lambda: w.currentPage() is w.verify_page, timeout=T)
     _ready(w, qtbot, w.verify_page)
     assert w.verify_page.problems == []
-    assert "All 5 link(s) are on the prosthesis as planned" in _text(w.verify_page)
+    assert "On the prosthesis as planned: 5 links." in _text(w.verify_page)
     assert "reads back as written" in _text(w.verify_page)
     session = _session(live)
     links = session.system().links

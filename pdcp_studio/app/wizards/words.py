@@ -27,6 +27,13 @@ def _t(text: str) -> str:
     return translate(_CTX, text)
 
 
+def count(text: str, n: int) -> str:
+    """``text`` with ``%n`` for ``n`` things: "1 link", "2 links" (Qt's plural forms)."""
+    from pdcp_studio.app.plural import count as plural
+
+    return plural(_CTX, text, n)
+
+
 #: ``() -> System | None``: the main window's system while a wizard is open (set by
 #: :func:`pdcp_studio.app.wizards.open_wizard`): its parts are named among the graph's, so
 #: a fresh scan that no longer sees the hand still calls the spare what the graph calls it.
@@ -175,8 +182,8 @@ def plan_lines(system: System, plan: Plan) -> list[str]:
         verb = _t("Connect") if action.op.value == "add" else _t("Disconnect")
         out.append(f"{verb} {link_words(system, action.link)}\n{why_words(system, plan, action)}")
     if plan.rejections:
-        out.append(_t("{0} link(s) could not be made (the engineer's detail says why).")
-                   .format(len(plan.rejections)))
+        out.append(count("%n link(s) could not be made (the engineer's detail says why).",
+                         len(plan.rejections)))
     return out
 
 
