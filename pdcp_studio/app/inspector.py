@@ -271,6 +271,28 @@ class Inspector(QScrollArea):
         self.editors[field] = editor
         self.errors[field] = err
 
+    def _catalogue_warning(self, box: QVBoxLayout) -> None:
+        """Device catalogue files that were skipped (file and why), here and once in the
+        window's status bar: the parts they describe are named by their numbers."""
+        from pdcp_studio.model.catalog import default_catalog_problems
+
+        problems = default_catalog_problems()
+        if not problems:
+            return
+        text = self.tr("A device catalogue file was skipped, so the parts it describes "
+                       "are not named from it: {0}").format("; ".join(problems))
+        label = QLabel(text)
+        label.setWordWrap(True)
+        label.setStyleSheet("color: #b45309;")
+        label.setTextInteractionFlags(Qt.TextInteractionFlag.TextSelectableByMouse)
+        box.addWidget(label)
+        self.editors["catalog_problems"] = label
+        window = self.window()
+        status = getattr(window, "statusBar", None)
+        if callable(status) and getattr(window, "_catalog_warned", None) != problems:
+            window._catalog_warned = problems  # once per set of problems, not per rebuild
+            status().showMessage(text, 20000)
+
     # -- the whole system (nothing selected) ---------------------------------------
     def _build_system(self, box: QVBoxLayout) -> None:
         """An overview and the engine's checks; a finding selects its channel."""
@@ -288,6 +310,7 @@ class Inspector(QScrollArea):
         hint.setWordWrap(True)
         hint.setStyleSheet(DIM_STYLE)
         box.addWidget(hint)
+        self._catalogue_warning(box)
         checked = self._checked
         if checked is None:
             checked = checked_findings(system, self.doc.autoconfigure)

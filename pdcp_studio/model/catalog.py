@@ -12,6 +12,7 @@ invented name.
 from __future__ import annotations
 
 import json
+import logging
 from collections.abc import Iterable
 from dataclasses import dataclass, field
 from pathlib import Path
@@ -23,6 +24,7 @@ if TYPE_CHECKING:
     from pdcp_studio.model.system import Device
 
 FORMAT = "pdcp-catalog/1"
+log = logging.getLogger(__name__)
 
 
 class CatalogError(ValueError):
@@ -158,19 +160,31 @@ def load_catalog(folders: Iterable[Path]) -> tuple[Catalog, list[str]]:
 
 
 def default_catalog() -> Catalog:
-    """The shipped catalogues followed by the user's (a user's broken file is skipped)."""
+    """The shipped catalogues followed by the user's (a user's broken file is skipped, and
+    said: :func:`default_catalog_problems`, the log)."""
     from pdcp_studio import paths
 
-    return _default_catalog_cached(paths.catalogs_dir(), paths.user_catalogs_dir())
+    return _default_catalog_cached(paths.catalogs_dir(), paths.user_catalogs_dir())[0]
 
 
-_CACHE: dict[tuple[Path, Path], Catalog] = {}
+def default_catalog_problems() -> list[str]:
+    """Which catalogue files :func:`default_catalog` skipped and why (file, entry, reason),
+    for the app's warning and ``pdcp-studio doctor``."""
+    from pdcp_studio import paths
+
+    return list(_default_catalog_cached(paths.catalogs_dir(), paths.user_catalogs_dir())[1])
 
 
-def _default_catalog_cached(shipped: Path, user: Path) -> Catalog:
+_CACHE: dict[tuple[Path, Path], tuple[Catalog, list[str]]] = {}
+
+
+def _default_catalog_cached(shipped: Path, user: Path) -> tuple[Catalog, list[str]]:
     key = (shipped, user)
     if key not in _CACHE:
-        _CACHE[key] = load_catalog((shipped, user))[0]
+        catalog, problems = load_catalog((shipped, user))
+        for problem in problems:
+            log.warning("device catalogue skipped: %s", problem)
+        _CACHE[key] = (catalog, problems)
     return _CACHE[key]
 
 

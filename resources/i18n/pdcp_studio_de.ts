@@ -5166,4 +5166,11 @@ Die Prothese ist wie zuvor.</translation>
             </translation>
         </message>
     </context>
+    <context>
+        <name>Inspector</name>
+        <message>
+            <source>A device catalogue file was skipped, so the parts it describes are not named from it: {0}</source>
+            <translation>Eine Gerätekatalog-Datei wurde übersprungen, daher werden die Teile, die sie beschreibt, nicht danach benannt: {0}</translation>
+        </message>
+    </context>
 </TS>

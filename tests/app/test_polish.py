@@ -61,3 +61,23 @@ def test_the_replacement_box_shows_the_whole_name(make_window, qtbot):
     assert combo.width() >= combo.fontMetrics().horizontalAdvance(text) + 20
     assert text in combo.toolTip()
     window.live.disconnect_bus()
+
+
+def test_the_app_warns_of_a_skipped_catalogue_file(make_window, qtbot, tmp_path,
+                                                   monkeypatch):
+    from pdcp_studio import paths
+    from pdcp_studio.model import catalog
+
+    folder = tmp_path / "catalogs"
+    folder.mkdir()
+    (folder / "vendor.json").write_text("{", encoding="utf-8")
+    monkeypatch.setattr(paths, "user_catalogs_dir", lambda: folder)
+    catalog.reload_default_catalog()
+    try:
+        window = make_window()
+        window.inspector.show_object(None)
+        label = window.inspector.editors["catalog_problems"]
+        assert str(folder / "vendor.json") in label.text() and "not JSON" in label.text()
+        assert "vendor.json" in window.statusBar().currentMessage()
+    finally:
+        catalog.reload_default_catalog()
