@@ -7,6 +7,14 @@ colours (a screenshot of a dialog looks the same and is a fifth of the size), so
 grows by a few tens of kilobytes, not megabytes. Run after ``shoot_wizards.py``:
 
     QT_QPA_PLATFORM=offscreen python docs/screenshots/manual_pictures.py
+
+The German manual shows German pictures: take the screenshots of the German build into a
+folder of their own (``shoot_wizards.py --lang de --out DIR``, see there), then
+
+    QT_QPA_PLATFORM=offscreen python docs/screenshots/manual_pictures.py --lang de DIR
+
+writes ``resources/manual/images/de/NAME.png`` for the pictures ``de.md`` names (the
+manual shows the English picture where a language has none of its own).
 """
 
 from __future__ import annotations
@@ -23,22 +31,26 @@ MANUALS = HERE.parents[1] / "resources" / "manual"
 PICTURE = re.compile(r"\]\(images/([\w-]+\.png)\)")
 
 
-def pictures() -> list[str]:
-    """Every picture a manual names, once."""
+def pictures(language: str = "") -> list[str]:
+    """Every picture a manual names (``language``'s manual only, when given), once."""
     names: list[str] = []
-    for manual in sorted(MANUALS.glob("*.md")):
+    for manual in sorted(MANUALS.glob(f"{language}.md" if language else "*.md")):
         names += [n for n in PICTURE.findall(manual.read_text("utf-8")) if n not in names]
     return names
 
 
 def main() -> int:
     _app = QGuiApplication(sys.argv)
-    out = MANUALS / "images"
+    out, shots, language = MANUALS / "images", HERE, ""
+    if "--lang" in sys.argv:
+        at = sys.argv.index("--lang")
+        language, shots = sys.argv[at + 1], Path(sys.argv[at + 2])
+        out = out / language
     out.mkdir(exist_ok=True)
-    for name in pictures():
-        shot = QImage(str(HERE / name))
+    for name in pictures(language):
+        shot = QImage(str(shots / name))
         if shot.isNull():
-            print(f"no screenshot {HERE / name}", file=sys.stderr)
+            print(f"no screenshot {shots / name}", file=sys.stderr)
             return 1
         small = shot.convertToFormat(QImage.Format.Format_Indexed8,
                                      Qt.ImageConversionFlag.ThresholdDither

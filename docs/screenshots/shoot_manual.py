@@ -3,6 +3,9 @@ a new fitting's Autoconfigure step, in front of the main window on the simulated
 Under a real X server (the whole screen is taken with ImageMagick's ``import``):
 
     xvfb-run -a -s "-screen 0 1600x1000x24" python docs/screenshots/shoot_manual.py
+
+With ``--lang de``: the app in German, its manual with the German pictures, into
+manual-images-de.png.
 """
 
 from __future__ import annotations
@@ -26,6 +29,13 @@ def main() -> int:
     app = QApplication(sys.argv)
     app.setOrganizationName("PDCP Studio")
     app.setApplicationName("PDCP Studio")
+    out = OUT
+    if "--lang" in sys.argv:
+        from pdcp_studio.app import i18n
+
+        lang = sys.argv[sys.argv.index("--lang") + 1]
+        i18n.install(app, lang)
+        out = OUT.with_name(f"{OUT.stem}-{lang}.png")
     from pdcp_studio.app import help_viewer
     from pdcp_studio.app.main_window import MainWindow
 
@@ -53,8 +63,8 @@ def main() -> int:
         QTimer.singleShot(1500, shoot)
 
     def shoot() -> None:
-        subprocess.run(["import", "-window", "root", str(OUT)], check=True)
-        print(OUT)
+        subprocess.run(["import", "-window", "root", str(out)], check=True)
+        print(out)
         app.quit()
 
     QTimer.singleShot(4000, open_manual)

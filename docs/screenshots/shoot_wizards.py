@@ -11,8 +11,13 @@ configuration (the original hand back, the first fitting's stored configuration 
 from the history; then the fitting's first write, made before anything was stored, which
 warns that it clears the stored configuration), and
 saves ``wizard-<task>-<step>.png`` beside this script (with ``--lang de``: the German build,
-into a temporary folder, to look at): the wizard's window, and for the plug
-step the whole screen with the Simulator panel. The fitting history is a temporary file.
+into a temporary folder, to look at, or into ``--out DIR``): the wizard's window, and for
+the plug step the whole screen with the Simulator panel. The fitting history is a temporary
+file. The German manual's pictures are made from a German run:
+
+    xvfb-run -a -s "-screen 0 1600x1000x24" python docs/screenshots/shoot_wizards.py \
+        --lang de --out /tmp/wizards-de
+    QT_QPA_PLATFORM=offscreen python docs/screenshots/manual_pictures.py --lang de /tmp/wizards-de
 """
 
 from __future__ import annotations
@@ -47,6 +52,9 @@ def main() -> int:
     app.setApplicationName("PDCP Studio screenshots")
     lang = sys.argv[sys.argv.index("--lang") + 1] if "--lang" in sys.argv else ""
     out = HERE if not lang else Path(tempfile.mkdtemp())  # other languages: to look at
+    if "--out" in sys.argv:
+        out = Path(sys.argv[sys.argv.index("--out") + 1])
+        out.mkdir(parents=True, exist_ok=True)
     if lang:
         from pdcp_studio.app import i18n
 
@@ -56,6 +64,8 @@ def main() -> int:
     window.move(0, 0)
     window.show()
     hand, spare = DeviceKey(2641, 769, 301), DeviceKey(2641, 769, 302)
+    # the size of the wizard for its long pages (German runs longer: shown whole, too)
+    big = (900, 700) if lang in ("", "en") else (960, 800)
     failures: list[str] = []
 
     def shoot(wizard, name: str, screen: bool = False) -> None:
@@ -93,7 +103,7 @@ def main() -> int:
             w.next()
             yield ready(w, page)
             if page is w.plan_page:
-                w.resize(900, 700)
+                w.resize(*big)
             shoot(w, name)
         w.next()  # the commit: the transaction runs
         yield ready(w, w.store_page)
@@ -124,7 +134,7 @@ def main() -> int:
         shoot(w, "replace-3-seen")
         w.next()
         yield ready(w, w.plan_page)
-        w.resize(900, 700)
+        w.resize(*big)
         shoot(w, "replace-4-plan")
         w.next()
         yield ready(w, w.write_page)
@@ -153,7 +163,7 @@ def main() -> int:
         shoot(w, "restore-1-choose")
         w.next()
         yield ready(w, w.diff_page)
-        w.resize(900, 700)
+        w.resize(*big)
         shoot(w, "restore-2-difference")
         w.next()
         yield ready(w, w.write_page)
@@ -173,7 +183,7 @@ def main() -> int:
         yield lambda: page.isComplete()
         w.next()
         yield lambda: w.currentPage() is w.diff_page and w.diff_page.clears
-        w.resize(900, 700)
+        w.resize(*big)
         shoot(w, "restore-5-clears-warning")
         w.close()
 

@@ -5,7 +5,9 @@ F1 opens the manual at the section for what the user is looking at (:func:`secti
 the graph, a dock, or the dialog in front. The manual's pictures (``images/NAME.png`` beside
 it, package data like the manual, so a source checkout and an installed wheel find them the
 same way) are loaded by :class:`ManualBrowser`, which scales them to the page and shows a
-plain placeholder for a picture an installation lacks.
+plain placeholder for a picture an installation lacks. A manual in another language shows
+the pictures taken of the app in that language (``images/<language>/NAME.png``) where there
+are any, else the English ones.
 """
 
 from __future__ import annotations
@@ -86,17 +88,23 @@ PICTURE_WIDTH = 720
 
 
 class ManualBrowser(QTextBrowser):
-    """The manual's pane: finds its pictures beside the manual file (``folder``)."""
+    """The manual's pane: finds its pictures beside the manual file (``folder``), in the
+    manual's ``language`` where they were taken in it."""
 
-    def __init__(self, folder: Path, parent: QWidget | None = None) -> None:
+    def __init__(self, folder: Path, parent: QWidget | None = None,
+                 language: str = "") -> None:
         super().__init__(parent)
         self.folder = folder
+        self.language = language
         self.setSearchPaths([str(folder)])
 
     def picture_path(self, url: QUrl | str) -> Path:
-        """Where the picture ``url`` (as the manual writes it, e.g. ``images/x.png``) is."""
+        """Where the picture ``url`` (as the manual writes it, e.g. ``images/x.png``) is:
+        ``images/<language>/x.png`` when there is one, else ``images/x.png`` (English)."""
         url = QUrl(url)
-        return Path(url.toLocalFile()) if url.isLocalFile() else self.folder / url.path()
+        if url.isLocalFile():
+            return Path(url.toLocalFile())
+        return localised(self.folder / url.path(), self.language)
 
     def loadResource(self, kind: int, url: QUrl | str) -> object:
         if kind != QTextDocument.ResourceType.ImageResource.value:
@@ -113,6 +121,16 @@ class ManualBrowser(QTextBrowser):
         painter.drawRect(image.rect().adjusted(0, 0, -1, -1))
         painter.end()
         return image
+
+
+def localised(picture: Path, language: str) -> Path:
+    """``images/de/x.png`` for ``images/x.png`` in German when it exists, else ``picture``:
+    the manuals name their pictures once, each language's are in a folder of its own."""
+    if language and language != "en":
+        own = picture.parent / language / picture.name
+        if own.is_file():
+            return own
+    return picture
 
 
 def missing_picture(name: str) -> QImage:
@@ -140,7 +158,7 @@ class HelpViewer(QDialog):
         self.setWindowTitle(self.tr("PDCP Studio — User manual"))
         self.resize(820, 760)
         self.path = manual_path(language)
-        self.browser = ManualBrowser(self.path.parent, self)
+        self.browser = ManualBrowser(self.path.parent, self, language=self.path.stem)
         self.browser.setOpenExternalLinks(True)
         self.browser.setAccessibleName(self.tr("User manual"))
         self.browser.setAccessibleDescription(

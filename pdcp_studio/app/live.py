@@ -14,10 +14,11 @@ session you have until the new one answers: a failed Connect changes nothing.
 from __future__ import annotations
 
 import logging
+import time
 from concurrent.futures import Future
 from typing import Any
 
-from PySide6.QtCore import QObject, Signal
+from PySide6.QtCore import QObject, QTimer, Signal
 
 from pdcp_studio.app.document import Document
 from pdcp_studio.app.workers import Worker
@@ -26,6 +27,11 @@ log = logging.getLogger(__name__)
 
 #: The connection's states (``LiveController.state``).
 OFFLINE, CONNECTING, LIVE, DISCONNECTED = "offline", "connecting", "live", "disconnected"
+#: How long after a part joined as a newcomer the part it replaces may still leave for the
+#: two cards to swap places (the old part is missed once the bus notices it is silent).
+SWAP_WINDOW_S = 60.0
+#: A live view's positions are remembered this long after the last part joined or left.
+REMEMBER_MS = 400
 
 
 def open_session_blocking(url: str, progress: Any = None, cancel: Any = None) -> Any:
@@ -37,7 +43,7 @@ def open_session_blocking(url: str, progress: Any = None, cancel: Any = None) ->
     return open_session(url)
 
 
-def opened_early(opening: Future, url: str, progress: Any = None) -> Any:
+def opened_early(opening: Future[Any], url: str, progress: Any = None) -> Any:
     """The session ``opening`` opens (on a thread of its own since start-up,
     ``application.open_early``); what it raised, raised here."""
     if progress is not None:
@@ -45,7 +51,12 @@ def opened_early(opening: Future, url: str, progress: Any = None) -> Any:
     return opening.result()
 
 
-def read_and_place(session: Any, shape: float = 1.0) -> tuple[Any, dict]:
+def _on_bus(snapshot: Any, key: Any) -> bool:
+    device = snapshot.devices.get(key)
+    return device is not None and bool(device.present)
+
+
+def read_and_place(session: Any, shape: float = 1.0) -> tuple[Any, dict[Any, Any]]:
     """The bus's first snapshot and its cards' layout (on the worker: the layout imports
     networkx and walks the whole bus, which stalled the GUI thread on ``sim:full``)."""
     from pdcp_studio.app.graph import layout
@@ -90,6 +101,14 @@ class LiveController(QObject):
         self.on_data: Any = None
         #: A callable giving the graph's shape (width / height) for the first layout.
         self.layout_shape: Any = None
+        #: Parts that joined this session as newcomers: identity, place given, when.
+        self._newcomers: dict[Any, tuple[str, tuple[float, float], float]] = {}
+        #: The remembered layouts, read once a session when a part joins (None: not yet).
+        self._layouts: list[Any] | None = None
+        self._remember_timer = QTimer(self)
+        self._remember_timer.setSingleShot(True)
+        self._remember_timer.setInterval(REMEMBER_MS)
+        self._remember_timer.timeout.connect(self.doc.remember_layout)
 
     @property
     def is_live(self) -> bool:
@@ -101,7 +120,7 @@ class LiveController(QObject):
             self.state = state
             self.stateChanged.emit(state)
 
-    def connect_bus(self, url: str, opening: Future | None = None) -> Worker:
+    def connect_bus(self, url: str, opening: Future[Any] | None = None) -> Worker:
         """Open ``url`` on a worker; ``connected`` or ``failed`` follows.
 
         The current session (if any) stays until the new one has opened: a failed Connect
@@ -173,6 +192,8 @@ class LiveController(QObject):
         if bridge is not self.bridge:
             return
         self.connecting_url = ""
+        self._newcomers.clear()
+        self._layouts = None
         self.doc.set_system(system, None, self.bridge, positions=positions)
         self.last_url = self.url
         self._set_state(LIVE)
@@ -186,6 +207,9 @@ class LiveController(QObject):
         )
 
     def _close_bridge(self) -> bool:
+        if self._remember_timer.isActive():  # still the live view: remembered now
+            self._remember_timer.stop()
+            self.doc.remember_layout()
         bridge, self.bridge = self.bridge, None
         if bridge is None:
             return False
@@ -245,8 +269,89 @@ class LiveController(QObject):
         """Merge a snapshot; one that shows the bus exactly as last seen changes nothing
         and is not passed on (a rescan of the same bus costs the GUI thread ~nothing)."""
         if self.bridge is not None and self.doc.session is self.bridge:
+            devices = self.doc.system.devices
+            left = [k for k, d in devices.items() if d.present and not _on_bus(system, k)]
+            joined = self._place_joined(system)
             if self.doc.sync_live(system):
                 self.snapshotTaken.emit(system)
+            if joined:
+                self._note_newcomers(joined)
+            if left:
+                self._swap_in(left)
+            if joined or left:
+                self._remember_soon()
+
+    def _place_joined(self, snapshot: Any) -> list[Any]:
+        """Before ``snapshot`` is merged: places for the parts new to the view, as a
+        connect would give them (:func:`live_layout.place_joined`) — a replacement where
+        the part it replaces was, that part put aside. Returns the parts placed as any
+        newcomer is (no predecessor yet), to be noted."""
+        doc = self.doc
+        devices = doc.system.devices
+        joined = {k: d for k, d in snapshot.devices.items() if k not in devices}
+        if not joined:
+            return []
+        from pdcp_studio.app import live_layout
+        from pdcp_studio.app.graph import layout, style
+
+        ident = live_layout.part_identity
+        new = {k: ident(k, d) for k, d in joined.items()}
+        mine = {k: ident(k, d) for k, d in devices.items()}
+        gone = {k: p for k, p in mine.items() if not _on_bus(snapshot, k)}
+        where = live_layout.place_joined(doc.positions, gone, new)
+        if doc.is_live_view and len(where.placed) < len(new):  # the remembered layout, too
+            if self._layouts is None:  # read once a session (~0.4 ms a remembered layout)
+                self._layouts = live_layout.stored_layouts()
+            remembered = live_layout.remembered_elsewhere(
+                [*mine.values(), *new.values()], mine.values(), self._layouts)
+            if remembered:
+                heights = {k: layout.card_height(d)
+                           for k, d in (*devices.items(), *joined.items())}
+                where = live_layout.place_joined(doc.positions, gone, new,
+                                                 remembered=remembered, heights=heights,
+                                                 width=style.CARD_WIDTH)
+        for key in where.displaced:  # off the bus: to the bottom of its column
+            doc.positions.pop(key, None)
+        doc.positions.update(where.placed)
+        return [k for k in joined if k not in where.placed]
+
+    def _remember_soon(self) -> None:
+        """Remember a live view's positions once the bus has settled (parts binding one
+        after another are remembered once, not at each snapshot: ~25 ms a save)."""
+        if self.doc.is_live_view:
+            self._remember_timer.start()
+
+    def _note_newcomers(self, keys: list[Any]) -> None:
+        """Parts placed as newcomers (after the scene placed them): a part that leaves
+        soon after may be the one they replace (:meth:`_swap_in`)."""
+        from pdcp_studio.app.live_layout import part_identity
+
+        now = time.monotonic()
+        for key in keys:
+            device = self.doc.system.devices.get(key)
+            if device is not None and key in self.doc.positions:
+                self._newcomers[key] = (part_identity(key, device), self.doc.positions[key],
+                                        now)
+
+    def _swap_in(self, left: list[Any]) -> bool:
+        """Parts left the bus: a part that joined just before as a newcomer and replaces
+        one of them takes its place, the two cards swapping (:func:`live_layout.swap_in`)."""
+        from pdcp_studio.app import live_layout
+
+        now = time.monotonic()
+        self._newcomers = {k: v for k, v in self._newcomers.items()
+                           if now - v[2] <= SWAP_WINDOW_S and k in self.doc.system.devices}
+        if not self._newcomers:
+            return False
+        devices = self.doc.system.devices
+        gone = {k: live_layout.part_identity(k, devices[k]) for k in left if k in devices}
+        moves = live_layout.swap_in(gone, {k: v[0] for k, v in self._newcomers.items()},
+                                    self.doc.positions,
+                                    {k: v[1] for k, v in self._newcomers.items()})
+        for key, pos in moves.items():
+            self._newcomers.pop(key, None)
+            self.doc.set_position(key, pos)
+        return bool(moves)
 
     def _on_bus_event(self, event: Any) -> None:
         """Any other event that may change the bus (an arbitrator reset, a stored
@@ -261,7 +366,11 @@ class LiveController(QObject):
         self.refresh()
 
     def _on_left(self, key: Any) -> None:
+        device = self.doc.system.devices.get(key)
+        was_here = device is not None and device.present
         self.doc.set_present(key, False)
+        if was_here and self._swap_in([key]):
+            self._remember_soon()
         device = self.doc.system.device(key)
         self.statusMessage.emit(
             self.tr("{v0} left the bus").format(v0=device.label if device else key)
@@ -281,7 +390,7 @@ class LiveController(QObject):
             "see Bus events").format(why=why, added=added, removed=removed))
         self.refresh()
 
-    def _on_values(self, values: list) -> None:
+    def _on_values(self, values: list[Any]) -> None:
         if self.on_data is None:
             return
         for ref in {v.ref for v in values}:

@@ -113,12 +113,16 @@ def _order(system: System, layers: dict[DeviceKey, int]) -> list[list[DeviceKey]
             neigh = pred if forward else succ
             current = {k: j for j, k in enumerate(columns[i])}
 
-            def bary(k: DeviceKey, pos: dict = pos, neigh: dict = neigh,
-                     current: dict = current) -> float:
+            def bary(k: DeviceKey, pos: dict[DeviceKey, int] = pos,
+                     neigh: dict[DeviceKey, list[tuple[DeviceKey, float]]] = neigh,
+                     current: dict[DeviceKey, int] = current) -> tuple[float, int]:
+                """The device's barycentre, then its place so far (a stable order)."""
                 ps = [pos[m] + frac for m, frac in neigh[k] if m in pos]
-                return sum(ps) / len(ps) if ps else current[k] * (len(pos) / max(1, len(current)))
+                mean = (sum(ps) / len(ps) if ps
+                        else current[k] * (len(pos) / max(1, len(current))))
+                return mean, current[k]
 
-            columns[i].sort(key=lambda k, f=bary: (f(k), current[k]))
+            columns[i].sort(key=bary)
     return columns
 
 
