@@ -6,7 +6,7 @@ from __future__ import annotations
 
 from functools import cache
 
-from PySide6.QtGui import QIcon, QPixmap
+from PySide6.QtGui import QIcon, QImage
 
 from pdcp_studio.model.catalog import CatalogEntry, default_catalog
 from pdcp_studio.model.refs import DeviceKey
@@ -27,10 +27,21 @@ def kind_icon(name: str) -> QIcon:
 
 
 @cache
-def kind_pixmap(name: str, px: int) -> QPixmap:
-    """``kind_icon(name)`` as a ``px``-pixel picture (null if there is none)."""
-    icon = kind_icon(name)
-    return icon.pixmap(px, px) if not icon.isNull() else QPixmap()
+def kind_image(name: str, px: int) -> QImage:
+    """``kind_icon(name)`` as a ``px``-pixel image (null if there is none). An image, not a
+    pixmap: plain memory, safe to keep for the whole run (a cached pixmap drawn after the
+    window that made it was gone crashed the graph's paint)."""
+    path = _icon_path(name)
+    if path is None:
+        return QImage()
+    image = QImage(px, px, QImage.Format.Format_ARGB32_Premultiplied)
+    image.fill(0)
+    from PySide6.QtGui import QPainter
+
+    painter = QPainter(image)
+    kind_icon(name).paint(painter, 0, 0, px, px)
+    painter.end()
+    return image
 
 
 def entry_of(key: DeviceKey) -> CatalogEntry | None:
@@ -52,9 +63,9 @@ def product_line(key: DeviceKey) -> str:
     return " · ".join(x for x in (entry.product, entry.vendor) if x)
 
 
-@cache
 def kind_renderer(name: str) -> object | None:
-    """An SVG renderer of the icon (vectors, for a vector export of the graph), or None."""
+    """A new SVG renderer of the icon (vectors, for a vector export of the graph), or None.
+    Made for each use: a renderer kept for the whole run crashed the graph's cached paint."""
     path = _icon_path(name)
     if path is None:
         return None

@@ -9,7 +9,9 @@ read the same. The numbers (VID/PID/serial) stay in tooltips and the inspector's
 
 from __future__ import annotations
 
+import re
 from collections.abc import Iterable
+from typing import Any
 
 from pdcp_studio.app.i18n import translate
 from pdcp_studio.model.catalog import default_catalog
@@ -65,3 +67,25 @@ def numbers(key: DeviceKey) -> str:
     """``VID 2641 · PID 257 · serial 101``: the engineer's detail for a tooltip."""
     return translate(_CTX, "VID {vid} · PID {pid} · serial {serial}").format(
         vid=key.vid, pid=key.pid, serial=key.serial)
+
+
+_TWIN_END = re.compile(r"\d+\)$")
+
+
+def keep_serials_seen(view: Any) -> None:
+    """In ``view`` (a tree or list), a name that ends in a serial number ("… (serial
+    302)") is cut in the middle, so the two hands alike never read the same when the
+    column is narrow; every other text is cut at its end as usual."""
+    from PySide6.QtCore import Qt
+    from PySide6.QtWidgets import QStyledItemDelegate
+
+    class _TwinElide(QStyledItemDelegate):
+        def initStyleOption(self, option: Any, index: Any) -> None:
+            super().initStyleOption(option, index)
+            twin = index.column() == 0 and bool(_TWIN_END.search(option.text or "")) and \
+                twin_format().format(name="", serial="").strip(" )") in option.text
+            option.textElideMode = (Qt.TextElideMode.ElideMiddle if twin
+                                    else view.textElideMode())
+
+    delegate = _TwinElide(view)
+    view.setItemDelegateForColumn(0, delegate)

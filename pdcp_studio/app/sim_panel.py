@@ -102,6 +102,9 @@ class SimPanel(QWidget):
             [self.tr("Device"), self.tr("Product"), self.tr("Power"), self.tr("On bus")]
         )
         self.tree.setRootIsDecorated(False)
+        from pdcp_studio.app.part_names import keep_serials_seen
+
+        keep_serials_seen(self.tree)  # a twin's serial number stays seen in a narrow column
         header = self.tree.header()  # the name takes the room the other columns leave
         header.setStretchLastSection(False)
         header.setSectionResizeMode(COL_NAME, QHeaderView.ResizeMode.Stretch)

@@ -15,7 +15,7 @@ from pdcp_studio.app.document import Document
 from pdcp_studio.app.graph import style
 from pdcp_studio.app.graph.analysis import ROLE_LAYER, device_role
 from pdcp_studio.app.i18n import translate
-from pdcp_studio.app.part_names import numbers, part_name, part_names
+from pdcp_studio.app.part_names import keep_serials_seen, numbers, part_name, part_names
 from pdcp_studio.model import profile as prof
 from pdcp_studio.model.refs import ChannelRef, DeviceKey
 from pdcp_studio.model.system import Link
@@ -28,6 +28,7 @@ class DeviceTree(QTreeWidget):
 
     def __init__(self, doc: Document, parent: QWidget | None = None) -> None:
         super().__init__(parent)
+        keep_serials_seen(self)  # a twin's serial number stays seen in a narrow column
         self.doc = doc
         self.setColumnCount(2)
         self.setHeaderLabels([self.tr("Device / channel"), self.tr("Profile")])

@@ -15,6 +15,8 @@ from pdcp_studio.app.kind_icons import icon_for
 from pdcp_studio.model.refs import DeviceKey
 from pdcp_studio.storage import system_file
 
+from .trace_imports import wait_for_trace_imports
+
 TRIPLE = re.compile(r"\d+/\d+/\d+")
 HAND = DeviceKey(2641, 769, 301)
 
@@ -71,4 +73,48 @@ def test_the_simulator_panel_and_tree_show_products_not_numbers(make_window, qtb
     tree = window.tree
     assert all(not tree.topLevelItem(i).icon(0).isNull()
                for i in range(tree.topLevelItemCount()))
+    wait_for_trace_imports(qtbot)
     window.live.disconnect_bus()
+
+
+def test_a_cut_name_keeps_its_serial_number(qtbot):
+    from PySide6.QtGui import QFont, QFontMetricsF
+
+    from pdcp_studio.app.graph.items import elide_keeping_serial
+
+    metrics = QFontMetricsF(QFont())
+    label = "Multi-grip hand with wrist rotator (serial 302)"
+    narrow = metrics.horizontalAdvance(label) * 0.7
+    cut = elide_keeping_serial(label, 302, metrics, narrow)
+    assert cut.endswith(" (serial 302)") and cut.startswith("Multi-grip") and "…" in cut
+    assert metrics.horizontalAdvance(cut) <= narrow + 1
+    assert elide_keeping_serial(label, 302, metrics, 10_000) == label
+    plain = elide_keeping_serial("EMG electrode (wrist flexors)", 101, metrics, 60)
+    assert plain.startswith("EMG") and plain.endswith("…")
+
+
+def test_the_tree_cuts_a_twin_in_the_middle_so_its_serial_stays(qtbot):
+    import copy
+
+    from PySide6.QtWidgets import QStyleOptionViewItem
+
+    from pdcp_studio.app.tree_panel import DeviceTree
+
+    doc, _the_scene = _scene(qtbot)
+    hand = doc.system.devices[HAND]
+    spare = copy.deepcopy(hand)
+    spare.serial = 302
+    doc.system.add_device(spare)
+    doc.set_system(doc.system)
+    tree = DeviceTree(doc)
+    qtbot.addWidget(tree)
+    delegate = tree.itemDelegateForColumn(0)
+    modes = {}
+    for i in range(tree.topLevelItemCount()):
+        item = tree.topLevelItem(i)
+        option = QStyleOptionViewItem()
+        delegate.initStyleOption(option, tree.indexFromItem(item, 0))
+        modes[item.text(0)] = option.textElideMode
+    assert modes["Hand (serial 302)"] == Qt.TextElideMode.ElideMiddle
+    assert modes["Hand (serial 301)"] == Qt.TextElideMode.ElideMiddle
+    assert modes["Control unit"] == Qt.TextElideMode.ElideRight

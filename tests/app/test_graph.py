@@ -113,7 +113,8 @@ def test_states_and_refusals():
 
 def test_zoom_and_fit(qtbot):
     doc = Document(linked_transradial())
-    view = GraphView(BusScene(doc))
+    scene = BusScene(doc)  # kept: a view does not own its scene (GC would delete it)
+    view = GraphView(scene)
     qtbot.addWidget(view)
     view.resize(800, 500)
     view.show()

@@ -12,6 +12,8 @@ import pytest
 from pdcp_studio.app.wizards import open_wizard
 from pdcp_studio.model.refs import DeviceKey
 
+from .trace_imports import wait_for_trace_imports
+
 pytestmark = pytest.mark.gui
 
 HAND = DeviceKey(2641, 769, 301)
@@ -121,4 +123,5 @@ def test_every_panel_and_wizard_page_names_each_part_alike(make_window, qtbot):
                        if window.doc.system.devices[k].present)
         w.next()
     w.close()
+    wait_for_trace_imports(qtbot)
     window.live.disconnect_bus()

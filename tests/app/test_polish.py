@@ -11,6 +11,8 @@ from pdcp_studio.app import i18n
 from pdcp_studio.app.plural import count, english
 from pdcp_studio.app.wizards import make_wizard
 
+from .trace_imports import wait_for_trace_imports
+
 pytestmark = pytest.mark.gui
 
 
@@ -60,6 +62,7 @@ def test_the_replacement_box_shows_the_whole_name(make_window, qtbot):
     assert text == "Multi-grip hand with wrist rotator (serial 302)"
     assert combo.width() >= combo.fontMetrics().horizontalAdvance(text) + 20
     assert text in combo.toolTip()
+    wait_for_trace_imports(qtbot)
     window.live.disconnect_bus()
 
 

@@ -84,24 +84,24 @@ def card_product(key: Any) -> str:
     return _card_catalogue(key.vid, key.pid)[0]
 
 
-def card_icon(key: Any) -> QPixmap | None:
+def card_icon(key: Any) -> QImage | None:
     """The picture of the part's kind (the catalogue's ``icon``), None if it has none."""
     return _card_catalogue(key.vid, key.pid)[1]
 
 
 @cache
-def _card_catalogue(vid: int, pid: int) -> tuple[str, QPixmap | None]:
+def _card_catalogue(vid: int, pid: int) -> tuple[str, QImage | None]:
     """(product, picture) of a VID/PID, looked up once (a catalogue lookup finds the
     user's folder: ~50 µs, too slow for every card's paint); the scene forgets them when
     it rebuilds (:func:`forget_catalogue`)."""
-    from pdcp_studio.app.kind_icons import kind_pixmap
+    from pdcp_studio.app.kind_icons import kind_image
     from pdcp_studio.model.catalog import default_catalog
 
     entry = default_catalog().lookup(vid, pid)
     if entry is None:
         return "", None
-    pixmap = kind_pixmap(entry.icon, 32) if entry.icon else None
-    return entry.product, None if pixmap is None or pixmap.isNull() else pixmap
+    image = kind_image(entry.icon, 32) if entry.icon else None
+    return entry.product, None if image is None or image.isNull() else image
 
 
 def card_icon_vectors(key: Any) -> Any:
@@ -110,6 +110,21 @@ def card_icon_vectors(key: Any) -> Any:
 
     entry = entry_of(key)
     return kind_renderer(entry.icon) if entry is not None and entry.icon else None
+
+
+def elide_keeping_serial(label: str, serial: int, metrics: Any, width: float) -> str:
+    """``label`` elided to ``width``; a twin's serial number (``… (serial 302)``) is kept
+    whole, so two hands alike never read the same once cut."""
+    from pdcp_studio.app.part_names import twin_format
+
+    suffix = twin_format().format(name="", serial=serial)
+    if (metrics.horizontalAdvance(label) <= width or not suffix.strip()
+            or not label.endswith(suffix) or len(label) <= len(suffix)):
+        return str(metrics.elidedText(label, Qt.TextElideMode.ElideRight, width))
+    room = width - metrics.horizontalAdvance(suffix)
+    base = str(metrics.elidedText(label[:-len(suffix)], Qt.TextElideMode.ElideRight,
+                                  max(room, 0)))
+    return base + suffix
 
 
 def forget_catalogue() -> None:
@@ -344,6 +359,7 @@ class DeviceItem(QGraphicsRectItem):
         vectors without Qt's pixmap cache, for a vector file)."""
         self.zoom = zoom
         self.summary = zoom < DETAIL_ZOOM
+        self.exporting = export
         vector = export or zoom > PICTURE_MAX_ZOOM
         cache = (QGraphicsItem.CacheMode.DeviceCoordinateCache if vector and not export
                  else QGraphicsItem.CacheMode.NoCache)
@@ -475,7 +491,7 @@ class DeviceItem(QGraphicsRectItem):
         badge = 18.0 if self.problems else 0.0
         p.setFont(title_f)
         p.setPen(text)
-        name = title_m.elidedText(label, Qt.TextElideMode.ElideRight, w - 22 - badge)
+        name = elide_keeping_serial(label, d.serial, title_m, w - 22 - badge)
         p.drawText(QRectF(11, 6, w - 20 - badge, 18), Qt.AlignmentFlag.AlignVCenter, name)
         p.setFont(small_f)
         p.setPen(dim)
@@ -484,11 +500,11 @@ class DeviceItem(QGraphicsRectItem):
         icon = card_icon(d.key)
         left = 11.0
         if icon is not None:
-            renderer = card_icon_vectors(d.key) if self.vector else None
+            renderer = card_icon_vectors(d.key) if getattr(self, "exporting", False) else None
             if renderer is not None:  # a vector file gets vectors, not a picture
                 renderer.render(p, QRectF(left, 23, 12, 12))
             else:
-                p.drawPixmap(QRectF(left, 23, 12, 12), icon, QRectF(icon.rect()))
+                p.drawImage(QRectF(left, 23, 12, 12), icon, QRectF(icon.rect()))
             left += 15
         role_line = small_m.elidedText(f"{role}  ·  {product}" if product else role,
                                        Qt.TextElideMode.ElideRight, w - 9 - left)
