@@ -23,8 +23,12 @@ PROBE_ENV = "PDCP_STUDIO_STARTUP_PROBE"
 SCREENSHOT_TIMEOUT_MS = 30_000
 #: After "ready", let queued layout and paint events settle before grabbing.
 SETTLE_MS = 150
-#: The interpreter's switch interval for the whole app (CPython's default is 5 ms).
+#: The interpreter's switch interval for the whole app once its window is live (CPython's
+#: default is 5 ms); until then the default (see :func:`start_up_quietly`).
 SWITCH_INTERVAL_S = 0.001
+START_UP_SWITCH_INTERVAL_S = 0.005
+#: Start-up's settings are given back after this long even if the window never gets ready.
+START_UP_LIMIT_MS = 10_000
 
 
 def run_app(path: str | Path | None = None, bus: str | None = None,
@@ -36,7 +40,15 @@ def run_app(path: str | Path | None = None, bus: str | None = None,
     (``SystemFileError`` / ``ConfigFormatError`` → exit 2 in the CLI).
     """
     started = time.perf_counter() if started is None else started
-    share_the_interpreter()
+    start_up_quietly()  # until the window is live (start_up_over, connected in _run_app)
+    try:
+        return _run_app(path, bus, screenshot, size=size, started=started, lang=lang)
+    finally:
+        start_up_over()  # however it ended (a bad file, a window never ready)
+
+
+def _run_app(path: str | Path | None, bus: str | None, screenshot: str | Path | None, *,
+             size: tuple[int, int] | None, started: float, lang: str | None) -> int:
     from pdcp_studio.app.pyside_import_scan import spare_source_scan
 
     spare_source_scan()  # before the app's imports: PySide6 would read each one's source
@@ -102,7 +114,9 @@ def run_app(path: str | Path | None = None, bus: str | None = None,
         if status["code"]:
             pass  # what was asked for is not on screen: no picture of an empty window
         elif not image.save(str(screenshot), "PNG"):
-            print(f"pdcp-studio: error: cannot write {screenshot}", file=sys.stderr)
+            from pdcp_studio.storage.write_failure import why_not_written  # the CLI's words
+
+            print(f"pdcp-studio: error: {why_not_written(screenshot)}", file=sys.stderr)
             status["code"] = 1
         window.doc.mark_saved()  # nothing to ask about on the way out
         window.close()
@@ -128,7 +142,8 @@ def run_app(path: str | Path | None = None, bus: str | None = None,
         app.processEvents()
         print(f"startup_s={time.perf_counter() - started:.3f} "
               f"devices={len(window.doc.system.devices)} live={window.live.is_live} "
-              f"cpu_s={time.process_time():.3f}", flush=True)  # the process's, all threads
+              f"cpu_s={time.process_time():.3f} "  # the process's, all threads
+              f"gui_cpu_s={time.thread_time():.3f}", flush=True)  # this (the GUI) thread's
         window.doc.mark_saved()
         window.close()
         app.quit()
@@ -151,7 +166,9 @@ def run_app(path: str | Path | None = None, bus: str | None = None,
             status["code"] = 1
 
     window.live.failed.connect(on_failed)
+    window.ready.connect(start_up_over)  # before on_ready: the probe's CPU is the app's
     window.ready.connect(on_ready)
+    QTimer.singleShot(START_UP_LIMIT_MS, start_up_over)  # a window that never gets ready
     window.show()
     if opened is not None:
         window.show_opened(opened, Path(path))
@@ -207,6 +224,32 @@ def _discard(opening: Future | None) -> None:
             lambda done: done.exception() is None and done.result().close())
 
 
+def start_up_quietly() -> None:
+    """Until the window is live: no cyclic garbage collection, CPython's default switch
+    interval.
+
+    Start-up imports ~750 modules and builds the window: ~160 collections, 70-100 ms of a
+    2-core machine, for ~1,000 unreachable objects in all.
+    The window freezes what start-up made once it is ready (``MainWindow._mark_ready``),
+    so those objects are never looked at again anyway. The 1 ms switch interval is for the
+    live trace (:func:`share_the_interpreter`); while the GUI thread, the bus opening and the
+    networkx import all want the interpreter at once it only adds hand-overs: start-up took
+    ~0.1 s less CPU with the default (benchmarks/gui.py, ``--only startup``)."""
+    import gc
+
+    gc.disable()
+    sys.setswitchinterval(START_UP_SWITCH_INTERVAL_S)
+
+
+def start_up_over() -> None:
+    """The window is live (or start-up gave up waiting for it): collect garbage again, and
+    the app's switch interval from now on. Safe to call more than once."""
+    import gc
+
+    gc.enable()
+    share_the_interpreter()
+
+
 def share_the_interpreter() -> None:
     """Let the GUI thread take the interpreter sooner from the bus threads, decided once at
     start-up for the whole app.
@@ -215,9 +258,8 @@ def share_the_interpreter() -> None:
     and each call waits for the interpreter lock; with a session thread decoding a saturated
     bus, CPython hands the lock over only every switch interval (5 ms by default), so painting
     the trace's table took hundreds of ms (benchmarks/gui.py, trace case: 196 ms gaps at 5 ms,
-    56 ms at 0.5 ms on a loaded 2-core machine). The same hand-over paces the simulated
-    prosthesis's frames while the window is being built. Shorter intervals cost the bus
-    threads little."""
+    56 ms at 0.5 ms on a loaded 2-core machine). Shorter intervals cost the bus threads
+    little. Set once the window is live (:func:`start_up_over`)."""
     if sys.getswitchinterval() > SWITCH_INTERVAL_S:
         sys.setswitchinterval(SWITCH_INTERVAL_S)
 

@@ -18,11 +18,13 @@ def checked_findings(system: System, autoconfigure: bool) -> tuple[list[Any], Te
     """Every finding of ``system`` and its words. The parts are named from the catalogue
     once, not once per finding (each lookup finds the user's folder again: 252 findings
     of a 254-device bus took ~60 ms)."""
+    if not system.devices:
+        return [], []  # (the window's first, empty system: nothing to import the checks for)
     from pdcp_studio.app.finding_text import finding_detail, plain_finding
     from pdcp_studio.app.part_names import part_names
     from pdcp_studio.engine import check_system
 
-    findings = check_system(system, autoconfigure=autoconfigure) if system.devices else []
+    findings = check_system(system, autoconfigure=autoconfigure)
     if not findings:
         return [], []
     names = part_names(system)

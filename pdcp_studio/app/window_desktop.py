@@ -38,8 +38,8 @@ from PySide6.QtWidgets import (
     QTreeView,
     QWidget,
 )
+from shiboken6 import isValid
 
-from pdcp_studio.app import help_viewer
 from pdcp_studio.app.i18n import translate
 from pdcp_studio.app.recent_files import RecentFiles, RecentMenu
 
@@ -55,6 +55,10 @@ DISCONNECT_KEY = "Ctrl+Shift+K"
 #: The controls that need an accessible name.
 CONTROLS = (QAbstractButton, QLineEdit, QComboBox, QAbstractSpinBox, QAbstractSlider,
             QAbstractItemView, QTextEdit, QPlainTextEdit, QGraphicsView)
+
+#: A new window's controls are named this long after it is live (painted, in the user's
+#: hands: see name_when_live).
+NAMES_AFTER_MS = 100
 
 GEOMETRY_KEY = "window/geometry"
 STATE_KEY = "window/state"
@@ -227,11 +231,32 @@ class _DesktopFilter(QObject):
                 # After the drop returns: opening may ask a question (a modal dialog).
                 QTimer.singleShot(0, lambda: [open_dropped(self.window, p) for p in paths])
                 return True
-        elif kind == QEvent.Type.ChildPolished and obj is self.window:
+        elif kind == QEvent.Type.ChildPolished and obj is self.window and _is_live(obj):
+            # (Before that, the window is named whole once it is live: name_when_live.)
             child = event.child()  # type: ignore[attr-defined]
             if isinstance(child, QWidget):
                 QTimer.singleShot(0, lambda c=child: _name_later(c))
         return False
+
+
+def _is_live(window: Any) -> bool:
+    """Is ``window`` on screen with its first system (a window without that notion: yes)?"""
+    return bool(getattr(window, "is_ready", True))
+
+
+def name_when_live(window: Any, root: QWidget | None = None) -> None:
+    """Name the controls under ``root`` (default: the whole window) now if the window is
+    live, else all of the window's once it is.
+
+    Accessible names are read by a screen reader, never seen: naming the ~190 widgets of a
+    new window took 20-30 ms of start-up (the first wrapper of every Qt part) for nothing
+    on its first frame."""
+    if _is_live(window) or not hasattr(window, "ready"):
+        name_controls(root if root is not None else window)
+    elif not getattr(window, "_naming_when_live", False):
+        window._naming_when_live = True
+        window.ready.connect(lambda: QTimer.singleShot(NAMES_AFTER_MS, window,
+                                                       lambda: _name_later(window)))
 
 
 def _name_later(widget: QWidget) -> None:
@@ -257,15 +282,46 @@ def _steady_toolbar(window: Any, toolbar: QToolBar) -> None:
         steady.setEnabled(action.isEnabled())
         steady.setToolTip(_plain(action.text()))
         steady.triggered.connect(action.trigger)
-        action.changed.connect(lambda a=action, s=steady: (s.setEnabled(a.isEnabled()),
-                                                           s.setToolTip(_plain(a.text()))))
+        action.changed.connect(lambda a=action, s=steady: _follow(a, s))
         toolbar.insertAction(action, steady)
         toolbar.removeAction(action)
         setattr(window, f"toolbar_{key[7:].lower()}", steady)
 
 
+def _follow(action: QAction, steady: QAction) -> None:
+    """``steady`` enabled as ``action`` is, with its text as the tooltip (not while the
+    window is being torn down: Qt says an action changed as it deletes it)."""
+    if isValid(action) and isValid(steady):
+        steady.setEnabled(action.isEnabled())
+        steady.setToolTip(_plain(action.text()))
+
+
+def _reachable_actions(window: Any) -> list[QAction]:
+    """The actions a key can trigger: the window's own, its menus' (and their submenus'),
+    its toolbars'. (Not ``findChildren(QAction)``: that first makes a Python wrapper for
+    each of Qt's own actions, ~10 ms of start-up.)"""
+    found: list[QAction] = list(window.actions())
+    menus = [a.menu() for a in window.menuBar().actions() if a.menu() is not None]
+    while menus:
+        menu = menus.pop()
+        for action in menu.actions():
+            found.append(action)
+            if action.menu() is not None:
+                menus.append(action.menu())
+    for toolbar in _toolbars(window):
+        found += toolbar.actions()
+    return list(dict.fromkeys(found))  # each once (an action may be in a menu and a toolbar)
+
+
+def _toolbars(window: Any) -> list[QToolBar]:
+    """The window's toolbars (as made: looking for them among its children first makes a
+    Python wrapper for each of the ~190 child widgets, ~10 ms of start-up)."""
+    made = getattr(window, "toolbars", None)
+    return list(made) if made is not None else window.findChildren(QToolBar)
+
+
 def _shortcuts(window: Any) -> None:
-    taken = {a.shortcut().toString() for a in window.findChildren(QAction)
+    taken = {a.shortcut().toString() for a in _reachable_actions(window)
              if not a.shortcut().isEmpty()}
 
     def give(action: QAction, key: str) -> None:
@@ -277,6 +333,13 @@ def _shortcuts(window: Any) -> None:
         give(action, key)
     give(window.act_connect, CONNECT_KEY)
     give(window.act_disconnect, DISCONNECT_KEY)
+
+
+def _help() -> Any:
+    """The manual and About (imported when first asked for: not needed to start)."""
+    from pdcp_studio.app import help_viewer
+
+    return help_viewer
 
 
 def _help_menu(window: Any) -> None:
@@ -292,9 +355,9 @@ def _help_menu(window: Any) -> None:
                                                  "are looking at"))
     window.act_manual.triggered.connect(lambda _c=False: open_manual_here(window))
     window.act_about_qt = QAction(translate("Desktop", "About &Qt"), window)
-    window.act_about_qt.triggered.connect(lambda _c=False: help_viewer.show_about_qt(window))
+    window.act_about_qt.triggered.connect(lambda _c=False: _help().show_about_qt(window))
     window.act_about.triggered.disconnect()
-    window.act_about.triggered.connect(lambda _c=False: help_viewer.show_about(window))
+    window.act_about.triggered.connect(lambda _c=False: _help().show_about(window))
     menu.insertAction(window.act_about, window.act_manual)
     menu.insertSeparator(window.act_about)
     menu.addAction(window.act_about_qt)
@@ -303,6 +366,7 @@ def _help_menu(window: Any) -> None:
 
 def open_manual_here(window: Any) -> Any:
     """The manual at the section for the dialog in front or the widget with the focus."""
+    help_viewer = _help()
     front = QApplication.activeModalWidget() or QApplication.activeWindow()
     focus = QApplication.focusWidget()
     if front is not None and front is not window and front.objectName() != "HelpViewer":
@@ -336,7 +400,7 @@ def install_desktop(window: QMainWindow) -> None:
     _recent(w)
     _help_menu(w)
     _shortcuts(w)
-    for toolbar in window.findChildren(QToolBar):
+    for toolbar in _toolbars(window):
         _steady_toolbar(w, toolbar)
     w.setAcceptDrops(True)
     w._desktop_filter = _DesktopFilter(w)
@@ -345,15 +409,17 @@ def install_desktop(window: QMainWindow) -> None:
     w.view.setAccessibleName(translate("Desktop", "Bus graph"))
     w.view.setAccessibleDescription(translate(
         "Desktop", "The devices of the bus and the links between their channels"))
-    name_controls(window)
+    name_when_live(w)
     w.live.bridgeReady.connect(lambda _b: QTimer.singleShot(0, lambda: _restore_docks(w)))
 
 
 def _restore_docks(window: Any) -> None:
-    """Docks made after start-up (monitor, plot, simulator) go where they were last time."""
-    for dock in window.findChildren(QDockWidget):
+    """Docks made after start-up (monitor, plot, simulator) go where they were last time.
+    (The docks are the window's own children: looking for them among all its descendants
+    first makes a Python wrapper for each of its ~190 widgets, ~10 ms of start-up.)"""
+    for dock in [c for c in window.children() if isinstance(c, QDockWidget)]:
         window.restoreDockWidget(dock)
-        name_controls(dock)
+        name_when_live(window, dock)
 
 
 def remember_layout(window: QMainWindow, settings: QSettings | None = None) -> None:

@@ -31,7 +31,8 @@ TASK_MENU = (
 
 
 class MenusMixin:
-    """Builds ``act_*``, ``plan_actions``, the menus (``view_menu``, ``bus_menu``) and toolbar."""
+    """Builds ``act_*``, ``plan_actions``, the menus (``view_menu``, ``bus_menu``) and the
+    toolbar (``toolbars``)."""
 
     if TYPE_CHECKING:  # a mixin of a QObject: Qt gives it tr()
         tr: Callable[[str], str]
@@ -181,6 +182,7 @@ class MenusMixin:
         tb = self.addToolBar("Main")
         tb.setObjectName("MainToolBar")
         tb.setMovable(False)
+        self.toolbars = [tb]
         for a in (self.act_open, self.act_save, None, self.act_undo, self.act_redo, None,
                   self.act_fit, self.act_arrange, None, self.act_connect):
             # The plan operations live in the Plan menu and the plan dock, next to the plan

@@ -10,7 +10,7 @@ from __future__ import annotations
 
 from typing import Any
 
-from PySide6.QtCore import QCoreApplication, Qt
+from PySide6.QtCore import QCoreApplication, Qt, QTimer
 from PySide6.QtGui import QAction, QKeySequence
 
 from pdcp_studio.app import commands, fitting, pending
@@ -18,6 +18,9 @@ from pdcp_studio.app.history_panel import HistoryPanel
 from pdcp_studio.app.i18n import translate
 from pdcp_studio.app.pending_panel import PendingPanel
 from pdcp_studio.app.transaction_flow import TransactionFlow
+
+#: A new window reads the fitting history this long after it is live.
+HISTORY_AFTER_MS = 100
 
 
 def _tr(text: str) -> str:
@@ -232,7 +235,14 @@ class TransactionsMixin:
         entries = self.history_panel.all_entries() if devices else []
         text = fitting.patient_reference(devices, history_entries=entries) if devices else ""
         self.pending_panel.set_patient(text)
-        self.history_panel.refresh()
+        if getattr(self, "is_ready", True):
+            self.history_panel.refresh()
+        elif not getattr(self, "_history_when_live", False):
+            # A hidden tab: read once the window is live (the archive's read and check of
+            # its chain took ~25 ms of start-up on a worker, for one entry).
+            self._history_when_live = True
+            self.ready.connect(lambda: QTimer.singleShot(HISTORY_AFTER_MS, self,
+                                                         self.history_panel.refresh))
 
 
 def policy_of_entry(entry: dict) -> Any:

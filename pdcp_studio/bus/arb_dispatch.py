@@ -13,6 +13,7 @@ from __future__ import annotations
 
 import logging
 import time
+from collections.abc import Callable
 from typing import TYPE_CHECKING, cast
 
 from pdcp_studio.bus import events as ev
@@ -179,17 +180,25 @@ class Dispatcher:
             return  # still learning which IDs devices of an earlier arbitrator use
         with arb._lock:
             decision = arb.nodes.on_bind_request(req, now, arb.presence.duplicates)
-            if decision.kind == "grant":
-                self._bound(decision.key, decision.node_id, now)
-        self._answer(decision)
+            set_up = self._bound(decision.key, decision.node_id, now) \
+                if decision.kind == "grant" else None
+        try:
+            self._answer(decision)
+        finally:
+            if set_up is not None:
+                set_up()  # after the answer: the set-up's first request must not overtake it
 
     def _answer_bind(self, req: BindRequest, now: float) -> None:
         arb = self.arb
         with arb._lock:
             decision = arb.nodes.decide_bind(req, now)
-            if decision.kind == "grant":
-                self._bound(decision.key, decision.node_id, now)
-        self._answer(decision)
+            set_up = self._bound(decision.key, decision.node_id, now) \
+                if decision.kind == "grant" else None
+        try:
+            self._answer(decision)
+        finally:
+            if set_up is not None:
+                set_up()
 
     def _answer(self, decision: BindDecision) -> None:
         arb = self.arb
@@ -201,8 +210,9 @@ class Dispatcher:
             arb._send_quiet(BindResponse(decision.asked, decision.node_id, key.vid, key.pid,
                                           key.serial))
 
-    def _bound(self, key: DeviceKey, node_id: int, now: float) -> None:
-        """Under the lock: ``key`` holds ``node_id``; start (or restart) its set-up."""
+    def _bound(self, key: DeviceKey, node_id: int, now: float) -> Callable[[], None]:
+        """Under the lock: ``key`` holds ``node_id``; its set-up (or a new one) is in flight.
+        Returns what starts it, called once the bind answer is sent."""
         arb = self.arb
         device = arb._system.device(key)
         interval = (max(device.beacon_interval, 1) / 1000.0 if device is not None
@@ -211,7 +221,7 @@ class Dispatcher:
         if old is not None and old != node_id:
             arb.requests.abort(old, "the device bound again with another node ID")
         arb.profile.last_change = now
-        arb.setup.start(node)
+        return arb.setup.start(node)
 
     # -- presence (the presence tracker decides) ------------------------------------------
     def _tick(self, now: float, caught_up: bool = True) -> None:

@@ -11,6 +11,7 @@ from __future__ import annotations
 
 import logging
 import time
+from collections.abc import Callable
 from typing import TYPE_CHECKING
 
 from pdcp_studio.bus import events as ev
@@ -40,15 +41,24 @@ class DeviceSetup:
         self.failures: dict[DeviceKey, int] = {}
         self.epoch = 0  # bumped by a reset: stale set-ups discard their results
 
-    def start(self, node: _Node) -> None:
-        """Under the arbitrator's lock: set ``node``'s device up on the pool."""
-        key = node.key
-        self.in_flight[key] = (self.epoch, node.generation)
-        try:
-            self.arb._pool_exec.submit(self._job, key, node.node_id, node.generation,
-                                       self.epoch)
-        except RuntimeError:  # closing
-            self.in_flight.pop(key, None)
+    def start(self, node: _Node) -> Callable[[], None]:
+        """Under the arbitrator's lock: ``node``'s device is to be set up (it counts as in
+        flight from now on). Returns what puts the set-up on the pool, to be called once the
+        bind answer is on the bus: the set-up's first request must not overtake the answer
+        that binds the device, or the device ignores it and it is asked again a response
+        timeout later."""
+        key, node_id, generation, epoch = node.key, node.node_id, node.generation, self.epoch
+        self.in_flight[key] = (epoch, generation)
+
+        def submit() -> None:
+            try:
+                self.arb._pool_exec.submit(self._job, key, node_id, generation, epoch)
+            except RuntimeError:  # closing
+                with self.arb._lock:
+                    if self.in_flight.get(key) == (epoch, generation):
+                        del self.in_flight[key]
+
+        return submit
 
     def forget(self) -> None:
         """Under the lock: a reset; set-ups under way will discard their results."""

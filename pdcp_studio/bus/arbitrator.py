@@ -152,6 +152,14 @@ __all__ = [
     "learn_value",
 ]
 
+#: At most this many frames wait undecoded while nobody wants frame events (``subscribe``).
+FRAME_BACKLOG = 1024
+
+
+def _always() -> bool:
+    return True
+
+
 #: How a summary names the errors of a kind.
 _ERROR_WORDS = {"bad_frame": "undecodable frames", "error_frame": "error frames",
                 "transport": "transport errors"}
@@ -171,7 +179,8 @@ class Arbitrator:
                  node_ids: tuple[int, int] = (NODE_ID_MIN, NODE_ID_MAX),
                  frame_events: bool = False, channel_events: bool = True,
                  reset_on_start: bool = True, autoconfigure: bool | None = None,
-                 drop_own: bool | None = None, listen_s: float = 0.0) -> None:
+                 drop_own: bool | None = None, listen_s: float = 0.0,
+                 direct: bool = False) -> None:
         self.name = name
         self.profile_layer = profile_layer
         self.retries = retries
@@ -184,7 +193,7 @@ class Arbitrator:
         self.bad_frames = 0
         self.error_frames = 0
         self.data_frames = 0
-        self.conn = Connection(bus, name=name, pace_s=pace_s, drop_own=drop_own)
+        self.conn = Connection(bus, name=name, pace_s=pace_s, drop_own=drop_own, direct=direct)
         self._errors = RepeatLimiter(burst=ERROR_BURST)
         self._crashes = LimitedLog(log, f"{name}: ")
         self._disconnected = False  # the adapter was pulled (a ReopeningBus says so)
@@ -217,12 +226,13 @@ class Arbitrator:
         self.dispatch = Dispatcher(self)
         if hasattr(bus, "on_state"):
             bus.on_state = self.dispatch.adapter_state
+        # The frame events' decoder (bus/monitor.py), made when a frame is first shown; the
+        # frames before it, and those while nobody watches frames, wait undecoded
+        # (``_frame_event``).
         self._decoder: Any = None
-        if frame_events:
-            from pdcp_studio.bus.monitor import FrameDecoder
-
-            self._decoder = FrameDecoder()
         self._decoder_lock = threading.Lock()
+        self._unshown: list[tuple[int, bytes, float]] = []
+        self._frame_gates: list[Callable[[], bool]] = []
         self._stop = threading.Event()
         self._wake = threading.Event()
         self._pool_exec = ThreadPoolExecutor(SETUP_WORKERS, thread_name_prefix=f"pdcp {name} setup")
@@ -263,9 +273,28 @@ class Arbitrator:
         return self._closed
 
     # -- events ---------------------------------------------------------------------------
-    def subscribe(self, callback: Callable[[ev.Event], None]) -> Callable[[], None]:
-        """Call ``callback(event)`` for every event; returns the unsubscribe function."""
-        return self._subscribers.add(callback)
+    def subscribe(self, callback: Callable[[ev.Event], None], *,
+                  wants_frames: Callable[[], bool] | None = None) -> Callable[[], None]:
+        """Call ``callback(event)`` for every event; returns the unsubscribe function.
+
+        ``wants_frames`` (with ``frame_events``): asked before each frame whether this
+        subscriber shows ``FrameSeen`` events now (a session: while it has subscribers of its
+        own); without it, it always does. While no subscriber wants them, frames are not
+        decoded for display: they wait (``FRAME_BACKLOG`` at most) and are decoded, in order,
+        before the next frame one is shown, so the texts are the same, and the work is off
+        the path of opening a simulated prosthesis, which nobody watches yet."""
+        gate = wants_frames if wants_frames is not None else _always
+        with self._decoder_lock:
+            self._frame_gates.append(gate)
+        remove = self._subscribers.add(callback)
+
+        def unsubscribe() -> None:
+            remove()
+            with self._decoder_lock:
+                if gate in self._frame_gates:
+                    self._frame_gates.remove(gate)
+
+        return unsubscribe
 
     def _emit(self, event: ev.Event) -> None:
         self._subscribers.emit(event)
@@ -538,9 +567,29 @@ class Arbitrator:
             self._error(str(err), "transport")
 
     def _frame_event(self, arbitration_id: int, data: bytes, timestamp: float) -> None:
+        """A FrameSeen event for a frame heard or sent, decoded in the order of the frames
+        (the decoder learns the bus from them); or, while nobody wants frame events, the
+        frame kept to be decoded later (see :meth:`subscribe`)."""
         with self._decoder_lock:
+            if not any(gate() for gate in self._frame_gates):
+                self._unshown.append((arbitration_id, bytes(data), timestamp))
+                if len(self._unshown) < FRAME_BACKLOG:
+                    return
+                self._catch_up()  # memory stays bounded; the work is the same
+                return
+            self._catch_up()
             line = self._decoder.decode(arbitration_id, data, timestamp).line
         self._emit(ev.FrameSeen(timestamp, arbitration_id, bytes(data), line))
+
+    def _catch_up(self) -> None:
+        """Under the decoder lock: the decoder, made if need be, learns the waiting frames."""
+        if self._decoder is None:
+            from pdcp_studio.bus.monitor import FrameDecoder
+
+            self._decoder = FrameDecoder()
+        frames, self._unshown = self._unshown, []
+        for arbitration_id, data, timestamp in frames:
+            self._decoder.decode(arbitration_id, data, timestamp)
 
     # -- reset ----------------------------------------------------------------------------
     def reset(self, keep_memory: bool = True) -> None:

@@ -107,16 +107,17 @@ def refused(url: str, interface: str, why: str) -> Exception:
 
 def check_channel(url: str, interface: str, channel: str, options: dict) -> None:
     """Raise BusUrlError for what python-can would refuse when opening, checked without
-    opening: an option the interface does not know (``bus/can_options.py``; python-can would
-    drop it silently), its own option checks (``can.util.load_config``: port range, state,
+    opening: an option the interface does not know or a value its parameter does not take
+    (``bus/can_options.py``; python-can would drop the one silently and fail deep in the
+    driver on the other), its own option checks (``can.util.load_config``: port range, state,
     fd, bit timing) and a ``udp_multicast`` group that is not a multicast address."""
     import ipaddress
 
     import can.util
 
-    from pdcp_studio.bus.can_options import unknown_option
+    from pdcp_studio.bus.can_options import refused_option
 
-    why = unknown_option(interface, {k: v for k, v in options.items() if k != "bitrate"})
+    why = refused_option(interface, {k: v for k, v in options.items() if k != "bitrate"})
     if why:
         from pdcp_studio.bus.urls import BusUrlError
 

@@ -11,6 +11,13 @@ remembers what it sent and drops the first identical frame that comes back withi
 ``ECHO_WINDOW_S``, so every role sees only the others' frames, as on a real CAN bus. The
 memory of sent frames is bounded (:class:`EchoFilter`): at most ``ECHO_MAX_PENDING`` frames,
 none older than the window, whatever the number of frames a long run sends.
+
+An in-process simulation (``direct=True``, issue 11) skips the Notifier: on python-can's
+``virtual`` bus, the frames another bus of the channel sends go straight from the sender's
+thread into this connection's queue (:func:`attach_direct`), through the same listener and its
+flood bound. Each frame then wakes one thread instead of two, and a simulated prosthesis
+that opens ~450 frames at start-up no longer waits for a Notifier thread to get the
+interpreter between its sender and its reader. Real adapters always have a Notifier.
 """
 
 from __future__ import annotations
@@ -20,6 +27,7 @@ import logging
 import queue
 import threading
 import time
+from collections.abc import Callable
 from typing import TYPE_CHECKING, Any
 
 from pdcp_studio.errors import TransportError
@@ -83,6 +91,89 @@ class _Enqueue:
 
     def stop(self) -> None:
         pass
+
+
+class _DirectInbound:
+    """Stands in a python-can ``VirtualBus``'s receive queue: ``VirtualBus.send`` of another
+    bus on the channel calls ``put`` on the sender's thread, and the frame goes through the
+    connection's listener (its flood bound) into the connection's queue at once.
+
+    Nothing reads the bus itself in this mode; a stray ``recv()`` finds nothing (it waits out
+    its timeout, or a short while, instead of spinning)."""
+
+    def __init__(self, listener: Callable[[Any], None]) -> None:
+        self.listener = listener
+
+    def put(self, item: Any, block: bool = True, timeout: float | None = None) -> None:
+        self.listener(item)
+
+    def get(self, block: bool = True, timeout: float | None = None) -> Any:
+        if block:
+            time.sleep(NOTIFIER_POLL_S if timeout is None else max(0.0, timeout))
+        raise queue.Empty
+
+    def get_nowait(self) -> Any:
+        raise queue.Empty
+
+    def qsize(self) -> int:
+        return 0
+
+    def empty(self) -> bool:
+        return True
+
+
+def attach_direct(bus: object, listener: _Enqueue) -> _DirectInbound | None:
+    """Make ``bus`` hand the frames it receives to ``listener`` on the sender's thread.
+
+    Only an exact python-can ``VirtualBus`` whose receive queue is where this version of
+    python-can keeps it (``bus.queue``, a member of the channel's list ``bus.channel``) is
+    attached: its queue is swapped for a :class:`_DirectInbound` under python-can's channel
+    lock, and frames already waiting in the old queue are passed on first; returns the
+    stand-in. None (nothing changed) for any other bus, and for a python-can whose virtual bus
+    is laid out otherwise: the caller then reads it with a Notifier. A frame that another
+    thread is sending at the very moment of the swap may land in the old queue and be lost:
+    attach while the channel is quiet (the simulator attaches its buses before its devices are
+    plugged in)."""
+    try:
+        from can.interfaces import virtual
+    except ImportError:  # pragma: no cover - python-can always has it
+        return None
+    if type(bus) is not virtual.VirtualBus:
+        return None
+    lock = getattr(virtual, "channels_lock", None)
+    old = getattr(bus, "queue", None)
+    channel = getattr(bus, "channel", None)
+    if lock is None or not isinstance(old, queue.Queue) or not isinstance(channel, list):
+        return None
+    adapter = _DirectInbound(listener)
+    with lock:
+        for i, q in enumerate(channel):
+            if q is old:
+                channel[i] = adapter
+                break
+        else:
+            return None
+        bus.queue = adapter  # type: ignore[assignment]  # what shutdown() removes
+    while True:
+        try:
+            listener(old.get_nowait())
+        except queue.Empty:
+            return adapter
+
+
+def virtual_channel_in_use(channel: object) -> bool:
+    """True when python-can's virtual bus already has a bus on ``channel`` (and when this
+    python-can does not say): the simulator then reads its buses with Notifiers, as a direct
+    attach wants a quiet channel, and two device hosts answering on each other's threads
+    could wait for each other."""
+    try:
+        from can.interfaces import virtual
+
+        channels, lock = virtual.channels, virtual.channels_lock
+    except (ImportError, AttributeError):  # pragma: no cover - laid out otherwise
+        return True
+    with lock:
+        return bool(channels.get(channel))  # type: ignore[call-overload]
 
 
 class EchoFilter:
@@ -154,11 +245,13 @@ class Connection:
     """A bus owned by one role (arbitrator, device host); ``inbound`` yields can.Message.
 
     ``inbound`` may also carry an Exception when the driver failed (adapter unplugged); the
-    consumer reports it. ``pace_s`` is the least time between two sends.
+    consumer reports it. ``pace_s`` is the least time between two sends. ``direct``: an
+    in-process simulation's virtual bus delivers into ``inbound`` without a Notifier
+    (:func:`attach_direct`; any other bus is read by a Notifier all the same).
     """
 
     def __init__(self, bus: can.BusABC, *, name: str = "bus", pace_s: float = 0.0,
-                 drop_own: bool | None = None) -> None:
+                 drop_own: bool | None = None, direct: bool = False) -> None:
         import can
 
         self.bus = bus
@@ -174,13 +267,41 @@ class Connection:
         self.drop_own = (kind in _ECHOING) if drop_own is None else drop_own
         self._echoes = EchoFilter()
         self._listener = _Enqueue(self.inbound)
-        self._notifier = can.Notifier(bus, [self._listener], timeout=NOTIFIER_POLL_S)
+        self._notifier: can.Notifier | None = None
+        self._direct = attach_direct(bus, self._listener) if direct else None
+        if self._direct is None:
+            self._notifier = can.Notifier(bus, [self._listener], timeout=NOTIFIER_POLL_S)
+        self._count_lock = threading.Lock()
         with _open_lock:
             _open.add(self)
 
     @property
     def closed(self) -> bool:
         return self._closed
+
+    @property
+    def direct(self) -> bool:
+        """True when frames arrive without a Notifier thread (:func:`attach_direct`)."""
+        return self._direct is not None
+
+    def hand_over(self, handler: Callable[[can.Message], None]) -> bool:
+        """Direct mode only: from now on each frame received is given to ``handler`` on the
+        thread that sent it (the in-process simulator's device host, issue 11), instead of
+        being queued for the consumer thread; own echoes are still dropped and frames
+        counted. ``handler`` must not block: the sender waits for it. False (frames keep
+        being queued) when this connection has a Notifier."""
+        if self._direct is None:
+            return False
+
+        def take(msg: can.Message) -> None:
+            if self.drop_own and self._is_own(msg):
+                return
+            with self._count_lock:
+                self.received += 1
+            handler(msg)
+
+        self._direct.listener = take
+        return True
 
     @property
     def dropped(self) -> int:
@@ -256,7 +377,8 @@ class Connection:
             return
         self._closed = True
         try:
-            self._notifier.stop(timeout=NOTIFIER_STOP_S)
+            if self._notifier is not None:
+                self._notifier.stop(timeout=NOTIFIER_STOP_S)
         except Exception as err:  # a dying driver must not keep the bus open
             log.warning("%s: stopping the notifier failed: %s", self.name, err)
         try:

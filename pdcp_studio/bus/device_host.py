@@ -3,7 +3,13 @@
 The host owns the connection and a timer heap; it routes each frame to the device it is for
 (by node ID, by key for bind answers, by source channel node ID for data), and runs every
 device's timers. Other threads act on devices only by posting a callable to the host thread
-(:meth:`call`), so device state needs no locks.
+(:meth:`call`), so device state needs no locks of its own: the host's lock, held while the
+host thread runs timers and posted callables, serializes everything the devices do.
+
+``direct=True`` (the in-process simulator, issue 11): the devices answer a frame on the thread
+that sent it, under the host's lock (``Connection.hand_over``), so a request and its answer
+cost no thread hand-over; the host thread still runs the timers and posted callables, and is
+woken when a frame handled elsewhere set a timer earlier than it planned to wake.
 """
 
 from __future__ import annotations
@@ -40,8 +46,12 @@ class DeviceHost:
 
     def __init__(self, bus: can.BusABC, devices: Iterable[SimulatedDevice] = (), *,
                  name: str = "devices", plugged: bool = True,
-                 drop_own: bool | None = None) -> None:
-        self.conn = Connection(bus, name=name, drop_own=drop_own)
+                 drop_own: bool | None = None, direct: bool = False) -> None:
+        self.conn = Connection(bus, name=name, drop_own=drop_own, direct=direct)
+        #: Held by whoever acts on the devices: the host thread, or a sender handing a frame
+        #: over (direct mode).
+        self._lock = threading.RLock()
+        self._wake_at = 0.0  # when the host thread plans to wake next (under the lock)
         self.name = name
         self.bad_frames = 0
         self.failures = 0
@@ -55,8 +65,11 @@ class DeviceHost:
         self._binding: list[SimulatedDevice] = []
         self._listeners: dict[int, list[tuple[SimulatedDevice, int]]] = {}
         self._stop = False
-        for device in devices:
-            self._add(device, plugged)
+        #: True when frames are handled on the sender's thread (direct mode).
+        self.inline = self.conn.hand_over(self._take)
+        with self._lock:
+            for device in devices:
+                self._add(device, plugged)
         self._thread = threading.Thread(target=self._run, name=f"pdcp {name}", daemon=True)
         self._thread.start()
 
@@ -174,21 +187,35 @@ class DeviceHost:
 
     def _run(self) -> None:
         while not self._stop:
-            now = time.monotonic()
-            while self._timers and self._timers[0][0] <= now and not self._stop:
-                _, _, fn = heapq.heappop(self._timers)
-                self._guard(fn)
-            wait = IDLE_WAKE_S if not self._timers else min(IDLE_WAKE_S, self._timers[0][0] - now)
-            item = self.conn.get(max(0.0, wait))
+            with self._lock:
+                now = time.monotonic()
+                while self._timers and self._timers[0][0] <= now and not self._stop:
+                    _, _, fn = heapq.heappop(self._timers)
+                    self._guard(fn)
+                wait = max(0.0, IDLE_WAKE_S if not self._timers
+                           else min(IDLE_WAKE_S, self._timers[0][0] - now))
+                self._wake_at = now + wait
+            item = self.conn.get(wait)
             self._log.flush()
             if item is None or self._stop:
                 continue
-            if isinstance(item, Exception):
-                self._log.warning("transport", "the bus reported %s", item)
-            elif callable(item):
-                self._guard(item)
-            else:
-                self._guard(lambda frame=item: self._on_frame(frame))
+            with self._lock:
+                if isinstance(item, Exception):
+                    self._log.warning("transport", "the bus reported %s", item)
+                elif callable(item):
+                    self._guard(item)
+                else:
+                    self._guard(lambda frame=item: self._on_frame(frame))
+
+    def _take(self, msg: can.Message) -> None:
+        """A frame handed over on the thread that sent it (direct mode)."""
+        with self._lock:
+            if self._stop:
+                return
+            self._guard(lambda: self._on_frame(msg))
+            early = bool(self._timers) and self._timers[0][0] < self._wake_at
+        if early:  # the host thread sleeps past a timer this frame set: wake it
+            self.conn.wake()
 
     def _guard(self, fn: Callable[[], object]) -> None:
         try:

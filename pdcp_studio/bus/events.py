@@ -1,7 +1,9 @@
 """Events a live bus session reports to its subscribers (the desktop app, the CLI, tests).
 
 Plain frozen dataclasses so a subscriber on any thread can keep them; they carry model values
-(keys, links, plans), never python-can objects, so the app needs no python-can import.
+(keys, links, plans), never python-can objects, so the app needs no python-can import. Their
+equality, hash and repr are the protocol's :class:`~pdcp_studio.protocol.records.Record`'s
+(the same as ``dataclass(frozen=True)`` generates, made once rather than per class).
 """
 
 from __future__ import annotations
@@ -14,36 +16,37 @@ from typing import Any
 
 from pdcp_studio.model.refs import ChannelRef, DeviceKey
 from pdcp_studio.model.system import Link
+from pdcp_studio.protocol.records import Record
 
 log = logging.getLogger(__name__)
 
 
-@dataclass(frozen=True)
-class DeviceJoined:
+@dataclass(frozen=True, eq=False, repr=False)
+class DeviceJoined(Record):
     """A device bound and was set up (its channels are known)."""
 
     key: DeviceKey
 
 
-@dataclass(frozen=True)
-class DeviceLeft:
+@dataclass(frozen=True, eq=False, repr=False)
+class DeviceLeft(Record):
     """A device stopped beaconing (3 missed intervals) or was unplugged."""
 
     key: DeviceKey
 
 
-@dataclass(frozen=True)
-class LinkMade:
+@dataclass(frozen=True, eq=False, repr=False)
+class LinkMade(Record):
     link: Link
 
 
-@dataclass(frozen=True)
-class LinkRemoved:
+@dataclass(frozen=True, eq=False, repr=False)
+class LinkRemoved(Record):
     link: Link
 
 
-@dataclass(frozen=True)
-class FrameSeen:
+@dataclass(frozen=True, eq=False, repr=False)
+class FrameSeen(Record):
     """One CAN frame, sent or received, decoded to a readable ``text``."""
 
     timestamp: float
@@ -52,8 +55,8 @@ class FrameSeen:
     text: str
 
 
-@dataclass(frozen=True)
-class BusError:
+@dataclass(frozen=True, eq=False, repr=False)
+class BusError(Record):
     """Something went wrong that did not stop the session (a bad frame, a timeout, …).
 
     ``kind`` names the fault for programs: ``bad_frame``, ``error_frame``,
@@ -65,8 +68,8 @@ class BusError:
     kind: str = ""
 
 
-@dataclass(frozen=True)
-class BusState:
+@dataclass(frozen=True, eq=False, repr=False)
+class BusState(Record):
     """The session's hold on the bus changed; ``message`` is the one line that says so.
 
     ``state`` is one of :data:`BUS_STATES`: ``listening`` (a ``can:`` bus is heard before
@@ -88,15 +91,15 @@ BUS_STATE_TEXT = {"listening": "listening for another arbitrator",
                   "disconnected": "disconnected — reconnecting", "reconnected": "reconnected"}
 
 
-@dataclass(frozen=True)
-class PlanApplied:
+@dataclass(frozen=True, eq=False, repr=False)
+class PlanApplied(Record):
     """The arbitrator applied a profile-layer plan (start-up, duty cycle or by request)."""
 
     plan: Any
 
 
-@dataclass(frozen=True)
-class TerminalsUnconnected:
+@dataclass(frozen=True, eq=False, repr=False)
+class TerminalsUnconnected(Record):
     """Start-up or the duty cycle left terminal channels unconnected because the
     prosthesis's policy has autoconfigure off (issue 17); ``why`` says so in words."""
 
@@ -104,16 +107,16 @@ class TerminalsUnconnected:
     why: str
 
 
-@dataclass(frozen=True)
-class TransactionDone:
+@dataclass(frozen=True, eq=False, repr=False)
+class TransactionDone(Record):
     """A change of the change road finished (applied, failed or rolled back): ``result`` is
     the ``TransactionResult`` (bus/transaction.py)."""
 
     result: Any
 
 
-@dataclass(frozen=True)
-class ChannelValue:
+@dataclass(frozen=True, eq=False, repr=False)
+class ChannelValue(Record):
     """A data frame on a link: the output ``ref`` sent ``value`` (decoded by its type)."""
 
     ref: ChannelRef
@@ -121,8 +124,8 @@ class ChannelValue:
     timestamp: float
 
 
-@dataclass(frozen=True)
-class Progress:
+@dataclass(frozen=True, eq=False, repr=False)
+class Progress(Record):
     """``done`` of ``total`` steps of a long job (a scan, a plan) finished."""
 
     done: int

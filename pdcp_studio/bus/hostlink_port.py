@@ -90,7 +90,8 @@ class PtyPort:
 
 def open_port(name: str, baudrate: int = DEFAULT_BAUD, where: str = "host link") -> Any:
     """``pty`` → a new :class:`PtyPort`; anything else → pyserial ``serial_for_url``.
-    TransportError names ``where`` (the bus URL) and the port."""
+    TransportError names ``where`` (the bus URL) and the port, and ends with the fix
+    (``bus/serial_ports.py``)."""
     if name == "pty":
         return PtyPort()
     import serial
@@ -99,7 +100,9 @@ def open_port(name: str, baudrate: int = DEFAULT_BAUD, where: str = "host link")
         return serial.serial_for_url(name, baudrate=baudrate, timeout=READ_TIMEOUT_S,
                                      write_timeout=5.0)
     except (serial.SerialException, ValueError, OSError) as err:
-        raise TransportError(f"{where}: cannot open serial port {name!r}: {err}") from err
+        from pdcp_studio.bus.serial_ports import open_failure, seen_ports
+
+        raise TransportError(open_failure(where, name, err, seen_ports())) from err
 
 
 def read_available(port: Any) -> bytes:

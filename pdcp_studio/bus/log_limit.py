@@ -20,14 +20,18 @@ import time
 from collections.abc import Callable
 from dataclasses import dataclass
 
+from pdcp_studio.protocol.records import MutableRecord, Record
+
 #: Summaries of one kind come at most this often.
 SUMMARY_INTERVAL_S = 1.0
 #: Occurrences of one kind told in full before the limit starts.
 DEFAULT_BURST = 1
 
 
-@dataclass
-class _Kind:
+@dataclass(eq=False, repr=False)
+class _Kind(MutableRecord):
+    """One kind's token bucket and what it held back since its last summary."""
+
     tokens: float
     refilled: float
     suppressed: int = 0
@@ -35,8 +39,8 @@ class _Kind:
     last: str = ""
 
 
-@dataclass(frozen=True)
-class Summary:
+@dataclass(frozen=True, eq=False, repr=False)
+class Summary(Record):
     """``count`` occurrences of ``kind`` not told in full over ``seconds``; ``last`` the latest."""
 
     kind: str

@@ -89,7 +89,10 @@ class Session(TransactingMixin):
         self._subs = ev.Subscribers(url or "session")
         self._closed = threading.Event()
         self._close_lock = threading.Lock()
-        self._unsubscribe = arbitrator.subscribe(self._on_event)
+        # Frames are decoded for display only while someone subscribed here (a simulated
+        # prosthesis opens with ~450 frames nobody watches yet).
+        self._unsubscribe = arbitrator.subscribe(self._on_event,
+                                                 wants_frames=self._has_subscribers)
         self._state = "arbitrating"
         self._state_message = ""
 
@@ -117,6 +120,9 @@ class Session(TransactingMixin):
 
     def _emit(self, event: object) -> None:
         self._subs.emit(event)
+
+    def _has_subscribers(self) -> bool:
+        return len(self._subs) > 0
 
     def _on_event(self, event: object) -> None:
         if isinstance(event, ev.BusState):
@@ -427,6 +433,7 @@ def open_sim_session(name: str, *, url: str = "", settle_timeout: float = SIM_SE
                      **options: Any) -> SimSession:
     """A built-in prosthesis (or a system file) on a new in-process virtual bus."""
     from pdcp_studio.bus.arbitrator import Arbitrator
+    from pdcp_studio.bus.connection import virtual_channel_in_use
     from pdcp_studio.bus.device_host import DeviceHost
     from pdcp_studio.bus.device_sim import SimulatedDevice
     from pdcp_studio.bus.simulator import resolve_prosthesis
@@ -441,25 +448,31 @@ def open_sim_session(name: str, *, url: str = "", settle_timeout: float = SIM_SE
     arb_opts.setdefault("frame_events", True)
     channel = channel or unique_virtual_channel(f"pdcp-sim-{entry.name}")
     url = url or f"sim:{name}"
-    arbitrator = Arbitrator(open_can_bus("virtual", channel, url=url), name=f"{url} arbitrator",
-                            **arb_opts)
-    # The simulated parts are known: start-up need not wait out the quiet time after them.
-    arbitrator.profile.expect({key for key, dev in system.devices.items() if dev.present})
-    host = None
+    # On a channel of its own, both parts take their frames straight from the virtual bus
+    # (Connection ``direct``: no Notifier threads; the devices answer on the sender's thread).
+    # Each attaches while the channel is quiet: the devices first, all unplugged, then the
+    # arbitrator, and only then are the devices plugged in. A channel others already use
+    # (a caller's ``channel``) is read with Notifiers, as any bus.
+    direct = not virtual_channel_in_use(channel)
+    kwargs = {} if data_rate_hz is None else {"data_rate_hz": data_rate_hz}
+    devices = [SimulatedDevice(d, **kwargs) for d in system.copy().devices.values()]
+    host = DeviceHost(open_can_bus("virtual", channel, url=url), devices,
+                      name=f"{url} devices", plugged=False, direct=direct)
+    arbitrator = None
     try:
-        kwargs = {} if data_rate_hz is None else {"data_rate_hz": data_rate_hz}
-        devices = [SimulatedDevice(d, **kwargs) for d in system.copy().devices.values()]
-        host = DeviceHost(open_can_bus("virtual", channel, url=url), devices,
-                          name=f"{url} devices", plugged=False)
+        arbitrator = Arbitrator(open_can_bus("virtual", channel, url=url),
+                                name=f"{url} arbitrator", direct=direct, **arb_opts)
+        # The simulated parts are known: start-up need not wait out the quiet time after them.
+        arbitrator.profile.expect({key for key, dev in system.devices.items() if dev.present})
         for dev in system.devices.values():
             if dev.present:
                 host.plug(dev.key)
         session = SimSession(arbitrator, host, entry, system, url=url,
                              data_rate_hz=data_rate_hz, **options)
     except BaseException:
-        arbitrator.close()
-        if host is not None:
-            host.close()
+        if arbitrator is not None:
+            arbitrator.close()
+        host.close()
         raise
     # Settled means every device that is plugged in has joined (on a starved machine a
     # device's first bind request can come after the start-up quiet time) and start-up ran.

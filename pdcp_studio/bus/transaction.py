@@ -27,6 +27,7 @@ from pdcp_studio.errors import PdcpError
 from pdcp_studio.model.configuration import ConfigCollection
 from pdcp_studio.model.refs import ChannelRef, DeviceKey
 from pdcp_studio.model.system import Link, System
+from pdcp_studio.protocol.records import MutableRecord, Record
 
 if TYPE_CHECKING:
     from pdcp_studio.engine.plan import Plan
@@ -49,8 +50,8 @@ class Status(StrEnum):
     ROLLED_BACK = "rolled_back"  # a write or its verification failed; the old state is back
 
 
-@dataclass(frozen=True)
-class LinkAction:
+@dataclass(frozen=True, eq=False, repr=False)
+class LinkAction(Record):
     """One link made (``op`` "add") or removed ("remove"), and why."""
 
     op: str
@@ -69,8 +70,8 @@ class LinkAction:
         return cls(op, link_from_json(doc), str(doc.get("reason", "")))
 
 
-@dataclass(frozen=True)
-class ParameterWrite:
+@dataclass(frozen=True, eq=False, repr=False)
+class ParameterWrite(Record):
     """One parameter value to write to a device (``channel`` 0 = the device itself)."""
 
     device: DeviceKey
@@ -90,8 +91,8 @@ class ParameterWrite:
                    int(doc["param"]), int(doc["channel"]), bytes.fromhex(doc["value"]))
 
 
-@dataclass(frozen=True)
-class Policy:
+@dataclass(frozen=True, eq=False, repr=False)
+class Policy(Record):
     """The arbitrator's profile-layer policy (issue 17): may start-up and the duty cycle
     autoconfigure unconnected terminal channels on their own?"""
 
@@ -108,8 +109,8 @@ class Policy:
         return cls(autoconfigure=value)
 
 
-@dataclass
-class Change:
+@dataclass(eq=False, repr=False)
+class Change(MutableRecord):
     """What one transaction changes. Empty parts are left alone.
 
     ``action`` names it for the history ("apply autoconfigure", "config save", …); ``plan``
@@ -182,8 +183,8 @@ class Change:
                    policy=Policy.from_json(pol) if pol is not None else None)
 
 
-@dataclass
-class TransactionResult:
+@dataclass(eq=False, repr=False)
+class TransactionResult(MutableRecord):
     """What came of a transaction. ``step`` and ``reason`` name where and why it stopped."""
 
     status: Status

@@ -3,7 +3,8 @@
 ``sim:NAME`` · ``can:INTERFACE:CHANNEL[@BITRATE][?OPTION=VALUE&…]`` · ``serial:PORT[@BAUD]``.
 The ``?…`` suffix (an extension of contracts §3) passes keyword options to the python-can
 interface, e.g. ``can:udp_multicast:239.74.163.2?port=43200`` so that separate test runs on
-one host do not hear each other; numbers become ints, ``true``/``false`` booleans. python-can is
+one host do not hear each other; values are read as python-can reads its own configuration
+(``can.util.cast_from_string``: ints, floats, ``true``/``false`` booleans). python-can is
 imported only when a URL is checked or opened, so parsing one stays cheap; what python-can
 raises when a bus does not open becomes one line with the fix (``bus/can_interfaces.py``).
 
@@ -73,12 +74,9 @@ def _options(query: str, url: str) -> tuple[tuple[str, Any], ...]:
         key, sep, text = part.partition("=")
         if not sep or not re.match(r"^[A-Za-z_][A-Za-z0-9_]*$", key):
             raise BusUrlError(f"bus URL {url!r}: option {part!r} is not NAME=VALUE")
-        value: Any = text
-        if re.match(r"^-?\d+$", text):
-            value = int(text)
-        elif text.lower() in ("true", "false"):
-            value = text.lower() == "true"
-        out.append((key, value))
+        from can.util import cast_from_string  # as python-can's own configuration reads them
+
+        out.append((key, cast_from_string(text)))
     return tuple(out)
 
 
@@ -151,6 +149,11 @@ def check_bus_url(url: str) -> BusSpec:
         if spec.bitrate is not None and spec.interface not in _NO_BITRATE:
             options["bitrate"] = spec.bitrate
         check_channel(url, spec.interface, spec.channel, options)
+    if spec.kind == "serial":
+        from pdcp_studio.bus.serial_ports import unknown_protocol
+
+        if why := unknown_protocol(spec.port):
+            raise BusUrlError(f"bus URL {url!r}: {why}")
     if spec.kind == "sim":
         from pdcp_studio.bus.simulator import UnknownProsthesisError, resolve_prosthesis
 

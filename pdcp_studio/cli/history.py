@@ -42,19 +42,48 @@ def add_subparser(subparsers: argparse._SubParsersAction) -> None:
 
 
 def _open() -> Any:
-    """The archive, with the changes of PCs that died mid-way recorded as interrupted."""
+    """The archive, with the changes of PCs that died mid-way recorded as interrupted; None
+    when there is none yet (a read command creates nothing)."""
     from pdcp_studio.storage.history import History
 
-    history = History.open()
-    history.recover()
+    history = History.open_existing()
+    if history is not None:
+        history.recover()
     return history
 
 
-def _entry(history: Any, entry_id: int) -> dict:
-    entry = history.get(entry_id)
+def _path() -> Any:
+    from pdcp_studio.storage.history import default_path
+
+    return default_path()
+
+
+def _entries() -> list[dict]:
+    history = _open()
+    if history is None:
+        return []
+    with history:
+        return history.entries()
+
+
+def _entry(entry_id: int) -> dict:
+    history = _open()
+    if history is None:
+        raise BadInput(f"history: no entry {entry_id}: there is no fitting history at "
+                       f"{_path()} yet")
+    with history:
+        entry = history.get(entry_id)
     if entry is None:
         raise BadInput(f"history: no entry {entry_id} in {history.path}")
     return entry
+
+
+def _crc_text(before: str | None, after: str | None) -> str:
+    """The stored configuration's CRC before → after; an entry may not have recorded them
+    (a change that never read the stored configuration)."""
+    if before is None and after is None:
+        return "not recorded"
+    return f"{before or 'not recorded'} → {after or 'not recorded'}"
 
 
 def _line(e: dict) -> str:
@@ -70,8 +99,7 @@ def _line(e: dict) -> str:
 def run_list(args: argparse.Namespace) -> int:
     from pdcp_studio.storage.history import list_json
 
-    with _open() as history:
-        entries = history.entries()
+    entries = _entries()
     if args.json:
         print(json.dumps({"entries": [list_json(e) for e in entries]}, indent=2))
         return 0
@@ -90,8 +118,7 @@ def _links_text(links: list[dict]) -> list[str]:
 
 
 def run_show(args: argparse.Namespace) -> int:
-    with _open() as history:
-        e = _entry(history, args.id)
+    e = _entry(args.id)
     if args.json:
         print(json.dumps(e, indent=2))
         return 0
@@ -101,7 +128,8 @@ def run_show(args: argparse.Namespace) -> int:
           + (f" at step {outcome['step']}: {outcome['reason']}" if outcome.get("reason") else ""))
     print("  devices: " + ", ".join(f"{d['vid']}/{d['pid']}/{d['serial']}"
                                     for d in e["devices"]))
-    print(f"  stored configuration CRC: {e['config_crc_before']} → {e['config_crc_after']}")
+    print("  stored configuration CRC: "
+          + _crc_text(e.get("config_crc_before"), e.get("config_crc_after")))
     print("  links before:")
     print("\n".join(_links_text(e["links_before"])))
     print("  links after:")
@@ -134,8 +162,7 @@ def run_restore(args: argparse.Namespace) -> int:
     from pdcp_studio.cli.scan import open_bus_session
 
     check_bus_url(args.bus)  # a bad --bus is the same line from every command, checked first
-    with _open() as history:
-        entry = _entry(history, args.id)
+    entry = _entry(args.id)
     session = open_bus_session(args.bus, memory=args.memory)
     try:
         change = restore_change(entry, session.system().links)
@@ -145,7 +172,11 @@ def run_restore(args: argparse.Namespace) -> int:
 
 
 def run_verify(args: argparse.Namespace) -> int:
-    with _open() as history:
+    history = _open()
+    if history is None:
+        print(f"{_path()}: no fitting history yet (0 entries), nothing to check")
+        return 0
+    with history:
         report = history.verify()
         path = history.path
     if report.ok:

@@ -27,12 +27,12 @@ def add_subparser(subparsers: argparse._SubParsersAction) -> None:
 def run(args: argparse.Namespace) -> int:
     from pdcp_studio.bus.hostlink_conformance import run_suite
     from pdcp_studio.bus.hostlink_port import open_port
-    from pdcp_studio.bus.urls import BusUrlError, parse_bus_url
+    from pdcp_studio.bus.urls import BusUrlError, check_bus_url
     from pdcp_studio.cli.main import BadInput
     from pdcp_studio.errors import TransportError
 
     try:
-        spec = parse_bus_url(args.bus)
+        spec = check_bus_url(args.bus)
     except BusUrlError as err:
         raise BadInput(str(err)) from err
     if spec.kind != "serial":

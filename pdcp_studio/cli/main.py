@@ -14,7 +14,6 @@ other failure.
 from __future__ import annotations
 
 import argparse
-import errno
 import importlib
 import logging
 import os
@@ -102,13 +101,21 @@ def main(argv: Sequence[str] | None = None) -> int:
     parser = build_parser(_commands_for(sys.argv[1:] if argv is None else argv))
     args = parser.parse_args(argv)
     if args.command is None:
-        # Bare `pdcp-studio` opens the desktop app on the simulated prosthesis.
-        args = parser.parse_args(["gui", *(["--lang", args.lang] if args.lang else [])])
+        # Bare `pdcp-studio` opens the desktop app on the built-in simulated prosthesis
+        # (contracts §2); `pdcp-studio gui` alone keeps the start page.
+        from pdcp_studio.app.window_support import DEFAULT_BUS  # Qt-free
+
+        args = parser.parse_args(["gui", "--bus", DEFAULT_BUS,
+                                  *(["--lang", args.lang] if args.lang else [])])
         if getattr(args, "func", None) is None:
             parser.print_help()
             return EXIT_OK
     try:
-        return int(args.func(args) or 0)
+        code = int(args.func(args) or 0)
+        sys.stdout.flush()  # a reader that has gone shows here, not at the interpreter's exit
+        return code
+    except BrokenPipeError:
+        return _reader_gone()
     except (BadInput, BusUrlError, ConfigFormatError, SystemFileError) as err:
         print(f"pdcp-studio: {err}", file=sys.stderr)
         return EXIT_BAD_INPUT
@@ -123,21 +130,27 @@ def main(argv: Sequence[str] | None = None) -> int:
         return EXIT_FAILURE
 
 
+def _reader_gone() -> int:
+    """Output piped to a reader that stopped reading (``| head``): exit quietly, as command
+    line tools do, with the failure status (not everything was delivered). What is still
+    buffered goes to the null device, so the interpreter's own flush at exit does not
+    complain either."""
+    try:
+        devnull = os.open(os.devnull, os.O_WRONLY)
+        os.dup2(devnull, sys.stdout.fileno())
+        os.close(devnull)
+    except (OSError, ValueError):  # stdout is not a file descriptor (a test's capture)
+        pass
+    return EXIT_FAILURE
+
+
 def os_error_text(err: OSError) -> str:
     """An operating-system failure in words that name the file and, for a path that
-    cannot exist, the folder that is missing (not "[Errno 2] …")."""
-    if not err.filename:
-        return str(err)
-    name = os.fsdecode(err.filename)
-    why = err.strerror or str(err)
-    parent = os.path.dirname(os.path.abspath(name))
-    if err.errno == errno.ENOENT and not os.path.isdir(parent):
-        why = f"the folder {parent} does not exist"
-    elif err.errno == errno.ENOTDIR:
-        why = "a part of the path is a file, not a folder"
-    elif err.errno == errno.EISDIR:
-        why = "is a folder, not a file"
-    return f"{name}: {why}"
+    cannot exist, the folder that is missing (not "[Errno 2] …"); the app uses the same
+    words (``storage/write_failure.py``)."""
+    from pdcp_studio.storage.write_failure import os_error_text as plain_words
+
+    return plain_words(err)
 
 
 if __name__ == "__main__":  # pragma: no cover

@@ -42,7 +42,7 @@ class FunctionCode(IntEnum):
     @property
     def label(self) -> str:
         """Code and name, e.g. "0x83 Get Device Parameter Response" (prefix of error messages)."""
-        return f"0x{self.value:02X} {_TITLES[self]}"
+        return _LABELS[self]
 
     @property
     def is_response(self) -> bool:
@@ -84,6 +84,13 @@ _TITLES: dict[FunctionCode, str] = {
     FunctionCode.UPDATE_DATA_CHANNEL: "Update Data Channel",
     FunctionCode.UPDATE_DATA_CHANNEL_RESPONSE: "Update Data Channel Response",
 }
+
+#: Each code's label, made once (every message is built with it at hand for its errors).
+_LABELS: dict[FunctionCode, str] = {code: f"0x{code.value:02X} {title}"
+                                    for code, title in _TITLES.items()}
+#: Byte 0 → its FunctionCode: what ``FunctionCode(byte)`` gives, as one dict look-up (every
+#: frame decoded asks it; Enum's call machinery costs microseconds each time).
+FUNCTION_CODES: dict[int, FunctionCode] = {code.value: code for code in FunctionCode}
 
 #: Allowed DLC (min, max), including byte 0 — reference §1, the authoritative table.
 #: (001 figure 3.1 itself prints 5 for 0x0C and 1 for 0x88/0x89/0x8B; its own §3.2 frame

@@ -8,7 +8,7 @@ at equal priority a device (mode 0) beats the arbitrator (mode 1).
 from __future__ import annotations
 
 from enum import IntEnum
-from typing import NamedTuple
+from typing import Any, NamedTuple
 
 from pdcp_studio.errors import FrameError
 
@@ -56,6 +56,24 @@ class Identifier(NamedTuple):
         return f"{self.priority.name}/{self.mode.name}/node {self.node_id}"
 
 
+#: Priority and Mode by value, in value order (``split_id`` indexes them: the fields of an
+#: 11-bit identifier are always in range).
+_PRIORITIES: tuple[Priority, ...] = tuple(Priority)
+_MODES: tuple[Mode, ...] = tuple(Mode)
+_PRIORITY_OF: dict[int, Priority] = {p.value: p for p in Priority}
+_MODE_OF: dict[int, Mode] = {m.value: m for m in Mode}
+
+
+def _member(table: dict[int, Any], enum: type, value: object) -> Any:
+    """``enum(value)``, by a dict look-up when ``value`` is one of its values (what Enum's
+    own call does first, without its call machinery); otherwise ``enum(value)`` itself, so
+    anything else raises (or converts) exactly as before."""
+    try:
+        return table[value]  # type: ignore[index]
+    except (KeyError, TypeError):
+        return enum(value)
+
+
 def check_node_id(node_id: int, what: str = "node ID", *, allow_broadcast: bool = True) -> int:
     """Return ``node_id`` if it is a valid PDCP node ID (0–254, or 1–254), else raise FrameError."""
     low = BROADCAST if allow_broadcast else NODE_ID_MIN
@@ -69,11 +87,11 @@ def check_node_id(node_id: int, what: str = "node ID", *, allow_broadcast: bool 
 def make_id(priority: int, mode: int, node_id: int) -> int:
     """Compose an 11-bit arbitration ID; raises FrameError on an out-of-range field."""
     try:
-        prio = Priority(priority)
+        prio = _member(_PRIORITY_OF, Priority, priority)
     except ValueError:
         raise FrameError(f"priority {priority!r} is out of range (0–3)") from None
     try:
-        mod = Mode(mode)
+        mod = _member(_MODE_OF, Mode, mode)
     except ValueError:
         raise FrameError(f"mode {mode!r} is out of range (0 device, 1 arbitrator)") from None
     check_node_id(node_id)
@@ -95,7 +113,7 @@ def split_id(arbitration_id: int) -> Identifier:
             f"(0–{NODE_ID_MAX})"
         )
     return Identifier(
-        Priority(arbitration_id >> _PRIORITY_SHIFT),
-        Mode(arbitration_id >> _MODE_SHIFT & 1),
+        _PRIORITIES[arbitration_id >> _PRIORITY_SHIFT],
+        _MODES[arbitration_id >> _MODE_SHIFT & 1],
         node_id,
     )

@@ -1,5 +1,8 @@
 """One frozen dataclass per function code, plus ``ChannelData`` for data-channel frames.
 
+Their equality, hash and repr are :class:`~pdcp_studio.protocol.records.Record`'s, the same
+as ``dataclass(frozen=True)`` generates, written once instead of per class (issue 11).
+
 Every message knows its identifier fields (``node_id``, ``priority``, ``mode``) and encodes to
 ``(arbitration_id, data)``; ``decode()`` turns any frame back into a message or raises
 FrameError naming the function and what is wrong. DLCs follow reference §1 (the restated,
@@ -13,8 +16,15 @@ from dataclasses import dataclass, field, fields
 from typing import TYPE_CHECKING, ClassVar, Self
 
 from pdcp_studio.errors import FrameError
-from pdcp_studio.protocol.codes import DLC_RANGE, FunctionCode, ResponseCode, describe_code
+from pdcp_studio.protocol.codes import (
+    DLC_RANGE,
+    FUNCTION_CODES,
+    FunctionCode,
+    ResponseCode,
+    describe_code,
+)
 from pdcp_studio.protocol.identifier import NODE_ID_MAX, Mode, Priority, make_id, split_id
+from pdcp_studio.protocol.records import Record
 
 if TYPE_CHECKING:
     from pdcp_studio.model.refs import Direction
@@ -49,12 +59,26 @@ _SIDE = {Mode.DEVICE: "a device", Mode.ARBITRATOR: "the bus arbitrator"}
 
 
 def _int_field(where: str, name: str, value: object, kind: str) -> int:
+    """``value`` if it is an integer in ``kind``'s range; else FrameError naming the field
+    (``name`` as a field is spelt, ``granted_node_id``, or as shown, ``node ID``)."""
     if not isinstance(value, int) or isinstance(value, bool):
-        raise FrameError(f"{where}: {name} {value!r} is not an integer")
+        raise FrameError(f"{where}: {_shown(name)} {value!r} is not an integer")
     lo, hi = _RANGES[kind]
     if not lo <= value <= hi:
-        raise FrameError(f"{where}: {name} {value} is out of range ({lo}–{hi})")
+        raise FrameError(f"{where}: {_shown(name)} {value} is out of range ({lo}–{hi})")
     return value
+
+
+def _shown(name: str) -> str:
+    return name.replace("_", " ").replace(" id", " ID")
+
+
+#: Each enum's members by value (``enum(value)`` for a value known to be in range, as one
+#: dict look-up: every message built or decoded converts two or three fields).
+_MEMBERS: dict[type, dict[int, object]] = {
+    enum: {member.value: member for member in enum}
+    for enum in (Priority, Mode, ResponseCode)
+}
 
 
 def _enum_field(where: str, name: str, value: object, enum: type, allowed: range) -> object:
@@ -62,15 +86,15 @@ def _enum_field(where: str, name: str, value: object, enum: type, allowed: range
         choices = ", ".join(f"{v} {enum(v).name}" for v in allowed)
         shown = int(value) if isinstance(value, int) and not isinstance(value, bool) else value
         raise FrameError(f"{where}: {name} {shown!r} is not one of {choices}")
-    return enum(value)
+    return _MEMBERS[enum][value]
 
 
 def _dlc_text(lo: int, hi: int) -> str:
     return f"{lo} expected" if lo == hi else f"{lo}–{hi} expected"
 
 
-@dataclass(frozen=True)
-class _FunctionMessage:
+@dataclass(frozen=True, eq=False, repr=False)
+class _FunctionMessage(Record):
     """Shared encode / decode / validation, driven by each class's layout constants.
 
     ``priority`` (and ``mode``, where either side may send) are keyword-only fields.
@@ -109,7 +133,9 @@ class _FunctionMessage:
                 allowed = range(3) if kind == "response_bulk" else range(2)
                 put(self, name, _enum_field(where, "response code", value, ResponseCode, allowed))
             else:
-                _int_field(where, name.replace("_", " ").replace(" id", " ID"), value, kind)
+                if (not isinstance(value, int) or isinstance(value, bool)
+                        or not _RANGES[kind][0] <= value <= _RANGES[kind][1]):
+                    _int_field(where, name, value, kind)  # raises, naming the field
         if self._TAIL is not None:
             tail = getattr(self, self._TAIL)
             if not isinstance(tail, bytes | bytearray | memoryview):
@@ -169,7 +195,7 @@ _PARAM_FIELDS = (("param", "u8"), ("channel", "u8"))
 _CODE_FIELD = (("code", "response"),)
 
 
-@dataclass(frozen=True)
+@dataclass(frozen=True, eq=False, repr=False)
 class BindRequest(_OneSided):
     """0x01: a device asks for ``node_id`` (the identifier's node ID), at priority 3."""
 
@@ -181,7 +207,7 @@ class BindRequest(_OneSided):
     priority: Priority = field(default=Priority.BINDING, kw_only=True)
 
 
-@dataclass(frozen=True)
+@dataclass(frozen=True, eq=False, repr=False)
 class BindResponse(_OneSided):
     """0x81: ``node_id`` is the ID the request used; ``granted_node_id`` (byte 1) the answer.
 
@@ -200,14 +226,14 @@ class BindResponse(_OneSided):
         return self.granted_node_id == self.node_id
 
 
-@dataclass(frozen=True)
+@dataclass(frozen=True, eq=False, repr=False)
 class GetParameter(_OneSided):
     CODE, MODE, _HEAD, _FIELDS = FunctionCode.GET_PARAMETER, _BA, _PARAM, _PARAM_FIELDS
     param: int
     channel: int
 
 
-@dataclass(frozen=True)
+@dataclass(frozen=True, eq=False, repr=False)
 class GetParameterResponse(_OneSided):
     """0x83: ``value`` is 0–4 bytes (empty with USE_BULK or FAILURE)."""
 
@@ -219,7 +245,7 @@ class GetParameterResponse(_OneSided):
     value: bytes = b""
 
 
-@dataclass(frozen=True)
+@dataclass(frozen=True, eq=False, repr=False)
 class SetParameter(_OneSided):
     """0x04: ``value`` is 1–4 bytes; longer values go by Configure Set Bulk."""
 
@@ -230,7 +256,7 @@ class SetParameter(_OneSided):
     value: bytes
 
 
-@dataclass(frozen=True)
+@dataclass(frozen=True, eq=False, repr=False)
 class SetParameterResponse(_OneSided):
     """0x84: echoes 1–4 value bytes whatever the response code (reference DLC 5–8)."""
 
@@ -242,7 +268,7 @@ class SetParameterResponse(_OneSided):
     value: bytes
 
 
-@dataclass(frozen=True)
+@dataclass(frozen=True, eq=False, repr=False)
 class Suspend(_OneSided):
     """0x08: stop transmitting for ``ms`` milliseconds (0 = until released)."""
 
@@ -250,7 +276,7 @@ class Suspend(_OneSided):
     ms: int
 
 
-@dataclass(frozen=True)
+@dataclass(frozen=True, eq=False, repr=False)
 class SuspendResponse(_OneSided):
     CODE, MODE, _HEAD = FunctionCode.SUSPEND_RESPONSE, _DEV, _SUSPEND_RESPONSE
     _FIELDS = (*_CODE_FIELD, ("ms", "u16"))
@@ -258,18 +284,18 @@ class SuspendResponse(_OneSided):
     ms: int
 
 
-@dataclass(frozen=True)
+@dataclass(frozen=True, eq=False, repr=False)
 class Release(_OneSided):
     CODE, MODE, _HEAD = FunctionCode.RELEASE, _BA, _CODE_ONLY
 
 
-@dataclass(frozen=True)
+@dataclass(frozen=True, eq=False, repr=False)
 class ReleaseResponse(_OneSided):
     CODE, MODE, _HEAD, _FIELDS = FunctionCode.RELEASE_RESPONSE, _DEV, _RESPONSE, _CODE_FIELD
     code: ResponseCode
 
 
-@dataclass(frozen=True)
+@dataclass(frozen=True, eq=False, repr=False)
 class Beacon(_FunctionMessage):
     """0x0A: "still here", from a device (mode 0) or the arbitrator (mode 1).
 
@@ -281,25 +307,25 @@ class Beacon(_FunctionMessage):
     priority: Priority = field(default=Priority.HIGH, kw_only=True)
 
 
-@dataclass(frozen=True)
+@dataclass(frozen=True, eq=False, repr=False)
 class Reset(_OneSided):
     CODE, MODE, _HEAD = FunctionCode.RESET, _BA, _CODE_ONLY
 
 
-@dataclass(frozen=True)
+@dataclass(frozen=True, eq=False, repr=False)
 class ResetResponse(_OneSided):
     CODE, MODE, _HEAD, _FIELDS = FunctionCode.RESET_RESPONSE, _DEV, _RESPONSE, _CODE_FIELD
     code: ResponseCode
 
 
-@dataclass(frozen=True)
+@dataclass(frozen=True, eq=False, repr=False)
 class ConfigureGetBulk(_OneSided):
     CODE, MODE, _HEAD, _FIELDS = FunctionCode.CONFIGURE_GET_BULK, _BA, _PARAM, _PARAM_FIELDS
     param: int
     channel: int
 
 
-@dataclass(frozen=True)
+@dataclass(frozen=True, eq=False, repr=False)
 class ConfigureGetBulkResponse(_OneSided):
     """0x8C: the device will send ``size`` bytes in 0x0E packets."""
 
@@ -311,7 +337,7 @@ class ConfigureGetBulkResponse(_OneSided):
     size: int
 
 
-@dataclass(frozen=True)
+@dataclass(frozen=True, eq=False, repr=False)
 class ConfigureSetBulk(_OneSided):
     """0x0D: the arbitrator will send ``size`` bytes in 0x0E packets."""
 
@@ -322,7 +348,7 @@ class ConfigureSetBulk(_OneSided):
     size: int
 
 
-@dataclass(frozen=True)
+@dataclass(frozen=True, eq=False, repr=False)
 class ConfigureSetBulkResponse(_OneSided):
     CODE, MODE, _HEAD = FunctionCode.CONFIGURE_SET_BULK_RESPONSE, _DEV, _BULK_RESPONSE
     _FIELDS = (*_CODE_FIELD, *_PARAM_FIELDS, ("size", "u16"))
@@ -332,7 +358,7 @@ class ConfigureSetBulkResponse(_OneSided):
     size: int
 
 
-@dataclass(frozen=True)
+@dataclass(frozen=True, eq=False, repr=False)
 class BulkData(_FunctionMessage):
     """0x0E: one packet of 1–6 bytes; ``mode`` (keyword) says which side sends the data."""
 
@@ -343,7 +369,7 @@ class BulkData(_FunctionMessage):
     mode: Mode = field(kw_only=True)
 
 
-@dataclass(frozen=True)
+@dataclass(frozen=True, eq=False, repr=False)
 class BulkDataResponse(_FunctionMessage):
     """0x8E: sent by the receiver of the data after the last packet."""
 
@@ -352,7 +378,7 @@ class BulkDataResponse(_FunctionMessage):
     mode: Mode = field(kw_only=True)
 
 
-@dataclass(frozen=True)
+@dataclass(frozen=True, eq=False, repr=False)
 class UpdateDataChannel(_OneSided):
     """0x0F: a device asks the arbitrator to (re)choose the source of input ``channel``."""
 
@@ -361,7 +387,7 @@ class UpdateDataChannel(_OneSided):
     channel: int
 
 
-@dataclass(frozen=True)
+@dataclass(frozen=True, eq=False, repr=False)
 class UpdateDataChannelResponse(_OneSided):
     CODE, MODE, _HEAD = FunctionCode.UPDATE_DATA_CHANNEL_RESPONSE, _BA, _CHANNEL_RESPONSE
     _FIELDS = (*_CODE_FIELD, ("channel", "u8"))
@@ -369,8 +395,8 @@ class UpdateDataChannelResponse(_OneSided):
     channel: int
 
 
-@dataclass(frozen=True)
-class ChannelData:
+@dataclass(frozen=True, eq=False, repr=False)
+class ChannelData(Record):
     """A data-channel frame: mode 0, an output channel's node ID, 0–8 bytes, no function code."""
 
     MODE: ClassVar[Mode] = Mode.DEVICE
@@ -440,10 +466,9 @@ def decode(arbitration_id: int, data: bytes, *,
         return ChannelData.decode(arbitration_id, data)
     if not data:
         raise FrameError(f"{ident}: an empty frame has no function code")
-    try:
-        code = FunctionCode(data[0])
-    except ValueError:
-        raise FrameError(f"{ident}: function code {describe_code(data[0])}") from None
+    code = FUNCTION_CODES.get(data[0])
+    if code is None:
+        raise FrameError(f"{ident}: function code {describe_code(data[0])}")
     return MESSAGE_TYPES[code].decode(arbitration_id, data)  # type: ignore[return-value]
 
 

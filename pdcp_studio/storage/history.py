@@ -145,6 +145,15 @@ class History:
     def open(cls, path: str | Path | None = None) -> History:
         return cls(path if path is not None else default_path())
 
+    @classmethod
+    def open_existing(cls, path: str | Path | None = None) -> History | None:
+        """The archive to read, or None when there is none yet: reading never creates it
+        (``history list`` on a new computer is an empty history, not a new file)."""
+        target = Path(path) if path is not None else default_path()
+        if not target.exists():
+            return None
+        return cls(target)
+
     def __enter__(self) -> History:
         return self
 

@@ -7,6 +7,7 @@ at ``sys.modules`` the moment the window is ready (shown, laid out, live):
 - numpy, the trace store and the live plot come only with the trace and plot docks, made
   just after the window is up (``window_bus``), never before it;
 - the other commands' modules are not loaded for the desktop app (``cli/main.py``);
+- the manual and About (``help_viewer``) come when first asked for (``window_desktop``);
 - networkx is there (the graph is laid out with it), and python-can (the simulated
   prosthesis talks over python-can's virtual bus: contracts §3 ``sim:``).
 """
@@ -26,7 +27,8 @@ pytestmark = pytest.mark.gui
 ROOT = Path(__file__).resolve().parents[2]
 NOT_AT_START = ("numpy", "pdcp_studio.app.live_plot", "pdcp_studio.app.monitor_dock",
                 "pdcp_studio.app.trace_store", "pdcp_studio.cli.doctor",
-                "pdcp_studio.cli.monitor", "pdcp_studio.cli.config_cmd")
+                "pdcp_studio.cli.monitor", "pdcp_studio.cli.config_cmd",
+                "pdcp_studio.app.help_viewer")
 NEEDED = ("networkx", "can", "pdcp_studio.bus.arbitrator")
 
 SCRIPT = """

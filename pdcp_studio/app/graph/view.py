@@ -97,10 +97,17 @@ class Legend(QWidget):
         super().__init__(parent)
         self.setFont(style.small_font())
         self._metrics = QFontMetricsF(self.font())
+        self._widths: dict[str, float] = {}  # text → its width in that font
         self._rows: list[list[tuple]] = [list(r) for r in LEGEND]
 
     def _entry_width(self, label: str) -> float:
-        return 24 + self._metrics.horizontalAdvance(translate("Legend", label))
+        # Asked ~1,000 times while a new window is laid out (the footer tries both places
+        # on every resize): measured once per text.
+        text = translate("Legend", label)
+        width = self._widths.get(text)
+        if width is None:
+            width = self._widths[text] = 24 + self._metrics.horizontalAdvance(text)
+        return width
 
     def rows_for(self, width: float) -> list[list[tuple]]:
         """The entries flowed into rows no wider than ``width``, in order."""
