@@ -55,3 +55,16 @@ def install(app: QApplication | None = None) -> None:
     popups = _FitPopups(app)
     app.focusChanged.connect(popups.fit)
     setattr(app, _INSTALLED, popups)
+
+
+def keep_whole(combo: QComboBox) -> None:
+    """A closed box as wide as its longest entry (never "Spare ha"), and the whole chosen
+    entry in its tooltip when a narrow panel squeezes it anyway."""
+    combo.setSizeAdjustPolicy(QComboBox.SizeAdjustPolicy.AdjustToContents)
+    base = combo.toolTip()
+
+    def tip(text: str) -> None:
+        combo.setToolTip(f"{text}\n{base}" if base and text else text or base)
+
+    combo.currentTextChanged.connect(tip)
+    tip(combo.currentText())

@@ -11,7 +11,7 @@ from collections.abc import Callable
 from PySide6.QtCore import Qt
 from PySide6.QtWidgets import QDialog, QLineEdit, QListWidget, QListWidgetItem, QVBoxLayout, QWidget
 
-from pdcp_studio.model.catalog import default_catalog
+from pdcp_studio.app.part_names import part_names
 from pdcp_studio.model.refs import DeviceKey
 from pdcp_studio.model.system import System
 
@@ -19,10 +19,10 @@ from pdcp_studio.model.system import System
 def device_matches(system: System, text: str) -> list[tuple[DeviceKey, str]]:
     """Devices whose shown name or ``VID/PID/serial`` contains ``text`` (any case), by name."""
     needle = text.strip().lower()
-    catalog = default_catalog()
+    names = part_names(system)
     out = []
-    for key, device in system.devices.items():
-        label = catalog.device_label(device)
+    for key in system.devices:
+        label = names[key]
         numbers = f"{key.vid}/{key.pid}/{key.serial}"
         if not needle or needle in label.lower() or needle in numbers:
             out.append((key, label))

@@ -12,7 +12,6 @@ from html import escape
 
 from pdcp_studio.app.i18n import translate
 from pdcp_studio.engine.checks import Finding
-from pdcp_studio.model.catalog import default_catalog
 from pdcp_studio.model.refs import ChannelRef, DeviceKey
 from pdcp_studio.model.system import System
 
@@ -58,11 +57,11 @@ def channel_words(system: System, ref: ChannelRef,
                   names: Mapping[DeviceKey, str] | None = None) -> str:
     """``Multi-grip hand (serial 301), channel 2``: the device's name and the channel;
     ``names`` (device → name) when the caller names the parts itself."""
-    device = system.devices.get(ref.device)
     name = names.get(ref.device) if names else None
     if name is None:
-        name = default_catalog().device_label(device) if device is not None else \
-            default_catalog().label(ref.device)
+        from pdcp_studio.app.part_names import part_name
+
+        name = part_name(system, ref.device)
     return translate(_CTX, "{device}, channel {n}").format(device=name, n=ref.index)
 
 

@@ -51,6 +51,12 @@ from pdcp_studio.model.system import Channel, Device, Link
 
 ERROR_STYLE = "color: #b91c1c;"
 DIM_STYLE = "color: #66707b;"
+#: Channel parameters shown only in the Details section: how a channel is sent and who
+#: sends to it, set by the arbitrator (transfer type, the source's identity and node IDs,
+#: an output's node ID).
+_DETAIL_PARAMS = frozenset({params.CH_TRANSFER_TYPE, params.IN_SOURCE_VID_PID,
+                            params.IN_SOURCE_SN_INDEX, params.IN_SOURCE_NODE_IDS,
+                            params.IN_SOURCE_TYPE_PROFILE})
 #: Device parameters (channel index 0) → Device attribute edited through them.
 DEVICE_FIELD = {m.param: m.fields[0] for m in param_fields.FIELD_MAPS
                 if m.scope == "device" and len(m.fields) == 1 and not m.identity
@@ -188,6 +194,42 @@ class Inspector(QScrollArea):
         box.addLayout(grid)
         return grid
 
+    def _details(self, box: QVBoxLayout, expanded: bool = False) -> QGridLayout:
+        """A collapsible "Details" section (collapsed at first): the engineer's encoding,
+        codes and numbers, one click away from what a prosthetist sets."""
+        from PySide6.QtWidgets import QToolButton
+
+        button = QToolButton()
+        button.setText(self.tr("Details for engineers"))
+        button.setCheckable(True)
+        button.setChecked(expanded)
+        button.setToolButtonStyle(Qt.ToolButtonStyle.ToolButtonTextBesideIcon)
+        button.setArrowType(Qt.ArrowType.DownArrow if expanded else Qt.ArrowType.RightArrow)
+        button.setAutoRaise(True)
+        body = QWidget()
+        grid = QGridLayout(body)
+        grid.setContentsMargins(0, 0, 0, 0)
+        grid.setHorizontalSpacing(8)
+        grid.setVerticalSpacing(3)
+        grid.setColumnStretch(1, 1)
+        body.setVisible(expanded)
+
+        def toggle(on: bool) -> None:
+            body.setVisible(on)
+            button.setArrowType(Qt.ArrowType.DownArrow if on else Qt.ArrowType.RightArrow)
+
+        button.toggled.connect(toggle)
+        box.addWidget(button)
+        box.addWidget(body)
+        self.editors["details"] = button
+        return grid
+
+    def _plain_grid(self, box: QVBoxLayout) -> QGridLayout:
+        """:meth:`_grid` whose rows show names only (their encoding in the tooltip)."""
+        grid = self._grid(box)
+        grid.setProperty("plainRows", True)
+        return grid
+
     def _row(self, grid: QGridLayout, spec: params.ParameterSpec | None, name: str,
              field: str, editor: QWidget, meta: str | None = None) -> None:
         """One parameter: name, editor, unit and layout; an error line below it."""
@@ -196,7 +238,11 @@ class Inspector(QScrollArea):
             meta = " · ".join(x for x in (spec.unit if spec else "",
                                            spec.layout if spec else "PDCP Studio only") if x)
         title = spec.name if spec else name
-        label = QLabel(
+        plain = bool(grid.property("plainRows")) and bool(title)
+        if plain:  # a prosthetist's setting: the encoding is the engineer's, in the tooltip
+            label = QLabel(title)
+        else:
+            label = QLabel(
             self.tr("{title}<br><span style='color:#66707b; font-size:small'>{meta}</span>").format(
                 title=title, meta=meta
             )
@@ -204,7 +250,7 @@ class Inspector(QScrollArea):
             else self.tr("<span style='color:#66707b; font-size:small'>{meta}</span>").format(
                 meta=meta
             )
-        )
+            )
         label.setWordWrap(True)
         label.setMinimumWidth(90)
         label.setMaximumWidth(130)
@@ -212,6 +258,8 @@ class Inspector(QScrollArea):
             f"parameter {spec.id}" if spec else "kept by PDCP Studio only")
         if spec and not spec.writable:
             tip += " (read-only)"
+        if plain and meta:
+            tip += f"\n{meta}"
         label.setToolTip(tip)
         grid.addWidget(label, row, 0, Qt.AlignmentFlag.AlignTop)
         grid.addWidget(editor, row, 1)
@@ -222,6 +270,28 @@ class Inspector(QScrollArea):
         grid.addWidget(err, row + 1, 1)
         self.editors[field] = editor
         self.errors[field] = err
+
+    def _catalogue_warning(self, box: QVBoxLayout) -> None:
+        """Device catalogue files that were skipped (file and why), here and once in the
+        window's status bar: the parts they describe are named by their numbers."""
+        from pdcp_studio.model.catalog import default_catalog_problems
+
+        problems = default_catalog_problems()
+        if not problems:
+            return
+        text = self.tr("A device catalogue file was skipped, so the parts it describes "
+                       "are not named from it: {0}").format("; ".join(problems))
+        label = QLabel(text)
+        label.setWordWrap(True)
+        label.setStyleSheet("color: #b45309;")
+        label.setTextInteractionFlags(Qt.TextInteractionFlag.TextSelectableByMouse)
+        box.addWidget(label)
+        self.editors["catalog_problems"] = label
+        window = self.window()
+        status = getattr(window, "statusBar", None)
+        if callable(status) and getattr(window, "_catalog_warned", None) != problems:
+            window._catalog_warned = problems  # once per set of problems, not per rebuild
+            status().showMessage(text, 20000)
 
     # -- the whole system (nothing selected) ---------------------------------------
     def _build_system(self, box: QVBoxLayout) -> None:
@@ -240,6 +310,7 @@ class Inspector(QScrollArea):
         hint.setWordWrap(True)
         hint.setStyleSheet(DIM_STYLE)
         box.addWidget(hint)
+        self._catalogue_warning(box)
         checked = self._checked
         if checked is None:
             checked = checked_findings(system, self.doc.autoconfigure)
@@ -275,14 +346,32 @@ class Inspector(QScrollArea):
 
     # -- devices --------------------------------------------------------------------
     def _build_device(self, box: QVBoxLayout, d: Device) -> None:
-        state = "" if d.present else "  —  missing from the bus"
-        self._title(box, d.label, f"Device {d.vid}/{d.pid}/{d.serial}{state}")
-        grid = self._grid(box)
+        from pdcp_studio.app.part_names import numbers, part_name
+        from pdcp_studio.model.catalog import default_catalog
+
+        entry = default_catalog().lookup(d.vid, d.pid)
+        product = (self.tr("{product} by {vendor}").format(product=entry.product,
+                                                           vendor=entry.vendor)
+                   if entry is not None and entry.vendor else
+                   entry.product if entry is not None else
+                   self.tr("a product no device catalogue knows"))
+        state = "" if d.present else "  —  " + self.tr("missing from the bus")
+        self._title(box, part_name(self.doc.system, d.key), f"{product}{state}")
+        grid = self._plain_grid(box)
         name = QLineEdit(d.name)
         name.setPlaceholderText(self.tr("a name for this device (not sent to it)"))
         name.editingFinished.connect(
             lambda w=name: self._commit_device(d.key, "name", w.text().strip(), None, "name"))
-        self._row(grid, None, "Name (PDCP Studio)", "name", name)
+        self._row(grid, None, self.tr("Name (PDCP Studio)"), "name", name)
+        self._row(grid, None, self.tr("Product"), "product", _selectable(
+            entry.product if entry is not None else self.tr("not in the catalogue")))
+        self._row(grid, None, self.tr("Maker"), "vendor", _selectable(
+            entry.vendor if entry is not None and entry.vendor else "—"))
+        if entry is not None and entry.kind:
+            self._row(grid, None, self.tr("Kind"), "kind", _selectable(entry.kind))
+        grid = self._details(box)
+        self._row(grid, None, self.tr("Identity"), "identity", _selectable(numbers(d.key)),
+                  meta=self.tr("VID/PID/serial"))
         values = {
             params.DEVICE_VID_PID: f"0x{d.vid:04X} / 0x{d.pid:04X}  ({d.vid} / {d.pid})",
             params.DEVICE_SERIAL: str(d.serial),
@@ -329,20 +418,35 @@ class Inspector(QScrollArea):
 
     # -- channels -------------------------------------------------------------------
     def _build_channel(self, box: QVBoxLayout, ref: ChannelRef, ch: Channel) -> None:
+        from pdcp_studio.app.part_names import part_name
+
         d = self.doc.device(ref.device)
         name = self.doc.tree.name_of(ch.profile)
-        self._title(box, f"#{ch.index} {ch.direction.value}: {ch.descriptor or name}",
-                    f"{d.label} ({d.vid}/{d.pid}/{d.serial}) · {name} {prof.fmt(ch.profile)}")
+        head = (self.tr("Input {n}: {what}") if ch.is_input else
+                self.tr("Output {n}: {what}")).format(n=ch.index, what=ch.descriptor or name)
+        self._title(box, head, f"{part_name(self.doc.system, d.key)} · {name}")
         box.addWidget(self._links_summary(ref, ch))
-        grid = self._grid(box)
+        grid = self._plain_grid(box)
+        holder = QVBoxLayout()
+        box.addLayout(holder)
+        self._detail_grid = self._details(holder)
         for spec in params.parameters_for(ch.direction):
-            self._channel_row(grid, spec, ref, ch, d)
+            if spec.id not in _DETAIL_PARAMS:
+                self._channel_row(grid, spec, ref, ch, d)
+        self._row(self._detail_grid, None, self.tr("Profile code"), "profile_code",
+                  _selectable(prof.fmt(ch.profile)), meta=self.tr("parameter 1, bytes 2–3"))
+        for spec in params.parameters_for(ch.direction):
+            if spec.id in _DETAIL_PARAMS:
+                self._channel_row(self._detail_grid, spec, ref, ch, d)
 
     def _channel_row(self, grid: QGridLayout, spec: params.ParameterSpec, ref: ChannelRef,
                      ch: Channel, d: Device) -> None:
         pid = spec.id
         if pid == params.CH_TYPE_PROFILE:
-            self._row(grid, spec, "Channel Type", "type", self._type_editor(ref, ch))
+            main, detail = self._type_editor(ref, ch)
+            self._row(grid, None, self.tr("Control mode"), "type", main,
+                      meta="parameter 1, byte 0–1")
+            self._row(self._detail_grid, spec, self.tr("Channel type"), "type.detail", detail)
             self._row(grid, None, "Profile", "profile",
                       self._profile_editor(ref, "profile", ch.profile, allow_null=False),
                       meta="parameter 1, bytes 2–3")
@@ -396,20 +500,27 @@ class Inspector(QScrollArea):
         system = self.doc.system
         if ch.is_input:
             src = system.source_of(ref)
-            text = f"Source: {self._describe(src)}" if src else "Source: none (not linked)"
+            text = (self.tr("Fed by {0}").format(self._describe(src)) if src else
+                    self.tr("Nothing feeds it (not linked)"))
         else:
             fed = system.inputs_fed_by(ref)
-            text = "Feeds: " + (", ".join(self._describe(r) for r in fed) or "nothing")
+            text = (self.tr("Feeds {0}").format("; ".join(self._describe(r) for r in fed))
+                    if fed else self.tr("Feeds nothing"))
         label = _selectable(text)
         return label
 
     def _describe(self, ref: ChannelRef) -> str:
-        dev = self.doc.system.device(ref.device)
-        ch = self.doc.system.channel(ref)
-        name = self.doc.profile_name(ch.profile) if ch else "?"
-        return f"{dev.label if dev else ref.device} #{ref.index} ({name})"
+        """``Multi-grip hand, channel 1 (Power grip)``: the graph's words for a channel."""
+        from pdcp_studio.app.plan_words import channel_words
 
-    def _type_editor(self, ref: ChannelRef, ch: Channel) -> QWidget:
+        ch = self.doc.system.channel(ref)
+        name = self.doc.profile_name(ch.profile) if ch else ""
+        return channel_words(self.doc.system, ref, "" if name.startswith("0x") else name)
+
+    def _type_editor(self, ref: ChannelRef, ch: Channel) -> tuple[QWidget, QWidget]:
+        """The channel type's editors: the control mode (what a prosthetist reads) and,
+        for the Details section, its encoding: size, value type, prescaler code (the
+        thesis's suggested factor a hint only, reference §2), sole access, terminal."""
         ct = ch.ctype
         w = QWidget()
         grid = QGridLayout(w)
@@ -425,7 +536,10 @@ class Inspector(QScrollArea):
         mode.addItems([m.label for m in ControlMode])
         mode.setCurrentIndex(int(ct.control_mode))
         pres = QComboBox()
-        pres.addItems([f"{i} (≈{h})" for i, h in enumerate(PRESCALER_HINTS)])
+        pres.addItems([self.tr("code {code} (suggested ×{hint})").format(code=i, hint=h)
+                       for i, h in enumerate(PRESCALER_HINTS)])
+        pres.setToolTip(self.tr("The prescaler's raw 3-bit code; the factor is the thesis's "
+                                "suggestion only and nothing is computed from it"))
         pres.setCurrentIndex(ct.prescaler)
         sole = QCheckBox(self.tr("sole access"))
         sole.setChecked(ct.sole_access)
@@ -442,8 +556,7 @@ class Inspector(QScrollArea):
         hex_label.setStyleSheet(DIM_STYLE)
         grid.addWidget(size, 0, 0)
         grid.addWidget(dtype, 0, 1)
-        grid.addWidget(mode, 1, 0)
-        grid.addWidget(pres, 1, 1)
+        grid.addWidget(pres, 1, 0, 1, 2)
         grid.addWidget(sole, 2, 0)
         grid.addWidget(term, 2, 1)
         grid.addWidget(hex_label, 3, 0, 1, 2)
@@ -467,7 +580,7 @@ class Inspector(QScrollArea):
             combo.currentIndexChanged.connect(lambda _i: commit())
         for check in (sole, term):
             check.toggled.connect(lambda _on: commit())
-        return w
+        return mode, w
 
     def _tree_items(self) -> dict[str, int]:
         return {f"{self.doc.tree.name_of(value)} ({prof.fmt(value)})": value

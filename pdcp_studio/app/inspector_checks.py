@@ -21,15 +21,13 @@ def checked_findings(system: System, autoconfigure: bool) -> tuple[list[Any], Te
     if not system.devices:
         return [], []  # (the window's first, empty system: nothing to import the checks for)
     from pdcp_studio.app.finding_text import finding_detail, plain_finding
+    from pdcp_studio.app.part_names import part_names
     from pdcp_studio.engine import check_system
-    from pdcp_studio.model.catalog import default_catalog
 
     findings = check_system(system, autoconfigure=autoconfigure)
     if not findings:
         return [], []
-    catalog = default_catalog()
-    names = {r.device: catalog.device_label(system.devices[r.device])
-             for f in findings for r in f.refs[:2] if r.device in system.devices}
+    names = part_names(system)
     texts = [(plain_finding(f, system, autoconfigure, names), finding_detail(f))
              for f in findings]
     return findings, texts

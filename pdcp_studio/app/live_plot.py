@@ -12,9 +12,11 @@ Public API
     ``Series`` per signal), ``ref`` and ``points`` (the first signal's, ``(t, raw value)``),
     ``paint_count``. Signal: ``channelChanged(ChannelRef | None)``.
 
-Each signal has a lane of its own with its own value axis: its unit and scale come from the
-output channel's type (control mode — position, velocity, acceleration — and the prescaler's
-suggested factor; booleans get an on/off axis), its title from the device and channel names.
+Each signal has a lane of its own with its own value axis: the raw values the channel sends,
+named by the channel type's control mode ("position (raw)"; booleans get an on/off axis);
+the prescaler's suggested factor is a hint in the lane's title only, never multiplied in
+(reference §2, Decision: no computation depends on it). Its title comes from the device and
+channel names.
 Ticks are 1-2-5 steps on both axes. Two vertical cursors (left click sets A, right click B,
 drag moves the nearest) show Δt and each signal's values at A and B and their difference.
 
@@ -93,11 +95,27 @@ def tick_text(value: float, step: float) -> str:
     return f"{value:.{min(decimals, 6)}f}"
 
 
-def channel_axis(ctype: int | None) -> tuple[str, float, bool]:
-    """(quantity, scale, boolean) for an output channel's type value: the value axis's name
-    from the control mode, the prescaler's suggested factor, and whether it is on/off."""
+_SUPERSCRIPT = str.maketrans("-0123456789", "⁻⁰¹²³⁴⁵⁶⁷⁸⁹")
+
+
+def factor_text(hint: str) -> str:
+    """``×10⁻³`` for the thesis's suggested factor ``1e-3`` ("" for 1)."""
+    if hint in ("", "1"):
+        return ""
+    mantissa, _e, exponent = hint.partition("e")
+    if not exponent:
+        return f"×{hint}"
+    power = "10" if exponent in ("1", "+1") else "10" + exponent.lstrip("+").translate(
+        _SUPERSCRIPT)
+    return f"×{power}" if mantissa == "1" else f"×{mantissa}·{power}"
+
+
+def channel_axis(ctype: int | None) -> tuple[str, str, bool]:
+    """(quantity, hint, boolean) for an output channel's type value: the value axis's name
+    from the control mode, the prescaler's suggested factor as a hint (``1e-3``; shown,
+    never multiplied in), and whether it is on/off."""
     if ctype is None:
-        return translate("LivePlot", "value"), 1.0, False
+        return translate("LivePlot", "value"), "1", False
     from pdcp_studio.model.channel_type import ChannelType, ControlMode, DataType
 
     t = ChannelType(ctype)
@@ -105,25 +123,39 @@ def channel_axis(ctype: int | None) -> tuple[str, float, bool]:
              ControlMode.VELOCITY: translate("LivePlot", "velocity"),
              ControlMode.ACCELERATION: translate("LivePlot", "acceleration"),
              ControlMode.OTHER: translate("LivePlot", "value")}
-    return names[t.control_mode], float(t.prescaler_hint), t.data_type is DataType.BOOLEAN
+    return names[t.control_mode], t.prescaler_hint, t.data_type is DataType.BOOLEAN
 
 
 class Series:
     """One signal: its values (raw), how to show them, and whether it follows the selection."""
 
-    def __init__(self, ref: Any, label: str, quantity: str, scale: float, boolean: bool,
+    def __init__(self, ref: Any, label: str, quantity: str, hint: str, boolean: bool,
                  color: str, follows: bool) -> None:
         self.ref, self.label, self.quantity = ref, label, quantity
-        self.scale, self.boolean, self.color, self.follows = scale, boolean, color, follows
+        self.hint, self.boolean, self.color, self.follows = hint, boolean, color, follows
         self.ts = array("d")
         self.vs = array("d")
 
     @property
     def unit(self) -> str:
-        """The value axis's name: the quantity and, when the type suggests one, its scale."""
+        """The value axis's name: what the values are ("position (raw)"; no physical unit
+        is known, so none is claimed)."""
         if self.boolean:
             return translate("LivePlot", "on/off")
-        return self.quantity if self.scale == 1 else f"{self.quantity} ×{self.scale:g}"
+        return translate("LivePlot", "{quantity} (raw)").format(quantity=self.quantity)
+
+    @property
+    def hint_text(self) -> str:
+        """``suggested ×10⁻³``: the prescaler's factor, a hint only ("" for none)."""
+        factor = "" if self.boolean else factor_text(self.hint)
+        return translate("LivePlot", "suggested {factor}").format(factor=factor) \
+            if factor else ""
+
+    @property
+    def title(self) -> str:
+        """The lane's title: the signal, what its values are, and the hint."""
+        text = f"{self.label} — {self.unit}"
+        return f"{text}, {self.hint_text}" if self.hint_text else text
 
     def trim(self, keep_s: float) -> None:
         if not self.ts:
@@ -136,11 +168,11 @@ class Series:
             del self.vs[:drop]
 
     def value_at(self, t: float) -> float | None:
-        """The scaled value last sent at or before ``t`` (None before the first)."""
+        """The raw value last sent at or before ``t`` (None before the first)."""
         if not self.ts:
             return None
         i = int(np.searchsorted(np.frombuffer(self.ts, dtype=np.float64), t, side="right")) - 1
-        return None if i < 0 else self.vs[i] * self.scale
+        return None if i < 0 else self.vs[i]
 
 
 _LANE_EDGE = QColor(128, 128, 128, 110)
@@ -295,7 +327,7 @@ class PlotCanvas(QWidget):
         first = int(np.searchsorted(all_ts, start, side="left"))
         first = max(0, first - 1)  # the line comes in from the left edge
         ts = all_ts[first:].copy()  # the window only (the arrays stay resizable)
-        vs = np.frombuffer(s.vs, dtype=np.float64)[first:] * s.scale
+        vs = np.frombuffer(s.vs, dtype=np.float64)[first:].copy()  # raw values
         del all_ts
         if s.boolean:
             lo, hi = -0.2, 1.2
@@ -324,7 +356,7 @@ class PlotCanvas(QWidget):
         p.setPen(color)
         p.drawText(QRectF(lane.left() + 4, lane.top() + 1, lane.width() - 8, m.height()),
                    Qt.AlignmentFlag.AlignLeft, m.elidedText(
-                       f"{s.label}  [{s.unit}]", Qt.TextElideMode.ElideRight,
+                       s.title, Qt.TextElideMode.ElideRight,
                        int(lane.width() - 8)))
         if not len(ts):
             return
@@ -442,7 +474,7 @@ class LivePlot(QWidget):
         self.system = system
         for s in self.series:
             s.label = self.name_of(s.ref) if not s.label or "/" in s.label else s.label
-            s.quantity, s.scale, s.boolean = channel_axis(self._type_of(s.ref))
+            s.quantity, s.hint, s.boolean = channel_axis(self._type_of(s.ref))
         self.canvas.update()
 
     def _type_of(self, ref: Any) -> int | None:
@@ -501,9 +533,9 @@ class LivePlot(QWidget):
     def _add(self, ref: Any, label: str, *, follows: bool, first: bool = False) -> None:
         used = {s.color for s in self.series}
         color = next((c for c in COLORS if c not in used), COLORS[len(self.series) % 8])
-        quantity, scale, boolean = channel_axis(self._type_of(ref))
+        quantity, hint, boolean = channel_axis(self._type_of(ref))
         title = label if label and self.system is None else self.name_of(ref)
-        s = Series(ref, title, quantity, scale, boolean, color, follows)
+        s = Series(ref, title, quantity, hint, boolean, color, follows)
         if first:
             self.series.insert(0, s)
         else:
@@ -603,7 +635,7 @@ class LivePlot(QWidget):
             text += "  ".join(f"{n} {v:.4g}" for n, v in (("A", va), ("B", vb)) if v is not None)
             if va is not None and vb is not None:
                 text += f"  Δ {vb - va:+.4g}"
-            lines.append(text + f" {s.unit}")
+            lines.append(text + f"  ({s.unit})")
         return "\n".join(lines)
 
     def _update_readout(self) -> None:
@@ -660,8 +692,8 @@ class LivePlot(QWidget):
         self.paint_count += 1
 
     def y_range(self) -> tuple[float, float]:
-        """The first signal's scaled value range (0…1 when empty)."""
+        """The first signal's raw value range (0…1 when empty)."""
         if not self.series or not self.series[0].vs:
             return 0.0, 1.0
-        vs = np.array(self.series[0].vs) * self.series[0].scale
+        vs = np.array(self.series[0].vs)
         return float(vs.min()), float(vs.max())

@@ -350,6 +350,9 @@ class MonitorDock(QDockWidget):
             QComboBox.SizeAdjustPolicy.AdjustToMinimumContentsLengthWithIcon)
         self.marker_box.setToolTip(self.tr("Go to a marker (times since a marker count "
                                            "from it)"))
+        from pdcp_studio.app.combo_popups import keep_whole
+
+        keep_whole(self.marker_box)  # "Grip closes 3.89" whole, not cut
         self.marker_box.addItem(self.tr("No markers"))
         self.marker_box.setEnabled(False)
         self.count_label = QLabel(self.tr("0 frames"))

@@ -104,10 +104,8 @@ class PlanPanel(QWidget):
         view.viewport().installEventFilter(self)
         view.itemSelectionChanged.connect(self._on_row_selected)
         self.detail = QTextBrowser()
-        self.detail.setPlaceholderText(self.tr("Select a row for the engineer's detail: the "
-                                               "engine's reason, profile codes and the "
-                                               "similarity score"))
         self.detail.setMinimumWidth(160)
+        self._detail_hint()
         split = QSplitter(Qt.Orientation.Horizontal)
         split.addWidget(view)
         split.addWidget(self.detail)
@@ -229,10 +227,19 @@ class PlanPanel(QWidget):
                 item.setForeground(QBrush(colour))
             view.setItem(row, col, item)
 
+    def _detail_hint(self) -> None:
+        """What the detail pane is for, wrapped to its width (a placeholder is one line,
+        cut off in a narrow pane), grey until a row is chosen."""
+        from html import escape
+
+        self.detail.setHtml("<p style='color:#6b7280'>" + escape(self.tr(
+            "Select a row for the engineer's detail: the engine's reason, profile codes and "
+            "the similarity score")) + "</p>")
+
     def _fill(self, plan: Any) -> None:
         view = self.actions_view
         view.setRowCount(0)
-        self.detail.clear()
+        self._detail_hint()
         if plan is None:
             self.summary.setText(self.tr("No plan previewed. Choose an operation to see what it "
                                  "would change before anything changes."))

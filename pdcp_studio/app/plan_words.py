@@ -13,7 +13,6 @@ from typing import Any
 from PySide6.QtCore import QT_TRANSLATE_NOOP
 
 from pdcp_studio.app.i18n import translate
-from pdcp_studio.model.catalog import default_catalog
 from pdcp_studio.model.refs import ChannelRef, DeviceKey
 
 _CTX = "PlanWords"
@@ -88,9 +87,9 @@ def refusal_words(kind: Any) -> str:
 
 def device_words(system: Any, key: DeviceKey) -> str:
     """The device's product name from the catalogue (its own name if it has one)."""
-    device = system.devices.get(key) if system is not None else None
-    catalog = default_catalog()
-    return catalog.device_label(device) if device is not None else catalog.label(key)
+    from pdcp_studio.app.part_names import part_name
+
+    return part_name(system, key)
 
 
 def channel_words(system: Any, ref: ChannelRef, profile_name: str = "") -> str:
@@ -173,3 +172,31 @@ def engineer_detail(action: Any) -> str:
     if action.similarity is not None:
         parts.append(f"similarity {action.similarity.describe()}")
     return "\n".join(parts)
+
+
+def plan_channel_words(system: Any, plan: Any, ref: ChannelRef,
+                       profile_name: Any = None) -> str:
+    """A channel of a plan in words: device, channel, what it carries; (missing) if gone.
+    ``profile_name(code) -> str`` names what it carries (a hex code is left out)."""
+    facts = plan.channels.get(ref) if plan is not None else None
+    name = profile_name(facts.profile) if facts is not None and profile_name else ""
+    if name.startswith("0x"):
+        name = ""
+    text = channel_words(system, ref, name)
+    if facts is not None and not facts.present:
+        text += tr(" (missing)")
+    return text
+
+
+def step_words(system: Any, plan: Any, action: Any, profile_name: Any = None) -> str:
+    """One plan step as the graph's tooltip on its dashed link says it: what the plan
+    does, why, and how similar (the plan table's words; the engine's are in its detail)."""
+    add = getattr(action.op, "value", action.op) == "add"
+    link = (f"{plan_channel_words(system, plan, action.link.output, profile_name)} → "
+            f"{plan_channel_words(system, plan, action.link.input, profile_name)}")
+    lines = [(tr("The plan adds this link:") if add else tr("The plan removes this link:")),
+             link, tr("Why: {0}").format(rule_words(action.rule))]
+    similar = similarity_words(action, plan)
+    if similar:
+        lines.append(tr("How similar: {0}").format(similar))
+    return "\n".join(lines)

@@ -188,11 +188,9 @@ def _profile(tree: ProfileTree, value: int) -> str:
 
 
 def _device_name(system: System, key: Any) -> str:
-    from pdcp_studio.model.catalog import default_catalog
+    from pdcp_studio.app.part_names import part_name
 
-    device = system.device(key)
-    catalog = default_catalog()
-    return catalog.device_label(device) if device is not None else catalog.label(key)
+    return part_name(system, key)
 
 
 def _end(system: System, tree: ProfileTree, ref: Any, compact: bool = False) -> str:
@@ -235,7 +233,7 @@ def _device_rows(system: System, per_row: int) -> str:
         entry = catalog.lookup(d.vid, d.pid)
         product = (_t("{product} ({vendor})").format(product=entry.product, vendor=entry.vendor)
                    if entry else _t("not in the catalogue"))
-        cells.append(f"<td>{_e(catalog.device_label(d))}{state}</td><td>{_e(product)}</td>"
+        cells.append(f"<td>{_e(_device_name(system, d.key))}{state}</td><td>{_e(product)}</td>"
                      f"<td>{d.vid} / {d.pid} / {d.serial}</td>"
                      f"<td>{_version(d.fw_version)}</td><td>{_version(d.hw_version)}</td>")
     if not cells:

@@ -232,13 +232,28 @@ class SessionBridge(QObject):
         return self.run(lambda p, c: self.session.apply_plan(plan, p, c), "Apply plan")
 
     # -- simulator controls ------------------------------------------------------------
-    def _sim(self, what: str, call: Callable[[], Any]) -> Worker | None:
+    #: ``namer(key) -> str``: a part's name in the messages below (the Simulator panel
+    #: sets its own, the graph's names; else the catalogue's product).
+    namer: Callable[[Any], str] | None = None
+
+    def _name(self, key: Any) -> str:
+        if self.namer is not None:
+            return self.namer(key)
+        from pdcp_studio.app.part_names import part_name
+        from pdcp_studio.model.refs import DeviceKey
+
+        return part_name(None, DeviceKey(*key))
+
+    def _sim(self, what: str, call: Callable[[], Any], done: str = "") -> Worker | None:
+        """``what``: the control, in words (errors begin with it); ``done``: the sentence
+        ``simChanged`` carries once it is done."""
         if not self.is_sim:
             self.error.emit(
                 self.tr("{what}: only a simulated bus has simulator controls").format(what=what)
             )
             return None
-        return self.run(lambda p, c: call(), what, lambda _r: self.simChanged.emit(what))
+        return self.run(lambda p, c: call(), what,
+                        lambda _r: self.simChanged.emit(done or what))
 
     def refresh_sim_devices(self) -> Worker | None:
         """Ask for the simulator's devices; they arrive as ``simDevices(list)``."""
@@ -249,20 +264,34 @@ class SessionBridge(QObject):
 
     def plug(self, key: Any) -> Worker | None:
         """Power a simulated device on (``simChanged`` when done)."""
-        return self._sim(f"Plug {key}", lambda: self.session.plug(key))
+        name = self._name(key)
+        return self._sim(self.tr("Plugging in {device}").format(device=name),
+                         lambda: self.session.plug(key),
+                         self.tr("Plugged in {device}").format(device=name))
 
     def unplug(self, key: Any) -> Worker | None:
         """Cut a simulated device off the bus; ``deviceLeft`` follows once noticed."""
-        return self._sim(f"Unplug {key}", lambda: self.session.unplug(key))
+        name = self._name(key)
+        return self._sim(self.tr("Unplugging {device}").format(device=name),
+                         lambda: self.session.unplug(key),
+                         self.tr("Unplugged {device}").format(device=name))
 
     def replace(self, old: Any, new: Any) -> Worker | None:
         """Unplug ``old`` and plug ``new`` in (a simulated device's key or a Device)."""
-        return self._sim(f"Replace {old} by {new}", lambda: self.session.replace(old, new))
+        old_name = self._name(old)
+        new_name = self._name(getattr(new, "key", new))
+        return self._sim(self.tr("Replacing {old} by {new}").format(old=old_name, new=new_name),
+                         lambda: self.session.replace(old, new),
+                         self.tr("Replaced {old} by {new}").format(old=old_name, new=new_name))
 
     def reset_arbitrator(self, keep_memory: bool) -> Worker | None:
         """Restart the arbitrator, keeping or erasing its stored configuration."""
-        what = "Reset arbitrator" + (" (memory kept)" if keep_memory else " (memory erased)")
-        return self._sim(what, lambda: self.session.reset_arbitrator(keep_memory))
+        what = (self.tr("Restarting the arbitrator, keeping its memory") if keep_memory else
+                self.tr("Restarting the arbitrator, erasing its memory"))
+        done = (self.tr("The arbitrator restarted; its stored configuration was kept")
+                if keep_memory else
+                self.tr("The arbitrator restarted with its memory erased"))
+        return self._sim(what, lambda: self.session.reset_arbitrator(keep_memory), done)
 
     def script_names(self) -> list[str]:
         """The simulator's scripted events (a lookup, no bus traffic)."""
@@ -280,10 +309,10 @@ class SessionBridge(QObject):
 
         def done(result: Any) -> None:
             self.scriptFinished.emit(result)
-            self.simChanged.emit(f"Script {name}")
+            self.simChanged.emit(self.tr("Script {name} finished").format(name=name))
 
-        return self.run(lambda p, c: self.session.run_script(name, p, c), f"Script {name}",
-                        done)
+        return self.run(lambda p, c: self.session.run_script(name, p, c),
+                        self.tr("Script {name}").format(name=name), done)
 
     def save_configuration(self) -> Worker | None:
         """Store the bus's current links as the arbitrator's configuration (verified);

@@ -36,6 +36,7 @@ from PySide6.QtWidgets import (
     QWidget,
 )
 
+from pdcp_studio.app.combo_popups import keep_whole
 from pdcp_studio.app.workers import Worker
 from pdcp_studio.model.refs import DeviceKey
 
@@ -51,13 +52,35 @@ def default_name(key: DeviceKey) -> str:
     return default_catalog().label(key)
 
 
-def _catalogue_name(key: DeviceKey, label: str) -> str:
-    """The name the graph and the tree give the device (its own name, else the catalogue's
-    product with its serial): one name for one device in every panel."""
+def _bus_name(key: DeviceKey, model: Any, label: str) -> str:
+    """What the graph will call a simulated device once it is on the bus: the name it
+    tells the bus (its descriptor), else its product from the catalogue. The simulator's
+    own label ("Spare hand") is never read from the bus, so it is not the part's name."""
     from pdcp_studio.model.catalog import default_catalog
 
+    catalog = default_catalog()
+    if model is not None:
+        own = (getattr(model, "descriptor", "") or "").strip()
+        return own or catalog.product_name(key) or catalog.label(key)
     own = "" if label in (str(key), f"Device {key}") else label
-    return default_catalog().label(key, own)
+    return catalog.product_name(key) or catalog.label(key, own)
+
+
+def sim_names(keys_labels: list[tuple[DeviceKey, str]], name_of: Any,
+              models: dict[DeviceKey, Any]) -> dict[DeviceKey, str]:
+    """The Simulator panel's names: the graph's name for a part on it (``name_of``); for
+    the others the name the graph will give them (:func:`_bus_name`), with the serial
+    number where it would read like another part's (the spare hand beside the hand)."""
+    from pdcp_studio.app.part_names import twin_format
+
+    shown = {k: name_of(k) for k, _lb in keys_labels} if name_of is not None else {}
+    names = {k: n for k, n in shown.items() if n}
+    rest = {k: _bus_name(k, models.get(k), lb) for k, lb in keys_labels if k not in names}
+    taken = list(names.values()) + list(rest.values())
+    for k, base in rest.items():
+        names[k] = (twin_format().format(name=base, serial=k.serial)
+                    if taken.count(base) > 1 else base)
+    return {k: names[k] for k, _lb in keys_labels}
 
 
 class SimPanel(QWidget):
@@ -76,9 +99,12 @@ class SimPanel(QWidget):
 
         self.tree = QTreeWidget()
         self.tree.setHeaderLabels(
-            [self.tr("Device"), self.tr("VID/PID/SN"), self.tr("Power"), self.tr("On bus")]
+            [self.tr("Device"), self.tr("Product"), self.tr("Power"), self.tr("On bus")]
         )
         self.tree.setRootIsDecorated(False)
+        from pdcp_studio.app.part_names import keep_serials_seen
+
+        keep_serials_seen(self.tree)  # a twin's serial number stays seen in a narrow column
         header = self.tree.header()  # the name takes the room the other columns leave
         header.setStretchLastSection(False)
         header.setSectionResizeMode(COL_NAME, QHeaderView.ResizeMode.Stretch)
@@ -128,7 +154,9 @@ class SimPanel(QWidget):
         grid.addWidget(self.plug_button, 1, 0)
         grid.addWidget(self.unplug_button, 1, 1)
         grid.addWidget(self.replace_button, 1, 2)
-        grid.addWidget(self.replace_combo, 1, 3)
+        grid.addWidget(self.replace_combo, 2, 0, 1, 4)  # a row of its own: the whole name
+        keep_whole(self.replace_combo)
+        keep_whole(self.script_combo)
         arbitrator = QGroupBox(self.tr("Arbitrator"))
         row = QHBoxLayout(arbitrator)
         for w in (self.reset_keep_button, self.reset_erase_button, self.save_button):
@@ -153,6 +181,7 @@ class SimPanel(QWidget):
         bridge.deviceLeft.connect(self._left)
         bridge.simDevices.connect(self._show_devices)
         bridge.simChanged.connect(self._sim_changed)
+        bridge.namer = lambda key: self._label(DeviceKey(*key))
         bridge.scriptFinished.connect(self._script_finished)
         bridge.busyChanged.connect(self._busy_changed)
         bridge.error.connect(self._error)
@@ -206,14 +235,15 @@ class SimPanel(QWidget):
         """Name the devices again (the graph's names changed: a new snapshot of the bus)."""
         raw = getattr(self, "_raw", None)
         if raw is not None:
-            names = {DeviceKey(*k): self._name(DeviceKey(*k), str(lb)) for k, lb, _p in raw}
-            if names != {k: v[0] for k, v in self._devices.items()}:
+            if self._names(raw) != {k: v[0] for k, v in self._devices.items()}:
                 self._show_devices(raw)
 
-    def _name(self, key: DeviceKey, label: str) -> str:
-        """The graph's name for a device on it; else the catalogue's rule on the simulator's."""
-        shown = self.name_of(key) if self.name_of is not None else None
-        return shown or _catalogue_name(key, label)
+    def _names(self, devices: list[Any]) -> dict[DeviceKey, str]:
+        """Every simulated device's name (:func:`sim_names`)."""
+        system = getattr(getattr(self.bridge, "session", None), "initial_system", None)
+        models = dict(getattr(system, "devices", {}) or {})
+        return sim_names([(DeviceKey(*k), str(lb)) for k, lb, _p in devices], self.name_of,
+                         models)
 
     def _label(self, key: DeviceKey) -> str:
         entry = self._devices.get(key)
@@ -230,16 +260,21 @@ class SimPanel(QWidget):
     def _show_devices(self, devices: list[Any]) -> None:
         selected = self.selected_key()
         self._raw = list(devices)
-        self._devices = {DeviceKey(*key): (self._name(DeviceKey(*key), str(label)),
-                                           bool(plugged))
-                         for key, label, plugged in devices}
+        names = self._names(self._raw)
+        self._devices = {DeviceKey(*key): (names[DeviceKey(*key)], bool(plugged))
+                         for key, _label, plugged in devices}
         self.tree.clear()
         for key, (label, _plugged) in self._devices.items():
             item = QTreeWidgetItem(self.tree)
             item.setData(COL_NAME, KEY_ROLE, key)
             item.setText(COL_NAME, label)
             item.setToolTip(COL_NAME, label)  # whole, when the column is narrower
-            item.setText(COL_KEY, str(key))
+            from pdcp_studio.app.kind_icons import entry_of
+            from pdcp_studio.app.part_names import numbers
+
+            entry = entry_of(key)  # the numbers are the engineer's: in the tooltip
+            item.setText(COL_KEY, entry.product if entry is not None else self.tr("unknown"))
+            item.setToolTip(COL_KEY, numbers(key))
             self._paint(item, key)
         self._fill_replacements()
         self.select(selected)
@@ -277,7 +312,7 @@ class SimPanel(QWidget):
                 self._paint(item, key)
 
     def _sim_changed(self, what: str) -> None:
-        self._log(self.tr("Done: {what}").format(what=what))
+        self._log(what)  # the bridge's sentence, with the part's name
         self.refresh()
 
     def _script_finished(self, result: Any) -> None:
@@ -290,12 +325,15 @@ class SimPanel(QWidget):
                       .format(name=name, diff=result.mismatch()))
 
     def _fill_replacements(self) -> None:
+        from pdcp_studio.app.part_names import numbers
+
         current = self.replace_combo.currentData()
         self.replace_combo.clear()
         for key, (label, plugged) in self._devices.items():
             if not plugged:
                 self.replace_combo.addItem(label, key)
-                self.replace_combo.setItemData(self.replace_combo.count() - 1, str(key),
+                self.replace_combo.setItemData(self.replace_combo.count() - 1,
+                                               f"{label}\n{numbers(key)}",
                                                Qt.ItemDataRole.ToolTipRole)
         index = self.replace_combo.findData(current)
         if index >= 0:
@@ -368,7 +406,7 @@ class SimPanel(QWidget):
         return self._started(worker, self.tr("Storing the current links…"))
 
     def _links_stored(self, _read_back: Any) -> None:
-        self._log("stored the current links in the arbitrator's memory")
+        self._log(self.tr("Stored the current links in the arbitrator's memory"))
 
     def run_script(self, name: str) -> Worker | None:
         """Run the simulator script ``name``."""

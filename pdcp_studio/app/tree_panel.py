@@ -7,8 +7,6 @@ channel in the document, and the graph follows; selecting on the graph selects t
 
 from __future__ import annotations
 
-from typing import Any
-
 from PySide6.QtCore import Qt
 from PySide6.QtGui import QBrush, QColor
 from PySide6.QtWidgets import QAbstractItemView, QHeaderView, QTreeWidget, QTreeWidgetItem, QWidget
@@ -17,8 +15,8 @@ from pdcp_studio.app.document import Document
 from pdcp_studio.app.graph import style
 from pdcp_studio.app.graph.analysis import ROLE_LAYER, device_role
 from pdcp_studio.app.i18n import translate
+from pdcp_studio.app.part_names import keep_serials_seen, numbers, part_name, part_names
 from pdcp_studio.model import profile as prof
-from pdcp_studio.model.catalog import default_catalog
 from pdcp_studio.model.refs import ChannelRef, DeviceKey
 from pdcp_studio.model.system import Link
 
@@ -30,6 +28,7 @@ class DeviceTree(QTreeWidget):
 
     def __init__(self, doc: Document, parent: QWidget | None = None) -> None:
         super().__init__(parent)
+        keep_serials_seen(self)  # a twin's serial number stays seen in a narrow column
         self.doc = doc
         self.setColumnCount(2)
         self.setHeaderLabels([self.tr("Device / channel"), self.tr("Profile")])
@@ -43,7 +42,7 @@ class DeviceTree(QTreeWidget):
         header.setSectionResizeMode(1, QHeaderView.ResizeMode.ResizeToContents)
         self._rows: dict[object, QTreeWidgetItem] = {}
         self._signatures: dict[DeviceKey, tuple] = {}
-        self._catalog: Any = None
+        self._names: dict[DeviceKey, str] = {}
         self._syncing = False
         doc.systemReset.connect(self.rebuild)
         doc.deviceChanged.connect(self._on_device_changed)
@@ -59,7 +58,7 @@ class DeviceTree(QTreeWidget):
             self.clear()
             self._rows.clear()
             self._signatures.clear()
-            self._catalog = None
+            self._names = dict(part_names(self.doc.system))
             for key in self.ordered_keys():
                 self.addTopLevelItem(self._device_row(key))
             self.expandAll()
@@ -78,14 +77,15 @@ class DeviceTree(QTreeWidget):
     def _device_row(self, key: DeviceKey) -> QTreeWidgetItem:
         device = self.doc.system.devices[key]
         role = device_role(device)
-        if self._catalog is None:  # finding it reads the user's folder: once per rebuild
-            self._catalog = default_catalog()
-        item = QTreeWidgetItem([self._catalog.device_label(device),
+        item = QTreeWidgetItem([part_name(self.doc.system, key),
                                 self.tr("missing") if not device.present
                                 else translate("Style", style.ROLE_LABELS[role])])
         item.setData(0, ROLE, key)
         self._signatures[key] = self._shown(key)
-        item.setToolTip(0, f"VID {device.vid} · PID {device.pid} · serial {device.serial}")
+        item.setToolTip(0, numbers(key))
+        from pdcp_studio.app.kind_icons import icon_for
+
+        item.setIcon(0, icon_for(key))
         colour = style.MISSING_TEXT if not device.present else style.ROLE_COLOURS[role]
         item.setForeground(1, QBrush(colour))
         if not device.present:
@@ -113,7 +113,8 @@ class DeviceTree(QTreeWidget):
         """What a device's rows show (a live snapshot reports every device as changed;
         rows are made again only when this differs)."""
         d = self.doc.system.devices[key]
-        return (d.label, d.name, d.descriptor, d.present, device_role(d),
+        return (part_name(self.doc.system, key), d.name, d.descriptor, d.present,
+                device_role(d),
                 tuple((c.index, c.is_output, c.descriptor, self.doc.profile_name(c.profile))
                       for c in sorted(d.channels.values(), key=lambda c: c.index)))
 
@@ -124,6 +125,11 @@ class DeviceTree(QTreeWidget):
             return
         if self._signatures.get(key) == self._shown(key):
             return
+        names = part_names(self.doc.system)
+        if any(names.get(k) != n for k, n in self._names.items() if k != key):
+            self.rebuild()  # a renamed part changed another's name (two now read alike)
+            return
+        self._names = dict(names)
         self._syncing = True
         try:
             index = self.indexOfTopLevelItem(old)

@@ -248,7 +248,15 @@ def report() -> dict[str, Any]:
         "user_data": str(paths.user_data_dir()),
         "history": str(paths.history_path()),
         "display": display(),
+        "catalog_problems": _catalog_problems(),
     }
+
+
+def _catalog_problems() -> list[str]:
+    """Device catalogue files that were skipped, each with its file and why."""
+    from pdcp_studio.model.catalog import default_catalog_problems
+
+    return default_catalog_problems()
 
 
 def _text(doc: dict[str, Any]) -> str:
@@ -273,6 +281,7 @@ def _text(doc: dict[str, Any]) -> str:
     lines.append(f"resources: {doc['resources'] or 'MISSING'}")
     lines.append(f"user data: {doc['user_data']}")
     lines.append(f"fitting history: {doc['history']}")
+    lines += [f"device catalogue skipped: {p}" for p in doc["catalog_problems"]]
     shown = doc["display"]
     lines.append("display: " + ("a window can open" if shown["window"] else shown["why"]))
     return "\n".join(lines)

@@ -12,6 +12,7 @@ invented name.
 from __future__ import annotations
 
 import json
+import logging
 from collections.abc import Iterable
 from dataclasses import dataclass, field
 from pathlib import Path
@@ -23,6 +24,7 @@ if TYPE_CHECKING:
     from pdcp_studio.model.system import Device
 
 FORMAT = "pdcp-catalog/1"
+log = logging.getLogger(__name__)
 
 
 class CatalogError(ValueError):
@@ -75,6 +77,23 @@ class Catalog:
     def device_label(self, device: Device) -> str:
         """A device's name to show: its own name or descriptor, else the catalogue's."""
         return self.label(device.key, device.name or device.descriptor or "")
+
+    def own_name(self, device: Device) -> str:
+        """What a part is called before any serial number is added: its own name or
+        descriptor, else its product from the catalogue, else ``unknown device (…)``."""
+        own = (device.name or device.descriptor or "").strip()
+        return own or self.product_name(device.key) or unknown_device_label(device.key)
+
+    def part_names(self, devices: Iterable[Device],
+                   twin: str = "{name} (serial {serial})") -> dict[DeviceKey, str]:
+        """One name per part (:meth:`own_name`); the serial number (``twin``) only where
+        two of ``devices`` would otherwise read the same."""
+        own = {d.key: self.own_name(d) for d in devices}
+        seen: dict[str, int] = {}
+        for name in own.values():
+            seen[name] = seen.get(name, 0) + 1
+        return {key: twin.format(name=name, serial=key.serial) if seen[name] > 1 else name
+                for key, name in own.items()}
 
     def add(self, entries: Iterable[CatalogEntry]) -> Catalog:
         merged = dict(self.entries)
@@ -141,19 +160,31 @@ def load_catalog(folders: Iterable[Path]) -> tuple[Catalog, list[str]]:
 
 
 def default_catalog() -> Catalog:
-    """The shipped catalogues followed by the user's (a user's broken file is skipped)."""
+    """The shipped catalogues followed by the user's (a user's broken file is skipped, and
+    said: :func:`default_catalog_problems`, the log)."""
     from pdcp_studio import paths
 
-    return _default_catalog_cached(paths.catalogs_dir(), paths.user_catalogs_dir())
+    return _default_catalog_cached(paths.catalogs_dir(), paths.user_catalogs_dir())[0]
 
 
-_CACHE: dict[tuple[Path, Path], Catalog] = {}
+def default_catalog_problems() -> list[str]:
+    """Which catalogue files :func:`default_catalog` skipped and why (file, entry, reason),
+    for the app's warning and ``pdcp-studio doctor``."""
+    from pdcp_studio import paths
+
+    return list(_default_catalog_cached(paths.catalogs_dir(), paths.user_catalogs_dir())[1])
 
 
-def _default_catalog_cached(shipped: Path, user: Path) -> Catalog:
+_CACHE: dict[tuple[Path, Path], tuple[Catalog, list[str]]] = {}
+
+
+def _default_catalog_cached(shipped: Path, user: Path) -> tuple[Catalog, list[str]]:
     key = (shipped, user)
     if key not in _CACHE:
-        _CACHE[key] = load_catalog((shipped, user))[0]
+        catalog, problems = load_catalog((shipped, user))
+        for problem in problems:
+            log.warning("device catalogue skipped: %s", problem)
+        _CACHE[key] = (catalog, problems)
     return _CACHE[key]
 
 

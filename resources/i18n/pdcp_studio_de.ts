@@ -4818,4 +4818,359 @@ Die Prothese ist wie zuvor.</translation>
             <translation>Noch keine Datei geöffnet. Dateien, die Sie öffnen oder speichern, erscheinen hier.</translation>
         </message>
     </context>
+    <context>
+        <name>PartNames</name>
+        <message>
+            <source>{name} (serial {serial})</source>
+            <translation>{name} (Seriennummer {serial})</translation>
+        </message>
+        <message>
+            <source>VID {vid} · PID {pid} · serial {serial}</source>
+            <translation>VID {vid} · PID {pid} · Seriennummer {serial}</translation>
+        </message>
+    </context>
+    <context>
+        <name>SimPanel</name>
+        <message>
+            <source>Product</source>
+            <translation>Produkt</translation>
+        </message>
+        <message>
+            <source>unknown</source>
+            <translation>unbekannt</translation>
+        </message>
+    </context>
+    <context>
+        <name>SessionBridge</name>
+        <message>
+            <source>Plugging in {device}</source>
+            <translation>{device} wird eingesteckt</translation>
+        </message>
+        <message>
+            <source>Plugged in {device}</source>
+            <translation>{device} eingesteckt</translation>
+        </message>
+        <message>
+            <source>Unplugging {device}</source>
+            <translation>{device} wird ausgesteckt</translation>
+        </message>
+        <message>
+            <source>Unplugged {device}</source>
+            <translation>{device} ausgesteckt</translation>
+        </message>
+        <message>
+            <source>Replacing {old} by {new}</source>
+            <translation>{old} wird durch {new} ersetzt</translation>
+        </message>
+        <message>
+            <source>Replaced {old} by {new}</source>
+            <translation>{old} durch {new} ersetzt</translation>
+        </message>
+        <message>
+            <source>Restarting the arbitrator, keeping its memory</source>
+            <translation>Der Arbiter wird neu gestartet, sein Speicher bleibt erhalten</translation>
+        </message>
+        <message>
+            <source>Restarting the arbitrator, erasing its memory</source>
+            <translation>Der Arbiter wird neu gestartet, sein Speicher wird gelöscht</translation>
+        </message>
+        <message>
+            <source>The arbitrator restarted; its stored configuration was kept</source>
+            <translation>Der Arbiter wurde neu gestartet; seine gespeicherte Konfiguration blieb erhalten</translation>
+        </message>
+        <message>
+            <source>The arbitrator restarted with its memory erased</source>
+            <translation>Der Arbiter wurde mit gelöschtem Speicher neu gestartet</translation>
+        </message>
+        <message>
+            <source>Script {name} finished</source>
+            <translation>Skript {name} beendet</translation>
+        </message>
+        <message>
+            <source>Script {name}</source>
+            <translation>Skript {name}</translation>
+        </message>
+    </context>
+    <context>
+        <name>SimPanel</name>
+        <message>
+            <source>Stored the current links in the arbitrator&apos;s memory</source>
+            <translation>Die aktuellen Verbindungen wurden im Speicher des Arbiters abgelegt</translation>
+        </message>
+    </context>
+    <context>
+        <name>BusScene</name>
+        <message>
+            <source>Missing from the bus</source>
+            <translation>Fehlt am Bus</translation>
+        </message>
+        <message>
+            <source>node ID {0}</source>
+            <translation>Knoten-ID {0}</translation>
+        </message>
+        <message>
+            <source>Input {n}</source>
+            <translation>Eingang {n}</translation>
+        </message>
+        <message>
+            <source>Output {n}</source>
+            <translation>Ausgang {n}</translation>
+        </message>
+        <message>
+            <source>Fed by {0}</source>
+            <translation>Gespeist von {0}</translation>
+        </message>
+        <message>
+            <source>Nothing feeds it</source>
+            <translation>Nichts speist ihn</translation>
+        </message>
+        <message>
+            <source>Feeds {0}</source>
+            <translation>Speist {0}</translation>
+        </message>
+        <message>
+            <source>Feeds nothing</source>
+            <translation>Speist nichts</translation>
+        </message>
+        <message>
+            <source>profile {profile} · signal type {type}: {description}</source>
+            <translation>Profil {profile} · Signaltyp {type}: {description}</translation>
+        </message>
+        <message>
+            <source>drives the part with profile {0}</source>
+            <translation>treibt das Teil mit Profil {0}</translation>
+        </message>
+    </context>
+    <context>
+        <name>PlanWords</name>
+        <message>
+            <source> (missing)</source>
+            <translation> (fehlt)</translation>
+        </message>
+        <message>
+            <source>The plan adds this link:</source>
+            <translation>Der Plan fügt diese Verbindung hinzu:</translation>
+        </message>
+        <message>
+            <source>The plan removes this link:</source>
+            <translation>Der Plan entfernt diese Verbindung:</translation>
+        </message>
+        <message>
+            <source>Why: {0}</source>
+            <translation>Warum: {0}</translation>
+        </message>
+        <message>
+            <source>How similar: {0}</source>
+            <translation>Wie ähnlich: {0}</translation>
+        </message>
+    </context>
+    <context>
+        <name>Inspector</name>
+        <message>
+            <source>Details for engineers</source>
+            <translation>Details für Techniker</translation>
+        </message>
+        <message>
+            <source>{product} by {vendor}</source>
+            <translation>{product} von {vendor}</translation>
+        </message>
+        <message>
+            <source>a product no device catalogue knows</source>
+            <translation>ein Produkt, das kein Gerätekatalog kennt</translation>
+        </message>
+        <message>
+            <source>missing from the bus</source>
+            <translation>fehlt am Bus</translation>
+        </message>
+        <message>
+            <source>Name (PDCP Studio)</source>
+            <translation>Name (PDCP Studio)</translation>
+        </message>
+        <message>
+            <source>Product</source>
+            <translation>Produkt</translation>
+        </message>
+        <message>
+            <source>not in the catalogue</source>
+            <translation>nicht im Katalog</translation>
+        </message>
+        <message>
+            <source>Maker</source>
+            <translation>Hersteller</translation>
+        </message>
+        <message>
+            <source>Kind</source>
+            <translation>Art</translation>
+        </message>
+        <message>
+            <source>Identity</source>
+            <translation>Kennung</translation>
+        </message>
+        <message>
+            <source>VID/PID/serial</source>
+            <translation>VID/PID/Seriennummer</translation>
+        </message>
+        <message>
+            <source>Input {n}: {what}</source>
+            <translation>Eingang {n}: {what}</translation>
+        </message>
+        <message>
+            <source>Output {n}: {what}</source>
+            <translation>Ausgang {n}: {what}</translation>
+        </message>
+        <message>
+            <source>Profile code</source>
+            <translation>Profilcode</translation>
+        </message>
+        <message>
+            <source>parameter 1, bytes 2–3</source>
+            <translation>Parameter 1, Bytes 2–3</translation>
+        </message>
+        <message>
+            <source>Control mode</source>
+            <translation>Steuerungsart</translation>
+        </message>
+        <message>
+            <source>Channel type</source>
+            <translation>Kanaltyp</translation>
+        </message>
+        <message>
+            <source>code {code} (suggested ×{hint})</source>
+            <translation>Code {code} (vorgeschlagen ×{hint})</translation>
+        </message>
+        <message>
+            <source>The prescaler&apos;s raw 3-bit code; the factor is the thesis&apos;s suggestion only and nothing is computed from it</source>
+            <translation>Der rohe 3-Bit-Code des Vorteilers; der Faktor ist nur der Vorschlag der Arbeit, nichts wird daraus berechnet</translation>
+        </message>
+        <message>
+            <source>Fed by {0}</source>
+            <translation>Gespeist von {0}</translation>
+        </message>
+        <message>
+            <source>Nothing feeds it (not linked)</source>
+            <translation>Nichts speist ihn (nicht verbunden)</translation>
+        </message>
+        <message>
+            <source>Feeds {0}</source>
+            <translation>Speist {0}</translation>
+        </message>
+        <message>
+            <source>Feeds nothing</source>
+            <translation>Speist nichts</translation>
+        </message>
+    </context>
+    <context>
+        <name>LivePlot</name>
+        <message>
+            <source>{quantity} (raw)</source>
+            <translation>{quantity} (roh)</translation>
+        </message>
+        <message>
+            <source>suggested {factor}</source>
+            <translation>vorgeschlagen {factor}</translation>
+        </message>
+    </context>
+    <context>
+        <name>Wizards</name>
+        <message numerus="yes">
+            <source>%n link(s) could not be made (the engineer&apos;s detail says why).</source>
+            <translation>
+                <numerusform>%n Verbindung konnte nicht hergestellt werden (die Details für Techniker sagen, warum).</numerusform>
+                <numerusform>%n Verbindungen konnten nicht hergestellt werden (die Details für Techniker sagen, warum).</numerusform>
+            </translation>
+        </message>
+        <message numerus="yes">
+            <source>%n part(s) found on the bus</source>
+            <translation>
+                <numerusform>%n Teil am Bus gefunden</numerusform>
+                <numerusform>%n Teile am Bus gefunden</numerusform>
+            </translation>
+        </message>
+        <message numerus="yes">
+            <source>%n link(s) between them:</source>
+            <translation>
+                <numerusform>%n Verbindung zwischen ihnen:</numerusform>
+                <numerusform>%n Verbindungen zwischen ihnen:</numerusform>
+            </translation>
+        </message>
+        <message numerus="yes">
+            <source>%n thing(s) to look at. The next step proposes links that fix what can be fixed automatically:</source>
+            <translation>
+                <numerusform>%n Punkt zu prüfen. Der nächste Schritt schlägt Verbindungen vor, die automatisch behebbare Probleme beheben:</numerusform>
+                <numerusform>%n Punkte zu prüfen. Der nächste Schritt schlägt Verbindungen vor, die automatisch behebbare Probleme beheben:</numerusform>
+            </translation>
+        </message>
+        <message numerus="yes">
+            <source>On the prosthesis as planned: %n link(s).</source>
+            <translation>
+                <numerusform>Wie geplant auf der Prothese: %n Verbindung.</numerusform>
+                <numerusform>Wie geplant auf der Prothese: %n Verbindungen.</numerusform>
+            </translation>
+        </message>
+        <message>
+            <source>{0}: written and verified ({1}, {2})</source>
+            <translation>{0}: geschrieben und geprüft ({1}, {2})</translation>
+        </message>
+        <message numerus="yes">
+            <source>%n link(s) on the prosthesis</source>
+            <translation>
+                <numerusform>%n Verbindung auf der Prothese</numerusform>
+                <numerusform>%n Verbindungen auf der Prothese</numerusform>
+            </translation>
+        </message>
+        <message>
+            <source>{0} is not on the bus; {1}</source>
+            <translation>{0} ist nicht am Bus; {1}</translation>
+        </message>
+        <message numerus="yes">
+            <source>%n link(s) led to it.</source>
+            <translation>
+                <numerusform>%n Verbindung führte zu ihm.</numerusform>
+                <numerusform>%n Verbindungen führten zu ihm.</numerusform>
+            </translation>
+        </message>
+        <message numerus="yes">
+            <source>The prosthesis made %n link(s) of these on its own when the part was plugged in; the write makes them part of the fitting.</source>
+            <translation>
+                <numerusform>Die Prothese hat %n dieser Verbindungen beim Einstecken des Teils selbst hergestellt; das Schreiben macht sie zum Teil der Versorgung.</numerusform>
+                <numerusform>Die Prothese hat %n dieser Verbindungen beim Einstecken des Teils selbst hergestellt; das Schreiben macht sie zum Teil der Versorgung.</numerusform>
+            </translation>
+        </message>
+        <message numerus="yes">
+            <source>Already on the prosthesis and kept as they are: %n link(s).</source>
+            <translation>
+                <numerusform>Schon auf der Prothese und unverändert beibehalten: %n Verbindung.</numerusform>
+                <numerusform>Schon auf der Prothese und unverändert beibehalten: %n Verbindungen.</numerusform>
+            </translation>
+        </message>
+        <message>
+            <source>Entry {0} — {1} — {2} ({3})</source>
+            <translation>Eintrag {0} — {1} — {2} ({3})</translation>
+        </message>
+        <message numerus="yes">
+            <source>%n link(s)</source>
+            <translation>
+                <numerusform>%n Verbindung</numerusform>
+                <numerusform>%n Verbindungen</numerusform>
+            </translation>
+        </message>
+        <message>
+            <source>{0}: {1}</source>
+            <translation>{0}: {1}</translation>
+        </message>
+        <message numerus="yes">
+            <source>%n stored link(s).</source>
+            <translation>
+                <numerusform>%n gespeicherte Verbindung.</numerusform>
+                <numerusform>%n gespeicherte Verbindungen.</numerusform>
+            </translation>
+        </message>
+    </context>
+    <context>
+        <name>Inspector</name>
+        <message>
+            <source>A device catalogue file was skipped, so the parts it describes are not named from it: {0}</source>
+            <translation>Eine Gerätekatalog-Datei wurde übersprungen, daher werden die Teile, die sie beschreibt, nicht danach benannt: {0}</translation>
+        </message>
+    </context>
 </TS>

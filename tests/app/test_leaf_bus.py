@@ -9,7 +9,7 @@ from __future__ import annotations
 import threading
 
 import pytest
-from PySide6.QtCore import QThread
+from PySide6.QtCore import Qt, QThread
 from PySide6.QtWidgets import QApplication
 
 from pdcp_studio.app.session_bridge import SessionBridge
@@ -138,7 +138,8 @@ def test_failures_become_error_messages(qtbot, make_bridge):
     bridge = make_bridge()
     with qtbot.waitSignal(bridge.error, timeout=5000) as blocker:
         bridge.plug(DeviceKey(9, 9, 9))
-    assert blocker.args[0].startswith("Plug 9/9/9: no simulated device 9/9/9")
+    assert blocker.args[0].startswith(
+        "Plugging in unknown device (9/9/9): no simulated device 9/9/9")
     failed: list[str] = []
     worker = bridge.run(lambda p, c: 1 / 0, "Divide")
     worker.failed.connect(failed.append)
@@ -192,13 +193,14 @@ def test_sim_panel_lists_devices_and_follows_a_hot_swap(qtbot, make_bridge):
     qtbot.waitUntil(lambda: panel.plug_button.isEnabled(), timeout=5000)
     assert any("left the bus" in line for line in panel.log_lines())
     row = next(panel.tree.topLevelItem(i) for i in range(5)
-               if panel.tree.topLevelItem(i).text(1) == str(HAND))
+               if panel.tree.topLevelItem(i).data(0, Qt.ItemDataRole.UserRole) == HAND)
     assert (row.text(2), row.text(3)) == ("off", "left")
 
     with qtbot.waitSignal(bridge.deviceJoined, timeout=5000):
         panel.plug_button.click()
     qtbot.waitUntil(lambda: panel.state(HAND) == (True, True), timeout=5000)
-    assert any("Hand joined the bus" in line for line in panel.log_lines())
+    assert any("Multi-grip hand with wrist rotator (serial 301) joined the bus" in line
+               for line in panel.log_lines())
 
 
 def test_sim_panel_replaces_a_device_by_an_unplugged_one(qtbot, make_bridge):
@@ -230,7 +232,7 @@ def test_sim_panel_resets_the_arbitrator_with_and_without_memory(qtbot, make_bri
     assert len(stored.args[0].configurations[0].links) == 3
     with qtbot.waitSignal(bridge.simChanged, timeout=10_000) as changed:
         panel.reset(keep_memory=True)
-    assert changed.args[0] == "Reset arbitrator (memory kept)"
+    assert changed.args[0] == "The arbitrator restarted; its stored configuration was kept"
     assert bridge.session.wait_settled(10)
     assert bridge.system().links == links
     done = threading.Event()

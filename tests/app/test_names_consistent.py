@@ -15,7 +15,7 @@ def test_the_simulator_panel_names_devices_as_the_graph_does(make_window, qtbot)
         window.connect_bus("sim:transradial")
     panel = window._leaf_docks["sim"].widget()
     qtbot.waitUntil(lambda: panel.tree.topLevelItemCount() >= 4, timeout=10000)
-    shown = {panel.tree.topLevelItem(i).text(1): panel.tree.topLevelItem(i).text(0)
+    shown = {str(panel.tree.topLevelItem(i).data(0, 0x0100)): panel.tree.topLevelItem(i).text(0)
              for i in range(panel.tree.topLevelItemCount())}
     on_graph = {str(k): window.scene.device_label(d) for k, d in window.doc.system.devices.items()}
     assert on_graph and all(shown[k] == name for k, name in on_graph.items()), (shown, on_graph)

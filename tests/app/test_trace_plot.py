@@ -7,7 +7,13 @@ import pytest
 from PySide6.QtCore import QPoint, Qt
 from PySide6.QtGui import QColor
 
-from pdcp_studio.app.live_plot import LivePlot, channel_axis, nice_ticks, tick_text
+from pdcp_studio.app.live_plot import (
+    LivePlot,
+    channel_axis,
+    factor_text,
+    nice_ticks,
+    tick_text,
+)
 from pdcp_studio.bus.events import ChannelValue
 from pdcp_studio.model.channel_type import ChannelType, ControlMode, DataType
 from pdcp_studio.model.refs import Direction
@@ -45,11 +51,16 @@ def test_ticks_are_one_two_five_steps():
     assert tick_text(0.04, 0.02) == "0.04" and tick_text(2000, 500) == "2000"
 
 
-def test_units_and_scale_come_from_the_channel_type():
-    assert channel_axis(POSITION_MILLI) == ("position", 1e-3, False)
-    assert channel_axis(VELOCITY) == ("velocity", 1.0, False)
+def test_the_axis_names_the_control_mode_and_the_prescaler_is_a_hint_only():
+    """Reference §2, Decision: the prescaler is shown as the thesis's suggested factor, a
+    hint only; no computation depends on it. The axis names the raw values by control
+    mode (no physical unit is known)."""
+    assert channel_axis(POSITION_MILLI) == ("position", "1e-3", False)
+    assert channel_axis(VELOCITY) == ("velocity", "1", False)
     assert channel_axis(SWITCH)[2] is True
-    assert channel_axis(None) == ("value", 1.0, False)
+    assert channel_axis(None) == ("value", "1", False)
+    assert factor_text("1e-3") == "×10⁻³" and factor_text("1e1") == "×10"
+    assert factor_text("1e6") == "×10⁶" and factor_text("1") == ""
 
 
 def test_two_signals_with_names_units_cursors_and_window(qtbot):
@@ -64,7 +75,10 @@ def test_two_signals_with_names_units_cursors_and_window(qtbot):
     plot.add_channel(cu.ref(3))  # picked from Signals: stays
     assert [s.label for s in plot.series] == ["EMG sensor output 1 → Control unit",
                                               "Control unit output 3 → Multi-grip hand"]
-    assert [s.unit for s in plot.series] == ["position ×0.001", "velocity"]
+    assert [s.unit for s in plot.series] == ["position (raw)", "velocity (raw)"]
+    assert [s.hint_text for s in plot.series] == ["suggested ×10⁻³", ""]
+    assert plot.series[0].title == ("EMG sensor output 1 → Control unit — position (raw), "
+                                    "suggested ×10⁻³")
     values = []
     for i in range(500):  # 5 s at 100 Hz: a ramp and a square wave
         t = 1000 + i / 100
@@ -87,9 +101,11 @@ def test_two_signals_with_names_units_cursors_and_window(qtbot):
     assert "Δt 2.5000 s (0.40 Hz)" in text
     lines = text.splitlines()
     emg_line = next(line for line in lines if line.startswith("EMG sensor"))
-    # At 4 s before the end (i = 99): 990 raw × 0.001; at 1.5 s before (i = 349): 3490 × 0.001.
-    assert "A 0.99" in emg_line and "B 3.49" in emg_line and "Δ +2.5" in emg_line
-    assert emg_line.endswith("position ×0.001")
+    # At 4 s before the end (i = 99): 990 raw; at 1.5 s before (i = 349): 3490 raw — the
+    # values as sent, never multiplied by the prescaler's suggested factor.
+    assert "A 990" in emg_line and "B 3490" in emg_line and "Δ +2500" in emg_line
+    assert emg_line.endswith("(position (raw))")
+    assert plot.y_range() == (0.0, 4990.0)
     assert plot.readout.isVisibleTo(plot) and "Δt" in plot.readout.text()
 
     # Clicking sets cursor A and holds the plot; right-click sets B.

@@ -75,7 +75,8 @@ def test_the_replacement_plan_moves_every_link_to_the_spare_with_its_similarity(
                          .links}
         assert SPARE_HAND in stored_inputs and HAND not in stored_inputs
     lines = words.plan_lines(swapped, plan)
-    assert any("It takes the place of Multi-grip hand (serial 301), channel 1 (Power grip)"
+    assert any("It takes the place of Multi-grip hand with wrist rotator (serial 301), "
+               "channel 1 (Power grip)"
                in line and "Exact match" in line for line in lines)
     assert not any("0x" in line for line in lines)
 
@@ -124,13 +125,20 @@ def test_similarity_in_words(sim, profile, expected):
 
 
 def test_parts_are_named_from_the_catalogue_and_kept_apart_by_serial(fitted):
+    """Each part by its own name (what it tells the bus); the hand and its spare read
+    alike, so they get their serial numbers; a part with no name of its own by its
+    product from the catalogue, without a serial number when no other part reads so."""
     system, _stored = fitted
     bus = system.copy()
-    assert words.part_words(bus, HAND) == "Multi-grip hand (serial 301)"
-    assert words.part_words(bus, SPARE_HAND) == "Multi-grip hand (serial 302)"
+    assert words.part_words(bus, HAND) == "Multi-grip hand with wrist rotator (serial 301)"
+    assert words.part_words(bus, SPARE_HAND) == \
+        "Multi-grip hand with wrist rotator (serial 302)"
+    assert words.part_words(bus, CONTROL) == "Pattern-recognition control unit"
     assert words.part_words(bus, DeviceKey(9, 9, 9)) == "unknown device (9/9/9)"
     assert words.channel_phrase(bus, ChannelRef(*HAND, 3)) == \
-        "Multi-grip hand (serial 301), channel 3 (Wrist rotation)"
+        "Multi-grip hand with wrist rotator (serial 301), channel 3 (Wrist rotation)"
+    bus.devices[CONTROL].descriptor = ""
+    assert words.part_words(bus, CONTROL) == "Control unit"
 
 
 def test_without_a_stored_configuration_the_links_on_the_bus_are_repaired(fitted):
@@ -151,7 +159,7 @@ def test_two_parts_that_would_read_alike_get_their_serial_numbers(fitted):
     bus.devices[HAND].name = bus.devices[SPARE_HAND].name = "Hand"  # two hands named alike
     names = words.part_names(bus)
     assert names[HAND] == "Hand (serial 301)" and names[SPARE_HAND] == "Hand (serial 302)"
-    assert names[CONTROL] == "Control unit (serial 201)"  # named by the catalogue
+    assert names[CONTROL] == "Pattern-recognition control unit"  # its own name
     assert words.part_words(bus, HAND) == "Hand (serial 301)"
     bus.devices[SPARE_HAND].name = "Spare hand"  # no longer alike: no serial added
     assert words.part_words(bus, HAND) == "Hand"

@@ -87,7 +87,7 @@ def test_new_fitting_from_scratch_to_a_recorded_history_entry_and_report(live, q
     _next(w, qtbot, w.connect_page, w.scan_page)
     _ready(w, qtbot, w.scan_page)
     text = _text(w.scan_page)
-    assert "4 part(s) found" in text and "Multi-grip hand (serial 301)" in text
+    assert "4 parts found on the bus" in text and "Multi-grip hand with wrist rotator" in text
     assert "302" not in text  # the spare hand is not on the bus until plugged in
     _next(w, qtbot, w.scan_page, w.checks_page)
     _ready(w, qtbot, w.checks_page)
@@ -134,7 +134,7 @@ def test_new_fitting_writes_the_autoconfigure_plan_with_the_motion_interlock(liv
     _ready(w, qtbot, w.plan_page)
     text = _text(w.plan_page)
     assert text.count("Connect ") >= 5 and "drives a part of the prosthesis" in text
-    assert "Held still meanwhile, so the prosthesis cannot move: Control unit (serial 201)" in text
+    assert "Held still meanwhile, so the prosthesis cannot move: Pattern-recognition control unit" in text
     _next(w, qtbot, w.plan_page, w.write_page)
     w.next()
     qtbot.waitUntil(lambda: w.currentPage() is w.store_page, timeout=T)
@@ -207,7 +207,8 @@ def test_replace_a_part_unplug_the_hand_plug_the_spare(live, qtbot, tmp_path):
     panel.select(HAND)
     panel.unplug_selected()  # the Simulator panel's Unplug: the page follows the bus
     _ready(w, qtbot, w.missing_page)
-    assert "Multi-grip hand (serial 301) is not on the bus; 3 link(s)" in _text(w.missing_page)
+    assert "Multi-grip hand with wrist rotator is not on the bus; 3 links led to it" in \
+        _text(w.missing_page)
     _next(w, qtbot, w.missing_page, w.plug_page)
     qtbot.waitUntil(lambda: "Waiting for the new part" in _text(w.plug_page), timeout=T)
     assert not w.plug_page.isComplete()
@@ -216,11 +217,12 @@ def test_replace_a_part_unplug_the_hand_plug_the_spare(live, qtbot, tmp_path):
     panel.select(SPARE)
     panel.plug_selected()
     _ready(w, qtbot, w.plug_page)
-    assert "Seen on the bus: Multi-grip hand (serial 302) (new)" in _text(w.plug_page)
+    assert "Seen on the bus: Multi-grip hand with wrist rotator (serial 302) (new)" in _text(w.plug_page)
     _next(w, qtbot, w.plug_page, w.plan_page)
     _ready(w, qtbot, w.plan_page)
     text = _text(w.plan_page)
-    assert "It takes the place of Multi-grip hand (serial 301), channel 1 (Power grip)" in text
+    assert ("It takes the place of Multi-grip hand with wrist rotator (serial 301), channel 1 "
+            "(Power grip)") in text
     assert "Exact match: it does the same job and sends its data the same way (31 of 31 " \
            "points)" in text
     assert "(23 of 23 points)" in text  # the wrist rotation: a two-level profile
@@ -231,7 +233,7 @@ def test_replace_a_part_unplug_the_hand_plug_the_spare(live, qtbot, tmp_path):
     qtbot.waitUntil(lambda: w.currentPage() is w.verify_page, timeout=T)
     _ready(w, qtbot, w.verify_page)
     assert w.verify_page.problems == []
-    assert "All 5 link(s) are on the prosthesis as planned" in _text(w.verify_page)
+    assert "On the prosthesis as planned: 5 links." in _text(w.verify_page)
     assert "reads back as written" in _text(w.verify_page)
     session = _session(live)
     links = session.system().links
@@ -436,8 +438,8 @@ def test_checks_name_the_two_hands_apart(live, qtbot):
     _next(w, qtbot, w.scan_page, w.checks_page)
     _ready(w, qtbot, w.checks_page)
     text = _text(w.checks_page)
-    assert "Multi-grip hand (serial 301), channel 1" in text
-    assert "Multi-grip hand (serial 302), channel 1" in text
+    assert "Multi-grip hand with wrist rotator (serial 301), channel 1" in text
+    assert "Multi-grip hand with wrist rotator (serial 302), channel 1" in text
     findings = [line for line in text.splitlines() if "nothing feeds it" in line]
     assert len(findings) == len(set(findings)) >= 2  # no two findings read alike
 

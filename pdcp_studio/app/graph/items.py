@@ -12,7 +12,7 @@ from __future__ import annotations
 
 import math
 from functools import cache
-from typing import TYPE_CHECKING
+from typing import TYPE_CHECKING, Any
 
 from PySide6.QtCore import QPointF, QRectF, Qt
 from PySide6.QtGui import (
@@ -77,6 +77,59 @@ def _fonts() -> tuple[QFont, QFont, QFont, QFont]:
 def _metrics() -> tuple[QFontMetricsF, QFontMetricsF, QFontMetricsF, QFontMetricsF]:
     return tuple(QFontMetricsF(f) for f in _fonts())  # type: ignore[return-value]
 
+
+
+def card_product(key: Any) -> str:
+    """The product a card names under the part's name (the catalogue's; "" if unknown)."""
+    return _card_catalogue(key.vid, key.pid)[0]
+
+
+def card_icon(key: Any) -> QImage | None:
+    """The picture of the part's kind (the catalogue's ``icon``), None if it has none."""
+    return _card_catalogue(key.vid, key.pid)[1]
+
+
+@cache
+def _card_catalogue(vid: int, pid: int) -> tuple[str, QImage | None]:
+    """(product, picture) of a VID/PID, looked up once (a catalogue lookup finds the
+    user's folder: ~50 µs, too slow for every card's paint); the scene forgets them when
+    it rebuilds (:func:`forget_catalogue`)."""
+    from pdcp_studio.app.kind_icons import kind_image
+    from pdcp_studio.model.catalog import default_catalog
+
+    entry = default_catalog().lookup(vid, pid)
+    if entry is None:
+        return "", None
+    image = kind_image(entry.icon, 32) if entry.icon else None
+    return entry.product, None if image is None or image.isNull() else image
+
+
+def card_icon_vectors(key: Any) -> Any:
+    """The kind's icon as an SVG renderer (for vectors), None if it has none."""
+    from pdcp_studio.app.kind_icons import entry_of, kind_renderer
+
+    entry = entry_of(key)
+    return kind_renderer(entry.icon) if entry is not None and entry.icon else None
+
+
+def elide_keeping_serial(label: str, serial: int, metrics: Any, width: float) -> str:
+    """``label`` elided to ``width``; a twin's serial number (``… (serial 302)``) is kept
+    whole, so two hands alike never read the same once cut."""
+    from pdcp_studio.app.part_names import twin_format
+
+    suffix = twin_format().format(name="", serial=serial)
+    if (metrics.horizontalAdvance(label) <= width or not suffix.strip()
+            or not label.endswith(suffix) or len(label) <= len(suffix)):
+        return str(metrics.elidedText(label, Qt.TextElideMode.ElideRight, width))
+    room = width - metrics.horizontalAdvance(suffix)
+    base = str(metrics.elidedText(label[:-len(suffix)], Qt.TextElideMode.ElideRight,
+                                  max(room, 0)))
+    return base + suffix
+
+
+def forget_catalogue() -> None:
+    """Look the products up again (a catalogue file was added or changed)."""
+    _card_catalogue.cache_clear()
 
 class PortItem(QGraphicsEllipseItem):
     """A channel's connection point; dragging from it draws a link."""
@@ -256,7 +309,7 @@ class DeviceItem(QGraphicsRectItem):
         return (d.present, self.isSelected(), self.role, tuple(self.problems),
                 frozenset(self.pending_rows),
                 self.selected_ref.index if self.selected_ref is not None else None,
-                self._scene_ref.device_label(d), d.vid, d.pid, d.serial, self.height,
+                self._scene_ref.device_label(d), d.vid, d.pid, self.height,
                 tuple((c.index, c.is_input, c.profile, c.descriptor) for c in self.rows),
                 self.summary, self.vector, self.picture_scale())
 
@@ -306,6 +359,7 @@ class DeviceItem(QGraphicsRectItem):
         vectors without Qt's pixmap cache, for a vector file)."""
         self.zoom = zoom
         self.summary = zoom < DETAIL_ZOOM
+        self.exporting = export
         vector = export or zoom > PICTURE_MAX_ZOOM
         cache = (QGraphicsItem.CacheMode.DeviceCoordinateCache if vector and not export
                  else QGraphicsItem.CacheMode.NoCache)
@@ -437,14 +491,25 @@ class DeviceItem(QGraphicsRectItem):
         badge = 18.0 if self.problems else 0.0
         p.setFont(title_f)
         p.setPen(text)
-        name = title_m.elidedText(label, Qt.TextElideMode.ElideRight, w - 22 - badge)
+        name = elide_keeping_serial(label, d.serial, title_m, w - 22 - badge)
         p.drawText(QRectF(11, 6, w - 20 - badge, 18), Qt.AlignmentFlag.AlignVCenter, name)
         p.setFont(small_f)
         p.setPen(dim)
         role = translate("Style", style.MISSING_LABEL if missing else style.ROLE_LABELS[self.role])
-        role_line = small_m.elidedText(f"{role}  ·  {d.vid}/{d.pid}/{d.serial}",
-                                       Qt.TextElideMode.ElideRight, w - 20)
-        p.drawText(QRectF(11, 22, w - 20, 14), Qt.AlignmentFlag.AlignVCenter, role_line)
+        product = card_product(d.key)  # the numbers are in the tooltip and the inspector
+        icon = card_icon(d.key)
+        left = 11.0
+        if icon is not None:
+            renderer = card_icon_vectors(d.key) if getattr(self, "exporting", False) else None
+            if renderer is not None:  # a vector file gets vectors, not a picture
+                renderer.render(p, QRectF(left, 23, 12, 12))
+            else:
+                p.drawImage(QRectF(left, 23, 12, 12), icon, QRectF(icon.rect()))
+            left += 15
+        role_line = small_m.elidedText(f"{role}  ·  {product}" if product else role,
+                                       Qt.TextElideMode.ElideRight, w - 9 - left)
+        p.drawText(QRectF(left, 22, w - 9 - left, 14), Qt.AlignmentFlag.AlignVCenter,
+                   role_line)
         drawn = [name, role_line]
         self._row_px = QFontInfo(row_f).pixelSize() if row_f.pixelSize() < 0 \
             else row_f.pixelSize()

@@ -20,7 +20,7 @@ from pdcp_studio.app import commands
 from pdcp_studio.app.document import Document
 from pdcp_studio.app.graph import layout, style
 from pdcp_studio.app.graph.analysis import SystemStates, compute_states, link_refusal
-from pdcp_studio.app.graph.items import DETAIL_ZOOM, DeviceItem, PortItem
+from pdcp_studio.app.graph.items import DETAIL_ZOOM, DeviceItem, PortItem, forget_catalogue
 from pdcp_studio.app.graph.links import DragLinkItem, LinkItem
 from pdcp_studio.model import profile as prof
 from pdcp_studio.model.catalog import default_catalog
@@ -144,6 +144,7 @@ class BusScene(QGraphicsScene):
             self.cards.clear()
             self._to_render.clear()
             self._catalog = None
+            forget_catalogue()
             self.link_items.clear()
             self.preview_items.clear()
             self.unwritten_items.clear()
@@ -338,8 +339,15 @@ class BusScene(QGraphicsScene):
         """The device's own name, else its product from the device catalogue (looked up
         once per rebuild: finding the catalogue reads the user's folder)."""
         if self._catalog is None:
-            self._catalog = default_catalog()
-        return self._catalog.device_label(device)
+            from pdcp_studio.app.part_names import part_names
+
+            self._catalog = part_names(self.doc.system)
+        name = self._catalog.get(device.key)
+        if name is None:  # a device just added: name the system again
+            from pdcp_studio.app.part_names import part_name
+
+            name = part_name(self.doc.system, device.key)
+        return name
 
     def profile_name(self, profile: int) -> str:
         return self.doc.profile_name(profile)
@@ -398,6 +406,11 @@ class BusScene(QGraphicsScene):
             self.rebuild()
             return
         card.set_device(device, card.role)
+        before, self._catalog = self._catalog, None
+        if before is not None and before.get(key) != self.device_label(device):
+            for other, name in before.items():  # two parts now read alike, or no longer
+                if other != key and other in self.cards and self._catalog.get(other) != name:
+                    self.cards[other].refresh()
         # A live snapshot changes many devices at once: recompute the states (O(system))
         # once, when the event loop is free, not once per device.
         self._states_timer.start()
@@ -572,6 +585,8 @@ class BusScene(QGraphicsScene):
         self._apply_states()
 
     def _show_preview(self, plan: object) -> None:
+        from pdcp_studio.app import plan_words
+
         for item in self.preview_items:
             item.detach()
             self.removeItem(item)
@@ -583,7 +598,8 @@ class BusScene(QGraphicsScene):
             if self.port(link.output) is None or self.port(link.input) is None:
                 continue
             item = LinkItem(self, link, "add" if action.op == "add" else "remove")
-            item.setToolTip(f"{action.op}: {link}\n{getattr(action, 'reason', '')}")
+            item.setToolTip(plan_words.step_words(self.doc.system, plan, action,
+                                                  self.profile_name))
             self.addItem(item)
             self.preview_items.append(item)
 
@@ -756,41 +772,62 @@ class BusScene(QGraphicsScene):
 
     # -- text -------------------------------------------------------------------------
     def _describe(self, ref: ChannelRef) -> str:
+        """``Multi-grip hand, channel 1 (Power grip)``: a channel in words."""
+        from pdcp_studio.app.plan_words import channel_words
+
         ch = self.doc.system.channel(ref)
-        name = self.profile_name(ch.profile) if ch else "?"
-        dev = self.doc.system.device(ref.device)
-        return f"{self.device_label(dev) if dev else ref.device} #{ref.index} ({name})"
+        name = self.profile_name(ch.profile) if ch else ""
+        return channel_words(self.doc.system, ref, "" if name.startswith("0x") else name)
 
     def tooltip_for(self, card: DeviceItem, row: Channel | None) -> str:
+        """A card's (``row`` None) or a channel row's tooltip: the prosthetist's words
+        first, the engineer's codes after them in grey."""
+        from html import escape
+
+        from pdcp_studio.app.part_names import numbers
+
+        def grey(text: str) -> str:
+            return f"<span style='color:#6b7280'>{escape(text)}</span>"
+
         d = card.device
         if row is None:
-            lines = [f"<b>{self.device_label(d)}</b>",
-                     f"VID {d.vid} · PID {d.pid} · serial {d.serial}"]
+            lines = [f"<b>{escape(self.device_label(d))}</b>"]
             entry = default_catalog().lookup(d.vid, d.pid)
             if entry is not None:
-                lines.insert(1, " · ".join(x for x in (entry.vendor, entry.product, entry.kind)
-                                           if x))
-            if d.node_id is not None:
-                lines.append(f"node ID {d.node_id}")
+                lines.append(escape(" · ".join(x for x in (entry.product, entry.vendor)
+                                               if x)))
             if not d.present:
-                lines.append("<i>missing from the bus</i>")
+                lines.append(f"<i>{escape(self.tr('Missing from the bus'))}</i>")
             lines += [f"<span style='color:#b45309'>⚠ {p}</span>"
                       for p in self.problem_advice(d.key)]
+            detail = numbers(d.key)
+            if d.node_id is not None:
+                detail += " · " + self.tr("node ID {0}").format(d.node_id)
+            lines.append(grey(detail))
             return "<br>".join(lines)
         ref = d.ref(row.index)
-        lines = [f"<b>#{row.index} {row.direction.value}</b> — "
-                 f"{self.doc.tree.name_of(row.profile)} ({prof.fmt(row.profile)})",
-                 f"type {prof.fmt(row.type)}: {row.ctype.describe()}"]
+        what = self.doc.tree.name_of(row.profile)
+        head = (self.tr("Input {n}") if row.is_input else self.tr("Output {n}")).format(
+            n=row.index)
+        lines = [f"<b>{escape(head)}</b> — {escape(what)}"]
         if row.descriptor:
-            lines.append(f"“{row.descriptor}”")
+            lines.append(f"“{escape(row.descriptor)}”")
         if row.is_input:
             src = self.doc.system.source_of(ref)
-            lines.append(f"source: {self._describe(src)}" if src else "source: none")
-            if row.terminal:
-                lines.append(f"terminal profile {prof.fmt(row.terminal_profile)}")
+            lines.append(escape(self.tr("Fed by {0}").format(self._describe(src)) if src
+                                else self.tr("Nothing feeds it")))
         else:
             fed = self.doc.system.inputs_fed_by(ref)
-            lines.append("feeds: " + (", ".join(self._describe(r) for r in fed) or "nothing"))
+            lines.append(escape(self.tr("Feeds {0}").format(
+                "; ".join(self._describe(r) for r in fed)) if fed
+                else self.tr("Feeds nothing")))
+        detail = self.tr("profile {profile} · signal type {type}: {description}").format(
+            profile=prof.fmt(row.profile), type=prof.fmt(row.type),
+            description=row.ctype.describe())
+        if row.is_input and row.terminal:
+            detail += " · " + self.tr("drives the part with profile {0}").format(
+                prof.fmt(row.terminal_profile))
+        lines.append(grey(detail))
         advice = self.port_advice(ref)
         if advice:
             lines.append(f"<span style='color:#b91c1c'>⚠ {advice}</span>")

@@ -39,6 +39,10 @@ def open_wizard(window: Any, task: str) -> Any:
         else:
             old.raise_()
             return old
+    from pdcp_studio.app.wizards import words
+
+    doc = getattr(window, "doc", None)
+    words.shown_system = (lambda: doc.system) if doc is not None else None
     wizard = make_wizard(window, task)
     window.task_wizard = wizard
     wizard.show()

@@ -38,7 +38,8 @@ def plan_step(task: TaskWizard, system: Any, _stored: Any) -> tuple[list[str], A
     lines += words.plan_lines(system, plan)
     kept = len(set(system.links) & set(plan.final_links))
     if kept:
-        lines.append(_t("{0} link(s) already on the prosthesis stay as they are.").format(kept))
+        lines.append(words.count("Already on the prosthesis and kept as they are: %n link(s).",
+                                 kept))
     return lines, change, plan.final_links
 
 

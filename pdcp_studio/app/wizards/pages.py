@@ -393,9 +393,9 @@ class ScanPage(Page):
             state = "" if device.present else _t(" (not on the bus)")
             lines.append(f"{names[key]}{state}")
         present = sum(1 for d in system.devices.values() if d.present)
-        self.view.setHtml(bullets(lines, _t("{0} part(s) found on the bus, {1} link(s) "
-                                                 "between them:").format(
-            present, len(system.links))))
+        self.view.setHtml(bullets(lines, words.count("%n part(s) found on the bus", present)
+                                  + ", " + words.count("%n link(s) between them:",
+                                                       len(system.links))))
         self.idle(_t("Scan finished."))
         self.set_ready(True)
 
@@ -424,10 +424,9 @@ class ChecksPage(Page):
         else:
             names = words.part_names(task.system)  # two hands read apart
             lines = [plain_finding(f, task.system, auto, names) for f in findings]
-            self.view.setHtml(bullets(lines, _t("{0} thing(s) to look at. The next step "
-                                                     "proposes links that fix what can be "
-                                                     "fixed automatically:").format(
-                len(findings))))
+            self.view.setHtml(bullets(lines, words.count(
+                "%n thing(s) to look at. The next step proposes links that fix what can be "
+                "fixed automatically:", len(findings))))
         self.set_ready(True)
 
 
@@ -669,8 +668,8 @@ class VerifyPage(Page):
                 lines.append(f"{WARN_MARK} " + _t("{0} is not on the bus.").format(
                     words.part_words(task.system, p.key)))
         if not self.problems:
-            lines = [f"{OK_MARK} " + _t("All {0} link(s) are on the prosthesis as "
-                                             "planned.").format(len(task.expected_links)),
+            lines = [f"{OK_MARK} " + words.count("On the prosthesis as planned: %n link(s).",
+                                                 len(task.expected_links)),
                      f"{OK_MARK} " + _t("Every linked part is on the bus.")]
             if configuration is not None:
                 lines.append(f"{OK_MARK} " + _t("The stored configuration reads back as "
@@ -705,9 +704,9 @@ class ReportPage(Page):
         for result in task.results:
             entry = (_t("entry {0}").format(result.history_id) if result.history_id
                      else _t("not recorded"))
-            lines.append(_t("{0}: written and verified ({1}, {2} link(s) on the "
-                                 "prosthesis)").format(words.action_words(result.action), entry,
-                                                       len(result.links_after)))
+            lines.append(_t("{0}: written and verified ({1}, {2})").format(
+                words.action_words(result.action), entry,
+                words.count("%n link(s) on the prosthesis", len(result.links_after))))
         if not lines:
             lines.append(_t("Nothing needed writing: the prosthesis already held it."))
         self.view.setHtml(bullets(lines, _t("Done:")))

@@ -92,8 +92,9 @@ class MissingPage(_FollowsBus):
         task.missing = missing
         task.known = set(task.system.devices)
         if missing:
-            lines = [_t("{0} is not on the bus; {1} link(s) lead to it.").format(
-                words.part_words(task.system, m.key), m.links) for m in missing]
+            lines = [_t("{0} is not on the bus; {1}").format(
+                words.part_words(task.system, m.key),
+                words.count("%n link(s) led to it.", m.links)) for m in missing]
             self.view.setHtml(bullets(lines, _t("Missing:")))
             self.idle(_t("Next: plug the new part in."))
         else:
@@ -159,9 +160,9 @@ def replace_step(task: TaskWizard, system: Any, stored: Any) -> tuple[list[str],
     lines += words.plan_lines(system, plan)
     already = [a for a in plan.added if a.link in set(system.links)]
     if already:
-        lines.append(_t("The prosthesis made {0} of these link(s) on its own when the part "
-                        "was plugged in; the write makes them part of the fitting.").format(
-            len(already)))
+        lines.append(words.count("The prosthesis made %n link(s) of these on its own when the "
+                                 "part was plugged in; the write makes them part of the "
+                                 "fitting.", len(already)))
     lines.append(_t("The stored configuration will name the new part, so the next start-up "
                     "links it directly."))
     return lines, change, plan.final_links

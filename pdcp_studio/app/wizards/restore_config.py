@@ -52,6 +52,16 @@ def restorable(entries: list[dict[str, Any]], devices: set[Any]) -> list[dict[st
     return sorted(ok, key=lambda e: int(e.get("id", 0)), reverse=True)
 
 
+
+def reason_only(err: BaseException, path: Path) -> str:
+    """Why a file could not be read, without the file's name when the error begins with
+    it (the message names the file once: "Cannot read P: offset 12: …", not "P: P: …")."""
+    text = str(err)
+    for name in (str(path), path.name):
+        if text.startswith(name + ": "):
+            return text[len(name) + 2:]
+    return text.replace(f"{path}: ", "", 1) if str(path) in text else text
+
 class SourcePage(Page):
     """Where the configuration comes from: a file, or an entry of the fitting history."""
 
@@ -98,10 +108,10 @@ class SourcePage(Page):
         self.history = restorable(entries, devices)
         self.entries.clear()
         for e in self.history:
-            item = QListWidgetItem(_t("Entry {0} — {1} — {2} ({3} link(s))").format(
+            item = QListWidgetItem(_t("Entry {0} — {1} — {2} ({3})").format(
                 e["id"], str(e.get("time", ""))[:19].replace("T", " "),
                 words.action_words(str(e.get("action", ""))),
-                len(e.get("links_after") or ())))
+                words.count("%n link(s)", len(e.get("links_after") or ()))))
             self.entries.addItem(item)
         if not self.history:
             self.entries.addItem(_t("No fitting of this prosthesis is recorded yet."))
@@ -126,11 +136,11 @@ class SourcePage(Page):
             self.collection, self.file = config_codec.load_path(path), path
         except (PdcpError, OSError, ValueError) as err:
             self.collection, self.file = None, None
-            self.idle(_t("Cannot read {0}: {1}").format(path, err))
+            self.idle(_t("Cannot read {0}: {1}").format(path, reason_only(err, path)))
             self.completeChanged.emit()
             return False
         n = sum(len(c.links) for c in self.collection.configurations)
-        self.idle(_t("{0}: {1} stored link(s).").format(path.name, n))
+        self.idle(_t("{0}: {1}").format(path.name, words.count("%n stored link(s).", n)))
         self.completeChanged.emit()
         return True
 

@@ -8,14 +8,14 @@ engineer's text one click away. Everything goes through Qt's translation (contex
 
 from __future__ import annotations
 
-from collections import Counter
+from typing import Any
 
+from pdcp_studio.app import part_names as names
 from pdcp_studio.app.i18n import translate
 from pdcp_studio.bus.session_api import ChangePreview
 from pdcp_studio.engine import Action, Plan, Rule, Similarity
 from pdcp_studio.engine.similarity import MAX_TYPE_SCORE, PROFILE_STEP
 from pdcp_studio.model import profile as prof
-from pdcp_studio.model.catalog import default_catalog
 from pdcp_studio.model.config_diff import ConfigDiff
 from pdcp_studio.model.refs import ChannelRef, DeviceKey
 from pdcp_studio.model.system import Link, System
@@ -27,34 +27,34 @@ def _t(text: str) -> str:
     return translate(_CTX, text)
 
 
-def _own_words(system: System, key: DeviceKey) -> str:
-    device = system.devices.get(key)
-    catalogue = default_catalog()
-    name = device.name.strip() if device is not None else ""
-    if name:
-        return name
-    product = catalogue.product_name(key) or (device.descriptor if device is not None
-                                              else "")
-    if not product:
-        return catalogue.label(key, name)
-    return _t("{name} (serial {serial})").format(name=product, serial=key.serial)
+def count(text: str, n: int) -> str:
+    """``text`` with ``%n`` for ``n`` things: "1 link", "2 links" (Qt's plural forms)."""
+    from pdcp_studio.app.plural import count as plural
+
+    return plural(_CTX, text, n)
+
+
+#: ``() -> System | None``: the main window's system while a wizard is open (set by
+#: :func:`pdcp_studio.app.wizards.open_wizard`): its parts are named among the graph's, so
+#: a fresh scan that no longer sees the hand still calls the spare what the graph calls it.
+shown_system: Any = None
+
+
+def _shown() -> list[Any]:
+    system = shown_system() if shown_system is not None else None
+    return list(system.devices.values()) if system is not None else []
 
 
 def part_names(system: System) -> dict[DeviceKey, str]:
     """Every part's words (:func:`part_words`) at once: one pass, for long lists."""
-    own = {key: _own_words(system, key) for key in system.devices}
-    shared = {n for n, count in Counter(own.values()).items() if count > 1}
-    return {key: _t("{name} (serial {serial})").format(name=n, serial=key.serial)
-            if n in shared else n for key, n in own.items()}
+    return names.part_names(system, _shown())
 
 
 def part_words(system: System, key: DeviceKey) -> str:
-    """``Multi-grip hand (serial 301)``: the part's own name, else its product from the
-    device catalogue with its serial number, else what the part calls itself; two parts
-    that would read alike (two hands both named "Hand") get their serial numbers."""
-    if key in system.devices:
-        return part_names(system)[key]
-    return _own_words(system, key)
+    """The part's one name in every panel (``app/part_names.py``): its own name, else its
+    product from the device catalogue; two parts that would read alike (a hand and its
+    spare) get their serial numbers."""
+    return names.part_name(system, key, _shown())
 
 
 def channel_phrase(system: System, ref: ChannelRef) -> str:
@@ -182,8 +182,8 @@ def plan_lines(system: System, plan: Plan) -> list[str]:
         verb = _t("Connect") if action.op.value == "add" else _t("Disconnect")
         out.append(f"{verb} {link_words(system, action.link)}\n{why_words(system, plan, action)}")
     if plan.rejections:
-        out.append(_t("{0} link(s) could not be made (the engineer's detail says why).")
-                   .format(len(plan.rejections)))
+        out.append(count("%n link(s) could not be made (the engineer's detail says why).",
+                         len(plan.rejections)))
     return out
 
 

@@ -1,0 +1,44 @@
+"""The Simulator panel's log and the bridge's ``simChanged`` speak a prosthetist's words:
+"Unplugged the …" with the part's name, never "Done: Unplug 2641/769/301" (issue 11)."""
+
+from __future__ import annotations
+
+import re
+
+import pytest
+
+from pdcp_studio.app.session_bridge import SessionBridge
+from pdcp_studio.app.sim_panel import SimPanel
+from pdcp_studio.bus.session import open_session
+from pdcp_studio.model.refs import DeviceKey
+
+pytestmark = pytest.mark.gui
+
+HAND = DeviceKey(2641, 769, 301)
+
+
+def test_the_log_says_what_was_done_to_which_part(qtbot):
+    bridge = SessionBridge(open_session("sim:transradial"), interval_ms=20,
+                           url="sim:transradial")
+    try:
+        panel = SimPanel(bridge)
+        qtbot.addWidget(panel)
+        qtbot.waitUntil(lambda: panel.tree.topLevelItemCount() == 5, timeout=5000)
+        name = panel._label(HAND)
+        assert name.startswith("Multi-grip hand with wrist rotator")
+        panel.select(HAND)
+        with qtbot.waitSignal(bridge.simChanged, timeout=10_000) as changed:
+            panel.unplug_selected()
+        assert changed.args[0] == f"Unplugged {name}"
+        with qtbot.waitSignal(bridge.simChanged, timeout=10_000) as changed:
+            panel.plug_selected()
+        assert changed.args[0] == f"Plugged in {name}"
+        with qtbot.waitSignal(bridge.simChanged, timeout=10_000):
+            panel.reset(keep_memory=True)
+        log = panel.log_lines()
+        assert any(line.endswith(f"Unplugged {name}") for line in log), log
+        assert any("arbitrator restarted" in line for line in log), log
+        for line in log:
+            assert "Done:" not in line and not re.search(r"\d+/\d+/\d+", line), line
+    finally:
+        bridge.close(wait_ms=5000)
