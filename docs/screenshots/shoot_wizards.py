@@ -23,6 +23,7 @@ file. The German manual's pictures are made from a German run:
 from __future__ import annotations
 
 import os
+import shutil
 import subprocess
 import sys
 import tempfile
@@ -31,6 +32,18 @@ from pathlib import Path
 
 HERE = Path(__file__).resolve().parent
 TMP = Path(tempfile.mkdtemp())
+# The report step shows where the report went: a plain folder of a prosthetist's, not a
+# temporary one. /home/jdoe is made for the run (and removed after it) where it can be;
+# elsewhere a temporary folder stands in for the home folder.
+PLAIN_HOME = Path("/home/jdoe")
+MADE_HOME = False
+try:
+    PLAIN_HOME.mkdir()
+    MADE_HOME = True
+except OSError:
+    PLAIN_HOME = TMP / "home"
+    PLAIN_HOME.mkdir()
+os.environ["HOME"] = str(PLAIN_HOME)
 os.environ.setdefault("PDCP_STUDIO_HISTORY", str(TMP / "history.sqlite3"))
 os.environ.setdefault("PDCP_STUDIO_OPERATOR", "J. Doe, CPO")
 
@@ -110,7 +123,8 @@ def main() -> int:
         shoot(w, "fitting-6-store")
         w.next()
         yield ready(w, w.report_page)
-        w.report_page.save_report(TMP / "fitting.pdf")
+        (PLAIN_HOME / "Fittings").mkdir(exist_ok=True)
+        w.report_page.save_report(PLAIN_HOME / "Fittings" / "P-0042 fitting.pdf")
         shoot(w, "fitting-7-report")
         w.close()
 
@@ -187,6 +201,18 @@ def main() -> int:
         shoot(w, "restore-5-clears-warning")
         w.close()
 
+        # Restore from a configuration file: the file chosen, its stored links counted.
+        w = opened("restore")
+        page = w.source_page
+        yield lambda: len(page.history) >= 2
+        stored = PLAIN_HOME / "Fittings" / "P-0042 hand and hook.pdcfg"
+        shutil.copy(HERE.parents[1] / "resources" / "configs" / "transradial-hand-and-hook.pdcfg",
+                    stored)
+        page.load_file(stored)
+        yield lambda: page.isComplete()
+        shoot(w, "restore-6-from-file")
+        w.close()
+
     steps = script()
     waiting: list[Callable[[], bool]] = []
     ticks = [0]
@@ -214,6 +240,8 @@ def main() -> int:
     QTimer.singleShot(0, lambda: window.connect_bus("sim:transradial"))
     app.exec()
     window.live.disconnect_bus()
+    if MADE_HOME:
+        shutil.rmtree(PLAIN_HOME, ignore_errors=True)
     for f in failures:
         print("FAILED:", f)
     return 1 if failures else 0
