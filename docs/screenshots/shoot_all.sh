@@ -3,7 +3,8 @@
 #   docs/screenshots/shoot_all.sh
 # (it starts xvfb-run itself; needs xvfb, xdotool and ImageMagick). PDCP_STUDIO names the
 # program (default: pdcp-studio); its Python runs the Python scripts. Each script is run in
-# turn; a failing one is named at the end and the others still run. About 4 minutes.
+# turn; a failing one is named at the end and the others still run. About 2 minutes on a
+# quiet 2-core machine.
 set -u
 HERE=$(cd "$(dirname "$0")" && pwd)
 if [ -z "${DISPLAY:-}" ] || [ "${1:-}" != "--inside" ]; then
