@@ -9,7 +9,8 @@ record (so New fitting has links to propose), then walks New fitting, Replace a 
 hand unplugged and the spare hand plugged in through the Simulator panel) and Restore a
 configuration (the original hand back, the first fitting's stored configuration restored
 from the history; then the fitting's first write, made before anything was stored, which
-warns that it clears the stored configuration), and
+warns that it clears the stored configuration; then a configuration file chosen, in
+``~/Fittings`` like the fitting report), and
 saves ``wizard-<task>-<step>.png`` beside this script (with ``--lang de``: the German build,
 into a temporary folder, to look at, or into ``--out DIR``): the wizard's window, and for
 the plug step the whole screen with the Simulator panel. The fitting history is a temporary
@@ -36,9 +37,13 @@ TMP = Path(tempfile.mkdtemp())
 # temporary one. /home/jdoe is made for the run (and removed after it) where it can be;
 # elsewhere a temporary folder stands in for the home folder.
 PLAIN_HOME = Path("/home/jdoe")
+MARK = ".made-by-shoot_wizards"  # a folder left by a run that was stopped is ours to reuse
 MADE_HOME = False
 try:
+    if PLAIN_HOME.is_dir() and (PLAIN_HOME / MARK).exists():
+        shutil.rmtree(PLAIN_HOME)
     PLAIN_HOME.mkdir()
+    (PLAIN_HOME / MARK).touch()
     MADE_HOME = True
 except OSError:
     PLAIN_HOME = TMP / "home"
