@@ -98,6 +98,14 @@ def main() -> int:
     def ready(wizard, page) -> Callable[[], bool]:
         return lambda: wizard.currentPage() is page and page.isComplete()
 
+    def chosen(page, action: str) -> Callable[[], bool]:
+        """Choose the history entry of ``action``, again after the page refills its list
+        (the history is read again in the background when the page opens)."""
+        def check() -> bool:
+            ids = [e["id"] for e in page.history if e["action"] == action]
+            return bool(ids) and page.choose_entry(ids[0]) and page.isComplete()
+        return check
+
     def opened(task: str):
         wizard = open_wizard(window, task)
         wizard.move(280, 120)
@@ -176,9 +184,7 @@ def main() -> int:
         w = opened("restore")
         page = w.source_page
         yield lambda: len(page.history) >= 2
-        page.choose_entry(next(e["id"] for e in page.history
-                               if e["action"] == "new fitting: store configuration"))
-        yield lambda: page.isComplete()
+        yield chosen(page, "new fitting: store configuration")
         shoot(w, "restore-1-choose")
         w.next()
         yield ready(w, w.diff_page)
@@ -197,9 +203,7 @@ def main() -> int:
         w = opened("restore")
         page = w.source_page
         yield lambda: len(page.history) >= 3
-        page.choose_entry(next(e["id"] for e in page.history
-                               if e["action"] == "new fitting: connect"))
-        yield lambda: page.isComplete()
+        yield chosen(page, "new fitting: connect")
         w.next()
         yield lambda: w.currentPage() is w.diff_page and w.diff_page.clears
         w.resize(*big)
