@@ -364,6 +364,42 @@ def test_restore_from_the_history_and_cancel_changes_nothing(live, qtbot):
         assert history.entries()[-1]["action"].startswith("history restore")
 
 
+def test_the_chosen_history_entry_survives_a_refill_of_the_list(live, qtbot):
+    """The background history refresh refills the Restore page's list: the entry the user
+    chose stays chosen (found by its number, not its row), and a refill with nothing new
+    leaves the list untouched."""
+    from pdcp_studio.bus.transaction import Change
+
+    session = _session(live)
+    _store_configuration(live, qtbot)  # entry 1
+    fitted = set(session.system().links)
+    assert session.transact(Change.links_to(sorted(fitted), sorted(fitted)[:3],
+                                            "lose two")).written  # entry 2
+    live.history_panel.refresh()
+    qtbot.waitUntil(lambda: len(live.history_panel.all_entries()) == 2, timeout=T)
+    w = open_wizard(live, "restore")
+    page = w.source_page
+    qtbot.waitUntil(lambda: len(page.history) == 2, timeout=T)
+    oldest = page.history[1]["id"]
+    assert page.choose_entry(oldest)
+    first_item = page.entries.item(0)
+    page._fill(live.history_panel.all_entries())  # the refresh lands: nothing new
+    assert page.entries.item(0) is first_item
+    assert page.chosen_id() == oldest and page.source()[1]["id"] == oldest
+    # A new fitting lands while the user looks: the choice moves down with its entry.
+    assert session.transact(Change.links_to(sorted(fitted)[:3], sorted(fitted)[:4],
+                                            "one back")).written  # entry 3
+    live.history_panel.refresh()
+    qtbot.waitUntil(lambda: len(live.history_panel.all_entries()) == 3, timeout=T)
+    page._fill(live.history_panel.all_entries())
+    assert len(page.history) == 3 and page.entries.currentRow() == 2
+    assert page.chosen_id() == oldest and page.from_history.isChecked()
+    _next(w, qtbot, page, w.diff_page)
+    _ready(w, qtbot, w.diff_page)
+    assert f"fitting history entry {oldest})" in _text(w.diff_page)
+    w.reject()
+
+
 def test_help_opens_the_manual_at_the_guided_tasks(make_window):
     from pdcp_studio.app import help_viewer
 

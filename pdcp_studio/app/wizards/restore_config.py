@@ -103,19 +103,38 @@ class SourcePage(Page):
             worker.finished.connect(alive(self, lambda _r: self._fill(panel.all_entries())))
 
     def _fill(self, entries: list[dict[str, Any]]) -> None:
+        """Show the restorable entries. A refill (the background history refresh landing)
+        keeps the entry the user chose, found again by its number, and leaves the list
+        alone when nothing in it changed."""
         bus = self.task.main.doc.bus_system
         devices = set(bus.devices) if bus is not None else set()
-        self.history = restorable(entries, devices)
-        self.entries.clear()
-        for e in self.history:
-            item = QListWidgetItem(_t("Entry {0} — {1} — {2} ({3})").format(
-                e["id"], str(e.get("time", ""))[:19].replace("T", " "),
-                words.action_words(str(e.get("action", ""))),
-                words.count("%n link(s)", len(e.get("links_after") or ()))))
-            self.entries.addItem(item)
-        if not self.history:
-            self.entries.addItem(_t("No fitting of this prosthesis is recorded yet."))
-            self.entries.item(0).setFlags(Qt.ItemFlag.NoItemFlags)
+        history = restorable(entries, devices)
+        if history == self.history and self.entries.count():
+            return
+        chosen = self.chosen_id()
+        self.history = history
+        self.entries.blockSignals(True)  # the refill is not the user's choice
+        try:
+            self.entries.clear()
+            for e in self.history:
+                item = QListWidgetItem(_t("Entry {0} — {1} — {2} ({3})").format(
+                    e["id"], str(e.get("time", ""))[:19].replace("T", " "),
+                    words.action_words(str(e.get("action", ""))),
+                    words.count("%n link(s)", len(e.get("links_after") or ()))))
+                self.entries.addItem(item)
+            if not self.history:
+                self.entries.addItem(_t("No fitting of this prosthesis is recorded yet."))
+                self.entries.item(0).setFlags(Qt.ItemFlag.NoItemFlags)
+            if chosen is not None:
+                self.choose_entry(chosen)
+        finally:
+            self.entries.blockSignals(False)
+        self.completeChanged.emit()
+
+    def chosen_id(self) -> Any:
+        """The number of the history entry chosen in the list, or None."""
+        row = self.entries.currentRow()
+        return self.history[row]["id"] if 0 <= row < len(self.history) else None
 
     def ask_file(self) -> None:
         path, _ = QFileDialog.getOpenFileName(self, _t("Configuration file"),
