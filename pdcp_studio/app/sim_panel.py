@@ -227,6 +227,10 @@ class SimPanel(QWidget):
                 return
         self.tree.setCurrentItem(None)
 
+    def unplugged(self) -> list[tuple[DeviceKey, str]]:
+        """The simulated devices that can be plugged in now, with the names shown here."""
+        return [(key, name) for key, (name, plugged) in self._devices.items() if not plugged]
+
     def log_lines(self) -> list[str]:
         """The event log's lines, oldest first."""
         return [self.log.item(i).text() for i in range(self.log.count())]

@@ -3694,8 +3694,16 @@ Die Prothese ist wie zuvor.</translation>
             <translation>Jedes Teil, das die Prothese erwartet, ist am Bus.</translation>
         </message>
         <message>
-            <source>On this simulated prosthesis: in the Simulator panel choose the spare hand and press Plug in.</source>
-            <translation>An dieser simulierten Prothese: Wählen Sie im Simulator-Bereich die Ersatzhand und drücken Sie „Anstecken“.</translation>
+            <source>On this simulated prosthesis: in the Simulator panel choose {0} and press Plug in.</source>
+            <translation>An dieser simulierten Prothese: Wählen Sie im Simulator-Bereich {0} und drücken Sie „Anstecken“.</translation>
+        </message>
+        <message>
+            <source>the new part</source>
+            <translation>das neue Teil</translation>
+        </message>
+        <message>
+            <source>{0} or {1}</source>
+            <translation>{0} oder {1}</translation>
         </message>
         <message>
             <source>The new part is on the bus. Next shows how it will be linked.</source>
@@ -3718,8 +3726,8 @@ Die Prothese ist wie zuvor.</translation>
             <translation>Nichts fehlt.</translation>
         </message>
         <message>
-            <source>Seen on the bus: {0} (new).</source>
-            <translation>Am Bus erkannt: {0} (neu).</translation>
+            <source>New on the bus: {0}.</source>
+            <translation>Neu am Bus: {0}.</translation>
         </message>
         <message>
             <source>{0} is back on the bus: it needs no replacement.</source>

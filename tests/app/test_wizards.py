@@ -212,12 +212,20 @@ def test_replace_a_part_unplug_the_hand_plug_the_spare(live, qtbot, tmp_path):
     _next(w, qtbot, w.missing_page, w.plug_page)
     qtbot.waitUntil(lambda: "Waiting for the new part" in _text(w.plug_page), timeout=T)
     assert not w.plug_page.isComplete()
+    # The page names the spare as the Simulator panel lists it (no "spare hand" anywhere).
+    spare = panel._label(SPARE)
+    assert spare == "Multi-grip hand with wrist rotator (serial 302)"
+    qtbot.waitUntil(lambda: f"in the Simulator panel choose {spare} and press Plug in"
+                    in _text(w.plug_page), timeout=T)
+    assert "spare" not in _text(w.plug_page).lower()
     qtbot.waitUntil(lambda: SPARE in {k for k, _n, _p in _session(live).sim_devices()},
                     timeout=T)
     panel.select(SPARE)
     panel.plug_selected()
     _ready(w, qtbot, w.plug_page)
-    assert "Seen on the bus: Multi-grip hand with wrist rotator (serial 302) (new)" in _text(w.plug_page)
+    assert "New on the bus: Multi-grip hand with wrist rotator (serial 302)." in \
+        _text(w.plug_page)
+    assert ") (" not in _text(w.plug_page)
     _next(w, qtbot, w.plug_page, w.plan_page)
     _ready(w, qtbot, w.plan_page)
     text = _text(w.plan_page)

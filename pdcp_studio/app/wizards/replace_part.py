@@ -70,6 +70,16 @@ class _FollowsBus(Page):
             dock.show()
             dock.raise_()
 
+    def sim_offers(self) -> list[str]:
+        """The names the Simulator panel gives the parts it can plug in (unplugged, and not
+        the missing part itself); empty without the panel."""
+        dock = self.task.main._leaf_docks.get("sim")
+        panel = dock.widget() if dock is not None else None
+        if panel is None or not hasattr(panel, "unplugged"):
+            return []
+        missing = {m.key for m in getattr(self.task, "missing", ())}
+        return [name for key, name in panel.unplugged() if key not in missing]
+
 
 class MissingPage(_FollowsBus):
     """Which parts the prosthesis expects and does not find."""
@@ -135,13 +145,16 @@ class PlugPage(_FollowsBus):
         task.new_parts = new
         back = [m for m in task.missing if m.key in task.system.devices
                 and task.system.devices[m.key].present]
-        lines = [_t("Seen on the bus: {0} (new).").format(words.part_words(task.system, k))
+        lines = [_t("New on the bus: {0}.").format(words.part_words(task.system, k))
                  for k in new]
         lines += [_t("{0} is back on the bus: it needs no replacement.").format(
             words.part_words(task.system, m.key)) for m in back]
         if self.sim_button.isVisible() and not new:
-            lines.append(_t("On this simulated prosthesis: in the Simulator panel choose the "
-                            "spare hand and press Plug in."))
+            offers = self.sim_offers()
+            spare = (_t("{0} or {1}").format(", ".join(offers[:-1]), offers[-1])
+                     if len(offers) > 1 else offers[0] if offers else _t("the new part"))
+            lines.append(_t("On this simulated prosthesis: in the Simulator panel choose "
+                            "{0} and press Plug in.").format(spare))
         self.view.setHtml(bullets(lines))
         if new:
             self.idle(_t("The new part is on the bus. Next shows how it will be linked."))
