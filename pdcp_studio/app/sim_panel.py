@@ -54,13 +54,15 @@ def default_name(key: DeviceKey) -> str:
 
 def _bus_name(key: DeviceKey, model: Any, label: str) -> str:
     """What the graph will call a simulated device once it is on the bus: the name it
-    tells the bus (its descriptor), else its product from the catalogue. The simulator's
-    own label ("Spare hand") is never read from the bus, so it is not the part's name."""
+    tells the bus (its descriptor, else its own name, as ``bus/device_sim.py`` answers),
+    else its product from the catalogue. The simulator's label for a part that tells a
+    descriptor ("Spare hand" beside the hand's descriptor) is never read from the bus, so
+    it is not the part's name."""
     from pdcp_studio.model.catalog import default_catalog
 
     catalog = default_catalog()
     if model is not None:
-        own = (getattr(model, "descriptor", "") or "").strip()
+        own = (getattr(model, "descriptor", "") or getattr(model, "name", "") or "").strip()
         return own or catalog.product_name(key) or catalog.label(key)
     own = "" if label in (str(key), f"Device {key}") else label
     return catalog.product_name(key) or catalog.label(key, own)

@@ -42,3 +42,27 @@ def test_the_log_says_what_was_done_to_which_part(qtbot):
             assert "Done:" not in line and not re.search(r"\d+/\d+/\d+", line), line
     finally:
         bridge.close(wait_ms=5000)
+
+
+def test_both_event_lists_name_the_new_joystick_alike(make_window, qtbot):
+    """sim:thesis-test4's hot-swap: the Simulator panel's Events list and the Bus events
+    list call the joystick plugged in by one name, the one it tells the bus."""
+    d1, d2 = DeviceKey(2, 2, 4), DeviceKey(2, 2, 5)
+    window = make_window()
+    with qtbot.waitSignal(window.ready, timeout=20000):
+        window.connect_bus("sim:thesis-test4")
+    sim = window._leaf_docks["sim"].widget()
+    events = window._leaf_docks["events"].widget()
+    qtbot.waitUntil(lambda: sim.tree.topLevelItemCount() == 3, timeout=10000)
+    assert sim._label(d2) == "Joystick B"  # before it ever was on the bus
+    bridge = window.live.bridge
+    with qtbot.waitSignal(bridge.scriptFinished, timeout=30000):
+        bridge.run_script("hot-swap")
+    qtbot.waitUntil(lambda: "Joystick B joined the bus" in [w for w, _y, _s in events.rows()],
+                    timeout=10000)
+    joined = [line.split("  ", 1)[1] for line in sim.log_lines() if "joined the bus" in line]
+    assert joined == ["Joystick B joined the bus"], sim.log_lines()
+    left = [line.split("  ", 1)[1] for line in sim.log_lines() if "left the bus" in line]
+    assert left == [f"{sim._label(d1)} left the bus"] == ["Joystick A left the bus"]
+    assert not any("Thesis test node" in line for line in sim.log_lines())
+    window.live.disconnect_bus()
