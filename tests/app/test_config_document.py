@@ -298,7 +298,9 @@ def test_fit_follows_the_live_bus(make_window, qtbot):
         labels = {card.device.label for card in window.scene.cards.values()}
         control = main.doc.system.devices[DeviceKey(2641, 513, 201)]
         assert control.label in labels and not control.label.startswith("unknown")
-        assert "unknown device (2641/770/302)" in labels
+        # The hook, not on the bus, by its catalogue product and serial number.
+        assert "Electric hook (serial 302)" in labels
+        assert not any(label.startswith("unknown") for label in labels), labels
         hand = DeviceKey(2641, 769, 301)
         main.live.bridge.unplug(hand)
         qtbot.waitUntil(lambda: window.fit is not None and not window.fit.links[2].actions,

@@ -87,5 +87,6 @@ def test_configuration_names_fall_back_on_the_catalogue():
     names = seen.with_catalog(_shipped())
     assert names.label(DeviceKey(2641, 513, 201)) == "Control unit"
     assert names.label(DeviceKey(2641, 769, 301)) == "Multi-grip hand (serial 301)"
-    assert names.label(DeviceKey(2641, 770, 302)) == "unknown device (2641/770/302)"
+    assert names.label(DeviceKey(2641, 770, 302)) == "Electric hook (serial 302)"
+    assert names.label(DeviceKey(2641, 999, 302)) == "unknown device (2641/999/302)"
     assert seen.label(DeviceKey(2641, 769, 301)) == "unknown device (2641/769/301)"
