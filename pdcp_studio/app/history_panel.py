@@ -12,11 +12,12 @@ fitting report for the entry's session. The chain is verified each time it is re
 from __future__ import annotations
 
 import threading
+from collections.abc import Callable
 from pathlib import Path
 from typing import Any
 
-from PySide6.QtCore import QT_TRANSLATE_NOOP, QCoreApplication, Qt, Signal
-from PySide6.QtGui import QBrush, QColor
+from PySide6.QtCore import QT_TRANSLATE_NOOP, QCoreApplication, QEvent, QPoint, Qt, Signal
+from PySide6.QtGui import QBrush, QColor, QHelpEvent, QTextCharFormat, QTextCursor
 from PySide6.QtWidgets import (
     QComboBox,
     QFileDialog,
@@ -28,6 +29,7 @@ from PySide6.QtWidgets import (
     QSplitter,
     QTableWidget,
     QTableWidgetItem,
+    QToolTip,
     QVBoxLayout,
     QWidget,
 )
@@ -49,6 +51,10 @@ COLUMNS = (
 )
 THIS, ALL = "this", "all"
 FAILED_COLOUR = QColor(250, 215, 215)
+
+#: How a link is said in the details: ``str`` gives the engineer's ``2641/513/201#3 →
+#: 2641/769/301#1``; the panel passes part and channel names (:meth:`HistoryPanel.link_words`).
+LinkWords = Callable[[Link], str]
 
 
 def _tr(text: str) -> str:
@@ -90,15 +96,17 @@ def outcome_text(entry: dict) -> str:
     return status
 
 
-def entries_difference(a: dict, b: dict) -> list[str]:
+def entries_difference(a: dict, b: dict, say: LinkWords = str) -> list[str]:
     """How the links after entry ``a`` and after entry ``b`` differ, in plain words."""
     la, lb = set(entry_links(a)), set(entry_links(b))
     out = [translate("HistoryPanel", "Links after #{0}: {1}; after #{2}: {3}").format(
         a["id"], len(la), b["id"], len(lb))]
     for link in sorted(la - lb):
-        out.append(translate("HistoryPanel", "  only after #{0}: {1}").format(a["id"], link))
+        out.append(translate("HistoryPanel", "  only after #{0}: {1}").format(a["id"],
+                                                                            say(link)))
     for link in sorted(lb - la):
-        out.append(translate("HistoryPanel", "  only after #{0}: {1}").format(b["id"], link))
+        out.append(translate("HistoryPanel", "  only after #{0}: {1}").format(b["id"],
+                                                                            say(link)))
     if la == lb:
         out.append(translate("HistoryPanel", "  the same links"))
     ca, cb = a.get("config_crc_after"), b.get("config_crc_after")
@@ -116,8 +124,9 @@ def entries_difference(a: dict, b: dict) -> list[str]:
     return out
 
 
-def entry_details(entry: dict) -> list[str]:
-    """One entry in plain words: who, when, what, why, and how it ended."""
+def entry_details(entry: dict, say: LinkWords = str) -> list[str]:
+    """One entry in plain words: who, when, what, why, and how it ended (``say`` words
+    each link of its plan; the lines are the same, one for one, whatever it says)."""
     plan = entry.get("plan") or {}
     outcome = entry.get("outcome") or {}
     out = [translate("HistoryPanel", "#{0} {1} — {2}").format(entry["id"], entry.get("time", ""),
@@ -137,7 +146,7 @@ def entry_details(entry: dict) -> list[str]:
 
         sign = "+" if a.get("op") == "add" else "−"
         why = f"  ({a['reason']})" if a.get("reason") else ""
-        out.append(f"  {sign} {link_from_json(a)}{why}")
+        out.append(f"  {sign} {say(link_from_json(a))}{why}")
     for p in plan.get("parameters", ()):
         d = p.get("device", {})
         out.append(
@@ -163,6 +172,30 @@ def read_history(_progress: Any = None, _cancel: threading.Event | None = None) 
 
     with History.open() as archive:
         return archive.entries(), archive.verify(), str(archive.path)
+
+
+class DetailsView(QPlainTextEdit):
+    """The details pane: plain text whose lines may carry a tooltip of their own (a
+    worded link keeps its numbers one hover away)."""
+
+    def tip_at(self, pos: QPoint) -> str:
+        """The tooltip of the line at ``pos`` (viewport coordinates), or ""."""
+        cursor = self.cursorForPosition(pos)
+        tip = cursor.charFormat().toolTip()
+        if not tip and not cursor.atBlockEnd():
+            cursor.movePosition(QTextCursor.MoveOperation.Right)
+            tip = cursor.charFormat().toolTip()
+        return tip
+
+    def viewportEvent(self, event: QEvent) -> bool:
+        if event.type() == QEvent.Type.ToolTip and isinstance(event, QHelpEvent):
+            tip = self.tip_at(event.pos())
+            if tip:
+                QToolTip.showText(event.globalPos(), tip, self.viewport())
+            else:
+                QToolTip.hideText()
+            return True
+        return super().viewportEvent(event)
 
 
 class HistoryPanel(QWidget):
@@ -200,7 +233,7 @@ class HistoryPanel(QWidget):
             header.setSectionResizeMode(col, QHeaderView.ResizeMode.ResizeToContents)
         header.setStretchLastSection(True)
         self.table.itemSelectionChanged.connect(self._show_selection)
-        self.details = QPlainTextEdit()
+        self.details = DetailsView()
         self.details.setReadOnly(True)
         self.restore_button = QPushButton(self.tr("Restore on the prosthesis…"))
         self.restore_button.setToolTip(self.tr("Put the connected prosthesis back as it was "
@@ -300,13 +333,42 @@ class HistoryPanel(QWidget):
                 self.table.selectRow(row)
         self.table.setSelectionMode(mode)
 
+    def link_words(self, link: Link) -> str:
+        """A link by part and channel names, as the plan table says it (what each channel
+        carries where the window's system knows it)."""
+        from pdcp_studio.app import plan_words as W
+
+        doc = self.main.doc
+        system = getattr(doc, "system", None)
+        names: dict[Any, str] = {}
+        for ref in (link.output, link.input):
+            ch = system.channel(ref) if system is not None else None
+            name = doc.profile_name(ch.profile) if ch is not None and ch.profile else ""
+            if name and not name.startswith("0x"):
+                names[ref] = name
+        return W.link_words(system, link.output, link.input, names)
+
+    def _show_lines(self, worded: list[str], raw: list[str]) -> None:
+        """The details in words; a line that words links keeps its numbers as its tooltip."""
+        self.details.clear()
+        cursor = QTextCursor(self.details.document())
+        for n, (line, tip) in enumerate(zip(worded, raw, strict=True)):
+            fmt = QTextCharFormat()
+            if tip != line:
+                fmt.setToolTip(tip)
+            if n:
+                cursor.insertBlock()
+            cursor.insertText(line, fmt)
+
     def _show_selection(self) -> None:
         chosen = self.selected()
         if len(chosen) == 2:
             older, newer = sorted(chosen, key=lambda e: e["id"])
-            self.details.setPlainText("\n".join(entries_difference(older, newer)))
+            self._show_lines(entries_difference(older, newer, self.link_words),
+                             entries_difference(older, newer))
         elif len(chosen) == 1:
-            self.details.setPlainText("\n".join(entry_details(chosen[0])))
+            self._show_lines(entry_details(chosen[0], self.link_words),
+                             entry_details(chosen[0]))
         else:
             self.details.setPlainText(self.tr("Select an entry to see what it changed, or two "
                                               "to compare them."))

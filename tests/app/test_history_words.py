@@ -1,0 +1,59 @@
+"""The fitting history's detail pane names links as the plan table does (part, channel and
+what it carries), the engineer's ``2641/513/201#3 → 2641/769/301#1`` one hover away."""
+
+from __future__ import annotations
+
+import re
+
+import pytest
+
+from pdcp_studio.model.refs import ChannelRef
+from pdcp_studio.model.system import Link
+
+pytestmark = pytest.mark.gui
+
+HAND_LINK = Link(ChannelRef(2641, 513, 201, 3), ChannelRef(2641, 769, 301, 1))
+RAW = re.compile(r"\d+/\d+/\d+#\d+")
+T = 20000
+
+
+def test_the_details_word_the_links_and_keep_the_numbers_in_the_tooltip(make_window, qtbot):
+    from pdcp_studio.bus.transaction import Change
+
+    window = make_window()
+    with qtbot.waitSignal(window.ready, timeout=T):
+        window.connect_bus("sim:transradial")
+    session = window.live.bridge.session
+    links = set(session.system().links)
+    assert HAND_LINK in links
+    assert session.transact(Change.links_to(sorted(links), sorted(links - {HAND_LINK}),
+                                            "without the hand link")).written  # entry 1
+    assert session.transact(Change.links_to(sorted(links - {HAND_LINK}), sorted(links),
+                                            "with it again")).written  # entry 2
+    window.live.refresh()
+    panel = window.history_panel
+    with qtbot.waitSignal(panel.loaded, timeout=5000):
+        panel.refresh()
+    qtbot.waitUntil(lambda: HAND_LINK.input.device in window.doc.system.devices, timeout=T)
+    words = panel.link_words(HAND_LINK)
+    assert words == ("Pattern-recognition control unit, channel 3 (Power Grip) → "
+                     "Multi-grip hand with wrist rotator, channel 1 (Power Grip)")
+    panel.select_ids(1)
+    text = panel.details.toPlainText()
+    assert f"− {words}" in text, text
+    assert not RAW.search(text), text
+    # The raw form stays one hover away, on the line that words it.
+    doc = panel.details.document()
+    line = next(b for b in (doc.findBlockByNumber(i) for i in range(doc.blockCount()))
+                if words in b.text())
+    from PySide6.QtGui import QTextCursor
+
+    cursor = QTextCursor(line)
+    cursor.movePosition(QTextCursor.MoveOperation.EndOfBlock)
+    tip = panel.details.tip_at(panel.details.cursorRect(cursor).center())
+    assert "2641/513/201#3 → 2641/769/301#1" in tip, tip
+    # Two entries compared: the difference in words too.
+    panel.select_ids(1, 2)
+    text = panel.details.toPlainText()
+    assert f"only after #2: {words}" in text and not RAW.search(text), text
+    window.live.disconnect_bus()
