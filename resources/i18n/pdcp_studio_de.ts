@@ -3718,8 +3718,12 @@ Die Prothese ist wie zuvor.</translation>
             <translation>Es fehlt:</translation>
         </message>
         <message>
-            <source>To try a swap on this simulated prosthesis: in the Simulator panel choose the hand and press Unplug. This page follows the bus and shows the missing part.</source>
-            <translation>Um an dieser simulierten Prothese einen Tausch zu üben: Wählen Sie im Simulator-Bereich die Hand und drücken Sie „Abziehen“. Diese Seite folgt dem Bus und zeigt das fehlende Teil.</translation>
+            <source>To try a swap on this simulated prosthesis: in the Simulator panel choose {0} and press Unplug. This page follows the bus and shows the missing part.</source>
+            <translation>Um an dieser simulierten Prothese einen Tausch zu üben: Wählen Sie im Simulator-Bereich {0} und drücken Sie „Abziehen“. Diese Seite folgt dem Bus und zeigt das fehlende Teil.</translation>
+        </message>
+        <message>
+            <source>a part</source>
+            <translation>ein Teil</translation>
         </message>
         <message>
             <source>Nothing is missing.</source>

@@ -38,12 +38,15 @@ def _t(text: str) -> str:
 class _FollowsBus(Page):
     """A page that looks at the prosthesis again whenever a part joins or leaves."""
 
+    #: Look again when the Simulator panel's list changes too (the page's words name it).
+    follows_sim_list = False
+
     def __init__(self, title: str, subtitle: str) -> None:
         super().__init__(title, subtitle)
         self._again = QTimer(self)
         self._again.setSingleShot(True)
         self._again.setInterval(250)
-        self._again.timeout.connect(self.look_again)
+        self._again.timeout.connect(self._look_if_shown)
         self._bridge: Any = None
         self.sim_button = QPushButton(_t("Show the Simulator panel"))
         self.sim_button.clicked.connect(self.show_simulator)
@@ -55,11 +58,18 @@ class _FollowsBus(Page):
             self._bridge = bridge
             bridge.deviceJoined.connect(alive(self, self._changed))
             bridge.deviceLeft.connect(alive(self, self._changed))
+            if bridge.is_sim and self.follows_sim_list:
+                bridge.simDevices.connect(alive(self, self._changed))
         self.sim_button.setVisible(bridge is not None and bridge.is_sim)
 
     def _changed(self, _key: Any = None) -> None:
         if self.wizard() is not None and self.task.currentPage() is self:
             self._again.start()
+
+    def _look_if_shown(self) -> None:
+        # Not once the user went on: a late look would change what the next page plans.
+        if self.wizard() is not None and self.task.currentPage() is self:
+            self.look_again()
 
     def look_again(self) -> None:
         raise NotImplementedError
@@ -83,6 +93,8 @@ class _FollowsBus(Page):
 
 class MissingPage(_FollowsBus):
     """Which parts the prosthesis expects and does not find."""
+
+    follows_sim_list = True
 
     def __init__(self) -> None:
         super().__init__(_t("What is missing"),
@@ -111,10 +123,24 @@ class MissingPage(_FollowsBus):
             lines = [_t("Every part the prosthesis expects is on the bus.")]
             if self.sim_button.isVisible():
                 lines.append(_t("To try a swap on this simulated prosthesis: in the Simulator "
-                                "panel choose the hand and press Unplug. This page follows the "
-                                "bus and shows the missing part."))
+                                "panel choose {0} and press Unplug. This page follows the "
+                                "bus and shows the missing part.").format(self._swappable()))
             self.view.setHtml(bullets(lines, _t("Nothing is missing.")))
         self.set_ready(bool(missing))
+
+
+    def _swappable(self) -> str:
+        """The part on the bus with a spare of its product waiting in the Simulator panel
+        (on sim:transradial, the hand), by its name; else "a part"."""
+        dock = self.task.main._leaf_docks.get("sim")
+        panel = dock.widget() if dock is not None else None
+        spares = {(k.vid, k.pid) for k, _n in panel.unplugged()} if panel is not None \
+            and hasattr(panel, "unplugged") else set()
+        system = self.task.system
+        for key, dev in sorted(system.devices.items()):
+            if dev.present and (key.vid, key.pid) in spares:
+                return words.part_words(system, key)
+        return _t("a part")
 
 
 class PlugPage(_FollowsBus):
