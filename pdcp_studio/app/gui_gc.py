@@ -48,10 +48,8 @@ class _Collector(QObject):
         c0, c1, c2 = gc.get_count()
         if c0 <= t0:
             return
-        generation = 0
-        if c1 > t1:
-            generation = 2 if c2 > t2 else 1
-        gc.collect(generation)
+        # As CPython chooses once the youngest generation is due: the oldest one due.
+        gc.collect(2 if c2 > t2 else 1 if c1 > t1 else 0)
 
 
 def collect_on_gui_thread() -> bool:
