@@ -5504,4 +5504,25 @@ Die Prothese ist wie zuvor.</translation>
             </translation>
         </message>
     </context>
+    <context>
+        <name>Inspector</name>
+        <message>
+            <source>(none)</source>
+            <translation>(keins)</translation>
+        </message>
+        <message>
+            <source>Not in the profile tree</source>
+            <translation>Nicht im Profilbaum</translation>
+        </message>
+        <message>
+            <source>Profile code {code}</source>
+            <translation>Profilcode {code}</translation>
+        </message>
+        <message>
+            <source>{name}: profile code {code} (parameter 1, bytes 2–3).
+Choose a profile of the named tree or type one in hex.</source>
+            <translation>{name}: Profilcode {code} (Parameter 1, Bytes 2–3).
+Wählen Sie ein Profil aus dem Namensbaum oder geben Sie eines hexadezimal ein.</translation>
+        </message>
+    </context>
 </TS>
