@@ -1,6 +1,7 @@
 #!/bin/bash
 # Retakes configuration-document.png under a real X server:
 #   xvfb-run -a -s "-screen 0 1600x1000x24" docs/screenshots/configuration-document.sh
+# PDCP_STUDIO names the program (default: pdcp-studio).
 # The app runs on the simulated transradial prosthesis; File ▸ Open picks the
 # two-configuration file (hand, and a hook as the second terminal device) through the real
 # file dialog; configuration 2 is selected; the screen is grabbed and cropped to the window.
@@ -11,7 +12,7 @@ OUT="$ROOT/docs/screenshots/configuration-document.png"
 export HOME=$(mktemp -d) XDG_CONFIG_HOME= XDG_DATA_HOME=
 cp "$FILE" "$HOME/"
 unset QT_QPA_PLATFORM
-pdcp-studio gui --bus sim:transradial >/dev/null 2>&1 &
+"${PDCP_STUDIO:-pdcp-studio}" gui --bus sim:transradial >/dev/null 2>&1 &
 APP=$!
 sleep 10
 WID=$(xdotool search --name "PDCP Studio" | head -1)

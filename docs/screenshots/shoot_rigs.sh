@@ -12,5 +12,5 @@ PY=$(dirname "$(command -v "$EXE")")/python
 export HOME=$(mktemp -d) XDG_CONFIG_HOME= XDG_DATA_HOME= XDG_CACHE_HOME=
 unset QT_QPA_PLATFORM
 "$EXE" gui --bus sim:large --screenshot "$OUT/large-fitted.png" --size 1600x1000
-"$EXE" gui --bus sim:full --screenshot "$OUT/full-rig.png" --size 1600x1000
+"$PY" "$OUT/shoot_full_rig.py"  # full-rig.png
 "$PY" "$OUT/shoot_hot_swap.py"  # bus-events-hot-swap.png

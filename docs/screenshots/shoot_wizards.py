@@ -9,7 +9,8 @@ record (so New fitting has links to propose), then walks New fitting, Replace a 
 hand unplugged and the spare hand plugged in through the Simulator panel) and Restore a
 configuration (the original hand back, the first fitting's stored configuration restored
 from the history; then the fitting's first write, made before anything was stored, which
-warns that it clears the stored configuration), and
+warns that it clears the stored configuration; then a configuration file chosen, in
+``~/Fittings`` like the fitting report), and
 saves ``wizard-<task>-<step>.png`` beside this script (with ``--lang de``: the German build,
 into a temporary folder, to look at, or into ``--out DIR``): the wizard's window, and for
 the plug step the whole screen with the Simulator panel. The fitting history is a temporary
@@ -23,6 +24,7 @@ file. The German manual's pictures are made from a German run:
 from __future__ import annotations
 
 import os
+import shutil
 import subprocess
 import sys
 import tempfile
@@ -31,6 +33,22 @@ from pathlib import Path
 
 HERE = Path(__file__).resolve().parent
 TMP = Path(tempfile.mkdtemp())
+# The report step shows where the report went: a plain folder of a prosthetist's, not a
+# temporary one. /home/jdoe is made for the run (and removed after it) where it can be;
+# elsewhere a temporary folder stands in for the home folder.
+PLAIN_HOME = Path("/home/jdoe")
+MARK = ".made-by-shoot_wizards"  # a folder left by a run that was stopped is ours to reuse
+MADE_HOME = False
+try:
+    if PLAIN_HOME.is_dir() and (PLAIN_HOME / MARK).exists():
+        shutil.rmtree(PLAIN_HOME)
+    PLAIN_HOME.mkdir()
+    (PLAIN_HOME / MARK).touch()
+    MADE_HOME = True
+except OSError:
+    PLAIN_HOME = TMP / "home"
+    PLAIN_HOME.mkdir()
+os.environ["HOME"] = str(PLAIN_HOME)
 os.environ.setdefault("PDCP_STUDIO_HISTORY", str(TMP / "history.sqlite3"))
 os.environ.setdefault("PDCP_STUDIO_OPERATOR", "J. Doe, CPO")
 
@@ -80,6 +98,14 @@ def main() -> int:
     def ready(wizard, page) -> Callable[[], bool]:
         return lambda: wizard.currentPage() is page and page.isComplete()
 
+    def chosen(page, action: str) -> Callable[[], bool]:
+        """Choose the history entry of ``action``, again after the page refills its list
+        (the history is read again in the background when the page opens)."""
+        def check() -> bool:
+            ids = [e["id"] for e in page.history if e["action"] == action]
+            return bool(ids) and page.choose_entry(ids[0]) and page.isComplete()
+        return check
+
     def opened(task: str):
         wizard = open_wizard(window, task)
         wizard.move(280, 120)
@@ -110,7 +136,8 @@ def main() -> int:
         shoot(w, "fitting-6-store")
         w.next()
         yield ready(w, w.report_page)
-        w.report_page.save_report(TMP / "fitting.pdf")
+        (PLAIN_HOME / "Fittings").mkdir(exist_ok=True)
+        w.report_page.save_report(PLAIN_HOME / "Fittings" / "P-0042 fitting.pdf")
         shoot(w, "fitting-7-report")
         w.close()
 
@@ -157,9 +184,7 @@ def main() -> int:
         w = opened("restore")
         page = w.source_page
         yield lambda: len(page.history) >= 2
-        page.choose_entry(next(e["id"] for e in page.history
-                               if e["action"] == "new fitting: store configuration"))
-        yield lambda: page.isComplete()
+        yield chosen(page, "new fitting: store configuration")
         shoot(w, "restore-1-choose")
         w.next()
         yield ready(w, w.diff_page)
@@ -178,13 +203,23 @@ def main() -> int:
         w = opened("restore")
         page = w.source_page
         yield lambda: len(page.history) >= 3
-        page.choose_entry(next(e["id"] for e in page.history
-                               if e["action"] == "new fitting: connect"))
-        yield lambda: page.isComplete()
+        yield chosen(page, "new fitting: connect")
         w.next()
         yield lambda: w.currentPage() is w.diff_page and w.diff_page.clears
         w.resize(*big)
         shoot(w, "restore-5-clears-warning")
+        w.close()
+
+        # Restore from a configuration file: the file chosen, its stored links counted.
+        w = opened("restore")
+        page = w.source_page
+        yield lambda: len(page.history) >= 2
+        stored = PLAIN_HOME / "Fittings" / "P-0042 hand and hook.pdcfg"
+        shutil.copy(HERE.parents[1] / "resources" / "configs" / "transradial-hand-and-hook.pdcfg",
+                    stored)
+        page.load_file(stored)
+        yield lambda: page.isComplete()
+        shoot(w, "restore-6-from-file")
         w.close()
 
     steps = script()
@@ -214,6 +249,8 @@ def main() -> int:
     QTimer.singleShot(0, lambda: window.connect_bus("sim:transradial"))
     app.exec()
     window.live.disconnect_bus()
+    if MADE_HOME:
+        shutil.rmtree(PLAIN_HOME, ignore_errors=True)
     for f in failures:
         print("FAILED:", f)
     return 1 if failures else 0

@@ -87,11 +87,11 @@ def check_node_id(node_id: int, what: str = "node ID", *, allow_broadcast: bool 
 def make_id(priority: int, mode: int, node_id: int) -> int:
     """Compose an 11-bit arbitration ID; raises FrameError on an out-of-range field."""
     try:
-        prio = _member(_PRIORITY_OF, Priority, priority)
+        prio: Priority = _member(_PRIORITY_OF, Priority, priority)
     except ValueError:
         raise FrameError(f"priority {priority!r} is out of range (0–3)") from None
     try:
-        mod = _member(_MODE_OF, Mode, mode)
+        mod: Mode = _member(_MODE_OF, Mode, mode)
     except ValueError:
         raise FrameError(f"mode {mode!r} is out of range (0 device, 1 arbitrator)") from None
     check_node_id(node_id)
