@@ -242,11 +242,15 @@ def start_up_quietly() -> None:
 
 
 def start_up_over() -> None:
-    """The window is live (or start-up gave up waiting for it): collect garbage again, and
-    the app's switch interval from now on. Safe to call more than once."""
+    """The window is live (or start-up gave up waiting for it): collect garbage again (on
+    the GUI thread only: :mod:`pdcp_studio.app.gui_gc`), and the app's switch interval from
+    now on. Safe to call more than once."""
     import gc
 
-    gc.enable()
+    from pdcp_studio.app.gui_gc import collect_on_gui_thread
+
+    if not collect_on_gui_thread():  # no application (a start-up that failed before one)
+        gc.enable()
     share_the_interpreter()
 
 

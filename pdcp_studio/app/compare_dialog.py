@@ -46,6 +46,7 @@ from PySide6.QtWidgets import (
 )
 
 from pdcp_studio.app.i18n import translate
+from pdcp_studio.app.plural import count
 from pdcp_studio.app.workers import Worker
 from pdcp_studio.model.configuration import ConfigCollection, StoredConfiguration
 from pdcp_studio.model.refs import ChannelRef
@@ -324,7 +325,7 @@ class CompareDialog(QDialog):
             status = row.status(names)
             counts[status] = counts.get(status, 0) + 1
         parts = [f"{n} {status}" for status, n in sorted(counts.items())]
-        text = self.tr("{0} link(s): {1}").format(len(self._rows),
+        text = self.tr("{0}: {1}").format(count("CompareDialog", "%n link(s)", len(self._rows)),
                                                   ", ".join(parts) or self.tr("none"))
         if self.file_collection is not None and self.arbitrator_collection is not None:
             from pdcp_studio.model.config_diff import diff_configurations

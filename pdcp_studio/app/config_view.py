@@ -48,6 +48,7 @@ from PySide6.QtWidgets import (
 
 from pdcp_studio.app.config_document import ConfigDocument
 from pdcp_studio.app.i18n import translate
+from pdcp_studio.app.plural import count
 from pdcp_studio.engine.config_checks import ConfigFinding, check_configuration
 from pdcp_studio.errors import PdcpError
 from pdcp_studio.model import profile as prof
@@ -453,12 +454,12 @@ class ConfigWindow(QMainWindow):
         self.config_list.blockSignals(True)
         self.config_list.clear()
         for each in doc.collection.configurations:
-            text = self.tr("Configuration %1 · %2 link(s)").replace("%1", str(each.index)) \
-                .replace("%2", str(len(each.links)))
+            text = self.tr("Configuration %1 · %2").replace("%1", str(each.index)) \
+                .replace("%2", count("ConfigWindow", "%n link(s)", len(each.links)))
             item = QListWidgetItem(text)
             problems = [f for f in check_configuration(each) if f.severity.value == "error"]
             if problems:
-                item.setToolTip(self.tr("%1 problem(s) found").replace("%1", str(len(problems))))
+                item.setToolTip(count("ConfigWindow", "%n problem(s) found", len(problems)))
                 item.setForeground(Qt.GlobalColor.darkRed)
             self.config_list.addItem(item)
         self.config_list.setCurrentRow(doc.current)
@@ -481,10 +482,10 @@ class ConfigWindow(QMainWindow):
             len(c.unknown) + sum(len(lk.unknown) + len(lk.input.unknown)
                                  + len(lk.output.unknown) for lk in c.links)
             for c in coll.configurations)
-        text = self.tr("%1 configuration(s)").replace("%1", str(len(coll.configurations)))
+        text = count("ConfigWindow", "%n configuration(s)", len(coll.configurations))
         if kept:
-            text += "  ·  " + self.tr("%1 record(s) from newer firmware or tools kept as they "
-                                      "are").replace("%1", str(kept))
+            text += "  ·  " + count("ConfigWindow", "%n record(s) from newer firmware or tools "
+                                    "kept as they are", kept)
         self.info.setText(text)
 
     def _channel_text(self, ch: StoredChannel) -> str:
@@ -655,9 +656,8 @@ class ConfigWindow(QMainWindow):
                                    else Qt.GlobalColor.darkYellow)
             self.fit_list.addItem(item)
         if fit.plan.actions:
-            head = QListWidgetItem(self.tr("What start-up would do with this configuration "
-                                           "(%1 step(s)):").replace("%1",
-                                                                    str(len(fit.plan.actions))))
+            head = QListWidgetItem(count("ConfigWindow", "What start-up would do with this "
+                                         "configuration (%n step(s)):", len(fit.plan.actions)))
             head.setForeground(Qt.GlobalColor.darkBlue)
             self.fit_list.addItem(head)
             for a in fit.plan.actions:

@@ -40,6 +40,7 @@ from PySide6.QtWidgets import (
 )
 
 from pdcp_studio.app.i18n import translate
+from pdcp_studio.app.plural import count
 from pdcp_studio.app.workers import Worker
 
 log = logging.getLogger(__name__)
@@ -235,8 +236,9 @@ class CanPage(_DetectingPage):
         kinds = sorted({str(c["interface"]) for c in self._configs})
         found = sorted({f"{c['interface']}:{c['channel']}" for c in self._configs})
         self.status.setText(
-            self.tr("Found {n} CAN channel(s): {which}").format(n=len(found),
-                                                               which=", ".join(found))
+            self.tr("Found {n}: {which}").format(n=count("CanPage", "%n CAN channel(s)",
+                                                         len(found)),
+                                                which=", ".join(found))
             if found
             else self.tr("No CAN adapter found. Check that it is plugged in and its driver "
                          "is installed, or type the interface and channel.")
@@ -311,7 +313,7 @@ class SerialPage(_DetectingPage):
             self.port.setItemData(self.port.count() - 1, description)
         self.port.setCurrentText(current or (ports[0][0] if ports else ""))
         self.status.setText(
-            self.tr("{n_ports} port(s) found").format(n_ports=len(ports))
+            count("SerialPage", "%n port(s) found", len(ports))
             if ports
             else self.tr("No serial port found")
         )

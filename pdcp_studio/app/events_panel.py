@@ -30,6 +30,7 @@ from PySide6.QtWidgets import (
 
 from pdcp_studio.app import plan_words as W
 from pdcp_studio.app.i18n import translate
+from pdcp_studio.app.plural import count
 from pdcp_studio.model.refs import ChannelRef
 
 _CTX = "EventsPanel"
@@ -234,6 +235,6 @@ class EventsPanel(QWidget):
 
     def _count(self) -> None:
         n = self.view.rowCount()
-        self.count_label.setText(self.tr("{n} event(s)").format(n=n) if n else
+        self.count_label.setText(count("EventsPanel", "%n event(s)", n) if n else
                                  self.tr("No bus events yet: parts that come and go and the "
                                          "links the bus makes appear here"))

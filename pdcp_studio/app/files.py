@@ -97,7 +97,10 @@ def open_path(path: str | Path) -> Opened:
         n = len(collection.configurations)
         notes = [f"{n} configurations; showing configuration 1"] if n > 1 else []
         if skipped:
-            notes.append(f"{len(skipped)} link(s) left out: " + "; ".join(skipped))
+            from pdcp_studio.app.plural import count
+
+            notes.append(count("OpenFile", "%n link(s) left out: ", len(skipped))
+                         + "; ".join(skipped))
         note = "; ".join(notes)
         return Opened(system, "config", collection, note=note)
     from pdcp_studio.storage import system_file

@@ -12,6 +12,7 @@ redo show up here too.
 
 from __future__ import annotations
 
+from collections import Counter
 from collections.abc import Callable
 from typing import Any
 
@@ -583,8 +584,12 @@ class Inspector(QScrollArea):
         return mode, w
 
     def _tree_items(self) -> dict[str, int]:
-        return {f"{self.doc.tree.name_of(value)} ({prof.fmt(value)})": value
-                for value, _node in self.doc.tree.walk()}
+        """The tree's profiles by name (``Terminal device › Hand › Power Grip``); the code is
+        in each entry's tooltip, and in the name only where two profiles share a name."""
+        named = [(self.doc.tree.name_of(value), value) for value, _node in self.doc.tree.walk()]
+        times = Counter(name for name, _value in named)
+        return {name if times[name] == 1 else f"{name} ({prof.fmt(value)})": value
+                for name, value in named}
 
     def _profile_editor(self, ref: ChannelRef, field: str, value: int, *,
                         allow_null: bool) -> QComboBox:
@@ -594,17 +599,27 @@ class Inspector(QScrollArea):
         combo.setInsertPolicy(QComboBox.InsertPolicy.NoInsert)
         combo.setSizeAdjustPolicy(QComboBox.SizeAdjustPolicy.AdjustToMinimumContentsLengthWithIcon)
         combo.setMinimumContentsLength(14)
+        none = self.tr("(none)")
         if allow_null:
-            combo.addItem("(none) (0x0000)", 0)
-            items["(none) (0x0000)"] = 0
-        for text, v in items.items():
-            if v or not allow_null:
-                combo.addItem(text, v)
+            combo.addItem(none, 0)
+            items[none] = 0
         current = next((t for t, v in items.items() if v == value), None)
-        combo.setCurrentText(current if current is not None else prof.fmt(value))
+        if current is None:  # not in the tree: named so, its code in the tooltip and details
+            current = self.tr("Not in the profile tree")
+            items = {current: value, **items}
+            combo.addItem(current, value)
+        for text, v in items.items():
+            if (v or not allow_null) and combo.findText(text) < 0:
+                combo.addItem(text, v)
+        for i in range(combo.count()):
+            combo.setItemData(i, self.tr("Profile code {code}").format(
+                code=prof.fmt(combo.itemData(i))), Qt.ItemDataRole.ToolTipRole)
+        combo.setCurrentText(current)
         combo.lineEdit().setCursorPosition(0)  # the start of the name, not its tail
         combo.lineEdit().setToolTip(
-            self.tr("choose a profile of the named tree or type one in hex")
+            self.tr("{name}: profile code {code} (parameter 1, bytes 2–3).\nChoose a profile "
+                    "of the named tree or type one in hex.").format(name=current,
+                                                                    code=prof.fmt(value))
         )
 
         def commit() -> None:

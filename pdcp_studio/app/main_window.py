@@ -36,6 +36,7 @@ from pdcp_studio.app import start_view
 from pdcp_studio.app.document import Document
 from pdcp_studio.app.graph.scene import BusScene
 from pdcp_studio.app.graph.view import GraphView
+from pdcp_studio.app.gui_gc import collect_on_gui_thread
 from pdcp_studio.app.inspector import Inspector
 from pdcp_studio.app.live import OFFLINE, LiveController
 from pdcp_studio.app.plan_panel import PlanPanel
@@ -71,6 +72,8 @@ class MainWindow(MenusMixin, FileHandlingMixin, ExportMixin, BusMixin, RecoveryM
                  recovery: Any = None) -> None:
         super().__init__(parent)
         self.doc = doc if doc is not None else Document()
+        if gc.isenabled():  # (not during the app's quiet start-up: start_up_over does it)
+            collect_on_gui_thread()  # a closed window is never freed on a bus thread
         self.setWindowTitle(self.tr("PDCP Studio"))
         self.resize(1360, 820)
         self.scene = BusScene(self.doc, self)

@@ -28,6 +28,7 @@ from PySide6.QtWidgets import (
 from pdcp_studio.app import fitting, pending
 from pdcp_studio.app.document import Document
 from pdcp_studio.app.graph import style
+from pdcp_studio.app.plural import count
 
 ROLE = Qt.ItemDataRole.UserRole
 
@@ -135,9 +136,10 @@ class PendingPanel(QWidget):
                                                                          "")))
         else:
             self.summary.setText(self.tr(
-                "<b>{0} pending change(s)</b> for the prosthesis on {1}: edits are staged here "
+                "<b>{0}</b> for the prosthesis on {1}: edits are staged here "
                 "and reach the prosthesis only with Write to prosthesis.").format(
-                    n, getattr(doc.session, "url", "")))
+                    count("PendingPanel", "%n pending change(s)", n),
+                    getattr(doc.session, "url", "")))
         self.write_button.setEnabled(live and n > 0)
         self.discard_button.setEnabled(live and n > 0)
         self.patient.setEnabled(live)

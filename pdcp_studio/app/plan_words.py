@@ -13,6 +13,7 @@ from typing import Any
 from PySide6.QtCore import QT_TRANSLATE_NOOP
 
 from pdcp_studio.app.i18n import translate
+from pdcp_studio.app.plural import count
 from pdcp_studio.model.refs import ChannelRef, DeviceKey
 
 _CTX = "PlanWords"
@@ -130,7 +131,7 @@ def signal_words(similarity: Any, levels: int = 0) -> str:
     elif depth:
         kind = (tr("similar signal ({depth} of {levels} levels alike)").format(
             depth=depth, levels=levels) if levels else
-            tr("similar signal ({depth} level(s) alike)").format(depth=depth))
+            count("PlanWords", "similar signal (%n level(s) alike)", depth))
     else:
         kind = tr("another kind of signal")
     if same_form:

@@ -48,6 +48,7 @@ from PySide6.QtWidgets import (
     QWidget,
 )
 
+from pdcp_studio.app.plural import count
 from pdcp_studio.errors import ProfileError
 from pdcp_studio.model import profile as prof
 from pdcp_studio.model.profile_tree import ProfileNode, ProfileTree
@@ -324,7 +325,8 @@ class ProfileTreeEditor(QWidget):
             self.select(select)
         title = self.tree.name + (" •" if self.dirty else "")
         self.status.setText(
-            self.tr("{title} — {n_items} node(s)").format(title=title, n_items=len(items))
+            self.tr("{title} — {n_items}").format(
+                title=title, n_items=count("ProfileTreeEditor", "%n node(s)", len(items)))
             + (f" — {self.path}" if self.path else "")
         )
 

@@ -42,6 +42,7 @@ from PySide6.QtGui import (
 )
 
 from pdcp_studio.app.i18n import translate
+from pdcp_studio.app.plural import count
 from pdcp_studio.model import profile as prof
 from pdcp_studio.model.configuration import ConfigCollection
 from pdcp_studio.model.profile_tree import ProfileTree
@@ -141,9 +142,10 @@ def _change_rows(changes: list[dict]) -> str:
         adds = sum(1 for a in actions if a.get("op") == "add")
         removes = len(actions) - adds
         params = len((e.get("plan") or {}).get("parameters") or [])
-        what = _t("+{adds} / −{removes} link(s)").format(adds=adds, removes=removes)
+        what = _t("{added}, {removed}").format(added=count(_CTX, "%n link(s) added", adds),
+                                               removed=count(_CTX, "%n removed", removes))
         if params:
-            what += _t(", {n} parameter(s)").format(n=params)
+            what += ", " + count(_CTX, "%n parameter(s)", params)
         rows.append(f"<tr><td>{_e(e.get('id', ''))}</td>"
                     f"<td>{_e(str(e.get('time', '')).replace('T', ' ').rstrip('Z'))}</td>"
                     f"<td>{_e(action_words(str(e.get('action', ''))))}</td><td>{_e(what)}</td>"
@@ -372,12 +374,13 @@ def write_report(path: str | Path, system: System, tree: ProfileTree,
     title = title or _t(DEFAULT_TITLE)
     checksum = configuration_checksum(system, collection)
     if collection is None:
-        note = _t(" (the {n} link(s) above, as they would be stored)").format(
-            n=len(system.links))
+        note = " " + count(_CTX, "(the %n link(s) above, as they would be stored)",
+                           len(system.links))
     else:
         n = sum(len(c.links) for c in collection.configurations)
-        note = _t(" (what the prosthesis stores: {n} link(s) in {c} set-up(s))").format(
-            n=n, c=len(collection.configurations))
+        note = " " + _t("(what the prosthesis stores: {links} in {setups})").format(
+            links=count(_CTX, "%n link(s)", n),
+            setups=count(_CTX, "%n set-up(s)", len(collection.configurations)))
     buffer = QBuffer()
     buffer.open(QIODevice.OpenModeFlag.WriteOnly)
     writer = QPdfWriter(buffer)

@@ -36,6 +36,7 @@ from PySide6.QtWidgets import (
 )
 
 from pdcp_studio.app import fitting, pending
+from pdcp_studio.app.plural import count
 from pdcp_studio.model.system import System
 
 log = logging.getLogger(__name__)
@@ -131,7 +132,8 @@ class TransactionFlow(QObject):
 
         def done(result: Any) -> None:
             if result.written:
-                text = self.tr("Write to prosthesis ({0} change(s))").format(len(changes))
+                text = count("TransactionFlow", "Write to prosthesis (%n change(s))",
+                             len(changes))
                 doc.undo_stack.push(WrittenCommand(first, bus_before, result, text))
         return self.run(change, self.tr("Write to prosthesis"), done)
 

@@ -14,6 +14,8 @@ from typing import TYPE_CHECKING, Any
 
 from PySide6.QtCore import Qt, QTimer
 
+from pdcp_studio.app.plural import count
+
 log = logging.getLogger("pdcp_studio.app.main_window")  # the name it always logged under
 #: The trace and live plot docks are made this long after the window is up (they are
 #: hidden tabs; made at once, they held the first window back ~0.3 s).
@@ -111,8 +113,9 @@ class BusMixin:
     def _scan_finished(self, system: Any) -> None:
         devices = len(getattr(system, "devices", {}))
         links = len(getattr(system, "links", []))
-        self.show_message(self.tr("Scan finished: {devices} device(s), {links} link(s)").format(
-            devices=devices, links=links))
+        self.show_message(self.tr("Scan finished: {devices}, {links}").format(
+            devices=count("BusMixin", "%n device(s)", devices),
+            links=count("BusMixin", "%n link(s)", links)))
 
     def _device_name(self, key: Any) -> str | None:
         """The name the graph gives a device on screen (None if it is not there)."""
@@ -327,9 +330,10 @@ class BusMixin:
         self.doc.config = collection
         n = len(getattr(collection, "configurations", []))
         links = sum(len(c.links) for c in getattr(collection, "configurations", []))
-        self.show_message(self.tr("Read the arbitrator's stored configuration: {n} "
-                                  "configuration(s), {links} links — Find replacements and "
-                                  "Start-up now use it").format(n=n, links=links))
+        self.show_message(self.tr("Read the arbitrator's stored configuration: {configurations}, "
+                                  "{links} — Find replacements and Start-up now use it").format(
+            configurations=count("BusMixin", "%n configuration(s)", n),
+            links=count("BusMixin", "%n link(s)", links)))
 
     def cancel_bus_work(self) -> None:
         if self.live.connecting is not None and self.live.connecting.is_running:

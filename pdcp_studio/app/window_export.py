@@ -25,8 +25,15 @@ class ExportMixin:
     def export_rect(self) -> QRectF:
         """The part of the scene an export shows: every item and a 20-unit margin, grown to
         whole units so the file's size holds all of it (no clipping at right or bottom)."""
+        from pdcp_studio.app.graph.items import PICTURE_PAD
+
         self.scene.finish_building()  # a large bus still being built: all of it
-        rect = self.scene.itemsBoundingRect().adjusted(-20, -20, 20, 20)
+        rect = self.scene.itemsBoundingRect()
+        for card in self.scene.cards.values():  # with or without its picture drawn yet
+            rect |= card.mapRectToScene(QRectF(-PICTURE_PAD, -PICTURE_PAD,
+                                               card.width + 2 * PICTURE_PAD,
+                                               card.height + 2 * PICTURE_PAD))
+        rect = rect.adjusted(-20, -20, 20, 20)
         left, top = math.floor(rect.left()), math.floor(rect.top())
         return QRectF(left, top, math.ceil(rect.right()) - left,
                       math.ceil(rect.bottom()) - top)

@@ -17,6 +17,7 @@ from pdcp_studio.app import commands, fitting, pending
 from pdcp_studio.app.history_panel import HistoryPanel
 from pdcp_studio.app.i18n import translate
 from pdcp_studio.app.pending_panel import PendingPanel
+from pdcp_studio.app.plural import count
 from pdcp_studio.app.transaction_flow import TransactionFlow
 
 #: A new window reads the fitting history this long after it is live.
@@ -103,7 +104,7 @@ class TransactionsMixin:
             return 0
         stack = doc.undo_stack
         stack.beginMacro(
-            translate("MainWindow", "Discard {0} pending change(s)").format(len(changes))
+            count("MainWindow", "Discard %n pending change(s)", len(changes))
         )
         try:
             links = [c for c in changes if c.link is not None]
@@ -123,11 +124,12 @@ class TransactionsMixin:
         finally:
             stack.endMacro()
         self.show_message(
-            translate(
+            count(
                 "MainWindow",
-                "Discarded {0} pending change(s): the project is as the "
+                "Discarded %n pending change(s): the project is as the "
                 "prosthesis (Undo brings them back)",
-            ).format(len(changes))
+                len(changes),
+            )
         )
         return len(changes)
 
@@ -147,11 +149,12 @@ class TransactionsMixin:
         answer = QMessageBox.warning(
             self,
             translate("MainWindow", "Pending changes"),
-            translate(
+            count(
                 "MainWindow",
-                "{0} change(s) were not written to the prosthesis. Leave it without them?\n"
+                "%n change(s) not written to the prosthesis. Leave it without them?\n"
                 "(Write to prosthesis writes them; the document keeps them either way.)",
-            ).format(n),
+                n,
+            ),
             SB.Discard | SB.Cancel,
             SB.Cancel,
         )

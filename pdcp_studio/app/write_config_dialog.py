@@ -36,10 +36,13 @@ from PySide6.QtWidgets import (
 )
 
 from pdcp_studio.app.compare_dialog import ref_label
+from pdcp_studio.app.plural import count
 from pdcp_studio.app.workers import Worker
 from pdcp_studio.model.config_diff import ConfigDiff, diff_configurations
 from pdcp_studio.model.configuration import ConfigCollection
 from pdcp_studio.model.system import Link, System
+
+_CTX = "WriteConfigDialog"  # the counts' context (the class's own)
 
 READING, READY, WRITING, VERIFYING = "reading", "ready", "writing", "verifying"
 VERIFIED, MISMATCH, FAILED = "verified", "mismatch", "failed"
@@ -156,18 +159,21 @@ class WriteConfigDialog(QDialog):
         self.diff = diff_configurations(stored or ConfigCollection(), self.collection)
         self.rows = diff_rows(self.diff, self.collection)
         self._show_diff()
-        count = {k: sum(1 for _i, kind, _l in self.rows if kind == k)
-                 for k in (ADDED, REMOVED, CHANGED, KEPT)}
+        n = {k: sum(1 for _i, kind, _l in self.rows if kind == k)
+             for k in (ADDED, REMOVED, CHANGED, KEPT)}
         if stored is None or not stored.configurations:
-            head = "The arbitrator stores no configuration yet."
+            head = self.tr("The arbitrator stores no configuration yet.")
         else:
-            head = f"The arbitrator stores {len(stored.configurations)} configuration(s)."
+            head = count(_CTX, "The arbitrator stores %n configuration(s).",
+                         len(stored.configurations))
         if self.diff.equal:
-            change = f"Writing changes nothing ({count[KEPT]} link(s) kept)."
+            change = count(_CTX, "Writing changes nothing (%n link(s) kept).", n[KEPT])
         else:
-            change = (f"Writing adds {count[ADDED]} link(s), removes {count[REMOVED]}"
-                      + (f", changes the records of {count[CHANGED]}" if count[CHANGED] else "")
-                      + f" and keeps {count[KEPT]}.")
+            change = (count(_CTX, "Writing adds %n link(s)", n[ADDED])
+                      + count(_CTX, ", removes %n", n[REMOVED])
+                      + (count(_CTX, ", changes the records of %n", n[CHANGED])
+                         if n[CHANGED] else "")
+                      + count(_CTX, " and keeps %n.", n[KEPT]))
         self.message.setText(
             self.tr(
                 "{head} {change} The stored configuration decides the links "
@@ -266,11 +272,13 @@ class WriteConfigDialog(QDialog):
         diff = diff_configurations(self.collection, read_back or ConfigCollection())
         ok = diff.equal and read_back is not None
         if read_back is None:
-            message = "the arbitrator reports no stored configuration after the write"
+            message = self.tr("the arbitrator reports no stored configuration after the write")
         elif ok:
             n = sum(len(c.links) for c in read_back.configurations)
-            message = (f"read back {n} link(s) in {len(read_back.configurations)} "
-                       "configuration(s): identical")
+            message = self.tr("read back {links} in {configurations}: identical").format(
+                links=count(_CTX, "%n link(s)", n),
+                configurations=count(_CTX, "%n configuration(s)",
+                                     len(read_back.configurations)))
         else:
             message = diff.describe("written", "read back")
         self._set_state(VERIFIED if ok else MISMATCH)

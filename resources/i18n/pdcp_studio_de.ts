@@ -96,6 +96,35 @@
             <source>Bus events</source>
             <translation>Busereignisse</translation>
         </message>
+        <message>
+            <source>Scan finished: {devices}, {links}</source>
+            <translation>Lesen beendet: {devices}, {links}</translation>
+        </message>
+        <message>
+            <source>Read the arbitrator's stored configuration: {configurations}, {links} — Find replacements and Start-up now use it</source>
+            <translation>Gespeicherte Konfiguration des Arbiters gelesen: {configurations}, {links} — Ersatz finden und Hochlauf verwenden sie jetzt</translation>
+        </message>
+        <message numerus="yes">
+            <source>%n device(s)</source>
+            <translation>
+                <numerusform>%n Gerät</numerusform>
+                <numerusform>%n Geräte</numerusform>
+            </translation>
+        </message>
+        <message numerus="yes">
+            <source>%n link(s)</source>
+            <translation>
+                <numerusform>%n Verbindung</numerusform>
+                <numerusform>%n Verbindungen</numerusform>
+            </translation>
+        </message>
+        <message numerus="yes">
+            <source>%n configuration(s)</source>
+            <translation>
+                <numerusform>%n Konfiguration</numerusform>
+                <numerusform>%n Konfigurationen</numerusform>
+            </translation>
+        </message>
     </context>
     <context>
         <name>BusScene</name>
@@ -194,6 +223,17 @@
         <message>
             <source>No CAN adapter found. Check that it is plugged in and its driver is installed, or type the interface and channel.</source>
             <translation>Kein CAN-Adapter gefunden. Prüfen Sie, ob er eingesteckt und sein Treiber installiert ist, oder geben Sie Schnittstelle und Kanal ein.</translation>
+        </message>
+        <message>
+            <source>Found {n}: {which}</source>
+            <translation>{n} gefunden: {which}</translation>
+        </message>
+        <message numerus="yes">
+            <source>%n CAN channel(s)</source>
+            <translation>
+                <numerusform>%n CAN-Kanal</numerusform>
+                <numerusform>%n CAN-Kanäle</numerusform>
+            </translation>
         </message>
     </context>
     <context>
@@ -332,6 +372,17 @@
             <location filename="../../pdcp_studio/app/compare_dialog.py" line="328" />
             <source>none</source>
             <translation>keine</translation>
+        </message>
+        <message>
+            <source>{0}: {1}</source>
+            <translation>{0}: {1}</translation>
+        </message>
+        <message numerus="yes">
+            <source>%n link(s)</source>
+            <translation>
+                <numerusform>%n Verbindung</numerusform>
+                <numerusform>%n Verbindungen</numerusform>
+            </translation>
         </message>
     </context>
     <context>
@@ -819,6 +870,45 @@
         <message>
             <source>{parts}: no replacement found, the link is not made</source>
             <translation>{parts}: kein Ersatz gefunden, die Verbindung wird nicht hergestellt</translation>
+        </message>
+        <message>
+            <source>Configuration %1 · %2</source>
+            <translation>Konfiguration %1 · %2</translation>
+        </message>
+        <message numerus="yes">
+            <source>%n link(s)</source>
+            <translation>
+                <numerusform>%n Verbindung</numerusform>
+                <numerusform>%n Verbindungen</numerusform>
+            </translation>
+        </message>
+        <message numerus="yes">
+            <source>%n problem(s) found</source>
+            <translation>
+                <numerusform>%n Problem gefunden</numerusform>
+                <numerusform>%n Probleme gefunden</numerusform>
+            </translation>
+        </message>
+        <message numerus="yes">
+            <source>%n configuration(s)</source>
+            <translation>
+                <numerusform>%n Konfiguration</numerusform>
+                <numerusform>%n Konfigurationen</numerusform>
+            </translation>
+        </message>
+        <message numerus="yes">
+            <source>%n record(s) from newer firmware or tools kept as they are</source>
+            <translation>
+                <numerusform>%n Datensatz aus neuerer Firmware oder neueren Werkzeugen unverändert übernommen</numerusform>
+                <numerusform>%n Datensätze aus neuerer Firmware oder neueren Werkzeugen unverändert übernommen</numerusform>
+            </translation>
+        </message>
+        <message numerus="yes">
+            <source>What start-up would do with this configuration (%n step(s)):</source>
+            <translation>
+                <numerusform>Was der Hochlauf mit dieser Konfiguration täte (%n Schritt):</numerusform>
+                <numerusform>Was der Hochlauf mit dieser Konfiguration täte (%n Schritte):</numerusform>
+            </translation>
         </message>
     </context>
     <context>
@@ -1748,6 +1838,30 @@ Den PDCP-Bus einer aktiven Prothese ansehen und einrichten.</translation>
             <source>Wrote the fitting report {0}</source>
             <translation>Anpassungsbericht {0} geschrieben</translation>
         </message>
+        <message numerus="yes">
+            <source>Discard %n pending change(s)</source>
+            <translation>
+                <numerusform>%n vorgemerkte Änderung verwerfen</numerusform>
+                <numerusform>%n vorgemerkte Änderungen verwerfen</numerusform>
+            </translation>
+        </message>
+        <message numerus="yes">
+            <source>Discarded %n pending change(s): the project is as the prosthesis (Undo brings them back)</source>
+            <translation>
+                <numerusform>%n vorgemerkte Änderung verworfen: Das Projekt entspricht der Prothese (Rückgängig holt sie zurück)</numerusform>
+                <numerusform>%n vorgemerkte Änderungen verworfen: Das Projekt entspricht der Prothese (Rückgängig holt sie zurück)</numerusform>
+            </translation>
+        </message>
+        <message numerus="yes">
+            <source>%n change(s) not written to the prosthesis. Leave it without them?
+(Write to prosthesis writes them; the document keeps them either way.)</source>
+            <translation>
+                <numerusform>%n Änderung wurde nicht auf die Prothese geschrieben. Ohne sie trennen?
+(„Auf die Prothese schreiben“ schreibt sie; das Dokument behält sie in jedem Fall.)</numerusform>
+                <numerusform>%n Änderungen wurden nicht auf die Prothese geschrieben. Ohne sie trennen?
+(„Auf die Prothese schreiben“ schreibt sie; das Dokument behält sie in jedem Fall.)</numerusform>
+            </translation>
+        </message>
     </context>
     <context>
         <name>MenusMixin</name>
@@ -2312,6 +2426,17 @@ Den PDCP-Bus einer aktiven Prothese ansehen und einrichten.</translation>
             <source>Operator: (asked at the first write)</source>
             <translation>Bearbeiter: (wird beim ersten Schreiben erfragt)</translation>
         </message>
+        <message>
+            <source>&lt;b&gt;{0}&lt;/b&gt; for the prosthesis on {1}: edits are staged here and reach the prosthesis only with Write to prosthesis.</source>
+            <translation>&lt;b&gt;{0}&lt;/b&gt; für die Prothese an {1}: Änderungen werden hier gesammelt und erreichen die Prothese erst mit „Auf die Prothese schreiben“.</translation>
+        </message>
+        <message numerus="yes">
+            <source>%n pending change(s)</source>
+            <translation>
+                <numerusform>%n vorgemerkte Änderung</numerusform>
+                <numerusform>%n vorgemerkte Änderungen</numerusform>
+            </translation>
+        </message>
     </context>
     <context>
         <name>PlanPanel</name>
@@ -2659,6 +2784,17 @@ Den PDCP-Bus einer aktiven Prothese ansehen und einrichten.</translation>
             <source>Assigned by {vendor}</source>
             <translation>Vergeben von {vendor}</translation>
         </message>
+        <message>
+            <source>{title} — {n_items}</source>
+            <translation>{title} — {n_items}</translation>
+        </message>
+        <message numerus="yes">
+            <source>%n node(s)</source>
+            <translation>
+                <numerusform>%n Knoten</numerusform>
+                <numerusform>%n Knoten</numerusform>
+            </translation>
+        </message>
     </context>
     <context>
         <name>RecentMenu</name>
@@ -2745,6 +2881,13 @@ Den PDCP-Bus einer aktiven Prothese ansehen und einrichten.</translation>
             <location filename="../../pdcp_studio/app/connect_dialog.py" line="309" />
             <source>No serial port found</source>
             <translation>Kein serieller Anschluss gefunden</translation>
+        </message>
+        <message numerus="yes">
+            <source>%n port(s) found</source>
+            <translation>
+                <numerusform>%n Anschluss gefunden</numerusform>
+                <numerusform>%n Anschlüsse gefunden</numerusform>
+            </translation>
         </message>
     </context>
     <context>
@@ -3057,6 +3200,13 @@ Die Prothese ist wie zuvor.</translation>
             <source>{0}: cancelled</source>
             <translation>{0}: abgebrochen</translation>
         </message>
+        <message numerus="yes">
+            <source>Write to prosthesis (%n change(s))</source>
+            <translation>
+                <numerusform>Auf die Prothese schreiben (%n Änderung)</numerusform>
+                <numerusform>Auf die Prothese schreiben (%n Änderungen)</numerusform>
+            </translation>
+        </message>
     </context>
     <context>
         <name>WriteConfigDialog</name>
@@ -3139,6 +3289,74 @@ Die Prothese ist wie zuvor.</translation>
             <location filename="../../pdcp_studio/app/write_config_dialog.py" line="291" />
             <source>&lt;b style='color:#b00000'&gt;Failed:&lt;/b&gt; {message}</source>
             <translation>&lt;b style='color:#b00000'&gt;Fehlgeschlagen:&lt;/b&gt; {message}</translation>
+        </message>
+        <message>
+            <source>The arbitrator stores no configuration yet.</source>
+            <translation>Der Arbiter speichert noch keine Konfiguration.</translation>
+        </message>
+        <message numerus="yes">
+            <source>The arbitrator stores %n configuration(s).</source>
+            <translation>
+                <numerusform>Der Arbiter speichert %n Konfiguration.</numerusform>
+                <numerusform>Der Arbiter speichert %n Konfigurationen.</numerusform>
+            </translation>
+        </message>
+        <message numerus="yes">
+            <source>Writing changes nothing (%n link(s) kept).</source>
+            <translation>
+                <numerusform>Das Schreiben ändert nichts (%n Verbindung bleibt).</numerusform>
+                <numerusform>Das Schreiben ändert nichts (%n Verbindungen bleiben).</numerusform>
+            </translation>
+        </message>
+        <message numerus="yes">
+            <source>Writing adds %n link(s)</source>
+            <translation>
+                <numerusform>Das Schreiben ergänzt %n Verbindung</numerusform>
+                <numerusform>Das Schreiben ergänzt %n Verbindungen</numerusform>
+            </translation>
+        </message>
+        <message numerus="yes">
+            <source>, removes %n</source>
+            <translation>
+                <numerusform>, entfernt %n</numerusform>
+                <numerusform>, entfernt %n</numerusform>
+            </translation>
+        </message>
+        <message numerus="yes">
+            <source>, changes the records of %n</source>
+            <translation>
+                <numerusform>, ändert die Einträge von %n</numerusform>
+                <numerusform>, ändert die Einträge von %n</numerusform>
+            </translation>
+        </message>
+        <message numerus="yes">
+            <source> and keeps %n.</source>
+            <translation>
+                <numerusform> und behält %n.</numerusform>
+                <numerusform> und behält %n.</numerusform>
+            </translation>
+        </message>
+        <message>
+            <source>the arbitrator reports no stored configuration after the write</source>
+            <translation>der Arbiter meldet nach dem Schreiben keine gespeicherte Konfiguration</translation>
+        </message>
+        <message>
+            <source>read back {links} in {configurations}: identical</source>
+            <translation>zurückgelesen: {links} in {configurations}, identisch</translation>
+        </message>
+        <message numerus="yes">
+            <source>%n link(s)</source>
+            <translation>
+                <numerusform>%n Verbindung</numerusform>
+                <numerusform>%n Verbindungen</numerusform>
+            </translation>
+        </message>
+        <message numerus="yes">
+            <source>%n configuration(s)</source>
+            <translation>
+                <numerusform>%n Konfiguration</numerusform>
+                <numerusform>%n Konfigurationen</numerusform>
+            </translation>
         </message>
     </context>
     <context>
@@ -4330,6 +4548,13 @@ Die Prothese ist wie zuvor.</translation>
             <source>No bus events yet: parts that come and go and the links the bus makes appear here</source>
             <translation>Noch keine Busereignisse: Teile, die kommen und gehen, und die Verbindungen des Busses erscheinen hier</translation>
         </message>
+        <message numerus="yes">
+            <source>%n event(s)</source>
+            <translation>
+                <numerusform>%n Ereignis</numerusform>
+                <numerusform>%n Ereignisse</numerusform>
+            </translation>
+        </message>
     </context>
     <context>
         <name>TraceModel</name>
@@ -4754,6 +4979,56 @@ Die Prothese ist wie zuvor.</translation>
             <source>{path}: cannot write the PDF</source>
             <translation>{path}: Das PDF kann nicht geschrieben werden</translation>
         </message>
+        <message>
+            <source>{added}, {removed}</source>
+            <translation>{added}, {removed}</translation>
+        </message>
+        <message numerus="yes">
+            <source>%n link(s) added</source>
+            <translation>
+                <numerusform>%n Verbindung hinzugefügt</numerusform>
+                <numerusform>%n Verbindungen hinzugefügt</numerusform>
+            </translation>
+        </message>
+        <message numerus="yes">
+            <source>%n removed</source>
+            <translation>
+                <numerusform>%n entfernt</numerusform>
+                <numerusform>%n entfernt</numerusform>
+            </translation>
+        </message>
+        <message numerus="yes">
+            <source>%n parameter(s)</source>
+            <translation>
+                <numerusform>%n Parameter</numerusform>
+                <numerusform>%n Parameter</numerusform>
+            </translation>
+        </message>
+        <message numerus="yes">
+            <source>(the %n link(s) above, as they would be stored)</source>
+            <translation>
+                <numerusform>(die %n Verbindung oben, wie sie gespeichert würde)</numerusform>
+                <numerusform>(die %n Verbindungen oben, wie sie gespeichert würden)</numerusform>
+            </translation>
+        </message>
+        <message>
+            <source>(what the prosthesis stores: {links} in {setups})</source>
+            <translation>(was die Prothese speichert: {links} in {setups})</translation>
+        </message>
+        <message numerus="yes">
+            <source>%n link(s)</source>
+            <translation>
+                <numerusform>%n Verbindung</numerusform>
+                <numerusform>%n Verbindungen</numerusform>
+            </translation>
+        </message>
+        <message numerus="yes">
+            <source>%n set-up(s)</source>
+            <translation>
+                <numerusform>%n Einrichtung</numerusform>
+                <numerusform>%n Einrichtungen</numerusform>
+            </translation>
+        </message>
     </context>
     <context>
         <name>StartView</name>
@@ -4906,7 +5181,7 @@ Die Prothese ist wie zuvor.</translation>
     <context>
         <name>SimPanel</name>
         <message>
-            <source>Stored the current links in the arbitrator&apos;s memory</source>
+            <source>Stored the current links in the arbitrator's memory</source>
             <translation>Die aktuellen Verbindungen wurden im Speicher des Arbiters abgelegt</translation>
         </message>
     </context>
@@ -4974,6 +5249,13 @@ Die Prothese ist wie zuvor.</translation>
         <message>
             <source>How similar: {0}</source>
             <translation>Wie ähnlich: {0}</translation>
+        </message>
+        <message numerus="yes">
+            <source>similar signal (%n level(s) alike)</source>
+            <translation>
+                <numerusform>ähnliches Signal (%n Ebene gleich)</numerusform>
+                <numerusform>ähnliches Signal (%n Ebenen gleich)</numerusform>
+            </translation>
         </message>
     </context>
     <context>
@@ -5051,7 +5333,7 @@ Die Prothese ist wie zuvor.</translation>
             <translation>Code {code} (vorgeschlagen ×{hint})</translation>
         </message>
         <message>
-            <source>The prescaler&apos;s raw 3-bit code; the factor is the thesis&apos;s suggestion only and nothing is computed from it</source>
+            <source>The prescaler's raw 3-bit code; the factor is the thesis's suggestion only and nothing is computed from it</source>
             <translation>Der rohe 3-Bit-Code des Vorteilers; der Faktor ist nur der Vorschlag der Arbeit, nichts wird daraus berechnet</translation>
         </message>
         <message>
@@ -5085,7 +5367,7 @@ Die Prothese ist wie zuvor.</translation>
     <context>
         <name>Wizards</name>
         <message numerus="yes">
-            <source>%n link(s) could not be made (the engineer&apos;s detail says why).</source>
+            <source>%n link(s) could not be made (the engineer's detail says why).</source>
             <translation>
                 <numerusform>%n Verbindung konnte nicht hergestellt werden (die Details für Techniker sagen, warum).</numerusform>
                 <numerusform>%n Verbindungen konnten nicht hergestellt werden (die Details für Techniker sagen, warum).</numerusform>
@@ -5177,12 +5459,52 @@ Die Prothese ist wie zuvor.</translation>
                 <numerusform>%n gespeicherte Verbindungen.</numerusform>
             </translation>
         </message>
+        <message>
+            <source>On this simulated prosthesis: in the Simulator panel choose the spare hand and press Plug in.</source>
+            <translation>An dieser simulierten Prothese: Wählen Sie im Simulator-Bereich die Ersatzhand und drücken Sie „Anstecken“.</translation>
+        </message>
+        <message>
+            <source>To try a swap on this simulated prosthesis: in the Simulator panel choose the hand and press Unplug. This page follows the bus and shows the missing part.</source>
+            <translation>Um an dieser simulierten Prothese einen Tausch zu üben: Wählen Sie im Simulator-Bereich die Hand und drücken Sie „Abziehen“. Diese Seite folgt dem Bus und zeigt das fehlende Teil.</translation>
+        </message>
+        <message>
+            <source>Seen on the bus: {0} (new).</source>
+            <translation>Am Bus erkannt: {0} (neu).</translation>
+        </message>
     </context>
     <context>
         <name>Inspector</name>
         <message>
             <source>A device catalogue file was skipped, so the parts it describes are not named from it: {0}</source>
             <translation>Eine Gerätekatalog-Datei wurde übersprungen, daher werden die Teile, die sie beschreibt, nicht danach benannt: {0}</translation>
+        </message>
+        <message>
+            <source>(none)</source>
+            <translation>(keins)</translation>
+        </message>
+        <message>
+            <source>Not in the profile tree</source>
+            <translation>Nicht im Profilbaum</translation>
+        </message>
+        <message>
+            <source>Profile code {code}</source>
+            <translation>Profilcode {code}</translation>
+        </message>
+        <message>
+            <source>{name}: profile code {code} (parameter 1, bytes 2–3).
+Choose a profile of the named tree or type one in hex.</source>
+            <translation>{name}: Profilcode {code} (Parameter 1, Bytes 2–3).
+Wählen Sie ein Profil aus dem Namensbaum oder geben Sie eines hexadezimal ein.</translation>
+        </message>
+    </context>
+    <context>
+        <name>OpenFile</name>
+        <message numerus="yes">
+            <source>%n link(s) left out: </source>
+            <translation>
+                <numerusform>%n Verbindung ausgelassen: </numerusform>
+                <numerusform>%n Verbindungen ausgelassen: </numerusform>
+            </translation>
         </message>
     </context>
 </TS>

@@ -179,7 +179,7 @@ def test_undo_of_a_written_change_is_a_new_confirmed_transaction(live, rig, qtbo
     assert HAND_LINK in rig.links()
     assert doc.undo_stack.index() == 0 and doc.system.has_link(HAND_LINK)
     assert [e["action"] for e in _history()] == [
-        "write to prosthesis", "undo write to prosthesis (1 change(s))"]
+        "write to prosthesis", "undo write to prosthesis (1 change)"]
 
 
 def test_history_restore_is_a_previewed_transaction(live, rig, qtbot):

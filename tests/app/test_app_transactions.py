@@ -155,7 +155,7 @@ def test_undo_of_a_written_change_is_a_new_transaction(live, qtbot):
     qtbot.waitUntil(lambda: not live.pending_panel.changes, timeout=5000)
     with History.open() as archive:
         assert [e["action"] for e in archive.entries()] == [
-            "write to prosthesis", "undo write to prosthesis (1 change(s))"]
+            "write to prosthesis", "undo write to prosthesis (1 change)"]
     # Redo: first the edit (staged again, drawn as a pending removal), then the write —
     # a transaction again.
     live.act_redo.trigger()

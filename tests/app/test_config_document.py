@@ -103,7 +103,7 @@ def test_open_shows_the_configurations_in_their_own_window(main_window, pdcfg, q
         assert labels <= names and not any(lb.startswith("Device ") for lb in labels)
         # A configuration saved from a working fitting has nothing to report.
         assert window.findings == []
-        assert "6 record(s) from newer firmware or tools kept" in window.info.text()
+        assert "6 records from newer firmware or tools kept" in window.info.text()
     finally:
         _close(window)
 

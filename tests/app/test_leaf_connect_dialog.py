@@ -118,7 +118,8 @@ def test_can_detection_runs_on_a_worker_and_fills_the_channels(qtbot, ini, monke
     assert calls == [False]  # probed off the GUI thread
     assert page.detect_button.isEnabled() and page.detect_button.text() == "Detect"
     n = len({c["channel"] for c in detect()})
-    assert page.status.text().startswith(f"Found {n} CAN channel(s): ")
+    assert page.status.text().startswith(
+        f"Found {n} CAN channel{'' if n == 1 else 's'}: ")
     assert "virtual:vcan-test" in page.status.text()
     assert page.interface.currentText() == "virtual"
     channels = [page.channel.itemText(i) for i in range(page.channel.count())]
@@ -159,5 +160,5 @@ def test_serial_ports_are_listed_by_pyserial(qtbot, ini):
         page.detect()
     assert sorted(page.port.itemText(i) for i in range(page.port.count())) == expected
     assert page.port.currentText() == "/dev/ttyUSB9"  # what the user typed stays chosen
-    assert page.status.text() == (f"{len(expected)} port(s) found" if expected
+    assert page.status.text() == (f"{len(expected)} port{'' if len(expected) == 1 else 's'} found" if expected
                                   else "No serial port found")

@@ -106,7 +106,7 @@ def test_the_report_fills_in_the_session(qapp):
     html = report_html(system, load_profile_tree(user_dir=False), fitting=info)
     assert "P-17" in html and "A. Prosthetist" in html and "2026-11-23 10:05 UTC" in html
     assert "Changes written to the prosthesis" in html
-    assert "+0 / −1 link(s), 1 parameter(s)" in html
+    assert "0 links added, 1 removed, 1 parameter" in html
     assert "applied, verified" in html
     assert "1.2" in html  # the hand's firmware version
     assert html.count("(to a missing device)") == sum(

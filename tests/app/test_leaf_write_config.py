@@ -46,7 +46,7 @@ def test_diff_then_write_then_verify(qtbot, bridge):
     qtbot.waitUntil(lambda: dialog.state == wcd.READY, timeout=5000)
     assert dialog.stored is not None and dialog.stored.configurations == []
     assert "stores no configuration" in dialog.message.text()
-    assert "adds 2 link(s), removes 0" in dialog.message.text()
+    assert "adds 2 links, removes 0" in dialog.message.text()
     assert [kind for kind, _ in _table(dialog)] == ["+ add", "+ add"]
     assert not dialog.write_button.isDefault() and not dialog.write_button.autoDefault()
 

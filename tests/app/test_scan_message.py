@@ -16,5 +16,5 @@ def test_scan_finished_is_said_in_the_status_bar(make_window, qtbot):
     window.act_scan.trigger()
     assert said and said[0] == "Scanning the bus…"
     qtbot.waitUntil(lambda: any(m.startswith("Scan finished") for m in said), timeout=30000)
-    assert "Scan finished: 4 device(s), 5 link(s)" in said
+    assert "Scan finished: 4 devices, 5 links" in said
     window.live.disconnect_bus()

@@ -90,7 +90,7 @@ def test_rescanning_the_same_prosthesis_rebuilds_nothing(make_window, qtbot):
     assert said == [] and work == []
     assert window.scene.cards == cards and all(window.scene.cards[k] is c
                                                for k, c in cards.items())
-    assert any(m.startswith("Scan finished: 4 device(s)") for m in messages)
+    assert any(m.startswith("Scan finished: 4 devices") for m in messages)
     window.live.disconnect_bus()
 
 

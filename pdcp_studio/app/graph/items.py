@@ -440,9 +440,11 @@ class DeviceItem(QGraphicsRectItem):
         rect = QRectF(0, 0, w, h)
         p.setRenderHint(QPainter.RenderHint.Antialiasing, True)
 
-        # Card body with a soft shadow.
+        # Card body with a soft shadow. Every fill is opaque (a translucent one laid over
+        # what lies under it, here): renderers that ignore fill-opacity (ImageMagick's own
+        # SVG renderer) then draw an exported file as the screen shows it.
         p.setPen(Qt.PenStyle.NoPen)
-        p.setBrush(QColor(0, 0, 0, 22))
+        p.setBrush(_over(self._scene_ref.backgroundBrush().color(), QColor(0, 0, 0, 22)))
         p.drawRoundedRect(rect.translated(0, 2.5), style.CORNER, style.CORNER)
         border = style.CARD_BORDER_SELECTED if selected else style.CARD_BORDER
         pen = QPen(border, 2.0 if selected else 1.0)
@@ -452,7 +454,8 @@ class DeviceItem(QGraphicsRectItem):
         tint = QColor(role_colour)
         tint.setAlpha(16 if missing else 30)
         fill = style.MISSING_FILL if missing else style.CARD_FILL
-        p.setBrush(_over(fill, tint) if self.summary else fill)
+        tint = _over(fill, tint)
+        p.setBrush(tint if self.summary else fill)
         p.drawRoundedRect(rect, style.CORNER, style.CORNER)
         if not self.summary:
             # Header tinted with the role colour.
@@ -532,8 +535,11 @@ class DeviceItem(QGraphicsRectItem):
             if ch.index in self.pending_rows:  # a parameter staged, not yet written
                 wash = QColor(style.PENDING)
                 wash.setAlpha(40)
+                under = style.ROW_SELECTED if (
+                    self.selected_ref is not None and self.selected_ref.index == ch.index
+                ) else style.MISSING_FILL if missing else style.CARD_FILL
                 p.setPen(QPen(style.PENDING, 1.0, Qt.PenStyle.DashDotLine))
-                p.setBrush(wash)
+                p.setBrush(_over(under, wash))
                 p.drawRect(row.adjusted(8, 2, -8, -2))
             if i == n_in and n_in:
                 p.setPen(QPen(style.GRID, 1.0))
