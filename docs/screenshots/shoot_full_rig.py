@@ -9,30 +9,17 @@ the middle of the grown graph, so the fit is asked for again here once the scene
 
 from __future__ import annotations
 
-import os
-import sys
-import tempfile
 from pathlib import Path
 
 OUT = Path(__file__).resolve().parent / "full-rig.png"
 
 
 def main() -> int:
-    os.environ.pop("QT_QPA_PLATFORM", None)
-    os.environ["HOME"] = tempfile.mkdtemp()  # fresh settings: no recent files, no layouts
+    from shoot_window import fresh_window, run
+
+    app, window = fresh_window()
     from PySide6.QtCore import QTimer
-    from PySide6.QtWidgets import QApplication
 
-    app = QApplication(sys.argv)
-    app.setOrganizationName("PDCP Studio")
-    app.setApplicationName("PDCP Studio")
-    from pdcp_studio.app.main_window import MainWindow
-
-    window = MainWindow()
-    window.quiet = True
-    window.resize(1600, 1000)
-    window.move(0, 0)
-    window.show()
     failures: list[str] = []
 
     def settle() -> None:
@@ -48,12 +35,7 @@ def main() -> int:
 
     window.ready.connect(lambda: QTimer.singleShot(3000, settle))
     window.connect_bus("sim:full")
-    QTimer.singleShot(90_000, lambda: (failures.append("timed out"), app.quit()))
-    app.exec()
-    window.live.disconnect_bus()
-    for failure in failures:
-        print("FAILED:", failure)
-    return 1 if failures else 0
+    return run(app, window, 90_000, failures)
 
 
 if __name__ == "__main__":

@@ -9,32 +9,18 @@ missing one below it). Under a real X server (the whole screen is taken with Ima
 
 from __future__ import annotations
 
-import os
 import subprocess
-import sys
-import tempfile
 from pathlib import Path
 
 OUT = Path(__file__).resolve().parent / "bus-events-hot-swap.png"
 
 
 def main() -> int:
-    os.environ.pop("QT_QPA_PLATFORM", None)
-    os.environ["HOME"] = tempfile.mkdtemp()  # fresh settings: no recent files, no layouts
-    os.environ.setdefault("PDCP_STUDIO_OPERATOR", "Screenshot")
+    from shoot_window import fresh_window, run
+
+    app, window = fresh_window(operator="Screenshot")
     from PySide6.QtCore import QTimer
-    from PySide6.QtWidgets import QApplication
 
-    app = QApplication(sys.argv)
-    app.setOrganizationName("PDCP Studio")
-    app.setApplicationName("PDCP Studio")
-    from pdcp_studio.app.main_window import MainWindow
-
-    window = MainWindow()
-    window.quiet = True
-    window.resize(1600, 1000)
-    window.move(0, 0)
-    window.show()
     failures: list[str] = []
 
     def swap() -> None:
@@ -59,12 +45,7 @@ def main() -> int:
 
     window.ready.connect(lambda: QTimer.singleShot(1500, swap))
     window.connect_bus("sim:thesis-test4")
-    QTimer.singleShot(60_000, lambda: (failures.append("timed out"), app.quit()))
-    app.exec()
-    window.live.disconnect_bus()
-    for failure in failures:
-        print("FAILED:", failure)
-    return 1 if failures else 0
+    return run(app, window, 60_000, failures)
 
 
 if __name__ == "__main__":

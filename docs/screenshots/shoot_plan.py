@@ -9,9 +9,7 @@ detail in the pane beside the table).
 
 from __future__ import annotations
 
-import os
 import sys
-import tempfile
 from pathlib import Path
 
 HERE = Path(__file__).resolve().parent
@@ -19,21 +17,11 @@ SYSTEM = HERE.parents[1] / "resources" / "systems" / "transradial.json"
 
 
 def main() -> int:
-    os.environ.pop("QT_QPA_PLATFORM", None)
-    os.environ["HOME"] = tempfile.mkdtemp()  # fresh settings: no recent files, no layouts
+    from shoot_window import fresh_window, run
+
+    app, window = fresh_window()
     from PySide6.QtCore import QTimer
-    from PySide6.QtWidgets import QApplication
 
-    from pdcp_studio.app.main_window import MainWindow
-
-    app = QApplication(sys.argv)
-    app.setOrganizationName("PDCP Studio")
-    app.setApplicationName("PDCP Studio")
-    window = MainWindow()
-    window.quiet = True
-    window.resize(1600, 1000)
-    window.move(0, 0)
-    window.show()
     window.open_path(SYSTEM)
 
     def preview() -> None:
@@ -50,11 +38,7 @@ def main() -> int:
         app.quit()
 
     QTimer.singleShot(2500, preview)
-    QTimer.singleShot(30_000, app.quit)
-    app.exec()
-    window.doc.mark_saved()
-    window.close()
-    return 0
+    return run(app, window, 30_000, [])
 
 
 if __name__ == "__main__":
