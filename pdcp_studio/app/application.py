@@ -111,9 +111,8 @@ def _run_app(path: str | Path | None, bus: str | None, screenshot: str | Path | 
         target.view.fit_all()
         target.view.settle()  # every card's picture drawn, not the first few
         image = target.grab()
-        if status["code"]:
-            pass  # what was asked for is not on screen: no picture of an empty window
-        elif not image.save(str(screenshot), "PNG"):
+        # Not when what was asked for is not on screen: no picture of an empty window.
+        if not status["code"] and not image.save(str(screenshot), "PNG"):
             from pdcp_studio.storage.write_failure import why_not_written  # the CLI's words
 
             print(f"pdcp-studio: error: {why_not_written(screenshot)}", file=sys.stderr)

@@ -6,24 +6,11 @@ from __future__ import annotations
 from PySide6.QtCore import Qt
 from PySide6.QtWidgets import QComboBox, QLabel
 
-from pdcp_studio.app.document import Document
-from pdcp_studio.app.inspector import Inspector
-from pdcp_studio.model.refs import ChannelRef, DeviceKey
-from pdcp_studio.storage import system_file
+from pdcp_studio.model.refs import ChannelRef
+from tests.app.inspector_rig import HAND, transradial_inspector
 
-HAND = DeviceKey(2641, 769, 301)
 POWER_GRIP = 0x2220
 
-
-def _inspector(qtbot):
-    from pdcp_studio.paths import systems_dir
-
-    doc = Document(system_file.load_path(systems_dir() / "transradial.json"))
-    inspector = Inspector(doc)
-    qtbot.addWidget(inspector)
-    inspector.resize(380, 900)
-    inspector.show()
-    return doc, inspector
 
 
 def _shown(inspector) -> list[str]:
@@ -35,7 +22,7 @@ def _shown(inspector) -> list[str]:
 
 
 def test_the_profile_box_shows_the_name_and_keeps_the_code_for_engineers(qtbot):
-    doc, inspector = _inspector(qtbot)
+    doc, inspector = transradial_inspector(qtbot)
     ref = ChannelRef(*HAND, 1)
     assert doc.channel(ref).profile == POWER_GRIP
     doc.select(ref)
@@ -65,7 +52,7 @@ def test_the_profile_box_shows_the_name_and_keeps_the_code_for_engineers(qtbot):
 def test_a_profile_the_tree_does_not_name_says_so(qtbot):
     from pdcp_studio.model import profile as prof
 
-    doc, inspector = _inspector(qtbot)
+    doc, inspector = transradial_inspector(qtbot)
     named = {value for value, _node in doc.tree.walk()}
     unnamed = next(v for v in range(0x2222, 0x3000, 2)
                    if v not in named and prof.is_well_formed(v))
@@ -81,7 +68,7 @@ def test_a_profile_the_tree_does_not_name_says_so(qtbot):
 
 
 def test_no_terminal_profile_reads_none(qtbot):
-    doc, inspector = _inspector(qtbot)
+    doc, inspector = transradial_inspector(qtbot)
     ref = next(ChannelRef(*HAND, ch.index) for ch in doc.device(HAND).inputs())
     doc.channel(ref).terminal_profile = 0
     doc.select(ref)
@@ -94,7 +81,7 @@ def test_the_profile_box_in_german(qtbot, qapp):
 
     i18n.install(qapp, "de")
     try:
-        doc, inspector = _inspector(qtbot)
+        doc, inspector = transradial_inspector(qtbot)
         ref = ChannelRef(*HAND, 1)
         doc.select(ref)
         tip = inspector.editors["profile"].lineEdit().toolTip()

@@ -9,24 +9,10 @@ import re
 
 from PySide6.QtWidgets import QLabel, QWidget
 
-from pdcp_studio.app.document import Document
-from pdcp_studio.app.inspector import Inspector
-from pdcp_studio.model.refs import ChannelRef, DeviceKey
-from pdcp_studio.storage import system_file
+from pdcp_studio.model.refs import ChannelRef
+from tests.app.inspector_rig import HAND, transradial_inspector
 
-HAND = DeviceKey(2641, 769, 301)
 LAYOUTS = re.compile(r"\b(u8|u16|pair16|bitmap|sn_index|node_ids)\b")
-
-
-def _inspector(qtbot):
-    from pdcp_studio.paths import systems_dir
-
-    doc = Document(system_file.load_path(systems_dir() / "transradial.json"))
-    inspector = Inspector(doc)
-    qtbot.addWidget(inspector)
-    inspector.resize(380, 900)
-    inspector.show()
-    return doc, inspector
 
 
 def _visible_text(inspector) -> str:
@@ -35,7 +21,7 @@ def _visible_text(inspector) -> str:
 
 
 def test_a_device_shows_its_product_and_maker(qtbot):
-    doc, inspector = _inspector(qtbot)
+    doc, inspector = transradial_inspector(qtbot)
     doc.select(HAND)
     text = _visible_text(inspector)
     assert "Multi-grip hand by PDCP Studio simulator" in text
@@ -49,7 +35,7 @@ def test_a_device_shows_its_product_and_maker(qtbot):
 
 
 def test_a_channel_keeps_encoding_and_prescaler_in_its_details(qtbot):
-    doc, inspector = _inspector(qtbot)
+    doc, inspector = transradial_inspector(qtbot)
     doc.select(ChannelRef(*HAND, 1))
     text = _visible_text(inspector)
     assert "Input 1" in text and "Control mode" in text
