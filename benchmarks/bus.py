@@ -8,7 +8,7 @@ frame once: no retries, no stuff bits). Then, for one scan after the rig has set
 - parameter reads, and frames exchanged per read (the scan's request/response and bulk
   frames; target ≤ 2.1: little beyond one request and one response);
 - wall time of the scan on the virtual bus (target < 2 s);
-- the scan's frames on a real 1 Mbit/s bus (bus/bustime.py): their bus time with the stuff
+- the scan's frames on a real 1 Mbit/s bus (bus/trace/bustime.py): their bus time with the stuff
   bits they really get and with worst-case stuffing, against the bit-level lower bound —
   the least exchange the protocol allows for the same reads (one request and one response
   per inline value; Configure Get Bulk, its response, the packets and the final response
@@ -26,7 +26,7 @@ import queue
 import sys
 import time
 
-from pdcp_studio.bus.bustime import BITRATE, CRC_BITS, HEADER_BITS, TRAILER_BITS, BusTimeMeter
+from pdcp_studio.bus.trace.bustime import BITRATE, CRC_BITS, HEADER_BITS, TRAILER_BITS, BusTimeMeter
 from pdcp_studio.model.parameters import needs_bulk
 from pdcp_studio.protocol import packetize
 
@@ -64,7 +64,7 @@ class Tap:
 
     def __init__(self, channel: str) -> None:
         from pdcp_studio.bus.connection import Connection
-        from pdcp_studio.bus.urls import open_can_bus
+        from pdcp_studio.bus.session.urls import open_can_bus
 
         self.conn = Connection(open_can_bus("virtual", channel), name="benchmark tap")
 
@@ -100,9 +100,9 @@ def startup_figures(frames: list, system) -> dict:
 
 
 def run(window: int, repeat: int, rig: str = "large") -> dict:
-    from pdcp_studio.bus import scan as scan_mod
-    from pdcp_studio.bus.session import open_sim_session
-    from pdcp_studio.bus.urls import unique_virtual_channel
+    from pdcp_studio.bus.arbitrator.core import scan as scan_mod
+    from pdcp_studio.bus.session.live import open_sim_session
+    from pdcp_studio.bus.session.urls import unique_virtual_channel
 
     channel = unique_virtual_channel("pdcp-bench")
     tap = Tap(channel)  # on the channel before power-on: it sees the whole start-up

@@ -153,8 +153,8 @@ def big_open_render() -> dict[str, float]:
     QApplication.instance() or QApplication([])
     import networkx  # noqa: F401  (the app preloads it while connecting; not counted here)
 
-    from pdcp_studio.app import files
-    from pdcp_studio.app.document import Document
+    from pdcp_studio.app.documents import files
+    from pdcp_studio.app.documents.document import Document
     from pdcp_studio.app.graph.scene import BusScene
     from pdcp_studio.app.graph.view import GraphView
 
@@ -188,7 +188,7 @@ def heartbeat_during_scans() -> dict[str, float]:
     from PySide6.QtWidgets import QApplication
 
     app = QApplication.instance() or QApplication([])
-    from pdcp_studio.app.main_window import MainWindow
+    from pdcp_studio.app.window.main_window import MainWindow
 
     window = MainWindow()
     window.quiet = True
@@ -330,10 +330,10 @@ def trace_at_full_load() -> dict[str, float]:
     from PySide6.QtWidgets import QApplication
 
     app = QApplication.instance() or QApplication([])
-    from pdcp_studio.app.live_plot import LivePlot
-    from pdcp_studio.app.monitor_dock import MonitorDock
+    from pdcp_studio.app.live.plot import LivePlot
+    from pdcp_studio.app.trace.dock import MonitorDock
     from pdcp_studio.bus.events import ChannelValue, FrameSeen
-    from pdcp_studio.bus.monitor import FrameDecoder
+    from pdcp_studio.bus.trace.monitor import FrameDecoder
     from pdcp_studio.model.refs import ChannelRef
 
     sys.path.insert(0, str(ROOT / "benchmarks"))
@@ -463,8 +463,8 @@ def capture_in_the_trace(frames: int) -> dict[str, float]:
     from PySide6.QtWidgets import QApplication
 
     QApplication.instance() or QApplication([])
-    from pdcp_studio.app import monitor_dock
-    from pdcp_studio.app.monitor_dock import MonitorDock
+    from pdcp_studio.app.trace import dock as monitor_dock
+    from pdcp_studio.app.trace.dock import MonitorDock
 
     path = capture_path(frames)
     dock = MonitorDock()

@@ -35,8 +35,8 @@ def open_render() -> dict[str, float]:
     QApplication.instance() or QApplication([])
     import networkx  # noqa: F401  (the app preloads it while connecting; not counted here)
 
-    from pdcp_studio.app import files
-    from pdcp_studio.app.document import Document
+    from pdcp_studio.app.documents import files
+    from pdcp_studio.app.documents.document import Document
     from pdcp_studio.app.graph.scene import BusScene
     from pdcp_studio.app.graph.view import GraphView
     from pdcp_studio.paths import systems_dir
@@ -69,7 +69,7 @@ def live() -> dict[str, float]:
     from PySide6.QtWidgets import QApplication
 
     app = QApplication.instance() or QApplication([])
-    from pdcp_studio.app.main_window import MainWindow
+    from pdcp_studio.app.window.main_window import MainWindow
 
     window = MainWindow()
     window.quiet = True

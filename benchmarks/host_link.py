@@ -1,6 +1,6 @@
 """Benchmark: host link 2 on a pseudo-terminal line at a real UART's speed (docs/host-link.md).
 
-A relay between two pseudo-terminals (``bus/hostlink_relay.py``) carries the bytes at
+A relay between two pseudo-terminals (``bus/hostlink/testing/relay.py``) carries the bytes at
 12,800 bytes/s each way — 128000 baud 8N1, the thesis's rig — and can flip bits and add
 garbage. PDCP Studio's arbitrator serves the host link on one pty; a ``serial:`` session
 opens the other. Prints, each next to its physical minimum (the content bytes alone, at the
@@ -24,11 +24,11 @@ import tempfile
 import time
 from pathlib import Path
 
-from pdcp_studio.bus import hostlink_records as hr
-from pdcp_studio.bus.hostlink_client import HostLinkSession
-from pdcp_studio.bus.hostlink_relay import NoisyLine, PtyRelay
-from pdcp_studio.bus.hostlink_server import HostLinkServer
-from pdcp_studio.bus.session import open_sim_session
+from pdcp_studio.bus.hostlink import records as hr
+from pdcp_studio.bus.hostlink.client import HostLinkSession
+from pdcp_studio.bus.hostlink.server import HostLinkServer
+from pdcp_studio.bus.hostlink.testing.relay import NoisyLine, PtyRelay
+from pdcp_studio.bus.session.live import open_sim_session
 from pdcp_studio.model.configuration import (
     ConfigCollection,
     StoredChannel,
@@ -60,7 +60,7 @@ def seventy_devices(path: Path) -> Path:
     import copy
     from dataclasses import replace
 
-    from pdcp_studio.bus.simulator import load_prosthesis
+    from pdcp_studio.bus.sim.rigs import load_prosthesis
 
     base = [d for _, d in sorted(load_prosthesis("large").devices.items())]
     devices = []

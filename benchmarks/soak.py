@@ -79,7 +79,7 @@ class Lines:
 
 def count_frames(url: str, stop: threading.Event, counter: list[int]) -> None:
     """Listen on the group (as a monitor would) and count every frame."""
-    from pdcp_studio.bus.urls import open_spec, parse_bus_url
+    from pdcp_studio.bus.session.urls import open_spec, parse_bus_url
 
     bus = open_spec(parse_bus_url(url))
     try:

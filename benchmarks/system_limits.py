@@ -59,8 +59,8 @@ def open_in_app(path: Path) -> dict[str, float]:
     QApplication.instance() or QApplication([])
     import networkx  # noqa: F401  (the app preloads it while connecting; not counted here)
 
-    from pdcp_studio.app import files
-    from pdcp_studio.app.document import Document
+    from pdcp_studio.app.documents import files
+    from pdcp_studio.app.documents.document import Document
     from pdcp_studio.app.graph.scene import BusScene
     from pdcp_studio.app.graph.view import GraphView
 
@@ -133,7 +133,7 @@ def _deep(d: Path) -> Path:
 
 
 def main() -> None:
-    from pdcp_studio.app import files
+    from pdcp_studio.app.documents import files
 
     path = Path(tempfile.mkdtemp()) / "largest.pdcpsys.json"
     files.save_system(largest_system(), path)

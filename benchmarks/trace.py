@@ -6,7 +6,7 @@ channel data of every output, and some garbage (module-specific codes, extended 
 random bytes) — at about 8,000 frames/s of capture time, in ASC and BLF. Prints for each format:
 
 - python-can's reader alone (``can.LogReader`` over the file, nothing else): the anchor;
-- for BLF also the monitor's own reader alone (``bus/blf_read.py``: python-can's BLFReader
+- for BLF also the monitor's own reader alone (``bus/trace/blf.py``: python-can's BLFReader
   with a faster loop over a container's objects, the same frames without a ``can.Message``
   each), which ``monitor --replay`` uses;
 - ``pdcp-studio monitor --replay FILE`` (frames to /dev/null, its summary shown);
@@ -15,7 +15,7 @@ random bytes) — at about 8,000 frames/s of capture time, in ASC and BLF. Print
 each with wall and CPU time, frames per second (and how many saturated buses that is), the
 ratio to python-can's reader alone (target ≤ 2×) and peak RSS (target < 150 MB, whatever the
 length). The bus time the monitor reports must equal the
-exact figure computed here bit by bit (bus/bustime.py's plain bit-stream path). The bus bound:
+exact figure computed here bit by bit (bus/trace/bustime.py's plain bit-stream path). The bus bound:
 a 1 Mbit/s CAN bus carries at most ~8,000 8-byte (≈ 11,000 4-byte) frames a second.
 
 Live (``--live-seconds``, 10 by default): the same traffic played at its original rate onto a
@@ -143,7 +143,7 @@ def make_data_id(chan_node: int) -> int:
 
 def exact_bus_bits(frames) -> int:
     """The bus bits of the base frames, by the plain bit-stream computation (memoised)."""
-    from pdcp_studio.bus import bustime
+    from pdcp_studio.bus.trace import bustime
 
     memo: dict = {}
     total = 0
@@ -234,7 +234,7 @@ READER = ("import can, sys\n"
           "print(n)\n")
 #: The monitor's BLF reader alone (what ``monitor --replay`` reads a .blf with).
 OWN_BLF_READER = ("import sys\n"
-                  "from pdcp_studio.bus.monitor import open_capture\n"
+                  "from pdcp_studio.bus.trace.monitor import open_capture\n"
                   "frames, close = open_capture(sys.argv[1], plain_frames=True)\n"
                   "n = 0\n"
                   "for m in frames:\n"
@@ -393,7 +393,7 @@ def main() -> None:
               f"{len(frames) / wall:,.0f} frames/s, peak RSS {rss:.0f} MB")
         if fmt == "blf":
             wall, rss, _, cpu = best_of(args.repeat, [python, "-c", OWN_BLF_READER, str(path)])
-            print(f"[{fmt}] the monitor's BLF reader alone (bus/blf_read.py): {wall:.2f} s "
+            print(f"[{fmt}] the monitor's BLF reader alone (bus/trace/blf.py): {wall:.2f} s "
                   f"({cpu:.2f} s CPU), {n / wall:,.0f} frames/s, {cpu / anchor_cpu:.2f}× "
                   f"python-can's CPU time, peak RSS {rss:.0f} MB")
         monitor = [python, "-m", "pdcp_studio", "monitor", "--replay", str(path)]

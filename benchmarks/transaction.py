@@ -5,7 +5,7 @@ transactions (interlock, write, read back, release; not recorded) and prints:
 
 - wall time per transaction on the in-process virtual bus (median and best);
 - the frames one transaction puts on the bus and their time on a real 1 Mbit/s bus
-  (bus/bustime.py, the frames' own stuff bits) — the physical floor of the same exchange,
+  (bus/trace/bustime.py, the frames' own stuff bits) — the physical floor of the same exchange,
   since every request waits for its response;
 
 then the fitting history: milliseconds per append (WAL, synchronous=FULL: one fsync'd commit
@@ -25,10 +25,10 @@ from pathlib import Path
 
 import can
 
-from pdcp_studio.bus.bustime import BusTimeMeter
-from pdcp_studio.bus.session import open_session
+from pdcp_studio.bus.session.live import open_session
+from pdcp_studio.bus.session.urls import unique_virtual_channel
+from pdcp_studio.bus.trace.bustime import BusTimeMeter
 from pdcp_studio.bus.transaction import Change
-from pdcp_studio.bus.urls import unique_virtual_channel
 from pdcp_studio.storage.history import History
 
 

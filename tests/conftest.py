@@ -53,7 +53,7 @@ def _multicast_problem(url: str) -> str | None:
 
     import can
 
-    from pdcp_studio.bus.urls import open_spec, parse_bus_url
+    from pdcp_studio.bus.session.urls import open_spec, parse_bus_url
 
     spec = parse_bus_url(url)
     try:

@@ -23,12 +23,12 @@ from pdcp_studio.protocol import Message, decode
 @contextlib.contextmanager
 def served(name: str, memory: Path, **arbitrator_options: Any) -> Iterator[tuple[Any, Any, str]]:
     """(arbitrator, device host, serial URL) of a simulated prosthesis behind a host link."""
-    from pdcp_studio.bus.arbitrator import Arbitrator
-    from pdcp_studio.bus.device_host import DeviceHost
-    from pdcp_studio.bus.device_sim import SimulatedDevice
-    from pdcp_studio.bus.hostlink_server import HostLinkServer
-    from pdcp_studio.bus.simulator import resolve_prosthesis
-    from pdcp_studio.bus.urls import unique_virtual_channel
+    from pdcp_studio.bus.arbitrator.core import Arbitrator
+    from pdcp_studio.bus.hostlink.server import HostLinkServer
+    from pdcp_studio.bus.session.urls import unique_virtual_channel
+    from pdcp_studio.bus.sim.device import SimulatedDevice
+    from pdcp_studio.bus.sim.device_host import DeviceHost
+    from pdcp_studio.bus.sim.rigs import resolve_prosthesis
 
     system = resolve_prosthesis(name).load()
     channel = unique_virtual_channel(f"road-{name}")

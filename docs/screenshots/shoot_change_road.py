@@ -28,8 +28,8 @@ def main() -> int:
     from PySide6.QtCore import Qt, QTimer
     from PySide6.QtWidgets import QApplication
 
-    from pdcp_studio.app import commands
-    from pdcp_studio.app.main_window import MainWindow
+    from pdcp_studio.app.documents import commands
+    from pdcp_studio.app.window.main_window import MainWindow
     from pdcp_studio.model.refs import ChannelRef, DeviceKey
     from pdcp_studio.model.system import Link
 

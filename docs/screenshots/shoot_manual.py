@@ -36,8 +36,8 @@ def main() -> int:
         lang = sys.argv[sys.argv.index("--lang") + 1]
         i18n.install(app, lang)
         out = OUT.with_name(f"{OUT.stem}-{lang}.png")
-    from pdcp_studio.app import help_viewer
-    from pdcp_studio.app.main_window import MainWindow
+    from pdcp_studio.app.dialogs import help_viewer
+    from pdcp_studio.app.window.main_window import MainWindow
 
     window = MainWindow()
     window.quiet = True

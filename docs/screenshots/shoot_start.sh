@@ -22,7 +22,7 @@ from PySide6.QtCore import QCoreApplication, QSettings
 app = QCoreApplication([])
 app.setOrganizationName("PDCP Studio")
 app.setApplicationName("PDCP Studio")
-from pdcp_studio.app.recent_files import RecentFiles
+from pdcp_studio.app.window.recent_files import RecentFiles
 recent = RecentFiles(QSettings())
 for name in ("P-0017 test rig.json", "P-0042 stored.pdcfg", "P-0042 transradial.json"):
     recent.add(Path(sys.argv[1]) / name)

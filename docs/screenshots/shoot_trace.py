@@ -22,8 +22,8 @@ def main() -> int:
     from PySide6.QtCore import Qt, QTimer
     from PySide6.QtWidgets import QApplication
 
-    from pdcp_studio.app.main_window import MainWindow
-    from pdcp_studio.app.trace_model import TIME_MARKER
+    from pdcp_studio.app.window.main_window import MainWindow
+    from pdcp_studio.app.trace.model import TIME_MARKER
 
     app = QApplication(sys.argv)
     window = MainWindow()

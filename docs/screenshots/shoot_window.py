@@ -23,7 +23,7 @@ def fresh_window(operator: str | None = None) -> tuple[Any, Any]:
     app = QApplication(sys.argv)
     app.setOrganizationName("PDCP Studio")
     app.setApplicationName("PDCP Studio")
-    from pdcp_studio.app.main_window import MainWindow
+    from pdcp_studio.app.window.main_window import MainWindow
 
     window = MainWindow()
     window.quiet = True

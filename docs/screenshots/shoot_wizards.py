@@ -59,7 +59,7 @@ def main() -> int:
     from PySide6.QtCore import QSettings, QTimer
     from PySide6.QtWidgets import QApplication
 
-    from pdcp_studio.app.main_window import MainWindow
+    from pdcp_studio.app.window.main_window import MainWindow
     from pdcp_studio.app.wizards import open_wizard
     from pdcp_studio.bus.transaction import Change
     from pdcp_studio.model.refs import DeviceKey

@@ -54,7 +54,7 @@ def _run_app(path: str | Path | None, bus: str | None, screenshot: str | Path | 
     spare_source_scan()  # before the app's imports: PySide6 would read each one's source
     opened = None
     if path is not None:
-        from pdcp_studio.app import files
+        from pdcp_studio.app.documents import files
 
         opened = files.open_path(path)
 
@@ -87,12 +87,12 @@ def _run_app(path: str | Path | None, bus: str | None, screenshot: str | Path | 
         # to be recovered: the user may take that instead of the bus.)
         opening = open_early(bus)
         _preload_layout()  # networkx too: the bus's first snapshot is laid out with it
-    from pdcp_studio.app.main_window import DEFAULT_BUS, MainWindow
+    from pdcp_studio.app.window.main_window import DEFAULT_BUS, MainWindow
 
     window = MainWindow(recovery=recovery)
     window.quiet = scripted
     if not scripted:
-        from pdcp_studio.app.window_desktop import remember_layout
+        from pdcp_studio.app.window.desktop import remember_layout
 
         remember_layout(window)  # last session's size and docks; saved again on close
     if size is not None:
@@ -106,7 +106,8 @@ def _run_app(path: str | Path | None, bus: str | None, screenshot: str | Path | 
         bridge = window.live.bridge
         if window.progress.isVisible() and (bridge is None or not bridge.busy):
             window.progress.hide()  # the last job's bar, hidden a moment later anyway
-        # A .pdcfg opens in its own window (app/config_view.py): that is what was asked for.
+        # A .pdcfg opens in its own window (app/documents/config_view.py): that is what was asked
+        # for.
         target = (getattr(window, "config_windows", None) or [window])[-1]
         target.view.fit_all()
         target.view.settle()  # every card's picture drawn, not the first few
@@ -201,7 +202,7 @@ def open_early(url: str) -> Future:
         if not opening.set_running_or_notify_cancel():
             return
         try:
-            from pdcp_studio.bus.session import open_session
+            from pdcp_studio.bus.session.live import open_session
 
             opening.set_result(open_session(url))
         except BaseException as err:  # the worker that takes it raises it (as open_session)
@@ -270,7 +271,7 @@ def share_the_interpreter() -> None:
 def _recovery() -> object | None:
     """The autosave store, or None when this build has none."""
     try:
-        from pdcp_studio.app.recovery import Recovery
+        from pdcp_studio.app.documents.recovery import Recovery
     except ImportError:
         return None
     return Recovery()

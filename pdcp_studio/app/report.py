@@ -42,7 +42,7 @@ from PySide6.QtGui import (
 )
 
 from pdcp_studio.app.i18n import translate
-from pdcp_studio.app.plural import count
+from pdcp_studio.app.words.plural import count
 from pdcp_studio.model import profile as prof
 from pdcp_studio.model.configuration import ConfigCollection
 from pdcp_studio.model.profile_tree import ProfileTree
@@ -111,7 +111,7 @@ def _version(value: int) -> str:
 def action_words(action: str) -> str:
     """A fitting-history action (``config write``, ``apply autoconfigure``, ``policy
     autoconfigure off``…) in words for the report; unknown ones as they are."""
-    from pdcp_studio.app.plan_panel import OPERATIONS
+    from pdcp_studio.app.docks.plan_panel import OPERATIONS
 
     words = action.strip()
     low = words.lower()
@@ -155,7 +155,7 @@ def _change_rows(changes: list[dict]) -> str:
 
 
 def _finding_rows(system: System, autoconfigure: bool = True) -> str:
-    from pdcp_studio.app.finding_text import plain_finding
+    from pdcp_studio.app.words.finding_text import plain_finding
     from pdcp_studio.engine import check_system
 
     findings = check_system(system, autoconfigure=autoconfigure) if system.devices else []
@@ -190,7 +190,7 @@ def _profile(tree: ProfileTree, value: int) -> str:
 
 
 def _device_name(system: System, key: Any) -> str:
-    from pdcp_studio.app.part_names import part_name
+    from pdcp_studio.app.words.part_names import part_name
 
     return part_name(system, key)
 

@@ -32,11 +32,11 @@ def _settle(ms: int = 50) -> None:
 
 
 def _dialogs(window: Any) -> list[tuple[str, Callable[[], QWidget]]]:
-    from pdcp_studio.app.compare_dialog import CompareDialog
-    from pdcp_studio.app.connect_dialog import ConnectDialog
-    from pdcp_studio.app.help_viewer import HelpViewer
-    from pdcp_studio.app.profile_tree_editor import ProfileTreeDialog
-    from pdcp_studio.app.recovery import RecoveryDialog
+    from pdcp_studio.app.dialogs.compare_dialog import CompareDialog
+    from pdcp_studio.app.dialogs.connect_dialog import ConnectDialog
+    from pdcp_studio.app.dialogs.help_viewer import HelpViewer
+    from pdcp_studio.app.dialogs.profile_tree_editor import ProfileTreeDialog
+    from pdcp_studio.app.documents.recovery import RecoveryDialog
 
     out: list[tuple[str, Callable[[], QWidget]]] = [
         ("connect dialog", lambda: ConnectDialog(window)),
@@ -47,7 +47,7 @@ def _dialogs(window: Any) -> list[tuple[str, Callable[[], QWidget]]]:
         ("user manual", lambda: HelpViewer(window)),
     ]
     if window.live.bridge is not None:
-        from pdcp_studio.app.write_config_dialog import WriteConfigDialog
+        from pdcp_studio.app.dialogs.write_config_dialog import WriteConfigDialog
 
         out.append(("write configuration dialog", lambda: WriteConfigDialog.for_system(
             window.live.bridge, window.doc.system, window)))
@@ -56,7 +56,7 @@ def _dialogs(window: Any) -> list[tuple[str, Callable[[], QWidget]]]:
 
 def exercise(window: Any) -> dict[str, str]:
     """Open and close every dialog and dock of ``window``; name → "ok" or what failed."""
-    from pdcp_studio.app import window_desktop
+    from pdcp_studio.app.window import desktop as window_desktop
 
     steps: dict[str, str] = {}
 
@@ -106,7 +106,7 @@ def exercise(window: Any) -> dict[str, str]:
     step("fitting report", report)
 
     def about() -> None:
-        from pdcp_studio.app import help_viewer
+        from pdcp_studio.app.dialogs import help_viewer
 
         QTimer.singleShot(200, _close_modal)
         help_viewer.show_about(window)

@@ -140,7 +140,7 @@ class ReopeningBus(can.BusABC):
 
 def open_reopening(spec: Any, **options: Any) -> ReopeningBus:
     """The python-can bus of a ``can:`` spec, reopened when its adapter is pulled and put back."""
-    from pdcp_studio.bus.urls import DEFAULT_BITRATE, open_can_bus, open_spec
+    from pdcp_studio.bus.session.urls import DEFAULT_BITRATE, open_can_bus, open_spec
 
     first = [True]
 

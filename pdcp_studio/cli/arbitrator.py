@@ -76,7 +76,7 @@ def describe(event: Any) -> str | None:
 
 
 def run(args: argparse.Namespace) -> int:
-    from pdcp_studio.bus.urls import check_bus_url
+    from pdcp_studio.bus.session.urls import check_bus_url
     from pdcp_studio.cli.main import EXIT_BAD_INPUT, EXIT_FAILURE, BadInput
 
     spec = check_bus_url(args.bus)  # BusUrlError: exit 2, as from every command
@@ -90,14 +90,14 @@ def run(args: argparse.Namespace) -> int:
     server_cls = None
     if args.host_serial:
         try:
-            from pdcp_studio.bus.hostlink_server import HostLinkServer
+            from pdcp_studio.bus.hostlink.server import HostLinkServer
         except ImportError as err:
             print(f"pdcp-studio: --host-serial needs the host-link server, which this "
                   f"installation lacks ({err})", file=sys.stderr)
             return EXIT_BAD_INPUT
         server_cls = HostLinkServer
 
-    from pdcp_studio.bus.arbitrator import Arbitrator
+    from pdcp_studio.bus.arbitrator.core import Arbitrator
 
     lines: queue.SimpleQueue[str] = queue.SimpleQueue()
 
@@ -106,7 +106,7 @@ def run(args: argparse.Namespace) -> int:
         if text is not None:
             lines.put(text)
 
-    from pdcp_studio.bus.arb_claim import LISTEN_S
+    from pdcp_studio.bus.arbitrator.claim import LISTEN_S
 
     options: dict[str, Any] = {"memory": args.memory, "name": "arbitrator",
                                "profile_layer": not args.no_profile_layer,

@@ -47,7 +47,7 @@ def carry_out(session: Any, change: Any, args: argparse.Namespace, *,
               quiet_preview: bool = False) -> int:
     """Preview ``change`` on ``session``, confirm it (``--yes`` or the terminal), transact,
     print the outcome. Returns the exit status."""
-    from pdcp_studio.bus.session_api import preview_change
+    from pdcp_studio.bus.session.api import preview_change
 
     want_json = bool(getattr(args, "json", False))
     preview = preview_change(session, change)

@@ -107,7 +107,7 @@ def run_diff(args: argparse.Namespace) -> int:
     if args.memory and args.bus is None:
         raise BadInput("config diff: --memory needs --bus")
     if args.bus is not None:
-        from pdcp_studio.bus.urls import check_bus_url
+        from pdcp_studio.bus.session.urls import check_bus_url
 
         check_bus_url(args.bus)  # BusUrlError: exit 2, the same line as from every command
     a = _load_collection(args.a)

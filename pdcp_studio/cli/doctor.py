@@ -48,7 +48,7 @@ def versions() -> dict[str, str | None]:
         except metadata.PackageNotFoundError:
             out[name] = None
     try:
-        from pdcp_studio.app.help_viewer import qt_versions
+        from pdcp_studio.app.dialogs.help_viewer import qt_versions
     except ImportError:  # Qt's own libraries missing: the display check says which
         out["qt"] = None
     else:
@@ -174,7 +174,7 @@ def can_interfaces() -> dict[str, dict[str, Any]]:
 
 
 def _interface(name: str, module: str) -> dict[str, Any]:
-    from pdcp_studio.bus.can_interfaces import driver_fix
+    from pdcp_studio.bus.session.can_interfaces import driver_fix
 
     if name in WINDOWS_ONLY and sys.platform != "win32":
         why: str | None = "this driver exists for Windows only"

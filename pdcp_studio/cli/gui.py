@@ -53,7 +53,7 @@ def run(args: argparse.Namespace) -> int:
         raise BadInput("give a FILE or --bus, not both")
     size = _size(args.size)
     if args.bus:
-        from pdcp_studio.bus.urls import check_bus_url
+        from pdcp_studio.bus.session.urls import check_bus_url
 
         check_bus_url(args.bus)  # BusUrlError: exit 2, as from every command
     from pdcp_studio.app import qt_prereqs

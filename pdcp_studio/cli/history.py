@@ -157,7 +157,7 @@ def restore_change(entry: dict, links_now: list) -> Any:
 
 
 def run_restore(args: argparse.Namespace) -> int:
-    from pdcp_studio.bus.urls import check_bus_url
+    from pdcp_studio.bus.session.urls import check_bus_url
     from pdcp_studio.cli.change_road import carry_out
     from pdcp_studio.cli.scan import open_bus_session
 

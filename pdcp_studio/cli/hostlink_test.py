@@ -1,6 +1,7 @@
 """``hostlink-test --bus serial:PORT [--json]``: the host-link conformance suite.
 
-Runs every case of ``bus/hostlink_conformance.py`` against the arbitrator on PORT — a firmware
+Runs every case of ``bus/hostlink/testing/conformance.py`` against the arbitrator on PORT — a
+firmware
 under development, or PDCP Studio's own (``arbitrator --host-serial``) — and prints one line
 per case (``--json``: ``{"passed": [...], "failed": [...], "why": {case: reason}}``). Exit 0
 only when every case passes, 1 when one fails or the port cannot be opened, 2 for a bus URL
@@ -25,9 +26,9 @@ def add_subparser(subparsers: argparse._SubParsersAction) -> None:
 
 
 def run(args: argparse.Namespace) -> int:
-    from pdcp_studio.bus.hostlink_conformance import run_suite
-    from pdcp_studio.bus.hostlink_port import open_port
-    from pdcp_studio.bus.urls import BusUrlError, check_bus_url
+    from pdcp_studio.bus.hostlink.port import open_port
+    from pdcp_studio.bus.hostlink.testing.conformance import run_suite
+    from pdcp_studio.bus.session.urls import BusUrlError, check_bus_url
     from pdcp_studio.cli.main import BadInput
     from pdcp_studio.errors import TransportError
 

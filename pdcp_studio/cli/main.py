@@ -21,7 +21,7 @@ import sys
 from collections.abc import Sequence
 
 from pdcp_studio import __version__
-from pdcp_studio.bus.urls import BusUrlError
+from pdcp_studio.bus.session.urls import BusUrlError
 from pdcp_studio.errors import ConfigFormatError, PdcpError, SystemFileError
 
 # Order = order in --help.
@@ -82,7 +82,7 @@ class _StderrWarnings(logging.Handler):
 
 
 def _warnings_to_stderr() -> None:
-    logger = logging.getLogger("pdcp_studio.bus.urls")
+    logger = logging.getLogger("pdcp_studio.bus.session.urls")
     if not any(isinstance(h, _StderrWarnings) for h in logger.handlers):
         logger.addHandler(_StderrWarnings())
 
@@ -103,7 +103,7 @@ def main(argv: Sequence[str] | None = None) -> int:
     if args.command is None:
         # Bare `pdcp-studio` opens the desktop app on the built-in simulated prosthesis
         # (contracts §2); `pdcp-studio gui` alone keeps the start page.
-        from pdcp_studio.app.window_support import DEFAULT_BUS  # Qt-free
+        from pdcp_studio.app.window.support import DEFAULT_BUS  # Qt-free
 
         args = parser.parse_args(["gui", "--bus", DEFAULT_BUS,
                                   *(["--lang", args.lang] if args.lang else [])])

@@ -140,7 +140,7 @@ def _enlarge_receive_buffer(bus: Any) -> int:
 def _can_frames(spec: Any, stop: Callable[[], bool]) -> Iterator[Any]:
     """Frames of a python-can bus, opened only to listen (listen-only where the interface
     has it; the monitor never sends)."""
-    from pdcp_studio.bus.urls import listen_only_options, open_spec
+    from pdcp_studio.bus.session.urls import listen_only_options, open_spec
 
     raw = open_spec(spec, **listen_only_options(spec))  # TransportError names the URL
     _enlarge_receive_buffer(raw)
@@ -185,12 +185,12 @@ def _session_frames(url: str, stop: Callable[[], bool],
     from pdcp_studio.bus.events import DeviceJoined, DeviceLeft, FrameSeen, LinkMade, LinkRemoved
 
     try:
-        from pdcp_studio.bus.session import open_session
+        from pdcp_studio.bus.session.live import open_session
     except ImportError as err:
         from pdcp_studio.errors import TransportError
 
         raise TransportError(f"--bus {url}: the bus session is not available ({err})") from err
-    from pdcp_studio.bus.hostlink_client import ChannelCounts
+    from pdcp_studio.bus.hostlink.client import ChannelCounts
 
     seen: queue.Queue[Any] = queue.Queue()
     session = open_session(url)
@@ -227,7 +227,7 @@ def _session_frames(url: str, stop: Callable[[], bool],
 
 def _probe_foreign(head: list[Any], decoder: Any) -> bool:
     """True when the first frames of a capture hold nothing that fits PDCP in context."""
-    from pdcp_studio.bus.monitor import NOT_PDCP_MIN_FRAMES, FrameDecoder
+    from pdcp_studio.bus.trace.monitor import NOT_PDCP_MIN_FRAMES, FrameDecoder
 
     probe = FrameDecoder(dict(decoder.links))
     probe.meter_on = False
@@ -244,7 +244,7 @@ def _replay_frames(path: str, decoder: Any) -> tuple[Iterator[Any], Callable[[],
     traffic recognised (CaptureError if it is unreadable)."""
     import itertools
 
-    from pdcp_studio.bus.monitor import open_capture, read_node_map
+    from pdcp_studio.bus.trace.monitor import open_capture, read_node_map
 
     node_map = read_node_map(path)
     if node_map is not None:
@@ -270,14 +270,14 @@ def _load_system_links(links: dict, path: str) -> None:
 
 
 def run(args: argparse.Namespace) -> int:
-    from pdcp_studio.bus.monitor import (
+    from pdcp_studio.bus.trace.monitor import (
         PARTIAL_SUFFIX,
         CaptureError,
         CaptureWriteError,
         FrameDecoder,
         Recorder,
     )
-    from pdcp_studio.bus.trace_pump import TracePump
+    from pdcp_studio.bus.trace.pump import TracePump
 
     show = make_filter(args.filter) if args.filter else None
     if args.seconds is not None and args.seconds <= 0:
@@ -300,7 +300,7 @@ def run(args: argparse.Namespace) -> int:
 
     frames: Iterator[Any] | None = None  # a replay is opened below, its errors handled there
     if not args.replay:
-        from pdcp_studio.bus.urls import BusUrlError, parse_bus_url
+        from pdcp_studio.bus.session.urls import BusUrlError, parse_bus_url
 
         try:
             spec = parse_bus_url(args.bus)
@@ -315,7 +315,7 @@ def run(args: argparse.Namespace) -> int:
     limiter = UndecodableFrames(sys.stderr) if live else None
     reports: Any = ()  # kinds of report a live session sends besides frames
     if live:
-        from pdcp_studio.bus.hostlink_client import ChannelCounts
+        from pdcp_studio.bus.hostlink.client import ChannelCounts
 
         reports = ChannelCounts
 

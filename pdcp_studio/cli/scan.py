@@ -39,8 +39,8 @@ def open_bus_session(url: str, *, memory: str | None = None, settle: float | Non
                      **options: Any) -> Any:
     """``open_session`` for a command; a bad URL raises BusUrlError (exit 2, the same line
     from every command), other user errors BadInput."""
-    from pdcp_studio.bus.session import open_session
-    from pdcp_studio.bus.urls import check_bus_url
+    from pdcp_studio.bus.session.live import open_session
+    from pdcp_studio.bus.session.urls import check_bus_url
     from pdcp_studio.cli.main import BadInput
 
     spec = check_bus_url(url)

@@ -42,7 +42,7 @@ def add_subparser(subparsers: argparse._SubParsersAction) -> None:
 
 
 def run_list(args: argparse.Namespace) -> int:
-    from pdcp_studio.bus.simulator import list_prostheses, prosthesis
+    from pdcp_studio.bus.sim.rigs import list_prostheses, prosthesis
 
     for name in list_prostheses():
         if args.long:
@@ -56,7 +56,7 @@ def run_list(args: argparse.Namespace) -> int:
 
 
 def run_replay(args: argparse.Namespace) -> int:
-    from pdcp_studio.bus.simulator import ScriptError, UnknownProsthesisError, prosthesis
+    from pdcp_studio.bus.sim.rigs import ScriptError, UnknownProsthesisError, prosthesis
     from pdcp_studio.cli.main import BadInput
     from pdcp_studio.cli.scan import (
         format_system,
@@ -92,10 +92,10 @@ def run_replay(args: argparse.Namespace) -> int:
 
 
 def run_devices(args: argparse.Namespace) -> int:
-    from pdcp_studio.bus.device_host import DeviceHost
-    from pdcp_studio.bus.device_sim import SimulatedDevice
-    from pdcp_studio.bus.simulator import UnknownProsthesisError, load_prosthesis
-    from pdcp_studio.bus.urls import check_bus_url, open_spec
+    from pdcp_studio.bus.session.urls import check_bus_url, open_spec
+    from pdcp_studio.bus.sim.device import SimulatedDevice
+    from pdcp_studio.bus.sim.device_host import DeviceHost
+    from pdcp_studio.bus.sim.rigs import UnknownProsthesisError, load_prosthesis
     from pdcp_studio.cli.main import BadInput
 
     spec = check_bus_url(args.bus)  # BusUrlError: exit 2, as from every command

@@ -11,7 +11,8 @@ system that mixes thesis test devices and prosthetic devices has every channel n
 A tree may say who assigns its odd components (``vendor``): odd components are reserved
 for vendors (reference §1), so a tree's odd nodes are "vendor-reserved" only when it does
 not (the thesis's own test hierarchy uses ``0x1``, assigned by its author). Pure: file
-I/O is in :mod:`pdcp_studio.app.profile_tree_editor` and :mod:`pdcp_studio.app.document`.
+I/O is in :mod:`pdcp_studio.app.dialogs.profile_tree_editor` and
+:mod:`pdcp_studio.app.documents.document`.
 """
 
 from __future__ import annotations

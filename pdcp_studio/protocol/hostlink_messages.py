@@ -7,7 +7,7 @@ events (0x40…0x5F) on its own. Multi-byte numbers are little-endian, as on the
 
 The record layouts here are what the arbitrator holds in its tables: devices with node IDs, a
 device's channel table, links (their conversions to model objects are in
-``bus/hostlink_records.py``); values longer than one frame move in chunks with offsets
+``bus/hostlink/records.py``); values longer than one frame move in chunks with offsets
 (canopen's segmented SDO), and error codes say exactly why (its abort codes). Pure.
 """
 

@@ -36,7 +36,7 @@ def fitting_environment(tmp_path, monkeypatch):
 def make_window(qtbot):
     """``make_window(path=None, size=None)``: a quiet, shown MainWindow (``path`` opened);
     each is marked saved (no close prompt) and closed at teardown."""
-    from pdcp_studio.app.main_window import MainWindow
+    from pdcp_studio.app.window.main_window import MainWindow
 
     made = []
 

@@ -3,8 +3,8 @@ inspector's wording tests)."""
 
 from __future__ import annotations
 
-from pdcp_studio.app.document import Document
-from pdcp_studio.app.inspector import Inspector
+from pdcp_studio.app.docks.inspector import Inspector
+from pdcp_studio.app.documents.document import Document
 from pdcp_studio.model.refs import DeviceKey
 from pdcp_studio.paths import systems_dir
 from pdcp_studio.storage import system_file

@@ -15,7 +15,7 @@ from pathlib import Path
 
 import pytest
 
-from pdcp_studio.app import commands, pending
+from pdcp_studio.app.documents import commands, pending
 from pdcp_studio.model import parameters as P
 from pdcp_studio.model.refs import ChannelRef, DeviceKey
 from pdcp_studio.model.system import Link
@@ -51,7 +51,7 @@ class Rig:
 
 @pytest.fixture
 def rig(tmp_path, monkeypatch):
-    import pdcp_studio.bus.urls as urls
+    import pdcp_studio.bus.session.urls as urls
 
     channel = f"app-hostlink-{os.getpid()}-{id(tmp_path)}"
     monkeypatch.setattr(urls, "unique_virtual_channel", lambda prefix="": channel)
@@ -67,7 +67,7 @@ def _connect(window, monkeypatch, url: str) -> None:
     """Bus ▸ Connect: the dialog's Serial host link page, the port typed in, OK."""
     from PySide6.QtWidgets import QDialog
 
-    from pdcp_studio.app.connect_dialog import ConnectDialog
+    from pdcp_studio.app.dialogs.connect_dialog import ConnectDialog
 
     port = url.removeprefix("serial:")
     chosen = []

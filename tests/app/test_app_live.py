@@ -12,7 +12,7 @@ from pathlib import Path
 
 import pytest
 
-from pdcp_studio.app import live as live_mod
+from pdcp_studio.app.live import live_bus as live_mod
 from pdcp_studio.bus import events as ev
 from pdcp_studio.model.refs import ChannelRef, DeviceKey
 from pdcp_studio.model.system import Link

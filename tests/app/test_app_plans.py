@@ -6,7 +6,7 @@ from pathlib import Path
 
 import pytest
 
-from pdcp_studio.app.document import Document
+from pdcp_studio.app.documents.document import Document
 from pdcp_studio.app.graph.scene import BusScene
 from pdcp_studio.model.refs import ChannelRef, DeviceKey
 from pdcp_studio.model.system import Link
@@ -99,7 +99,7 @@ def test_plan_on_opened_configuration_uses_it(window, tmp_path):
     doc = Document(system)
     scene = BusScene(doc)
     assert len(scene.link_items) == 5
-    from pdcp_studio.app import files
+    from pdcp_studio.app.documents import files
 
     files.save_configuration(system, tmp_path / "c.pdcfg")
     assert window.open_path(tmp_path / "c.pdcfg")

@@ -12,7 +12,7 @@ from pathlib import Path
 
 import pytest
 
-from pdcp_studio.app import commands, pending
+from pdcp_studio.app.documents import commands, pending
 from pdcp_studio.model.refs import ChannelRef, DeviceKey
 from pdcp_studio.model.system import Link
 from pdcp_studio.storage.history import History
@@ -248,7 +248,7 @@ def test_history_restore_is_a_previewed_transaction(live, qtbot, tmp_path):
 
 
 def test_previews_use_the_stored_configuration_read_after_a_write(live, qtbot):
-    from pdcp_studio.app import write_config_dialog as wcd
+    from pdcp_studio.app.dialogs import write_config_dialog as wcd
 
     live.ask_write_configuration()
     dialog = next(d for d in live.findChildren(wcd.WriteConfigDialog))
@@ -290,7 +290,7 @@ def test_leaving_with_unwritten_changes_asks(live, qtbot):
 def test_the_confirmation_never_writes_on_enter(qtbot):
     from PySide6.QtCore import Qt
 
-    from pdcp_studio.app.transaction_flow import ConfirmDialog
+    from pdcp_studio.app.window.transaction_flow import ConfirmDialog
 
     dialog = ConfirmDialog("Write to prosthesis", ["write to prosthesis on sim:x:",
                                                    "  - link a → b"])

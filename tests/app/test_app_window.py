@@ -10,7 +10,7 @@ from PySide6.QtCore import QPointF, Qt
 from PySide6.QtTest import QTest
 from PySide6.QtWidgets import QMessageBox
 
-from pdcp_studio.app.main_window import MainWindow
+from pdcp_studio.app.window.main_window import MainWindow
 from pdcp_studio.model.refs import ChannelRef, DeviceKey
 from pdcp_studio.model.system import Link
 from pdcp_studio.storage import system_file
@@ -43,7 +43,7 @@ def test_open_shows_every_device_and_channel(window):
 
 
 def test_open_configuration_file(window):
-    # A .pdcfg opens as its own document (app/config_view.py, issue 12); this window stays
+    # A .pdcfg opens as its own document (app/documents/config_view.py, issue 12); this window stays
     # on its prosthesis and plans against the opened configurations.
     links = set(window.doc.system.links)
     assert window.open_path(ROOT / "resources" / "configs" / "fig410.pdcfg")
@@ -335,7 +335,7 @@ def test_export_to_a_folder_that_does_not_exist_is_an_error(window, tmp_path):
 
 
 def test_autosave_and_restore(qtbot, tmp_path, monkeypatch):
-    from pdcp_studio.app.recovery import Recovery
+    from pdcp_studio.app.documents.recovery import Recovery
 
     rec = Recovery(tmp_path / "recovery")
     w = MainWindow(recovery=rec)

@@ -12,8 +12,8 @@ import time
 
 import pytest
 
-from pdcp_studio.bus.session import open_sim_session
-from pdcp_studio.bus.urls import open_can_bus, unique_virtual_channel
+from pdcp_studio.bus.session.live import open_sim_session
+from pdcp_studio.bus.session.urls import open_can_bus, unique_virtual_channel
 
 
 class Tap:
@@ -114,9 +114,9 @@ def test_an_arbitrator_appearing_later_is_said_and_the_same_offer_made(make_wind
     writing at once (bus layer) and the window says so with the same offer."""
     import can
 
-    from pdcp_studio.bus.device_host import DeviceHost
-    from pdcp_studio.bus.device_sim import SimulatedDevice
-    from pdcp_studio.bus.simulator import load_prosthesis
+    from pdcp_studio.bus.sim.device import SimulatedDevice
+    from pdcp_studio.bus.sim.device_host import DeviceHost
+    from pdcp_studio.bus.sim.rigs import load_prosthesis
 
     channel = unique_virtual_channel("pdcp-app-later")
     system = load_prosthesis("thesis-test2")

@@ -9,9 +9,9 @@ import pytest
 from PySide6.QtCore import QRectF, Qt
 from PySide6.QtGui import QImage, QPainter
 
-from pdcp_studio.app.document import Document
+from pdcp_studio.app.documents.document import Document
 from pdcp_studio.app.graph.scene import BusScene
-from pdcp_studio.app.kind_icons import icon_for
+from pdcp_studio.app.widgets.kind_icons import icon_for
 from pdcp_studio.model.refs import DeviceKey
 from pdcp_studio.storage import system_file
 
@@ -98,7 +98,7 @@ def test_the_tree_cuts_a_twin_in_the_middle_so_its_serial_stays(qtbot):
 
     from PySide6.QtWidgets import QStyleOptionViewItem
 
-    from pdcp_studio.app.tree_panel import DeviceTree
+    from pdcp_studio.app.docks.tree_panel import DeviceTree
 
     doc, _the_scene = _scene(qtbot)
     hand = doc.system.devices[HAND]

@@ -28,7 +28,7 @@ def test_a_narrow_combo_box_opens_a_popup_wide_enough_for_its_entries(make_windo
 
 
 def test_the_connect_dialogs_and_simulator_combos_get_it_too(make_window, qtbot):
-    from pdcp_studio.app.connect_dialog import ConnectDialog
+    from pdcp_studio.app.dialogs.connect_dialog import ConnectDialog
 
     make_window()
     dialog = ConnectDialog()

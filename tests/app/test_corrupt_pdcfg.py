@@ -26,8 +26,9 @@ def test_file_open_names_the_corrupt_file(make_window, corrupt, qtbot):
 
 
 def test_every_reader_of_a_pdcfg_in_the_app_names_it(corrupt):
-    from pdcp_studio.app import compare_dialog, files
-    from pdcp_studio.app.config_document import ConfigDocument
+    from pdcp_studio.app.dialogs import compare_dialog
+    from pdcp_studio.app.documents import files
+    from pdcp_studio.app.documents.config_document import ConfigDocument
 
     for read in (ConfigDocument.open, files.open_path, compare_dialog.load_file):
         with pytest.raises(ConfigFormatError) as caught:

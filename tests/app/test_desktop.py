@@ -11,8 +11,9 @@ from PySide6.QtCore import QMimeData, QPoint, QPointF, QSettings, Qt, QUrl
 from PySide6.QtGui import QAction, QDragEnterEvent, QDropEvent
 from PySide6.QtWidgets import QApplication, QToolBar
 
-from pdcp_studio.app import help_viewer, window_desktop
-from pdcp_studio.app.recent_files import RecentFiles
+from pdcp_studio.app.dialogs import help_viewer
+from pdcp_studio.app.window import desktop as window_desktop
+from pdcp_studio.app.window.recent_files import RecentFiles
 
 ROOT = Path(__file__).resolve().parents[2]
 TRANSRADIAL = ROOT / "resources" / "systems" / "transradial.json"

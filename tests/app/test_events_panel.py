@@ -11,7 +11,7 @@ import re
 
 import pytest
 
-from pdcp_studio.app.events_panel import EventsPanel, describe_event
+from pdcp_studio.app.docks.events_panel import EventsPanel, describe_event
 from pdcp_studio.bus import events as ev
 from pdcp_studio.model.refs import ChannelRef, DeviceKey
 
@@ -96,7 +96,7 @@ def test_describe_event_words_for_parts_of_other_products():
 
 
 def test_the_list_keeps_a_bounded_number_of_rows(qtbot, monkeypatch):
-    from pdcp_studio.app import events_panel
+    from pdcp_studio.app.docks import events_panel
     from pdcp_studio.model.system import System
 
     monkeypatch.setattr(events_panel, "MAX_ROWS", 5)

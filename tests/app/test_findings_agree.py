@@ -8,7 +8,7 @@ import pytest
 
 from pdcp_studio import paths
 from pdcp_studio.app.graph.analysis import compute_states
-from pdcp_studio.bus import simulator
+from pdcp_studio.bus.sim import rigs as simulator
 from pdcp_studio.engine import plan_autoconfigure
 from pdcp_studio.engine.checks import check_system
 from pdcp_studio.model.refs import ChannelRef
@@ -62,7 +62,7 @@ def test_every_badge_ring_and_marked_link_explains_itself(qtbot):
     """On the graph: appendix D shows no badge; an unconnected terminal input, a required
     input a linked channel needs, and a link to an unplugged device each carry a tooltip
     with the finding and what to do, in plain words."""
-    from pdcp_studio.app.document import Document
+    from pdcp_studio.app.documents.document import Document
     from pdcp_studio.app.graph.scene import BusScene
 
     appendix = BusScene(Document(system_file.load_path(paths.systems_dir() / "appendix-d.json")))
@@ -105,7 +105,7 @@ def test_checks_list_speaks_plainly_and_keeps_the_detail(qtbot):
     import re
     from html import escape
 
-    from pdcp_studio.app.finding_text import _TEXTS, finding_detail, plain_finding
+    from pdcp_studio.app.words.finding_text import _TEXTS, finding_detail, plain_finding
     from pdcp_studio.engine import checks
 
     source = Path(checks.__file__)

@@ -76,6 +76,6 @@ def test_go_to_device_selects_and_centres_it(make_window, qtbot):
     assert abs(centre.x() - card.center().x()) < 5 or hbar.value() == hbar.maximum()
     assert not finder.isVisible()
     # By numbers too.
-    from pdcp_studio.app.device_finder import device_matches
+    from pdcp_studio.app.docks.device_finder import device_matches
 
     assert [lbl for _k, lbl in device_matches(window.doc.system, "2641/769/1063")] == ["Hand 7"]

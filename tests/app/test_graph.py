@@ -8,7 +8,7 @@ from pathlib import Path
 from PySide6.QtCore import QRectF
 from PySide6.QtGui import QImage, QPainter
 
-from pdcp_studio.app.document import Document
+from pdcp_studio.app.documents.document import Document
 from pdcp_studio.app.graph import layout
 from pdcp_studio.app.graph.analysis import compute_states, link_refusal
 from pdcp_studio.app.graph.scene import BusScene
@@ -160,7 +160,7 @@ def test_unnamed_devices_take_catalogue_names_and_hex_moves_to_tooltips(qtbot):
     """A device without a name of its own is shown by its product from the device
     catalogue on its card and in the device tree; the card rows show profile names, and
     the hex profile code is in the row's tooltip."""
-    from pdcp_studio.app.tree_panel import DeviceTree
+    from pdcp_studio.app.docks.tree_panel import DeviceTree
 
     system = linked_transradial()
     hand_key = next(k for k in system.devices if (k.vid, k.pid) == (2641, 769))

@@ -294,9 +294,9 @@ def test_a_zoom_on_a_large_bus_redraws_what_is_seen_first(make_window, qtbot):
 def test_a_live_snapshot_remakes_only_the_device_rows_that_changed(qtbot):
     """The device tree is told every device changed after each scan: only rows whose
     text would change are made again (93 rows remade per scan stalled the GUI)."""
-    from pdcp_studio.app import files
-    from pdcp_studio.app.document import Document
-    from pdcp_studio.app.tree_panel import DeviceTree
+    from pdcp_studio.app.docks.tree_panel import DeviceTree
+    from pdcp_studio.app.documents import files
+    from pdcp_studio.app.documents.document import Document
 
     doc = Document(files.open_path(FULL).system)
     tree = DeviceTree(doc)

@@ -7,7 +7,7 @@ from __future__ import annotations
 
 import pytest
 
-from pdcp_studio.app.document import Document
+from pdcp_studio.app.documents.document import Document
 from pdcp_studio.app.graph import scene as scene_module
 from pdcp_studio.app.graph.scene import BusScene
 from tests.app.test_graph import big_system

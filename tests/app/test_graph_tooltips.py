@@ -9,7 +9,7 @@ import re
 from PySide6.QtWidgets import QApplication
 
 from pdcp_studio.app import i18n
-from pdcp_studio.app.document import Document
+from pdcp_studio.app.documents.document import Document
 from pdcp_studio.app.graph.scene import BusScene
 from pdcp_studio.engine import plan_autoconfigure
 from pdcp_studio.model.refs import DeviceKey

@@ -13,7 +13,7 @@ import pytest
 from PySide6.QtCore import QUrl
 from PySide6.QtGui import QImage, QTextDocument
 
-from pdcp_studio.app import help_viewer
+from pdcp_studio.app.dialogs import help_viewer
 
 pytestmark = pytest.mark.gui
 

@@ -9,8 +9,8 @@ import threading
 import pytest
 
 from pdcp_studio import engine
-from pdcp_studio.app.document import Document
-from pdcp_studio.app.inspector import Inspector
+from pdcp_studio.app.docks.inspector import Inspector
+from pdcp_studio.app.documents.document import Document
 from tests.app.test_graph import big_system
 
 pytestmark = pytest.mark.gui
@@ -85,8 +85,8 @@ def test_checks_that_arrive_after_a_selection_are_dropped(qtbot, monkeypatch):
 
 
 def test_the_words_are_those_of_each_finding_with_the_catalogue_asked_once(monkeypatch):
-    from pdcp_studio.app import finding_text
-    from pdcp_studio.app.inspector_checks import checked_findings
+    from pdcp_studio.app.docks.inspector_checks import checked_findings
+    from pdcp_studio.app.words import finding_text
     from pdcp_studio.model import catalog
 
     system = big_system(40)
@@ -97,7 +97,7 @@ def test_the_words_are_those_of_each_finding_with_the_catalogue_asked_once(monke
     asked: list[int] = []
     real = catalog.default_catalog
     monkeypatch.setattr(catalog, "default_catalog", lambda: asked.append(1) or real())
-    from pdcp_studio.app import part_names
+    from pdcp_studio.app.words import part_names
 
     monkeypatch.setattr(part_names, "default_catalog", catalog.default_catalog)
     findings, texts = checked_findings(system, False)

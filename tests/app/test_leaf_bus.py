@@ -12,9 +12,9 @@ import pytest
 from PySide6.QtCore import Qt, QThread
 from PySide6.QtWidgets import QApplication
 
-from pdcp_studio.app.session_bridge import SessionBridge
-from pdcp_studio.app.sim_panel import SimPanel
-from pdcp_studio.bus.session import open_session
+from pdcp_studio.app.docks.sim_panel import SimPanel
+from pdcp_studio.app.live.session_bridge import SessionBridge
+from pdcp_studio.bus.session.live import open_session
 from pdcp_studio.model.refs import DeviceKey
 
 pytestmark = pytest.mark.gui

@@ -4,7 +4,7 @@ from __future__ import annotations
 
 import pytest
 
-from pdcp_studio.app.compare_dialog import (
+from pdcp_studio.app.dialogs.compare_dialog import (
     CompareDialog,
     LinkSource,
     compare,

@@ -6,9 +6,9 @@ from __future__ import annotations
 import pytest
 from PySide6.QtCore import QSettings, Qt
 
-from pdcp_studio.app import connect_dialog as cd
-from pdcp_studio.app.connect_dialog import ConnectDialog
-from pdcp_studio.bus.urls import parse_bus_url
+from pdcp_studio.app.dialogs import connect_dialog as cd
+from pdcp_studio.app.dialogs.connect_dialog import ConnectDialog
+from pdcp_studio.bus.session.urls import parse_bus_url
 
 pytestmark = pytest.mark.gui
 
@@ -25,7 +25,7 @@ def _dialog(qtbot, ini: str, **kwargs) -> ConnectDialog:
 
 
 def test_defaults_to_the_built_in_simulated_prosthesis(qtbot, ini):
-    from pdcp_studio.bus.simulator import list_prostheses
+    from pdcp_studio.bus.sim.rigs import list_prostheses
 
     dialog = _dialog(qtbot, ini)
     sim = dialog.pages["sim"]

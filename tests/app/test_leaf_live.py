@@ -6,12 +6,12 @@ from __future__ import annotations
 import pytest
 from PySide6.QtGui import QColor, QImage
 
-from pdcp_studio.app.live_plot import LivePlot, as_number
-from pdcp_studio.app.monitor_dock import CHANNEL_DATA, MonitorDock, make_row
-from pdcp_studio.app.session_bridge import SessionBridge
+from pdcp_studio.app.live.plot import LivePlot, as_number
+from pdcp_studio.app.live.session_bridge import SessionBridge
+from pdcp_studio.app.trace.dock import CHANNEL_DATA, MonitorDock, make_row
 from pdcp_studio.bus.events import FrameSeen
-from pdcp_studio.bus.monitor import read_capture
-from pdcp_studio.bus.session import open_session
+from pdcp_studio.bus.session.live import open_session
+from pdcp_studio.bus.trace.monitor import read_capture
 from pdcp_studio.model.refs import ChannelRef
 
 pytestmark = pytest.mark.gui
@@ -179,7 +179,7 @@ def test_monitor_save_failure_is_reported(qtbot, tmp_path):
 
 
 def test_decoded_column_shows_the_fields_or_why_a_frame_does_not_decode():
-    from pdcp_studio.app.monitor_dock import _decoded
+    from pdcp_studio.app.trace.dock import _decoded
 
     line = "   0.100000  P0  BA→#7 Get Device Parameter  param 1 VID and PID  chan 0"
     assert _decoded(line) == "param 1 VID and PID  chan 0"

@@ -9,7 +9,7 @@ from pathlib import Path
 
 import can
 
-from pdcp_studio.app.monitor_dock import CHANNEL_DATA, MonitorDock
+from pdcp_studio.app.trace.dock import CHANNEL_DATA, MonitorDock
 from pdcp_studio.bus.events import FrameSeen
 from pdcp_studio.protocol import messages as M
 
@@ -75,7 +75,7 @@ def test_capture_is_shown_apart_from_live_frames_and_its_node_map_used(qtbot, tm
     path = tmp_path / "mid.asc"
     write_capture(path, 500)
     # Saved mid-session: only channel data, and the node map beside it names the link.
-    from pdcp_studio.bus.monitor import FrameDecoder, read_capture, write_node_map
+    from pdcp_studio.bus.trace.monitor import FrameDecoder, read_capture, write_node_map
 
     decoder = FrameDecoder()
     frames = list(read_capture(path))

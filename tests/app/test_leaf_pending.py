@@ -8,7 +8,7 @@ from pathlib import Path
 
 from PySide6.QtCore import QSettings
 
-from pdcp_studio.app import fitting, pending
+from pdcp_studio.app.documents import fitting, pending
 from pdcp_studio.model.refs import ChannelRef, DeviceKey
 from pdcp_studio.model.system import Link
 from pdcp_studio.storage import system_file
@@ -91,7 +91,7 @@ def test_the_patient_reference_belongs_to_the_prosthesis(tmp_path):
 
 
 def test_the_report_fills_in_the_session(qapp):
-    from pdcp_studio.app.document import load_profile_tree
+    from pdcp_studio.app.documents.document import load_profile_tree
     from pdcp_studio.app.report import FittingInfo, report_html
 
     system = _linked()

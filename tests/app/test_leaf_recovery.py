@@ -11,7 +11,7 @@ import pytest
 from PySide6.QtCore import QObject, Signal
 from PySide6.QtGui import QUndoStack
 
-from pdcp_studio.app.recovery import Autosaver, Recovery, RecoveryDialog
+from pdcp_studio.app.documents.recovery import Autosaver, Recovery, RecoveryDialog
 from pdcp_studio.storage import system_file
 
 pytestmark = pytest.mark.gui
@@ -127,7 +127,7 @@ def test_autosave_survives_a_crash_and_is_offered_on_next_start(tmp_path):
 import os, sys
 os.environ["QT_QPA_PLATFORM"] = "offscreen"
 from PySide6.QtWidgets import QApplication
-from pdcp_studio.app.recovery import Autosaver, Recovery
+from pdcp_studio.app.documents.recovery import Autosaver, Recovery
 app = QApplication([])
 saver = Autosaver(Recovery({str(tmp_path)!r}), lambda: "untitled", lambda: "unsaved work",
                   interval_ms=1)
@@ -158,7 +158,7 @@ def test_recovery_dialog_lists_entries_and_returns_the_ticked_ones(qtbot, tmp_pa
 def test_offer_recovery_restores_the_chosen_and_discards_the_rest(qtbot, tmp_path, systems_dir):
     from PySide6.QtCore import Qt
 
-    from pdcp_studio.app.recovery import offer_recovery, restore_system
+    from pdcp_studio.app.documents.recovery import offer_recovery, restore_system
 
     rec = Recovery(tmp_path)
     assert offer_recovery(rec, ask=lambda d: pytest.fail("nothing to offer")) == []

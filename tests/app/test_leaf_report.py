@@ -11,7 +11,7 @@ import pytest
 from PySide6.QtGui import QColor, QImage
 from PySide6.QtPdf import QPdfDocument
 
-from pdcp_studio.app.document import load_profile_tree
+from pdcp_studio.app.documents.document import load_profile_tree
 from pdcp_studio.app.report import configuration_checksum, write_report
 from pdcp_studio.engine import configuration_from_system
 from pdcp_studio.model.configuration import ConfigCollection
@@ -69,7 +69,7 @@ def test_report_prints_a_given_stored_configuration_checksum(qtbot, tmp_path, re
 
 
 def test_a_32_device_rig_still_fits_on_one_page(qtbot, tmp_path):
-    from pdcp_studio.bus.simulator import large_system
+    from pdcp_studio.bus.sim.rigs import large_system
 
     system = large_system()
     out = write_report(tmp_path / "large.pdf", system, load_profile_tree(user_dir=False))
@@ -92,7 +92,7 @@ def test_the_report_speaks_plainly_with_the_detail_in_its_own_section(systems_di
     report's body; the engineer's codes are in the Technical detail section at the end."""
     import re
 
-    from pdcp_studio.app.document import load_profile_trees, tree_for
+    from pdcp_studio.app.documents.document import load_profile_trees, tree_for
     from pdcp_studio.app.report import FittingInfo, action_words, report_html
     from pdcp_studio.engine import plan_autoconfigure
 

@@ -5,7 +5,7 @@ from __future__ import annotations
 
 import pytest
 
-from pdcp_studio.app import commands
+from pdcp_studio.app.documents import commands
 
 pytestmark = pytest.mark.gui
 
@@ -77,9 +77,9 @@ class Adapters:
         self.hosts: dict[str, object] = {}
 
     def plug(self, system, channel: str = "") -> str:
-        from pdcp_studio.bus.device_host import DeviceHost
-        from pdcp_studio.bus.device_sim import SimulatedDevice
-        from pdcp_studio.bus.urls import open_can_bus, unique_virtual_channel
+        from pdcp_studio.bus.session.urls import open_can_bus, unique_virtual_channel
+        from pdcp_studio.bus.sim.device import SimulatedDevice
+        from pdcp_studio.bus.sim.device_host import DeviceHost
 
         channel = channel or unique_virtual_channel("pdcp-layout")
         self.unplug(channel)
@@ -121,7 +121,7 @@ def _move_all(window, dx, dy):
 
 
 def _rig(name):
-    from pdcp_studio.bus.simulator import load_prosthesis
+    from pdcp_studio.bus.sim.rigs import load_prosthesis
 
     return load_prosthesis(name)
 
@@ -202,7 +202,7 @@ def test_a_layout_kept_per_bus_url_by_an_older_version_is_still_used(make_window
 
     from PySide6.QtCore import QSettings
 
-    from pdcp_studio.app import live_layout
+    from pdcp_studio.app.live.live_bus import layout as live_layout
     from pdcp_studio.model.refs import DeviceKey
 
     url = "sim:thesis-test4"
@@ -216,7 +216,7 @@ def test_a_layout_kept_per_bus_url_by_an_older_version_is_still_used(make_window
 
 
 def test_which_remembered_layout_is_this_prosthesis():
-    from pdcp_studio.app.live_layout import Layout, best_layout
+    from pdcp_studio.app.live.layout import Layout, best_layout
 
     a = Layout("a", {"1/1/1#x": (0, 0), "1/1/2#x": (1, 0), "1/2/3#y": (2, 0)}, saved=1)
     b = Layout("b", {"1/1/1#z": (0, 0)}, saved=2)

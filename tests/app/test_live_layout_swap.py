@@ -1,5 +1,5 @@
 """A part swapped while the prosthesis is live takes its predecessor's place at once (issue 11,
-item 6): the rule a connect follows (:mod:`pdcp_studio.app.live_layout`) applied to the parts
+item 6): the rule a connect follows (:mod:`pdcp_studio.app.live.layout`) applied to the parts
 that join a live view — the other cards stay, and the positions are remembered for the
 prosthesis."""
 
@@ -7,7 +7,7 @@ from __future__ import annotations
 
 import pytest
 
-from pdcp_studio.app.live_layout import (
+from pdcp_studio.app.live.layout import (
     Joined,
     _overlap,
     place_joined,
@@ -101,8 +101,8 @@ def test_a_part_not_seen_for_a_session_keeps_its_remembered_place():
     """Saved without the hand (unplugged before the connect), the layout still knows where
     the hand was: a spare plugged in later is given that place; once the spare stands
     there, the layout gives it to whichever hand comes."""
-    from pdcp_studio.app import live_layout
-    from pdcp_studio.bus.simulator import load_prosthesis
+    from pdcp_studio.app.live.live_bus import layout as live_layout
+    from pdcp_studio.bus.sim.rigs import load_prosthesis
 
     arm = load_prosthesis("transradial")
     spare = arm.remove_device(SPARE)
@@ -152,7 +152,7 @@ def _no_overlaps(window):
 @pytest.mark.gui
 def test_the_spare_hand_swapped_in_from_the_simulator_panel_takes_the_hands_place(
         make_window, qtbot):
-    from pdcp_studio.app import live_layout
+    from pdcp_studio.app.live.live_bus import layout as live_layout
 
     window = _live(make_window, qtbot, "sim:transradial")
     doc = window.doc
@@ -218,11 +218,11 @@ def test_a_hot_swap_on_thesis_test4_puts_the_new_joystick_where_the_old_one_was(
 def test_a_part_plugged_in_live_goes_where_its_remembered_predecessor_was(make_window, qtbot):
     """The hand was last laid out in another session and is not on the bus at connect: the
     spare plugged in live takes the remembered hand's place, as a connect would give it."""
-    from pdcp_studio.app import commands
-    from pdcp_studio.bus.device_host import DeviceHost
-    from pdcp_studio.bus.device_sim import SimulatedDevice
-    from pdcp_studio.bus.simulator import load_prosthesis
-    from pdcp_studio.bus.urls import open_can_bus, unique_virtual_channel
+    from pdcp_studio.app.documents import commands
+    from pdcp_studio.bus.session.urls import open_can_bus, unique_virtual_channel
+    from pdcp_studio.bus.sim.device import SimulatedDevice
+    from pdcp_studio.bus.sim.device_host import DeviceHost
+    from pdcp_studio.bus.sim.rigs import load_prosthesis
 
     arm = load_prosthesis("transradial")
     hand = arm.devices[HAND]

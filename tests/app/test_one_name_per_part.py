@@ -55,7 +55,7 @@ def _ready(wizard, qtbot, page):
 
 
 def test_every_panel_and_wizard_page_names_each_part_alike(make_window, qtbot):
-    from pdcp_studio.app.inspector_checks import checked_findings
+    from pdcp_studio.app.docks.inspector_checks import checked_findings
     from pdcp_studio.app.wizards import logic
 
     window = make_window()

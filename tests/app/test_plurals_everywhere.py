@@ -12,7 +12,7 @@ import pytest
 from PySide6.QtWidgets import QApplication
 
 from pdcp_studio.app import i18n
-from pdcp_studio.app.plural import count
+from pdcp_studio.app.words.plural import count
 
 ROOT = Path(__file__).resolve().parents[2]
 APP = ROOT / "pdcp_studio" / "app"
@@ -83,7 +83,7 @@ def test_every_count_in_the_app_has_its_german_forms():
     missing = [c for c in calls if (c[1], c[2]) not in known]
     assert not missing, missing
     modules = {m for m, _c, _t in calls}
-    assert {"window_bus.py", "events_panel.py", "compare_dialog.py", "report.py",
+    assert {"bus.py", "events_panel.py", "compare_dialog.py", "report.py",
             "write_config_dialog.py", "config_view.py"} <= modules
 
 
@@ -126,7 +126,7 @@ def _events(panel, n):
 
 
 def test_the_events_panel_counts_its_events(qtbot):
-    from pdcp_studio.app.events_panel import EventsPanel
+    from pdcp_studio.app.docks.events_panel import EventsPanel
     from pdcp_studio.model.system import System
 
     panel = EventsPanel(lambda: System())

@@ -8,8 +8,8 @@ import pytest
 from PySide6.QtWidgets import QApplication
 
 from pdcp_studio.app import i18n
-from pdcp_studio.app.plural import count, english
 from pdcp_studio.app.wizards import make_wizard
+from pdcp_studio.app.words.plural import count, english
 
 from .trace_imports import wait_for_trace_imports
 

@@ -100,7 +100,7 @@ def test_a_mixed_system_has_every_channel_named_everywhere(make_window, tmp_path
 
 
 def test_the_precedence_between_trees_is_the_devices_then_the_system():
-    from pdcp_studio.app.document import load_profile_trees
+    from pdcp_studio.app.documents.document import load_profile_trees
     from pdcp_studio.model.profile_tree import ProfileNames
 
     trees = load_profile_trees(user_dir=False)

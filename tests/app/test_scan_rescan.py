@@ -6,7 +6,7 @@ from __future__ import annotations
 
 import pytest
 
-from pdcp_studio.app.document import Document
+from pdcp_studio.app.documents.document import Document
 from pdcp_studio.model.refs import Direction
 from pdcp_studio.model.system import Channel, Device, Link, System
 

@@ -7,9 +7,9 @@ import re
 
 import pytest
 
-from pdcp_studio.app.session_bridge import SessionBridge
-from pdcp_studio.app.sim_panel import SimPanel
-from pdcp_studio.bus.session import open_session
+from pdcp_studio.app.docks.sim_panel import SimPanel
+from pdcp_studio.app.live.session_bridge import SessionBridge
+from pdcp_studio.bus.session.live import open_session
 from pdcp_studio.model.refs import DeviceKey
 
 pytestmark = pytest.mark.gui

@@ -9,7 +9,7 @@ from pathlib import Path
 import pytest
 from PySide6.QtWidgets import QApplication, QDockWidget
 
-from pdcp_studio.app import start_view
+from pdcp_studio.app.window import start_view
 
 pytestmark = pytest.mark.gui
 
@@ -66,7 +66,8 @@ def test_a_recent_file_opens_and_the_graph_comes_back_with_its_docks(start, qtbo
 
 
 def test_connect_open_and_the_simulated_prosthesis(start, qtbot, monkeypatch):
-    from pdcp_studio.app import connect_dialog, window_files
+    from pdcp_studio.app.dialogs import connect_dialog
+    from pdcp_studio.app.window import files as window_files
 
     asked = []
     monkeypatch.setattr(connect_dialog.ConnectDialog, "get_url",
@@ -101,7 +102,7 @@ def test_without_recent_files_the_page_says_where_they_will_appear(make_window):
 def test_closing_on_the_start_page_saves_the_layout_with_the_docks(make_window):
     from PySide6.QtCore import QSettings
 
-    from pdcp_studio.app.window_desktop import STATE_KEY, remember_layout
+    from pdcp_studio.app.window.desktop import STATE_KEY, remember_layout
 
     window = make_window()
     remember_layout(window)
@@ -174,7 +175,7 @@ def test_folders_under_home_are_shown_from_home(tmp_path, monkeypatch):
 
 
 def test_f1_on_the_start_page_opens_the_manual_at_starting(start):
-    from pdcp_studio.app import help_viewer
+    from pdcp_studio.app.dialogs import help_viewer
 
     assert help_viewer.section_for(start.start_view.task_buttons["fitting"]) == "start"
     for lang in ("en", "de"):

@@ -25,15 +25,15 @@ import pytest
 pytestmark = pytest.mark.gui
 
 ROOT = Path(__file__).resolve().parents[2]
-NOT_AT_START = ("numpy", "pdcp_studio.app.live_plot", "pdcp_studio.app.monitor_dock",
-                "pdcp_studio.app.trace_store", "pdcp_studio.cli.doctor",
+NOT_AT_START = ("numpy", "pdcp_studio.app.live.plot", "pdcp_studio.app.trace.dock",
+                "pdcp_studio.app.trace.store", "pdcp_studio.cli.doctor",
                 "pdcp_studio.cli.monitor", "pdcp_studio.cli.config_cmd",
-                "pdcp_studio.app.help_viewer")
-NEEDED = ("networkx", "can", "pdcp_studio.bus.arbitrator")
+                "pdcp_studio.app.dialogs.help_viewer")
+NEEDED = ("networkx", "can", "pdcp_studio.bus.arbitrator.core")
 
 SCRIPT = """
 import json, sys
-from pdcp_studio.app import main_window
+from pdcp_studio.app.window import main_window
 
 seen = {}
 mark_ready = main_window.MainWindow._mark_ready

@@ -20,7 +20,8 @@ ROOT = Path(__file__).resolve().parents[2]
 
 SCRIPT = """
 import gc, json, sys
-from pdcp_studio.app import gui_gc, main_window
+from pdcp_studio.app import gui_gc
+from pdcp_studio.app.window import main_window
 from pdcp_studio.app.application import START_UP_SWITCH_INTERVAL_S, SWITCH_INTERVAL_S
 
 seen = {}

@@ -8,8 +8,8 @@ import os
 
 import pytest
 
-from pdcp_studio.app.monitor_dock import MonitorDock
-from pdcp_studio.app.trace_disk import RECENT_TEXTS, FileFrameStore, FileTexts
+from pdcp_studio.app.trace.disk import RECENT_TEXTS, FileFrameStore, FileTexts
+from pdcp_studio.app.trace.dock import MonitorDock
 from pdcp_studio.bus.events import FrameSeen
 
 from .test_trace_disk import _write_log

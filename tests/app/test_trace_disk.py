@@ -10,10 +10,10 @@ import threading
 import numpy as np
 import pytest
 
-from pdcp_studio.app.trace_capture import load_capture, save_store
-from pdcp_studio.app.trace_disk import CACHED_TEXTS, RECENT_TEXTS, FileFrameStore, FileTexts
-from pdcp_studio.app.trace_store import IdStats, TraceFilter
-from pdcp_studio.bus.monitor import read_capture
+from pdcp_studio.app.trace.capture import load_capture, save_store
+from pdcp_studio.app.trace.disk import CACHED_TEXTS, RECENT_TEXTS, FileFrameStore, FileTexts
+from pdcp_studio.app.trace.store import IdStats, TraceFilter
+from pdcp_studio.bus.trace.monitor import read_capture
 from pdcp_studio.protocol import messages as M
 
 from .trace_frames import NEEDLE_DATA, NEEDLE_ID, synthetic_store

@@ -10,8 +10,8 @@ import time
 import pytest
 from PySide6.QtCore import QElapsedTimer, QTimer
 
-from pdcp_studio.app.monitor_dock import MonitorDock
-from pdcp_studio.app.trace_model import TIME_CLOCK, TIME_MARKER, TIME_PREVIOUS, TIME_START
+from pdcp_studio.app.trace.dock import MonitorDock
+from pdcp_studio.app.trace.model import TIME_CLOCK, TIME_MARKER, TIME_PREVIOUS, TIME_START
 from pdcp_studio.bus.events import FrameSeen
 from pdcp_studio.model.refs import Direction
 from pdcp_studio.model.system import Channel, Device, Link, System

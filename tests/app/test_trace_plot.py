@@ -7,7 +7,7 @@ import pytest
 from PySide6.QtCore import QPoint, Qt
 from PySide6.QtGui import QColor
 
-from pdcp_studio.app.live_plot import (
+from pdcp_studio.app.live.plot import (
     LivePlot,
     channel_axis,
     factor_text,

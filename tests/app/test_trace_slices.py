@@ -11,11 +11,11 @@ import tracemalloc
 import numpy as np
 import pytest
 
-from pdcp_studio.app import monitor_dock
-from pdcp_studio.app.live_plot import _polygon
-from pdcp_studio.app.monitor_dock import INGEST_SLICE, MonitorDock
-from pdcp_studio.app.trace_disk import RECENT_TEXTS, FileTexts
-from pdcp_studio.app.trace_store import ChunkBuilder, IdStats, StatRows, Tables
+from pdcp_studio.app.live.plot import _polygon
+from pdcp_studio.app.trace import dock as monitor_dock
+from pdcp_studio.app.trace.disk import RECENT_TEXTS, FileTexts
+from pdcp_studio.app.trace.dock import INGEST_SLICE, MonitorDock
+from pdcp_studio.app.trace.store import ChunkBuilder, IdStats, StatRows, Tables
 from pdcp_studio.bus.events import FrameSeen
 
 
@@ -147,7 +147,7 @@ def test_remembered_texts_stay_bounded_and_texts_in_use_keep_their_number(tmp_pa
 
 @pytest.mark.gui
 def test_a_repaint_reads_the_frames_on_screen_at_once(qtbot, tmp_path, monkeypatch):
-    from pdcp_studio.app.trace_disk import FileFrameStore
+    from pdcp_studio.app.trace.disk import FileFrameStore
 
     from .trace_frames import synthetic_store
 

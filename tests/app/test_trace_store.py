@@ -9,8 +9,8 @@ import can
 import numpy as np
 import pytest
 
-from pdcp_studio.app.trace_capture import load_capture, save_store
-from pdcp_studio.app.trace_store import (
+from pdcp_studio.app.trace.capture import load_capture, save_store
+from pdcp_studio.app.trace.store import (
     CHANNEL_DATA,
     ChunkBuilder,
     FrameStore,
@@ -18,7 +18,7 @@ from pdcp_studio.app.trace_store import (
     TraceFilter,
     line_head,
 )
-from pdcp_studio.bus.monitor import read_capture
+from pdcp_studio.bus.trace.monitor import read_capture
 from pdcp_studio.protocol import messages as M
 
 from .trace_frames import NEEDLE_DATA, NEEDLE_ID, synthetic_store

@@ -98,8 +98,8 @@ def _data_strings(window) -> set[str]:
     the simulator's prostheses — not the app's own words."""
     import can.interfaces
 
-    from pdcp_studio.app.monitor_dock import CHANNEL_DATA
-    from pdcp_studio.bus.simulator import list_prostheses, prosthesis
+    from pdcp_studio.app.trace.dock import CHANNEL_DATA
+    from pdcp_studio.bus.sim.rigs import list_prostheses, prosthesis
     from pdcp_studio.protocol.codes import FunctionCode
 
     out = {c.title for c in FunctionCode} | {CHANNEL_DATA} | set(can.interfaces.BACKENDS)
@@ -128,13 +128,13 @@ def _data_strings(window) -> set[str]:
 
 def _build(make_window, qtbot) -> dict[str, set[str]]:
     """The window on a live simulated prosthesis and each dialog: their texts by part."""
-    from pdcp_studio.app.compare_dialog import CompareDialog
-    from pdcp_studio.app.connect_dialog import ConnectDialog
-    from pdcp_studio.app.help_viewer import HelpViewer
-    from pdcp_studio.app.profile_tree_editor import ProfileTreeDialog
-    from pdcp_studio.app.recovery import RecoveryDialog
-    from pdcp_studio.app.window_desktop import monitor_dock
-    from pdcp_studio.app.write_config_dialog import WriteConfigDialog
+    from pdcp_studio.app.dialogs.compare_dialog import CompareDialog
+    from pdcp_studio.app.dialogs.connect_dialog import ConnectDialog
+    from pdcp_studio.app.dialogs.help_viewer import HelpViewer
+    from pdcp_studio.app.dialogs.profile_tree_editor import ProfileTreeDialog
+    from pdcp_studio.app.dialogs.write_config_dialog import WriteConfigDialog
+    from pdcp_studio.app.documents.recovery import RecoveryDialog
+    from pdcp_studio.app.window.desktop import monitor_dock
 
     window = make_window(TRANSRADIAL, size=(1300, 850))
     with qtbot.waitSignal(window.live.connected, timeout=20000):
@@ -201,7 +201,7 @@ def test_lang_and_system_locale_choose_the_language(monkeypatch):
 
 
 def test_the_manual_follows_the_language_with_english_as_the_fallback():
-    from pdcp_studio.app.help_viewer import manual_path, sections
+    from pdcp_studio.app.dialogs.help_viewer import manual_path, sections
 
     assert manual_path("de").name == "de.md" and manual_path("fr").name == "en.md"
     english, german = (sections(manual_path(lang).read_text("utf-8")) for lang in ("en", "de"))

@@ -6,7 +6,7 @@ from __future__ import annotations
 import pytest
 
 from pdcp_studio.app.wizards import logic, words
-from pdcp_studio.bus.simulator import HAND, SPARE_HAND, load_prosthesis
+from pdcp_studio.bus.sim.rigs import HAND, SPARE_HAND, load_prosthesis
 from pdcp_studio.engine import Similarity, plan_autoconfigure
 from pdcp_studio.model.configuration import ConfigCollection
 from pdcp_studio.model.refs import ChannelRef, DeviceKey

@@ -415,7 +415,7 @@ def test_the_chosen_history_entry_survives_a_refill_of_the_list(live, qtbot):
 
 
 def test_help_opens_the_manual_at_the_guided_tasks(make_window):
-    from pdcp_studio.app import help_viewer
+    from pdcp_studio.app.dialogs import help_viewer
 
     window = make_window()
     for task in ("fitting", "replace", "restore"):
@@ -540,7 +540,7 @@ def test_restoring_an_entry_from_before_any_stored_configuration_warns_and_asks(
 
 
 def test_the_connect_page_speaks_of_prostheses_not_buses(make_window, qtbot):
-    from pdcp_studio.bus.simulator import list_prostheses, prosthesis
+    from pdcp_studio.bus.sim.rigs import list_prostheses, prosthesis
 
     window = make_window()
     w = open_wizard(window, "fitting")

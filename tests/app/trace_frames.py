@@ -4,7 +4,7 @@ from __future__ import annotations
 
 import numpy as np
 
-from pdcp_studio.app.trace_store import CHUNK_ROWS, F_CHANNEL, F_HEX, Chunk, FrameStore
+from pdcp_studio.app.trace.store import CHUNK_ROWS, F_CHANNEL, F_HEX, Chunk, FrameStore
 from pdcp_studio.protocol.codes import FunctionCode
 
 #: The one odd frame, near the end of every synthetic trace (search finds it).

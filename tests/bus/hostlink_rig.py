@@ -7,11 +7,11 @@ from contextlib import contextmanager
 
 import can
 
-from pdcp_studio.bus.arbitrator import Arbitrator
-from pdcp_studio.bus.device_host import DeviceHost
-from pdcp_studio.bus.device_sim import SimulatedDevice
-from pdcp_studio.bus.hostlink_server import HostLinkServer
-from pdcp_studio.bus.urls import unique_virtual_channel
+from pdcp_studio.bus.arbitrator.core import Arbitrator
+from pdcp_studio.bus.hostlink.server import HostLinkServer
+from pdcp_studio.bus.session.urls import unique_virtual_channel
+from pdcp_studio.bus.sim.device import SimulatedDevice
+from pdcp_studio.bus.sim.device_host import DeviceHost
 from pdcp_studio.storage import system_file
 
 

@@ -12,13 +12,13 @@ import can
 import pytest
 
 from pdcp_studio.bus import events as ev
-from pdcp_studio.bus.arb_claim import ARBITRATOR_BEACON_S, LISTEN_S, BusClaim, Phase
-from pdcp_studio.bus.arbitrator import Arbitrator
-from pdcp_studio.bus.device_host import DeviceHost
-from pdcp_studio.bus.device_sim import SimulatedDevice
-from pdcp_studio.bus.session import OtherArbitratorError, open_can_session, open_sim_session
-from pdcp_studio.bus.simulator import TEST2_LINKS, load_prosthesis
-from pdcp_studio.bus.urls import open_can_bus, parse_bus_url, unique_virtual_channel
+from pdcp_studio.bus.arbitrator.claim import ARBITRATOR_BEACON_S, LISTEN_S, BusClaim, Phase
+from pdcp_studio.bus.arbitrator.core import Arbitrator
+from pdcp_studio.bus.session.live import OtherArbitratorError, open_can_session, open_sim_session
+from pdcp_studio.bus.session.urls import open_can_bus, parse_bus_url, unique_virtual_channel
+from pdcp_studio.bus.sim.device import SimulatedDevice
+from pdcp_studio.bus.sim.device_host import DeviceHost
+from pdcp_studio.bus.sim.rigs import TEST2_LINKS, load_prosthesis
 from pdcp_studio.cli.main import main
 from pdcp_studio.protocol import Beacon, BindRequest, GetParameter, Mode, Reset
 

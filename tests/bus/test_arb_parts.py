@@ -6,7 +6,7 @@ from __future__ import annotations
 
 import pytest
 
-from pdcp_studio.bus.arb_common import (
+from pdcp_studio.bus.arbitrator.common import (
     BEACON_WINDOW,
     BIND_HOLD_S,
     DUPLICATE_WINDOW,
@@ -18,12 +18,17 @@ from pdcp_studio.bus.arb_common import (
     UNKNOWN_RESET_S,
     _Node,
 )
-from pdcp_studio.bus.arb_links import link_writes, needs_remaking, unlink_writes, wanted_source
-from pdcp_studio.bus.arb_nodes import BindDecision, NodeTable
-from pdcp_studio.bus.arb_presence import PresenceTracker
-from pdcp_studio.bus.arb_profile import ProfileDriver
-from pdcp_studio.bus.device_reader import EVERYTHING, SETUP, DeviceReader
-from pdcp_studio.bus.requests import DeviceRefusedError
+from pdcp_studio.bus.arbitrator.device_reader import EVERYTHING, SETUP, DeviceReader
+from pdcp_studio.bus.arbitrator.links import (
+    link_writes,
+    needs_remaking,
+    unlink_writes,
+    wanted_source,
+)
+from pdcp_studio.bus.arbitrator.nodes import BindDecision, NodeTable
+from pdcp_studio.bus.arbitrator.presence import PresenceTracker
+from pdcp_studio.bus.arbitrator.profile import ProfileDriver
+from pdcp_studio.bus.arbitrator.requests import DeviceRefusedError
 from pdcp_studio.model import param_fields
 from pdcp_studio.model import parameters as P
 from pdcp_studio.model.refs import ChannelRef, DeviceKey, Direction
@@ -288,7 +293,7 @@ def test_the_reader_names_a_device_that_answers_as_another():
 def test_a_first_start_up_with_every_expected_device_does_not_wait_out_the_quiet_time():
     """A simulated prosthesis knows its parts: once they have all joined and nothing is
     being set up, start-up is due at once; a restart waits the quiet time again."""
-    from pdcp_studio.bus.arb_profile import ProfileDriver
+    from pdcp_studio.bus.arbitrator.profile import ProfileDriver
     from pdcp_studio.model.refs import DeviceKey
 
     a, b = DeviceKey(1, 1, 1), DeviceKey(1, 1, 2)

@@ -7,10 +7,10 @@ import threading
 
 import can
 
-from pdcp_studio.bus.arb_claim import LISTEN_S
-from pdcp_studio.bus.device_host import DeviceHost
-from pdcp_studio.bus.device_sim import SimulatedDevice
-from pdcp_studio.bus.urls import unique_virtual_channel
+from pdcp_studio.bus.arbitrator.claim import LISTEN_S
+from pdcp_studio.bus.session.urls import unique_virtual_channel
+from pdcp_studio.bus.sim.device import SimulatedDevice
+from pdcp_studio.bus.sim.device_host import DeviceHost
 from pdcp_studio.cli.main import main
 from tests.bus.test_arbitrator_rig import load
 
@@ -58,7 +58,7 @@ def test_a_missing_adapter_driver_exits_1(capsys):
 
 
 def test_host_serial_without_the_host_link_module_exits_2(capsys, monkeypatch):
-    monkeypatch.setitem(sys.modules, "pdcp_studio.bus.hostlink_server", None)
+    monkeypatch.setitem(sys.modules, "pdcp_studio.bus.hostlink.server", None)
     code = main(["arbitrator", "--bus", f"can:virtual:{unique_virtual_channel()}",
                  "--host-serial", "pty", "--seconds", "0"])
     assert code == 2

@@ -17,10 +17,10 @@ from typing import Any
 import can
 
 from pdcp_studio.bus import events as ev
-from pdcp_studio.bus.arbitrator import Arbitrator
-from pdcp_studio.bus.device_host import DeviceHost
-from pdcp_studio.bus.device_sim import SimulatedDevice
-from pdcp_studio.bus.urls import unique_virtual_channel
+from pdcp_studio.bus.arbitrator.core import Arbitrator
+from pdcp_studio.bus.session.urls import unique_virtual_channel
+from pdcp_studio.bus.sim.device import SimulatedDevice
+from pdcp_studio.bus.sim.device_host import DeviceHost
 from pdcp_studio.model.refs import ChannelRef, DeviceKey
 from pdcp_studio.model.system import Link, System
 from pdcp_studio.storage import system_file

@@ -15,7 +15,7 @@ import pytest
 from hypothesis import given, settings
 from hypothesis import strategies as st
 
-from pdcp_studio.bus.bustime import (
+from pdcp_studio.bus.trace.bustime import (
     BusTimeMeter,
     crc15,
     frame_bits,

@@ -14,13 +14,13 @@ import can
 import pytest
 import serial
 
-from pdcp_studio.bus.can_interfaces import (
+from pdcp_studio.bus.session.can_interfaces import (
     DRIVER_FIX,
     AdapterMissingError,
     DriverMissingError,
     explain_open_error,
 )
-from pdcp_studio.bus.urls import (
+from pdcp_studio.bus.session.urls import (
     BusUrlError,
     bitrate_warning,
     check_bus_url,
@@ -171,7 +171,7 @@ def test_a_bitrate_other_than_1_mbit_is_warned_about(caplog):
     assert bitrate_warning(parse_bus_url("can:socketcan:can0@1000000")) == ""
     assert bitrate_warning(parse_bus_url("can:socketcan:can0")) == ""
     assert bitrate_warning(parse_bus_url("can:virtual:x@500000")) == ""
-    with caplog.at_level(logging.WARNING, logger="pdcp_studio.bus.urls"), \
+    with caplog.at_level(logging.WARNING, logger="pdcp_studio.bus.session.urls"), \
             pytest.raises(Exception):  # noqa: B017 - no SocketCAN here or no can9
         open_spec(parse_bus_url("can:socketcan:can9@500000"))
     assert any("not PDCP's 1000000 bit/s" in r.getMessage() for r in caplog.records)

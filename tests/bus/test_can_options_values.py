@@ -11,8 +11,8 @@ from pathlib import Path
 
 import pytest
 
-from pdcp_studio.bus.can_options import bad_value, option_types
-from pdcp_studio.bus.urls import BusUrlError, check_bus_url, open_spec, parse_bus_url
+from pdcp_studio.bus.session.can_options import bad_value, option_types
+from pdcp_studio.bus.session.urls import BusUrlError, check_bus_url, open_spec, parse_bus_url
 
 ROOT = Path(__file__).resolve().parents[2]
 

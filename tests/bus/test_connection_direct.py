@@ -16,7 +16,7 @@ from can.interfaces.virtual import VirtualBus
 
 from pdcp_studio.bus import connection
 from pdcp_studio.bus.connection import Connection
-from pdcp_studio.bus.urls import unique_virtual_channel
+from pdcp_studio.bus.session.urls import unique_virtual_channel
 
 
 def _frame(i: int) -> can.Message:
@@ -188,7 +188,7 @@ def test_a_virtual_bus_laid_out_otherwise_is_left_alone(channel):
 
 
 def test_a_simulated_prosthesis_runs_without_notifier_threads():
-    from pdcp_studio.bus.session import open_session
+    from pdcp_studio.bus.session.live import open_session
 
     channel = unique_virtual_channel("pdcp-sim-direct")
     with open_session("sim:thesis-test2", channel=channel) as session:
@@ -213,9 +213,9 @@ def _next(conn: Connection, kind: type, timeout: float = 2.0):
 
 
 def test_devices_answer_on_the_senders_thread_and_their_timers_still_run(monkeypatch, channel):
-    from pdcp_studio.bus import device_host
-    from pdcp_studio.bus.device_host import DeviceHost
-    from pdcp_studio.bus.device_sim import SimulatedDevice
+    from pdcp_studio.bus.sim import device_host
+    from pdcp_studio.bus.sim.device import SimulatedDevice
+    from pdcp_studio.bus.sim.device_host import DeviceHost
     from pdcp_studio.model.system import Device
     from pdcp_studio.protocol import (
         Beacon,
@@ -267,7 +267,7 @@ def test_a_simulated_prosthesis_on_a_channel_already_in_use_is_read_with_notifie
     devices could otherwise answer on the first's host thread while that one answers on
     theirs), and both work."""
     from pdcp_studio.bus.connection import virtual_channel_in_use
-    from pdcp_studio.bus.session import open_sim_session
+    from pdcp_studio.bus.session.live import open_sim_session
 
     channel = unique_virtual_channel("pdcp-sim-shared")
     assert not virtual_channel_in_use(channel)

@@ -9,11 +9,11 @@ import time
 import can
 import pytest
 
-from pdcp_studio.bus.device_host import DeviceHost
-from pdcp_studio.bus.device_sim import SimulatedDevice, State
-from pdcp_studio.bus.requests import DeviceRefusedError, RequestEngine
-from pdcp_studio.bus.signals import decode_sample, encode_sample, synthetic_value
-from pdcp_studio.bus.urls import unique_virtual_channel
+from pdcp_studio.bus.arbitrator.requests import DeviceRefusedError, RequestEngine
+from pdcp_studio.bus.session.urls import unique_virtual_channel
+from pdcp_studio.bus.sim.device import SimulatedDevice, State
+from pdcp_studio.bus.sim.device_host import DeviceHost
+from pdcp_studio.bus.sim.signals import decode_sample, encode_sample, synthetic_value
 from pdcp_studio.model import parameters as P
 from pdcp_studio.model.refs import DeviceKey, Direction
 from pdcp_studio.model.system import Channel

@@ -16,10 +16,10 @@ import can
 import pytest
 
 from pdcp_studio.bus import events as ev
-from pdcp_studio.bus.device_host import DeviceHost
-from pdcp_studio.bus.device_sim import SimulatedDevice
-from pdcp_studio.bus.memory import MemoryStore
-from pdcp_studio.bus.requests import TransferAbortedError
+from pdcp_studio.bus.arbitrator.memory import MemoryStore
+from pdcp_studio.bus.arbitrator.requests import TransferAbortedError
+from pdcp_studio.bus.sim.device import SimulatedDevice
+from pdcp_studio.bus.sim.device_host import DeviceHost
 from pdcp_studio.errors import NodeIdExhaustedError, TransportError
 from pdcp_studio.model import parameters as P
 from pdcp_studio.model.configuration import (
@@ -205,8 +205,8 @@ def test_requests_complete_through_retries_with_five_percent_of_frames_lost():
 
 _WRITER = textwrap.dedent("""
     import sys, time, can
-    from pdcp_studio.bus.arbitrator import Arbitrator
-    from pdcp_studio.bus.memory import MemoryStore
+    from pdcp_studio.bus.arbitrator.core import Arbitrator
+    from pdcp_studio.bus.arbitrator.memory import MemoryStore
     sys.path.insert(0, {root!r})
     from tests.bus.test_faults import big
     steps = 0

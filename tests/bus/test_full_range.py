@@ -10,8 +10,8 @@ import logging
 import subprocess
 import sys
 
-from pdcp_studio.bus.session import open_sim_session
-from pdcp_studio.bus.simulator import LARGE_VID, large_system, list_prostheses
+from pdcp_studio.bus.session.live import open_sim_session
+from pdcp_studio.bus.sim.rigs import LARGE_VID, large_system, list_prostheses
 from pdcp_studio.cli.main import main
 from pdcp_studio.engine import plan_for
 from pdcp_studio.engine.modes import without_unrouted_outputs
@@ -72,7 +72,7 @@ def test_plans_never_use_outputs_without_a_node_id():
 def test_269_node_ids_needed_in_one_process(tmp_path, caplog):
     path = tmp_path / "seventy.json"
     path.write_text(system_file.dumps(exhausting_system(), node_ids=False))
-    with caplog.at_level(logging.INFO, logger="pdcp_studio.bus.arbitrator"), \
+    with caplog.at_level(logging.INFO, logger="pdcp_studio.bus.arbitrator.core"), \
             open_sim_session(str(path), settle_timeout=90) as session:
         system = session.system()
         assert len(ids_in_use(system)) == 254

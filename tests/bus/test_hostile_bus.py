@@ -18,8 +18,8 @@ import time
 import can
 
 from pdcp_studio.bus import events as ev
-from pdcp_studio.bus.arbitrator import ERROR_BURST
-from pdcp_studio.bus.device_sim import SimulatedDevice
+from pdcp_studio.bus.arbitrator.core import ERROR_BURST
+from pdcp_studio.bus.sim.device import SimulatedDevice
 from pdcp_studio.model import parameters as P
 from pdcp_studio.model.refs import Direction
 from pdcp_studio.model.system import Channel, Device

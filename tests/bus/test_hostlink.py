@@ -13,9 +13,9 @@ import struct
 import pytest
 
 from pdcp_studio.bus import events as ev
-from pdcp_studio.bus.hostlink_client import HostLinkError, open_hostlink_session
-from pdcp_studio.bus.hostlink_relay import PtyRelay
-from pdcp_studio.bus.urls import parse_bus_url
+from pdcp_studio.bus.hostlink.client import HostLinkError, open_hostlink_session
+from pdcp_studio.bus.hostlink.testing.relay import PtyRelay
+from pdcp_studio.bus.session.urls import parse_bus_url
 from pdcp_studio.errors import TransportError
 from pdcp_studio.model import parameters as P
 from pdcp_studio.model.configuration import (
@@ -105,7 +105,7 @@ def test_links_made_over_the_host_link_are_on_the_bus(rig, session):
 
 
 def test_a_refused_request_carries_its_status_and_reason(session):
-    from pdcp_studio.bus import hostlink_records as hr
+    from pdcp_studio.bus.hostlink import records as hr
     from pdcp_studio.errors import PdcpError
 
     ghost = Link(ChannelRef(VID, 999, 1, 1), ChannelRef(VID, 513, 201, 1))
@@ -222,7 +222,7 @@ def test_a_plan_previewed_on_the_host_is_the_plan_applied(rig, session):
 
 
 def test_the_monitor_gets_protocol_frames_and_channel_counts(rig, relay):
-    from pdcp_studio.bus.hostlink_client import ChannelCounts
+    from pdcp_studio.bus.hostlink.client import ChannelCounts
 
     s = open_hostlink_session(parse_bus_url(f"serial:{relay.client_path}"), monitor=True)
     seen: list[object] = []
@@ -248,7 +248,7 @@ def test_a_port_that_does_not_exist_names_itself():
 
 
 def test_the_serial_session_is_a_bus_session(session):
-    from pdcp_studio.bus.session_api import BusSession
+    from pdcp_studio.bus.session.api import BusSession
 
     assert isinstance(session, BusSession)
     assert not session.closed

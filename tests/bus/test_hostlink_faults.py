@@ -16,9 +16,9 @@ from pathlib import Path
 import pytest
 
 from pdcp_studio.bus import events as ev
-from pdcp_studio.bus.hostlink_client import HostLinkSession, VersionRefused
-from pdcp_studio.bus.hostlink_relay import TO_ARB, NoisyLine, PtyRelay
-from pdcp_studio.bus.memory import MemoryStore
+from pdcp_studio.bus.arbitrator.memory import MemoryStore
+from pdcp_studio.bus.hostlink.client import HostLinkSession, VersionRefused
+from pdcp_studio.bus.hostlink.testing.relay import TO_ARB, NoisyLine, PtyRelay
 from pdcp_studio.errors import BusTimeoutError, TransportError
 from pdcp_studio.model.configuration import (
     ConfigCollection,
@@ -197,8 +197,8 @@ KILL_POINTS = 20
 _ZYGOTE = """
 import os, sys, time
 import can
-from pdcp_studio.bus.arbitrator import Arbitrator
-from pdcp_studio.bus.hostlink_server import HostLinkServer
+from pdcp_studio.bus.arbitrator.core import Arbitrator
+from pdcp_studio.bus.hostlink.server import HostLinkServer
 for line in sys.stdin:
     memory, channel = line.split()
     r, w = os.pipe()
@@ -345,7 +345,7 @@ def _raw_pty() -> tuple[int, int, str]:
 
 
 def test_the_arbitrator_reopens_its_dropped_port_with_one_calm_message(rig, tmp_path, caplog):
-    from pdcp_studio.bus.hostlink_server import HostLinkServer
+    from pdcp_studio.bus.hostlink.server import HostLinkServer
 
     arbitrator, _ = rig
     port_name = tmp_path / "ttyArb"
@@ -358,7 +358,7 @@ def test_the_arbitrator_reopens_its_dropped_port_with_one_calm_message(rig, tmp_
     session = HostLinkSession(bpath, url="pc", monitor=False, ack_timeout=0.1, max_attempts=8)
     try:
         assert session.status()["devices"] == 4
-        with caplog.at_level("WARNING", logger="pdcp_studio.bus.hostlink_server"):
+        with caplog.at_level("WARNING", logger="pdcp_studio.bus.hostlink.server"):
             bridge.close()
             os.close(am)  # the arbitrator's adapter is pulled out
             time.sleep(1.0)  # it tries to reopen, and fails, several times

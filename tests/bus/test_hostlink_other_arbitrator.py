@@ -7,9 +7,9 @@ from pathlib import Path
 
 import can
 
-from pdcp_studio.bus.hostlink_client import open_hostlink_session
-from pdcp_studio.bus.hostlink_relay import PtyRelay
-from pdcp_studio.bus.urls import parse_bus_url
+from pdcp_studio.bus.hostlink.client import open_hostlink_session
+from pdcp_studio.bus.hostlink.testing.relay import PtyRelay
+from pdcp_studio.bus.session.urls import parse_bus_url
 from pdcp_studio.protocol import Beacon, Mode
 
 from .hostlink_rig import arbitrator_rig, wait_for

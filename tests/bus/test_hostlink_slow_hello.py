@@ -8,8 +8,8 @@ from pathlib import Path
 
 import pytest
 
-from pdcp_studio.bus.hostlink_client import HostLinkSession
-from pdcp_studio.bus.hostlink_relay import TO_ARB, PtyRelay
+from pdcp_studio.bus.hostlink.client import HostLinkSession
+from pdcp_studio.bus.hostlink.testing.relay import TO_ARB, PtyRelay
 from pdcp_studio.protocol.hostlink_v1 import PING, encode_v1
 
 from .hostlink_rig import arbitrator_rig

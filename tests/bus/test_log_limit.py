@@ -6,9 +6,9 @@ import logging
 
 import can
 
-from pdcp_studio.bus.device_host import DeviceHost
 from pdcp_studio.bus.log_limit import LimitedLog, RepeatLimiter
-from pdcp_studio.bus.urls import unique_virtual_channel
+from pdcp_studio.bus.session.urls import unique_virtual_channel
+from pdcp_studio.bus.sim.device_host import DeviceHost
 
 
 def test_the_first_occurrence_is_told_then_one_summary_a_second():
@@ -52,7 +52,7 @@ def test_a_hostile_rate_gives_a_few_lines_a_second(caplog):
 def test_a_failing_simulated_device_is_logged_once_then_summarised(caplog):
     bus = can.Bus(interface="virtual", channel=unique_virtual_channel("pdcp-limit"))
     host = DeviceHost(bus, name="limit devices")
-    caplog.set_level(logging.WARNING, logger="pdcp_studio.bus.device_host")
+    caplog.set_level(logging.WARNING, logger="pdcp_studio.bus.sim.device_host")
     try:
         def boom() -> None:
             raise RuntimeError("a device bug")
@@ -63,6 +63,6 @@ def test_a_failing_simulated_device_is_logged_once_then_summarised(caplog):
         assert host.failures == 2000
     finally:
         host.close()
-    records = [r for r in caplog.records if r.name == "pdcp_studio.bus.device_host"]
+    records = [r for r in caplog.records if r.name == "pdcp_studio.bus.sim.device_host"]
     assert 1 <= len(records) <= 3, [r.getMessage() for r in records]
     assert records[0].exc_info is not None  # the first one with its traceback

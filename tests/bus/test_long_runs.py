@@ -15,7 +15,7 @@ import can
 import pytest
 
 from pdcp_studio.bus.connection import ECHO_MAX_PENDING, Connection, EchoFilter
-from pdcp_studio.bus.urls import unique_virtual_channel
+from pdcp_studio.bus.session.urls import unique_virtual_channel
 from pdcp_studio.model.refs import DeviceKey
 from tests.bus.test_arbitrator_rig import load
 
@@ -95,9 +95,9 @@ def test_device_host_and_arbitrator_hold_100000_distinct_frames_on_an_echoing_bu
     100,000 distinct frames sent through both, links are intact, requests are answered, no
     device left, and memory and every per-frame table stayed bounded."""
     from pdcp_studio.bus import events as ev
-    from pdcp_studio.bus.arbitrator import Arbitrator
-    from pdcp_studio.bus.device_host import DeviceHost
-    from pdcp_studio.bus.device_sim import SimulatedDevice
+    from pdcp_studio.bus.arbitrator.core import Arbitrator
+    from pdcp_studio.bus.sim.device import SimulatedDevice
+    from pdcp_studio.bus.sim.device_host import DeviceHost
     from pdcp_studio.model import parameters as P
     from pdcp_studio.protocol import ChannelData
 

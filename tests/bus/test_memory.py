@@ -10,8 +10,8 @@ from pathlib import Path
 
 import pytest
 
-from pdcp_studio.bus import memory as M
-from pdcp_studio.bus.memory import HEADER_SIZE, MemoryStore, MemoryStoreError
+from pdcp_studio.bus.arbitrator.core import memory as M
+from pdcp_studio.bus.arbitrator.memory import HEADER_SIZE, MemoryStore, MemoryStoreError
 from pdcp_studio.model.configuration import (
     ConfigCollection,
     StoredChannel,
@@ -95,7 +95,7 @@ def test_a_damaged_slot_is_skipped_with_a_warning(tmp_path, caplog):
     raw = bytearray(path.read_bytes())
     raw[HEADER_SIZE + 1024 + HEADER_SIZE + 5] ^= 0xFF  # flip a payload byte in slot B
     path.write_bytes(bytes(raw))
-    with caplog.at_level(logging.WARNING, logger="pdcp_studio.bus.memory"):
+    with caplog.at_level(logging.WARNING, logger="pdcp_studio.bus.arbitrator.memory"):
         fresh = MemoryStore(path, capacity=1024)
         assert fresh.read() == collection(1)
     assert "slot B is damaged" in caplog.text and "using slot A (generation 1)" in caplog.text
@@ -155,7 +155,7 @@ def test_a_configuration_too_large_for_the_slot_is_refused(tmp_path):
 
 _CUT_SCRIPT = textwrap.dedent("""
     import os, sys
-    from pdcp_studio.bus.memory import MemoryStore
+    from pdcp_studio.bus.arbitrator.memory import MemoryStore
     sys.path.insert(0, {root!r})
     from tests.bus.test_memory import collection
     path, cut = sys.argv[1], int(sys.argv[2])

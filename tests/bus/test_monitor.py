@@ -21,8 +21,8 @@ import pytest
 from hypothesis import given, settings
 from hypothesis import strategies as st
 
-from pdcp_studio.bus.bustime import frame_bits
-from pdcp_studio.bus.monitor import (
+from pdcp_studio.bus.trace.bustime import frame_bits
+from pdcp_studio.bus.trace.monitor import (
     CHANNEL_DATA,
     FROM_BA,
     TO_BA,

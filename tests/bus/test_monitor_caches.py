@@ -8,8 +8,8 @@ import random
 from hypothesis import given, settings
 from hypothesis import strategies as st
 
-from pdcp_studio.bus.bustime import BusTimeMeter
-from pdcp_studio.bus.monitor import FrameDecoder
+from pdcp_studio.bus.trace.bustime import BusTimeMeter
+from pdcp_studio.bus.trace.monitor import FrameDecoder
 from pdcp_studio.protocol import messages as M
 from tests.bus.test_monitor import session_frames
 

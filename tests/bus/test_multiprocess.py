@@ -11,9 +11,9 @@ import time
 
 import pytest
 
-from pdcp_studio.bus.device_host import DeviceHost
-from pdcp_studio.bus.device_sim import SimulatedDevice, State
-from pdcp_studio.bus.urls import open_spec, parse_bus_url
+from pdcp_studio.bus.session.urls import open_spec, parse_bus_url
+from pdcp_studio.bus.sim.device import SimulatedDevice, State
+from pdcp_studio.bus.sim.device_host import DeviceHost
 from pdcp_studio.model import parameters as P
 from pdcp_studio.model.refs import DeviceKey
 from tests.bus.test_arbitrator_rig import load

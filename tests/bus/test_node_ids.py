@@ -4,7 +4,7 @@ from __future__ import annotations
 
 import pytest
 
-from pdcp_studio.bus.node_ids import NodeIdPool
+from pdcp_studio.bus.arbitrator.node_ids import NodeIdPool
 from pdcp_studio.errors import NodeIdExhaustedError
 from pdcp_studio.model.refs import DeviceKey
 

@@ -14,13 +14,13 @@ import can
 import pytest
 
 from pdcp_studio.bus import events as ev
-from pdcp_studio.bus.device_host import DeviceHost
-from pdcp_studio.bus.device_sim import SimulatedDevice
 from pdcp_studio.bus.outage import BACKOFF_S, Outage
 from pdcp_studio.bus.reopen import ReopeningBus
-from pdcp_studio.bus.session import open_session
-from pdcp_studio.bus.simulator import TEST2_LINKS, load_prosthesis
-from pdcp_studio.bus.urls import unique_virtual_channel
+from pdcp_studio.bus.session.live import open_session
+from pdcp_studio.bus.session.urls import unique_virtual_channel
+from pdcp_studio.bus.sim.device import SimulatedDevice
+from pdcp_studio.bus.sim.device_host import DeviceHost
+from pdcp_studio.bus.sim.rigs import TEST2_LINKS, load_prosthesis
 from tests.bus.slcan_rig import SlcanAdapter
 
 

@@ -13,9 +13,9 @@ from collections.abc import Iterator
 from contextlib import contextmanager
 
 from pdcp_studio.bus import events as ev
-from pdcp_studio.bus.session_api import open_session
+from pdcp_studio.bus.session.api import open_session
+from pdcp_studio.bus.session.urls import unique_virtual_channel
 from pdcp_studio.bus.transaction import INTERLOCK_MS
-from pdcp_studio.bus.urls import unique_virtual_channel
 from pdcp_studio.model import parameters as P
 from pdcp_studio.protocol import Release, SetParameter, Suspend
 from tests.road_rigs import FrameRecorder

@@ -15,15 +15,15 @@ from pathlib import Path
 import pytest
 import serial
 
-from pdcp_studio.bus.hostlink_port import PtyPort, open_port
-from pdcp_studio.bus.serial_ports import (
+from pdcp_studio.bus.hostlink.port import PtyPort, open_port
+from pdcp_studio.bus.session.serial_ports import (
     PORTS_SHOWN,
     open_failure,
     seen_ports,
     unknown_protocol,
     url_protocols,
 )
-from pdcp_studio.bus.urls import BusUrlError, check_bus_url
+from pdcp_studio.bus.session.urls import BusUrlError, check_bus_url
 from pdcp_studio.errors import TransportError
 
 ROOT = Path(__file__).resolve().parents[2]

@@ -8,15 +8,15 @@ import threading
 import pytest
 
 from pdcp_studio.bus import events as ev
-from pdcp_studio.bus.device_host import DeviceHost
-from pdcp_studio.bus.device_sim import SimulatedDevice
-from pdcp_studio.bus.session import (
+from pdcp_studio.bus.session.live import (
     ConfigVerifyError,
     SimSession,
     open_session,
 )
-from pdcp_studio.bus.simulator import load_prosthesis
-from pdcp_studio.bus.urls import BusUrlError, open_can_bus, unique_virtual_channel
+from pdcp_studio.bus.session.urls import BusUrlError, open_can_bus, unique_virtual_channel
+from pdcp_studio.bus.sim.device import SimulatedDevice
+from pdcp_studio.bus.sim.device_host import DeviceHost
+from pdcp_studio.bus.sim.rigs import load_prosthesis
 from pdcp_studio.errors import TransportError
 from pdcp_studio.model import parameters as P
 from pdcp_studio.model.configuration import (
@@ -198,7 +198,7 @@ def test_bad_urls_and_names():
 
 
 def test_serial_without_the_host_link_client_says_so(monkeypatch):
-    monkeypatch.setitem(sys.modules, "pdcp_studio.bus.hostlink_client", None)
+    monkeypatch.setitem(sys.modules, "pdcp_studio.bus.hostlink.client", None)
     with pytest.raises(TransportError, match="host-link client is not available"):
         open_session("serial:/dev/ttyUSB0")
 
@@ -207,9 +207,9 @@ def test_serial_delegates_to_the_host_link_client(monkeypatch):
     import types
 
     calls: list = []
-    fake = types.ModuleType("pdcp_studio.bus.hostlink_client")
+    fake = types.ModuleType("pdcp_studio.bus.hostlink.client")
     fake.open_hostlink_session = lambda spec, **kw: calls.append((spec, kw)) or "session"
-    monkeypatch.setitem(sys.modules, "pdcp_studio.bus.hostlink_client", fake)
+    monkeypatch.setitem(sys.modules, "pdcp_studio.bus.hostlink.client", fake)
     assert open_session("serial:socket://127.0.0.1:7000@57600", reply_timeout=2) == "session"
     spec, kw = calls[0]
     assert (spec.port, spec.baud, kw) == ("socket://127.0.0.1:7000", 57600,

@@ -4,8 +4,8 @@ from __future__ import annotations
 
 import pytest
 
-from pdcp_studio.bus import simulator as sim
-from pdcp_studio.bus.node_ids import NodeIdPool
+from pdcp_studio.bus.arbitrator.node_ids import NodeIdPool
+from pdcp_studio.bus.sim import rigs as sim
 from pdcp_studio.engine import plan_autoconfigure
 from pdcp_studio.model.refs import ChannelRef
 from pdcp_studio.model.system import Link

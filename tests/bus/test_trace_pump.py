@@ -1,4 +1,4 @@
-"""The monitor's hot loop (bus/trace_pump.py) writes exactly what decoding every frame one by
+"""The monitor's hot loop (bus/trace/pump.py) writes exactly what decoding every frame one by
 one writes: the same lines, the same JSON records, the same statistics — on traffic that
 keeps changing what the decoder knows, with odd frames, filters, quiet polls and odd times."""
 
@@ -12,8 +12,8 @@ import can
 from hypothesis import given, settings
 from hypothesis import strategies as st
 
-from pdcp_studio.bus.monitor import FrameDecoder, frame_json
-from pdcp_studio.bus.trace_pump import TracePump
+from pdcp_studio.bus.trace.monitor import FrameDecoder, frame_json
+from pdcp_studio.bus.trace.pump import TracePump
 from pdcp_studio.cli.monitor import make_filter
 from pdcp_studio.protocol import messages as M
 from tests.bus.test_monitor import session_frames

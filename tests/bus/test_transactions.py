@@ -12,7 +12,8 @@ import time
 import pytest
 
 from pdcp_studio.bus import events as ev
-from pdcp_studio.bus.session_api import BusSession, open_session, preview_change
+from pdcp_studio.bus.session.api import BusSession, open_session, preview_change
+from pdcp_studio.bus.session.urls import unique_virtual_channel
 from pdcp_studio.bus.transaction import (
     INTERLOCK_MS,
     Change,
@@ -22,7 +23,6 @@ from pdcp_studio.bus.transaction import (
     Status,
     TransactionResult,
 )
-from pdcp_studio.bus.urls import unique_virtual_channel
 from pdcp_studio.errors import TransportError
 from pdcp_studio.model import parameters as P
 from pdcp_studio.model.refs import ChannelRef, DeviceKey
@@ -57,8 +57,8 @@ def _link_writes(messages):
 
 
 def test_every_transport_implements_the_declared_session(rig):
-    from pdcp_studio.bus.hostlink_client import HostLinkSession
-    from pdcp_studio.bus.session import Session, SimSession
+    from pdcp_studio.bus.hostlink.client import HostLinkSession
+    from pdcp_studio.bus.session.live import Session, SimSession
 
     session, _ = rig
     assert isinstance(session, BusSession)

@@ -6,7 +6,7 @@ import re
 
 import pytest
 
-from pdcp_studio.bus.urls import (
+from pdcp_studio.bus.session.urls import (
     DEFAULT_BAUD,
     BusUrlError,
     check_bus_url,
@@ -98,7 +98,7 @@ def test_options_python_can_reads_pass(url):
 
 
 def test_known_options_are_read_from_python_cans_source_not_a_list():
-    from pdcp_studio.bus.can_options import known_options
+    from pdcp_studio.bus.session.can_options import known_options
 
     virtual = known_options("virtual")
     assert virtual is not None and {"rx_queue_size", "preserve_timestamps"} <= virtual

@@ -13,7 +13,7 @@ import os
 
 import pytest
 
-from pdcp_studio.bus.memory import MemoryStore
+from pdcp_studio.bus.arbitrator.memory import MemoryStore
 from pdcp_studio.cli.main import main
 from pdcp_studio.model import parameters as P
 from pdcp_studio.model.refs import ChannelRef
@@ -212,7 +212,7 @@ def test_bad_apply_arguments_are_exit_2(capsys, tmp_path):
 def test_every_frame_of_apply_yes_shows_the_interlock_and_none_without_yes(monkeypatch,
                                                                            capsys, tmp_path):
     """The bus as a recorder hears it during ``apply clear`` on a simulated prosthesis."""
-    import pdcp_studio.bus.urls as urls
+    import pdcp_studio.bus.session.urls as urls
 
     def record(argv):
         channel = f"road-cli-{len(argv)}-{os.getpid()}-{id(argv)}"

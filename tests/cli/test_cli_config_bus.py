@@ -4,7 +4,7 @@ from __future__ import annotations
 
 from pathlib import Path
 
-from pdcp_studio.bus.memory import MemoryStore
+from pdcp_studio.bus.arbitrator.memory import MemoryStore
 from pdcp_studio.cli.main import main
 from pdcp_studio.model.configuration import (
     ConfigCollection,
@@ -74,7 +74,7 @@ def test_a_bad_file_is_refused_before_the_bus_is_opened(capsys, tmp_path):
 
 
 def test_a_failed_verification_is_exit_1(capsys, tmp_path, monkeypatch):
-    from pdcp_studio.bus.arbitrator import Arbitrator
+    from pdcp_studio.bus.arbitrator.core import Arbitrator
 
     monkeypatch.setattr(Arbitrator, "read_memory", lambda self: ConfigCollection())
     cfg = _test2_link_file(tmp_path / "one.pdcfg")

@@ -35,11 +35,11 @@ def test_json_has_the_contract_keys_every_module_and_every_interface(capsys, mon
         if not entry["driver"]:
             assert entry["why"] and entry["fix"], name
     assert doc["modules"] and all(doc["modules"].values()), doc["module_errors"]
-    for name in ("pdcp_studio.app.connect_dialog", "pdcp_studio.app.monitor_dock",
-                 "pdcp_studio.app.live_plot", "pdcp_studio.app.sim_panel",
-                 "pdcp_studio.app.compare_dialog", "pdcp_studio.app.write_config_dialog",
-                 "pdcp_studio.app.profile_tree_editor", "pdcp_studio.app.report",
-                 "pdcp_studio.cli.doctor", "pdcp_studio.bus.arbitrator"):
+    for name in ("pdcp_studio.app.dialogs.connect_dialog", "pdcp_studio.app.trace.dock",
+                 "pdcp_studio.app.live.plot", "pdcp_studio.app.docks.sim_panel",
+                 "pdcp_studio.app.dialogs.compare_dialog", "pdcp_studio.app.dialogs.write_config_dialog",
+                 "pdcp_studio.app.dialogs.profile_tree_editor", "pdcp_studio.app.report",
+                 "pdcp_studio.cli.doctor", "pdcp_studio.bus.arbitrator.core"):
         assert doc["modules"][name] is True
     assert (Path(doc["resources"]) / "systems" / "transradial.json").is_file()
     assert doc["history"] == str(archive)

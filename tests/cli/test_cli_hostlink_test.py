@@ -9,7 +9,7 @@ from pathlib import Path
 
 import pytest
 
-from pdcp_studio.bus.hostlink_conformance import case_names
+from pdcp_studio.bus.hostlink.testing.conformance import case_names
 from pdcp_studio.cli.main import main
 from pdcp_studio.protocol import hostlink_messages as hm
 from tests.bus.hostlink_rig import arbitrator_rig
@@ -42,7 +42,7 @@ def test_pdcp_studios_own_arbitrator_passes_every_case(rig, capsys):
 
 
 def test_a_faulty_arbitrator_fails_the_cases_it_breaks(rig, capsys, monkeypatch):
-    from pdcp_studio.bus import hostlink_conformance
+    from pdcp_studio.bus.hostlink.testing import conformance as hostlink_conformance
 
     _, server = rig
     monkeypatch.setattr(hostlink_conformance, "case_names",

@@ -15,7 +15,7 @@ import time
 
 import pytest
 
-from pdcp_studio.bus.monitor import read_capture
+from pdcp_studio.bus.trace.monitor import read_capture
 
 
 def _monitor_then_ctrl_c(target, *extra: str) -> subprocess.CompletedProcess:

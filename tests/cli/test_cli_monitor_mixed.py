@@ -12,7 +12,7 @@ import pytest
 from hypothesis import given, settings
 from hypothesis import strategies as st
 
-from pdcp_studio.bus.monitor import FrameDecoder
+from pdcp_studio.bus.trace.monitor import FrameDecoder
 from pdcp_studio.cli.main import main
 from pdcp_studio.protocol import messages as M
 from pdcp_studio.protocol.codes import ResponseCode

@@ -6,10 +6,10 @@ import json
 
 import pytest
 
-from pdcp_studio.bus.device_host import DeviceHost
-from pdcp_studio.bus.device_sim import SimulatedDevice
-from pdcp_studio.bus.simulator import load_prosthesis
-from pdcp_studio.bus.urls import open_can_bus, unique_virtual_channel
+from pdcp_studio.bus.session.urls import open_can_bus, unique_virtual_channel
+from pdcp_studio.bus.sim.device import SimulatedDevice
+from pdcp_studio.bus.sim.device_host import DeviceHost
+from pdcp_studio.bus.sim.rigs import load_prosthesis
 from pdcp_studio.cli.main import main
 from pdcp_studio.storage import system_file
 

@@ -7,8 +7,8 @@ import subprocess
 import sys
 import time
 
-from pdcp_studio.bus.arbitrator import Arbitrator
-from pdcp_studio.bus.urls import open_can_bus, unique_virtual_channel
+from pdcp_studio.bus.arbitrator.core import Arbitrator
+from pdcp_studio.bus.session.urls import open_can_bus, unique_virtual_channel
 from pdcp_studio.cli.main import main
 from pdcp_studio.model.refs import DeviceKey
 
@@ -51,7 +51,7 @@ def test_replay_refuses_unknown_names_and_scripts(capsys):
 
 
 def test_replay_fails_when_the_links_are_not_the_expected_ones(capsys, monkeypatch):
-    from pdcp_studio.bus import simulator
+    from pdcp_studio.bus.sim import rigs as simulator
 
     monkeypatch.setattr(simulator, "TEST2_LINKS", ())
     entry = simulator.prosthesis("thesis-test2")

@@ -15,8 +15,8 @@ import time
 import pytest
 
 from pdcp_studio.bus import events as ev
-from pdcp_studio.bus.memory import MemoryStore
-from pdcp_studio.bus.session_api import open_session
+from pdcp_studio.bus.arbitrator.memory import MemoryStore
+from pdcp_studio.bus.session.api import open_session
 from pdcp_studio.bus.transaction import Change, Policy
 from pdcp_studio.cli.main import main
 from pdcp_studio.model.refs import ChannelRef, DeviceKey
@@ -121,8 +121,8 @@ def test_noautoconfig_mode_implements_exactly_the_stored_configuration(rig, caps
 
 
 def test_arbitrator_no_autoconfigure_flag_sets_the_stored_policy(tmp_path):
-    from pdcp_studio.bus.arbitrator import Arbitrator
-    from pdcp_studio.bus.urls import open_can_bus, unique_virtual_channel
+    from pdcp_studio.bus.arbitrator.core import Arbitrator
+    from pdcp_studio.bus.session.urls import open_can_bus, unique_virtual_channel
 
     memory = tmp_path / "m.bin"
     bus = open_can_bus("virtual", unique_virtual_channel("noauto"))

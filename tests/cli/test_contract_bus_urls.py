@@ -11,7 +11,7 @@ import json
 import pytest
 import serial
 
-from pdcp_studio.bus.urls import unique_virtual_channel
+from pdcp_studio.bus.session.urls import unique_virtual_channel
 from pdcp_studio.cli.main import main
 
 

@@ -172,7 +172,7 @@ def test_a_malformed_bus_url_is_exit_2_naming_it(capsys, url):
 
 
 def test_serial_url_default_baud_and_pyserial_urls_keep_their_at_signs():
-    from pdcp_studio.bus.urls import parse_bus_url
+    from pdcp_studio.bus.session.urls import parse_bus_url
 
     assert parse_bus_url("serial:COM3").baud == 128000
     spec = parse_bus_url("serial:/dev/ttyUSB0@57600")
@@ -271,8 +271,8 @@ def test_history_verify_exit_1_names_the_first_edited_entry(capsys, tmp_path):
 
 # -- §2 arbitrator --no-autoconfigure: the policy is kept in the memory -------------------------
 def test_arbitrator_no_autoconfigure_sets_the_stored_policy_which_then_holds(capsys, tmp_path):
-    from pdcp_studio.bus.memory import MemoryStore
-    from pdcp_studio.bus.urls import unique_virtual_channel
+    from pdcp_studio.bus.arbitrator.memory import MemoryStore
+    from pdcp_studio.bus.session.urls import unique_virtual_channel
 
     memory = tmp_path / "memory.json"
     bus = f"can:virtual:{unique_virtual_channel('audit')}"

@@ -7,7 +7,7 @@ import json
 import pytest
 
 from pdcp_studio import paths
-from pdcp_studio.bus import simulator
+from pdcp_studio.bus.sim import rigs as simulator
 from pdcp_studio.model.catalog import (
     Catalog,
     CatalogError,

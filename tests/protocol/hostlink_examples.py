@@ -8,8 +8,8 @@ from __future__ import annotations
 
 import struct
 
-from pdcp_studio.bus import hostlink_records as hr
-from pdcp_studio.bus.hostlink_change import encode_change, encode_result
+from pdcp_studio.bus.hostlink import records as hr
+from pdcp_studio.bus.hostlink.change import encode_change, encode_result
 from pdcp_studio.bus.transaction import Change, LinkAction, Policy, TransactionResult
 from pdcp_studio.bus.transaction import Status as TxnStatus
 from pdcp_studio.model.configuration import (

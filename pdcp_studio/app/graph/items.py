@@ -94,7 +94,7 @@ def _card_catalogue(vid: int, pid: int) -> tuple[str, QImage | None]:
     """(product, picture) of a VID/PID, looked up once (a catalogue lookup finds the
     user's folder: ~50 µs, too slow for every card's paint); the scene forgets them when
     it rebuilds (:func:`forget_catalogue`)."""
-    from pdcp_studio.app.kind_icons import kind_image
+    from pdcp_studio.app.widgets.kind_icons import kind_image
     from pdcp_studio.model.catalog import default_catalog
 
     entry = default_catalog().lookup(vid, pid)
@@ -106,7 +106,7 @@ def _card_catalogue(vid: int, pid: int) -> tuple[str, QImage | None]:
 
 def card_icon_vectors(key: Any) -> Any:
     """The kind's icon as an SVG renderer (for vectors), None if it has none."""
-    from pdcp_studio.app.kind_icons import entry_of, kind_renderer
+    from pdcp_studio.app.widgets.kind_icons import entry_of, kind_renderer
 
     entry = entry_of(key)
     return kind_renderer(entry.icon) if entry is not None and entry.icon else None
@@ -115,7 +115,7 @@ def card_icon_vectors(key: Any) -> Any:
 def elide_keeping_serial(label: str, serial: int, metrics: Any, width: float) -> str:
     """``label`` elided to ``width``; a twin's serial number (``… (serial 302)``) is kept
     whole, so two hands alike never read the same once cut."""
-    from pdcp_studio.app.part_names import twin_format
+    from pdcp_studio.app.words.part_names import twin_format
 
     suffix = twin_format().format(name="", serial=serial)
     if (metrics.horizontalAdvance(label) <= width or not suffix.strip()

@@ -16,8 +16,8 @@ from typing import Any
 from PySide6.QtCore import QPointF, QRectF, Qt, QTimer, Signal
 from PySide6.QtWidgets import QGraphicsScene
 
-from pdcp_studio.app import commands
-from pdcp_studio.app.document import Document
+from pdcp_studio.app.documents import commands
+from pdcp_studio.app.documents.document import Document
 from pdcp_studio.app.graph import layout, style
 from pdcp_studio.app.graph.analysis import SystemStates, compute_states, link_refusal
 from pdcp_studio.app.graph.items import DETAIL_ZOOM, DeviceItem, PortItem, forget_catalogue
@@ -339,12 +339,12 @@ class BusScene(QGraphicsScene):
         """The device's own name, else its product from the device catalogue (looked up
         once per rebuild: finding the catalogue reads the user's folder)."""
         if self._catalog is None:
-            from pdcp_studio.app.part_names import part_names
+            from pdcp_studio.app.words.part_names import part_names
 
             self._catalog = part_names(self.doc.system)
         name = self._catalog.get(device.key)
         if name is None:  # a device just added: name the system again
-            from pdcp_studio.app.part_names import part_name
+            from pdcp_studio.app.words.part_names import part_name
 
             name = part_name(self.doc.system, device.key)
         return name
@@ -438,7 +438,7 @@ class BusScene(QGraphicsScene):
 
     def _pending_rows(self) -> dict[DeviceKey, set[int]]:
         """Channels (0: the device) with a parameter staged but not yet written."""
-        from pdcp_studio.app.pending import PARAMETER, pending_changes
+        from pdcp_studio.app.documents.pending import PARAMETER, pending_changes
 
         marks: dict[DeviceKey, set[int]] = {}
         if self.doc.bus_system is None:
@@ -585,7 +585,7 @@ class BusScene(QGraphicsScene):
         self._apply_states()
 
     def _show_preview(self, plan: object) -> None:
-        from pdcp_studio.app import plan_words
+        from pdcp_studio.app.words import plan_words
 
         for item in self.preview_items:
             item.detach()
@@ -773,7 +773,7 @@ class BusScene(QGraphicsScene):
     # -- text -------------------------------------------------------------------------
     def _describe(self, ref: ChannelRef) -> str:
         """``Multi-grip hand, channel 1 (Power grip)``: a channel in words."""
-        from pdcp_studio.app.plan_words import channel_words
+        from pdcp_studio.app.words.plan_words import channel_words
 
         ch = self.doc.system.channel(ref)
         name = self.profile_name(ch.profile) if ch else ""
@@ -784,7 +784,7 @@ class BusScene(QGraphicsScene):
         first, the engineer's codes after them in grey."""
         from html import escape
 
-        from pdcp_studio.app.part_names import numbers
+        from pdcp_studio.app.words.part_names import numbers
 
         def grey(text: str) -> str:
             return f"<span style='color:#6b7280'>{escape(text)}</span>"

@@ -188,7 +188,7 @@ class Page(QWizardPage):
 def prosthesis_words(url: str) -> str:
     """A connection as a prosthetist reads it: a simulated prosthesis by the simulator's
     description (``Transradial prosthesis (simulated)``), any other by its address."""
-    from pdcp_studio.app.connect_dialog import prosthesis_description
+    from pdcp_studio.app.dialogs.connect_dialog import prosthesis_description
 
     kind, _, name = url.partition(":")
     if kind == "sim":
@@ -206,8 +206,8 @@ class SimChoice(QWidget):
 
     def __init__(self) -> None:
         super().__init__()
-        from pdcp_studio.app.connect_dialog import DEFAULT_SIM, prosthesis_description
-        from pdcp_studio.bus.simulator import list_prostheses
+        from pdcp_studio.app.dialogs.connect_dialog import DEFAULT_SIM, prosthesis_description
+        from pdcp_studio.bus.sim.rigs import list_prostheses
 
         self.list = QListWidget()
         self.list.setWordWrap(True)
@@ -277,7 +277,7 @@ class ConnectPage(Page):
             self.simulated.setChecked(True)
 
     def ask_other(self) -> None:
-        from pdcp_studio.app.connect_dialog import ConnectDialog
+        from pdcp_studio.app.dialogs.connect_dialog import ConnectDialog
 
         url = ConnectDialog.get_url(self)
         if url:
@@ -412,7 +412,7 @@ class ChecksPage(Page):
         self.read_bus(self._show)
 
     def _show(self, _got: Any) -> None:
-        from pdcp_studio.app.finding_text import plain_finding
+        from pdcp_studio.app.words.finding_text import plain_finding
         from pdcp_studio.engine import check_system
 
         task = self.task
@@ -458,7 +458,7 @@ class ChangePage(Page):
         task = self.task
 
         def work(session: Any) -> Any:
-            from pdcp_studio.bus.session_api import preview_change
+            from pdcp_studio.bus.session.api import preview_change
 
             system, stored, policy = look(session)
             lines, change, expected = self.build(task, system, stored)
@@ -521,7 +521,7 @@ class WritePage(Page):
         self.working(_t("Working out the change…"))
 
         def work(session: Any) -> Any:
-            from pdcp_studio.bus.session_api import preview_change
+            from pdcp_studio.bus.session.api import preview_change
 
             system, stored, policy = look(session)
             lines, change, expected = self.build(task, system, stored)  # type: ignore[misc]

@@ -44,7 +44,7 @@ def _t(text: str) -> str:
 def restorable(entries: list[dict[str, Any]], devices: set[Any]) -> list[dict[str, Any]]:
     """The history entries of this prosthesis that can be put back (applied, with what they
     left known), newest first."""
-    from pdcp_studio.app.history_panel import for_prosthesis
+    from pdcp_studio.app.docks.history_panel import for_prosthesis
 
     ok = [e for e in for_prosthesis(entries, devices)
           if e.get("links_after") is not None

@@ -3,7 +3,7 @@ transaction at the end of each guided task.
 
 The transaction is the change road's (``session.transact``: interlock, write, read back,
 restore on a mismatch, release, record in the fitting history), exactly as the main
-window's Write to prosthesis runs it (:mod:`pdcp_studio.app.transaction_flow`): the wizard's
+window's Write to prosthesis runs it (:mod:`pdcp_studio.app.window.transaction_flow`): the wizard's
 Write button is the user's confirmation of the preview shown on the page before, and the
 prosthesis must still be as previewed, else nothing is written.
 """
@@ -17,7 +17,7 @@ from typing import Any
 from PySide6.QtCore import QObject, Signal
 from shiboken6 import isValid
 
-from pdcp_studio.app import fitting
+from pdcp_studio.app.documents import fitting
 
 
 class TransactionRunner(QObject):

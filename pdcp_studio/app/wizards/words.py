@@ -10,9 +10,9 @@ from __future__ import annotations
 
 from typing import Any
 
-from pdcp_studio.app import part_names as names
 from pdcp_studio.app.i18n import translate
-from pdcp_studio.bus.session_api import ChangePreview
+from pdcp_studio.app.words import part_names as names
+from pdcp_studio.bus.session.api import ChangePreview
 from pdcp_studio.engine import Action, Plan, Rule, Similarity
 from pdcp_studio.engine.similarity import MAX_TYPE_SCORE, PROFILE_STEP
 from pdcp_studio.model import profile as prof
@@ -29,7 +29,7 @@ def _t(text: str) -> str:
 
 def count(text: str, n: int) -> str:
     """``text`` with ``%n`` for ``n`` things: "1 link", "2 links" (Qt's plural forms)."""
-    from pdcp_studio.app.plural import count as plural
+    from pdcp_studio.app.words.plural import count as plural
 
     return plural(_CTX, text, n)
 
@@ -51,7 +51,7 @@ def part_names(system: System) -> dict[DeviceKey, str]:
 
 
 def part_words(system: System, key: DeviceKey) -> str:
-    """The part's one name in every panel (``app/part_names.py``): its own name, else its
+    """The part's one name in every panel (``app/words/part_names.py``): its own name, else its
     product from the device catalogue; two parts that would read alike (a hand and its
     spare) get their serial numbers."""
     return names.part_name(system, key, _shown())

@@ -1,0 +1,1 @@
+"""The panels docked around the graph: tree, inspector, plans, history, events, simulator."""

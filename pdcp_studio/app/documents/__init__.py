@@ -1,0 +1,1 @@
+"""What the app opens and edits: documents, undo commands, files, recovery."""

@@ -1,0 +1,221 @@
+"""Undo commands: every edit is one ``QUndoCommand`` that changes the model via Document.
+
+Offline or live, an edit changes the document only: on a live bus it is a staged change
+(the document is the project, the prosthesis the target) until Write to prosthesis runs
+one transaction (:mod:`pdcp_studio.app.documents.pending`).
+
+``QUndoStack.push`` runs ``redo()`` — callers never apply the change themselves, and a
+no-op edit is never pushed (:func:`push_channel_field` and friends check). Commands touch
+the :class:`~pdcp_studio.app.documents.document.Document`, never graphics items: the views follow
+the document's signals.
+"""
+
+from __future__ import annotations
+
+from collections.abc import Iterable
+from typing import Any
+
+from PySide6.QtGui import QUndoCommand
+
+from pdcp_studio.app.documents import pending
+from pdcp_studio.app.documents.document import Document, Position
+from pdcp_studio.model.refs import ChannelRef, DeviceKey
+from pdcp_studio.model.system import Link
+
+#: Command ids for ``mergeWith`` (consecutive moves of one drag merge into one step).
+MOVE_ID = 1001
+
+
+class LinksCommand(QUndoCommand):
+    """Link actions in order, carried out by the engine's one apply path (``Plan.apply``):
+    the inputs' source fields and Data Transfer Enabled follow the links exactly as the CLI's
+    ``apply`` leaves them. Undo puts the links and those fields back as they were."""
+
+    def __init__(self, doc: Document, actions: Iterable[Any], text: str,
+                 mode: str = "manual", parent: QUndoCommand | None = None) -> None:
+        super().__init__(text, parent)
+        self.doc, self.mode = doc, mode
+        self.actions = list(actions)
+        self.before = doc.links_state([a.link for a in self.actions])
+
+    def redo(self) -> None:
+        from pdcp_studio.engine import Plan
+
+        self.doc.apply_plan_actions(Plan(self.mode, actions=self.actions))
+
+    def undo(self) -> None:
+        self.doc.restore_links_state(self.before)
+
+
+def _action(op: str, link: Link, reason: str) -> Any:
+    from pdcp_studio.engine import Action, Op, Rule
+
+    if op == "add":
+        return Action(Op.ADD, link, Rule.STORED, reason)
+    return Action(Op.REMOVE, link, Rule.NOT_STORED, reason)
+
+
+class AddLinkCommand(LinksCommand):
+    def __init__(self, doc: Document, link: Link, parent: QUndoCommand | None = None) -> None:
+        super().__init__(doc, [_action("add", link, "linked by hand")],
+                         f"Link {link.output} → {link.input}", parent=parent)
+        self.link = link
+
+
+class RemoveLinkCommand(LinksCommand):
+    def __init__(self, doc: Document, link: Link, parent: QUndoCommand | None = None) -> None:
+        super().__init__(doc, [_action("remove", link, "removed by hand")],
+                         f"Remove link {link.output} → {link.input}", parent=parent)
+        self.link = link
+
+
+#: Fields a user may stage for a live device (node IDs and the inputs' source fields are
+#: the arbitrator's: they follow the links).
+LIVE_CHANNEL_PARAMS = pending.CHANNEL_PARAMS
+LIVE_DEVICE_PARAMS = pending.DEVICE_PARAMS
+
+
+def live_write_refusal(doc: Document, name: str, *, device: bool) -> str | None:
+    """Why a field may not be staged on a live bus (None: it may; Write to prosthesis
+    writes it)."""
+    if doc.session is None:
+        return None
+    table = LIVE_DEVICE_PARAMS if device else LIVE_CHANNEL_PARAMS
+    if name in table or name == "name":
+        return None
+    if name == "node_id":
+        return "node IDs are assigned by the arbitrator on a live bus"
+    return f"{name.replace('_', ' ')} cannot be written to a live device"
+
+
+class SetChannelFieldCommand(QUndoCommand):
+    """One channel field (on a live bus: staged, written by Write to prosthesis)."""
+
+    def __init__(self, doc: Document, ref: ChannelRef, name: str, value: Any,
+                 text: str = "", parent: QUndoCommand | None = None) -> None:
+        super().__init__(text or f"Set {name.replace('_', ' ')} of {ref}", parent)
+        self.doc, self.ref, self.name, self.value = doc, ref, name, value
+        self.old = getattr(doc.channel(ref), name)
+
+    def redo(self) -> None:
+        self.doc.set_channel_field(self.ref, self.name, self.value)
+
+    def undo(self) -> None:
+        self.doc.set_channel_field(self.ref, self.name, self.old)
+
+
+class SetDeviceFieldCommand(QUndoCommand):
+    """One device field (on a live bus: staged, written by Write to prosthesis)."""
+
+    def __init__(self, doc: Document, key: DeviceKey, name: str, value: Any,
+                 text: str = "", parent: QUndoCommand | None = None) -> None:
+        super().__init__(text or f"Set {name.replace('_', ' ')} of {key}", parent)
+        self.doc, self.key, self.name, self.value = doc, key, name, value
+        self.old = getattr(doc.device(key), name)
+
+    def redo(self) -> None:
+        self.doc.set_device_field(self.key, self.name, self.value)
+
+    def undo(self) -> None:
+        self.doc.set_device_field(self.key, self.name, self.old)
+
+
+class MoveDeviceCommand(QUndoCommand):
+    """A card moved. Consecutive moves of the same drag merge (``drag_id``)."""
+
+    def __init__(self, doc: Document, key: DeviceKey, old: Position | None, new: Position,
+                 drag_id: int = 0, parent: QUndoCommand | None = None) -> None:
+        super().__init__(f"Move {doc.system.devices[key].label}" if key in doc.system.devices
+                         else f"Move {key}", parent)
+        self.doc, self.key, self.old, self.new, self.drag_id = doc, key, old, new, drag_id
+
+    def id(self) -> int:
+        return MOVE_ID
+
+    def mergeWith(self, other: QUndoCommand) -> bool:
+        if not isinstance(other, MoveDeviceCommand):
+            return False
+        if other.key != self.key or other.drag_id != self.drag_id or not self.drag_id:
+            return False
+        self.new = other.new
+        return True
+
+    def redo(self) -> None:
+        self.doc.set_position(self.key, self.new)
+
+    def undo(self) -> None:
+        if self.old is not None:
+            self.doc.set_position(self.key, self.old)
+
+
+class MoveDevicesCommand(QUndoCommand):
+    """Several cards moved by one drag (a multi-selection): one undo step."""
+
+    def __init__(self, doc: Document, moves: dict[DeviceKey, tuple[Position, Position]],
+                 parent: QUndoCommand | None = None) -> None:
+        n = len(moves)
+        super().__init__(f"Move {n} device{'s' if n != 1 else ''}", parent)
+        self.doc, self.moves = doc, dict(moves)
+
+    def redo(self) -> None:
+        for key, (_old, new) in self.moves.items():
+            self.doc.set_position(key, new)
+
+    def undo(self) -> None:
+        for key, (old, _new) in self.moves.items():
+            self.doc.set_position(key, old)
+
+
+# -- helpers that push only real changes -------------------------------------------------
+def push_channel_field(doc: Document, ref: ChannelRef, name: str, value: Any,
+                       text: str = "") -> bool:
+    """Push one channel edit unless it changes nothing; True if pushed."""
+    current = getattr(doc.channel(ref), name)
+    if name in ("required_inputs", "desired_inputs"):
+        value = tuple(sorted(value))
+    if current == value:
+        return False
+    doc.undo_stack.push(SetChannelFieldCommand(doc, ref, name, value, text))
+    return True
+
+
+def push_device_field(doc: Document, key: DeviceKey, name: str, value: Any,
+                      text: str = "") -> bool:
+    if getattr(doc.device(key), name) == value:
+        return False
+    doc.undo_stack.push(SetDeviceFieldCommand(doc, key, name, value, text))
+    return True
+
+
+def push_add_link(doc: Document, link: Link) -> bool:
+    """Add a link as one undo step (on a live bus: a staged change)."""
+    if doc.system.has_link(link):
+        return False
+    doc.undo_stack.push(AddLinkCommand(doc, link))
+    return True
+
+
+def push_remove_links(doc: Document, links: Iterable[Link]) -> int:
+    """Remove links as one undo step; returns how many."""
+    links = [lk for lk in links if doc.system.has_link(lk)]
+    if not links:
+        return 0
+    text = (f"Remove link {links[0].output} → {links[0].input}" if len(links) == 1
+            else f"Remove {len(links)} links")
+    doc.undo_stack.push(LinksCommand(
+        doc, [_action("remove", lk, "removed by hand") for lk in links], text))
+    return len(links)
+
+
+def push_plan(doc: Document, plan: Any, text: str = "") -> bool:
+    """A plan's actions as one undo step, in order, through the engine's one apply path
+    (the same system the CLI's ``apply`` produces, source fields included); False if it
+    does nothing."""
+    actions = list(getattr(plan, "actions", ()))
+    if not actions:
+        return False
+    mode = getattr(plan, "mode", "plan")
+    n = len(actions)
+    doc.undo_stack.push(LinksCommand(
+        doc, actions, text or f"Apply {mode} ({n} action{'s' * (n != 1)})", mode=mode))
+    return True

@@ -1,0 +1,1 @@
+"""The live bus behind a document: connecting, the session bridge, layout, plot."""

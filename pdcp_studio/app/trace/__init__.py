@@ -1,0 +1,1 @@
+"""The trace dock and its frame store, table models, captures and recording."""

@@ -1,0 +1,1 @@
+"""The main window, its controllers, menus and toolbar, the start page."""

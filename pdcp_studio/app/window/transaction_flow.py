@@ -1,0 +1,334 @@
+"""Changes to the connected prosthesis from the app: preview → confirm → one transaction.
+
+Every change the app makes to a prosthesis — Write to prosthesis (the pending changes),
+undoing or redoing a written change, restoring a history entry — is a
+:class:`~pdcp_studio.bus.transaction.Change` carried out by the session's one road
+(``session.transact``: interlock, write, read back, restore on mismatch, release, record in
+the fitting history). The preview is computed on the bridge's worker from the prosthesis as
+it is now, shown in :class:`ConfirmDialog`, and only a confirmed change is written; the
+transaction then runs on the worker with progress and Cancel. If the prosthesis changed
+between the preview and the write, the transaction is declined (nothing written).
+
+Undo: a successful write pushes :class:`WrittenCommand` on the document's undo stack. Undoing
+it is a new transaction (previewed, confirmed) that writes the prosthesis back as it was
+before that write, then steps the project back over the edits it wrote; redoing it writes
+them again. Bus I/O never runs on the GUI thread.
+"""
+
+from __future__ import annotations
+
+import logging
+import threading
+from collections.abc import Callable
+from typing import Any
+
+from PySide6.QtCore import QObject, Qt, Signal
+from PySide6.QtGui import QFont, QUndoCommand
+from PySide6.QtWidgets import (
+    QDialog,
+    QDialogButtonBox,
+    QLabel,
+    QPlainTextEdit,
+    QProgressDialog,
+    QPushButton,
+    QVBoxLayout,
+    QWidget,
+)
+
+from pdcp_studio.app.documents import fitting, pending
+from pdcp_studio.app.words.plural import count
+from pdcp_studio.model.system import System
+
+log = logging.getLogger(__name__)
+
+
+class WrittenCommand(QUndoCommand):
+    """A marker on the undo stack: the edits from ``first_index`` up to here were written
+    to the prosthesis (``bus_before`` is the prosthesis before the write). It changes nothing
+    in the document itself; the flow turns its undo and redo into transactions."""
+
+    def __init__(self, first_index: int, bus_before: System, result: Any, text: str) -> None:
+        super().__init__(text)
+        self.first_index = first_index
+        self.bus_before = bus_before
+        self.result = result
+
+    def redo(self) -> None:  # the transaction did the work: nothing to do in the project
+        pass
+
+    def undo(self) -> None:
+        pass
+
+
+class ConfirmDialog(QDialog):
+    """The preview of a change in plain words; writing needs a click (never the default)."""
+
+    def __init__(self, title: str, lines: list[str], parent: QWidget | None = None) -> None:
+        super().__init__(parent)
+        self.setWindowTitle(title)
+        self.resize(720, 420)
+        head = QLabel(self.tr("This is what will change on the prosthesis. The devices that "
+                              "drive a hand, wrist or elbow are held still while it is "
+                              "written, then it is read back and verified; on any mismatch "
+                              "the prosthesis is put back as it was."))
+        head.setWordWrap(True)
+        text = QPlainTextEdit("\n".join(lines))
+        text.setReadOnly(True)
+        font = QFont("monospace")
+        font.setStyleHint(QFont.StyleHint.Monospace)
+        text.setFont(font)
+        buttons = QDialogButtonBox()
+        self.write_button = QPushButton(self.tr("Write to prosthesis"))
+        self.write_button.setAutoDefault(False)
+        self.write_button.setDefault(False)
+        buttons.addButton(self.write_button, QDialogButtonBox.ButtonRole.AcceptRole)
+        cancel = buttons.addButton(QDialogButtonBox.StandardButton.Cancel)
+        cancel.setDefault(True)
+        buttons.accepted.connect(self.accept)
+        buttons.rejected.connect(self.reject)
+        box = QVBoxLayout(self)
+        box.addWidget(head)
+        box.addWidget(text, 1)
+        box.addWidget(buttons)
+
+
+class TransactionFlow(QObject):
+    """Runs the app's changes to the prosthesis (see the module docstring).
+
+    ``window`` gives ``doc``, ``live``, ``show_message``, ``error_box``,
+    ``reread_configuration``. Signals: ``previewed(ChangePreview)``,
+    ``finished(TransactionResult)`` (any outcome), ``busyChanged(bool)``.
+    """
+
+    previewed = Signal(object)
+    finished = Signal(object)
+    busyChanged = Signal(bool)
+
+    def __init__(self, window: Any) -> None:
+        super().__init__(window)
+        self.window = window
+        self.doc = window.doc
+        self.busy = False
+        self.last_result: Any = None
+        self.progress_dialog: QProgressDialog | None = None
+        #: Set to cancel the running transaction (the progress dialog's Cancel does).
+        self.cancel_event: threading.Event | None = None
+        #: ``confirm(title, preview) -> bool`` replaces the dialog (tests).
+        self.confirm: Callable[[str, Any], bool] | None = None
+
+    # -- entry points --------------------------------------------------------------------
+    def write_pending(self) -> bool:
+        """Write every pending change in one transaction (after the preview); False if
+        there is nothing to write or no prosthesis."""
+        doc = self.doc
+        changes = pending.pending_changes(doc.bus_system, doc.system, doc.link_reasons)
+        if not changes or self._bridge() is None:
+            self.window.show_message(self.tr("Nothing to write: the project and the "
+                                             "prosthesis agree"))
+            return False
+        change = pending.change_for(changes, doc.system)
+        first = self._first_unwritten_index()
+        bus_before = doc.bus_system.copy() if doc.bus_system is not None else System()
+
+        def done(result: Any) -> None:
+            if result.written:
+                text = count("TransactionFlow", "Write to prosthesis (%n change(s))",
+                             len(changes))
+                doc.undo_stack.push(WrittenCommand(first, bus_before, result, text))
+        return self.run(change, self.tr("Write to prosthesis"), done)
+
+    def undo(self) -> None:
+        """Undo; a written change is undone on the prosthesis by a new transaction."""
+        stack = self.doc.undo_stack
+        cmd = stack.command(stack.index() - 1) if stack.canUndo() else None
+        if not isinstance(cmd, WrittenCommand) or self._bridge() is None:
+            stack.undo()
+            return
+        bus_now = self.doc.bus_system or System()
+        back = pending.pending_changes(bus_now, cmd.bus_before)
+        if not back:
+            stack.setIndex(cmd.first_index)
+            return
+        change = pending.change_for(back, cmd.bus_before, action=f"undo {cmd.text().lower()}",
+                                    reason=f"undo: as before “{cmd.text()}”")
+
+        def done(result: Any) -> None:
+            if result.ok and stack.index() > cmd.first_index:
+                stack.setIndex(cmd.first_index)  # the project steps back over those edits
+        self.run(change, self.tr("Undo on the prosthesis: {0}").format(cmd.text()), done)
+
+    def redo(self) -> None:
+        """Redo; redoing a written change writes it again (a new transaction)."""
+        stack = self.doc.undo_stack
+        cmd = stack.command(stack.index()) if stack.canRedo() else None
+        if not isinstance(cmd, WrittenCommand) or self._bridge() is None:
+            stack.redo()
+            return
+        doc = self.doc
+        changes = pending.pending_changes(doc.bus_system, doc.system, doc.link_reasons)
+        if not changes:
+            stack.redo()
+            return
+        cmd.bus_before = doc.bus_system.copy() if doc.bus_system is not None else System()
+        change = pending.change_for(changes, doc.system, action="redo write to prosthesis")
+
+        def done(result: Any) -> None:
+            if result.written and stack.command(stack.index()) is cmd:
+                cmd.result = result
+                stack.redo()
+        self.run(change, self.tr("Redo on the prosthesis: {0}").format(cmd.text()), done)
+
+    # -- the road ------------------------------------------------------------------------
+    def run(self, change: Any, title: str,
+            on_result: Callable[[Any], None] | None = None) -> bool:
+        """Preview ``change`` on the worker, ask, then carry it out as one transaction."""
+        bridge = self._bridge()
+        if bridge is None:
+            self.window.error_box(title, self.tr("not connected to a prosthesis"))
+            return False
+        if self.busy:
+            self.window.show_message(self.tr("A change to the prosthesis is still running"))
+            return False
+        from pdcp_studio.bus.session.api import preview_change
+
+        session = bridge.session
+        self._set_busy(True)
+        worker = bridge.run(lambda _p, _c: preview_change(session, change),
+                            self.tr("Preview the change"))
+        if worker is None:
+            self._set_busy(False)
+            return False
+        worker.finished.connect(lambda preview: self._previewed(bridge, change, title,
+                                                                preview, on_result))
+        worker.failed.connect(lambda msg: self._failed(title, msg))
+        worker.cancelled.connect(lambda: self._set_busy(False))
+        return True
+
+    def _previewed(self, bridge: Any, change: Any, title: str, preview: Any,
+                   on_result: Callable[[Any], None] | None) -> None:
+        self.previewed.emit(preview)
+        if bridge is not self._bridge():
+            self._set_busy(False)
+            return
+        if preview.empty:
+            self._set_busy(False)
+            self.window.show_message(self.tr("{0}: nothing to change on the prosthesis")
+                                     .format(title))
+            self.window.live.refresh()
+            return
+        if not self._ask(title, preview):
+            self._set_busy(False)
+            self.window.show_message(self.tr("{0}: not confirmed, nothing written")
+                                     .format(title))
+            return
+        operator = fitting.operator_name(self.window)
+        patient = self.window.patient_reference() if hasattr(
+            self.window, "patient_reference") else ""
+        shown = set(preview.links_before)
+
+        def same_bus(p: Any) -> bool:  # the prosthesis must still be as previewed
+            return set(p.links_before) == shown
+
+        session = bridge.session
+        # Its own cancel event: a cancelled transaction still reports what it did (rolled
+        # back…), which a cancelled worker would drop.
+        stop = threading.Event()
+        worker = bridge.run(
+            lambda prog, _cancel: session.transact(
+                change, operator=operator or None, patient=patient or None,
+                confirm=same_bus, progress=prog, cancel=stop),
+            title)
+        if worker is None:
+            self._set_busy(False)
+            return
+        self.cancel_event = stop
+        self._show_progress(title, worker, stop)
+        worker.finished.connect(lambda result: self._done(title, result, on_result))
+        worker.failed.connect(lambda msg: self._failed(title, msg))
+        worker.cancelled.connect(lambda: self._cancelled(title))
+
+    def _ask(self, title: str, preview: Any) -> bool:
+        if self.confirm is not None:
+            return bool(self.confirm(title, preview))
+        dialog = ConfirmDialog(title, preview.lines(), self.window)
+        try:
+            return dialog.exec() == QDialog.DialogCode.Accepted
+        finally:
+            dialog.deleteLater()
+
+    def _show_progress(self, title: str, worker: Any, stop: threading.Event) -> None:
+        dialog = QProgressDialog(self.tr("Writing to the prosthesis…"), self.tr("Cancel"), 0, 0,
+                                 self.window)
+        dialog.setWindowTitle(title)
+        dialog.setWindowModality(Qt.WindowModality.WindowModal)
+        dialog.setMinimumDuration(300)
+        dialog.setAutoClose(False)
+        dialog.setAutoReset(False)
+
+        def on_progress(done: int, total: int, text: str) -> None:
+            if total > 0:
+                dialog.setMaximum(total)
+                dialog.setValue(min(done, total))
+            if text:
+                dialog.setLabelText(text)
+
+        def on_cancel() -> None:
+            dialog.setLabelText(self.tr("Cancelling… (the prosthesis is put back as it was)"))
+            stop.set()
+
+        worker.progress.connect(on_progress)
+        dialog.canceled.connect(on_cancel)
+        worker.done.connect(dialog.close)
+        worker.done.connect(dialog.deleteLater)
+        self.progress_dialog = dialog
+
+    def _done(self, title: str, result: Any, on_result: Callable[[Any], None] | None) -> None:
+        self._set_busy(False)
+        self.last_result = result
+        if on_result is not None:
+            on_result(result)
+        status = getattr(result.status, "value", str(result.status))
+        if result.ok:
+            self.window.show_message(result.summary())
+        elif status == "declined":
+            self.window.error_box(title, self.tr(
+                "The prosthesis changed after the preview, so nothing was written. "
+                "Look at the pending changes again and write them."))
+        else:
+            self.window.error_box(title, self.tr("{0}\nThe prosthesis is as it was before.")
+                                  .format(result.summary()))
+        for note in getattr(result, "notes", ()):
+            log.info("%s: %s", title, note)
+        # The prosthesis and its stored configuration as they are now (previews use them).
+        self.window.live.refresh()
+        self.window.reread_configuration()
+        self.finished.emit(result)
+
+    def _failed(self, title: str, message: str) -> None:
+        self._set_busy(False)
+        self.window.error_box(title, message)
+        self.window.live.refresh()
+
+    def _cancelled(self, title: str) -> None:
+        self._set_busy(False)
+        self.window.show_message(self.tr("{0}: cancelled").format(title))
+        self.window.live.refresh()
+
+    # -- helpers -------------------------------------------------------------------------
+    def _set_busy(self, busy: bool) -> None:
+        if busy != self.busy:
+            self.busy = busy
+            self.busyChanged.emit(busy)
+
+    def _bridge(self) -> Any:
+        live = self.window.live
+        bridge = live.bridge
+        return bridge if bridge is not None and self.doc.session is bridge else None
+
+    def _first_unwritten_index(self) -> int:
+        """The undo-stack index just after the last write (where this write's edits start)."""
+        stack = self.doc.undo_stack
+        for i in range(stack.index() - 1, -1, -1):
+            if isinstance(stack.command(i), WrittenCommand):
+                return i + 1
+        return 0

@@ -1,0 +1,1 @@
+"""Plain words for prosthetists: part names, plan steps, findings, plural counts."""

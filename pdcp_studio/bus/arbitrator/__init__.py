@@ -1,0 +1,1 @@
+"""The bus arbitrator: pure deciders (claim, node table, presence) and its parts."""

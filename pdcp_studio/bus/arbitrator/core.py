@@ -1,0 +1,632 @@
+"""The PDCP bus arbitrator on any python-can bus (reference §1 and §2, issue 4 item 1).
+
+It binds devices from one node-ID pool shared with their output channels, sets each device up
+(§1 steps 1–6), answers Update Data Channel requests, keeps presence by beacons (gone after
+3 missed intervals), makes and removes links on the wire, keeps the stored configuration in
+its non-volatile memory and runs the profile layer's start-up and hot-swap duty cycle
+through the engine's plans.
+
+Threads, all owned here and stopped by :meth:`Arbitrator.close`:
+- the *dispatch* thread drains the connection's queue (the Notifier only enqueues): it
+  decodes frames, answers bind and Update Data Channel requests, feeds responses to the
+  :class:`RequestEngine`, and checks presence on a tick. It never waits for the bus.
+- a small *set-up pool* reads newly bound devices (requests to different devices overlap)
+  and does the wire work of departures.
+- the *profile* thread runs start-up once binding has been quiet for ``startup_quiet_s``,
+  and the duty cycle after joins and leaves.
+Link changes on the wire and plans are serialized by one lock, so a plan never races a
+set-up re-making a link. Subscribers are called on these threads and must not block.
+
+Decisions beyond the reference:
+- A bind request asking for a free ID (or the one the device holds) is granted at once;
+  otherwise the lowest free ID is suggested and held for that device for ``BIND_HOLD_S``.
+- A device that is present and asks to bind again either rebooted or has a twin with the same
+  VID/PID/serial. The answer waits ``DUPLICATE_WINDOW`` beacon intervals: a beacon from the
+  bound node meanwhile means a twin (reported, never bound); silence means a reboot (set up
+  again, links re-made). Twins that bound together (one answer binds both) are caught by
+  their echoed responses (dropped, so requests still work) or their doubled beacon rate.
+- A departed device stays in the system (``present`` false) with its links (dead links,
+  as the engine expects); its node IDs go back to the pool, and inputs it fed stop listening.
+- Traffic from a node ID the arbitrator does not hold (a device or output bound by an earlier
+  arbitrator) keeps that ID out of the pool while it is heard; a beacon from such a node gets
+  a Reset Device, so the device binds again; start and :meth:`reset` broadcast one.
+
+The arbitrator is composed of parts, each with one job and its own state (as canopen composes
+its ``Network`` from ``nmt``, ``lss`` and ``sdo``):
+
+- ``claim`` (:class:`~pdcp_studio.bus.arbitrator.claim.BusClaim`): may we write on this bus at all;
+- ``nodes`` (:class:`~pdcp_studio.bus.arbitrator.nodes.NodeTable`): who holds which node ID, and
+  what
+  to answer a bind request;
+- ``presence`` (:class:`~pdcp_studio.bus.arbitrator.presence.PresenceTracker`): who is gone at
+  ``now``, twins on one node ID, nodes bound by someone else;
+- ``setup`` (:class:`~pdcp_studio.bus.arbitrator.setup.DeviceSetup`): reading a bound device with
+  the
+  device reader the scan shares (``bus/arbitrator/device_reader.py``) and installing it;
+- ``links`` (:class:`~pdcp_studio.bus.arbitrator.links.LinkWriter`): what to write for a link, and
+  writing it;
+- ``profile`` (:class:`~pdcp_studio.bus.arbitrator.profile.ProfileDriver`): start-up, duty cycle,
+  plans;
+- ``transactions`` (:class:`~pdcp_studio.bus.arbitrator.transactions.Transactions`): the change
+  road;
+- ``dispatch`` (:class:`~pdcp_studio.bus.arbitrator.dispatch.Dispatcher`): the dispatch thread,
+  which
+  hears every frame, asks the deciding parts and carries their decisions out.
+
+The claim, node table and presence tracker decide from ``now`` and the frames heard and return
+decisions (tested without threads); this class owns the bus, the threads, the locks and the
+system, sends, and keeps the public API. ``arb_common`` holds the constants and node state.
+"""
+
+
+from __future__ import annotations
+
+import logging
+import threading
+import time
+from collections.abc import Callable
+from concurrent.futures import ThreadPoolExecutor
+from pathlib import Path
+from typing import TYPE_CHECKING, Any
+
+from pdcp_studio.bus import events as ev
+from pdcp_studio.bus.arbitrator.claim import BusClaim, Phase
+from pdcp_studio.bus.arbitrator.common import (
+    _MANAGED,
+    BEACON_WINDOW,
+    BIND_HOLD_S,
+    DEFAULT_BEACON_INTERVAL_S,
+    DUPLICATE_WINDOW,
+    DUTY_QUIET_S,
+    ECHOES_FOR_TWIN,
+    FOREIGN_HOLD_S,
+    FOREIGN_LISTEN_S,
+    JOIN_S,
+    MISSED_BEACONS,
+    PRESENCE_GRACE,
+    RESET_GRACE_S,
+    RETRIES,
+    SETUP_ATTEMPTS,
+    SETUP_WORKERS,
+    STARTUP_MAX_WAIT_S,
+    STARTUP_QUIET_S,
+    TICK_S,
+    TWIN_BEACON_RATIO,
+    UNKNOWN_RESET_S,
+    _Node,
+)
+from pdcp_studio.bus.arbitrator.dispatch import Dispatcher
+from pdcp_studio.bus.arbitrator.links import LinkWriter
+from pdcp_studio.bus.arbitrator.memory import MemoryStore
+from pdcp_studio.bus.arbitrator.node_ids import NodeIdPool
+from pdcp_studio.bus.arbitrator.nodes import NodeTable
+from pdcp_studio.bus.arbitrator.presence import PresenceTracker
+from pdcp_studio.bus.arbitrator.profile import ProfileDriver
+from pdcp_studio.bus.arbitrator.requests import RESPONSE_TIMEOUT_S, RequestEngine
+from pdcp_studio.bus.arbitrator.setup import DeviceSetup
+from pdcp_studio.bus.arbitrator.transactions import Transactions
+from pdcp_studio.bus.connection import Connection
+from pdcp_studio.bus.log_limit import LimitedLog, RepeatLimiter
+from pdcp_studio.bus.transaction import INTERLOCK_RENEW_S, Change, Policy, TransactionResult
+from pdcp_studio.errors import ModelError, TransportError
+from pdcp_studio.model import parameters as P
+from pdcp_studio.model.configuration import ConfigCollection
+from pdcp_studio.model.param_fields import learn_value, only_inputs
+from pdcp_studio.model.refs import ChannelRef, DeviceKey
+from pdcp_studio.model.system import Link, System
+from pdcp_studio.protocol import (
+    Message,
+    Mode,
+    Reset,
+)
+from pdcp_studio.protocol.identifier import NODE_ID_MAX, NODE_ID_MIN
+
+if TYPE_CHECKING:
+    import can
+
+    from pdcp_studio.engine.plan import Plan
+
+log = logging.getLogger(__name__)
+
+#: Errors of one kind (undecodable frames, error frames …) told in full before the limit:
+#: then one a second, and the rest as one summary a second (``bus/log_limit.py``).
+ERROR_BURST = 8
+
+__all__ = [
+    "BEACON_WINDOW",
+    "BIND_HOLD_S",
+    "DEFAULT_BEACON_INTERVAL_S",
+    "DUPLICATE_WINDOW",
+    "DUTY_QUIET_S",
+    "ECHOES_FOR_TWIN",
+    "FOREIGN_HOLD_S",
+    "FOREIGN_LISTEN_S",
+    "JOIN_S",
+    "MISSED_BEACONS",
+    "PRESENCE_GRACE",
+    "RESET_GRACE_S",
+    "RETRIES",
+    "SETUP_ATTEMPTS",
+    "SETUP_WORKERS",
+    "STARTUP_MAX_WAIT_S",
+    "STARTUP_QUIET_S",
+    "TICK_S",
+    "TWIN_BEACON_RATIO",
+    "UNKNOWN_RESET_S",
+    "Arbitrator",
+    "learn_value",
+]
+
+#: At most this many frames wait undecoded while nobody wants frame events (``subscribe``).
+FRAME_BACKLOG = 1024
+
+
+def _always() -> bool:
+    return True
+
+
+#: How a summary names the errors of a kind.
+_ERROR_WORDS = {"bad_frame": "undecodable frames", "error_frame": "error frames",
+                "transport": "transport errors"}
+
+
+class Arbitrator:
+    """A headless PDCP bus arbitrator on ``bus`` (which it owns and shuts down on close)."""
+
+    #: Seconds between two renewals of a transaction's interlock (tests shorten it).
+    interlock_renew_s = INTERLOCK_RENEW_S
+
+    def __init__(self, bus: can.BusABC, *, memory: str | Path | MemoryStore | None = None,
+                 profile_layer: bool = True, name: str = "arbitrator", pace_s: float = 0.0,
+                 response_timeout: float = RESPONSE_TIMEOUT_S, retries: int = RETRIES,
+                 startup_quiet_s: float = STARTUP_QUIET_S, duty_quiet_s: float = DUTY_QUIET_S,
+                 startup_max_wait_s: float = STARTUP_MAX_WAIT_S,
+                 node_ids: tuple[int, int] = (NODE_ID_MIN, NODE_ID_MAX),
+                 frame_events: bool = False, channel_events: bool = True,
+                 reset_on_start: bool = True, autoconfigure: bool | None = None,
+                 drop_own: bool | None = None, listen_s: float = 0.0,
+                 direct: bool = False) -> None:
+        self.name = name
+        self.profile_layer = profile_layer
+        self.retries = retries
+        self.frame_events = frame_events
+        self.channel_events = channel_events
+        self.memory = memory if isinstance(memory, MemoryStore) else MemoryStore(memory)
+        if autoconfigure is not None and self.memory.read_policy()["autoconfigure"] != \
+                autoconfigure:  # ``--no-autoconfigure``: the flag sets the stored policy
+            self.memory.write_policy({"autoconfigure": autoconfigure})
+        self.bad_frames = 0
+        self.error_frames = 0
+        self.data_frames = 0
+        self.conn = Connection(bus, name=name, pace_s=pace_s, drop_own=drop_own, direct=direct)
+        self._errors = RepeatLimiter(burst=ERROR_BURST)
+        self._crashes = LimitedLog(log, f"{name}: ")
+        self._disconnected = False  # the adapter was pulled (a ReopeningBus says so)
+        self.requests = RequestEngine(self._send, response_timeout=response_timeout,
+                                      retries=retries)
+        self._lock = threading.RLock()  # the parts' state and the system
+        self._plan_lock = threading.RLock()  # wire work on links: plans, set-ups, transactions
+        self._subscribers = ev.Subscribers(name)
+        self._system = System()
+        self._jobs = 0  # jobs in flight on the set-up pool besides set-ups (departures …)
+        now = time.monotonic()
+        # One arbitrator per bus (reference §5, arb_claim): on a can: bus it first listens
+        # ``listen_s``; until then (and for good once another arbitrator is heard) it writes
+        # nothing, not even the start-up reset.
+        self.claim = BusClaim(now, listen_s, own_echoes=self.conn.drop_own)
+        self._reset_on_claim = reset_on_start
+        self.bus_message = ""  # the last BusState line (why it arbitrates or not)
+        self.nodes = NodeTable(*node_ids)
+        self.presence = PresenceTracker()
+        self.setup = DeviceSetup(self)
+        self.links = LinkWriter(self)
+        # Without the start-up reset, devices bound by an earlier arbitrator keep their IDs:
+        # hear them all (beacons) before handing any ID out; the device asking retries.
+        listen_until = max(now if reset_on_start else now + FOREIGN_LISTEN_S,
+                           self.claim.listen_until)
+        self.profile = ProfileDriver(self, now, quiet_s=startup_quiet_s,
+                                     duty_quiet_s=duty_quiet_s, max_wait_s=startup_max_wait_s,
+                                     listen_until=listen_until)
+        self.transactions = Transactions(self)
+        self.dispatch = Dispatcher(self)
+        if hasattr(bus, "on_state"):
+            bus.on_state = self.dispatch.adapter_state
+        # The frame events' decoder (bus/trace/monitor.py), made when a frame is first shown; the
+        # frames before it, and those while nobody watches frames, wait undecoded
+        # (``_frame_event``).
+        self._decoder: Any = None
+        self._decoder_lock = threading.Lock()
+        self._unshown: list[tuple[int, bytes, float]] = []
+        self._frame_gates: list[Callable[[], bool]] = []
+        self._stop = threading.Event()
+        self._wake = threading.Event()
+        self._pool_exec = ThreadPoolExecutor(SETUP_WORKERS, thread_name_prefix=f"pdcp {name} setup")
+        self._thread = threading.Thread(target=self.dispatch.run, name=f"pdcp {name}",
+                                        daemon=True)
+        self._profile_thread = threading.Thread(target=self.profile.loop,
+                                                name=f"pdcp {name} profile", daemon=True)
+        self._closed = False
+        self._thread.start()
+        self._profile_thread.start()
+        if self.claim.may_write:
+            self.dispatch.claim_started(None)
+
+    # -- lifetime -------------------------------------------------------------------------
+    def __enter__(self) -> Arbitrator:
+        return self
+
+    def __exit__(self, *exc: object) -> None:
+        self.close()
+
+    def close(self) -> None:
+        """Stop every thread, abort requests, shut the bus down. Idempotent."""
+        if self._closed:
+            return
+        self._closed = True
+        self._stop.set()
+        self._wake.set()
+        self.requests.close()
+        self.conn.wake()
+        self._pool_exec.shutdown(wait=False, cancel_futures=True)
+        for thread in (self._thread, self._profile_thread):
+            if thread is not threading.current_thread():
+                thread.join(timeout=JOIN_S)
+        self.conn.close()
+
+    @property
+    def closed(self) -> bool:
+        return self._closed
+
+    # -- events ---------------------------------------------------------------------------
+    def subscribe(self, callback: Callable[[ev.Event], None], *,
+                  wants_frames: Callable[[], bool] | None = None) -> Callable[[], None]:
+        """Call ``callback(event)`` for every event; returns the unsubscribe function.
+
+        ``wants_frames`` (with ``frame_events``): asked before each frame whether this
+        subscriber shows ``FrameSeen`` events now (a session: while it has subscribers of its
+        own); without it, it always does. While no subscriber wants them, frames are not
+        decoded for display: they wait (``FRAME_BACKLOG`` at most) and are decoded, in order,
+        before the next frame one is shown, so the texts are the same, and the work is off
+        the path of opening a simulated prosthesis, which nobody watches yet."""
+        gate = wants_frames if wants_frames is not None else _always
+        with self._decoder_lock:
+            self._frame_gates.append(gate)
+        remove = self._subscribers.add(callback)
+
+        def unsubscribe() -> None:
+            remove()
+            with self._decoder_lock:
+                if gate in self._frame_gates:
+                    self._frame_gates.remove(gate)
+
+        return unsubscribe
+
+    def _emit(self, event: ev.Event) -> None:
+        self._subscribers.emit(event)
+
+    def _error(self, message: str, kind: str = "") -> None:
+        """Log and show a bus error; repeats of one kind are limited, then summarised."""
+        told, summary = self._errors.admit(kind or message, message)
+        if summary is not None:
+            self._tell_error(summary.text(_ERROR_WORDS.get(summary.kind, "")), summary.kind)
+        if told:
+            self._tell_error(message, kind)
+
+    def _tell_error(self, message: str, kind: str) -> None:
+        log.warning("%s: %s", self.name, message)
+        self._emit(ev.BusError(message, kind))
+
+    def _flush_errors(self) -> None:
+        for summary in self._errors.due():
+            self._tell_error(summary.text(_ERROR_WORDS.get(summary.kind, "")), summary.kind)
+
+    # -- snapshot and look-ups ------------------------------------------------------------
+    def system(self) -> System:
+        """A copy of the bus as the arbitrator knows it (every device ever bound)."""
+        with self._lock:
+            return self._system.copy()
+
+    def node_id_of(self, key: DeviceKey) -> int | None:
+        """The node ID of a bound device (None if it is not bound)."""
+        with self._lock:
+            return self.nodes.node_of.get(DeviceKey(*key))
+
+    def channel_node_id(self, ref: ChannelRef) -> int | None:
+        """The node ID an output channel sends its data with (None if it has none)."""
+        with self._lock:
+            return self.nodes.output_id(ref)
+
+    @property
+    def channel_node_ids(self) -> frozenset[int]:
+        """The node IDs output channels send their data with now (a frame's node ID in this
+        set and mode 0 is channel data)."""
+        return self.nodes.channel_set
+
+    @property
+    def duplicates(self) -> set[DeviceKey]:
+        """Devices reported as twins (two on the bus with one VID/PID/serial)."""
+        return self.presence.duplicates
+
+    @property
+    def stale_data_frames(self) -> int:
+        """Data frames on channel node IDs from before the last reset (expected, counted)."""
+        return self.presence.stale_data_frames
+
+    @property
+    def applied_plans(self) -> list[Plan]:
+        return self.profile.applied_plans
+
+    @property
+    def _pool(self) -> NodeIdPool:  # (tests look at the pool's free IDs)
+        return self.nodes.pool
+
+    @property
+    def _nodes(self) -> dict[int, _Node]:  # (tests look at a node's state)
+        return self.nodes.by_id
+
+    @property
+    def bus_state(self) -> str:
+        """``listening``, ``arbitrating`` or ``yielded`` (ev.BusState says when it changes)."""
+        return self.claim.phase.value
+
+    @property
+    def yielded(self) -> bool:
+        """True once another arbitrator was heard: this one writes nothing any more."""
+        return self.claim.phase is Phase.YIELDED
+
+    def wait_claimed(self, timeout: float) -> bool:
+        """Wait until listening is over; True when this arbitrator arbitrates the bus."""
+        deadline = time.monotonic() + timeout
+        while self.claim.phase is Phase.LISTENING and time.monotonic() < deadline \
+                and not self._closed:
+            time.sleep(0.01)
+        return self.claim.may_write
+
+    @property
+    def startup_done(self) -> bool:
+        return self.profile.startup_done
+
+    def _busy(self) -> bool:
+        """Binds held or deferred, set-ups or jobs under way."""
+        with self._lock:
+            return bool(self.setup.in_flight or self.nodes.held or self.nodes.deferred
+                         or self._jobs)
+
+    def _settled(self) -> bool:
+        with self._lock:
+            busy = self._busy() or bool(self.profile.plan_running)
+            if self.profile_layer:
+                busy = busy or not self.profile.startup_done or self.profile.duty_needed
+            return not busy
+
+    def wait_settled(self, timeout: float) -> bool:
+        """True once no bind, set-up or plan is in progress and start-up has run."""
+        deadline = time.monotonic() + timeout
+        while True:
+            if self._settled():
+                return True
+            left = deadline - time.monotonic()
+            if left <= 0 or self._closed:
+                return False
+            time.sleep(min(0.01, left))
+
+    def _node_for(self, key: DeviceKey) -> int:
+        node_id = self.node_id_of(key)
+        if node_id is None:
+            raise TransportError(f"{self.name}: device {DeviceKey(*key)} is not on the bus")
+        return node_id
+
+    # -- jobs on the set-up pool ----------------------------------------------------------
+    def _submit_job(self, fn: Callable[..., None], *args: Any) -> None:
+        """Run ``fn(*args)`` on the set-up pool, counted until it calls :meth:`_job_done`."""
+        with self._lock:
+            self._jobs += 1
+        try:
+            self._pool_exec.submit(fn, *args)
+        except RuntimeError:  # closing
+            self._job_done()
+
+    def _job_done(self) -> None:
+        with self._lock:
+            self._jobs -= 1
+
+    # -- parameters -----------------------------------------------------------------------
+    def get_parameter(self, key: DeviceKey, param: int, channel: int = 0, *,
+                      timeout: float | None = None) -> bytes:
+        """Read one parameter (bulk transfer when the device asks for it)."""
+        value = self.requests.get(self._node_for(key), param, channel, timeout=timeout)
+        self._learn(DeviceKey(*key), param, channel, value)
+        return value
+
+    def set_parameter(self, key: DeviceKey, param: int, channel: int, value: bytes, *,
+                      timeout: float | None = None) -> None:
+        """Write one parameter (bulk transfer for values over 4 bytes).
+
+        Node IDs (device, Channel Node Id, Source's Node Ids) belong to the arbitrator:
+        use links for them. A new Beacon Interval takes effect for presence at once.
+        """
+        key = DeviceKey(*key)
+        with self._lock:
+            device = self._system.device(key)
+            ch = device.channels.get(channel) if device and channel else None
+        scope = "device" if channel == 0 else ch.direction.value if ch else ""
+        if (param, scope) in _MANAGED:
+            raise ModelError(f"parameter {param} of channel {channel} is managed by the "
+                             "arbitrator (node IDs follow binding and links)")
+        self.requests.set(self._node_for(key), param, channel, bytes(value), timeout=timeout)
+        self._learn(key, param, channel, bytes(value))
+
+    def _learn(self, key: DeviceKey, param: int, channel: int, value: bytes) -> None:
+        with self._lock:
+            device = self._system.device(key)
+            if device is not None:
+                learn_value(device, param, channel, value)
+                only_inputs(device)
+            if channel == 0 and param == P.DEVICE_BEACON_INTERVAL and len(value) == 2:
+                node = self.nodes.node(key)
+                if node is not None:
+                    node.beacon_interval = max(int.from_bytes(value, "little"), 1) / 1000.0
+
+    def suspend(self, key: DeviceKey, ms: int = 0) -> None:
+        """Suspend Device: stop its data for ``ms`` milliseconds (0 = until released)."""
+        self.requests.suspend(self._node_for(key), ms)
+
+    def release(self, key: DeviceKey) -> None:
+        """Release Device: a suspended device sends its data again."""
+        self.requests.release(self._node_for(key))
+
+    def reset_device(self, key: DeviceKey) -> None:
+        """Reset Device: it answers, restarts and binds again (then is set up again)."""
+        self.requests.reset(self._node_for(key))
+
+    # -- links, plans, transactions (the parts do the work) -------------------------------
+    def add_link(self, link: Link) -> None:
+        """Make a link on the bus; ModelError for what the model refuses (a second source on
+        an input, wrong directions) or an end that is not on the bus.
+
+        A dead link (its output gone) on the same input is replaced.
+        """
+        self.links.add_link(link)
+
+    def remove_link(self, link: Link) -> None:
+        """Remove a link from the model and the bus (ModelError if there is no such link)."""
+        self.links.remove_link(link)
+
+    def apply_plan(self, plan: Plan, progress: Callable[[int, int, str], Any] | None = None,
+                   cancel: threading.Event | None = None) -> TransactionResult:
+        """Carry out an engine plan's actions on the bus, in order; log it and return what
+        came of it. The profile layer's own start-up and duty cycle call it inside their
+        motion interlock (``arb_transaction.holding``); it holds nothing itself.
+
+        An action that fails on the wire is reported and skipped, the others go on (status
+        ``failed``, reason naming them). ``cancel`` stops between actions. Changes a person
+        asks for go through :meth:`transact` instead (interlock, verify, all or nothing).
+        """
+        return self.profile.apply_plan(plan, progress, cancel)
+
+    def run_startup(self) -> Plan:
+        """Listing 4.1 / 5.1 with the memory's configuration (or the devices' own)."""
+        return self.profile.run_startup()
+
+    def run_duty_cycle(self) -> Plan:
+        """Listing 4.2: replacements for channels that left, then autoconfigure."""
+        return self.profile.run_duty_cycle()
+
+    def read_policy(self) -> Policy:
+        """The profile-layer policy kept in memory beside the stored configuration; an
+        unreadable memory gives the thesis's default (autoconfigure on)."""
+        return self.transactions.read_policy()
+
+    def transact(self, change: Change, progress: Callable[[int, int, str], Any] | None = None,
+                 cancel: threading.Event | None = None) -> TransactionResult:
+        """Carry ``change`` out as one transaction (reference §5: interlock, write, verify,
+        restore, release); never raises for a bus failure — the result says applied, failed
+        or rolled back, at which step and why."""
+        return self.transactions.transact(change, progress, cancel)
+
+    def _do_link(self, op: str, link: Link) -> None:  # (a test slows a transaction down here)
+        self.transactions.do_link(op, link)
+
+    # -- memory ---------------------------------------------------------------------------
+    def read_memory(self) -> ConfigCollection:
+        """The stored configuration in non-volatile memory (empty when none is stored)."""
+        return self.memory.read()
+
+    def write_memory(self, configs: ConfigCollection) -> None:
+        """Store ``configs`` (a power cut mid-write leaves the previous one; read back)."""
+        self.memory.write(configs)
+
+    def save_configuration(self) -> ConfigCollection:
+        """Store the current links as the one configuration in memory (the thesis's save)."""
+        from pdcp_studio.engine import configuration_from_system
+
+        collection = ConfigCollection([configuration_from_system(self.system())])
+        self.write_memory(collection)
+        return collection
+
+    # -- sending --------------------------------------------------------------------------
+    def _send(self, message: Message) -> None:
+        if not self.claim.may_write:
+            raise TransportError(f"{self.name}: not writing to the bus ({self.bus_state}: "
+                                 "another arbitrator is on it or it is still being heard)")
+        arbitration_id, data = message.encode()
+        if message.mode is Mode.ARBITRATOR and message.node_id:
+            with self._lock:
+                node = self.nodes.by_id.get(message.node_id)
+                if node is not None:
+                    node.last_request = time.monotonic()
+        # On a bus that echoes, the claim accounts for the copies (arb_claim), not the
+        # connection's filter: a copy later than the filter waits must not pass for another
+        # arbitrator's frame.
+        self.claim.sent(arbitration_id, data, time.monotonic())
+        self.conn.send(arbitration_id, data, filter_echo=False)
+        if self.frame_events:
+            self._frame_event(arbitration_id, data, time.time())
+
+    def _send_quiet(self, message: Message) -> None:
+        if not self.claim.may_write or self._disconnected:
+            return  # listening, another arbitrator on the bus, or no adapter: say nothing
+        try:
+            self._send(message)
+        except TransportError as err:
+            self._error(str(err), "transport")
+
+    def _frame_event(self, arbitration_id: int, data: bytes, timestamp: float) -> None:
+        """A FrameSeen event for a frame heard or sent, decoded in the order of the frames
+        (the decoder learns the bus from them); or, while nobody wants frame events, the
+        frame kept to be decoded later (see :meth:`subscribe`)."""
+        with self._decoder_lock:
+            if not any(gate() for gate in self._frame_gates):
+                self._unshown.append((arbitration_id, bytes(data), timestamp))
+                if len(self._unshown) < FRAME_BACKLOG:
+                    return
+                self._catch_up()  # memory stays bounded; the work is the same
+                return
+            self._catch_up()
+            line = self._decoder.decode(arbitration_id, data, timestamp).line
+        self._emit(ev.FrameSeen(timestamp, arbitration_id, bytes(data), line))
+
+    def _catch_up(self) -> None:
+        """Under the decoder lock: the decoder, made if need be, learns the waiting frames."""
+        if self._decoder is None:
+            from pdcp_studio.bus.trace.monitor import FrameDecoder
+
+            self._decoder = FrameDecoder()
+        frames, self._unshown = self._unshown, []
+        for arbitration_id, data, timestamp in frames:
+            self._decoder.decode(arbitration_id, data, timestamp)
+
+    # -- reset ----------------------------------------------------------------------------
+    def reset(self, keep_memory: bool = True) -> None:
+        """Restart the arbitrator: forget the bus, reset every device (they bind again) and
+        run start-up again; ``keep_memory=False`` erases the stored configuration first."""
+        with self._plan_lock:
+            if not keep_memory:
+                self.memory.erase()
+            with self._lock:
+                node_ids = list(self.nodes.by_id)
+                now = time.monotonic()
+                self.presence.forget(self.nodes.channel_ids, now)
+                self.setup.forget()
+                self._system = System()
+                self.nodes.clear()
+                self.profile.restart(now)
+            for node_id in node_ids:
+                self.requests.abort(node_id, "the arbitrator was reset")
+            log.info("%s: reset (%s memory)", self.name, "kept" if keep_memory else "erased")
+            self._send_quiet(Reset(0))
+        self._wake.set()
+
+    def devices_present(self) -> list[DeviceKey]:
+        """Keys of the devices on the bus and set up."""
+        with self._lock:
+            return [k for k, d in self._system.devices.items() if d.present]
+
+    def wait_for(self, predicate: Callable[[], bool], timeout: float) -> bool:
+        """Poll ``predicate`` until it is true or ``timeout`` passes (tests, scripts)."""
+        deadline = time.monotonic() + timeout
+        while not predicate():
+            if time.monotonic() >= deadline:
+                return False
+            time.sleep(0.005)
+        return True

@@ -1,0 +1,126 @@
+"""The presence tracker: who is on the bus at time ``now``, twins on one node ID, strangers.
+
+- A bound device is gone after ``MISSED_BEACONS`` beacon intervals (and ``PRESENCE_GRACE``)
+  without a frame (reference §1 Decision).
+- Twins bound together (one answer binds both) are caught by their echoed responses (two
+  identical answers to one request) or by their doubled beacon rate.
+- A node nobody bound here (an earlier arbitrator's device) that beacons is reset so that it
+  binds with us, at most once every ``UNKNOWN_RESET_S``; its undecodable frames are shown once,
+  and after a reset the old channel node IDs' data still in flight is only counted.
+
+Pure: no threads, no bus. Each method takes ``now`` and what was heard and returns a decision;
+the arbitrator (holding its lock) carries it out.
+"""
+
+from __future__ import annotations
+
+from collections.abc import Iterable
+from typing import Literal
+
+from pdcp_studio.bus.arbitrator.common import (
+    BEACON_WINDOW,
+    ECHOES_FOR_TWIN,
+    MISSED_BEACONS,
+    PRESENCE_GRACE,
+    RESET_GRACE_S,
+    TWIN_BEACON_RATIO,
+    UNKNOWN_RESET_S,
+    _Node,
+)
+from pdcp_studio.model.refs import DeviceKey
+from pdcp_studio.protocol import FunctionCode
+
+
+def duplicate_message(key: DeviceKey, why: str) -> str:
+    return (f"two devices with VID {key.vid}, PID {key.pid}, serial {key.serial} are on the "
+            f"bus ({why}); only one can be bound")
+
+
+class PresenceTracker:
+    """Presence, twins and strangers; ``duplicates`` are the devices reported as twins."""
+
+    def __init__(self) -> None:
+        self.duplicates: set[DeviceKey] = set()
+        self.unknown_reset: dict[int, float] = {}  # stranger node ID → last Reset sent
+        self.foreign_shown: set[int] = set()  # strangers whose undecodable frame was shown
+        self.stale_channels: frozenset[int] = frozenset()  # channel IDs before the last reset
+        self.stale_until = 0.0
+        self.stale_data_frames = 0
+
+    def absent(self, nodes: Iterable[_Node], now: float) -> list[_Node]:
+        """The nodes not heard for their missed-beacon limit at ``now``."""
+        return [node for node in nodes
+                if now - node.last_seen > node.beacon_interval * (MISSED_BEACONS
+                                                                  + PRESENCE_GRACE)]
+
+    def beacon(self, node: _Node, now: float, caught_up: bool = True) -> str:
+        """A beacon from ``node``; why it has a twin ('' when it has none, or is known).
+
+        Judged only on frames handled as they come: after a backlog (a flood, a busy
+        machine) a second's beacons are handled in a moment and would look like twins."""
+        if not node.set_up or not caught_up:
+            node.window_start, node.window_beacons = now, 0
+            return ""
+        node.window_beacons += 1
+        span = BEACON_WINDOW * node.beacon_interval
+        if now - node.window_start < span:
+            return ""
+        why = ""
+        if (node.window_beacons > TWIN_BEACON_RATIO * BEACON_WINDOW
+                and node.key not in self.duplicates):
+            why = f"node {node.node_id} beacons {node.window_beacons} times in {span:.2f} s"
+        node.window_start, node.window_beacons = now, 0
+        return why
+
+    def response(self, node: _Node, arbitration_id: int, data: bytes, now: float,
+                 window: float) -> tuple[bool, str]:
+        """A response from ``node``: (it is a second identical answer to one request, why the
+        node has a twin — '' unless enough answers came twice within ``window``)."""
+        code = data[0] if data else 0
+        if not code & 0x80 and code != FunctionCode.BULK_DATA:
+            return False, ""
+        last = node.last_response
+        echo = (last is not None and last[0] == arbitration_id and last[1] == data
+                and node.last_request < last[2] and now - last[2] < window)
+        node.last_response = None if echo else (arbitration_id, data, now)
+        if echo:
+            node.echoes += 1
+        else:
+            node.answers += 1
+        twin = (node.echoes >= ECHOES_FOR_TWIN and node.echoes * 2 >= node.answers
+                and node.key not in self.duplicates)
+        return echo, f"node {node.node_id} answers requests twice" if twin else ""
+
+    def report(self, key: DeviceKey, why: str) -> str:
+        """``key`` has a twin: remembered (never bound again while present); the line."""
+        self.duplicates.add(key)
+        return duplicate_message(key, why)
+
+    def may_reset_stranger(self, node_id: int, now: float) -> bool:
+        """A stranger beaconing: True when it may get a Reset now (remembered)."""
+        if now - self.unknown_reset.get(node_id, -UNKNOWN_RESET_S) < UNKNOWN_RESET_S:
+            return False
+        self.unknown_reset[node_id] = now
+        return True
+
+    def bad_stranger_frame(self, node_id: int, now: float) -> Literal["stale", "show", "count"]:
+        """An undecodable frame from a stranger: ``stale`` (data of ours from before the
+        reset), ``show`` (the first from that node) or ``count``."""
+        if node_id in self.stale_channels and now < self.stale_until:
+            self.stale_data_frames += 1
+            return "stale"
+        if node_id in self.foreign_shown:
+            return "count"
+        self.foreign_shown.add(node_id)
+        return "show"
+
+    def forget(self, channel_ids: Iterable[int], now: float) -> None:
+        """A reset: forget everyone; the old channel IDs' data is expected for a while."""
+        self.stale_channels = frozenset(channel_ids)
+        self.stale_until = now + RESET_GRACE_S
+        self.duplicates.clear()
+        self.unknown_reset.clear()
+        self.foreign_shown.clear()
+
+
+__all__ = ["PresenceTracker", "duplicate_message"]

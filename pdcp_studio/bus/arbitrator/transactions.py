@@ -1,0 +1,401 @@
+"""Transactions in the arbitrator: the part of the change road that touches the bus.
+
+A part of :class:`pdcp_studio.bus.arbitrator.core.Arbitrator` (``arbitrator.transactions``), so
+every transport gets it — the in-process sessions call :meth:`Arbitrator.transact` directly,
+the host link's TRANSACT request calls it on the arbitrator's side of the line. Reference §5::
+
+    interlock → write → read back and compare → restore on mismatch → release
+
+- **Interlock.** Every present device whose output channels feed a terminal channel before or
+  after the change gets Suspend Device with TimeValue ``INTERLOCK_MS`` (2000 ms), renewed every
+  ``INTERLOCK_RENEW_S`` by a small thread while the change runs, so a PC or arbitrator that dies
+  mid-change cannot leave the prosthesis held. A device that refuses (or does not answer)
+  stops the change before anything is written; the ones already held are released.
+- **Write.** Link actions in order, then parameter writes, then the stored configuration and
+  the policy (the memory's two-slot write: a power cut leaves the old or the new, never a mix).
+- **Verify.** The links are read back from the input channels (Data Transfer Enabled and
+  Source's Node Ids), the parameters and the memory are read back and compared.
+- **Restore.** Any failure or mismatch puts back the links, parameter values, stored
+  configuration and policy that were there; the result says which step failed and why.
+- **Release.** Release Device (0x09) to every held device, after verify or restore.
+
+Recording in the fitting history is the PC's part (``session_api.run_transaction``).
+The whole transaction holds the plan lock: no start-up, duty cycle or other plan runs inside it.
+"""
+
+from __future__ import annotations
+
+import contextlib
+import logging
+import threading
+from collections.abc import Callable, Iterator
+from typing import TYPE_CHECKING, Any
+
+from pdcp_studio.bus import events as ev
+from pdcp_studio.bus.transaction import (
+    INTERLOCK_MS,
+    Change,
+    Policy,
+    Status,
+    TransactionResult,
+    crc_of_bytes,
+    describe_interlock,
+    interlocked_devices,
+)
+from pdcp_studio.errors import PdcpError
+from pdcp_studio.model import parameters as P
+from pdcp_studio.model.config_diff import diff_configurations
+from pdcp_studio.model.configuration import ConfigCollection
+from pdcp_studio.model.refs import DeviceKey
+from pdcp_studio.model.system import Link, System
+
+if TYPE_CHECKING:
+    from pdcp_studio.bus.arbitrator.core import Arbitrator
+
+log = logging.getLogger("pdcp_studio.bus.arbitrator.core")
+
+ProgressFn = Callable[[int, int, str], Any]
+
+
+class _Stop(Exception):
+    """The change was cancelled between two writes."""
+
+
+class Renewer:
+    """Renews the interlock's bounded suspension until stopped."""
+
+    def __init__(self, suspend: Callable[[DeviceKey, int], None], keys: list[DeviceKey],
+                 interval: float, name: str) -> None:
+        self._suspend, self._keys, self._interval = suspend, keys, interval
+        self._stop = threading.Event()
+        self.failures: list[str] = []
+        self._thread = threading.Thread(target=self._run, name=f"pdcp {name} interlock",
+                                        daemon=True)
+        if keys:
+            self._thread.start()
+
+    def _run(self) -> None:
+        while not self._stop.wait(self._interval):
+            for key in self._keys:
+                try:
+                    self._suspend(key, INTERLOCK_MS)
+                except PdcpError as err:
+                    self.failures.append(f"renewing the suspension of {key}: {err}")
+
+    def stop(self) -> None:
+        self._stop.set()
+        if self._thread.is_alive():
+            self._thread.join(timeout=5.0)
+
+
+class HoldRefused(PdcpError):
+    """A device did not suspend for the motion interlock; those held before it are released."""
+
+    def __init__(self, key: DeviceKey, why: PdcpError) -> None:
+        self.key, self.why = key, why
+        super().__init__(f"device {key} did not suspend ({why})")
+
+
+@contextlib.contextmanager
+def holding(arb: Arbitrator, keys: list[DeviceKey], notes: list[str]
+            ) -> Iterator[list[DeviceKey]]:
+    """Reference §5's motion interlock around a block: each of ``keys`` suspended (bounded,
+    renewed), every one held released afterwards whatever happens; HoldRefused when one does
+    not suspend. Renewal and release failures are added to ``notes`` (a lost release ends
+    on its own within ``INTERLOCK_MS``). Transactions and the profile layer's own plans use
+    it alike."""
+    held: list[DeviceKey] = []
+    try:
+        for key in keys:
+            try:
+                arb.suspend(key, INTERLOCK_MS)
+            except PdcpError as err:
+                raise HoldRefused(key, err) from err
+            held.append(key)
+        renewer = Renewer(arb.suspend, held, arb.interlock_renew_s, arb.name)
+        try:
+            yield held
+        finally:
+            renewer.stop()
+            notes += renewer.failures
+    finally:
+        for key in held:
+            try:
+                arb.release(key)
+            except PdcpError as err:
+                notes.append(f"release of {key} failed ({err}); its suspension ends within "
+                             f"{INTERLOCK_MS} ms on its own")
+
+
+class Transactions:
+    """``transact`` and the policy of an :class:`Arbitrator` (no state of its own: what it
+    changes is the bus's, the memory's and the system's)."""
+
+    def __init__(self, arb: Arbitrator) -> None:
+        self.arb = arb
+
+    # -- the policy (issue 17) ---------------------------------------------------------
+    def read_policy(self) -> Policy:
+        """The profile-layer policy kept in memory beside the stored configuration; an
+        unreadable memory gives the thesis's default (autoconfigure on), as start-up
+        falls back to the devices' own configuration then."""
+        try:
+            stored = self.arb.memory.read_policy()
+        except (OSError, PdcpError) as err:
+            log.warning("%s: policy unreadable (%s): autoconfigure on", self.arb.name, err)
+            return Policy()
+        return Policy(autoconfigure=stored.get("autoconfigure", True))
+
+    # -- transactions ------------------------------------------------------------------
+    def transact(self, change: Change, progress: ProgressFn | None = None,
+                 cancel: threading.Event | None = None) -> TransactionResult:
+        """Carry ``change`` out as one transaction; never raises for a bus failure — the
+        result says applied, failed or rolled back, at which step and why."""
+        with self.arb._plan_lock:
+            with self.arb._lock:
+                self.arb.profile.plan_running += 1
+            try:
+                result = self._transact(change, progress, cancel)
+            finally:
+                with self.arb._lock:
+                    self.arb.profile.plan_running -= 1
+        log.info("%s: transaction %s: %s", self.arb.name, change.action, result.summary())
+        self.arb._emit(ev.TransactionDone(result))
+        return result
+
+    def _transact(self, change: Change, progress: ProgressFn | None,
+                  cancel: threading.Event | None) -> TransactionResult:
+        system = self.arb.system()
+        before = system.links
+        after = change.links_after(before)
+        cfg_before = self.arb.memory.read_bytes()
+        policy_before = self.read_policy()
+        result = TransactionResult(
+            Status.FAILED, change.action, links_before=before, links_after=before,
+            config_crc_before=crc_of_bytes(cfg_before), config_crc_after=crc_of_bytes(cfg_before),
+            policy_before=policy_before, policy_after=policy_before,
+            devices=sorted(k for k, d in system.devices.items() if d.present))
+        problem = _check_change(system, change)
+        if problem:  # the change does not fit the bus as it is now
+            result.step, result.reason = "preview", f"{problem}; nothing was written"
+            return result
+        keys = interlocked_devices(system, before, after, change.parameters) \
+            if change.moves else []
+        try:
+            with holding(self.arb, keys, result.notes) as held:
+                result.held = list(held)
+                result.interlock = describe_interlock(held)
+                self._write_verify_restore(change, after, cfg_before, policy_before, result,
+                                           progress, cancel)
+        except HoldRefused as err:
+            result.step = "interlock"
+            result.reason = f"device {err.key} did not suspend ({err.why}); nothing was written"
+            result.interlock = describe_interlock([], refused=err.key)
+            return result
+        result.links_after = self.arb.system().links
+        result.config_crc_after = crc_of_bytes(self.arb.memory.read_bytes())
+        result.policy_after = self.read_policy()
+        return result
+
+    def _write_verify_restore(self, change: Change, after: list[Link], cfg_before: bytes | None,
+                              policy_before: Policy, result: TransactionResult,
+                              progress: ProgressFn | None, cancel: threading.Event | None) -> None:
+        old_params: list[tuple[Any, bytes]] = []
+        total = (len(change.links) + len(change.parameters)
+                 + (change.configuration is not None) + (change.policy is not None))
+        step, why = "", ""
+        try:
+            for p in change.parameters:  # read what is there first, to restore it
+                old_params.append((p, bytes(self.arb.get_parameter(p.device, p.param, p.channel))))
+            for n, action in enumerate(change.links):
+                _check_cancel(cancel, n, total)
+                if progress is not None:
+                    progress(n, total, f"{action.op} {action.link}")
+                self.arb._do_link(action.op, action.link)
+            for n, p in enumerate(change.parameters, len(change.links)):
+                _check_cancel(cancel, n, total)
+                if progress is not None:
+                    progress(n, total, f"parameter 0x{p.param:02X} of {p.device}")
+                self.arb.set_parameter(p.device, p.param, p.channel, p.value)
+            done = len(change.links) + len(change.parameters)
+            if change.configuration is not None:
+                _check_cancel(cancel, done, total)
+                if progress is not None:
+                    progress(done, total, "stored configuration")
+                self.arb.write_memory(change.configuration)
+                done += 1
+            if change.policy is not None:
+                if progress is not None:
+                    progress(done, total, "policy")
+                self._store_policy(change.policy)
+        except _Stop as err:
+            step, why = "write", str(err)
+        except (PdcpError, OSError, ValueError) as err:
+            step, why = "write", f"{type(err).__name__}: {err}" if not str(err) else str(err)
+        if not step:
+            if progress is not None:
+                progress(total, total, "reading back")
+            try:
+                mismatch = self._verify(change, after)
+            except (PdcpError, OSError) as err:
+                mismatch = [f"reading back failed: {err}"]
+            if mismatch:
+                step, why = "verify", "; ".join(mismatch)
+        if not step:
+            result.status, result.verified = Status.APPLIED, True
+            if progress is not None:
+                progress(total, total, f"{change.action} applied")
+            return
+        result.step, result.reason = step, why
+        restore_errors = self._restore(result.links_before, cfg_before, old_params,
+                                       policy_before, change)
+        if restore_errors:
+            result.status = Status.FAILED
+            result.reason += "; restoring what was there failed: " + "; ".join(restore_errors)
+        else:
+            result.status = Status.ROLLED_BACK
+            result.reason += "; what was there is restored"
+
+    # -- the parts -----------------------------------------------------------------------
+    def do_link(self, op: str, link: Link) -> None:
+        """One link action of a change (none when the link is already so)."""
+        with self.arb._lock:
+            exists = self.arb._system.has_link(link)
+        if op == "add" and not exists:
+            self.arb.add_link(link)
+        elif op == "remove" and exists:
+            self.arb.remove_link(link)
+
+    def _store_policy(self, policy: Policy) -> None:
+        self.arb.memory.write_policy(policy.to_json())
+
+    def _verify(self, change: Change, after: list[Link]) -> list[str]:
+        """What does not read back as written (empty: verified)."""
+        problems: list[str] = []
+        system = self.arb.system()
+        if set(system.links) != set(after):
+            missing = set(after) - set(system.links)
+            extra = set(system.links) - set(after)
+            problems += [f"link {lk} is missing" for lk in sorted(missing)]
+            problems += [f"link {lk} should not be there" for lk in sorted(extra)]
+        touched = {a.link.input for a in change.links}
+        for ref in sorted(touched):
+            problems += self._verify_input(system, ref)
+        for p in change.parameters:
+            got = bytes(self.arb.get_parameter(p.device, p.param, p.channel))
+            if got != p.value:
+                problems.append(f"parameter 0x{p.param:02X} of {p.device} channel {p.channel} "
+                                f"reads {got.hex()}, {p.value.hex()} was written")
+        if change.configuration is not None:
+            from pdcp_studio.storage import config_codec
+
+            back = self.arb.read_memory()
+            if config_codec.dumps(back) != config_codec.dumps(change.configuration):
+                problems.append("the stored configuration does not verify when read back: "
+                                + diff_configurations(change.configuration, back)
+                                .describe("written", "read back"))
+        if change.policy is not None and self.read_policy() != change.policy:
+            problems.append("the policy does not read back as written")
+        return problems
+
+    def _verify_input(self, system: System, ref: Any) -> list[str]:
+        """Read an input's Data Transfer Enabled and Source's Node Ids from the device."""
+        if not system.is_present(ref):
+            return []
+        live = [s for s in system.sources_of(ref) if system.is_present(s)]
+        enabled = self.arb.get_parameter(ref.device, P.CH_DATA_ENABLED, ref.index)
+        if not live:
+            if enabled[:1] not in (b"\x00", b""):
+                return [f"input {ref} still receives data after its link was removed"]
+            return []
+        source = live[0]
+        want = bytes([self.arb.node_id_of(source.device) or 0,
+                      self.arb.channel_node_id(source) or 0])
+        ids = self.arb.get_parameter(ref.device, P.IN_SOURCE_NODE_IDS, ref.index)
+        out: list[str] = []
+        if enabled[:1] != b"\x01":
+            out.append(f"input {ref} does not receive data from {source}")
+        if bytes(ids[:2]) != want:
+            out.append(f"input {ref} listens to node IDs {bytes(ids[:2]).hex()}, "
+                       f"not {source} ({want.hex()})")
+        return out
+
+    def _restore(self, links_before: list[Link], cfg_before: bytes | None,
+                 old_params: list[tuple[Any, bytes]], policy_before: Policy,
+                 change: Change) -> list[str]:
+        """Put back what was there; returns what could not be put back."""
+        errors: list[str] = []
+        current = set(self.arb.system().links)
+        wanted = set(links_before)
+        for link in sorted(current - wanted):
+            try:
+                self.arb.links.remove(link)
+            except PdcpError as err:
+                errors.append(f"removing {link}: {err}")
+        for link in sorted(wanted - current):
+            try:
+                with self.arb._lock:
+                    if not self.arb._system.has_link(link):
+                        self.arb._system.check_link(link)
+                self.arb.links.add(link)
+            except PdcpError as err:
+                errors.append(f"re-making {link}: {err}")
+        for p, value in reversed(old_params):
+            try:
+                self.arb.set_parameter(p.device, p.param, p.channel, value)
+            except PdcpError as err:
+                errors.append(f"parameter 0x{p.param:02X} of {p.device}: {err}")
+        if change.configuration is not None:
+            try:
+                from pdcp_studio.storage import config_codec
+
+                if self.arb.memory.read_bytes() != cfg_before:
+                    old = (config_codec.loads(cfg_before) if cfg_before is not None
+                           else ConfigCollection())
+                    self.arb.write_memory(old)
+            except (PdcpError, OSError) as err:
+                errors.append(f"the stored configuration: {err}")
+        if change.policy is not None and self.read_policy() != policy_before:
+            try:
+                self._store_policy(policy_before)
+            except (PdcpError, OSError) as err:
+                errors.append(f"the policy: {err}")
+        return errors
+
+
+def _check_cancel(cancel: threading.Event | None, done: int, total: int) -> None:
+    if cancel is not None and cancel.is_set():
+        raise _Stop(f"cancelled after {done} of {total} steps")
+
+
+def _check_change(system: System, change: Change) -> str:
+    """Why the change cannot be made on ``system`` (empty: it can), before any write."""
+    from pdcp_studio.errors import ModelError
+
+    trial = system.copy()
+    for n, a in enumerate(change.links, 1):
+        try:
+            trial.check_link(a.link)
+        except ModelError as err:
+            return f"action {n} ({a.op} {a.link}): {err}"
+        if a.op == "add" and not trial.has_link(a.link):
+            for end in (a.link.output, a.link.input):
+                if not trial.is_present(end):
+                    return f"action {n} (add {a.link}): {end} is not on the bus"
+            for s in trial.sources_of(a.link.input):
+                if not trial.is_present(s):
+                    trial.remove_link(Link(s, a.link.input))
+            try:
+                trial.add_link(a.link)
+            except ModelError as err:
+                return f"action {n} (add {a.link}): {err}"
+        elif a.op == "remove" and trial.has_link(a.link):
+            trial.remove_link(a.link)
+    for p in change.parameters:
+        device = system.device(p.device)
+        if device is None or not device.present:
+            return f"device {p.device} is not on the bus"
+    return ""
+
+
+__all__ = ["Transactions"]

@@ -1,0 +1,1 @@
+"""The serial host link: the PC's client, the arbitrator's server, their records."""

@@ -1,0 +1,143 @@
+"""Serial ports for the host link: pyserial URLs, a new pseudo-terminal, and reopening.
+
+``open_port("pty")`` makes a new pseudo-terminal (its ``slave_path`` is where the other end
+connects), anything else is a pyserial URL (``/dev/ttyUSB0``, ``COM3``, ``socket://…``).
+:class:`Reopener` paces attempts to reopen a dropped port (backoff 0.1 s doubling to 2 s) and
+says so once per outage, not once per attempt.
+"""
+
+from __future__ import annotations
+
+import logging
+import os
+import select
+import time
+from collections.abc import Callable
+from typing import Any, Protocol
+
+from pdcp_studio.errors import TransportError
+
+log = logging.getLogger(__name__)
+
+DEFAULT_BAUD = 128_000
+#: How long one read waits (bounds how fast a reader thread notices close()).
+READ_TIMEOUT_S = 0.05
+#: How long a write may wait for the peer to read (then the bytes are dropped: the link
+#: layer sends again what matters).
+WRITE_TIMEOUT_S = 2.0
+#: Reopening a dropped port: first wait, growth, longest wait.
+BACKOFF_FIRST_S = 0.1
+BACKOFF_FACTOR = 2.0
+BACKOFF_MAX_S = 2.0
+
+
+class Port(Protocol):
+    """What the host link needs of a serial port (pyserial's ``Serial`` has all of it)."""
+
+    def read(self, size: int = 1) -> bytes: ...
+    def write(self, data: bytes) -> int | None: ...
+    def close(self) -> None: ...
+
+
+class PtyPort:
+    """The master end of a new pseudo-terminal; the peer opens ``slave_path`` with pyserial."""
+
+    def __init__(self) -> None:
+        import tty
+
+        self._master, self._slave = os.openpty()
+        tty.setraw(self._slave)
+        os.set_blocking(self._master, False)  # no echo, no line editing: bytes pass unchanged
+        self.slave_path = os.ttyname(self._slave)
+        self.baudrate = DEFAULT_BAUD
+        self._closed = False
+
+    def read(self, size: int = 1) -> bytes:
+        if self._closed:
+            raise OSError("the pseudo-terminal is closed")
+        ready, _, _ = select.select([self._master], [], [], READ_TIMEOUT_S)
+        if not ready:
+            return b""
+        try:
+            return os.read(self._master, max(size, 4096))
+        except BlockingIOError:
+            return b""
+        except OSError:  # EIO while no peer has the slave open
+            time.sleep(READ_TIMEOUT_S)
+            return b""
+
+    def write(self, data: bytes) -> int:
+        """Write it all, or OSError when the peer has not read for ``WRITE_TIMEOUT_S`` (a
+        pseudo-terminal nobody reads fills up and would block the writer for ever)."""
+        view = memoryview(data)
+        deadline = time.monotonic() + WRITE_TIMEOUT_S
+        while view:
+            left = deadline - time.monotonic()
+            if left <= 0 or not select.select([], [self._master], [], left)[1]:
+                raise OSError(f"nobody reads {self.slave_path}: {len(view)} bytes not written")
+            try:
+                view = view[os.write(self._master, view):]
+            except BlockingIOError:
+                continue
+        return len(data)
+
+    def close(self) -> None:
+        if not self._closed:
+            self._closed = True
+            os.close(self._master)
+            os.close(self._slave)
+
+
+def open_port(name: str, baudrate: int = DEFAULT_BAUD, where: str = "host link") -> Any:
+    """``pty`` → a new :class:`PtyPort`; anything else → pyserial ``serial_for_url``.
+    TransportError names ``where`` (the bus URL) and the port, and ends with the fix
+    (``bus/session/serial_ports.py``)."""
+    if name == "pty":
+        return PtyPort()
+    import serial
+
+    try:
+        return serial.serial_for_url(name, baudrate=baudrate, timeout=READ_TIMEOUT_S,
+                                     write_timeout=5.0)
+    except (serial.SerialException, ValueError, OSError) as err:
+        from pdcp_studio.bus.session.serial_ports import open_failure, seen_ports
+
+        raise TransportError(open_failure(where, name, err, seen_ports())) from err
+
+
+def read_available(port: Any) -> bytes:
+    """What the port has now, waiting at most its read timeout for the first byte."""
+    waiting = getattr(port, "in_waiting", 0) or 0
+    return bytes(port.read(max(1, waiting)))
+
+
+class Reopener:
+    """Backoff and one calm message per outage while a dropped port is opened again."""
+
+    def __init__(self, what: str, report: Callable[[str], None]) -> None:
+        self.what = what
+        self.report = report
+        self.outages = 0
+        self._delay = BACKOFF_FIRST_S
+        self._down = False
+
+    @property
+    def down(self) -> bool:
+        return self._down
+
+    def lost(self, err: object) -> None:
+        if not self._down:
+            self._down = True
+            self.outages += 1
+            self._delay = BACKOFF_FIRST_S
+            self.report(f"{self.what}: the serial port was lost ({err}); reopening it")
+
+    def wait(self, stop: Any) -> None:
+        """Sleep the current backoff (returns early when ``stop`` is set) and grow it."""
+        stop.wait(self._delay)
+        self._delay = min(self._delay * BACKOFF_FACTOR, BACKOFF_MAX_S)
+
+    def back(self) -> None:
+        if self._down:
+            self._down = False
+            log.info("%s: the serial port is open again", self.what)

@@ -1,0 +1,1 @@
+"""Host-link test tools: the conformance suite and a UART-speed relay."""

@@ -1,0 +1,1 @@
+"""Simulated devices and the built-in simulated prostheses (rigs)."""

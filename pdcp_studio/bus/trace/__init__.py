@@ -1,0 +1,1 @@
+"""The trace: frame decoder, statistics, capture formats, bus time, replay."""
