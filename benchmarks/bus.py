@@ -100,7 +100,7 @@ def startup_figures(frames: list, system) -> dict:
 
 
 def run(window: int, repeat: int, rig: str = "large") -> dict:
-    from pdcp_studio.bus.arbitrator.core import scan as scan_mod
+    from pdcp_studio.bus.arbitrator import scan as scan_mod
     from pdcp_studio.bus.session.live import open_sim_session
     from pdcp_studio.bus.session.urls import unique_virtual_channel
 

@@ -202,7 +202,7 @@ def test_a_layout_kept_per_bus_url_by_an_older_version_is_still_used(make_window
 
     from PySide6.QtCore import QSettings
 
-    from pdcp_studio.app.live.live_bus import layout as live_layout
+    from pdcp_studio.app.live import layout as live_layout
     from pdcp_studio.model.refs import DeviceKey
 
     url = "sim:thesis-test4"

@@ -101,7 +101,7 @@ def test_a_part_not_seen_for_a_session_keeps_its_remembered_place():
     """Saved without the hand (unplugged before the connect), the layout still knows where
     the hand was: a spare plugged in later is given that place; once the spare stands
     there, the layout gives it to whichever hand comes."""
-    from pdcp_studio.app.live.live_bus import layout as live_layout
+    from pdcp_studio.app.live import layout as live_layout
     from pdcp_studio.bus.sim.rigs import load_prosthesis
 
     arm = load_prosthesis("transradial")
@@ -152,7 +152,7 @@ def _no_overlaps(window):
 @pytest.mark.gui
 def test_the_spare_hand_swapped_in_from_the_simulator_panel_takes_the_hands_place(
         make_window, qtbot):
-    from pdcp_studio.app.live.live_bus import layout as live_layout
+    from pdcp_studio.app.live import layout as live_layout
 
     window = _live(make_window, qtbot, "sim:transradial")
     doc = window.doc

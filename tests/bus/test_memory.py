@@ -10,7 +10,7 @@ from pathlib import Path
 
 import pytest
 
-from pdcp_studio.bus.arbitrator.core import memory as M
+from pdcp_studio.bus.arbitrator import memory as M
 from pdcp_studio.bus.arbitrator.memory import HEADER_SIZE, MemoryStore, MemoryStoreError
 from pdcp_studio.model.configuration import (
     ConfigCollection,

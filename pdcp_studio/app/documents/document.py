@@ -199,7 +199,7 @@ class Document(QObject):
         if positions is not None:
             self.positions = dict(positions)
             if self.is_live_view:  # as this prosthesis was last laid out, where remembered
-                from pdcp_studio.app.live.live_bus import layout as live_layout
+                from pdcp_studio.app.live import layout as live_layout
 
                 self.positions = live_layout.restore(system, self.positions, self.live_url)
         self.undo_stack.clear()
@@ -342,7 +342,7 @@ class Document(QObject):
         """Keep a live view's card positions for the next time this prosthesis connects."""
         self._layout_timer.stop()
         if self.is_live_view:
-            from pdcp_studio.app.live.live_bus import layout as live_layout
+            from pdcp_studio.app.live import layout as live_layout
 
             live_layout.save(self.system, self.positions, self.live_url)
 

@@ -292,7 +292,7 @@ class LiveController(QObject):
         if not joined:
             return []
         from pdcp_studio.app.graph import layout, style
-        from pdcp_studio.app.live.live_bus import layout as live_layout
+        from pdcp_studio.app.live import layout as live_layout
 
         ident = live_layout.part_identity
         new = {k: ident(k, d) for k, d in joined.items()}
@@ -336,7 +336,7 @@ class LiveController(QObject):
     def _swap_in(self, left: list[Any]) -> bool:
         """Parts left the bus: a part that joined just before as a newcomer and replaces
         one of them takes its place, the two cards swapping (:func:`live_layout.swap_in`)."""
-        from pdcp_studio.app.live.live_bus import layout as live_layout
+        from pdcp_studio.app.live import layout as live_layout
 
         now = time.monotonic()
         self._newcomers = {k: v for k, v in self._newcomers.items()

@@ -166,7 +166,7 @@ class BusMixin:
     def _make_trace_docks(self) -> None:
         """The trace (monitor) and live plot docks, if not made yet, fed by the bridge
         they were made for: the trace gets the frames kept since its session started."""
-        from pdcp_studio.app.live.live_bus import plot as live_plot
+        from pdcp_studio.app.live import plot as live_plot
         from pdcp_studio.app.trace import dock as monitor_dock
 
         bridge, self._trace_bridge = getattr(self, "_trace_bridge", None), None
