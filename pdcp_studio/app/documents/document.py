@@ -25,7 +25,7 @@ import logging
 from collections.abc import Iterable
 from dataclasses import replace
 from pathlib import Path
-from typing import Any
+from typing import TYPE_CHECKING, Any
 
 from PySide6.QtCore import QObject, QTimer, Signal
 from PySide6.QtGui import QUndoStack
@@ -36,6 +36,9 @@ from pdcp_studio.model import profile as prof
 from pdcp_studio.model.profile_tree import ProfileNames, ProfileTree
 from pdcp_studio.model.refs import ChannelRef, DeviceKey
 from pdcp_studio.model.system import Channel, Device, Link, System
+
+if TYPE_CHECKING:
+    from pdcp_studio.bus.session.api import BusSession
 
 log = logging.getLogger(__name__)
 
@@ -142,7 +145,7 @@ class Document(QObject):
         self.tree: ProfileNames = tree_for(self.trees, self.system)
         self.undo_stack = QUndoStack(self)
         self.path: Path | None = None
-        self.session: Any = None
+        self.session: BusSession | None = None
         self.preview_plan: Any = None
         #: Remembered card positions (scene coordinates), kept when a device leaves.
         self.positions: dict[DeviceKey, Position] = {}
@@ -170,7 +173,8 @@ class Document(QObject):
         self._layout_timer.timeout.connect(self.remember_layout)
 
     # -- whole document -----------------------------------------------------------
-    def set_system(self, system: System, path: Path | str | None = None, session: Any = None,
+    def set_system(self, system: System, path: Path | str | None = None,
+                   session: BusSession | None = None,
                    *, dirty: bool = False, positions: dict[DeviceKey, Position] | None = None,
                    kind: str = "system", config: Any = None) -> None:
         """Show a different system: clears undo history, selection and preview.
@@ -257,7 +261,7 @@ class Document(QObject):
             self.policy = policy
             self.policyChanged.emit(policy)
 
-    def set_session(self, session: Any) -> None:
+    def set_session(self, session: BusSession | None) -> None:
         """Bind or unbind a live session without touching the system."""
         if session is not self.session:
             self.session = session
