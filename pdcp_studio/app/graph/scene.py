@@ -5,12 +5,12 @@ removed, one card's rows, a position). User gestures become undo commands — a 
 dragged from port to port, a card drag (one command per drag), Delete on links — and
 the document's signals bring the items up to date; items never change the model.
 
-The scene composes its parts: :class:`~pdcp_studio.app.graph.link_drag.LinkDrag` (drawing a
-link, as Qt's diagramscene owns its gesture in the scene), :class:`~pdcp_studio.app.graph.
-live_flow.LiveFlow` (data flowing on a live bus), :class:`~pdcp_studio.app.graph.
-card_pictures.PictureQueue` (card pictures drawn in batches) and :class:`~pdcp_studio.app.
-graph.scene_words.SceneWords` (names, tooltips, advice); it keeps building, following the
-document and showing the findings.
+The scene composes parts with one job each: ``link_drag`` (drawing a link: the scene takes
+the mouse from a port, as Qt's diagramscene does; ``link_drop`` decides what a drop means),
+``card_moves`` (a card drag, one undo step), ``live_flow`` (data flowing on a live bus),
+``card_pictures`` (card pictures drawn in batches), ``ghost_links`` (a previewed plan and
+the pending removals), ``state_marks`` (the findings on every item) and ``scene_words``
+(names, tooltips, advice). The scene itself builds the items and follows the document.
 """
 
 from __future__ import annotations
