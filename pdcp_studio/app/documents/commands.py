@@ -17,7 +17,7 @@ from typing import Any
 
 from PySide6.QtGui import QUndoCommand
 
-from pdcp_studio.app.documents import pending
+from pdcp_studio.app.documents import live_sync, pending
 from pdcp_studio.app.documents.document import Document, Position
 from pdcp_studio.model.refs import ChannelRef, DeviceKey
 from pdcp_studio.model.system import Link
@@ -80,12 +80,7 @@ def live_write_refusal(doc: Document, name: str, *, device: bool) -> str | None:
     writes it)."""
     if doc.session is None:
         return None
-    table = LIVE_DEVICE_PARAMS if device else LIVE_CHANNEL_PARAMS
-    if name in table or name == "name":
-        return None
-    if name == "node_id":
-        return "node IDs are assigned by the arbitrator on a live bus"
-    return f"{name.replace('_', ' ')} cannot be written to a live device"
+    return live_sync.staging_refusal(name, device=device)
 
 
 class SetChannelFieldCommand(QUndoCommand):

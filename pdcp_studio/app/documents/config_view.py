@@ -10,6 +10,10 @@ The graph reuses the bus scene on a private :class:`Document` built from the con
 alone: devices are named from the catalogue of the open prosthesis where known and plainly
 "unknown device (VID/PID/serial)" otherwise; the scene's own problem marks cannot fire
 because a configuration holds no terminal profiles, required inputs or sources.
+
+The window composes its parts: the configuration list (:mod:`.config_list_panel`), the
+link table (:mod:`.config_links_panel`), the Fit tab (:mod:`.config_fit_panel`), their
+words (:mod:`.config_words`) and dialogs (:mod:`.config_dialogs`).
 """
 
 from __future__ import annotations
@@ -18,55 +22,41 @@ from collections.abc import Callable
 from pathlib import Path
 from typing import Any
 
-from PySide6.QtCore import QCoreApplication, Qt, QTimer
-from PySide6.QtGui import QAction, QCloseEvent, QKeySequence
+from PySide6.QtCore import Qt, QTimer
+from PySide6.QtGui import QAction, QCloseEvent, QKeySequence, QShowEvent
 from PySide6.QtWidgets import (
-    QAbstractItemView,
-    QComboBox,
     QDialog,
-    QDialogButtonBox,
     QFileDialog,
-    QFormLayout,
-    QGroupBox,
-    QHBoxLayout,
     QLabel,
-    QLineEdit,
-    QListView,
-    QListWidget,
     QListWidgetItem,
     QMainWindow,
     QMessageBox,
-    QPushButton,
-    QSpinBox,
     QSplitter,
-    QTableWidget,
-    QTableWidgetItem,
     QTabWidget,
-    QVBoxLayout,
     QWidget,
 )
 
+from pdcp_studio.app.documents.config_dialogs import AddLinkDialog, ChannelDialog
 from pdcp_studio.app.documents.config_document import ConfigDocument
+from pdcp_studio.app.documents.config_fit_panel import FitPanel, wrapping_list
+from pdcp_studio.app.documents.config_links_panel import LinksPanel
+from pdcp_studio.app.documents.config_list_panel import ConfigListPanel
+from pdcp_studio.app.documents.config_words import ConfigWords
 from pdcp_studio.app.i18n import translate
 from pdcp_studio.app.words.plural import count
 from pdcp_studio.engine.config_checks import ConfigFinding, check_configuration
 from pdcp_studio.errors import PdcpError
-from pdcp_studio.model import profile as prof
 from pdcp_studio.model.catalog import default_catalog
 from pdcp_studio.model.config_edit import channels_of
 from pdcp_studio.model.configuration import StoredChannel, StoredConfiguration
 from pdcp_studio.model.device_names import DeviceCatalogue
-from pdcp_studio.model.refs import DeviceKey, Direction
+from pdcp_studio.model.refs import Direction
 from pdcp_studio.model.system import Channel, Device, Link, System
 
 #: Where the prosthesis to fit against comes from: () → (system or None, its name).
 ProsthesisSource = Callable[[], tuple[System | None, str]]
 
 SEVERITY_WORDS = {"error": "Error", "warning": "Warning", "info": "Note"}
-
-
-def _tr(text: str) -> str:
-    return QCoreApplication.translate("ConfigWindow", text)
 
 
 def system_for_configuration(cfg: StoredConfiguration | None,
@@ -99,146 +89,6 @@ def system_for_configuration(cfg: StoredConfiguration | None,
     return system
 
 
-def _wrapping_list() -> QListWidget:
-    """A list of sentences: wrapped to the width, never cut short."""
-    lst = QListWidget()
-    lst.setWordWrap(True)
-    lst.setSpacing(3)
-    lst.setTextElideMode(Qt.TextElideMode.ElideNone)
-    lst.setResizeMode(QListView.ResizeMode.Adjust)
-    return lst
-
-
-def _hex(value: int) -> str:
-    return f"0x{value:04X}"
-
-
-def parse_word(text: str) -> int:
-    """``0x2110``, ``2110h`` is not accepted: hex with 0x, or a decimal number, 0…0xFFFF."""
-    text = text.strip()
-    value = int(text, 16) if text.lower().startswith("0x") else int(text, 10)
-    if not 0 <= value <= 0xFFFF:
-        raise ValueError(f"{text} is out of range 0…0xFFFF")
-    return value
-
-
-class ChannelDialog(QDialog):
-    """Type and profile of one stored channel."""
-
-    def __init__(self, title: str, ch: StoredChannel, parent: QWidget | None = None) -> None:
-        super().__init__(parent)
-        self.setWindowTitle(title)
-        form = QFormLayout(self)
-        self.type_edit = QLineEdit(_hex(ch.type))
-        self.profile_edit = QLineEdit(_hex(ch.profile))
-        form.addRow(self.tr("Channel type"), self.type_edit)
-        form.addRow(self.tr("Channel profile"), self.profile_edit)
-        self.error = QLabel("")
-        self.error.setStyleSheet("color: #b3261e;")
-        form.addRow(self.error)
-        buttons = QDialogButtonBox(QDialogButtonBox.StandardButton.Ok
-                                   | QDialogButtonBox.StandardButton.Cancel)
-        buttons.accepted.connect(self.accept)
-        buttons.rejected.connect(self.reject)
-        form.addRow(buttons)
-
-    def values(self) -> tuple[int, int] | None:
-        try:
-            return parse_word(self.type_edit.text()), parse_word(self.profile_edit.text())
-        except ValueError:
-            return None
-
-    def accept(self) -> None:
-        if self.values() is None:
-            self.error.setText(self.tr("Type and profile are numbers from 0 to 0xFFFF "
-                                       "(write hex as 0x2110)."))
-            return
-        super().accept()
-
-
-class _EndEditor(QGroupBox):
-    """One end of a new link: pick a known channel or enter its numbers."""
-
-    def __init__(self, title: str, known: list[tuple[str, StoredChannel]]) -> None:
-        super().__init__(title)
-        form = QFormLayout(self)
-        self.pick = QComboBox()
-        self.pick.addItem(self.tr("Enter the numbers below"), None)
-        for label, ch in known:
-            self.pick.addItem(label, ch)
-        form.addRow(self.tr("Channel"), self.pick)
-        self.spins: dict[str, QSpinBox] = {}
-        for name, label, lo, hi in (("vid", self.tr("Vendor ID"), 0, 0xFFFF),
-                                    ("pid", self.tr("Product ID"), 0, 0xFFFF),
-                                    ("serial", self.tr("Serial number"), 0, 0xFFFF),
-                                    ("index", self.tr("Channel index"), 1, 255)):
-            spin = QSpinBox()
-            spin.setRange(lo, hi)
-            self.spins[name] = spin
-            form.addRow(label, spin)
-        self.type_edit, self.profile_edit = QLineEdit("0x0000"), QLineEdit("0x0000")
-        form.addRow(self.tr("Channel type"), self.type_edit)
-        form.addRow(self.tr("Channel profile"), self.profile_edit)
-        self.pick.currentIndexChanged.connect(self._picked)
-
-    def _picked(self) -> None:
-        ch = self.pick.currentData()
-        if ch is None:
-            return
-        for name, spin in self.spins.items():
-            spin.setValue(getattr(ch, name))
-        self.type_edit.setText(_hex(ch.type))
-        self.profile_edit.setText(_hex(ch.profile))
-
-    def channel(self) -> StoredChannel:
-        """The channel as entered (ValueError naming a bad number)."""
-        v = {name: spin.value() for name, spin in self.spins.items()}
-        return StoredChannel(index=v["index"], vid=v["vid"], pid=v["pid"], serial=v["serial"],
-                             type=parse_word(self.type_edit.text()),
-                             profile=parse_word(self.profile_edit.text()))
-
-
-class AddLinkDialog(QDialog):
-    """A new stored link: an output and an input, known channels offered first."""
-
-    def __init__(self, outputs: list[tuple[str, StoredChannel]],
-                 inputs: list[tuple[str, StoredChannel]], parent: QWidget | None = None) -> None:
-        super().__init__(parent)
-        self.setWindowTitle(self.tr("Add a link"))
-        layout = QVBoxLayout(self)
-        row = QHBoxLayout()
-        self.output = _EndEditor(self.tr("From (output)"), outputs)
-        self.input = _EndEditor(self.tr("To (input)"), inputs)
-        row.addWidget(self.output)
-        row.addWidget(self.input)
-        layout.addLayout(row)
-        self.error = QLabel("")
-        self.error.setStyleSheet("color: #b3261e;")
-        layout.addWidget(self.error)
-        buttons = QDialogButtonBox(QDialogButtonBox.StandardButton.Ok
-                                   | QDialogButtonBox.StandardButton.Cancel)
-        buttons.accepted.connect(self.accept)
-        buttons.rejected.connect(self.reject)
-        layout.addWidget(buttons)
-
-    def ends(self) -> tuple[StoredChannel, StoredChannel] | None:
-        try:
-            return self.output.channel(), self.input.channel()
-        except ValueError:
-            return None
-
-    def accept(self) -> None:
-        ends = self.ends()
-        if ends is None:
-            self.error.setText(self.tr("Type and profile are numbers from 0 to 0xFFFF "
-                                       "(write hex as 0x2110)."))
-            return
-        if ends[0].ref == ends[1].ref:
-            self.error.setText(self.tr("A link joins two different channels."))
-            return
-        super().accept()
-
-
 class ConfigWindow(QMainWindow):
     """One ``.pdcfg`` file: configurations, graph, links, checks, fit."""
 
@@ -253,7 +103,6 @@ class ConfigWindow(QMainWindow):
         self.quiet = False
         self._prosthesis_source: ProsthesisSource | None = prosthesis
         self._file_system: tuple[System, str] | None = None
-        self.fit: Any = None
         self.findings: list[ConfigFinding] = []
         self.catalogue = DeviceCatalogue()
         self.resize(1500, 920)
@@ -262,94 +111,46 @@ class ConfigWindow(QMainWindow):
         self.scene = BusScene(self.graph_doc, self)
         self.view = GraphView(self.scene, self)
         self.view.setInteractive(False)  # edits go through the link list, one undo step each
+        self.words = ConfigWords(lambda: self.catalogue, lambda: self.graph_doc.tree)
 
-        self.config_list = QListWidget()
-        self.config_list.currentRowChanged.connect(self._on_row)
-        self.btn_add_cfg = QPushButton(self.tr("Add"))
-        self.btn_dup_cfg = QPushButton(self.tr("Duplicate"))
-        self.btn_del_cfg = QPushButton(self.tr("Remove"))
-        self.btn_up_cfg = QPushButton(self.tr("Move up"))
-        self.btn_down_cfg = QPushButton(self.tr("Move down"))
-        self.btn_add_cfg.clicked.connect(doc.add_configuration)
-        self.btn_dup_cfg.clicked.connect(lambda: doc.duplicate_configuration())
-        self.btn_del_cfg.clicked.connect(lambda: doc.remove_configuration())
-        self.btn_up_cfg.clicked.connect(lambda: doc.move_configuration(-1))
-        self.btn_down_cfg.clicked.connect(lambda: doc.move_configuration(+1))
-        left = QWidget()
-        lv = QVBoxLayout(left)
-        lv.setContentsMargins(6, 6, 6, 6)
-        title = QLabel(self.tr("Configurations"))
-        title.setStyleSheet("font-weight: bold;")
-        lv.addWidget(title)
-        lv.addWidget(self.config_list, 1)
-        hint = QLabel(self.tr("At start-up the arbitrator picks the configuration that best "
-                              "fits the devices present; on a tie, the higher one."))
-        hint.setWordWrap(True)
-        hint.setStyleSheet("color: #66707b;")
-        lv.addWidget(hint)
-        for row in ((self.btn_add_cfg, self.btn_dup_cfg), (self.btn_del_cfg,),
-                    (self.btn_up_cfg, self.btn_down_cfg)):
-            h = QHBoxLayout()
-            for b in row:
-                h.addWidget(b)
-            lv.addLayout(h)
+        left = ConfigListPanel(doc)
+        self.config_list = left.config_list
+        self.btn_add_cfg, self.btn_dup_cfg = left.btn_add_cfg, left.btn_dup_cfg
+        self.btn_del_cfg, self.btn_up_cfg = left.btn_del_cfg, left.btn_up_cfg
+        self.btn_down_cfg = left.btn_down_cfg
+        self.config_panel = left
 
-        self.links = QTableWidget(0, 7)
-        self.links.setHorizontalHeaderLabels([
-            self.tr("Link"), self.tr("From (output)"), self.tr("Form"),
-            self.tr("What it carries"), self.tr("To (input)"), self.tr("Form"),
-            self.tr("What it carries")])
-        self.links.setSelectionBehavior(QAbstractItemView.SelectionBehavior.SelectRows)
-        self.links.setEditTriggers(QAbstractItemView.EditTrigger.NoEditTriggers)
-        self.links.verticalHeader().hide()
-        self.links.horizontalHeader().setStretchLastSection(True)
+        self.links_panel = LinksPanel(self.words)
+        self.links = self.links_panel.links
+        self.btn_add_link, self.btn_del_link = (self.links_panel.btn_add_link,
+                                                self.links_panel.btn_del_link)
+        self.btn_edit_out, self.btn_edit_in = (self.links_panel.btn_edit_out,
+                                               self.links_panel.btn_edit_in)
         self.links.itemSelectionChanged.connect(self._update_buttons)
         self.links.itemSelectionChanged.connect(self._show_selected_in_graph)
         self.links.cellDoubleClicked.connect(self._on_double_click)
-        self.btn_add_link = QPushButton(self.tr("Add link…"))
-        self.btn_del_link = QPushButton(self.tr("Remove link"))
-        self.btn_edit_out = QPushButton(self.tr("Edit output channel…"))
-        self.btn_edit_in = QPushButton(self.tr("Edit input channel…"))
         self.btn_add_link.clicked.connect(self.ask_add_link)
         self.btn_del_link.clicked.connect(self.remove_selected_links)
         self.btn_edit_out.clicked.connect(lambda: self.ask_edit_channel("output"))
         self.btn_edit_in.clicked.connect(lambda: self.ask_edit_channel("input"))
-        links_box = QWidget()
-        bv = QVBoxLayout(links_box)
-        bv.setContentsMargins(0, 0, 0, 0)
-        bv.addWidget(self.links, 1)
-        h = QHBoxLayout()
-        for b in (self.btn_add_link, self.btn_del_link, self.btn_edit_out, self.btn_edit_in):
-            h.addWidget(b)
-        h.addStretch(1)
-        bv.addLayout(h)
 
         middle = QSplitter(Qt.Orientation.Vertical)
         middle.addWidget(self.view)
-        middle.addWidget(links_box)
+        middle.addWidget(self.links_panel)
         middle.setSizes([560, 300])
 
-        self.checks = _wrapping_list()
+        self.checks = wrapping_list()
         self.checks.itemClicked.connect(self._on_finding)
-        self.fit_label = QLabel("")
-        self.fit_label.setWordWrap(True)
-        self.fit_choice = QLabel("")
-        self.fit_choice.setWordWrap(True)
-        self.fit_list = _wrapping_list()
-        self.btn_fit_main = QPushButton(self.tr("Fit to the prosthesis in the main window"))
-        self.btn_fit_file = QPushButton(self.tr("Fit to a system file…"))
+        self.fit_panel = FitPanel(doc, self.words)
+        self.fit_label, self.fit_choice = self.fit_panel.fit_label, self.fit_panel.fit_choice
+        self.fit_list = self.fit_panel.fit_list
+        self.btn_fit_main, self.btn_fit_file = (self.fit_panel.btn_fit_main,
+                                                self.fit_panel.btn_fit_file)
         self.btn_fit_main.clicked.connect(self.fit_to_main)
         self.btn_fit_file.clicked.connect(self.ask_fit_file)
-        fit_box = QWidget()
-        fv = QVBoxLayout(fit_box)
-        fv.addWidget(self.fit_label)
-        fv.addWidget(self.fit_choice)
-        fv.addWidget(self.fit_list, 1)
-        fv.addWidget(self.btn_fit_main)
-        fv.addWidget(self.btn_fit_file)
         self.side = QTabWidget()
         self.side.addTab(self.checks, self.tr("Checks"))
-        self.side.addTab(fit_box, self.tr("Fit"))
+        self.side.addTab(self.fit_panel, self.tr("Fit"))
 
         split = QSplitter(Qt.Orientation.Horizontal)
         split.addWidget(left)
@@ -380,6 +181,11 @@ class ConfigWindow(QMainWindow):
         if not self.findings and self.prosthesis()[0] is not None:
             self.side.setCurrentIndex(1)
             self.refresh_fit()
+
+    @property
+    def fit(self) -> Any:
+        """The fit shown in the Fit tab (None: none)."""
+        return self.fit_panel.fit
 
     # -- construction -----------------------------------------------------------------
     def _build_menus(self) -> None:
@@ -427,7 +233,7 @@ class ConfigWindow(QMainWindow):
             fit_menu.addAction(act)
 
     # -- showing ----------------------------------------------------------------------
-    def showEvent(self, event: Any) -> None:
+    def showEvent(self, event: QShowEvent) -> None:
         """Fit the graph once the window has its real size."""
         super().showEvent(event)
         QTimer.singleShot(0, self.view.fit_all)
@@ -451,21 +257,9 @@ class ConfigWindow(QMainWindow):
         system, _name = self.prosthesis()
         self.catalogue = (DeviceCatalogue.from_system(system) if system is not None
                           else DeviceCatalogue()).with_catalog(default_catalog())
-        self.config_list.blockSignals(True)
-        self.config_list.clear()
-        for each in doc.collection.configurations:
-            text = self.tr("Configuration %1 · %2").replace("%1", str(each.index)) \
-                .replace("%2", count("ConfigWindow", "%n link(s)", len(each.links)))
-            item = QListWidgetItem(text)
-            problems = [f for f in check_configuration(each) if f.severity.value == "error"]
-            if problems:
-                item.setToolTip(count("ConfigWindow", "%n problem(s) found", len(problems)))
-                item.setForeground(Qt.GlobalColor.darkRed)
-            self.config_list.addItem(item)
-        self.config_list.setCurrentRow(doc.current)
-        self.config_list.blockSignals(False)
+        self.config_panel.fill()
         cfg = doc.configuration()
-        self._fill_links(cfg)
+        self.links_panel.fill(cfg)
         self.findings = check_configuration(cfg) if cfg is not None else []
         self._fill_checks()
         self.graph_doc.set_system(system_for_configuration(cfg, self.catalogue), None, None,
@@ -488,53 +282,6 @@ class ConfigWindow(QMainWindow):
                                     "kept as they are", kept)
         self.info.setText(text)
 
-    def _channel_text(self, ch: StoredChannel) -> str:
-        key = DeviceKey(ch.vid, ch.pid, ch.serial)
-        return self.tr("%1, channel %2").replace("%1", self.catalogue.label(key)) \
-            .replace("%2", str(ch.index))
-
-    def _profile_text(self, profile: int) -> str:
-        """What a channel carries, by the profile tree's names (the code is the tooltip)."""
-        if profile == prof.NULL_PROFILE:
-            return self.tr("not stored")
-        if self.graph_doc.tree.node(profile) is None:
-            return self.tr("not named in the profile tree")
-        return self.graph_doc.tree.name_of(profile)
-
-    def _type_text(self, value: int) -> str:
-        """A channel type in words: its data type, size and control mode."""
-        from pdcp_studio.model.channel_type import ChannelType
-
-        try:
-            t = ChannelType(value)
-        except ValueError:
-            return self.tr("unknown form")
-        kind = (self.tr("signed number"), self.tr("number"), self.tr("decimal number"),
-                self.tr("on/off"))[int(t.data_type)]
-        mode = (self.tr("position"), self.tr("speed"), self.tr("acceleration"),
-                self.tr("other"))[int(t.control_mode)]
-        return self.tr("{kind} ({bits} bits), {mode}").format(kind=kind, bits=t.bits, mode=mode)
-
-    def _fill_links(self, cfg: StoredConfiguration | None) -> None:
-        links = cfg.links if cfg is not None else []
-        self.links.setRowCount(len(links))
-        for row, sl in enumerate(links):
-            cells = [str(sl.index or row + 1), self._channel_text(sl.output),
-                     self._type_text(sl.output.type), self._profile_text(sl.output.profile),
-                     self._channel_text(sl.input), self._type_text(sl.input.type),
-                     self._profile_text(sl.input.profile)]
-            for col, text in enumerate(cells):
-                item = QTableWidgetItem(text)
-                ch = sl.output if col in (1, 2, 3) else sl.input
-                if col in (1, 4):  # the engineer's detail, one hover away
-                    item.setToolTip(f"{ch.vid}/{ch.pid}/{ch.serial} #{ch.index}")
-                elif col in (2, 5):
-                    item.setToolTip(self.tr("type {code}").format(code=_hex(ch.type)))
-                elif col in (3, 6):
-                    item.setToolTip(self.tr("profile {code}").format(code=prof.fmt(ch.profile)))
-                self.links.setItem(row, col, item)
-        self.links.resizeColumnsToContents()
-
     def _fill_checks(self) -> None:
         self.checks.clear()
         if not self.findings:
@@ -544,7 +291,7 @@ class ConfigWindow(QMainWindow):
         colours = {"error": Qt.GlobalColor.darkRed, "warning": Qt.GlobalColor.darkYellow}
         for f in self.findings:
             item = QListWidgetItem(f"{self.tr(SEVERITY_WORDS[f.severity.value])}: "
-                                   f"{self._finding_words(f)}")
+                                   f"{self.words.finding_words(f)}")
             item.setToolTip(f"{f.message}\n({f.code})")  # the engineer's words and the rule
             item.setData(Qt.ItemDataRole.UserRole, list(f.links))
             if f.severity.value in colours:
@@ -552,119 +299,9 @@ class ConfigWindow(QMainWindow):
             self.checks.addItem(item)
         QTimer.singleShot(0, self.checks.doItemsLayout)
 
-    def _finding_words(self, f: ConfigFinding) -> str:
-        """A configuration check in plain words with what to do (the engine's as tooltip)."""
-        names = [self._ref_words(r) for r in f.refs]
-        links = ", ".join(str(p + 1) for p in f.links)
-        a = names[0] if names else ""
-        b = names[1] if len(names) > 1 else ""
-        text = {
-            "same-device": self.tr("Link {links} joins {a} to its own device. Remove it."),
-            "duplicate-link": self.tr("Links {links} store the same link {a} → {b}; it is made "
-                                      "once. Remove the extra ones."),
-            "two-sources": self.tr("{a} is given more than one source (links {links}); only "
-                                   "the first would be made. Keep one of them."),
-            "both-directions": self.tr("{a} is stored as an output and as an input (links "
-                                       "{links}); a channel is one or the other. Correct the "
-                                       "wrong link."),
-            "sole-access": self.tr("{a} feeds several inputs that each need it for themselves "
-                                   "(links {links}). Keep one of these links."),
-            "inconsistent-records": self.tr("{a} is stored with different descriptions in "
-                                            "links {links}. Edit the channel so they agree."),
-            "profile-misfit": self.tr("Link {links}: {a} and {b} carry different kinds of "
-                                      "signal; {b} may not understand what it is sent."),
-            "type-differs": self.tr("Link {links}: {a} and {b} carry the same kind of signal in "
-                                    "different forms; the input adapts to the output."),
-        }.get(f.code)
-        if text is None:
-            return f.message
-        return text.format(links=links, a=a, b=b)
-
-    def _ref_words(self, ref: Any) -> str:
-        return self.tr("%1, channel %2").replace("%1", self.catalogue.label(ref.device)) \
-            .replace("%2", str(ref.index))
-
-    def _plan_step_words(self, a: Any, system: System) -> str:
-        from pdcp_studio.app.words import plan_words as W
-
-        verb = self.tr("Add") if a.op.value == "add" else self.tr("Remove")
-        return (f"{verb} {W.link_words(system, a.link.output, a.link.input)}: "
-                f"{W.rule_words(a.rule)}")
-
-    def _link_fit_words(self, lf: Any, system: System) -> str:
-        """What happens to one stored link on this prosthesis, in words."""
-        from pdcp_studio.app.words import plan_words as W
-        from pdcp_studio.engine.config_fit import MISSING, PRESENT
-
-        if lf.whole:
-            return self.tr("both ends are on the prosthesis: made as stored")
-        parts = []
-        for end, state in ((self.tr("the output"), lf.output), (self.tr("the input"), lf.input)):
-            if state == MISSING:
-                parts.append(self.tr("{end} is missing").format(end=end))
-            elif state != PRESENT:
-                parts.append(self.tr("{end} has the other direction on the prosthesis").format(
-                    end=end))
-        adds = [a for a in lf.actions if a.op.value == "add"]
-        if adds:
-            made = "; ".join(self.tr("replaced by {link} ({similar})").format(
-                link=W.link_words(system, a.link.output, a.link.input),
-                similar=W.similarity_words(a, self.fit.plan) if self.fit else "")
-                for a in adds)
-            return f"{', '.join(parts)}: {made}"
-        return self.tr("{parts}: no replacement found, the link is not made").format(
-            parts=", ".join(parts))
-
     def refresh_fit(self) -> None:
         """Fit the current configuration to the prosthesis (if one is open)."""
-        from pdcp_studio.engine.config_fit import fit_configuration
-
-        self.fit_list.clear()
-        self.fit = None
-        system, name = self.prosthesis()
-        cfg = self.doc.configuration()
-        if system is None or not system.devices:
-            self.fit_label.setText(self.tr(
-                "No prosthesis to fit to. Open a system file or connect to a bus in the main "
-                "window, or choose a system file here."))
-            self.fit_choice.setText("")
-            return
-        self.fit_label.setText(self.tr("Fitted to %1.").replace("%1", name))
-        if cfg is None:
-            self.fit_choice.setText("")
-            return
-        try:
-            fit = fit_configuration(system, self.doc.collection, self.doc.current)
-        except PdcpError as err:
-            self.fit_choice.setText(str(err))
-            return
-        self.fit = fit
-        self.fit_choice.setText(self.tr("At start-up: %1").replace("%1", fit.chosen_reason))
-        self.fit_choice.setStyleSheet("font-weight: bold;" if fit.chosen_index == fit.index
-                                      else "")
-        for lf in fit.links:
-            sl = lf.link
-            number = str(sl.index or lf.position + 1)
-            label = self.tr("Link %1: %2 → %3\n%4").replace("%1", number) \
-                .replace("%2", self._channel_text(sl.output)) \
-                .replace("%3", self._channel_text(sl.input)) \
-                .replace("%4", self._link_fit_words(lf, system))
-            item = QListWidgetItem(label)
-            item.setToolTip(lf.summary())  # the engineer's words
-            if not lf.whole:
-                item.setForeground(Qt.GlobalColor.darkRed if not lf.actions
-                                   else Qt.GlobalColor.darkYellow)
-            self.fit_list.addItem(item)
-        if fit.plan.actions:
-            head = QListWidgetItem(count("ConfigWindow", "What start-up would do with this "
-                                         "configuration (%n step(s)):", len(fit.plan.actions)))
-            head.setForeground(Qt.GlobalColor.darkBlue)
-            self.fit_list.addItem(head)
-            for a in fit.plan.actions:
-                step = QListWidgetItem("    " + self._plan_step_words(a, system))
-                step.setToolTip(f"{a.op.value} {a.link.output} → {a.link.input}: {a.reason}")
-                self.fit_list.addItem(step)
-        QTimer.singleShot(0, self.fit_list.doItemsLayout)  # wrap at the width it has now
+        self.fit_panel.show_fit(*self.prosthesis())
 
     def set_prosthesis_source(self, source: ProsthesisSource | None) -> None:
         self._prosthesis_source = source
@@ -702,36 +339,19 @@ class ConfigWindow(QMainWindow):
             self.fit_to_file(path)
 
     # -- selection and edits ----------------------------------------------------------
-    def _on_row(self, row: int) -> None:
-        self.doc.set_current(row)
-
     def selected_links(self) -> list[int]:
-        return sorted({i.row() for i in self.links.selectionModel().selectedRows()})
+        return self.links_panel.selected()
 
     def select_links(self, positions: list[int]) -> None:
-        self.links.clearSelection()
-        mode = self.links.selectionMode()
-        self.links.setSelectionMode(QAbstractItemView.SelectionMode.MultiSelection)
-        for p in positions:
-            self.links.selectRow(p)
-        self.links.setSelectionMode(mode)
+        self.links_panel.select(positions)
 
     def _on_finding(self, item: QListWidgetItem) -> None:
         positions = item.data(Qt.ItemDataRole.UserRole) or []
         self.select_links(list(positions))
 
     def _update_buttons(self) -> None:
-        has_cfg = self.doc.configuration() is not None
-        n = len(self.doc.collection.configurations)
-        selected = self.selected_links() if has_cfg else []
-        self.btn_dup_cfg.setEnabled(has_cfg)
-        self.btn_del_cfg.setEnabled(has_cfg)
-        self.btn_up_cfg.setEnabled(has_cfg and self.doc.current > 0)
-        self.btn_down_cfg.setEnabled(has_cfg and self.doc.current < n - 1)
-        self.btn_add_link.setEnabled(has_cfg)
-        self.btn_del_link.setEnabled(bool(selected))
-        self.btn_edit_out.setEnabled(len(selected) == 1)
-        self.btn_edit_in.setEnabled(len(selected) == 1)
+        self.config_panel.update_buttons()
+        self.links_panel.update_buttons(self.doc.configuration() is not None)
 
     def _show_selected_in_graph(self) -> None:
         """The link picked in the list is highlighted in the graph."""
@@ -757,7 +377,7 @@ class ConfigWindow(QMainWindow):
         if cfg is None or len(rows) != 1:
             return
         ch: StoredChannel = getattr(cfg.links[rows[0]], end)
-        title = self.tr("Stored channel %1").replace("%1", self._channel_text(ch))
+        title = self.tr("Stored channel %1").replace("%1", self.words.channel_text(ch))
         dialog = ChannelDialog(title, ch, self)
         if dialog.exec() == QDialog.DialogCode.Accepted:
             values = dialog.values()
@@ -780,14 +400,14 @@ class ConfigWindow(QMainWindow):
         if cfg is not None:
             for ref, (dirn, ch) in channels_of(cfg).items():
                 if dirn == direction:
-                    out[ref] = (self._channel_text(ch), ch)
+                    out[ref] = (self.words.channel_text(ch), ch)
         system, _name = self.prosthesis()
         if system is not None:
             for ref, sch in system.channels():
                 if sch.direction.value == direction and ref not in out:
                     ch = StoredChannel(ref.index, ref.vid, ref.pid, ref.serial, sch.type,
                                        sch.profile)
-                    out[ref] = (self._channel_text(ch), ch)
+                    out[ref] = (self.words.channel_text(ch), ch)
         return list(out.values())
 
     def ask_add_link(self) -> None:

@@ -20,22 +20,25 @@ Signals
 
 from __future__ import annotations
 
-import copy
 import json
 import logging
 from collections.abc import Iterable
 from dataclasses import replace
 from pathlib import Path
-from typing import Any
+from typing import TYPE_CHECKING, Any
 
 from PySide6.QtCore import QObject, QTimer, Signal
 from PySide6.QtGui import QUndoStack
 
+from pdcp_studio.app.documents import live_sync
 from pdcp_studio.errors import ModelError, ProfileError
 from pdcp_studio.model import profile as prof
 from pdcp_studio.model.profile_tree import ProfileNames, ProfileTree
 from pdcp_studio.model.refs import ChannelRef, DeviceKey
 from pdcp_studio.model.system import Channel, Device, Link, System
+
+if TYPE_CHECKING:
+    from pdcp_studio.bus.session.api import BusSession
 
 log = logging.getLogger(__name__)
 
@@ -56,15 +59,6 @@ CHANNEL_FIELDS = frozenset({
     "type", "profile", "terminal_profile", "required_inputs", "desired_inputs",
     "descriptor", "source", "node_id", "data_enabled",
 })
-#: Fields the bus owns: on a live bus they always follow the prosthesis.
-BUS_CHANNEL_FIELDS = ("node_id",)
-BUS_DEVICE_FIELDS = ("present", "node_id", "fw_version", "hw_version", "device_type",
-                     "device_profile", "ean_low", "ean_high")
-#: Fields a user may stage on a live bus: they follow the prosthesis unless changed here.
-#: (The inputs' source fields are merged the same way: a staged link changes them here.)
-WRITABLE_CHANNEL_FIELDS = ("type", "profile", "terminal_profile", "required_inputs",
-                           "desired_inputs", "descriptor", "data_enabled", "source")
-WRITABLE_DEVICE_FIELDS = ("descriptor", "beacon_interval", "ack_timeout", "bind_timeout")
 #: Device fields an edit may change (``Device`` dataclass attributes).
 DEVICE_FIELDS = frozenset({
     "name", "present", "descriptor", "node_id", "beacon_interval", "ack_timeout",
@@ -151,7 +145,7 @@ class Document(QObject):
         self.tree: ProfileNames = tree_for(self.trees, self.system)
         self.undo_stack = QUndoStack(self)
         self.path: Path | None = None
-        self.session: Any = None
+        self.session: BusSession | None = None
         self.preview_plan: Any = None
         #: Remembered card positions (scene coordinates), kept when a device leaves.
         self.positions: dict[DeviceKey, Position] = {}
@@ -179,7 +173,8 @@ class Document(QObject):
         self._layout_timer.timeout.connect(self.remember_layout)
 
     # -- whole document -----------------------------------------------------------
-    def set_system(self, system: System, path: Path | str | None = None, session: Any = None,
+    def set_system(self, system: System, path: Path | str | None = None,
+                   session: BusSession | None = None,
                    *, dirty: bool = False, positions: dict[DeviceKey, Position] | None = None,
                    kind: str = "system", config: Any = None) -> None:
         """Show a different system: clears undo history, selection and preview.
@@ -214,14 +209,13 @@ class Document(QObject):
         self._emit_dirty()
 
     def sync_live(self, snapshot: System) -> bool:
-        """Follow the live bus: a three-way merge of the prosthesis into the project.
+        """Follow the live bus: a three-way merge of the prosthesis into the project
+        (:func:`~pdcp_studio.app.documents.live_sync.merge_snapshot`), then the signals.
 
         ``bus_system`` is the prosthesis as last seen. What the bus owns (presence, node IDs,
         the inputs' source fields, versions) always follows the snapshot; a link or a
         writable field follows it unless the user changed it here since (a staged change,
-        kept). Devices the snapshot lacks stay, marked missing; devices it has keep their
-        objects (so the inspector and the undo commands keep pointing at them). Not an undo
-        step: the bus changed, not the user.
+        kept). Not an undo step: the bus changed, not the user.
 
         Returns False, having sent no signal, when the snapshot is the prosthesis exactly
         as last seen and the project follows from it unchanged (a rescan that finds the
@@ -231,56 +225,21 @@ class Document(QObject):
         The snapshot becomes ``bus_system`` as it is (a fresh copy from the session, never
         changed afterwards: copying it again cost the GUI thread ~4 ms per 254 devices).
         """
-        system, base = self.system, self.bus_system or System()
-        same_bus = self.bus_system is not None and same_system(snapshot, self.bus_system)
-        added = False
-        changed_channels: list[ChannelRef] = []
-        changed_devices: list[DeviceKey] = []
-        for key, device in snapshot.devices.items():
-            mine = system.devices.get(key)
-            if mine is None:
-                system.add_device(copy.deepcopy(device))
-                added = True
-                continue
-            if mine == device:
-                continue  # every field and channel as on the bus: nothing to merge
-            old = base.devices.get(key)
-            if _merge_fields(mine, device, old, BUS_DEVICE_FIELDS, WRITABLE_DEVICE_FIELDS):
-                changed_devices.append(key)
-            for index, ch in device.channels.items():
-                own = mine.channels.get(index)
-                if own is None:
-                    continue
-                was = old.channels.get(index) if old is not None else None
-                if _merge_fields(own, ch, was, BUS_CHANNEL_FIELDS, WRITABLE_CHANNEL_FIELDS):
-                    changed_channels.append(ChannelRef(*key, index))
-        for key, mine in system.devices.items():
-            if key not in snapshot.devices and mine.present:
-                mine.present = False
-                changed_devices.append(key)
-        # Links: the bus's, plus the links staged here, minus the ones removed here.
-        base_links, mine_links = set(base.links), set(system.links)
-        staged_add, staged_remove = mine_links - base_links, base_links - mine_links
-        merged = (set(snapshot.links) | staged_add) - staged_remove
-        links = [lk for lk in sorted(merged)
-                 if system.channel(lk.output) is not None and system.channel(lk.input)]
-        links_changed = set(links) != mine_links
-        if same_bus and not (added or changed_devices or changed_channels or links_changed):
+        result = live_sync.merge_snapshot(self.system, self.bus_system, snapshot)
+        if result.unchanged:
             return False  # bus_system stays: it equals the snapshot
         self.bus_system = snapshot
-        if added:
-            system.clear_links()
-            for link in links:
-                system.add_link(link, check=False)
+        if result.added:
+            live_sync.apply_links(self.system, result.links)
             self.systemReset.emit()
             self.busChanged.emit()
             return True
-        for key in dict.fromkeys(changed_devices):
+        for key in dict.fromkeys(result.changed_devices):
             self.deviceChanged.emit(key)
-        for ref in changed_channels:
+        for ref in result.changed_channels:
             self.channelChanged.emit(ref)
-        if links_changed:
-            self.set_links(links)
+        if result.links_changed:
+            self.set_links(result.links)
         self.busChanged.emit()
         return True
 
@@ -302,7 +261,7 @@ class Document(QObject):
             self.policy = policy
             self.policyChanged.emit(policy)
 
-    def set_session(self, session: Any) -> None:
+    def set_session(self, session: BusSession | None) -> None:
         """Bind or unbind a live session without touching the system."""
         if session is not self.session:
             self.session = session
@@ -445,9 +404,7 @@ class Document(QObject):
 
     def set_links(self, links: Iterable[Link]) -> None:
         """Replace every link at once (plan apply/undo): one signal, not hundreds."""
-        self.system.clear_links()
-        for link in links:
-            self.system.add_link(link, check=False)
+        live_sync.apply_links(self.system, links)
         if isinstance(self._selection, Link) and not self.system.has_link(self._selection):
             self.select(None)
         self.linksChanged.emit()
@@ -482,7 +439,7 @@ class Document(QObject):
         system the CLI's ``apply`` writes for the same plan)."""
         from pdcp_studio.engine import set_links
 
-        set_links(self.system, _after(self.system.links, plan.actions))
+        set_links(self.system, live_sync.links_after(self.system.links, plan.actions))
         for a in plan.actions:
             self.link_reasons[a.link] = a.reason
         self._links_done({r for a in plan.actions for r in (a.link.output, a.link.input)})
@@ -534,39 +491,6 @@ class Document(QObject):
     def copy_channel(self, ref: ChannelRef, **changes: Any) -> Channel:
         """A changed copy of a channel (for computing an edit without applying it)."""
         return replace(self.channel(ref), **changes)
-
-
-def same_system(a: System, b: System) -> bool:
-    """The same devices (every field, every channel) and the same links."""
-    return a.devices == b.devices and set(a.links) == set(b.links)
-
-
-def _after(links: Iterable[Link], actions: Iterable[Any]) -> list[Link]:
-    """The links once ``actions`` (add/remove, in order) are carried out on ``links``."""
-    out = set(links)
-    for a in actions:
-        (out.add if getattr(a.op, "value", a.op) == "add" else out.discard)(a.link)
-    return sorted(out)
-
-
-def _merge_fields(mine: Any, theirs: Any, base: Any, owned: Iterable[str],
-                  writable: Iterable[str]) -> bool:
-    """Three-way merge of one device or channel's fields; True if any changed here."""
-    changed = False
-    for name in owned:
-        value = getattr(theirs, name)
-        if getattr(mine, name) != value:
-            setattr(mine, name, value)
-            changed = True
-    for name in writable:
-        value = getattr(theirs, name)
-        current = getattr(mine, name)
-        if current == value:
-            continue
-        if base is None or current == getattr(base, name):  # not staged here: follow the bus
-            setattr(mine, name, value)
-            changed = True
-    return changed
 
 
 def _device_of(obj: Selection) -> DeviceKey | None:

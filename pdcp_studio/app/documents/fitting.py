@@ -87,7 +87,7 @@ def _ask_operator(parent: QWidget | None, default: str) -> str | None:
 
 
 def patient_reference(devices: Iterable[DeviceKey], *, settings: QSettings | None = None,
-                      history_entries: Iterable[dict] = ()) -> str:
+                      history_entries: Iterable[dict[str, Any]] = ()) -> str:
     """The prosthesis's patient reference: remembered here, else the newest one recorded in
     the fitting history for the same devices ("" if none)."""
     keys = sorted(set(devices))

@@ -16,7 +16,6 @@ from __future__ import annotations
 from dataclasses import dataclass
 from typing import Any
 
-from pdcp_studio.app.i18n import translate
 from pdcp_studio.model import param_fields
 from pdcp_studio.model.refs import ChannelRef, DeviceKey
 from pdcp_studio.model.system import Link, System
@@ -82,6 +81,8 @@ def _end(system: System | None, ref: ChannelRef) -> str:
 
 def _value(value: Any) -> str:
     if isinstance(value, bool):
+        from pdcp_studio.app.i18n import translate  # Qt's translator: only for words
+
         return translate("Pending", "on") if value else translate("Pending", "off")
     if isinstance(value, str):
         return f"“{value}”"

@@ -12,7 +12,7 @@ from __future__ import annotations
 
 import math
 from functools import cache
-from typing import TYPE_CHECKING, Any
+from typing import TYPE_CHECKING, Any, cast
 
 from PySide6.QtCore import QPointF, QRectF, Qt
 from PySide6.QtGui import (
@@ -48,8 +48,11 @@ if TYPE_CHECKING:
     from pdcp_studio.app.graph.links import LinkItem
     from pdcp_studio.app.graph.scene import BusScene
 
-DEVICE_TYPE = QGraphicsItem.UserType + 1
-PORT_TYPE = QGraphicsItem.UserType + 2
+#: ``QGraphicsItem.UserType``: the first item type of an application's own (PySide6's
+#: type stubs lack the name).
+USER_TYPE = 65536
+DEVICE_TYPE = USER_TYPE + 1
+PORT_TYPE = USER_TYPE + 2
 #: Below this zoom a card shows its name large instead of its rows (the rows' text,
 #: grown to fill its row, would be under ROW_MIN_PX on screen).
 DETAIL_ZOOM = 0.55
@@ -131,8 +134,10 @@ def forget_catalogue() -> None:
     """Look the products up again (a catalogue file was added or changed)."""
     _card_catalogue.cache_clear()
 
+
 class PortItem(QGraphicsEllipseItem):
-    """A channel's connection point; dragging from it draws a link."""
+    """A channel's connection point; a drag from it draws a link (the scene's gesture,
+    :mod:`pdcp_studio.app.graph.link_drag`)."""
 
     def __init__(self, card: DeviceItem, channel: Channel, y: float) -> None:
         r = style.PORT_RADIUS
@@ -150,7 +155,7 @@ class PortItem(QGraphicsEllipseItem):
         self.connected = False
         self.unmet = False
         self.live = False
-        self._look: tuple | None = None
+        self._look: tuple[int, float, int] | None = None
         self.refresh()
 
     def type(self) -> int:
@@ -189,24 +194,6 @@ class PortItem(QGraphicsEllipseItem):
     def hoverLeaveEvent(self, event: QGraphicsSceneHoverEvent) -> None:
         self.set_hover(False)
         super().hoverLeaveEvent(event)
-
-    def mousePressEvent(self, event: QGraphicsSceneMouseEvent) -> None:
-        scene = self.scene()
-        if event.button() == Qt.MouseButton.LeftButton and scene is not None:
-            scene.begin_link_drag(self, event.scenePos())
-            event.accept()
-            return
-        super().mousePressEvent(event)
-
-    def mouseMoveEvent(self, event: QGraphicsSceneMouseEvent) -> None:
-        scene = self.scene()
-        if scene is not None:
-            scene.update_link_drag(event.scenePos())
-
-    def mouseReleaseEvent(self, event: QGraphicsSceneMouseEvent) -> None:
-        scene = self.scene()
-        if scene is not None:
-            scene.end_link_drag(event.scenePos())
 
 
 class DeviceItem(QGraphicsRectItem):
@@ -248,7 +235,7 @@ class DeviceItem(QGraphicsRectItem):
         self.zoom = 1.0
         self.summary = False
         self.vector = False
-        self._shown: tuple | None = None  # the state last drawn (refresh skips no-ops)
+        self._shown: tuple[object, ...] | None = None  # the state last drawn (refresh skips no-ops)
         self._drawn: list[str] = []
         self._name_px = 0.0
         self._row_px = 0.0
@@ -273,7 +260,7 @@ class DeviceItem(QGraphicsRectItem):
     # -- structure ------------------------------------------------------------------
     def _build_rows(self) -> None:
         for port in self.ports.values():
-            port.setParentItem(None)
+            port.setParentItem(cast(QGraphicsItem, None))  # Qt takes None: no parent
             if port.scene() is not None:
                 port.scene().removeItem(port)
         self.ports.clear()
@@ -303,7 +290,7 @@ class DeviceItem(QGraphicsRectItem):
                 device.outputs(), key=lambda c: c.index)
         self.refresh()
 
-    def _state(self) -> tuple:
+    def _state(self) -> tuple[object, ...]:
         """Everything the card's picture shows (compared to skip needless redraws)."""
         d = self.device
         return (d.present, self.isSelected(), self.role, tuple(self.problems),
@@ -325,7 +312,7 @@ class DeviceItem(QGraphicsRectItem):
         if self.vector:
             self.update()
         else:
-            self._scene_ref.schedule_render(self)
+            self._scene_ref.pictures.schedule(self)
 
     def picture_scale(self) -> float:
         """Device pixels per scene unit of the card's picture (the view's zoom)."""
@@ -411,12 +398,12 @@ class DeviceItem(QGraphicsRectItem):
     def mousePressEvent(self, event: QGraphicsSceneMouseEvent) -> None:
         super().mousePressEvent(event)
         row = self.row_at(event.pos())
-        self._scene_ref.card_clicked(self, self.device.ref(row.index) if row else None,
-                                     event.modifiers())
+        self._scene_ref.moves.pressed(self, self.device.ref(row.index) if row else None,
+                                      event.modifiers())
 
     def mouseReleaseEvent(self, event: QGraphicsSceneMouseEvent) -> None:
         super().mouseReleaseEvent(event)
-        self._scene_ref.drag_finished()
+        self._scene_ref.moves.released()
 
     def hoverMoveEvent(self, event: QGraphicsSceneHoverEvent) -> None:
         row = None if self.summary else self.row_at(event.pos())
@@ -498,7 +485,8 @@ class DeviceItem(QGraphicsRectItem):
         p.drawText(QRectF(11, 6, w - 20 - badge, 18), Qt.AlignmentFlag.AlignVCenter, name)
         p.setFont(small_f)
         p.setPen(dim)
-        role = translate("Style", style.MISSING_LABEL if missing else style.ROLE_LABELS[self.role])
+        role = translate("Style", str(style.MISSING_LABEL if missing
+                                       else style.ROLE_LABELS[self.role]))
         product = card_product(d.key)  # the numbers are in the tooltip and the inspector
         icon = card_icon(d.key)
         left = 11.0
@@ -521,7 +509,7 @@ class DeviceItem(QGraphicsRectItem):
 
         # Channel rows.
         n_in = sum(1 for c in self.rows if c.is_input)
-        name_of = self._scene_ref.profile_name
+        name_of = self._scene_ref.doc.profile_name
         idx_w = row_m.horizontalAdvance("000")
         avail = w - 2 * 14 - idx_w - 6
         p.setFont(row_f)

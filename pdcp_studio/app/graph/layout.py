@@ -35,6 +35,22 @@ def card_height(device: Device) -> float:
     return style.HEADER_HEIGHT + rows * style.ROW_HEIGHT + style.FOOTER
 
 
+def planned_bounds(system: System, positions: Mapping[DeviceKey, tuple[float, float]]
+                   ) -> tuple[float, float, float, float]:
+    """Where the cards will be (x, y, width, height; all 0 without cards), from their
+    places alone: a large bus's graph has its size before its cards are made."""
+    r = style.PORT_RADIUS + 2
+    boxes = []
+    for key, device in system.devices.items():
+        x, y = positions.get(key, (0.0, 0.0))
+        boxes.append((x - r, y - 2, x + style.CARD_WIDTH + r, y + card_height(device) + 4))
+    if not boxes:
+        return 0.0, 0.0, 0.0, 0.0
+    left, top = min(b[0] for b in boxes), min(b[1] for b in boxes)
+    right, bottom = max(b[2] for b in boxes), max(b[3] for b in boxes)
+    return left, top, right - left, bottom - top
+
+
 def device_edges(system: System) -> dict[DeviceKey, set[DeviceKey]]:
     """Device → devices it feeds (self-links ignored)."""
     succ: dict[DeviceKey, set[DeviceKey]] = {k: set() for k in system.devices}

@@ -20,13 +20,14 @@ from PySide6.QtGui import QPainterPath, QPainterPathStroker, QPen
 from PySide6.QtWidgets import QGraphicsItem, QGraphicsPathItem
 
 from pdcp_studio.app.graph import style
+from pdcp_studio.app.graph.items import USER_TYPE
 from pdcp_studio.model.system import Link
 
 if TYPE_CHECKING:
     from pdcp_studio.app.graph.items import PortItem
     from pdcp_studio.app.graph.scene import BusScene
 
-LINK_TYPE = QGraphicsItem.UserType + 3
+LINK_TYPE = USER_TYPE + 3
 HIT_WIDTH = 10.0
 
 

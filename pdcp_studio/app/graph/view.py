@@ -56,7 +56,8 @@ SIDE_WIDTH = 230
 
 #: The legend's rows: (kind, colour, label). Kinds: "role" swatch, "ring" port,
 #: "line"/"dash"/"dashdot"/"dot" link.
-LEGEND = (
+LegendEntry = tuple[str, QColor, object]
+LEGEND: tuple[tuple[LegendEntry, ...], ...] = (
     (
         ("role", style.ROLE_COLOURS["sensor"], QT_TRANSLATE_NOOP("Legend", "Sensor")),
         ("role", style.ROLE_COLOURS["control"], QT_TRANSLATE_NOOP("Legend", "Control")),
@@ -98,7 +99,7 @@ class Legend(QWidget):
         self.setFont(style.small_font())
         self._metrics = QFontMetricsF(self.font())
         self._widths: dict[str, float] = {}  # text → its width in that font
-        self._rows: list[list[tuple]] = [list(r) for r in LEGEND]
+        self._rows: list[list[LegendEntry]] = [list(r) for r in LEGEND]
 
     def _entry_width(self, label: str) -> float:
         # Asked ~1,000 times while a new window is laid out (the footer tries both places
@@ -109,14 +110,14 @@ class Legend(QWidget):
             width = self._widths[text] = 24 + self._metrics.horizontalAdvance(text)
         return width
 
-    def rows_for(self, width: float) -> list[list[tuple]]:
+    def rows_for(self, width: float) -> list[list[LegendEntry]]:
         """The entries flowed into rows no wider than ``width``, in order."""
-        rows: list[list[tuple]] = []
+        rows: list[list[LegendEntry]] = []
         room = width - 2 * self.PAD
-        row: list[tuple] = []
+        row: list[LegendEntry] = []
         used = 0.0
         for entry in (e for group in LEGEND for e in group):
-            w = self._entry_width(entry[2])
+            w = self._entry_width(str(entry[2]))
             if row and used + self.GAP + w > room:
                 rows.append(row)
                 row, used = [], 0.0
@@ -127,11 +128,11 @@ class Legend(QWidget):
 
     def widest_entry(self) -> int:
         """The width of the widest single entry (the least width that shows it whole)."""
-        return int(max(self._entry_width(e[2]) for g in LEGEND for e in g) + 2 * self.PAD) + 1
+        return int(max(self._entry_width(str(e[2])) for g in LEGEND for e in g) + 2 * self.PAD) + 1
 
     def natural_width(self) -> int:
         """Wide enough for the longest of the legend's three groups on one row."""
-        return int(max(sum(self._entry_width(e[2]) for e in g) + self.GAP * (len(g) - 1)
+        return int(max(sum(self._entry_width(str(e[2])) for e in g) + self.GAP * (len(g) - 1)
                        for g in LEGEND) + 2 * self.PAD) + 1
 
     def height_for(self, width: float) -> int:
@@ -155,7 +156,7 @@ class Legend(QWidget):
             y = self.PAD + r * self.ROW + self.ROW / 2
             x = self.PAD
             for kind, colour, source in row:
-                label = translate("Legend", source)
+                label = translate("Legend", str(source))
                 if kind == "role":
                     p.setPen(Qt.PenStyle.NoPen)
                     p.setBrush(colour)
