@@ -9,6 +9,7 @@ to REPORT.json and exits (1 when a step failed). The test suite runs the same fu
 
 from __future__ import annotations
 
+import functools
 import json
 import os
 import tempfile
@@ -93,7 +94,7 @@ def exercise(window: Any) -> dict[str, str]:
         step(f"dock {dock.objectName()}", show_dock)
 
     for mode in window.plan_actions:
-        step(f"plan {mode}", lambda m=mode: window.preview_plan(m))
+        step(f"plan {mode}", functools.partial(window.preview_plan, mode))
     step("plan discard", window.plan_panel.discard)
 
     def report() -> None:

@@ -19,7 +19,7 @@ from pdcp_studio.model.refs import DeviceKey
 from pdcp_studio.model.system import Device, System
 
 _CTX = "PartNames"
-_CACHE: dict[tuple, dict[DeviceKey, str]] = {}
+_CACHE: dict[tuple[object, ...], dict[DeviceKey, str]] = {}
 
 
 def twin_format() -> str:

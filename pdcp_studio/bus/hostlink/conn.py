@@ -16,7 +16,7 @@ import queue
 import threading
 import time
 from collections.abc import Callable
-from typing import Any
+from typing import Any, TypedDict
 
 from pdcp_studio.bus.hostlink.port import (
     DEFAULT_BAUD,
@@ -61,6 +61,13 @@ class _Lost:
         self.why = why
 
 
+class _LinkOptions(TypedDict, total=False):
+    """The link timings a connection was given; the protocol's defaults for the others."""
+
+    ack_timeout: float
+    max_attempts: int
+
+
 class HostLinkConnection:
     """The host link on one serial port (``port`` a name to open, or an open port object)."""
 
@@ -75,8 +82,11 @@ class HostLinkConnection:
         self.reply_timeout = reply_timeout
         self.on_event = on_event or (lambda message: None)
         self.on_greeted = on_greeted or (lambda count: None)
-        self._link_options = {k: v for k, v in (("ack_timeout", ack_timeout),
-                                                ("max_attempts", max_attempts)) if v is not None}
+        self._link_options: _LinkOptions = {}
+        if ack_timeout is not None:
+            self._link_options["ack_timeout"] = ack_timeout
+        if max_attempts is not None:
+            self._link_options["max_attempts"] = max_attempts
         self._port_name = port if isinstance(port, str) else None
         self.port: Any = (open_port(port, baudrate, self.where) if isinstance(port, str)
                           else port)
