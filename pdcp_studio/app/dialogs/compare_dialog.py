@@ -47,7 +47,7 @@ from PySide6.QtWidgets import (
 
 from pdcp_studio.app.i18n import QT_TRANSLATE_NOOP, translate
 from pdcp_studio.app.words.plural import count
-from pdcp_studio.app.workers import Worker
+from pdcp_studio.app.workers import ProgressFn, Worker
 from pdcp_studio.model.configuration import ConfigCollection, StoredConfiguration
 from pdcp_studio.model.refs import ChannelRef
 from pdcp_studio.model.system import Link, System
@@ -116,7 +116,11 @@ def load_file_sources(path: str | Path) -> list[LinkSource]:
     return load_file(path)[0]
 
 
-def load_file(path: str | Path) -> tuple[list[LinkSource], ConfigCollection | None]:
+#: A file's link sources, and its stored configuration when it is a ``.pdcfg``.
+FileSources = tuple[list[LinkSource], ConfigCollection | None]
+
+
+def load_file(path: str | Path) -> FileSources:
     """The file's sources, and its stored configuration when it is a ``.pdcfg``."""
     path = Path(path)
     if path.suffix.lower() == ".pdcfg":
@@ -222,7 +226,7 @@ class CompareDialog(QDialog):
         self.file_collection = collection
         self.refresh()
 
-    def _file_loaded(self, loaded: tuple) -> None:
+    def _file_loaded(self, loaded: FileSources) -> None:
         self.set_file_sources(*loaded)
 
     def set_arbitrator(self, collection: ConfigCollection | None) -> None:
@@ -239,7 +243,7 @@ class CompareDialog(QDialog):
         """Read a system file or ``.pdcfg`` on a worker; the table follows when it is read."""
         self.summary.setText(self.tr("Reading {name}…").format(name=Path(path).name))
 
-        def work(_p: Any, _c: threading.Event) -> tuple:
+        def work(_p: ProgressFn, _c: threading.Event) -> FileSources:
             return load_file(path)
 
         worker = Worker(work, f"Read {path}")

@@ -14,6 +14,7 @@ woken when a frame handled elsewhere set a timer earlier than it planned to wake
 
 from __future__ import annotations
 
+import functools
 import heapq
 import itertools
 import logging
@@ -205,8 +206,7 @@ class DeviceHost:
                 elif callable(item):
                     self._guard(item)
                 else:  # what is neither an error nor a call is a frame (Connection.get)
-                    frame = cast("can.Message", item)
-                    self._guard(lambda: self._on_frame(frame))
+                    self._guard(functools.partial(self._on_frame, cast("can.Message", item)))
 
     def _take(self, msg: can.Message) -> None:
         """A frame handed over on the thread that sent it (direct mode)."""
