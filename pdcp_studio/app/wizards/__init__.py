@@ -2,7 +2,9 @@
 
 Each is a :class:`QWizard` with clear steps, Back and Next, that ends in the change road's
 transaction (reference §5) on the main window's prosthesis. The decisions are pure
-(:mod:`.logic`), the words in :mod:`.words`, the shared pages in :mod:`.pages`.
+(:mod:`.logic`), the words in :mod:`.words`; the wizard and its page in :mod:`.task_wizard`,
+the shared pages by what they do (:mod:`.connect_page`, :mod:`.scan_pages`,
+:mod:`.change_pages`, :mod:`.result_pages`).
 """
 
 from __future__ import annotations
