@@ -24,6 +24,8 @@ log = logging.getLogger(__name__)
 CATALOG = "pdcp_studio"
 #: Languages with a translation (besides English, the source).
 LANGUAGES = ("de",)
+#: The translators :func:`install` put in (Qt has one application per process).
+_installed: list[QTranslator] = []
 
 
 def language(requested: str | None = None) -> str:
@@ -100,15 +102,15 @@ def install(app: QCoreApplication, requested: str | None = None) -> str:
             log.warning("the %s translation did not load", lang)
     for translator in translators:
         app.installTranslator(translator)
-    app._pdcp_translators = translators  # type: ignore[attr-defined]  # kept alive
+    _installed[:] = translators  # kept alive, and known to uninstall()
     return lang
 
 
 def uninstall(app: QCoreApplication) -> None:
     """Back to English (tests switch languages in one process)."""
-    for translator in getattr(app, "_pdcp_translators", []):
+    for translator in _installed:
         app.removeTranslator(translator)
-    app._pdcp_translators = []  # type: ignore[attr-defined]
+    _installed.clear()
     QLocale.setDefault(QLocale(QLocale.Language.English))
 
 

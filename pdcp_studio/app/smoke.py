@@ -24,12 +24,11 @@ SMOKE_ENV = "PDCP_STUDIO_SMOKE_TEST"
 
 
 def _settle(ms: int = 50) -> None:
-    app = QApplication.instance()
     deadline = QTimer()
     deadline.setSingleShot(True)
     deadline.start(ms)
     while deadline.isActive():
-        app.processEvents()  # type: ignore[union-attr]
+        QApplication.processEvents()
 
 
 def _dialogs(window: Any) -> list[tuple[str, Callable[[], QWidget]]]:
