@@ -26,7 +26,7 @@ import html
 import threading
 from collections.abc import Sequence
 from pathlib import Path
-from typing import Any, NamedTuple
+from typing import TYPE_CHECKING, NamedTuple
 
 from PySide6.QtCore import Qt, Signal
 from PySide6.QtGui import QBrush, QColor
@@ -51,6 +51,9 @@ from pdcp_studio.app.workers import ProgressFn, Worker
 from pdcp_studio.model.configuration import ConfigCollection, StoredConfiguration
 from pdcp_studio.model.refs import ChannelRef
 from pdcp_studio.model.system import Link, System
+
+if TYPE_CHECKING:
+    from pdcp_studio.app.live.session_bridge import SessionBridge
 
 ON_SCREEN = QT_TRANSLATE_NOOP("CompareDialog", "On screen")
 ARBITRATOR = "Arbitrator"
@@ -156,7 +159,7 @@ class CompareDialog(QDialog):
     compared = Signal()
     error = Signal(str)
 
-    def __init__(self, system: System, *, bridge: Any = None,
+    def __init__(self, system: System, *, bridge: SessionBridge | None = None,
                  parent: QWidget | None = None) -> None:
         super().__init__(parent)
         self.setWindowTitle(self.tr("Compare configurations"))

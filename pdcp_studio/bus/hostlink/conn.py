@@ -20,6 +20,7 @@ from typing import Any, TypedDict
 
 from pdcp_studio.bus.hostlink.port import (
     DEFAULT_BAUD,
+    Port,
     Reopener,
     open_port,
     read_available,
@@ -71,7 +72,7 @@ class _LinkOptions(TypedDict, total=False):
 class HostLinkConnection:
     """The host link on one serial port (``port`` a name to open, or an open port object)."""
 
-    def __init__(self, port: Any, *, baudrate: int = DEFAULT_BAUD, where: str = "",
+    def __init__(self, port: Port | str, *, baudrate: int = DEFAULT_BAUD, where: str = "",
                  on_event: Callable[[bytes], None] | None = None,
                  on_notice: Callable[[str], None] | None = None,
                  on_greeted: Callable[[int], None] | None = None,
@@ -88,7 +89,7 @@ class HostLinkConnection:
         if max_attempts is not None:
             self._link_options["max_attempts"] = max_attempts
         self._port_name = port if isinstance(port, str) else None
-        self.port: Any = (open_port(port, baudrate, self.where) if isinstance(port, str)
+        self.port: Port = (open_port(port, baudrate, self.where) if isinstance(port, str)
                           else port)
         self.link = LinkEndpoint(host=True, **self._link_options)
         self.info: dict[str, Any] = {}
