@@ -9,13 +9,16 @@ the shared pages by what they do (:mod:`.connect_page`, :mod:`.scan_pages`,
 
 from __future__ import annotations
 
-from typing import Any
+from typing import TYPE_CHECKING, Any
+
+if TYPE_CHECKING:
+    from pdcp_studio.app.wizards.task_wizard import TaskWizard
 
 #: The tasks by name (the Tasks menu's order).
 TASKS = ("fitting", "replace", "restore")
 
 
-def make_wizard(window: Any, task: str) -> Any:
+def make_wizard(window: Any, task: str) -> TaskWizard:
     """The wizard for ``task`` (one of :data:`TASKS`) on ``window``, not shown yet."""
     if task == "fitting":
         from pdcp_studio.app.wizards.new_fitting import NewFittingWizard
@@ -32,9 +35,9 @@ def make_wizard(window: Any, task: str) -> Any:
     raise ValueError(f"no guided task {task!r} (one of {', '.join(TASKS)})")
 
 
-def open_wizard(window: Any, task: str) -> Any:
+def open_wizard(window: Any, task: str) -> TaskWizard:
     """Show the wizard for ``task`` beside the window (one at a time) and return it."""
-    old = getattr(window, "task_wizard", None)
+    old: TaskWizard | None = getattr(window, "task_wizard", None)
     if old is not None and old.isVisible():
         if not old.writing:
             old.close()
