@@ -36,7 +36,7 @@ from PySide6.QtWidgets import (
 
 from pdcp_studio.app.i18n import QT_TRANSLATE_NOOP, translate
 from pdcp_studio.app.workers import ProgressFn, Worker
-from pdcp_studio.model.refs import DeviceKey
+from pdcp_studio.model.refs import ChannelRef, DeviceKey
 from pdcp_studio.model.system import Link
 
 if TYPE_CHECKING:
@@ -350,7 +350,7 @@ class HistoryPanel(QWidget):
 
         doc = self.main.doc
         system = getattr(doc, "system", None)
-        names: dict[Any, str] = {}
+        names: dict[ChannelRef, str] = {}
         for ref in (link.output, link.input):
             ch = system.channel(ref) if system is not None else None
             name = doc.profile_name(ch.profile) if ch is not None and ch.profile else ""

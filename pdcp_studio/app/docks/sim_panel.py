@@ -260,7 +260,7 @@ class SimPanel(QWidget):
 
     def _names(self, devices: list[SimDevice]) -> dict[DeviceKey, str]:
         """Every simulated device's name (:func:`sim_names`)."""
-        system = getattr(getattr(self.bridge, "session", None), "initial_system", None)
+        system = getattr(self.bridge.session, "initial_system", None)
         models = dict(getattr(system, "devices", {}) or {})
         return sim_names([(DeviceKey(*k), str(lb)) for k, lb, _p in devices], self.name_of,
                          models)
