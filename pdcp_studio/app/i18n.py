@@ -24,6 +24,8 @@ log = logging.getLogger(__name__)
 CATALOG = "pdcp_studio"
 #: Languages with a translation (besides English, the source).
 LANGUAGES = ("de",)
+#: The translators :func:`install` put in (Qt has one application per process).
+_installed: list[QTranslator] = []
 
 
 def language(requested: str | None = None) -> str:
@@ -100,17 +102,24 @@ def install(app: QCoreApplication, requested: str | None = None) -> str:
             log.warning("the %s translation did not load", lang)
     for translator in translators:
         app.installTranslator(translator)
-    app._pdcp_translators = translators  # type: ignore[attr-defined]  # kept alive
+    _installed[:] = translators  # kept alive, and known to uninstall()
     return lang
 
 
 def uninstall(app: QCoreApplication) -> None:
     """Back to English (tests switch languages in one process)."""
-    for translator in getattr(app, "_pdcp_translators", []):
+    for translator in _installed:
         app.removeTranslator(translator)
-    app._pdcp_translators = []  # type: ignore[attr-defined]
+    _installed.clear()
     QLocale.setDefault(QLocale(QLocale.Language.English))
 
 
 #: ``translate("Context", "text")``: Qt's translation outside a QObject (``self.tr`` inside).
 translate = QCoreApplication.translate
+
+
+def QT_TRANSLATE_NOOP(context: str, text: str) -> str:
+    """Mark ``text`` for translation in ``context`` and give it back as it is, to be
+    translated where it is shown. Qt's own does the same but is typed as returning
+    ``object``; ``pyside6-lupdate`` finds this one by its name all the same."""
+    return text

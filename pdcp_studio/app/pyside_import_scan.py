@@ -46,7 +46,7 @@ def spare_source_scan() -> bool:
     import PySide6.QtCore  # noqa: F401  - installs the import hook
 
     try:
-        from shibokensupport import feature  # type: ignore[import-not-found]
+        from shibokensupport import feature
     except ImportError:
         return False
     if not callable(getattr(feature, "_mod_uses_pyside", None)):

@@ -18,6 +18,7 @@ import ctypes
 import os
 import sys
 from collections.abc import Callable, Iterable, Mapping
+from typing import TypedDict, Unpack
 
 #: What Qt's GUI libraries load on Linux, whatever the platform plugin (Debian package).
 GUI_LIBRARIES: dict[str, str] = {
@@ -142,6 +143,16 @@ def problem(*, screenshot: bool = False, environ: Mapping[str, str] | None = Non
     return None
 
 
-def needs_offscreen(**kwargs: object) -> bool:
+class Probes(TypedDict, total=False):
+    """What :func:`problem` looks at, for a caller (or a test) to give instead."""
+
+    screenshot: bool
+    environ: Mapping[str, str] | None
+    platform: str
+    loads: Callable[[str], bool]
+    answers: Callable[[str], bool]
+
+
+def needs_offscreen(**probes: Unpack[Probes]) -> bool:
     """True when a screenshot must be rendered off screen: no window can open here."""
-    return problem(**kwargs) is not None  # type: ignore[arg-type]
+    return problem(**probes) is not None

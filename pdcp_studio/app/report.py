@@ -28,9 +28,9 @@ import datetime as _dt
 import html
 from dataclasses import dataclass, field
 from pathlib import Path
-from typing import Any
+from typing import TYPE_CHECKING, Any
 
-from PySide6.QtCore import QT_TRANSLATE_NOOP, QBuffer, QIODevice, QMarginsF, QSizeF, Qt, QUrl
+from PySide6.QtCore import QBuffer, QIODevice, QMarginsF, QSizeF, Qt, QUrl
 from PySide6.QtGui import (
     QGuiApplication,
     QImage,
@@ -41,13 +41,17 @@ from PySide6.QtGui import (
     QTextDocument,
 )
 
-from pdcp_studio.app.i18n import translate
+from pdcp_studio.app.i18n import QT_TRANSLATE_NOOP, translate
 from pdcp_studio.app.words.plural import count
 from pdcp_studio.model import profile as prof
 from pdcp_studio.model.configuration import ConfigCollection
 from pdcp_studio.model.profile_tree import ProfileTree
-from pdcp_studio.model.system import System
+from pdcp_studio.model.refs import ChannelRef, DeviceKey
+from pdcp_studio.model.system import Link, System
 from pdcp_studio.storage.atomic import atomic_write_bytes
+
+if TYPE_CHECKING:
+    from pdcp_studio.bus.transaction import Policy
 
 _CTX = "FittingReport"
 #: The source text; shown translated (``_t``) like every word of the report.
@@ -70,9 +74,9 @@ class FittingInfo:
     prosthetist: str = ""
     time: _dt.datetime | None = None
     bus: str = ""
-    changes: list[dict] = field(default_factory=list)
+    changes: list[dict[str, Any]] = field(default_factory=list)
     #: The prosthesis's profile-layer policy (a ``Policy``; None: not known, e.g. offline).
-    policy: Any = None
+    policy: Policy | None = None
 
 
 def _t(text: str) -> str:
@@ -130,7 +134,7 @@ def action_words(action: str) -> str:
     return words
 
 
-def _change_rows(changes: list[dict]) -> str:
+def _change_rows(changes: list[dict[str, Any]]) -> str:
     rows = []
     for e in changes:
         outcome = e.get("outcome") or {}
@@ -189,13 +193,13 @@ def _profile(tree: ProfileTree, value: int) -> str:
     return _e(tree.name_of(value))
 
 
-def _device_name(system: System, key: Any) -> str:
+def _device_name(system: System, key: DeviceKey) -> str:
     from pdcp_studio.app.words.part_names import part_name
 
     return part_name(system, key)
 
 
-def _end(system: System, tree: ProfileTree, ref: Any, compact: bool = False) -> str:
+def _end(system: System, tree: ProfileTree, ref: ChannelRef, compact: bool = False) -> str:
     ch = system.channel(ref)
     name = _device_name(system, ref.device)
     if compact:
@@ -264,7 +268,7 @@ def report_html(system: System, tree: ProfileTree, *, title: str | None = None,
     heads = "".join(f"<th{w}>{_e(c)}</th>" for w, c in zip(widths, columns, strict=True))
     devices = f"<tr>{heads * per_row}</tr>{_device_rows(system, per_row)}"
 
-    def missing(lk: Any) -> str:
+    def missing(lk: Link) -> str:
         gone = [system.device(r.device) for r in (lk.output, lk.input)]
         if any(d is None or not d.present for d in gone):
             return f" <i style='color:#b00000'>{_e(_t('(to a missing device)'))}</i>"

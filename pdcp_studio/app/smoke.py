@@ -9,6 +9,7 @@ to REPORT.json and exits (1 when a step failed). The test suite runs the same fu
 
 from __future__ import annotations
 
+import functools
 import json
 import os
 import tempfile
@@ -23,12 +24,11 @@ SMOKE_ENV = "PDCP_STUDIO_SMOKE_TEST"
 
 
 def _settle(ms: int = 50) -> None:
-    app = QApplication.instance()
     deadline = QTimer()
     deadline.setSingleShot(True)
     deadline.start(ms)
     while deadline.isActive():
-        app.processEvents()  # type: ignore[union-attr]
+        QApplication.processEvents()
 
 
 def _dialogs(window: Any) -> list[tuple[str, Callable[[], QWidget]]]:
@@ -93,7 +93,7 @@ def exercise(window: Any) -> dict[str, str]:
         step(f"dock {dock.objectName()}", show_dock)
 
     for mode in window.plan_actions:
-        step(f"plan {mode}", lambda m=mode: window.preview_plan(m))
+        step(f"plan {mode}", functools.partial(window.preview_plan, mode))
     step("plan discard", window.plan_panel.discard)
 
     def report() -> None:

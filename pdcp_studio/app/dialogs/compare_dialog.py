@@ -26,9 +26,9 @@ import html
 import threading
 from collections.abc import Sequence
 from pathlib import Path
-from typing import Any, NamedTuple
+from typing import TYPE_CHECKING, NamedTuple
 
-from PySide6.QtCore import QT_TRANSLATE_NOOP, Qt, Signal
+from PySide6.QtCore import Qt, Signal
 from PySide6.QtGui import QBrush, QColor
 from PySide6.QtWidgets import (
     QCheckBox,
@@ -45,12 +45,15 @@ from PySide6.QtWidgets import (
     QWidget,
 )
 
-from pdcp_studio.app.i18n import translate
+from pdcp_studio.app.i18n import QT_TRANSLATE_NOOP, translate
 from pdcp_studio.app.words.plural import count
-from pdcp_studio.app.workers import Worker
+from pdcp_studio.app.workers import ProgressFn, Worker
 from pdcp_studio.model.configuration import ConfigCollection, StoredConfiguration
 from pdcp_studio.model.refs import ChannelRef
 from pdcp_studio.model.system import Link, System
+
+if TYPE_CHECKING:
+    from pdcp_studio.app.live.session_bridge import SessionBridge
 
 ON_SCREEN = QT_TRANSLATE_NOOP("CompareDialog", "On screen")
 ARBITRATOR = "Arbitrator"
@@ -116,7 +119,11 @@ def load_file_sources(path: str | Path) -> list[LinkSource]:
     return load_file(path)[0]
 
 
-def load_file(path: str | Path) -> tuple[list[LinkSource], ConfigCollection | None]:
+#: A file's link sources, and its stored configuration when it is a ``.pdcfg``.
+FileSources = tuple[list[LinkSource], ConfigCollection | None]
+
+
+def load_file(path: str | Path) -> FileSources:
     """The file's sources, and its stored configuration when it is a ``.pdcfg``."""
     path = Path(path)
     if path.suffix.lower() == ".pdcfg":
@@ -152,7 +159,7 @@ class CompareDialog(QDialog):
     compared = Signal()
     error = Signal(str)
 
-    def __init__(self, system: System, *, bridge: Any = None,
+    def __init__(self, system: System, *, bridge: SessionBridge | None = None,
                  parent: QWidget | None = None) -> None:
         super().__init__(parent)
         self.setWindowTitle(self.tr("Compare configurations"))
@@ -222,7 +229,7 @@ class CompareDialog(QDialog):
         self.file_collection = collection
         self.refresh()
 
-    def _file_loaded(self, loaded: tuple) -> None:
+    def _file_loaded(self, loaded: FileSources) -> None:
         self.set_file_sources(*loaded)
 
     def set_arbitrator(self, collection: ConfigCollection | None) -> None:
@@ -239,7 +246,7 @@ class CompareDialog(QDialog):
         """Read a system file or ``.pdcfg`` on a worker; the table follows when it is read."""
         self.summary.setText(self.tr("Reading {name}…").format(name=Path(path).name))
 
-        def work(_p: Any, _c: threading.Event) -> tuple:
+        def work(_p: ProgressFn, _c: threading.Event) -> FileSources:
             return load_file(path)
 
         worker = Worker(work, f"Read {path}")

@@ -22,16 +22,16 @@ from __future__ import annotations
 
 import logging
 import threading
-from collections.abc import Callable
-from typing import Any, ClassVar
+from typing import TYPE_CHECKING, Any, ClassVar, cast
 
-from PySide6.QtCore import QT_TRANSLATE_NOOP, QSettings, Qt, Signal
+from PySide6.QtCore import QSettings, Qt, Signal
 from PySide6.QtWidgets import (
     QComboBox,
     QDialog,
     QDialogButtonBox,
     QFormLayout,
     QLabel,
+    QLineEdit,
     QListWidget,
     QPushButton,
     QTabWidget,
@@ -39,9 +39,12 @@ from PySide6.QtWidgets import (
     QWidget,
 )
 
-from pdcp_studio.app.i18n import translate
+from pdcp_studio.app.i18n import QT_TRANSLATE_NOOP, translate
 from pdcp_studio.app.words.plural import count
-from pdcp_studio.app.workers import Worker
+from pdcp_studio.app.workers import ProgressFn, Worker, WorkFn
+
+if TYPE_CHECKING:
+    from can.typechecking import AutoDetectedConfig
 
 log = logging.getLogger(__name__)
 
@@ -86,14 +89,16 @@ def can_interface_names() -> list[str]:
     return sorted(VALID_INTERFACES)
 
 
-def detect_can_configs(progress: Any = None, cancel: Any = None) -> list[dict]:
+def detect_can_configs(progress: ProgressFn | None = None,
+                       cancel: threading.Event | None = None) -> list[AutoDetectedConfig]:
     """python-can's available configurations (slow: probes drivers — run on a worker)."""
     import can
 
-    return [dict(c) for c in can.detect_available_configs()]
+    return [c.copy() for c in can.detect_available_configs()]
 
 
-def list_serial_ports(progress: Any = None, cancel: Any = None) -> list[tuple[str, str]]:
+def list_serial_ports(progress: ProgressFn | None = None,
+                      cancel: threading.Event | None = None) -> list[tuple[str, str]]:
     """(device, description) of every serial port pyserial sees (run on a worker)."""
     from serial.tools import list_ports
 
@@ -168,7 +173,7 @@ class _DetectingPage(BusPage):
         self.detect_button.clicked.connect(self.detect)
         self._worker: Worker | None = None
 
-    def _probe(self) -> Callable[[Any, threading.Event], Any]:
+    def _probe(self) -> WorkFn:
         raise NotImplementedError
 
     def _show(self, result: Any) -> None:
@@ -219,7 +224,7 @@ class CanPage(_DetectingPage):
         self.bitrate.setCurrentText(str(DEFAULT_BITRATE))  # PDCP runs at 1 Mbit/s
         for w in (self.interface, self.channel, self.bitrate):
             w.currentTextChanged.connect(lambda _t: self.changed.emit())
-        self._configs: list[dict] = []
+        self._configs: list[AutoDetectedConfig] = []
         self.interface.currentTextChanged.connect(lambda _t: self._suggest_channels())
         form = QFormLayout(self)
         form.addRow(self.tr("Interface"), self.interface)
@@ -228,10 +233,10 @@ class CanPage(_DetectingPage):
         form.addRow(self.detect_button, self.status)
         self.set_url("can:socketcan:can0")
 
-    def _probe(self) -> Callable[[Any, threading.Event], Any]:
+    def _probe(self) -> WorkFn:
         return detect_can_configs
 
-    def _show(self, configs: list[dict]) -> None:
+    def _show(self, configs: list[AutoDetectedConfig]) -> None:
         self._configs = [c for c in configs if c.get("interface") and c.get("channel")]
         kinds = sorted({str(c["interface"]) for c in self._configs})
         found = sorted({f"{c['interface']}:{c['channel']}" for c in self._configs})
@@ -289,7 +294,8 @@ class SerialPage(_DetectingPage):
         super().__init__(parent)
         self.port = QComboBox()
         self.port.setEditable(True)
-        self.port.lineEdit().setPlaceholderText(self.tr("/dev/ttyUSB0, COM3 or socket://host:port"))
+        editor = cast(QLineEdit, self.port.lineEdit())  # an editable combo box has one
+        editor.setPlaceholderText(self.tr("/dev/ttyUSB0, COM3 or socket://host:port"))
         self.baud = QComboBox()
         self.baud.setEditable(True)
         self.baud.addItems([str(b) for b in SERIAL_BAUDS])
@@ -302,7 +308,7 @@ class SerialPage(_DetectingPage):
         form.addRow(self.tr("Baud"), self.baud)
         form.addRow(self.detect_button, self.status)
 
-    def _probe(self) -> Callable[[Any, threading.Event], Any]:
+    def _probe(self) -> WorkFn:
         return list_serial_ports
 
     def _show(self, ports: list[tuple[str, str]]) -> None:

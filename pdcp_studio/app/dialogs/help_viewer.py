@@ -239,11 +239,10 @@ def show_about_qt(parent: QWidget) -> None:
 
 def open_manual(parent: QWidget, key: str = "start") -> HelpViewer:
     """Show the manual (one viewer per parent window) at section ``key``."""
-    viewer = getattr(parent, "_help_viewer", None)
+    viewer = parent.findChild(HelpViewer, options=Qt.FindChildOption.FindDirectChildrenOnly)
     if viewer is None:
         viewer = HelpViewer(parent)
         viewer.setAttribute(Qt.WidgetAttribute.WA_DeleteOnClose, False)
-        parent._help_viewer = viewer  # type: ignore[attr-defined]
     viewer.show()
     viewer.raise_()
     viewer.activateWindow()

@@ -28,6 +28,7 @@ component, a fifth level) pushes nothing and is reported through ``error`` inste
 from __future__ import annotations
 
 import copy
+import itertools
 import json
 from collections.abc import Callable
 from pathlib import Path
@@ -48,6 +49,7 @@ from PySide6.QtWidgets import (
     QWidget,
 )
 
+from pdcp_studio.app.widgets.tree_items import children, set_current, top_level_items
 from pdcp_studio.app.words.plural import count
 from pdcp_studio.errors import ProfileError
 from pdcp_studio.model import profile as prof
@@ -89,7 +91,7 @@ def default_save_path(tree: ProfileTree) -> Path:
 def free_component(siblings: list[ProfileNode]) -> int | None:
     """The first unused component, standard (even) ones before vendor-reserved (odd) ones."""
     used = {n.component for n in siblings}
-    for comp in (*range(2, 16, 2), *range(1, 16, 2)):
+    for comp in itertools.chain(range(2, 16, 2), range(1, 16, 2)):
         if comp not in used:
             return comp
     return None
@@ -189,8 +191,7 @@ class ProfileTreeEditor(QWidget):
 
     def select(self, profile: int | None) -> None:
         """Select the node of ``profile`` (None or unknown: clear the selection)."""
-        item = self._item(profile) if profile else None
-        self.view.setCurrentItem(item)
+        set_current(self.view, self._item(profile) if profile else None)
 
     def _item(self, profile: int) -> QTreeWidgetItem | None:
         for item in self._items():
@@ -200,11 +201,11 @@ class ProfileTreeEditor(QWidget):
 
     def _items(self) -> list[QTreeWidgetItem]:
         out: list[QTreeWidgetItem] = []
-        stack = [self.view.topLevelItem(i) for i in range(self.view.topLevelItemCount())]
+        stack = top_level_items(self.view)
         while stack:
             item = stack.pop()
             out.append(item)
-            stack.extend(item.child(i) for i in range(item.childCount()))
+            stack.extend(children(item))
         return out
 
     # -- edits ----------------------------------------------------------------------

@@ -13,13 +13,14 @@ Public API
     record in the fitting history), then reads back once more and compares.
     Properties: ``state`` (one of ``READING``, ``READY``, ``WRITING``, ``VERIFYING``,
     ``VERIFIED``, ``MISMATCH``, ``FAILED``), ``diff`` (``ConfigDiff``), ``stored``,
-    ``result`` (the ``TransactionResult``). Signals: ``stateChanged(str)``,
+    ``transaction`` (the ``TransactionResult``), ``result`` (the outcome line, a ``QLabel``).
+    Signals: ``stateChanged(str)``,
     ``verified(bool ok, str message)``.
 """
 
 from __future__ import annotations
 
-from typing import Any
+from typing import TYPE_CHECKING, Protocol, runtime_checkable
 
 from PySide6.QtCore import Qt, Signal
 from PySide6.QtGui import QBrush, QColor
@@ -41,6 +42,10 @@ from pdcp_studio.app.workers import Worker
 from pdcp_studio.model.config_diff import ConfigDiff, diff_configurations
 from pdcp_studio.model.configuration import ConfigCollection
 from pdcp_studio.model.system import Link, System
+
+if TYPE_CHECKING:
+    from pdcp_studio.app.live.session_bridge import SessionBridge
+    from pdcp_studio.bus.transaction import TransactionResult
 
 _CTX = "WriteConfigDialog"  # the counts' context (the class's own)
 
@@ -71,13 +76,24 @@ def diff_rows(diff: ConfigDiff, new: ConfigCollection) -> list[tuple[int, str, L
     return rows
 
 
+@runtime_checkable
+class PatientSource(Protocol):
+    """A parent that knows whose prosthesis this is (the main window): the write is
+    recorded in the fitting history for that patient."""
+
+    def patient_reference(self) -> str: ...
+
+
 class WriteConfigDialog(QDialog):
     """Confirm, write, verify (see the module docstring)."""
 
     stateChanged = Signal(str)
     verified = Signal(bool, str)
+    #: The outcome line. It shadows ``QDialog.result()`` (the exec() code), which nothing
+    #: asks of this dialog; the name is the one its tests read.
+    result: QLabel  # type: ignore[assignment]
 
-    def __init__(self, bridge: Any, collection: ConfigCollection, *,
+    def __init__(self, bridge: SessionBridge, collection: ConfigCollection, *,
                  system: System | None = None, parent: QWidget | None = None) -> None:
         super().__init__(parent)
         self.setWindowTitle(self.tr("Write configuration to the arbitrator"))
@@ -88,7 +104,7 @@ class WriteConfigDialog(QDialog):
         self.stored: ConfigCollection | None = None
         self.diff = ConfigDiff()
         self.rows: list[tuple[int, str, Link]] = []
-        self.transaction: Any = None
+        self.transaction: TransactionResult | None = None
         self.state = ""
         self._worker: Worker | None = None
 
@@ -124,7 +140,7 @@ class WriteConfigDialog(QDialog):
         self.start()
 
     @classmethod
-    def for_system(cls, bridge: Any, system: System,
+    def for_system(cls, bridge: SessionBridge, system: System,
                    parent: QWidget | None = None) -> WriteConfigDialog:
         """The dialog for writing the on-screen system's links as configuration 1."""
         from pdcp_studio.engine import configuration_from_system
@@ -209,8 +225,8 @@ class WriteConfigDialog(QDialog):
         change = Change("config write", configuration=self.collection)
         operator = fitting.operator_name(self)
         parent = self.parent()
-        patient = parent.patient_reference() if hasattr(parent, "patient_reference") else ""
-        session = getattr(self.bridge, "session", None)
+        patient = parent.patient_reference() if isinstance(parent, PatientSource) else ""
+        session = self.bridge.session
         worker = self.bridge.run(
             lambda p, c: session.transact(change, operator=operator or None,
                                           patient=patient or None, progress=p, cancel=c),
@@ -224,11 +240,11 @@ class WriteConfigDialog(QDialog):
         worker.cancelled.connect(self._cancelled)
         return worker
 
-    def _written(self, result: Any) -> None:
+    def _written(self, result: TransactionResult) -> None:
         self.transaction = result
         if result.written:
             self._read_back()
-        elif getattr(result.status, "value", "") == "rolled_back" and result.step == "verify":
+        elif result.status.value == "rolled_back" and result.step == "verify":
             self._set_state(MISMATCH)
             self.result.setText(
                 self.tr(
@@ -254,7 +270,7 @@ class WriteConfigDialog(QDialog):
     def _cancelled(self) -> None:
         self._fail(f"cancelled while {self.state}")
 
-    def _read_back(self, _session_result: Any = None) -> None:
+    def _read_back(self) -> None:
         """The transaction verified its own read-back already; read once more,
         independently."""
         self._set_state(VERIFYING)

@@ -13,7 +13,8 @@ used without a window too.
 from __future__ import annotations
 
 import time
-from typing import Any, NamedTuple
+from collections.abc import Callable
+from typing import TYPE_CHECKING, NamedTuple
 
 from PySide6.QtCore import Qt
 from PySide6.QtWidgets import (
@@ -30,8 +31,14 @@ from PySide6.QtWidgets import (
 
 from pdcp_studio.app.i18n import translate
 from pdcp_studio.app.words import plan_words as W
+from pdcp_studio.app.words.plan_words import ProfileName
 from pdcp_studio.app.words.plural import count
+from pdcp_studio.bus import events as ev
 from pdcp_studio.model.refs import ChannelRef
+
+if TYPE_CHECKING:
+    from pdcp_studio.engine.plan import Plan
+    from pdcp_studio.model.system import Link, System
 
 _CTX = "EventsPanel"
 #: Rows kept; the oldest go first.
@@ -49,39 +56,39 @@ class EventRow(NamedTuple):
     why: str = ""
     similar: str = ""
     detail: str = ""
-    link: Any = None
+    link: Link | None = None
 
 
 def _t(text: str) -> str:
     return translate(_CTX, text)
 
 
-def describe_event(event: Any, system: Any, profile_name: Any = None) -> list[EventRow]:
+def describe_event(event: object, system: System | None,
+                   profile_name: ProfileName | None = None) -> list[EventRow]:
     """Rows for one bus event (none for events not worth a line).
 
     ``system`` names the devices (a device that left is still in it, marked missing);
     ``profile_name(profile) -> str`` names what a channel carries (optional)."""
-    kind = type(event).__name__
-    if kind == "DeviceJoined":
+    if isinstance(event, ev.DeviceJoined):
         return [EventRow(_t("{device} joined the bus").format(
             device=W.device_words(system, event.key)), detail=str(event.key))]
-    if kind == "DeviceLeft":
+    if isinstance(event, ev.DeviceLeft):
         return [EventRow(_t("{device} left the bus").format(
             device=W.device_words(system, event.key)), detail=str(event.key))]
-    if kind == "PlanApplied":
+    if isinstance(event, ev.PlanApplied):
         return _plan_rows(event.plan, system, profile_name)
-    if kind == "TerminalsUnconnected":
+    if isinstance(event, ev.TerminalsUnconnected):
         names = ", ".join(W.channel_words(system, r) for r in event.refs)
         return [EventRow(_t("Left unconnected: {names}").format(names=names), event.why,
                          detail=event.why)]
-    if kind == "BusState":
+    if isinstance(event, ev.BusState):
         return [EventRow(_bus_state_words(event.state), detail=event.message)]
-    if kind == "BusError" and event.kind in _ERROR_KINDS:
+    if isinstance(event, ev.BusError) and event.kind in _ERROR_KINDS:
         return [EventRow(_t("Bus problem"), event.message, detail=event.kind)]
     return []
 
 
-def mentions_unknown(event: Any, system: Any) -> bool:
+def mentions_unknown(event: object, system: System | None) -> bool:
     """True when the event names a device ``system`` does not know yet (it joined a moment
     ago): its rows are named again from a later snapshot."""
     keys = []
@@ -103,7 +110,8 @@ def _bus_state_words(state: str) -> str:
     }.get(state, state)
 
 
-def _plan_rows(plan: Any, system: Any, profile_name: Any) -> list[EventRow]:
+def _plan_rows(plan: Plan, system: System | None,
+               profile_name: ProfileName | None) -> list[EventRow]:
     def names_of(*refs: ChannelRef) -> dict[ChannelRef, str]:
         out: dict[ChannelRef, str] = {}
         if profile_name is None:
@@ -135,7 +143,8 @@ def _plan_rows(plan: Any, system: Any, profile_name: Any) -> list[EventRow]:
 class EventsPanel(QWidget):
     """The list of bus events (newest last) with a Clear button."""
 
-    def __init__(self, system_fn: Any, profile_name: Any = None,
+    def __init__(self, system_fn: Callable[[], System | None],
+                 profile_name: ProfileName | None = None,
                  parent: QWidget | None = None) -> None:
         super().__init__(parent)
         self._system_fn = system_fn
@@ -168,7 +177,7 @@ class EventsPanel(QWidget):
         layout.addLayout(row)
         self._count()
 
-    def add_event(self, event: Any) -> int:
+    def add_event(self, event: object) -> int:
         """Slot for ``SessionBridge.busEvent``: add the event's rows; returns how many."""
         system = self._system_fn()
         rows = describe_event(event, system, self._profile_name)
@@ -198,7 +207,7 @@ class EventsPanel(QWidget):
             self._count()
         return len(rows)
 
-    def name_devices(self, system: Any) -> None:
+    def name_devices(self, system: System | None) -> None:
         """Slot for each new snapshot of the bus: a device that joined before the window
         knew it gets its name now (as the graph shows it)."""
         still = []

@@ -14,9 +14,9 @@ from __future__ import annotations
 import threading
 from collections.abc import Callable
 from pathlib import Path
-from typing import Any
+from typing import TYPE_CHECKING, Any
 
-from PySide6.QtCore import QT_TRANSLATE_NOOP, QCoreApplication, QEvent, QPoint, Qt, Signal
+from PySide6.QtCore import QCoreApplication, QEvent, QPoint, Qt, Signal
 from PySide6.QtGui import QBrush, QColor, QHelpEvent, QTextCharFormat, QTextCursor
 from PySide6.QtWidgets import (
     QComboBox,
@@ -34,10 +34,13 @@ from PySide6.QtWidgets import (
     QWidget,
 )
 
-from pdcp_studio.app.i18n import translate
-from pdcp_studio.app.workers import Worker
-from pdcp_studio.model.refs import DeviceKey
+from pdcp_studio.app.i18n import QT_TRANSLATE_NOOP, translate
+from pdcp_studio.app.workers import ProgressFn, Worker
+from pdcp_studio.model.refs import ChannelRef, DeviceKey
 from pdcp_studio.model.system import Link
+
+if TYPE_CHECKING:
+    from pdcp_studio.storage.history import VerifyReport
 
 COLUMNS = (
     "#",
@@ -55,29 +58,31 @@ FAILED_COLOUR = QColor(250, 215, 215)
 #: How a link is said in the details: ``str`` gives the engineer's ``2641/513/201#3 →
 #: 2641/769/301#1``; the panel passes part and channel names (:meth:`HistoryPanel.link_words`).
 LinkWords = Callable[[Link], str]
+#: One fitting-history entry, as ``History.entries`` returns it (its JSON body, with ``id``).
+Entry = dict[str, Any]
 
 
 def _tr(text: str) -> str:
     return QCoreApplication.translate("HistoryPanel", text)
 
 
-def entry_links(entry: dict, key: str = "links_after") -> list[Link]:
+def entry_links(entry: Entry, key: str = "links_after") -> list[Link]:
     from pdcp_studio.bus.transaction import link_from_json
 
     return [link_from_json(d) for d in entry.get(key) or ()]
 
 
-def entry_devices(entry: dict) -> set[DeviceKey]:
+def entry_devices(entry: Entry) -> set[DeviceKey]:
     return {DeviceKey(int(d["vid"]), int(d["pid"]), int(d["serial"]))
             for d in entry.get("devices") or ()}
 
 
-def for_prosthesis(entries: list[dict], devices: set[DeviceKey]) -> list[dict]:
+def for_prosthesis(entries: list[Entry], devices: set[DeviceKey]) -> list[Entry]:
     """The entries of a prosthesis: those that share a device with it."""
     return [e for e in entries if entry_devices(e) & devices]
 
 
-def outcome_text(entry: dict) -> str:
+def outcome_text(entry: Entry) -> str:
     outcome = entry.get("outcome") or {}
     status = outcome.get("status", "")
     if status == "applied":
@@ -93,10 +98,10 @@ def outcome_text(entry: dict) -> str:
             else translate("HistoryPanel", "failed")
         )
         return f"{word} ({outcome.get('step', '')})"
-    return status
+    return str(status)
 
 
-def entries_difference(a: dict, b: dict, say: LinkWords = str) -> list[str]:
+def entries_difference(a: Entry, b: Entry, say: LinkWords = str) -> list[str]:
     """How the links after entry ``a`` and after entry ``b`` differ, in plain words."""
     la, lb = set(entry_links(a)), set(entry_links(b))
     out = [translate("HistoryPanel", "Links after #{0}: {1}; after #{2}: {3}").format(
@@ -124,7 +129,7 @@ def entries_difference(a: dict, b: dict, say: LinkWords = str) -> list[str]:
     return out
 
 
-def entry_details(entry: dict, say: LinkWords = str) -> list[str]:
+def entry_details(entry: Entry, say: LinkWords = str) -> list[str]:
     """One entry in plain words: who, when, what, why, and how it ended (``say`` words
     each link of its plan; the lines are the same, one for one, whatever it says)."""
     plan = entry.get("plan") or {}
@@ -166,7 +171,12 @@ def entry_details(entry: dict, say: LinkWords = str) -> list[str]:
     return out
 
 
-def read_history(_progress: Any = None, _cancel: threading.Event | None = None) -> tuple:
+#: What reading the archive gives: every entry, the chain's verification, the archive's path.
+HistoryRead = tuple[list[Entry], "VerifyReport", str]
+
+
+def read_history(_progress: ProgressFn | None = None,
+                 _cancel: threading.Event | None = None) -> HistoryRead:
     """Every entry and the chain's verification (a worker's job: file I/O)."""
     from pdcp_studio.storage.history import History
 
@@ -208,9 +218,9 @@ class HistoryPanel(QWidget):
     def __init__(self, window: Any, parent: QWidget | None = None) -> None:
         super().__init__(parent)
         self.main = window
-        self._entries: list[dict] = []
-        self.shown: list[dict] = []
-        self.verify_report: Any = None
+        self._entries: list[Entry] = []
+        self.shown: list[Entry] = []
+        self.verify_report: VerifyReport | None = None
         self.path = ""
         self._worker: Worker | None = None
 
@@ -273,9 +283,9 @@ class HistoryPanel(QWidget):
         self._worker = worker
         return worker.start()
 
-    def _read(self, result: tuple) -> None:
-        self._entries, self.verify_report, self.path = result
-        report = self.verify_report
+    def _read(self, result: HistoryRead) -> None:
+        self._entries, report, self.path = result
+        self.verify_report = report
         if report.ok:
             self.chain.setText(self.tr("{0} entries · chain intact").format(report.entries))
             self.chain.setStyleSheet("color: #0b7a4b;")
@@ -290,7 +300,7 @@ class HistoryPanel(QWidget):
         self.chain.setText(self.tr("Cannot read the fitting history: {0}").format(message))
         self.chain.setStyleSheet("color: #b91c1c;")
 
-    def all_entries(self) -> list[dict]:
+    def all_entries(self) -> list[Entry]:
         return list(self._entries)
 
     def _prosthesis(self) -> set[DeviceKey]:
@@ -319,7 +329,7 @@ class HistoryPanel(QWidget):
         self._show_selection()
 
     # -- selection -----------------------------------------------------------------------
-    def selected(self) -> list[dict]:
+    def selected(self) -> list[Entry]:
         rows = sorted({i.row() for i in self.table.selectedIndexes()})
         return [self.shown[r] for r in rows if r < len(self.shown)]
 
@@ -340,7 +350,7 @@ class HistoryPanel(QWidget):
 
         doc = self.main.doc
         system = getattr(doc, "system", None)
-        names: dict[Any, str] = {}
+        names: dict[ChannelRef, str] = {}
         for ref in (link.output, link.input):
             ch = system.channel(ref) if system is not None else None
             name = doc.profile_name(ch.profile) if ch is not None and ch.profile else ""

@@ -9,8 +9,6 @@ connected prosthesis and the operator are edited here too: they go into the fitt
 
 from __future__ import annotations
 
-from typing import Any
-
 from PySide6.QtCore import Qt, QTimer, Signal
 from PySide6.QtGui import QBrush
 from PySide6.QtWidgets import (
@@ -104,7 +102,7 @@ class PendingPanel(QWidget):
         doc.deviceChanged.connect(self._later)
         self.refresh()
 
-    def _later(self, *_args: Any) -> None:
+    def _later(self, *_args: object) -> None:
         self._timer.start()
 
     # -- contents ----------------------------------------------------------------------

@@ -15,10 +15,10 @@ that is gone.
 
 from __future__ import annotations
 
-from typing import Any
+from typing import TYPE_CHECKING
 
-from PySide6.QtCore import QT_TRANSLATE_NOOP, QEvent, Qt, Signal
-from PySide6.QtGui import QBrush
+from PySide6.QtCore import QEvent, QObject, Qt, Signal
+from PySide6.QtGui import QBrush, QColor, QResizeEvent
 from PySide6.QtWidgets import (
     QAbstractItemView,
     QHBoxLayout,
@@ -36,11 +36,16 @@ from PySide6.QtWidgets import (
 from pdcp_studio.app.documents import commands
 from pdcp_studio.app.documents.document import Document
 from pdcp_studio.app.graph import style
-from pdcp_studio.app.i18n import translate
+from pdcp_studio.app.i18n import QT_TRANSLATE_NOOP, translate
 from pdcp_studio.app.words import plan_words as W
 from pdcp_studio.errors import PdcpError
 from pdcp_studio.model import profile as prof
 from pdcp_studio.model.refs import ChannelRef
+
+if TYPE_CHECKING:
+    from pdcp_studio.engine.plan import Plan
+    from pdcp_studio.model.configuration import ConfigCollection
+    from pdcp_studio.model.system import Link
 
 #: The operations offered, in menu order: (engine mode, menu text).
 OPERATIONS = (
@@ -128,8 +133,8 @@ class PlanPanel(QWidget):
         doc.busChanged.connect(self._on_bus_changed)
         self._update_buttons()
 
-    def eventFilter(self, watched: Any, event: Any) -> bool:
-        if event.type() == QEvent.Type.Resize and watched is self.actions_view.viewport():
+    def eventFilter(self, watched: QObject, event: QEvent) -> bool:
+        if isinstance(event, QResizeEvent) and watched is self.actions_view.viewport():
             self._share_width(event.size().width())
         return super().eventFilter(watched, event)
 
@@ -140,11 +145,12 @@ class PlanPanel(QWidget):
             self.actions_view.setColumnWidth(col, max(110, width // 5))
 
     # -- computing ------------------------------------------------------------------
-    def configuration(self) -> Any:
+    def configuration(self) -> ConfigCollection | None:
         """The stored configuration plans use: the opened/read one, else None."""
-        return getattr(self.doc, "config", None)
+        config: ConfigCollection | None = self.doc.config
+        return config
 
-    def preview(self, mode: str) -> Any:
+    def preview(self, mode: str) -> Plan | None:
         """Compute ``mode``'s plan and show it (graph and list); returns it or None."""
         from pdcp_studio.engine import plan_for, plan_on_bus
 
@@ -171,18 +177,19 @@ class PlanPanel(QWidget):
             self.preview(plan.mode)
 
     @property
-    def plan(self) -> Any:
+    def plan(self) -> Plan | None:
         """The previewed plan (the document's; a new system clears it)."""
-        return self.doc.preview_plan
+        plan: Plan | None = self.doc.preview_plan
+        return plan
 
-    def _on_preview_changed(self, plan: Any) -> None:
+    def _on_preview_changed(self, plan: Plan | None) -> None:
         self._fill(plan)
         self._update_buttons()
 
     def _update_buttons(self) -> None:
-        has = self.plan is not None
-        self.discard_button.setEnabled(has)
-        self.apply_button.setEnabled(has and bool(self.plan.actions))
+        plan = self.plan
+        self.discard_button.setEnabled(plan is not None)
+        self.apply_button.setEnabled(plan is not None and bool(plan.actions))
         live = self.doc.session is not None
         self.apply_button.setText(self.tr("Stage for the prosthesis") if live else
                                   self.tr("Apply"))
@@ -191,7 +198,7 @@ class PlanPanel(QWidget):
             "transaction") if live else self.tr("Apply the plan (one undo step)"))
 
     # -- showing --------------------------------------------------------------------
-    def _ref_text(self, plan: Any, ref: ChannelRef) -> str:
+    def _ref_text(self, plan: Plan, ref: ChannelRef) -> str:
         """The engineer's form of a channel: device, index, profile name and code."""
         facts = plan.channels.get(ref)
         dev = self.doc.system.device(ref.device)
@@ -202,7 +209,7 @@ class PlanPanel(QWidget):
         return (f"{who} #{ref.index} {self.doc.profile_name(facts.profile)} "
                 f"{prof.fmt(facts.profile)}{missing}")
 
-    def _words(self, plan: Any, ref: ChannelRef) -> str:
+    def _words(self, plan: Plan, ref: ChannelRef) -> str:
         """A channel in plain words: device, channel, what it carries; (missing) if gone."""
         facts = plan.channels.get(ref)
         name = self.doc.profile_name(facts.profile) if facts is not None else ""
@@ -213,7 +220,8 @@ class PlanPanel(QWidget):
             text += self.tr(" (missing)")
         return text
 
-    def _add_row(self, cells: list[str], link: Any, detail: str, colour: Any = None) -> None:
+    def _add_row(self, cells: list[str], link: Link | None, detail: str,
+                 colour: QColor | None = None) -> None:
         view = self.actions_view
         row = view.rowCount()
         view.insertRow(row)
@@ -236,7 +244,7 @@ class PlanPanel(QWidget):
             "Select a row for the engineer's detail: the engine's reason, profile codes and "
             "the similarity score")) + "</p>")
 
-    def _fill(self, plan: Any) -> None:
+    def _fill(self, plan: Plan | None) -> None:
         view = self.actions_view
         view.setRowCount(0)
         self._detail_hint()

@@ -16,7 +16,8 @@ Public API
 from __future__ import annotations
 
 import time
-from typing import Any
+from collections.abc import Callable
+from typing import TYPE_CHECKING
 
 from PySide6.QtCore import Qt, Signal
 from PySide6.QtGui import QBrush, QColor
@@ -37,13 +38,24 @@ from PySide6.QtWidgets import (
 )
 
 from pdcp_studio.app.widgets.combo_popups import keep_whole
+from pdcp_studio.app.widgets.tree_items import set_current, top_level_items
 from pdcp_studio.app.workers import Worker
 from pdcp_studio.model.refs import DeviceKey
+from pdcp_studio.model.system import Device
+
+if TYPE_CHECKING:
+    from pdcp_studio.app.live.session_bridge import SessionBridge
+    from pdcp_studio.bus.sim.rigs import ScriptResult
 
 KEY_ROLE = Qt.ItemDataRole.UserRole
 COL_NAME, COL_KEY, COL_PLUGGED, COL_BUS = range(4)
 MAX_LOG = 500
 _GONE = QColor(150, 150, 150)
+
+#: ``name_of(key)``: the name the graph shows for a part (None: it is not on the graph).
+NameOf = Callable[[DeviceKey], "str | None"]
+#: One simulated device as the simulator lists it: (key, its label, powered).
+SimDevice = tuple[DeviceKey, str, bool]
 
 
 def default_name(key: DeviceKey) -> str:
@@ -52,7 +64,7 @@ def default_name(key: DeviceKey) -> str:
     return default_catalog().label(key)
 
 
-def _bus_name(key: DeviceKey, model: Any, label: str) -> str:
+def _bus_name(key: DeviceKey, model: Device | None, label: str) -> str:
     """What the graph will call a simulated device once it is on the bus: the name it
     tells the bus (its descriptor, else its own name, as ``bus/sim/device.py`` answers),
     else its product from the catalogue. The simulator's label for a part that tells a
@@ -62,14 +74,14 @@ def _bus_name(key: DeviceKey, model: Any, label: str) -> str:
 
     catalog = default_catalog()
     if model is not None:
-        own = (getattr(model, "descriptor", "") or getattr(model, "name", "") or "").strip()
+        own = (model.descriptor or model.name or "").strip()
         return own or catalog.product_name(key) or catalog.label(key)
     own = "" if label in (str(key), f"Device {key}") else label
     return catalog.product_name(key) or catalog.label(key, own)
 
 
-def sim_names(keys_labels: list[tuple[DeviceKey, str]], name_of: Any,
-              models: dict[DeviceKey, Any]) -> dict[DeviceKey, str]:
+def sim_names(keys_labels: list[tuple[DeviceKey, str]], name_of: NameOf | None,
+              models: dict[DeviceKey, Device]) -> dict[DeviceKey, str]:
     """The Simulator panel's names: the graph's name for a part on it (``name_of``); for
     the others the name the graph will give them (:func:`_bus_name`), with the serial
     number where it would read like another part's (the spare hand beside the hand)."""
@@ -90,14 +102,15 @@ class SimPanel(QWidget):
 
     message = Signal(str)
 
-    def __init__(self, bridge: Any, parent: QWidget | None = None,
-                 name_of: Any = None) -> None:
+    def __init__(self, bridge: SessionBridge, parent: QWidget | None = None,
+                 name_of: NameOf | None = None) -> None:
         super().__init__(parent)
         self.bridge = bridge
         #: ``name_of(key) -> str | None``: the name the graph shows (None: not on it).
         self.name_of = name_of
         self._devices: dict[DeviceKey, tuple[str, bool]] = {}
         self._on_bus: dict[DeviceKey, bool] = {}
+        self._raw: list[SimDevice] | None = None  # the simulator's last list, as it came
 
         self.tree = QTreeWidget()
         self.tree.setHeaderLabels(
@@ -164,12 +177,12 @@ class SimPanel(QWidget):
         for w in (self.reset_keep_button, self.reset_erase_button, self.save_button):
             row.addWidget(w)
         scripts = QGroupBox(self.tr("Scripted events"))
-        col = QVBoxLayout(scripts)
+        script_box = QVBoxLayout(scripts)
         line = QHBoxLayout()
         line.addWidget(self.script_combo, 1)
         line.addWidget(self.script_button)
-        col.addLayout(line)
-        col.addWidget(self.script_info)
+        script_box.addLayout(line)
+        script_box.addWidget(self.script_info)
         layout = QVBoxLayout(self)
         layout.setContentsMargins(4, 4, 4, 4)
         layout.addWidget(devices, 3)
@@ -218,16 +231,17 @@ class SimPanel(QWidget):
     def selected_key(self) -> DeviceKey | None:
         """The key of the selected simulated device, or None."""
         item = self.tree.currentItem()
-        return None if item is None else item.data(COL_NAME, KEY_ROLE)
+        return None if item is None else self._key_of(item)
+
+    @staticmethod
+    def _key_of(item: QTreeWidgetItem) -> DeviceKey:
+        key: DeviceKey = item.data(COL_NAME, KEY_ROLE)
+        return key
 
     def select(self, key: DeviceKey | None) -> None:
         """Select the row of ``key`` (None or unknown: no selection)."""
-        for i in range(self.tree.topLevelItemCount()):
-            item = self.tree.topLevelItem(i)
-            if item.data(COL_NAME, KEY_ROLE) == key:
-                self.tree.setCurrentItem(item)
-                return
-        self.tree.setCurrentItem(None)
+        rows = (item for item in top_level_items(self.tree) if self._key_of(item) == key)
+        set_current(self.tree, next(rows, None))
 
     def unplugged(self) -> list[tuple[DeviceKey, str]]:
         """The simulated devices that can be plugged in now, with the names shown here."""
@@ -239,14 +253,14 @@ class SimPanel(QWidget):
 
     def relabel(self) -> None:
         """Name the devices again (the graph's names changed: a new snapshot of the bus)."""
-        raw = getattr(self, "_raw", None)
+        raw = self._raw
         if raw is not None:
             if self._names(raw) != {k: v[0] for k, v in self._devices.items()}:
                 self._show_devices(raw)
 
-    def _names(self, devices: list[Any]) -> dict[DeviceKey, str]:
+    def _names(self, devices: list[SimDevice]) -> dict[DeviceKey, str]:
         """Every simulated device's name (:func:`sim_names`)."""
-        system = getattr(getattr(self.bridge, "session", None), "initial_system", None)
+        system = getattr(self.bridge.session, "initial_system", None)
         models = dict(getattr(system, "devices", {}) or {})
         return sim_names([(DeviceKey(*k), str(lb)) for k, lb, _p in devices], self.name_of,
                          models)
@@ -263,7 +277,7 @@ class SimPanel(QWidget):
         self.message.emit(text)
 
     # -- bridge signals ----------------------------------------------------------------
-    def _show_devices(self, devices: list[Any]) -> None:
+    def _show_devices(self, devices: list[SimDevice]) -> None:
         selected = self.selected_key()
         self._raw = list(devices)
         names = self._names(self._raw)
@@ -295,10 +309,10 @@ class SimPanel(QWidget):
         for col in range(4):
             item.setForeground(col, brush)
 
-    def _joined(self, key: Any) -> None:
+    def _joined(self, key: DeviceKey) -> None:
         self._presence(key, True)
 
-    def _left(self, key: Any) -> None:
+    def _left(self, key: DeviceKey) -> None:
         self._presence(key, False)
 
     def _busy_changed(self, _busy: bool) -> None:
@@ -307,26 +321,24 @@ class SimPanel(QWidget):
     def _error(self, message: str) -> None:
         self._log(self.tr("Problem: {message}").format(message=message))
 
-    def _presence(self, key: Any, joined: bool) -> None:
+    def _presence(self, key: DeviceKey, joined: bool) -> None:
         key = DeviceKey(*key)
         self._on_bus[key] = joined
         self._log((self.tr("{device} joined the bus") if joined else
                    self.tr("{device} left the bus")).format(device=self._label(key)))
-        for i in range(self.tree.topLevelItemCount()):
-            item = self.tree.topLevelItem(i)
-            if item.data(COL_NAME, KEY_ROLE) == key:
+        for item in top_level_items(self.tree):
+            if self._key_of(item) == key:
                 self._paint(item, key)
 
     def _sim_changed(self, what: str) -> None:
         self._log(what)  # the bridge's sentence, with the part's name
         self.refresh()
 
-    def _script_finished(self, result: Any) -> None:
-        ok = getattr(result, "ok", None)
-        name = getattr(getattr(result, "script", None), "name", "script")
-        if ok is True:
+    def _script_finished(self, result: ScriptResult) -> None:
+        name = result.script.name
+        if result.ok:
             self._log(self.tr("Script {name}: ended in the expected links").format(name=name))
-        elif ok is False:
+        else:
             self._log(self.tr("Script {name}: the links differ from the expected ones — {diff}")
                       .format(name=name, diff=result.mismatch()))
 
@@ -411,7 +423,7 @@ class SimPanel(QWidget):
             worker.finished.connect(self._links_stored)
         return self._started(worker, self.tr("Storing the current links…"))
 
-    def _links_stored(self, _read_back: Any) -> None:
+    def _links_stored(self, _read_back: object) -> None:
         self._log(self.tr("Stored the current links in the arbitrator's memory"))
 
     def run_script(self, name: str) -> Worker | None:

@@ -21,6 +21,9 @@ from pdcp_studio.model.refs import ChannelRef, DeviceKey
 from pdcp_studio.model.system import Link
 
 ROLE = Qt.ItemDataRole.UserRole
+#: What a device's rows show: its name, own name, descriptor, presence, role, and per
+#: channel (index, is an output, descriptor, profile name).
+RowSignature = tuple[str, str, str, bool, str, tuple[tuple[int, bool, str, str], ...]]
 
 
 class DeviceTree(QTreeWidget):
@@ -41,7 +44,7 @@ class DeviceTree(QTreeWidget):
         header.setSectionResizeMode(0, QHeaderView.ResizeMode.Stretch)
         header.setSectionResizeMode(1, QHeaderView.ResizeMode.ResizeToContents)
         self._rows: dict[object, QTreeWidgetItem] = {}
-        self._signatures: dict[DeviceKey, tuple] = {}
+        self._signatures: dict[DeviceKey, RowSignature] = {}
         self._names: dict[DeviceKey, str] = {}
         self._syncing = False
         doc.systemReset.connect(self.rebuild)
@@ -79,7 +82,7 @@ class DeviceTree(QTreeWidget):
         role = device_role(device)
         item = QTreeWidgetItem([part_name(self.doc.system, key),
                                 self.tr("missing") if not device.present
-                                else translate("Style", style.ROLE_LABELS[role])])
+                                else translate("Style", str(style.ROLE_LABELS[role]))])
         item.setData(0, ROLE, key)
         self._signatures[key] = self._shown(key)
         item.setToolTip(0, numbers(key))
@@ -109,7 +112,7 @@ class DeviceTree(QTreeWidget):
             self._rows[ref] = child
         return item
 
-    def _shown(self, key: DeviceKey) -> tuple:
+    def _shown(self, key: DeviceKey) -> RowSignature:
         """What a device's rows show (a live snapshot reports every device as changed;
         rows are made again only when this differs)."""
         d = self.doc.system.devices[key]

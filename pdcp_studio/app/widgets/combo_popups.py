@@ -49,12 +49,12 @@ class _FitPopups(QObject):
 
 def install(app: QApplication | None = None) -> None:
     """Install the hook once on the application."""
-    app = app or QApplication.instance()  # type: ignore[assignment]
-    if app is None or getattr(app, _INSTALLED, None) is not None:
-        return
-    popups = _FitPopups(app)
-    app.focusChanged.connect(popups.fit)
-    setattr(app, _INSTALLED, popups)
+    target = app if app is not None else QApplication.instance()
+    if not isinstance(target, QApplication) or getattr(target, _INSTALLED, None) is not None:
+        return  # no widgets application (yet), or installed already
+    popups = _FitPopups(target)
+    target.focusChanged.connect(popups.fit)
+    setattr(target, _INSTALLED, popups)
 
 
 def keep_whole(combo: QComboBox) -> None:

@@ -2,18 +2,23 @@
 
 Each is a :class:`QWizard` with clear steps, Back and Next, that ends in the change road's
 transaction (reference §5) on the main window's prosthesis. The decisions are pure
-(:mod:`.logic`), the words in :mod:`.words`, the shared pages in :mod:`.pages`.
+(:mod:`.logic`), the words in :mod:`.words`; the wizard and its page in :mod:`.task_wizard`,
+the shared pages by what they do (:mod:`.connect_page`, :mod:`.scan_pages`,
+:mod:`.change_pages`, :mod:`.result_pages`).
 """
 
 from __future__ import annotations
 
-from typing import Any
+from typing import TYPE_CHECKING, Any
+
+if TYPE_CHECKING:
+    from pdcp_studio.app.wizards.task_wizard import TaskWizard
 
 #: The tasks by name (the Tasks menu's order).
 TASKS = ("fitting", "replace", "restore")
 
 
-def make_wizard(window: Any, task: str) -> Any:
+def make_wizard(window: Any, task: str) -> TaskWizard:
     """The wizard for ``task`` (one of :data:`TASKS`) on ``window``, not shown yet."""
     if task == "fitting":
         from pdcp_studio.app.wizards.new_fitting import NewFittingWizard
@@ -30,9 +35,9 @@ def make_wizard(window: Any, task: str) -> Any:
     raise ValueError(f"no guided task {task!r} (one of {', '.join(TASKS)})")
 
 
-def open_wizard(window: Any, task: str) -> Any:
+def open_wizard(window: Any, task: str) -> TaskWizard:
     """Show the wizard for ``task`` beside the window (one at a time) and return it."""
-    old = getattr(window, "task_wizard", None)
+    old: TaskWizard | None = getattr(window, "task_wizard", None)
     if old is not None and old.isVisible():
         if not old.writing:
             old.close()

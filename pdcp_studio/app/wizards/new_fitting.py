@@ -8,19 +8,20 @@ fitting history, so the report lists both.
 
 from __future__ import annotations
 
-from typing import Any
+from typing import TYPE_CHECKING, Any
 
 from pdcp_studio.app.i18n import translate
 from pdcp_studio.app.wizards import logic, words
-from pdcp_studio.app.wizards.pages import (
-    ChangePage,
-    ChecksPage,
-    ConnectPage,
-    ReportPage,
-    ScanPage,
-    TaskWizard,
-    WritePage,
-)
+from pdcp_studio.app.wizards.change_pages import ChangePage, WritePage
+from pdcp_studio.app.wizards.connect_page import ConnectPage
+from pdcp_studio.app.wizards.result_pages import ReportPage
+from pdcp_studio.app.wizards.scan_pages import ChecksPage, ScanPage
+from pdcp_studio.app.wizards.task_wizard import TaskWizard
+
+if TYPE_CHECKING:
+    from pdcp_studio.bus.transaction import Change
+    from pdcp_studio.model.configuration import ConfigCollection
+    from pdcp_studio.model.system import Link, System
 
 _CTX = "Wizards"
 
@@ -29,7 +30,8 @@ def _t(text: str) -> str:
     return translate(_CTX, text)
 
 
-def plan_step(task: TaskWizard, system: Any, _stored: Any) -> tuple[list[str], Any, list[Any]]:
+def plan_step(task: TaskWizard, system: System,
+              _stored: ConfigCollection | None) -> tuple[list[str], Change, list[Link]]:
     """Autoconfigure on the prosthesis as it is, explained link by link."""
     plan = logic.autoconfigure_plan(system)
     change = logic.change_to(system.links, plan, logic.ACTION_FITTING)
@@ -43,7 +45,8 @@ def plan_step(task: TaskWizard, system: Any, _stored: Any) -> tuple[list[str], A
     return lines, change, plan.final_links
 
 
-def store_step(task: TaskWizard, system: Any, _stored: Any) -> tuple[list[str], Any, list[Any]]:
+def store_step(task: TaskWizard, system: System,
+               _stored: ConfigCollection | None) -> tuple[list[str], Change, list[Link]]:
     """The links on the prosthesis now, stored as its configuration."""
     change = logic.store_change(system)
     lines = [_t("The prosthesis keeps its links in its stored configuration: after a "

@@ -12,23 +12,25 @@ part, so the next start-up needs no replacement.
 
 from __future__ import annotations
 
-from typing import Any
+from typing import TYPE_CHECKING, Any
 
 from PySide6.QtCore import Qt, QTimer
 from PySide6.QtWidgets import QPushButton
 
 from pdcp_studio.app.i18n import translate
 from pdcp_studio.app.wizards import logic, words
-from pdcp_studio.app.wizards.pages import (
-    ChangePage,
-    Page,
-    ReportPage,
-    TaskWizard,
-    VerifyPage,
-    WritePage,
-    bullets,
-)
-from pdcp_studio.app.wizards.runner import alive
+from pdcp_studio.app.wizards.change_pages import ChangePage, WritePage
+from pdcp_studio.app.wizards.result_pages import ReportPage, VerifyPage
+from pdcp_studio.app.wizards.runner import Look, alive
+from pdcp_studio.app.wizards.task_wizard import Page, TaskWizard, bullets
+from pdcp_studio.model.refs import DeviceKey
+
+if TYPE_CHECKING:
+    from pdcp_studio.app.docks.sim_panel import SimPanel
+    from pdcp_studio.app.live.session_bridge import SessionBridge
+    from pdcp_studio.bus.transaction import Change
+    from pdcp_studio.model.configuration import ConfigCollection
+    from pdcp_studio.model.system import Link, System
 
 
 def _t(text: str) -> str:
@@ -47,7 +49,7 @@ class _FollowsBus(Page):
         self._again.setSingleShot(True)
         self._again.setInterval(250)
         self._again.timeout.connect(self._look_if_shown)
-        self._bridge: Any = None
+        self._bridge: SessionBridge | None = None
         self.sim_button = QPushButton(_t("Show the Simulator panel"))
         self.sim_button.clicked.connect(self.show_simulator)
         self.box.addWidget(self.sim_button, 0, Qt.AlignmentFlag.AlignLeft)
@@ -62,7 +64,7 @@ class _FollowsBus(Page):
                 bridge.simDevices.connect(alive(self, self._changed))
         self.sim_button.setVisible(bridge is not None and bridge.is_sim)
 
-    def _changed(self, _key: Any = None) -> None:
+    def _changed(self, _key: object = None) -> None:
         if self.wizard() is not None and self.task.currentPage() is self:
             self._again.start()
 
@@ -80,14 +82,21 @@ class _FollowsBus(Page):
             dock.show()
             dock.raise_()
 
+    def sim_panel(self) -> SimPanel | None:
+        """The window's Simulator panel (a simulated prosthesis), else None."""
+        from pdcp_studio.app.docks.sim_panel import SimPanel
+
+        dock = self.task.main._leaf_docks.get("sim")
+        panel = dock.widget() if dock is not None else None
+        return panel if isinstance(panel, SimPanel) else None
+
     def sim_offers(self) -> list[str]:
         """The names the Simulator panel gives the parts it can plug in (unplugged, and not
         the missing part itself); empty without the panel."""
-        dock = self.task.main._leaf_docks.get("sim")
-        panel = dock.widget() if dock is not None else None
-        if panel is None or not hasattr(panel, "unplugged"):
+        panel = self.sim_panel()
+        if panel is None:
             return []
-        missing = {m.key for m in getattr(self.task, "missing", ())}
+        missing = {m.key for m in self.task.missing}
         return [name for key, name in panel.unplugged() if key not in missing]
 
 
@@ -108,14 +117,15 @@ class MissingPage(_FollowsBus):
     def look_again(self) -> None:
         self.read_bus(self._show)
 
-    def _show(self, _got: Any) -> None:
+    def _show(self, got: Look) -> None:
         task = self.task
-        missing = logic.missing_parts(task.system, task.stored)
+        system = got.system
+        missing = logic.missing_parts(system, got.stored)
         task.missing = missing
-        task.known = set(task.system.devices)
+        task.known = set(system.devices)
         if missing:
             lines = [_t("{0} is not on the bus; {1}").format(
-                words.part_words(task.system, m.key),
+                words.part_words(system, m.key),
                 words.count("%n link(s) led to it.", m.links)) for m in missing]
             self.view.setHtml(bullets(lines, _t("Missing:")))
             self.idle(_t("Next: plug the new part in."))
@@ -124,19 +134,18 @@ class MissingPage(_FollowsBus):
             if self.sim_button.isVisible():
                 lines.append(_t("To try a swap on this simulated prosthesis: in the Simulator "
                                 "panel choose {0} and press Unplug. This page follows the "
-                                "bus and shows the missing part.").format(self._swappable()))
+                                "bus and shows the missing part.").format(
+                                    self._swappable(system)))
             self.view.setHtml(bullets(lines, _t("Nothing is missing.")))
         self.set_ready(bool(missing))
 
 
-    def _swappable(self) -> str:
+    def _swappable(self, system: System) -> str:
         """The part on the bus with a spare of its product waiting in the Simulator panel
         (on sim:transradial, the hand), by its name; else "a part"."""
-        dock = self.task.main._leaf_docks.get("sim")
-        panel = dock.widget() if dock is not None else None
+        panel = self.sim_panel()
         spares = {(k.vid, k.pid) for k, _n in panel.unplugged()} if panel is not None \
-            and hasattr(panel, "unplugged") else set()
-        system = self.task.system
+            else set()
         for key, dev in sorted(system.devices.items()):
             if dev.present and (key.vid, key.pid) in spares:
                 return words.part_words(system, key)
@@ -150,6 +159,7 @@ class PlugPage(_FollowsBus):
         super().__init__(_t("Plug the new part in"),
                          _t("Plug the new part in now. This page waits for it to appear on "
                             "the bus."))
+        self.known: set[DeviceKey] = set()  # the parts that are not new
 
     def initializePage(self) -> None:
         task = self.task
@@ -157,7 +167,7 @@ class PlugPage(_FollowsBus):
                   for k in (lk.output.device, lk.input.device)}
         # A part the stored configuration does not name is new; without one, a part not
         # seen on the page before.
-        self.known = stored if stored else set(getattr(task, "known", set()))
+        self.known = stored if stored else set(task.known)
         task.new_parts = []
         self.follow()
         self.look_again()
@@ -165,16 +175,17 @@ class PlugPage(_FollowsBus):
     def look_again(self) -> None:
         self.read_bus(self._show, _t("Waiting for the new part…"))
 
-    def _show(self, _got: Any) -> None:
+    def _show(self, got: Look) -> None:
         task = self.task
-        new = logic.new_parts(task.system, self.known)
+        system = got.system
+        new = logic.new_parts(system, self.known)
         task.new_parts = new
-        back = [m for m in task.missing if m.key in task.system.devices
-                and task.system.devices[m.key].present]
-        lines = [_t("New on the bus: {0}.").format(words.part_words(task.system, k))
+        back = [m for m in task.missing if m.key in system.devices
+                and system.devices[m.key].present]
+        lines = [_t("New on the bus: {0}.").format(words.part_words(system, k))
                  for k in new]
         lines += [_t("{0} is back on the bus: it needs no replacement.").format(
-            words.part_words(task.system, m.key)) for m in back]
+            words.part_words(system, m.key)) for m in back]
         if self.sim_button.isVisible() and not new:
             offers = self.sim_offers()
             spare = (_t("{0} or {1}").format(", ".join(offers[:-1]), offers[-1])
@@ -189,9 +200,10 @@ class PlugPage(_FollowsBus):
         self.set_ready(bool(new))
 
 
-def replace_step(task: TaskWizard, system: Any, stored: Any) -> tuple[list[str], Any, list[Any]]:
+def replace_step(task: TaskWizard, system: System,
+                 stored: ConfigCollection | None) -> tuple[list[str], Change, list[Link]]:
     """Find replacements for the missing part's channels among the new part's."""
-    new = list(getattr(task, "new_parts", []))
+    new = list(task.new_parts)
     plan = logic.replacement_plan(system, stored, new)
     change = logic.replacement_change(system, plan)
     lines = [_t("The new part: {0}.").format(", ".join(words.part_words(system, k)

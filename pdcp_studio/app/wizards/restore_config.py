@@ -9,7 +9,7 @@ entry is put back as it left the prosthesis (``bus.transaction.restore_change``,
 from __future__ import annotations
 
 from pathlib import Path
-from typing import Any
+from typing import TYPE_CHECKING, Any
 
 from PySide6.QtCore import Qt
 from PySide6.QtWidgets import (
@@ -27,21 +27,24 @@ from PySide6.QtWidgets import (
 
 from pdcp_studio.app.i18n import translate
 from pdcp_studio.app.wizards import logic, words
-from pdcp_studio.app.wizards.pages import (
-    ChangePage,
-    Page,
-    TaskWizard,
-    VerifyPage,
-    WritePage,
-)
+from pdcp_studio.app.wizards.change_pages import ChangePage, Worked, WritePage
+from pdcp_studio.app.wizards.result_pages import VerifyPage
 from pdcp_studio.app.wizards.runner import alive
+from pdcp_studio.app.wizards.task_wizard import Page, Source, TaskWizard
+
+if TYPE_CHECKING:
+    from pdcp_studio.bus.transaction import Change
+    from pdcp_studio.model.configuration import ConfigCollection
+    from pdcp_studio.model.refs import DeviceKey
+    from pdcp_studio.model.system import Link, System
 
 
 def _t(text: str) -> str:
     return translate("Wizards", text)
 
 
-def restorable(entries: list[dict[str, Any]], devices: set[Any]) -> list[dict[str, Any]]:
+def restorable(entries: list[dict[str, Any]],
+               devices: set[DeviceKey]) -> list[dict[str, Any]]:
     """The history entries of this prosthesis that can be put back (applied, with what they
     left known), newest first."""
     from pdcp_studio.app.docks.history_panel import for_prosthesis
@@ -90,7 +93,7 @@ class SourcePage(Page):
         self.box.insertLayout(2, row)
         self.box.insertWidget(3, self.from_history)
         self.box.insertWidget(4, self.entries, 1)
-        self.collection: Any = None
+        self.collection: ConfigCollection | None = None
         self.file: Path | None = None
         self.history: list[dict[str, Any]] = []
 
@@ -131,10 +134,10 @@ class SourcePage(Page):
             self.entries.blockSignals(False)
         self.completeChanged.emit()
 
-    def chosen_id(self) -> Any:
+    def chosen_id(self) -> int | None:
         """The number of the history entry chosen in the list, or None."""
         row = self.entries.currentRow()
-        return self.history[row]["id"] if 0 <= row < len(self.history) else None
+        return int(self.history[row]["id"]) if 0 <= row < len(self.history) else None
 
     def ask_file(self) -> None:
         path, _ = QFileDialog.getOpenFileName(self, _t("Configuration file"),
@@ -175,10 +178,10 @@ class SourcePage(Page):
                 return True
         return False
 
-    def source(self) -> tuple[str, Any] | None:
+    def source(self) -> Source | None:
         if self.from_file.isChecked():
-            return ("file", (self.file, self.collection)) if self.collection is not None \
-                else None
+            return ("file", (self.file, self.collection)) \
+                if self.collection is not None and self.file is not None else None
         row = self.entries.currentRow()
         if 0 <= row < len(self.history):
             return "history", self.history[row]
@@ -192,19 +195,22 @@ class SourcePage(Page):
         return self.task.source is not None
 
 
-def restore_step(task: TaskWizard, system: Any, stored: Any) -> tuple[list[str], Any, list[Any]]:
+def restore_step(task: TaskWizard, system: System,
+                 stored: ConfigCollection | None) -> tuple[list[str], Change, list[Link]]:
     """The change that puts the chosen configuration back, and the difference in words."""
     from pdcp_studio.bus.transaction import restore_change
 
-    kind, what = task.source
-    if kind == "file":
-        path, collection = what
+    source = task.source
+    assert source is not None  # the source page goes on only once one is chosen
+    if source[0] == "file":
+        path, collection = source[1]
         change = logic.restore_file_change(system, collection, path.name)
         lines = [_t("From the file {0}.").format(path.name)]
     else:
-        change = restore_change(what, system.links)
+        entry = source[1]
+        change = restore_change(entry, system.links)
         lines = [_t("As the fitting of {0} left the prosthesis (fitting history entry {1}).")
-                 .format(str(what.get("time", ""))[:19].replace("T", " "), what["id"])]
+                 .format(str(entry.get("time", ""))[:19].replace("T", " "), entry["id"])]
     after = change.links_after(system.links)
     added = set(after) - set(system.links)
     removed = set(system.links) - set(after)
@@ -251,7 +257,7 @@ class DifferencePage(ChangePage):
         self._warn(False)
         super().initializePage()
 
-    def _previewed(self, got: Any) -> None:
+    def _previewed(self, got: Worked) -> None:
         super()._previewed(got)
         self._warn(logic.clears_stored(self.task.change, self.task.stored))
         self.completeChanged.emit()

@@ -12,12 +12,29 @@ from __future__ import annotations
 
 import threading
 from collections.abc import Callable
-from typing import Any
+from typing import TYPE_CHECKING, Any, NamedTuple, ParamSpec, TypeVar
 
 from PySide6.QtCore import QObject, Signal
 from shiboken6 import isValid
 
 from pdcp_studio.app.documents import fitting
+
+if TYPE_CHECKING:
+    from pdcp_studio.bus.session.api import ChangePreview
+    from pdcp_studio.bus.transaction import Change, Policy, TransactionResult
+    from pdcp_studio.model.configuration import ConfigCollection
+    from pdcp_studio.model.system import Link, System
+
+P = ParamSpec("P")
+R = TypeVar("R")
+
+
+class Look(NamedTuple):
+    """The prosthesis as one look found it."""
+
+    system: System
+    stored: ConfigCollection | None
+    policy: Policy | None
 
 
 class TransactionRunner(QObject):
@@ -34,7 +51,7 @@ class TransactionRunner(QObject):
         self.stop: threading.Event | None = None
         self.running = False
 
-    def start(self, change: Any, links_previewed: list[Any]) -> bool:
+    def start(self, change: Change, links_previewed: list[Link]) -> bool:
         """Write ``change`` (already previewed and confirmed); False when not connected."""
         bridge = self.window.live.bridge
         if bridge is None or self.running:
@@ -43,7 +60,7 @@ class TransactionRunner(QObject):
         patient = self.window.patient_reference()
         shown = set(links_previewed)
 
-        def same_bus(preview: Any) -> bool:  # the prosthesis must still be as previewed
+        def same_bus(preview: ChangePreview) -> bool:  # the prosthesis must be as previewed
             return set(preview.links_before) == shown
 
         stop = threading.Event()
@@ -66,7 +83,7 @@ class TransactionRunner(QObject):
         if self.stop is not None:
             self.stop.set()
 
-    def _done(self, result: Any) -> None:
+    def _done(self, result: TransactionResult) -> None:
         self.running = False
         self._after()
         self.finished.emit(result)
@@ -84,18 +101,18 @@ class TransactionRunner(QObject):
         window.history_panel.refresh()
 
 
-def alive(owner: QObject, fn: Callable[..., None]) -> Callable[..., None]:
+def alive(owner: QObject, fn: Callable[P, None]) -> Callable[P, None]:
     """``fn`` that does nothing once ``owner`` is gone (a wizard closed and deleted while
     the bus still answers it)."""
-    def call(*args: Any) -> None:
+    def call(*args: P.args, **kwargs: P.kwargs) -> None:
         if isValid(owner):
-            fn(*args)
+            fn(*args, **kwargs)
 
     return call
 
 
-def on_bus(window: Any, fn: Callable[[Any], Any], description: str,
-           done: Callable[[Any], None], failed: Callable[[str], None],
+def on_bus(window: Any, fn: Callable[[Any], R], description: str,
+           done: Callable[[R], None], failed: Callable[[str], None],
            owner: QObject | None = None) -> bool:
     """Run ``fn(session)`` on the window's bus worker; ``done(result)`` or ``failed(msg)``
     on the GUI thread (not once ``owner`` is gone). False when no prosthesis is connected."""
@@ -113,6 +130,6 @@ def on_bus(window: Any, fn: Callable[[Any], Any], description: str,
     return True
 
 
-def look(session: Any) -> tuple[Any, Any, Any]:
+def look(session: Any) -> Look:
     """The prosthesis as it is: its system, stored configuration and policy."""
-    return session.system(), session.read_configuration(), session.read_policy()
+    return Look(session.system(), session.read_configuration(), session.read_policy())

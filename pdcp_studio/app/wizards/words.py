@@ -8,7 +8,7 @@ engineer's text one click away. Everything goes through Qt's translation (contex
 
 from __future__ import annotations
 
-from typing import Any
+from collections.abc import Callable
 
 from pdcp_studio.app.i18n import translate
 from pdcp_studio.app.words import part_names as names
@@ -18,7 +18,7 @@ from pdcp_studio.engine.similarity import MAX_TYPE_SCORE, PROFILE_STEP
 from pdcp_studio.model import profile as prof
 from pdcp_studio.model.config_diff import ConfigDiff
 from pdcp_studio.model.refs import ChannelRef, DeviceKey
-from pdcp_studio.model.system import Link, System
+from pdcp_studio.model.system import Device, Link, System
 
 _CTX = "Wizards"
 
@@ -37,10 +37,10 @@ def count(text: str, n: int) -> str:
 #: ``() -> System | None``: the main window's system while a wizard is open (set by
 #: :func:`pdcp_studio.app.wizards.open_wizard`): its parts are named among the graph's, so
 #: a fresh scan that no longer sees the hand still calls the spare what the graph calls it.
-shown_system: Any = None
+shown_system: Callable[[], System | None] | None = None
 
 
-def _shown() -> list[Any]:
+def _shown() -> list[Device]:
     system = shown_system() if shown_system is not None else None
     return list(system.devices.values()) if system is not None else []
 

@@ -11,15 +11,19 @@ from __future__ import annotations
 
 import re
 from collections.abc import Iterable
-from typing import Any
+from typing import TYPE_CHECKING
 
 from pdcp_studio.app.i18n import translate
 from pdcp_studio.model.catalog import default_catalog
 from pdcp_studio.model.refs import DeviceKey
 from pdcp_studio.model.system import Device, System
 
+if TYPE_CHECKING:
+    from PySide6.QtCore import QModelIndex, QPersistentModelIndex
+    from PySide6.QtWidgets import QAbstractItemView, QStyleOptionViewItem
+
 _CTX = "PartNames"
-_CACHE: dict[tuple, dict[DeviceKey, str]] = {}
+_CACHE: dict[tuple[object, ...], dict[DeviceKey, str]] = {}
 
 
 def twin_format() -> str:
@@ -72,7 +76,7 @@ def numbers(key: DeviceKey) -> str:
 _TWIN_END = re.compile(r"\d+\)$")
 
 
-def keep_serials_seen(view: Any) -> None:
+def keep_serials_seen(view: QAbstractItemView) -> None:
     """In ``view`` (a tree or list), a name that ends in a serial number ("… (serial
     302)") is cut in the middle, so the two hands alike never read the same when the
     column is narrow; every other text is cut at its end as usual."""
@@ -80,7 +84,8 @@ def keep_serials_seen(view: Any) -> None:
     from PySide6.QtWidgets import QStyledItemDelegate
 
     class _TwinElide(QStyledItemDelegate):
-        def initStyleOption(self, option: Any, index: Any) -> None:
+        def initStyleOption(self, option: QStyleOptionViewItem,
+                            index: QModelIndex | QPersistentModelIndex) -> None:
             super().initStyleOption(option, index)
             twin = index.column() == 0 and bool(_TWIN_END.search(option.text or "")) and \
                 twin_format().format(name="", serial="").strip(" )") in option.text

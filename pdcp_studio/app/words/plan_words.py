@@ -8,13 +8,20 @@ the score's breakdown) one hover away.
 
 from __future__ import annotations
 
-from typing import Any
+from collections.abc import Callable
+from typing import TYPE_CHECKING
 
-from PySide6.QtCore import QT_TRANSLATE_NOOP
-
-from pdcp_studio.app.i18n import translate
+from pdcp_studio.app.i18n import QT_TRANSLATE_NOOP, translate
 from pdcp_studio.app.words.plural import count
 from pdcp_studio.model.refs import ChannelRef, DeviceKey
+
+if TYPE_CHECKING:
+    from pdcp_studio.engine.plan import Action, Plan, Refusal, Rule
+    from pdcp_studio.engine.similarity import Similarity
+    from pdcp_studio.model.system import System
+
+#: ``profile_name(code) -> str``: what a profile code carries, by the profile tree's names.
+ProfileName = Callable[[int], str]
 
 _CTX = "PlanWords"
 
@@ -74,33 +81,33 @@ def mode_words(mode: str) -> str:
     return tr(text) if text else mode
 
 
-def rule_words(rule: Any) -> str:
+def rule_words(rule: Rule | str) -> str:
     value = getattr(rule, "value", rule)
     text = RULE_WORDS.get(str(value))
     return tr(text) if text else str(getattr(rule, "label", value))
 
 
-def refusal_words(kind: Any) -> str:
+def refusal_words(kind: Refusal | str) -> str:
     value = getattr(kind, "value", kind)
     text = REFUSAL_WORDS.get(str(value))
     return tr(text) if text else str(value)
 
 
-def device_words(system: Any, key: DeviceKey) -> str:
+def device_words(system: System | None, key: DeviceKey) -> str:
     """The device's product name from the catalogue (its own name if it has one)."""
     from pdcp_studio.app.words.part_names import part_name
 
     return part_name(system, key)
 
 
-def channel_words(system: Any, ref: ChannelRef, profile_name: str = "") -> str:
+def channel_words(system: System | None, ref: ChannelRef, profile_name: str = "") -> str:
     """``Multi-grip hand, channel 2 (Grip force)``: device, channel and what it carries."""
     text = tr("{device}, channel {n}").format(device=device_words(system, ref.device),
                                               n=ref.index)
     return f"{text} ({profile_name})" if profile_name else text
 
 
-def link_words(system: Any, output: ChannelRef, input_: ChannelRef,
+def link_words(system: System | None, output: ChannelRef, input_: ChannelRef,
                names: dict[ChannelRef, str] | None = None) -> str:
     names = names or {}
     return (f"{channel_words(system, output, names.get(output, ''))} → "
@@ -118,7 +125,7 @@ def part_words(old: DeviceKey, new: DeviceKey) -> str:
     return tr("another maker's product")
 
 
-def signal_words(similarity: Any, levels: int = 0) -> str:
+def signal_words(similarity: Similarity | None, levels: int = 0) -> str:
     """How alike two channels' signals are (the similarity score in words).
 
     ``levels``: how many levels the profile compared with has (0 if unknown)."""
@@ -143,31 +150,30 @@ def signal_words(similarity: Any, levels: int = 0) -> str:
     return tr("{kind}; other {what}").format(kind=kind, what=", ".join(differs))
 
 
-def similarity_words(action: Any, plan: Any) -> str:
+def similarity_words(action: Action, plan: Plan) -> str:
     """How similar a step's two ends are; for a replacement, how similar the new part and
     channel are to the missing one (``same product, other serial number; same kind of
     signal, same form``)."""
     from pdcp_studio.model import profile as prof
 
-    sim = getattr(action, "similarity", None)
+    sim = action.similarity
     if sim is None:
         return ""
-    cause = getattr(action, "cause", None)
-    replacing = getattr(action.rule, "value", "") == "replacement" and isinstance(
-        cause, ChannelRef)
-    compared = cause if replacing else action.link.input
-    facts = plan.channels.get(compared)
+    cause = action.cause
+    # A replacement's cause is the missing channel: the new one is compared with it.
+    missing = (cause if action.rule.value == "replacement" and isinstance(cause, ChannelRef)
+               else None)
+    facts = plan.channels.get(missing if missing is not None else action.link.input)
     levels = prof.depth(facts.profile) if facts is not None else 0
     signal = signal_words(sim, levels)
-    if not replacing:
+    if missing is None:
         return signal
-    was_input = any(lk.input == cause for lk in plan.links_before)
+    was_input = any(lk.input == missing for lk in plan.links_before)
     new = action.link.input if was_input else action.link.output
-    assert isinstance(cause, ChannelRef)  # replacing: the missing channel
-    return f"{part_words(cause.device, new.device)}; {signal}"
+    return f"{part_words(missing.device, new.device)}; {signal}"
 
 
-def engineer_detail(action: Any) -> str:
+def engineer_detail(action: Action) -> str:
     """The engine's own words for a step (for a tooltip): reason, rule and score."""
     parts = [f"{action.rule.value}: {action.reason}"]
     if action.similarity is not None:
@@ -175,8 +181,8 @@ def engineer_detail(action: Any) -> str:
     return "\n".join(parts)
 
 
-def plan_channel_words(system: Any, plan: Any, ref: ChannelRef,
-                       profile_name: Any = None) -> str:
+def plan_channel_words(system: System | None, plan: Plan | None, ref: ChannelRef,
+                       profile_name: ProfileName | None = None) -> str:
     """A channel of a plan in words: device, channel, what it carries; (missing) if gone.
     ``profile_name(code) -> str`` names what it carries (a hex code is left out)."""
     facts = plan.channels.get(ref) if plan is not None else None
@@ -189,7 +195,8 @@ def plan_channel_words(system: Any, plan: Any, ref: ChannelRef,
     return text
 
 
-def step_words(system: Any, plan: Any, action: Any, profile_name: Any = None) -> str:
+def step_words(system: System | None, plan: Plan, action: Action,
+               profile_name: ProfileName | None = None) -> str:
     """One plan step as the graph's tooltip on its dashed link says it: what the plan
     does, why, and how similar (the plan table's words; the engine's are in its detail)."""
     add = getattr(action.op, "value", action.op) == "add"

@@ -16,10 +16,11 @@ import queue
 import threading
 import time
 from collections.abc import Callable
-from typing import Any
+from typing import Any, TypedDict
 
 from pdcp_studio.bus.hostlink.port import (
     DEFAULT_BAUD,
+    Port,
     Reopener,
     open_port,
     read_available,
@@ -61,10 +62,17 @@ class _Lost:
         self.why = why
 
 
+class _LinkOptions(TypedDict, total=False):
+    """The link timings a connection was given; the protocol's defaults for the others."""
+
+    ack_timeout: float
+    max_attempts: int
+
+
 class HostLinkConnection:
     """The host link on one serial port (``port`` a name to open, or an open port object)."""
 
-    def __init__(self, port: Any, *, baudrate: int = DEFAULT_BAUD, where: str = "",
+    def __init__(self, port: Port | str, *, baudrate: int = DEFAULT_BAUD, where: str = "",
                  on_event: Callable[[bytes], None] | None = None,
                  on_notice: Callable[[str], None] | None = None,
                  on_greeted: Callable[[int], None] | None = None,
@@ -75,10 +83,13 @@ class HostLinkConnection:
         self.reply_timeout = reply_timeout
         self.on_event = on_event or (lambda message: None)
         self.on_greeted = on_greeted or (lambda count: None)
-        self._link_options = {k: v for k, v in (("ack_timeout", ack_timeout),
-                                                ("max_attempts", max_attempts)) if v is not None}
+        self._link_options: _LinkOptions = {}
+        if ack_timeout is not None:
+            self._link_options["ack_timeout"] = ack_timeout
+        if max_attempts is not None:
+            self._link_options["max_attempts"] = max_attempts
         self._port_name = port if isinstance(port, str) else None
-        self.port: Any = (open_port(port, baudrate, self.where) if isinstance(port, str)
+        self.port: Port = (open_port(port, baudrate, self.where) if isinstance(port, str)
                           else port)
         self.link = LinkEndpoint(host=True, **self._link_options)
         self.info: dict[str, Any] = {}

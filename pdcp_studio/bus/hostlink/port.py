@@ -11,9 +11,10 @@ from __future__ import annotations
 import logging
 import os
 import select
+import threading
 import time
 from collections.abc import Callable
-from typing import Any, Protocol
+from typing import Protocol
 
 from pdcp_studio.errors import TransportError
 
@@ -88,7 +89,7 @@ class PtyPort:
             os.close(self._slave)
 
 
-def open_port(name: str, baudrate: int = DEFAULT_BAUD, where: str = "host link") -> Any:
+def open_port(name: str, baudrate: int = DEFAULT_BAUD, where: str = "host link") -> Port:
     """``pty`` → a new :class:`PtyPort`; anything else → pyserial ``serial_for_url``.
     TransportError names ``where`` (the bus URL) and the port, and ends with the fix
     (``bus/session/serial_ports.py``)."""
@@ -97,15 +98,16 @@ def open_port(name: str, baudrate: int = DEFAULT_BAUD, where: str = "host link")
     import serial
 
     try:
-        return serial.serial_for_url(name, baudrate=baudrate, timeout=READ_TIMEOUT_S,
-                                     write_timeout=5.0)
+        port: Port = serial.serial_for_url(name, baudrate=baudrate, timeout=READ_TIMEOUT_S,
+                                           write_timeout=5.0)
     except (serial.SerialException, ValueError, OSError) as err:
         from pdcp_studio.bus.session.serial_ports import open_failure, seen_ports
 
         raise TransportError(open_failure(where, name, err, seen_ports())) from err
+    return port
 
 
-def read_available(port: Any) -> bytes:
+def read_available(port: Port) -> bytes:
     """What the port has now, waiting at most its read timeout for the first byte."""
     waiting = getattr(port, "in_waiting", 0) or 0
     return bytes(port.read(max(1, waiting)))
@@ -132,7 +134,7 @@ class Reopener:
             self._delay = BACKOFF_FIRST_S
             self.report(f"{self.what}: the serial port was lost ({err}); reopening it")
 
-    def wait(self, stop: Any) -> None:
+    def wait(self, stop: threading.Event) -> None:
         """Sleep the current backoff (returns early when ``stop`` is set) and grow it."""
         stop.wait(self._delay)
         self._delay = min(self._delay * BACKOFF_FACTOR, BACKOFF_MAX_S)

@@ -21,6 +21,7 @@ from pdcp_studio.bus.hostlink.handlers import Handlers
 from pdcp_studio.bus.hostlink.monitor import MonitorFeed
 from pdcp_studio.bus.hostlink.port import (
     DEFAULT_BAUD,
+    Port,
     Reopener,
     open_port,
     read_available,
@@ -44,13 +45,13 @@ EVENT_QUEUE = 16
 class HostLinkServer:
     """Answers host-link requests from ``port`` with ``arbitrator``; close it (or ``with``)."""
 
-    def __init__(self, arbitrator: Any, port: Any, *, baudrate: int = DEFAULT_BAUD,
+    def __init__(self, arbitrator: Any, port: Port | str, *, baudrate: int = DEFAULT_BAUD,
                  name: str = "host link") -> None:
         self.arbitrator = arbitrator
         self.name = name
         self.baudrate = baudrate
         self._port_name = port if isinstance(port, str) else None
-        self.port: Any = open_port(port, baudrate) if isinstance(port, str) else port
+        self.port: Port = open_port(port, baudrate) if isinstance(port, str) else port
         self.link = LinkEndpoint(host=False)
         self.handlers = Handlers(arbitrator, self)
         self.monitor = MonitorFeed(getattr(self.port, "baudrate", 0) or baudrate)

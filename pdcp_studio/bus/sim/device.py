@@ -257,9 +257,25 @@ class SimulatedDevice:
             return
         if self.state is not State.BOUND:
             return
-        handler = _HANDLERS.get(type(msg))
-        if handler is not None:
-            handler(self, msg)
+        match msg:
+            case GetParameter():
+                self._on_get(msg)
+            case SetParameter():
+                self._on_set(msg)
+            case ConfigureGetBulk():
+                self._on_get_bulk(msg)
+            case ConfigureSetBulk():
+                self._on_set_bulk(msg)
+            case BulkData():
+                self._on_bulk_data(msg)
+            case Suspend():
+                self._on_suspend(msg)
+            case Release():
+                self._on_release(msg)
+            case Reset():
+                self._on_reset(msg)
+            case UpdateDataChannelResponse():
+                self._on_update_response(msg)
 
     def _spec(self, pid: int, channel: int) -> P.ParameterSpec | None:
         if channel == 0:
@@ -366,15 +382,3 @@ class SimulatedDevice:
     def _on_update_response(self, msg: UpdateDataChannelResponse) -> None:
         self._pending_updates.pop(msg.channel, None)
 
-
-_HANDLERS: dict[type, Callable[[SimulatedDevice, Message], None]] = {
-    GetParameter: SimulatedDevice._on_get,  # type: ignore[dict-item]
-    SetParameter: SimulatedDevice._on_set,  # type: ignore[dict-item]
-    ConfigureGetBulk: SimulatedDevice._on_get_bulk,  # type: ignore[dict-item]
-    ConfigureSetBulk: SimulatedDevice._on_set_bulk,  # type: ignore[dict-item]
-    BulkData: SimulatedDevice._on_bulk_data,  # type: ignore[dict-item]
-    Suspend: SimulatedDevice._on_suspend,  # type: ignore[dict-item]
-    Release: SimulatedDevice._on_release,  # type: ignore[dict-item]
-    Reset: SimulatedDevice._on_reset,  # type: ignore[dict-item]
-    UpdateDataChannelResponse: SimulatedDevice._on_update_response,  # type: ignore[dict-item]
-}

@@ -14,13 +14,14 @@ woken when a frame handled elsewhere set a timer earlier than it planned to wake
 
 from __future__ import annotations
 
+import functools
 import heapq
 import itertools
 import logging
 import threading
 import time
 from collections.abc import Callable, Iterable
-from typing import TYPE_CHECKING, TypeVar
+from typing import TYPE_CHECKING, TypeVar, cast
 
 from pdcp_studio.bus.connection import Connection
 from pdcp_studio.bus.log_limit import LimitedLog
@@ -107,22 +108,22 @@ class DeviceHost:
         if threading.current_thread() is self._thread:
             return fn()
         done = threading.Event()
-        box: list = []
+        results: list[T] = []
+        errors: list[Exception] = []
 
         def run() -> None:
             try:
-                box.append((True, fn()))
+                results.append(fn())
             except Exception as err:
-                box.append((False, err))
+                errors.append(err)
             done.set()
 
         self.conn.post(run)
         if not done.wait(timeout):
             raise BusTimeoutError(f"{self.name}: the device host did not answer in {timeout} s")
-        ok, value = box[0]
-        if not ok:
-            raise value
-        return value
+        if errors:
+            raise errors[0]
+        return results[0]
 
     def keys(self) -> list[DeviceKey]:
         return list(self._devices)
@@ -204,8 +205,8 @@ class DeviceHost:
                     self._log.warning("transport", "the bus reported %s", item)
                 elif callable(item):
                     self._guard(item)
-                else:
-                    self._guard(lambda frame=item: self._on_frame(frame))
+                else:  # what is neither an error nor a call is a frame (Connection.get)
+                    self._guard(functools.partial(self._on_frame, cast("can.Message", item)))
 
     def _take(self, msg: can.Message) -> None:
         """A frame handed over on the thread that sent it (direct mode)."""
@@ -248,6 +249,6 @@ class DeviceHost:
             for device in list(self._by_node.values()):
                 device.handle(message)
         else:
-            device = self._by_node.get(message.node_id)
-            if device is not None:
-                device.handle(message)
+            addressed = self._by_node.get(message.node_id)
+            if addressed is not None:
+                addressed.handle(message)

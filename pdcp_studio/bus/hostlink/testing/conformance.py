@@ -19,7 +19,7 @@ from dataclasses import dataclass, field
 from typing import Any
 
 from pdcp_studio.bus.hostlink import records as hr
-from pdcp_studio.bus.hostlink.port import read_available
+from pdcp_studio.bus.hostlink.port import Port, read_available
 from pdcp_studio.protocol import hostlink_messages as hm
 from pdcp_studio.protocol.crc import crc16_ccitt_false
 from pdcp_studio.protocol.hostlink import Frame, FrameReader, Kind, cobs_encode
@@ -57,7 +57,7 @@ class SuiteResult:
 class RawLink:
     """The host's end driven by hand: explicit sequence numbers, ACKs sent or withheld."""
 
-    def __init__(self, port: Any) -> None:
+    def __init__(self, port: Port) -> None:
         self.port = port
         self.reader = FrameReader()
         self.seq = 0
@@ -150,7 +150,7 @@ def expect(status: Status, body: bytes, wanted: Status, what: str) -> bytes:
 class Suite:
     """The cases, in the order they run; ``self.link`` is greeted before each request case."""
 
-    def __init__(self, port: Any) -> None:
+    def __init__(self, port: Port) -> None:
         self.link = RawLink(port)
         self.device: hr.DeviceRow | None = None
 
@@ -488,7 +488,7 @@ def case_names() -> list[str]:
     return [name[5:] for name in Suite.__dict__ if name.startswith("case_")]
 
 
-def run_suite(port: Any, report: Callable[[str, str | None], None] | None = None
+def run_suite(port: Port, report: Callable[[str, str | None], None] | None = None
               ) -> SuiteResult:
     """Run every case on ``port`` (an open serial port); ``report(name, None | why)``."""
     suite = Suite(port)
