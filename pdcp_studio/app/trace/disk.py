@@ -272,11 +272,13 @@ class FileFrameStore(FrameStore):
             raise IndexError(index)
         block = self._block
         if block is not None and block[0] <= index < block[0] + len(block[1]):
-            return block[1][index - block[0]]
+            cached: np.void = block[1][index - block[0]]
+            return cached
         rec = self._records(index, index + 1)
         if not len(rec):
             raise IndexError(index)
-        return rec[0]
+        first: np.void = rec[0]
+        return first
 
     def prefetch(self, start: int, stop: int) -> None:
         """Read frames ``start … stop-1`` at once for the rows about to be painted (up to
