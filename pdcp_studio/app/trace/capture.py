@@ -149,7 +149,7 @@ def save_store(path: str | Path, store: FrameStore, links: dict[int, Any] | None
 
 
 def stored_rows(store: FrameStore, indices: Any = None) -> list[Any]:
-    """Frames of ``store`` as ``trace_store.Frame`` tuples (all, or those at ``indices``)."""
+    """Frames of ``store`` as ``store.Frame`` tuples (all, or those at ``indices``)."""
     if indices is None:
         indices = range(store.base, store.end)
     return [store.frame(int(i)) for i in indices]

@@ -17,14 +17,19 @@ Public API
 
 How it keeps up (issue 16): ``add_frames`` only queues the batch (the session decoded it off
 the GUI thread). Every ``REFRESH_MS`` a timer turns the queued frames into one column chunk
-of the live ring (``trace_store``; bounded to ``capacity`` frames), updates the per-ID
-statistics with vectorised counts, and lets the virtual-row table (``trace_model``) insert
-the new rows at once; a larger backlog is taken ``INGEST_SLICE`` frames per turn of the
-event loop. The statistics view makes a row only for the identifiers it paints. An opened
-capture is decoded on a worker into its own store (shown apart from the live frames, which
-keep being recorded); its first rows show at once and the rest follow chunk by chunk with
-progress and a Stop button. Filters and search over a large store run on a worker and return
-row lists; small ones are filtered at once.
+of the live ring (``store``; bounded to ``capacity`` frames), updates the per-ID statistics
+with vectorised counts, and lets the virtual-row table (``model``) insert the new rows at
+once; a larger backlog is taken ``INGEST_SLICE`` frames per turn of the event loop. The
+statistics view makes a row only for the identifiers it paints. An opened capture is
+decoded on a worker into its own store (shown apart from the live frames, which keep being
+recorded); its first rows show at once and the rest follow chunk by chunk with progress and
+a Stop button. Filters and search over a large store run on a worker and return row lists;
+small ones are filtered at once.
+
+The dock composes parts that each do one job and get only what they need: ``bar`` (the
+controls), ``tables`` (the two views), ``feed`` (the live ring), ``filtering``, ``search``,
+``markers``, ``recording``, ``saving`` and ``loading``; it keeps what is shown (the live
+ring or a capture), the filter, and the timers.
 """
 
 from __future__ import annotations

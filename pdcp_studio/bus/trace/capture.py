@@ -53,7 +53,7 @@ def read_capture(path: str | Path, *, plain_frames: bool = False) -> Iterator[An
     """The ``can.Message`` frames of a capture; CaptureError (naming the file) if unreadable.
 
     ``plain_frames``: a BLF capture's classical 11-bit data frames may come as
-    ``blf_read.PlainFrame`` (the same attributes, ``to_message()`` for the message itself),
+    ``blf.PlainFrame`` (the same attributes, ``to_message()`` for the message itself),
     read in a third of the time.
     """
     import can

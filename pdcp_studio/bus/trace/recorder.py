@@ -30,7 +30,7 @@ def _loggable(msg: Any, fallback: str | int | None) -> Any:
     from can.util import channel2int
 
     to_message = getattr(msg, "to_message", None)
-    if to_message is not None:  # a frame read without its can.Message (blf_read)
+    if to_message is not None:  # a BLF frame read without its can.Message
         msg = to_message()
     channel = msg.channel
     if channel is None or (isinstance(channel, int) and 0 <= channel <= MAX_LOG_CHANNEL):
