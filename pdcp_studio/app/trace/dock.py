@@ -34,10 +34,7 @@ ring or a capture), the filter, and the timers.
 
 from __future__ import annotations
 
-import shutil
-import tempfile
 import threading
-import weakref
 from collections.abc import Iterable
 from pathlib import Path
 from typing import Any, NamedTuple
@@ -55,7 +52,7 @@ from PySide6.QtWidgets import (
 from pdcp_studio.app.i18n import translate
 from pdcp_studio.app.trace.bar import ANY, TraceBar
 from pdcp_studio.app.trace.capture import stored_rows
-from pdcp_studio.app.trace.disk import FileFrameStore, FileTexts
+from pdcp_studio.app.trace.disk import FileFrameStore
 from pdcp_studio.app.trace.feed import LiveFeed
 from pdcp_studio.app.trace.filtering import BackgroundFilter
 from pdcp_studio.app.trace.loading import CaptureLoading
@@ -124,19 +121,6 @@ def make_row(frame: Any, channel_nodes: frozenset[int] | set[int] = frozenset())
 _ROW_TABLES = Tables()
 
 
-def live_tables(owner: object) -> Tables:
-    """String tables whose decoded texts are in a temporary folder removed with ``owner``."""
-    folder = tempfile.mkdtemp(prefix="pdcp-live-")
-    texts = FileTexts(folder)
-    weakref.finalize(owner, _remove_texts, texts, folder)
-    return Tables(texts)
-
-
-def _remove_texts(texts: FileTexts, folder: str) -> None:
-    texts.close()
-    shutil.rmtree(folder, ignore_errors=True)
-
-
 _WARM: list[threading.Thread] = []
 
 
@@ -196,9 +180,7 @@ class MonitorDock(QDockWidget):
         super().__init__(translate("MonitorDock", "Bus monitor"), parent)
         self.setObjectName("MonitorDock")
         self.capacity = capacity
-        # the ring is bounded by ``capacity``; its decoded texts, which a long session keeps
-        # adding, are on disk (a bounded window of them in memory), removed with the dock
-        self.feed = LiveFeed(live_tables(self), capacity, self._taking)
+        self.feed = LiveFeed(self, capacity, self._taking)
         self.live_store, self.live_stats = self.feed.store, self.feed.stats
         self.capture_store: FrameStore | None = None
         self.capture_stats: IdStats | None = None

@@ -8,20 +8,41 @@ in between.
 
 from __future__ import annotations
 
+import shutil
+import tempfile
+import weakref
 from collections.abc import Callable, Iterable
 from typing import Any
 
+from pdcp_studio.app.trace.disk import FileTexts
 from pdcp_studio.app.trace.store import ChunkBuilder, FrameStore, IdStats, Tables, line_head
 
 
+def live_tables(owner: object) -> Tables:
+    """String tables whose decoded texts are in a temporary folder removed with ``owner``."""
+    folder = tempfile.mkdtemp(prefix="pdcp-live-")
+    texts = FileTexts(folder)
+    weakref.finalize(owner, _remove_texts, texts, folder)
+    return Tables(texts)
+
+
+def _remove_texts(texts: FileTexts, folder: str) -> None:
+    texts.close()
+    shutil.rmtree(folder, ignore_errors=True)
+
+
 class LiveFeed:
-    """The live ring (``store``, bounded to ``capacity`` frames), its statistics, the frames
-    queued for it, and the link map the session's frames taught (``links``).
+    """The live ring (``store``, bounded to ``capacity`` frames, its texts on disk until
+    ``owner`` goes), its statistics, the frames queued for it, and the link map the
+    session's frames taught (``links``).
 
     ``taking(frames)`` sees every batch before it becomes rows (to record it)."""
 
-    def __init__(self, tables: Tables, capacity: int,
+    def __init__(self, owner: object, capacity: int,
                  taking: Callable[[list[Any]], None]) -> None:
+        # The ring is bounded by ``capacity``; its decoded texts, which a long session keeps
+        # adding, are on disk (a bounded window of them in memory), removed with ``owner``.
+        tables = live_tables(owner)
         self.store = FrameStore(tables, max_rows=capacity)
         self.stats = IdStats(tables)
         self._builder = ChunkBuilder(tables)
