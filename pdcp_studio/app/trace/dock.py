@@ -194,10 +194,10 @@ class MonitorDock(QDockWidget):
         self.stats_model.names = self.model.names  # one map of device names
         self._build_widgets()
         self.marker_list = Markers(self.model, self.view, self.bar, self._select_row)
-        self.recording = LiveRecording(self.record_button, self, lambda: self.feed.links,
+        self.recording = LiveRecording(self.bar.record_button, self, lambda: self.feed.links,
                                        self.feed.ingest, self._count,
                                        self.saved.emit, self.error.emit)
-        self.saving = FrameSaving(self, self.save_button, self.saved.emit, self.error.emit)
+        self.saving = FrameSaving(self, self.bar.save_button, self.saved.emit, self.error.emit)
         self.loading = CaptureLoading(self, self.bar, self._capture_progress,
                                       self._capture_loaded, self.flush, self.error.emit)
         self.filtering = BackgroundFilter(self._filtered, self.error.emit)
@@ -229,33 +229,27 @@ class MonitorDock(QDockWidget):
         self.stats_view = stats_table(self.stats_model)
         self.stats_view.doubleClicked.connect(self._stats_row_chosen)
         bar = self.bar = TraceBar()
-        # The bar's widgets this dock drives (and its callers read).
-        self.text_filter, self.function_filter = bar.text_filter, bar.function_filter
-        self.node_filter, self.find_edit, self.pause_box = (
-            bar.node_filter, bar.find_edit, bar.pause_box)
-        self.autoscroll_box, self.time_mode, self.marker_box = (
-            bar.autoscroll_box, bar.time_mode, bar.marker_box)
-        self.count_label, self.load_bar, self.record_button = (
-            bar.count_label, bar.load_bar, bar.record_button)
-        self.save_button, self.live_button, self.stop_load_button = (
-            bar.save_button, bar.live_button, bar.stop_load_button)
+        # The bar's widgets callers read by the dock's name.
+        self.text_filter, self.node_filter, self.marker_box = (
+            bar.text_filter, bar.node_filter, bar.marker_box)
+        self.count_label, self.record_button = bar.count_label, bar.record_button
+        self.live_button, self.stop_load_button = bar.live_button, bar.stop_load_button
 
-        self.text_filter.textChanged.connect(lambda _t: self._refilter.start())
-        self.function_filter.currentIndexChanged.connect(self._filter_changed)
-        self.node_filter.currentIndexChanged.connect(self._filter_changed)
-        self.find_edit.returnPressed.connect(lambda: self.find_frame(self.find_edit.text()))
-        bar.find_next.clicked.connect(lambda: self.find_frame(self.find_edit.text()))
-        bar.find_prev.clicked.connect(
-            lambda: self.find_frame(self.find_edit.text(), forward=False))
-        self.pause_box.toggled.connect(self.set_paused)
-        self.time_mode.currentIndexChanged.connect(self.set_time_mode)
+        bar.text_filter.textChanged.connect(lambda _t: self._refilter.start())
+        bar.function_filter.currentIndexChanged.connect(self._filter_changed)
+        bar.node_filter.currentIndexChanged.connect(self._filter_changed)
+        bar.find_edit.returnPressed.connect(lambda: self.find_frame(bar.find_edit.text()))
+        bar.find_next.clicked.connect(lambda: self.find_frame(bar.find_edit.text()))
+        bar.find_prev.clicked.connect(lambda: self.find_frame(bar.find_edit.text(), forward=False))
+        bar.pause_box.toggled.connect(self.set_paused)
+        bar.time_mode.currentIndexChanged.connect(self.set_time_mode)
         bar.marker_button.clicked.connect(lambda: self.add_marker())
-        self.marker_box.activated.connect(self.jump_to_marker)
+        bar.marker_box.activated.connect(self.jump_to_marker)
         bar.clear_button.clicked.connect(self.clear)
-        self.save_button.clicked.connect(self._ask_save)
+        bar.save_button.clicked.connect(self._ask_save)
         bar.open_button.clicked.connect(self._ask_open)
-        self.live_button.clicked.connect(self.show_live)
-        self.stop_load_button.clicked.connect(self.cancel_load)
+        bar.live_button.clicked.connect(self.show_live)
+        bar.stop_load_button.clicked.connect(self.cancel_load)
 
         # Statistics under the frames, both the dock's full width: side by side, a dock
         # beside the inspector is too narrow to show either's meaning column.
@@ -299,7 +293,7 @@ class MonitorDock(QDockWidget):
     @property
     def paused(self) -> bool:
         """True while the table is frozen (frames are still recorded and counted)."""
-        return self.pause_box.isChecked()
+        return self.bar.pause_box.isChecked()
 
     # -- feeding -------------------------------------------------------------------------
     def add_frames(self, frames: Iterable[Any]) -> None:
@@ -339,7 +333,7 @@ class MonitorDock(QDockWidget):
             self._more.start()
         if not self.paused and self.filtering.worker is None:
             added = self.model.sync()
-            if added and self.autoscroll_box.isChecked() and self.capture_store is None:
+            if added and self.bar.autoscroll_box.isChecked() and self.capture_store is None:
                 self.view.scrollToBottom()  # live frames; a capture stays at its start
         self._count()
 
@@ -350,8 +344,8 @@ class MonitorDock(QDockWidget):
 
     def set_paused(self, paused: bool) -> None:
         """Freeze the table; frames keep being recorded and counted and appear on resume."""
-        if self.pause_box.isChecked() != paused:
-            self.pause_box.setChecked(paused)  # re-enters through toggled
+        if self.bar.pause_box.isChecked() != paused:
+            self.bar.pause_box.setChecked(paused)  # re-enters through toggled
             return
         self.feed.ingest()
         if paused:
@@ -415,15 +409,15 @@ class MonitorDock(QDockWidget):
     def set_filter(self, text: str = "", function: str = "", node: int | None = None) -> None:
         """Filter programmatically (the widgets follow; the table is filtered once).
         ``node`` None shows every node, 0 the broadcasts."""
-        widgets = (self.text_filter, self.function_filter, self.node_filter)
+        widgets = (self.bar.text_filter, self.bar.function_filter, self.bar.node_filter)
         for w in widgets:
             w.blockSignals(True)
         try:
-            self.text_filter.setText(text)
-            self.function_filter.setCurrentText(function or translate("MonitorDock", str(ANY)))
+            self.bar.text_filter.setText(text)
+            self.bar.function_filter.setCurrentText(function or translate("MonitorDock", str(ANY)))
             if node is not None:
                 self.bar.nodes.include(node)
-            self.node_filter.setCurrentIndex(max(0, self.node_filter.findData(node)))
+            self.bar.node_filter.setCurrentIndex(max(0, self.bar.node_filter.findData(node)))
         finally:
             for w in widgets:
                 w.blockSignals(False)
@@ -431,10 +425,11 @@ class MonitorDock(QDockWidget):
 
     def _filter_changed(self, *_args: Any) -> None:
         self._refilter.stop()
-        node = self.node_filter.currentData()
+        node = self.bar.node_filter.currentData()
+        function = self.bar.function_filter
         self._filter = TraceFilter(
-            self.text_filter.text().strip(),
-            "" if self.function_filter.currentIndex() <= 0 else self.function_filter.currentText(),
+            self.bar.text_filter.text().strip(),
+            "" if function.currentIndex() <= 0 else function.currentText(),
             None if node is None else int(node))
         self._show_filtered()
 
@@ -449,7 +444,7 @@ class MonitorDock(QDockWidget):
             self.model.show(store, flt)
             self._after_filter()
             return
-        self.count_label.setText(self.tr("Filtering…"))
+        self.bar.count_label.setText(self.tr("Filtering…"))
         self.filtering.start(store, flt)
 
     def _filtered(self, store: FrameStore, flt: TraceFilter, rows: Any, end: int) -> None:
@@ -459,7 +454,7 @@ class MonitorDock(QDockWidget):
     def _after_filter(self) -> None:
         if not self.paused:
             self.model.sync()
-        if self.autoscroll_box.isChecked():
+        if self.bar.autoscroll_box.isChecked():
             self.view.scrollToBottom()
         self._count()
         self.filtered.emit()
@@ -475,7 +470,7 @@ class MonitorDock(QDockWidget):
         return self.finder.find(needle, forward)
 
     def _select_row(self, row: int) -> None:
-        self.autoscroll_box.setChecked(False)  # do not jump away from what was found
+        self.bar.autoscroll_box.setChecked(False)  # do not jump away from what was found
         index = self.model.index(row, 0)
         self.view.setCurrentIndex(index)
         self.view.scrollTo(index, QTableView.ScrollHint.PositionAtCenter)
@@ -487,8 +482,8 @@ class MonitorDock(QDockWidget):
     # -- time and markers ----------------------------------------------------------------
     def set_time_mode(self, mode: int) -> None:
         """Time since start, clock time, since the previous row, or since the marker."""
-        if self.time_mode.currentIndex() != mode:
-            self.time_mode.setCurrentIndex(mode)  # re-enters through the signal
+        if self.bar.time_mode.currentIndex() != mode:
+            self.bar.time_mode.setCurrentIndex(mode)  # re-enters through the signal
             return
         self.model.set_time_mode(mode)
 
@@ -538,7 +533,7 @@ class MonitorDock(QDockWidget):
         if recorder is not None:
             text += self.tr(" · recording to {name}").format(name=recorder.path.name)
         if self.filtering.worker is None:
-            self.count_label.setText(text)
+            self.bar.count_label.setText(text)
         if (shown, total) != self._counted:
             self._counted = (shown, total)
             self.countChanged.emit(shown, total)
@@ -602,7 +597,7 @@ class MonitorDock(QDockWidget):
         if self.capture_store is not None:
             self.capture_store.close()  # its temporary files go now
         self.capture_store = self.capture_stats = None
-        self.live_button.setVisible(False)
+        self.bar.live_button.setVisible(False)
         self.loading.hide_progress()
         self.setWindowTitle(self.tr("Bus monitor"))
         self._reset_view()
@@ -613,7 +608,7 @@ class MonitorDock(QDockWidget):
         self.capture_path = path
         self.capture_total = 0
         self.capture_store, self.capture_stats = store, stats
-        self.live_button.setVisible(True)
+        self.bar.live_button.setVisible(True)
         self.setWindowTitle(self.tr("Bus monitor — capture %1").replace("%1", Path(path).name))
         self._reset_view()
 
