@@ -7,6 +7,8 @@ the dock's (translation context ``MonitorDock``).
 
 from __future__ import annotations
 
+from typing import Any
+
 from PySide6.QtCore import QT_TRANSLATE_NOOP, Qt
 from PySide6.QtWidgets import (
     QCheckBox,
@@ -71,6 +73,19 @@ class NodeChoice:
             box.setCurrentIndex(max(0, found))
         finally:
             box.blockSignals(False)
+
+    def learn(self, system: Any) -> None:
+        """Name the nodes of ``system``'s devices and output channels."""
+        for device in system.devices.values():
+            if device.node_id is not None:
+                self.names[device.node_id] = device.label
+        for ref, ch in system.channels():
+            if ch.is_output and ch.node_id is not None:
+                device = system.device(ref.device)
+                owner = device.label if device is not None else str(ref)
+                self.names[ch.node_id] = translate("MonitorDock", "{device} output {index}").format(
+                    device=owner, index=ref.index)
+        self.fill()
 
     def heard(self, nodes: set[int]) -> None:
         """Frames came from ``nodes``: list those not listed yet."""

@@ -372,16 +372,10 @@ class MonitorDock(QDockWidget):
         so a capture opened later names its links."""
         for device in system.devices.values():
             self.model.names[tuple(device.key)] = device.label
-            if device.node_id is not None:
-                self.bar.nodes.names[device.node_id] = device.label
         for ref, ch in system.channels():
             if ch.is_output and ch.node_id is not None:
                 self.feed.learn_output(ch.node_id, (ref, tuple(system.inputs_fed_by(ref))))
-                device = system.device(ref.device)
-                owner = device.label if device is not None else str(ref)
-                self.bar.nodes.names[ch.node_id] = self.tr("{device} output {index}").format(
-                    device=owner, index=ref.index)
-        self.bar.nodes.fill()
+        self.bar.nodes.learn(system)
 
     @property
     def channel_nodes(self) -> set[int]:
