@@ -32,7 +32,7 @@ PROBE_FRAMES = 2000
 _DIRECTIONS = {"to-ba": "device→BA", "from-ba": "BA→device", "data": "channel data"}
 
 
-def add_subparser(subparsers: argparse._SubParsersAction) -> None:
+def add_subparser(subparsers: argparse._SubParsersAction[argparse.ArgumentParser]) -> None:
     p = subparsers.add_parser("monitor", help="decoded frames, live from a bus or from a capture")
     source = p.add_mutually_exclusive_group(required=True)
     source.add_argument("--bus", metavar="URL", help="sim:NAME, can:INTERFACE:CHANNEL[@BITRATE] …")
@@ -53,6 +53,22 @@ def add_subparser(subparsers: argparse._SubParsersAction) -> None:
     p.set_defaults(func=run)
 
 
+def _node_in(nodes: set[int]) -> Callable[[Any], bool]:
+    return lambda f: f.node_id in nodes
+
+
+def _code_is(code: int) -> Callable[[Any], bool]:
+    return lambda f: getattr(f.message, "CODE", None) == code
+
+
+def _function_has(text: str) -> Callable[[Any], bool]:
+    return lambda f: text in f.function.lower()
+
+
+def _direction_is(direction: str) -> Callable[[Any], bool]:
+    return lambda f: f.direction == direction
+
+
 def make_filter(specs: list[str]) -> Callable[[Any], bool]:
     """A predicate over DecodedFrame from ``--filter`` specs; BadInput names a bad one."""
     tests: list[Callable[[Any], bool]] = []
@@ -66,19 +82,18 @@ def make_filter(specs: list[str]) -> Callable[[Any], bool]:
                 nodes = {int(v, 0) for v in value.split(",")}
             except ValueError:
                 raise BadInput(f"--filter {spec}: node IDs must be integers") from None
-            tests.append(lambda f, nodes=nodes: f.node_id in nodes)
+            tests.append(_node_in(nodes))
         elif key == "function" and value:
             if value.lower().startswith("0x"):
                 try:
                     code = int(value, 16)
                 except ValueError:
                     raise BadInput(f"--filter {spec}: not a function code") from None
-                tests.append(lambda f, code=code: getattr(f.message, "CODE", None) == code)
+                tests.append(_code_is(code))
             else:
-                text = value.lower()
-                tests.append(lambda f, text=text: text in f.function.lower())
+                tests.append(_function_has(value.lower()))
         elif key == "direction" and value in _DIRECTIONS:
-            tests.append(lambda f, d=_DIRECTIONS[value]: f.direction == d)
+            tests.append(_direction_is(_DIRECTIONS[value]))
         else:
             raise BadInput(f"--filter {spec!r}: expected {FILTER_HELP.split(': ', 1)[1]}")
     if len(tests) == 1:
@@ -164,7 +179,7 @@ def _can_frames(spec: Any, stop: Callable[[], bool]) -> Iterator[Any]:
         bus.shutdown()
 
 
-def learn_links(links: dict, system: Any) -> None:
+def learn_links(links: dict[int, Any], system: Any) -> None:
     """Fill a FrameDecoder's link map from a system with node IDs: frames from an output's
     node ID are channel data on its links, not function codes."""
     links.clear()
@@ -227,7 +242,8 @@ def _session_frames(url: str, stop: Callable[[], bool],
 
 def _probe_foreign(head: list[Any], decoder: Any) -> bool:
     """True when the first frames of a capture hold nothing that fits PDCP in context."""
-    from pdcp_studio.bus.trace.monitor import NOT_PDCP_MIN_FRAMES, FrameDecoder
+    from pdcp_studio.bus.trace.decoder import FrameDecoder
+    from pdcp_studio.bus.trace.stats import NOT_PDCP_MIN_FRAMES
 
     probe = FrameDecoder(dict(decoder.links))
     probe.meter_on = False
@@ -244,7 +260,8 @@ def _replay_frames(path: str, decoder: Any) -> tuple[Iterator[Any], Callable[[],
     traffic recognised (CaptureError if it is unreadable)."""
     import itertools
 
-    from pdcp_studio.bus.trace.monitor import open_capture, read_node_map
+    from pdcp_studio.bus.trace.capture import open_capture
+    from pdcp_studio.bus.trace.nodemap import read_node_map
 
     node_map = read_node_map(path)
     if node_map is not None:
@@ -263,28 +280,24 @@ def _replay_frames(path: str, decoder: Any) -> tuple[Iterator[Any], Callable[[],
     return itertools.chain(head, frames), close
 
 
-def _load_system_links(links: dict, path: str) -> None:
+def _load_system_links(links: dict[int, Any], path: str) -> None:
     from pdcp_studio.storage.system_file import load_path
 
     learn_links(links, load_path(path))
 
 
 def run(args: argparse.Namespace) -> int:
-    from pdcp_studio.bus.trace.monitor import (
-        PARTIAL_SUFFIX,
-        CaptureError,
-        CaptureWriteError,
-        FrameDecoder,
-        Recorder,
-    )
+    from pdcp_studio.bus.trace.capture import PARTIAL_SUFFIX, CaptureError, CaptureWriteError
+    from pdcp_studio.bus.trace.decoder import FrameDecoder
     from pdcp_studio.bus.trace.pump import TracePump
+    from pdcp_studio.bus.trace.recorder import Recorder
 
     show = make_filter(args.filter) if args.filter else None
     if args.seconds is not None and args.seconds <= 0:
         raise BadInput(f"--seconds {args.seconds}: must be positive")
     if args.rotate_mb is not None and not args.log:
         raise BadInput("--rotate-mb: only with --log FILE")
-    links: dict = {}
+    links: dict[int, Any] = {}
     live = not args.replay
     decoder = FrameDecoder(links)
     # A capture or a shared CAN bus may carry another bus's frames: none is shown as a PDCP

@@ -11,7 +11,7 @@ from pathlib import Path
 import can
 import pytest
 
-from pdcp_studio.bus.trace import monitor as bus_monitor
+from pdcp_studio.bus.trace import capture as bus_monitor
 from pdcp_studio.bus.trace.blf import FastBLFReader, PlainFrame
 from pdcp_studio.cli.main import main
 from pdcp_studio.cli.monitor import make_filter

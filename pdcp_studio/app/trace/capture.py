@@ -1,7 +1,7 @@
 """Reading a capture into a ``FrameStore`` and writing a store back out, off the GUI thread.
 
 ``load_capture(store, stats, path, links, progress, cancel)`` decodes any python-can log
-(ASC, BLF, TRC, CSV, candump .log, .db; ``bus.monitor.replay`` with the node map saved beside
+(ASC, BLF, TRC, CSV, candump .log, .db; ``bus.trace.replay`` with the node map saved beside
 the capture) into the store's column chunks: a small first chunk so the first rows show at
 once, then chunks of ``CHUNK_ROWS``. It reports ``progress(frames, permille, "")`` — the
 permille from the reader's position in the file where the platform tells it (Linux), else 0
@@ -70,11 +70,14 @@ def _link(path: str) -> str:
         return ""
 
 
-def load_capture(store: FrameStore, stats: IdStats, path: str | Path, links: dict | None,
+def load_capture(store: FrameStore, stats: IdStats, path: str | Path, links: dict[int, Any] | None,
                  progress: Progress, cancel: threading.Event) -> int:
     """Decode the capture at ``path`` into ``store`` (and ``stats``); returns the frames
     stored. Raises ``CaptureError`` naming the file when it cannot be read."""
-    from pdcp_studio.bus.trace.monitor import CHANNEL_DATA, FrameDecoder, read_node_map, replay
+    from pdcp_studio.bus.trace.decoder import FrameDecoder
+    from pdcp_studio.bus.trace.frames import CHANNEL_DATA
+    from pdcp_studio.bus.trace.nodemap import read_node_map
+    from pdcp_studio.bus.trace.replay import replay
 
     decoder = FrameDecoder(dict(links or {}))
     node_map = read_node_map(path)
@@ -110,7 +113,7 @@ def load_capture(store: FrameStore, stats: IdStats, path: str | Path, links: dic
     return count
 
 
-def save_store(path: str | Path, store: FrameStore, links: dict | None = None) -> int:
+def save_store(path: str | Path, store: FrameStore, links: dict[int, Any] | None = None) -> int:
     """Write every frame of ``store``: a python-can capture chosen by extension (.asc, .blf,
     .log, .csv, .trc — the bus monitor's Recorder, replaced only once complete, with the
     node map of ``links`` saved beside it), or decoded text for ``.txt``. Returns the count."""
@@ -128,7 +131,8 @@ def save_store(path: str | Path, store: FrameStore, links: dict | None = None) -
                           f"{f.data.hex(' ').upper():23}  {f.function}  "
                           f"{decoded_fields(store.text(f))}".rstrip() + "\n")
         return count
-    from pdcp_studio.bus.trace.monitor import FrameDecoder, Recorder  # python-can loads only here
+    from pdcp_studio.bus.trace.decoder import FrameDecoder
+    from pdcp_studio.bus.trace.recorder import Recorder  # python-can loads only here
 
     node_map = FrameDecoder(dict(links or {})).node_map
     written = 0
@@ -145,7 +149,7 @@ def save_store(path: str | Path, store: FrameStore, links: dict | None = None) -
 
 
 def stored_rows(store: FrameStore, indices: Any = None) -> list[Any]:
-    """Frames of ``store`` as ``trace_store.Frame`` tuples (all, or those at ``indices``)."""
+    """Frames of ``store`` as ``store.Frame`` tuples (all, or those at ``indices``)."""
     if indices is None:
         indices = range(store.base, store.end)
     return [store.frame(int(i)) for i in indices]

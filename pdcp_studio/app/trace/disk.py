@@ -8,7 +8,7 @@ decoded texts live in a ``FileTexts`` beside it: distinct texts appended to a fi
 a bounded window of recent ones in memory (to share a number between repeats) and a bounded
 cache for reading. The folder is removed by ``close()`` (or when the store is collected).
 
-Both are used like ``trace_store.FrameStore`` and ``Interner``: one thread appends, any
+Both are used like ``store.FrameStore`` and ``Interner``: one thread appends, any
 thread reads. No Qt here (tested directly).
 """
 
@@ -27,7 +27,7 @@ import numpy as np
 
 from pdcp_studio.app.trace.store import Chunk, Frame, FrameStore, Tables
 
-#: One frame on disk (packed, 28 bytes), the fields of ``trace_store.Chunk``.
+#: One frame on disk (packed, 28 bytes), the fields of ``store.Chunk``.
 RECORD = np.dtype([("ts", "<f8"), ("aid", "<u4"), ("dlc", "u1"), ("data", "u1", (8,)),
                    ("func", "<u2"), ("text", "<u4"), ("flags", "u1")])
 #: Recently used distinct texts remembered to number their repeats alike (a text unused for
@@ -272,11 +272,13 @@ class FileFrameStore(FrameStore):
             raise IndexError(index)
         block = self._block
         if block is not None and block[0] <= index < block[0] + len(block[1]):
-            return block[1][index - block[0]]
+            cached: np.void = block[1][index - block[0]]
+            return cached
         rec = self._records(index, index + 1)
         if not len(rec):
             raise IndexError(index)
-        return rec[0]
+        first: np.void = rec[0]
+        return first
 
     def prefetch(self, start: int, stop: int) -> None:
         """Read frames ``start … stop-1`` at once for the rows about to be painted (up to

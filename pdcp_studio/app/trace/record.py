@@ -25,8 +25,9 @@ class LiveRecorder:
     (the thread stops; frames fed later are dropped and counted in ``lost``).
     """
 
-    def __init__(self, path: str | Path, links: dict | None = None) -> None:
-        from pdcp_studio.bus.trace.monitor import FrameDecoder, Recorder
+    def __init__(self, path: str | Path, links: dict[int, Any] | None = None) -> None:
+        from pdcp_studio.bus.trace.decoder import FrameDecoder
+        from pdcp_studio.bus.trace.recorder import Recorder
 
         self.path = Path(path)
         self.written = 0

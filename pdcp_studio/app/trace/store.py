@@ -284,7 +284,8 @@ def _masked(mask: np.ndarray, numbers: np.ndarray) -> np.ndarray:
     """``mask[numbers]``, with numbers past the mask's end (added since) False."""
     if len(numbers) and int(numbers.max()) >= len(mask):
         mask = np.concatenate((mask, np.zeros(int(numbers.max()) + 1 - len(mask), dtype=bool)))
-    return mask[numbers]
+    masked: np.ndarray = mask[numbers]
+    return masked
 
 
 class FrameStore:

@@ -18,15 +18,13 @@ from binascii import hexlify
 from collections.abc import Callable, Iterable
 from typing import Any
 
-from pdcp_studio.bus.trace.monitor import (
-    CACHE_SIZE,
-    CHANNEL_DATA,
-    DecodedFrame,
-    FrameDecoder,
+from pdcp_studio.bus.trace.decoder import FrameDecoder
+from pdcp_studio.bus.trace.frames import CACHE_SIZE, CHANNEL_DATA, DecodedFrame
+from pdcp_studio.bus.trace.jsonout import (
     JsonFrameWriter,
-    _json_str,
-    _link_json,
     frame_json,
+    json_str,
+    link_json,
     utf8_buffer,
 )
 from pdcp_studio.protocol.codes import ResponseCode
@@ -344,10 +342,10 @@ class TracePump:
         parts = None
         if self.json is not None:
             parts = (f', "arbitration_id": {arbitration_id}, "data": "',
-                     f'", "direction": {_json_str(CHANNEL_DATA)}, "priority": {frame.priority}, '
-                     f'"node_id": {frame.node_id}, "function": {_json_str(_CHANNEL_DATA)}, '
-                     f'"fields": {_json_str(fields)[:-1]}',
-                     f'", "response": null, "error": null, "link": {_link_json(link)}, '
+                     f'", "direction": {json_str(CHANNEL_DATA)}, "priority": {frame.priority}, '
+                     f'"node_id": {frame.node_id}, "function": {json_str(_CHANNEL_DATA)}, '
+                     f'"fields": {json_str(fields)[:-1]}',
+                     f'", "response": null, "error": null, "link": {link_json(link)}, '
                      '"text": "',
-                     _json_str("  " + head)[1:-1])
+                     json_str("  " + head)[1:-1])
         return entry, shown, head, parts, head.encode()
