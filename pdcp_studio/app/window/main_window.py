@@ -97,7 +97,7 @@ class MainWindow(QMainWindow):
                                       lambda: bool(self.quiet))
         self.start_page = StartPage(self, self.view, StartOffers(
             open_task=self.open_task, ask_connect=lambda: self.ask_connect(),
-            ask_open=lambda: self.ask_open(), try_simulated=self._try_simulated,
+            ask_open=lambda: self.files.ask_open(), try_simulated=self._try_simulated,
             open_recent=self._open_recent, recent_paths=lambda: self.recent_files.paths()))
         self._build_docks()
         self._build_status()
@@ -191,7 +191,7 @@ class MainWindow(QMainWindow):
         self.files = FileController(
             self.doc, self.live, status, self, loaded=self._loaded,
             is_ready=lambda: self._is_ready, open_config=self._open_config,
-            compare=lambda path: self.compare_with_prosthesis(path),
+            compare=lambda path: self.bus.compare_with_prosthesis(path),
             ask_leave_bus=lambda path: self.ask_leave_bus(path),
             ask_save_changes=lambda: self.ask_save_changes())
         self.bus = BusCommands(
@@ -248,12 +248,12 @@ class MainWindow(QMainWindow):
     def _commands(self) -> dict[str, Callable[[], object]]:
         """What each action of the table does, by its id."""
         commands: dict[str, Callable[[], object]] = {
-            "open": lambda: self.ask_open(),
+            "open": lambda: self.files.ask_open(),
             "save": lambda: self.save(),
-            "save_as": lambda: self.ask_save_as(),
-            "export_png": lambda: self.ask_export("png"),
-            "export_svg": lambda: self.ask_export("svg"),
-            "report": lambda: self.ask_report(),
+            "save_as": lambda: self.files.ask_save_as(),
+            "export_png": lambda: self.export.ask_export("png"),
+            "export_svg": lambda: self.export.ask_export("svg"),
+            "report": lambda: self.export.ask_report(),
             "quit": self.close,
             "undo": lambda: self.flow.undo(),
             "redo": lambda: self.flow.redo(),
@@ -266,16 +266,17 @@ class MainWindow(QMainWindow):
             "arrange": self.arrange,
             "legend": lambda: self.view.set_legend_visible(self.act_legend.isChecked()),
             "write_pending": lambda: self.write_pending(),
-            "discard_pending": lambda: self.discard_pending(),
+            "discard_pending": lambda: self.transactions.discard_pending(),
             "connect": lambda: self.ask_connect(),
             "connect_sim": self._try_simulated,
-            "disconnect": lambda: self.disconnect_asking(),
+            "disconnect": lambda: self.transactions.disconnect_asking(),
             "scan": lambda: self.scan_bus(),
             "read_config": lambda: self.read_configuration(),
-            "cancel": lambda: self.cancel_bus_work(),
-            "compare": lambda: self.show_compare(),
+            "cancel": lambda: self.bus.cancel_bus_work(),
+            "compare": lambda: self.bus.show_compare(),
             "write": lambda: self.ask_write_configuration(),
-            "autoconfigure": lambda: self.set_autoconfigure(self.act_autoconfigure.isChecked()),
+            "autoconfigure": lambda: self.policy.set_autoconfigure(
+                self.act_autoconfigure.isChecked()),
             "manual": lambda: open_manual_here(self),
             "about": lambda: show_about(self),
             "about_qt": lambda: show_about_qt(self),
@@ -570,17 +571,8 @@ class MainWindow(QMainWindow):
     def show_opened(self, opened: Opened, path: Path | None) -> None:
         self.files.show_opened(opened, path)
 
-    def confirm_leave_bus(self, path: Path | None = None) -> bool:
-        return self.files.confirm_leave_bus(path)
-
-    def ask_open(self) -> None:
-        self.files.ask_open()
-
     def save(self) -> bool:
         return self.files.save()
-
-    def ask_save_as(self) -> bool:
-        return self.files.ask_save_as()
 
     def save_to(self, path: str | Path) -> bool:
         return self.files.save_to(path)
@@ -600,12 +592,6 @@ class MainWindow(QMainWindow):
     def export_graph(self, path: str | Path) -> None:
         self.export.export_graph(path)
 
-    def ask_export(self, kind: str) -> None:
-        self.export.ask_export(kind)
-
-    def ask_report(self) -> None:
-        self.export.ask_report()
-
     def ask_connect(self) -> None:
         self.bus.ask_connect()
 
@@ -620,15 +606,6 @@ class MainWindow(QMainWindow):
 
     def read_configuration(self) -> None:
         self.bus.read_configuration()
-
-    def cancel_bus_work(self) -> None:
-        self.bus.cancel_bus_work()
-
-    def show_compare(self) -> None:
-        self.bus.show_compare()
-
-    def compare_with_prosthesis(self, path: str | Path) -> Any:
-        return self.bus.compare_with_prosthesis(path)
 
     @property
     def compare_dialog(self) -> Any:
@@ -647,18 +624,6 @@ class MainWindow(QMainWindow):
     def write_pending(self) -> bool:
         return self.transactions.write_pending()
 
-    def discard_pending(self) -> int:
-        return self.transactions.discard_pending()
-
-    def confirm_unwritten(self) -> bool:
-        return self.transactions.confirm_unwritten()
-
-    def disconnect_asking(self) -> None:
-        self.transactions.disconnect_asking()
-
-    def session_changes(self) -> list[dict[str, Any]]:
-        return self.transactions.session_changes()
-
     def fitting_info(self, entry: dict[str, Any] | None = None) -> Any:
         return self.transactions.fitting_info(entry)
 
@@ -668,17 +633,8 @@ class MainWindow(QMainWindow):
     def patient_reference(self) -> str:
         return self.transactions.patient_reference()
 
-    def set_patient_reference(self, text: str) -> None:
-        self.transactions.set_patient_reference(text)
-
     def _load_patient_reference(self) -> None:
         self.transactions.load_patient_reference()
-
-    def read_policy(self) -> None:
-        self.policy.read_policy()
-
-    def set_autoconfigure(self, on: bool) -> bool:
-        return self.policy.set_autoconfigure(on)
 
     def offer_recovery(self) -> bool:
         return self.crash_recovery.offer_recovery()
@@ -716,7 +672,7 @@ class MainWindow(QMainWindow):
 
     # -- closing ----------------------------------------------------------------------
     def closeEvent(self, event: QCloseEvent) -> None:
-        if not self.confirm_unwritten() or not self.maybe_save():
+        if not self.transactions.confirm_unwritten() or not self.maybe_save():
             event.ignore()
             return
         self.live.disconnect_bus()
