@@ -25,7 +25,7 @@ from typing import Any
 
 from PySide6.QtCore import Qt, QTimer, Signal
 from PySide6.QtGui import QCloseEvent, QImage, QShowEvent
-from PySide6.QtWidgets import QDockWidget, QLabel, QMainWindow, QMessageBox, QProgressBar, QWidget
+from PySide6.QtWidgets import QDockWidget, QLabel, QMainWindow, QMessageBox, QWidget
 
 from pdcp_studio.app.docks.history_panel import HistoryPanel
 from pdcp_studio.app.docks.inspector import Inspector
@@ -52,6 +52,7 @@ from pdcp_studio.app.window.desktop import (
 from pdcp_studio.app.window.dock_area import add_dock
 from pdcp_studio.app.window.export import GraphExport
 from pdcp_studio.app.window.files import FileController, last_dir
+from pdcp_studio.app.window.mode_line import ModeLine
 from pdcp_studio.app.window.policy import PolicyController
 from pdcp_studio.app.window.recovery import RecoveryController
 from pdcp_studio.app.window.start_view import StartOffers, StartPage, StartView
@@ -164,21 +165,10 @@ class MainWindow(QMainWindow):
             self.resizeDocks([self.plan_dock], [220], Qt.Orientation.Vertical)
 
     def _build_status(self) -> None:
-        bar = self.statusBar()
-        self.mode_label = QLabel(self.tr("Offline"))
-        self.mode_label.setContentsMargins(6, 0, 6, 0)
-        self.progress = QProgressBar()
-        self.progress.setMaximumWidth(180)
-        self.progress.setTextVisible(False)
-        self.progress.hide()
-        self._progress_hide = QTimer(self)
-        self._progress_hide.setSingleShot(True)
-        self._progress_hide.setInterval(700)
-        self._progress_hide.timeout.connect(self.progress.hide)
+        self.mode_line = ModeLine(self.statusBar(), self.live)
+        self.mode_label, self.progress = self.mode_line.label, self.mode_line.progress
         self.policy_label = QLabel()
-        bar.addPermanentWidget(self.progress)
-        bar.addPermanentWidget(self.mode_label)
-        bar.addPermanentWidget(self.policy_label)
+        self.statusBar().addPermanentWidget(self.policy_label)
 
     def _build_controllers(self) -> None:
         """The controllers, each given what it needs (late-bound where tests answer the
@@ -295,8 +285,8 @@ class MainWindow(QMainWindow):
         doc.selectionChanged.connect(self._reveal)
         for source in (self.scene, self.inspector, self.plan_panel, live):
             source.statusMessage.connect(self.show_message)
-        live.progress.connect(self._on_progress)
-        live.busyChanged.connect(self._on_busy)
+        live.progress.connect(self.mode_line.on_progress)
+        live.busyChanged.connect(self.mode_line.on_busy)
         live.connected.connect(self._on_connected)
         live.failed.connect(self._on_connect_failed)
         live.disconnected.connect(self._update_mode)
@@ -323,28 +313,8 @@ class MainWindow(QMainWindow):
         self.setWindowModified(self.doc.is_dirty)
 
     def _update_mode(self) -> None:
-        from pdcp_studio.app.live import live_bus as live_mod
-
         live = self.live.is_live and self.doc.session is self.live.bridge
-        state = self.live.state
-        if state == live_mod.CONNECTING:
-            text = (self.tr("● Live on {0} — connecting to {1}…") if live else
-                    self.tr("Connecting to {1}…")).format(self.live.url,
-                                                          self.live.connecting_url)
-        elif state == live_mod.LIVE and live:
-            text = self.tr("● Live on {0}").format(self.live.url)
-        elif state == live_mod.DISCONNECTED:
-            text = self.tr("Disconnected from {0}").format(self.live.last_url)
-        else:
-            text = self.tr("Offline")
-        self.mode_label.setText(text)
-        colour = {live_mod.LIVE: "color: #0b7a4b; font-weight: bold;",
-                  live_mod.CONNECTING: "color: #8a5a00;",
-                  live_mod.DISCONNECTED: "color: #b91c1c;"}.get(state, "color: #66707b;")
-        self.mode_label.setStyleSheet(colour)
-        self.mode_label.setToolTip(self.tr("The prosthesis this window is connected to "
-                                           "(the document is the project, the prosthesis "
-                                           "the target)"))
+        self.mode_line.show_state(live)
         self.action_set.set_enabled(LIVE, live)
         self.plan_panel._update_buttons()
         self._update_title()
@@ -355,24 +325,6 @@ class MainWindow(QMainWindow):
     def error_box(self, title: str, text: str) -> None:
         """Tell the user; in the status bar too, so scripted runs leave a trace."""
         self.status_line.error(title, text)
-
-    def _on_progress(self, done: int, total: int, text: str) -> None:
-        if self.progress.maximum() != max(0, total):
-            self.progress.setMaximum(max(0, total))
-        self.progress.setValue(min(done, total) if total else 0)
-        if text and text != self.statusBar().currentMessage():
-            self.statusBar().showMessage(text, 4000)
-
-    def _on_busy(self, busy: bool) -> None:
-        # Hidden only after a quiet spell: back-to-back jobs (scans, refreshes) must not
-        # re-lay-out and repaint the status bar on every start and end.
-        if busy:
-            self._progress_hide.stop()
-            if self.progress.isHidden():
-                self.progress.setRange(0, 0)
-                self.progress.show()
-        else:
-            self._progress_hide.start()
 
     def _reveal(self, obj: object) -> None:
         item = self.scene.item_for(obj)
