@@ -340,7 +340,7 @@ class Desktop(QObject):
                  path_changed: SignalInstance, is_ready: Callable[[], bool],
                  ready: SignalInstance, bridge_ready: SignalInstance, graph: QWidget) -> None:
         super().__init__(window)
-        self.window = window
+        self.host = window
         self.status = status
         self._monitor_dock = monitor_dock
         self._maybe_save = maybe_save
@@ -398,19 +398,19 @@ class Desktop(QObject):
         of a new window took 20-30 ms of start-up (the first wrapper of every Qt part) for
         nothing on its first frame."""
         if self._is_ready():
-            name_controls(root if root is not None else self.window)
+            name_controls(root if root is not None else self.host)
         elif not self._naming_when_live:
             self._naming_when_live = True
             self._ready.connect(lambda: QTimer.singleShot(
-                NAMES_AFTER_MS, self, lambda: _name_later(self.window)))
+                NAMES_AFTER_MS, self, lambda: _name_later(self.host)))
 
     def _restore_docks(self) -> None:
         """Docks made after start-up (monitor, plot, simulator) go where they were last
         time. (The docks are the window's own children: looking for them among all its
         descendants first makes a Python wrapper for each of its ~190 widgets, ~10 ms of
         start-up.)"""
-        for dock in [c for c in self.window.children() if isinstance(c, QDockWidget)]:
-            self.window.restoreDockWidget(dock)
+        for dock in [c for c in self.host.children() if isinstance(c, QDockWidget)]:
+            self.host.restoreDockWidget(dock)
             self.name_when_live(dock)
 
 

@@ -3,7 +3,7 @@
 An empty graph tells a prosthetist nothing; this page offers what they came to do — the
 guided tasks (New fitting, Replace a part, Restore a configuration), Connect…, Open…, the
 simulated prosthesis to practise on, and the recent files — each one click away. It sits
-in the window's central area beside the graph (:func:`install`) and gives way to the graph
+in the window's central area beside the graph (:class:`StartPage`) and gives way to the graph
 as soon as a system is on screen.
 """
 
@@ -180,7 +180,7 @@ class StartPage(QObject):
 
     def __init__(self, window: QMainWindow, view: QWidget, offers: StartOffers) -> None:
         super().__init__(window)
-        self.window = window
+        self.host = window
         self.view = view
         self.offers = offers
         self.central = QStackedWidget()
@@ -211,12 +211,12 @@ class StartPage(QObject):
         if page is None:
             page = self.start_view = StartView(self.offers)
             self.central.addWidget(page)
-            self.window.installEventFilter(self)
+            self.host.installEventFilter(self)
         else:
             page.refresh()
         self.central.setCurrentWidget(page)
         if not self.put_away:
-            docks = self.window.findChildren(
+            docks = self.host.findChildren(
                 QDockWidget, options=Qt.FindChildOption.FindDirectChildrenOnly)
             self.put_away = [d for d in docks if not d.isHidden()]
             for dock in self.put_away:
