@@ -37,7 +37,7 @@ from pdcp_studio.app.documents.files import Opened
 from pdcp_studio.app.graph.scene import BusScene
 from pdcp_studio.app.graph.view import GraphView
 from pdcp_studio.app.gui_gc import collect_on_gui_thread
-from pdcp_studio.app.live.live_bus import OFFLINE, LiveController
+from pdcp_studio.app.live.live_bus import LiveController
 from pdcp_studio.app.window import questions
 from pdcp_studio.app.window.actions import LIVE, TASKS, WindowActions
 from pdcp_studio.app.window.bus import BusCommands
@@ -50,9 +50,10 @@ from pdcp_studio.app.window.desktop import (
     steady_toolbar,
 )
 from pdcp_studio.app.window.dock_area import add_dock
+from pdcp_studio.app.window.edit_commands import EditCommands
 from pdcp_studio.app.window.export import GraphExport
 from pdcp_studio.app.window.files import FileController, last_dir
-from pdcp_studio.app.window.mode_line import ModeLine
+from pdcp_studio.app.window.mode_line import ModeLine, window_title
 from pdcp_studio.app.window.policy import PolicyController
 from pdcp_studio.app.window.recovery import RecoveryController
 from pdcp_studio.app.window.start_view import StartOffers, StartPage, StartView
@@ -99,7 +100,8 @@ class MainWindow(QMainWindow):
         self.start_page = StartPage(self, self.view, StartOffers(
             open_task=self.open_task, ask_connect=lambda: self.ask_connect(),
             ask_open=lambda: self.files.ask_open(), try_simulated=self._try_simulated,
-            open_recent=self._open_recent, recent_paths=lambda: self.recent_files.paths()))
+            open_recent=lambda path: self.maybe_save() and self.open_path(path),
+            recent_paths=lambda: self.recent_files.paths()))
         self._build_docks()
         self._build_status()
         self._build_controllers()
@@ -127,10 +129,6 @@ class MainWindow(QMainWindow):
         fit_combo_popups()  # dropdown entries shown whole, never cut in the middle
 
     # -- construction -----------------------------------------------------------------
-    def _dock(self, title: str, name: str, widget: QWidget,
-              area: Qt.DockWidgetArea) -> QDockWidget:
-        return add_dock(self, title, name, widget, area)
-
     def _build_docks(self) -> None:
         # Side docks run the full height; the plan sits under the graph it explains.
         self.setCorner(Qt.Corner.BottomLeftCorner, Qt.DockWidgetArea.LeftDockWidgetArea)
@@ -139,18 +137,18 @@ class MainWindow(QMainWindow):
         self.tree = DeviceTree(self.doc)
         self.inspector = Inspector(self.doc)
         self.plan_panel = PlanPanel(self.doc)
-        self.tree_dock = self._dock(self.tr("Devices"), "DevicesDock", self.tree,
+        self.tree_dock = add_dock(self, self.tr("Devices"), "DevicesDock", self.tree,
                                     Qt.DockWidgetArea.LeftDockWidgetArea)
-        self.inspector_dock = self._dock(self.tr("Inspector"), "InspectorDock", self.inspector,
+        self.inspector_dock = add_dock(self, self.tr("Inspector"), "InspectorDock", self.inspector,
                                          Qt.DockWidgetArea.RightDockWidgetArea)
-        self.plan_dock = self._dock(self.tr("Plan"), "PlanDock", self.plan_panel, bottom)
+        self.plan_dock = add_dock(self, self.tr("Plan"), "PlanDock", self.plan_panel, bottom)
         self._docks_sized = False
         self.pending_panel = PendingPanel(self.doc)
-        self.pending_dock = self._dock(self.tr("Pending changes"), "PendingDock",
+        self.pending_dock = add_dock(self, self.tr("Pending changes"), "PendingDock",
                                        self.pending_panel, bottom)
         self.tabifyDockWidget(self.plan_dock, self.pending_dock)
         self.history_panel = HistoryPanel(self)
-        self.history_dock = self._dock(self.tr("Fitting history"), "HistoryDock",
+        self.history_dock = add_dock(self, self.tr("Fitting history"), "HistoryDock",
                                        self.history_panel, bottom)
         self.tabifyDockWidget(self.plan_dock, self.history_dock)
         self.plan_dock.raise_()
@@ -171,8 +169,7 @@ class MainWindow(QMainWindow):
         self.statusBar().addPermanentWidget(self.policy_label)
 
     def _build_controllers(self) -> None:
-        """The controllers, each given what it needs (late-bound where tests answer the
-        window's questions in its place)."""
+        """The controllers, each given what it needs (late-bound: tests answer for it)."""
         status = self.status_line
         self.flow = TransactionFlow(
             self.doc, self.live, status, self,
@@ -189,18 +186,19 @@ class MainWindow(QMainWindow):
             connect_bus=lambda url: self.connect_bus(url),
             offer_arbitrator=self._offer_arbitrator,
             history_changed=lambda: self.history_panel.refresh())
+        self.editing = EditCommands(self.doc, self, self.scene, self.view, self.plan_dock,
+                                    self.plan_panel, self.tree, self.inspector)
         self.export = GraphExport(self.scene, self.doc, status, self,
                                   lambda path: self.write_fitting_report(path))
 
     def _build_actions(self) -> None:
         """Actions, menus and the toolbar from the one table (:mod:`.actions`)."""
-        history = self.history_dock.toggleViewAction()
         self.action_set = actions = WindowActions(self, self._commands(), self.doc.undo_stack, {
             "dock_devices": self.tree_dock.toggleViewAction(),
             "dock_inspector": self.inspector_dock.toggleViewAction(),
             "dock_plan": self.plan_dock.toggleViewAction(),
             "dock_pending": self.pending_dock.toggleViewAction(),
-            "history": history})
+            "history": self.history_dock.toggleViewAction()})
         self.transactions = Transactions(
             self.doc, self.live, self.status_line, self.flow, self.pending_panel,
             self.pending_dock, self.history_panel,
@@ -248,12 +246,12 @@ class MainWindow(QMainWindow):
             "undo": lambda: self.flow.undo(),
             "redo": lambda: self.flow.redo(),
             "delete": self.scene.delete_selected,
-            "profiles": self.show_profile_tree,
-            "find": self.ask_go_to_device,
+            "profiles": lambda: self.editing.show_profile_tree(),
+            "find": lambda: self.editing.ask_go_to_device(),
             "fit": self.view.fit_all,
             "zoom_in": lambda: self.view.zoom_by(1.25),
             "zoom_out": lambda: self.view.zoom_by(0.8),
-            "arrange": self.arrange,
+            "arrange": lambda: self.editing.arrange(),
             "legend": lambda: self.view.set_legend_visible(self.act_legend.isChecked()),
             "write_pending": lambda: self.write_pending(),
             "discard_pending": lambda: self.transactions.discard_pending(),
@@ -272,12 +270,14 @@ class MainWindow(QMainWindow):
             "about_qt": lambda: show_about_qt(self),
         }
         for mode, _text in OPERATIONS:
-            commands[f"plan_{mode}"] = partial(self.preview_plan, mode)
+            commands[f"plan_{mode}"] = partial(self.editing.preview_plan, mode)
         for task in TASKS:
             commands[f"task_{task.id}"] = partial(self.open_task, task.id)
         return commands
 
     def _connect(self) -> None:
+        from pdcp_studio.app.dialogs.arbitrator_found import stop_watching
+
         doc, live = self.doc, self.live
         doc.dirtyChanged.connect(lambda _d: self._update_title())
         doc.pathChanged.connect(lambda _p: self._update_title())
@@ -293,23 +293,18 @@ class MainWindow(QMainWindow):
         live.disconnected.connect(self.bus_docks.detach)
         live.stateChanged.connect(lambda _s: self._update_mode())
         live.bridgeReady.connect(self.bus_docks.attach_safely)
-        live.sessionStarted.connect(self._session_started)
+        # A new session: a passive monitor of another bus gives way to it, the bus panels
+        # start afresh on it, and plans get its stored configuration.
+        live.sessionStarted.connect(lambda _b: stop_watching(self))
+        live.sessionStarted.connect(self.bus_docks.session_started)
+        live.sessionStarted.connect(self.bus.session_started)
         live.snapshotTaken.connect(self.bus_docks.bus_seen)
         self._update_mode()
 
     # -- title, status ----------------------------------------------------------------
     def _update_title(self) -> None:
-        """The document, then the connection (the project and its target), then the app."""
-        state = self.live.state_text()
-        if self.doc.path is None and self.doc.session is not None:  # the bus is the document
-            self.setWindowTitle(
-                self.tr("{v0}{v1}[*] — PDCP Studio").format(v0=state[:1].upper(), v1=state[1:])
-            )
-        else:
-            where = "" if self.live.state == OFFLINE else f" — {state}"
-            self.setWindowTitle(
-                self.tr("{title}[*]{where} — PDCP Studio").format(title=self.doc.title, where=where)
-            )
+        self.setWindowTitle(window_title(self.live, self.doc.title,
+                                         self.doc.path is None and self.doc.session is not None))
         self.setWindowModified(self.doc.is_dirty)
 
     def _update_mode(self) -> None:
@@ -365,10 +360,6 @@ class MainWindow(QMainWindow):
         if self.maybe_save():
             self.connect_bus(DEFAULT_BUS)
 
-    def _open_recent(self, path: Path) -> None:
-        if self.maybe_save():
-            self.open_path(path)
-
     def _on_connected(self, url: str) -> None:
         self._update_mode()
         self._loaded()
@@ -409,15 +400,6 @@ class MainWindow(QMainWindow):
             0,
         )
 
-    def _session_started(self, bridge: Any) -> None:
-        """A new session is on screen: a passive monitor of another bus gives way to it,
-        the bus panels start afresh on it, and plans get its stored configuration."""
-        from pdcp_studio.app.dialogs.arbitrator_found import stop_watching
-
-        stop_watching(self)
-        self.bus_docks.session_started(bridge)
-        self.bus.session_started(bridge)
-
     def _offer_arbitrator(self, url: str, message: str, later: bool) -> None:
         from pdcp_studio.app.dialogs import arbitrator_found
 
@@ -429,73 +411,19 @@ class MainWindow(QMainWindow):
         return open_config_window(self, path, collection)
 
     # -- editing, plans ----------------------------------------------------------------
-    def arrange(self) -> None:
-        from pdcp_studio.app.documents import commands
-
-        new = self.scene.relayout()
-        moves = {k: (self.doc.positions[k], p) for k, p in new.items()
-                 if k in self.doc.positions and self.doc.positions[k] != p}
-        if moves:
-            self.doc.undo_stack.push(commands.MoveDevicesCommand(self.doc, moves))
-        self.view.fit_all()
-
     def preview_plan(self, mode: str) -> Any:
-        self.plan_dock.show()
-        self.plan_dock.raise_()
-        plan = self.plan_panel.preview(mode)
-        if plan is not None:
-            # once the rows have their heights (never after the table is gone)
-            QTimer.singleShot(0, self.plan_panel.actions_view, self._fit_plan_dock)
-        return plan
-
-    def _fit_plan_dock(self, tries: int = 4, asked: int = 0) -> None:
-        """Grow the plan dock so an ordinary plan's rows all show (never past half the
-        window, never shrinking what the user made larger). The dock area's size includes
-        its tab bar and the rows wrap anew at the new width, so it looks again until the
-        rows fit."""
-        view = self.plan_panel.actions_view
-        view.resizeRowsToContents()
-        missing = view.verticalHeader().length() - view.viewport().height()
-        if missing <= 0 or self.plan_dock.isFloating() or not self.plan_dock.isVisible():
-            return
-        height = min(max(asked, self.plan_dock.height()) + missing + 2, self.height() // 2)
-        if height > max(asked, self.plan_dock.height()):
-            self.resizeDocks([self.plan_dock], [height], Qt.Orientation.Vertical)
-            if tries > 1:
-                QTimer.singleShot(30, view, lambda: self._fit_plan_dock(tries - 1, height))
+        return self.editing.preview_plan(mode)
 
     def show_profile_tree(self) -> None:
-        from pdcp_studio.app.dialogs.profile_tree_editor import ProfileTreeDialog
+        self.editing.show_profile_tree()
 
-        dialog = ProfileTreeDialog(parent=self, trees=self.doc.trees)  # edited in place
-        primary = self.doc.tree.primary  # the tree naming most of this system
-        tabs = dialog.tabs
-        if tabs is not None:
-            tabs.setCurrentIndex(self.doc.trees.index(primary)
-                                 if primary in self.doc.trees else 0)
-        dialog.treesChanged.connect(self._tree_changed)
-        dialog.show()
-        self.profile_tree_dialog = dialog
+    @property
+    def profile_tree_dialog(self) -> Any:
+        return self.editing.profile_tree_dialog
 
-    def _tree_changed(self, trees: Any) -> None:
-        self.doc.set_trees(trees)
-        self.scene.update()
-        self.tree.rebuild()
-        self.inspector.show_object(self.doc.selection)
-
-    def go_to_device(self, key: Any) -> None:
-        """Select a device and centre its card in the graph."""
-        self.doc.select(key)
-        card = self.scene.cards.get(key)
-        if card is not None:
-            self.view.centerOn(card.sceneBoundingRect().center())
-
-    def ask_go_to_device(self) -> None:
-        from pdcp_studio.app.docks.device_finder import DeviceFinder
-
-        self.device_finder = DeviceFinder(self.doc.system, self.go_to_device, self)
-        self.device_finder.show()
-        self.device_finder.field.setFocus()
+    @property
+    def device_finder(self) -> Any:
+        return self.editing.device_finder
 
     def open_task(self, task: str) -> Any:
         """Open a guided task (a wizard beside the window)."""

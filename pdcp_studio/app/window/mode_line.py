@@ -22,6 +22,16 @@ def _t(text: str) -> str:
     return translate(_CTX, text)
 
 
+def window_title(live: LiveController, title: str, bus_is_document: bool) -> str:
+    """The document (``title``, or the bus when it is the document), then the connection
+    (the project and its target), then the app; ``[*]`` where Qt marks unsaved changes."""
+    state = live.state_text()
+    if bus_is_document:
+        return _t("{v0}{v1}[*] — PDCP Studio").format(v0=state[:1].upper(), v1=state[1:])
+    where = "" if live.state == live_bus.OFFLINE else f" — {state}"
+    return _t("{title}[*]{where} — PDCP Studio").format(title=title, where=where)
+
+
 class ModeLine(QObject):
     """``progress`` and ``label`` at the right of ``bar``, following ``live``."""
 
