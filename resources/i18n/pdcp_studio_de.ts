@@ -43,7 +43,7 @@
         </message>
     </context>
     <context>
-        <name>BusMixin</name>
+        <name>WindowBus</name>
         <message>
             <location filename="../../pdcp_studio/app/window_bus.py" line="38" />
             <source>Some bus panels are unavailable: {err}</source>
@@ -1041,7 +1041,7 @@
         </message>
     </context>
     <context>
-        <name>ExportMixin</name>
+        <name>WindowExport</name>
         <message>
             <location filename="../../pdcp_studio/app/window_export.py" line="72" />
             <source>Export graph</source>
@@ -1069,7 +1069,7 @@
         </message>
     </context>
     <context>
-        <name>FileHandlingMixin</name>
+        <name>WindowFiles</name>
         <message>
             <location filename="../../pdcp_studio/app/window_files.py" line="40" />
             <source>Cannot open</source>
@@ -1864,7 +1864,7 @@ Den PDCP-Bus einer aktiven Prothese ansehen und einrichten.</translation>
         </message>
     </context>
     <context>
-        <name>MenusMixin</name>
+        <name>WindowActions</name>
         <message>
             <location filename="../../pdcp_studio/app/window_menus.py" line="37" />
             <source>&amp;Open…</source>
@@ -2598,7 +2598,7 @@ Den PDCP-Bus einer aktiven Prothese ansehen und einrichten.</translation>
         </message>
     </context>
     <context>
-        <name>PolicyMixin</name>
+        <name>WindowPolicy</name>
         <message>
             <location filename="../../pdcp_studio/app/window_policy.py" line="31" />
             <source>&amp;Autoconfigure on this prosthesis</source>
@@ -2838,7 +2838,7 @@ Den PDCP-Bus einer aktiven Prothese ansehen und einrichten.</translation>
         </message>
     </context>
     <context>
-        <name>RecoveryMixin</name>
+        <name>WindowRecovery</name>
         <message>
             <location filename="../../pdcp_studio/app/window_recovery.py" line="56" />
             <source>Cannot recover</source>

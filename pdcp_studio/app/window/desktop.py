@@ -1,20 +1,31 @@
 """Desktop conventions for the main window: recent files, files dropped on the window,
-Help (manual with F1 for the current view, About with versions, About Qt), shortcuts for
-the plans and Connect, toolbar buttons that keep their place, accessible names on every
-control, and the window's geometry and dock layout restored from the last session.
+the manual at the part the user looks at, toolbar buttons that keep their place,
+accessible names on every control, and the window's geometry and dock layout restored
+from the last session.
 
-Kept apart from :mod:`main_window`: :func:`install_desktop` adds all of it to a built
-window; :func:`remember_layout` is called only for a real session (tests and scripted runs
-must not inherit a previous window's size or closed docks).
+:class:`Desktop` adds them to a built window; :func:`remember_layout` is called only for a
+real session (tests and scripted runs must not inherit a previous window's size or closed
+docks). The Help menu's and the shortcuts' actions are in :mod:`.actions`.
 """
 
 from __future__ import annotations
 
+from collections.abc import Callable
 from pathlib import Path
 from typing import Any
 
-from PySide6.QtCore import QByteArray, QEvent, QModelIndex, QObject, QSettings, Qt, QTimer
-from PySide6.QtGui import QAction, QDragEnterEvent, QDropEvent, QKeySequence
+from PySide6.QtCore import (
+    QByteArray,
+    QChildEvent,
+    QEvent,
+    QModelIndex,
+    QObject,
+    QSettings,
+    Qt,
+    QTimer,
+    SignalInstance,
+)
+from PySide6.QtGui import QAction, QDragEnterEvent, QDragMoveEvent, QDropEvent
 from PySide6.QtWidgets import (
     QAbstractButton,
     QAbstractItemView,
@@ -29,6 +40,7 @@ from PySide6.QtWidgets import (
     QLabel,
     QLineEdit,
     QMainWindow,
+    QMenu,
     QPlainTextEdit,
     QScrollBar,
     QStyle,
@@ -42,15 +54,11 @@ from shiboken6 import isValid
 
 from pdcp_studio.app.i18n import translate
 from pdcp_studio.app.window.recent_files import RecentFiles, RecentMenu
+from pdcp_studio.app.window.status import StatusLine
 
 #: What a dropped file is, by suffix.
 DOCUMENT_SUFFIXES = (".json", ".pdcfg")
 CAPTURE_SUFFIXES = (".asc", ".blf", ".csv", ".log", ".trc", ".mf4", ".db")
-
-#: Plan shortcuts, in the order of the Plan menu.
-PLAN_KEYS = ("Ctrl+1", "Ctrl+2", "Ctrl+3", "Ctrl+4", "Ctrl+5", "Ctrl+6", "Ctrl+7")
-CONNECT_KEY = "Ctrl+K"
-DISCONNECT_KEY = "Ctrl+Shift+K"
 
 #: The controls that need an accessible name.
 CONTROLS = (QAbstractButton, QLineEdit, QComboBox, QAbstractSpinBox, QAbstractSlider,
@@ -149,7 +157,7 @@ def accessible_name(widget: QWidget) -> str:
 def name_controls(root: QWidget) -> list[QWidget]:
     """Give every control under ``root`` an accessible name (and a description from its
     tooltip) where it has none; returns the controls still without one."""
-    unnamed = []
+    unnamed: list[QWidget] = []
     for widget in [root, *root.findChildren(QWidget)]:
         if not isinstance(widget, CONTROLS) or _part_of_another_control(widget):
             continue
@@ -166,7 +174,7 @@ def name_controls(root: QWidget) -> list[QWidget]:
     return unnamed
 
 
-def dropped_files(event: QDragEnterEvent | QDropEvent) -> list[Path]:
+def dropped_files(event: QDragEnterEvent | QDragMoveEvent | QDropEvent) -> list[Path]:
     """Local files in a drag that PDCP Studio opens (documents and captures)."""
     data = event.mimeData()
     if not data.hasUrls():
@@ -180,85 +188,6 @@ def dropped_files(event: QDragEnterEvent | QDropEvent) -> list[Path]:
     return out
 
 
-def open_dropped(window: Any, path: Path) -> bool:
-    """Open a dropped file: a system or configuration as the document, a capture in the
-    monitor."""
-    if path.suffix.lower() in CAPTURE_SUFFIXES:
-        dock = monitor_dock(window)
-        dock.show()
-        dock.raise_()
-        dock.load_capture(path)
-        window.show_message(translate("Desktop", "Opening capture {name}…")
-                            .format(name=path.name))
-        return True
-    if not window.maybe_save():
-        return False
-    return bool(window.open_path(path))
-
-
-def monitor_dock(window: Any) -> Any:
-    """The window's monitor dock, made now if no bus has made it yet."""
-    from pdcp_studio.app.trace.dock import MonitorDock
-
-    dock = window._leaf_docks.get("monitor")
-    if dock is None:
-        dock = MonitorDock(window)
-        window.addDockWidget(Qt.DockWidgetArea.BottomDockWidgetArea, dock)
-        window.tabifyDockWidget(window.plan_dock, dock)
-        window.view_menu.addAction(dock.toggleViewAction())
-        window._leaf_docks["monitor"] = dock
-        name_controls(dock)
-    return dock
-
-
-class _DesktopFilter(QObject):
-    """Drops on the window and on the graph; names the controls of new dialogs and docks."""
-
-    def __init__(self, window: Any) -> None:
-        super().__init__(window)
-        self.window = window
-
-    def eventFilter(self, obj: QObject, event: QEvent) -> bool:
-        kind = event.type()
-        if kind in (QEvent.Type.DragEnter, QEvent.Type.DragMove):
-            if dropped_files(event):  # type: ignore[arg-type]
-                event.acceptProposedAction()  # type: ignore[attr-defined]
-                return True
-        elif kind == QEvent.Type.Drop:
-            paths = dropped_files(event)  # type: ignore[arg-type]
-            if paths:
-                event.acceptProposedAction()  # type: ignore[attr-defined]
-                # After the drop returns: opening may ask a question (a modal dialog).
-                QTimer.singleShot(0, lambda: [open_dropped(self.window, p) for p in paths])
-                return True
-        elif kind == QEvent.Type.ChildPolished and obj is self.window and _is_live(obj):
-            # (Before that, the window is named whole once it is live: name_when_live.)
-            child = event.child()  # type: ignore[attr-defined]
-            if isinstance(child, QWidget):
-                QTimer.singleShot(0, lambda c=child: _name_later(c))
-        return False
-
-
-def _is_live(window: Any) -> bool:
-    """Is ``window`` on screen with its first system (a window without that notion: yes)?"""
-    return bool(getattr(window, "is_ready", True))
-
-
-def name_when_live(window: Any, root: QWidget | None = None) -> None:
-    """Name the controls under ``root`` (default: the whole window) now if the window is
-    live, else all of the window's once it is.
-
-    Accessible names are read by a screen reader, never seen: naming the ~190 widgets of a
-    new window took 20-30 ms of start-up (the first wrapper of every Qt part) for nothing
-    on its first frame."""
-    if _is_live(window) or not hasattr(window, "ready"):
-        name_controls(root if root is not None else window)
-    elif not getattr(window, "_naming_when_live", False):
-        window._naming_when_live = True
-        window.ready.connect(lambda: QTimer.singleShot(NAMES_AFTER_MS, window,
-                                                       lambda: _name_later(window)))
-
-
 def _name_later(widget: QWidget) -> None:
     try:
         name_controls(widget)
@@ -266,14 +195,59 @@ def _name_later(widget: QWidget) -> None:
         pass  # closed and deleted before the event loop came back
 
 
-def _steady_toolbar(window: Any, toolbar: QToolBar) -> None:
+class _DesktopFilter(QObject):
+    """Drops on the window and on the graph (``open_paths``); names the controls of new
+    dialogs and docks of ``window`` once it is live."""
+
+    def __init__(self, window: QWidget, open_paths: Callable[[list[Path]], None],
+                 is_live: Callable[[], bool]) -> None:
+        super().__init__(window)
+        self.window = window
+        self._open_paths = open_paths
+        self._is_live = is_live
+
+    def eventFilter(self, watched: QObject, event: QEvent) -> bool:
+        kind = event.type()
+        if kind in (QEvent.Type.DragEnter, QEvent.Type.DragMove) and isinstance(
+                event, QDragMoveEvent):
+            if dropped_files(event):
+                event.acceptProposedAction()
+                return True
+        elif kind == QEvent.Type.Drop and isinstance(event, QDropEvent):
+            paths = dropped_files(event)
+            if paths:
+                event.acceptProposedAction()
+                # After the drop returns: opening may ask a question (a modal dialog).
+                QTimer.singleShot(0, lambda: self._open_paths(paths))
+                return True
+        elif (kind == QEvent.Type.ChildPolished and isinstance(event, QChildEvent)
+              and watched is self.window and self._is_live()):
+            # (Before that, the window is named whole once it is live: name_when_live.)
+            child = event.child()
+            if isinstance(child, QWidget):
+                QTimer.singleShot(0, lambda c=child: _name_later(c))
+        return False
+
+
+def _plain_follow(action: QAction, steady: QAction) -> None:
+    """``steady`` enabled as ``action`` is, with its text as the tooltip (not while the
+    window is being torn down: Qt says an action changed as it deletes it)."""
+    if isValid(action) and isValid(steady):
+        steady.setEnabled(action.isEnabled())
+        steady.setToolTip(_plain(action.text()))
+
+
+def steady_toolbar(window: QWidget, toolbar: QToolBar, undo: QAction,
+                   redo: QAction) -> dict[str, QAction]:
     """Undo and Redo on the toolbar with fixed text (the full "Undo Add link …" as their
-    tooltip), so the buttons after them never move."""
+    tooltip), so the buttons after them never move; the new buttons' actions by key
+    (``undo``, ``redo``)."""
     style = window.style()
+    made: dict[str, QAction] = {}
     for action, text, icon, key in (
-            (window.act_undo, translate("Desktop", "Undo"),
+            (undo, translate("Desktop", "Undo"),
              QStyle.StandardPixmap.SP_ArrowBack, "ToolbarUndo"),
-            (window.act_redo, translate("Desktop", "Redo"),
+            (redo, translate("Desktop", "Redo"),
              QStyle.StandardPixmap.SP_ArrowForward, "ToolbarRedo")):
         if action not in toolbar.actions():
             continue
@@ -282,57 +256,36 @@ def _steady_toolbar(window: Any, toolbar: QToolBar) -> None:
         steady.setEnabled(action.isEnabled())
         steady.setToolTip(_plain(action.text()))
         steady.triggered.connect(action.trigger)
-        action.changed.connect(lambda a=action, s=steady: _follow(a, s))
+        action.changed.connect(lambda a=action, s=steady: _plain_follow(a, s))
         toolbar.insertAction(action, steady)
         toolbar.removeAction(action)
-        setattr(window, f"toolbar_{key[7:].lower()}", steady)
+        made[key[7:].lower()] = steady
+    return made
 
 
-def _follow(action: QAction, steady: QAction) -> None:
-    """``steady`` enabled as ``action`` is, with its text as the tooltip (not while the
-    window is being torn down: Qt says an action changed as it deletes it)."""
-    if isValid(action) and isValid(steady):
-        steady.setEnabled(action.isEnabled())
-        steady.setToolTip(_plain(action.text()))
-
-
-def _reachable_actions(window: Any) -> list[QAction]:
+def _reachable_actions(window: QMainWindow) -> list[QAction]:
     """The actions a key can trigger: the window's own, its menus' (and their submenus'),
     its toolbars'. (Not ``findChildren(QAction)``: that first makes a Python wrapper for
     each of Qt's own actions, ~10 ms of start-up.)"""
     found: list[QAction] = list(window.actions())
-    menus = [a.menu() for a in window.menuBar().actions() if a.menu() is not None]
+    menus = [m for m in (a.menu() for a in window.menuBar().actions()) if isinstance(m, QMenu)]
     while menus:
         menu = menus.pop()
         for action in menu.actions():
             found.append(action)
-            if action.menu() is not None:
-                menus.append(action.menu())
+            sub = action.menu()
+            if isinstance(sub, QMenu):
+                menus.append(sub)
     for toolbar in _toolbars(window):
         found += toolbar.actions()
     return list(dict.fromkeys(found))  # each once (an action may be in a menu and a toolbar)
 
 
-def _toolbars(window: Any) -> list[QToolBar]:
+def _toolbars(window: QMainWindow) -> list[QToolBar]:
     """The window's toolbars (as made: looking for them among its children first makes a
     Python wrapper for each of the ~190 child widgets, ~10 ms of start-up)."""
     made = getattr(window, "toolbars", None)
     return list(made) if made is not None else window.findChildren(QToolBar)
-
-
-def _shortcuts(window: Any) -> None:
-    taken = {a.shortcut().toString() for a in _reachable_actions(window)
-             if not a.shortcut().isEmpty()}
-
-    def give(action: QAction, key: str) -> None:
-        if action.shortcut().isEmpty() and key not in taken:
-            action.setShortcut(QKeySequence(key))
-            taken.add(key)
-
-    for action, key in zip(window.plan_actions.values(), PLAN_KEYS, strict=False):
-        give(action, key)
-    give(window.act_connect, CONNECT_KEY)
-    give(window.act_disconnect, DISCONNECT_KEY)
 
 
 def _help() -> Any:
@@ -342,29 +295,7 @@ def _help() -> Any:
     return help_viewer
 
 
-def _help_menu(window: Any) -> None:
-    menu = next((a.menu() for a in window.menuBar().actions()
-                 if a.menu() is not None and window.act_about in a.menu().actions()), None)
-    if menu is None:
-        menu = window.menuBar().addMenu(translate("Desktop", "&Help"))
-    window.help_menu = menu
-    window.act_manual = QAction(translate("Desktop", "User &manual"), window)
-    window.act_manual.setShortcut(QKeySequence(QKeySequence.StandardKey.HelpContents))
-    window.act_manual.setShortcutContext(Qt.ShortcutContext.ApplicationShortcut)
-    window.act_manual.setStatusTip(translate("Desktop", "The manual, at the part about what you "
-                                                 "are looking at"))
-    window.act_manual.triggered.connect(lambda _c=False: open_manual_here(window))
-    window.act_about_qt = QAction(translate("Desktop", "About &Qt"), window)
-    window.act_about_qt.triggered.connect(lambda _c=False: _help().show_about_qt(window))
-    window.act_about.triggered.disconnect()
-    window.act_about.triggered.connect(lambda _c=False: _help().show_about(window))
-    menu.insertAction(window.act_about, window.act_manual)
-    menu.insertSeparator(window.act_about)
-    menu.addAction(window.act_about_qt)
-    window.addAction(window.act_manual)
-
-
-def open_manual_here(window: Any) -> Any:
+def open_manual_here(window: QWidget) -> Any:
     """The manual at the section for the dialog in front or the widget with the focus."""
     help_viewer = _help()
     front = QApplication.activeModalWidget() or QApplication.activeWindow()
@@ -376,50 +307,111 @@ def open_manual_here(window: Any) -> Any:
     return help_viewer.open_manual(window, key)
 
 
-def _recent(window: Any) -> None:
-    window.recent_files = RecentFiles()
-    window.recent_menu = RecentMenu(window.recent_files,
-                                    lambda p: open_dropped(window, Path(p)), window)
-    file_menu = window.menuBar().actions()[0].menu()
-    after = window.act_save if window.act_save in file_menu.actions() else None
-    if after is not None:
-        file_menu.insertMenu(after, window.recent_menu)
-    else:
-        file_menu.addMenu(window.recent_menu)
+def show_about(window: QWidget) -> None:
+    _help().show_about(window)
 
-    def remember(path: object) -> None:
+
+def show_about_qt(window: QWidget) -> None:
+    _help().show_about_qt(window)
+
+
+def monitor_dock(window: QMainWindow) -> Any:
+    """The window's monitor dock, made now if no bus has made it yet."""
+    from pdcp_studio.app.window.bus_docks import BusDocks
+
+    docks = getattr(window, "bus_docks", None)
+    if not isinstance(docks, BusDocks):
+        raise TypeError(f"{type(window).__name__} has no bus docks")
+    return docks.monitor_dock()
+
+
+class Desktop(QObject):
+    """The desktop conventions of one main ``window`` (see the module docstring).
+
+    ``recent_files`` and ``recent_menu`` (in ``file_menu``, before ``before``); a file
+    dropped or chosen there opens as the document (``maybe_save()``, ``open_path(path)``)
+    or, a capture, in the monitor (``monitor_dock()``); ``is_ready()``/``ready`` say when
+    the window is live, so its controls are named then (not while its first frame is
+    made)."""
+
+    def __init__(self, window: QMainWindow, status: StatusLine, *, file_menu: QMenu,
+                 before: QAction, monitor_dock: Callable[[], Any],
+                 maybe_save: Callable[[], bool], open_path: Callable[[Path], bool],
+                 path_changed: SignalInstance, is_ready: Callable[[], bool],
+                 ready: SignalInstance, bridge_ready: SignalInstance, graph: QWidget) -> None:
+        super().__init__(window)
+        self.host = window
+        self.status = status
+        self._monitor_dock = monitor_dock
+        self._maybe_save = maybe_save
+        self._open_path = open_path
+        self._is_ready = is_ready
+        self._ready = ready
+        self._naming_when_live = False
+        self.recent_files = RecentFiles()
+        self.recent_menu = RecentMenu(self.recent_files,
+                                      lambda p: self.open_dropped(Path(p)), window)
+        if before in file_menu.actions():
+            file_menu.insertMenu(before, self.recent_menu)
+        else:
+            file_menu.addMenu(self.recent_menu)
+        path_changed.connect(self._remember)
+        window.setAcceptDrops(True)
+        self.filter = _DesktopFilter(window, self._open_all, is_ready)
+        window.installEventFilter(self.filter)
+        if isinstance(graph, QGraphicsView):
+            graph.viewport().installEventFilter(self.filter)
+        graph.setAccessibleName(translate("Desktop", "Bus graph"))
+        graph.setAccessibleDescription(translate(
+            "Desktop", "The devices of the bus and the links between their channels"))
+        self.name_when_live()
+        bridge_ready.connect(lambda _b: QTimer.singleShot(0, self, self._restore_docks))
+
+    def open_dropped(self, path: Path) -> bool:
+        """Open a dropped file: a system or configuration as the document, a capture in
+        the monitor."""
+        if path.suffix.lower() in CAPTURE_SUFFIXES:
+            dock = self._monitor_dock()
+            dock.show()
+            dock.raise_()
+            dock.load_capture(path)
+            self.status.say(translate("Desktop", "Opening capture {name}…")
+                            .format(name=path.name))
+            return True
+        if not self._maybe_save():
+            return False
+        return bool(self._open_path(path))
+
+    def _open_all(self, paths: list[Path]) -> None:
+        for path in paths:
+            self.open_dropped(path)
+
+    def _remember(self, path: object) -> None:
         if path is not None and Path(str(path)).is_file():
-            window.recent_files.add(str(path))
+            self.recent_files.add(str(path))
 
-    window.doc.pathChanged.connect(remember)
+    def name_when_live(self, root: QWidget | None = None) -> None:
+        """Name the controls under ``root`` (default: the whole window) now if the window
+        is live, else all of the window's once it is.
 
+        Accessible names are read by a screen reader, never seen: naming the ~190 widgets
+        of a new window took 20-30 ms of start-up (the first wrapper of every Qt part) for
+        nothing on its first frame."""
+        if self._is_ready():
+            name_controls(root if root is not None else self.host)
+        elif not self._naming_when_live:
+            self._naming_when_live = True
+            self._ready.connect(lambda: QTimer.singleShot(
+                NAMES_AFTER_MS, self, lambda: _name_later(self.host)))
 
-def install_desktop(window: QMainWindow) -> None:
-    """Add the desktop conventions to a built :class:`MainWindow`."""
-    w: Any = window
-    _recent(w)
-    _help_menu(w)
-    _shortcuts(w)
-    for toolbar in _toolbars(window):
-        _steady_toolbar(w, toolbar)
-    w.setAcceptDrops(True)
-    w._desktop_filter = _DesktopFilter(w)
-    w.installEventFilter(w._desktop_filter)
-    w.view.viewport().installEventFilter(w._desktop_filter)
-    w.view.setAccessibleName(translate("Desktop", "Bus graph"))
-    w.view.setAccessibleDescription(translate(
-        "Desktop", "The devices of the bus and the links between their channels"))
-    name_when_live(w)
-    w.live.bridgeReady.connect(lambda _b: QTimer.singleShot(0, lambda: _restore_docks(w)))
-
-
-def _restore_docks(window: Any) -> None:
-    """Docks made after start-up (monitor, plot, simulator) go where they were last time.
-    (The docks are the window's own children: looking for them among all its descendants
-    first makes a Python wrapper for each of its ~190 widgets, ~10 ms of start-up.)"""
-    for dock in [c for c in window.children() if isinstance(c, QDockWidget)]:
-        window.restoreDockWidget(dock)
-        name_when_live(window, dock)
+    def _restore_docks(self) -> None:
+        """Docks made after start-up (monitor, plot, simulator) go where they were last
+        time. (The docks are the window's own children: looking for them among all its
+        descendants first makes a Python wrapper for each of its ~190 widgets, ~10 ms of
+        start-up.)"""
+        for dock in [c for c in self.host.children() if isinstance(c, QDockWidget)]:
+            self.host.restoreDockWidget(dock)
+            self.name_when_live(dock)
 
 
 def remember_layout(window: QMainWindow, settings: QSettings | None = None) -> None:

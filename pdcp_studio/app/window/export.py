@@ -1,7 +1,6 @@
 """Exporting the graph (PNG, SVG) and the fitting report (PDF) from the main window.
 
-Kept apart from :mod:`main_window`: output that leaves the app, as opposed to saving the
-document (:mod:`window_files`).
+Output that leaves the app, as opposed to saving the document (:mod:`.files`).
 """
 
 from __future__ import annotations
@@ -9,18 +8,35 @@ from __future__ import annotations
 import math
 from collections.abc import Callable
 from pathlib import Path
-from typing import TYPE_CHECKING
 
 from PySide6.QtCore import QRectF, Qt
 from PySide6.QtGui import QImage, QPainter
-from PySide6.QtWidgets import QFileDialog, QGraphicsItem
+from PySide6.QtWidgets import QFileDialog, QGraphicsItem, QWidget
+
+from pdcp_studio.app.documents.document import Document
+from pdcp_studio.app.graph.scene import BusScene
+from pdcp_studio.app.i18n import translate
+from pdcp_studio.app.window.files import last_dir
+from pdcp_studio.app.window.status import StatusLine
+
+_CTX = "WindowExport"
 
 
-class ExportMixin:
-    """Graph image, PNG/SVG export and the PDF report of :class:`MainWindow`."""
+def _t(text: str) -> str:
+    return translate(_CTX, text)
 
-    if TYPE_CHECKING:  # a mixin of a QObject: Qt gives it tr()
-        tr: Callable[[str], str]
+
+class GraphExport:
+    """The graph as an image or a file (PNG, SVG), and the dialogs that ask where;
+    ``write_report(path)`` writes the fitting report."""
+
+    def __init__(self, scene: BusScene, doc: Document, status: StatusLine, parent: QWidget,
+                 write_report: Callable[[str], object]) -> None:
+        self.scene = scene
+        self.doc = doc
+        self.status = status
+        self.parent = parent
+        self._write_report = write_report
 
     def export_rect(self) -> QRectF:
         """The part of the scene an export shows: every item and a 20-unit margin, grown to
@@ -95,19 +111,19 @@ class ExportMixin:
             raise OSError(f"{path}: could not write the image")
 
     def ask_export(self, kind: str) -> None:
-        path, _ = QFileDialog.getSaveFileName(self, self.tr("Export graph"),
-                                              str(Path(self._last_dir()) / f"bus.{kind}"),
+        path, _ = QFileDialog.getSaveFileName(self.parent, _t("Export graph"),
+                                              str(Path(last_dir()) / f"bus.{kind}"),
                                               f"{kind.upper()} (*.{kind})")
         if path:
             try:
                 self.export_graph(path)
-                self.show_message(self.tr("Exported {path}").format(path=path))
+                self.status.say(_t("Exported {path}").format(path=path))
             except OSError as err:
-                self.error_box(self.tr("Cannot export"), str(err))
+                self.status.error(_t("Cannot export"), str(err))
 
     def ask_report(self) -> None:
-        path, _ = QFileDialog.getSaveFileName(self, self.tr("Fitting report"),
-                                              str(Path(self._last_dir()) / "fitting.pdf"),
-                                              self.tr("PDF (*.pdf)"))
+        path, _ = QFileDialog.getSaveFileName(self.parent, _t("Fitting report"),
+                                              str(Path(last_dir()) / "fitting.pdf"),
+                                              _t("PDF (*.pdf)"))
         if path:
-            self.write_fitting_report(path)  # patient, prosthetist, this session's changes
+            self._write_report(path)  # patient, prosthetist, this session's changes

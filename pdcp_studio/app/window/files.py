@@ -1,28 +1,67 @@
-"""Opening and saving documents from the main window (dialogs, last folder, unsaved changes).
+"""Opening and saving the main window's document (dialogs, last folder, unsaved changes).
 
-Kept apart from :mod:`main_window` so the file round trip reads in one place; reading and
-writing the formats themselves is :mod:`pdcp_studio.app.documents.files`.
+The file round trip in one place; reading and writing the formats themselves is
+:mod:`pdcp_studio.app.documents.files`.
 """
 
 from __future__ import annotations
 
 from collections.abc import Callable
 from pathlib import Path
-from typing import TYPE_CHECKING
 
 from PySide6.QtCore import QSettings
-from PySide6.QtWidgets import QFileDialog, QMessageBox
+from PySide6.QtWidgets import QFileDialog, QMessageBox, QWidget
 
 from pdcp_studio.app.documents import files
+from pdcp_studio.app.documents.document import Document
+from pdcp_studio.app.i18n import translate
+from pdcp_studio.app.live.live_bus import LiveController
+from pdcp_studio.app.window.questions import LEAVE_COMPARE, LEAVE_DISCONNECT
+from pdcp_studio.app.window.status import StatusLine
 from pdcp_studio.app.window.support import FILE_FILTERS
 from pdcp_studio.errors import PdcpError
 
+_CTX = "WindowFiles"
 
-class FileHandlingMixin:
-    """Open, save, save as, and the ask-before-dropping-changes of :class:`MainWindow`."""
 
-    if TYPE_CHECKING:  # a mixin of a QObject: Qt gives it tr()
-        tr: Callable[[str], str]
+def _t(text: str) -> str:
+    return translate(_CTX, text)
+
+
+def last_dir() -> str:
+    """The folder the user last opened or saved in (home at first)."""
+    return str(QSettings().value("files/last_dir", str(Path.home())))
+
+
+def remember_dir(path: str) -> None:
+    QSettings().setValue("files/last_dir", str(Path(path).parent))
+
+
+class FileController:
+    """Open, save, save as, and the ask-before-dropping-changes of one document.
+
+    ``loaded()`` puts a new system on screen; ``open_config(path, collection)`` opens a
+    stored configuration in a window of its own; ``compare(path)`` compares a file with
+    the connected prosthesis; ``ask_leave_bus(path)`` and ``ask_save_changes()`` are the
+    window's questions (tests answer them)."""
+
+    def __init__(self, doc: Document, live: LiveController, status: StatusLine,
+                 parent: QWidget, *, loaded: Callable[[], None],
+                 is_ready: Callable[[], bool],
+                 open_config: Callable[[Path, object], object],
+                 compare: Callable[[Path], object],
+                 ask_leave_bus: Callable[[Path | None], str],
+                 ask_save_changes: Callable[[], QMessageBox.StandardButton]) -> None:
+        self.doc = doc
+        self.live = live
+        self.status = status
+        self.parent = parent
+        self._loaded = loaded
+        self._is_ready = is_ready
+        self._open_config = open_config
+        self._compare = compare
+        self._ask_leave_bus = ask_leave_bus
+        self._ask_save_changes = ask_save_changes
 
     def open_path(self, path: str | Path) -> bool:
         """Open a system file or a .pdcfg; errors go to a message box and return False.
@@ -37,7 +76,7 @@ class FileHandlingMixin:
         try:
             opened = files.open_path(path)
         except (PdcpError, OSError) as err:
-            self.error_box(self.tr("Cannot open"), str(err))
+            self.status.error(_t("Cannot open"), str(err))
             return False
         self.show_opened(opened, Path(path))
         return True
@@ -54,8 +93,8 @@ class FileHandlingMixin:
                             kind=opened.kind, config=opened.config)
         what = "configuration" if opened.kind == "config" else "system"
         note = f" ({opened.note})" if opened.note else ""
-        self.show_message(
-            self.tr("Opened {what} {v1}: {n_devices} devices, {n_links} links{note}").format(
+        self.status.say(
+            _t("Opened {what} {v1}: {n_devices} devices, {n_links} links{note}").format(
                 what=what,
                 v1=path.name if path else "",
                 n_devices=len(opened.system.devices),
@@ -68,65 +107,36 @@ class FileHandlingMixin:
     def show_configuration_document(self, opened: files.Opened, path: Path) -> None:
         """A .pdcfg opens as its own document window (configurations, checks, fit); this
         window stays on its prosthesis, which the configuration is fitted to."""
-        from pdcp_studio.app.documents.config_view import open_config_window
-
-        open_config_window(self, path, opened.config)
-        self.show_message(
-            self.tr("Opened stored configurations {name} in their own window").format(
+        self._open_config(path, opened.config)
+        self.status.say(
+            _t("Opened stored configurations {name} in their own window").format(
                 name=path.name
             )
         )
-        if not self.is_ready:
+        if not self._is_ready():
             self._loaded()
-    #: ``ask_leave_bus`` answers.
-    LEAVE_COMPARE, LEAVE_DISCONNECT, LEAVE_CANCEL = "compare", "disconnect", "cancel"
 
     def confirm_leave_bus(self, path: Path | None = None) -> bool:
         """True when it is fine to put another document on screen (not connected, or the
         user chose to disconnect); "compare" opens the comparison with the prosthesis."""
         if not self.live.is_live:
             return True
-        answer = self.ask_leave_bus(path)
-        if answer == self.LEAVE_COMPARE and path is not None:
-            self.compare_with_prosthesis(path)
+        answer = self._ask_leave_bus(path)
+        if answer == LEAVE_COMPARE and path is not None:
+            self._compare(path)
             return False
-        if answer == self.LEAVE_DISCONNECT:
+        if answer == LEAVE_DISCONNECT:
             self.live.disconnect_bus()
             return True
         return False
 
-    def ask_leave_bus(self, path: Path | None) -> str:
-        """Compare, disconnect or cancel (tests replace this method)."""
-        box = QMessageBox(self)
-        box.setIcon(QMessageBox.Icon.Question)
-        box.setWindowTitle(self.tr("Connected to a prosthesis"))
-        name = path.name if path is not None else self.tr("another document")
-        box.setText(self.tr("This window is connected to the prosthesis on {0}.\n"
-                            "Opening {1} ends that connection.").format(self.live.url, name))
-        box.setInformativeText(self.tr("You can compare the file with the prosthesis "
-                                       "instead, and stay connected."))
-        compare = box.addButton(self.tr("Compare with the prosthesis"),
-                                QMessageBox.ButtonRole.AcceptRole)
-        leave = box.addButton(self.tr("Disconnect and open"),
-                              QMessageBox.ButtonRole.DestructiveRole)
-        box.addButton(QMessageBox.StandardButton.Cancel)
-        if path is None:
-            compare.setEnabled(False)
-        box.setDefaultButton(compare if path is not None else leave)
-        box.exec()
-        clicked = box.clickedButton()
-        if clicked is compare:
-            return self.LEAVE_COMPARE
-        if clicked is leave:
-            return self.LEAVE_DISCONNECT
-        return self.LEAVE_CANCEL
-
     def ask_open(self) -> None:
         if not self.maybe_save():
             return
-        path, _ = QFileDialog.getOpenFileName(self, self.tr("Open"), self._last_dir(), FILE_FILTERS)
+        path, _ = QFileDialog.getOpenFileName(self.parent, _t("Open"), last_dir(),
+                                              FILE_FILTERS)
         if path:
-            self._remember_dir(path)
+            remember_dir(path)
             self.open_path(path)
 
     def save(self) -> bool:
@@ -135,12 +145,11 @@ class FileHandlingMixin:
         return self.save_to(self.doc.path)
 
     def ask_save_as(self) -> bool:
-        start = str(self.doc.path) if self.doc.path else str(Path(self._last_dir())
-                                                             / "system.json")
-        path, _ = QFileDialog.getSaveFileName(self, self.tr("Save as"), start, FILE_FILTERS)
+        start = str(self.doc.path) if self.doc.path else str(Path(last_dir()) / "system.json")
+        path, _ = QFileDialog.getSaveFileName(self.parent, _t("Save as"), start, FILE_FILTERS)
         if not path:
             return False
-        self._remember_dir(path)
+        remember_dir(path)
         return self.save_to(path)
 
     def save_to(self, path: str | Path) -> bool:
@@ -152,11 +161,11 @@ class FileHandlingMixin:
             else:
                 files.save_system(self.doc.system, path, self.doc.positions)
         except (PdcpError, OSError, ValueError) as err:
-            self.error_box(self.tr("Cannot save"), f"{path}: {err}")
+            self.status.error(_t("Cannot save"), f"{path}: {err}")
             return False
         self.doc.kind = "config" if files.is_config_path(path) else "system"
         self.doc.mark_saved(path)
-        self.show_message(self.tr("Saved {path}").format(path=path))
+        self.status.say(_t("Saved {path}").format(path=path))
         return True
 
     def maybe_save(self) -> bool:
@@ -164,24 +173,7 @@ class FileHandlingMixin:
         self.doc.remember_layout()  # a live view's card positions: kept, never asked about
         if not self.doc.is_dirty:
             return True
-        answer = self.ask_save_changes()
+        answer = self._ask_save_changes()
         if answer == QMessageBox.StandardButton.Save:
             return self.save()
         return answer == QMessageBox.StandardButton.Discard
-
-    def ask_save_changes(self) -> QMessageBox.StandardButton:
-        """Save, Discard or Cancel (tests replace this method)."""
-        SB = QMessageBox.StandardButton
-        return QMessageBox.question(
-            self,
-            self.tr("Unsaved changes"),
-            self.tr("Save the changes to {title}?").format(title=self.doc.title),
-            SB.Save | SB.Discard | SB.Cancel,
-            SB.Save,
-        )
-
-    def _last_dir(self) -> str:
-        return str(QSettings().value("files/last_dir", str(Path.home())))
-
-    def _remember_dir(self, path: str) -> None:
-        QSettings().setValue("files/last_dir", str(Path(path).parent))

@@ -3,70 +3,81 @@
 Everything shown follows one :class:`Document`; menus turn into undo commands, plans or
 session calls. The window never blocks on the bus: connecting, refreshing and applying
 run on workers (:mod:`pdcp_studio.app.live.live_bus`), with progress in the status bar.
-Widgets of the live bus (monitor, live plot, simulator panel, compare and write dialogs)
-come from their own modules; the few that a build may lack are imported defensively.
 
-This module builds the window (docks, status bar, signal wiring) and follows the document
-from loading to closing; the rest of :class:`MainWindow` comes from mixins, one job each:
-:mod:`window_menus` (actions, menus, toolbar), :mod:`window_files` (open, save),
-:mod:`window_export` (PNG/SVG, report), :mod:`window_bus` (live-bus docks and commands),
-:mod:`window_recovery` (autosave, crash recovery), :mod:`window_transactions` (pending
-changes, Write to prosthesis, fitting history); shared names are in
-:mod:`window_support`.
+The window is composed, not inherited: it builds its docks and status bar, then hands
+each controller what that one needs (the document, the live connection, the status line,
+itself as the parent of dialogs, a few callables) — :class:`FileController` (open, save),
+:class:`GraphExport` (PNG/SVG, report), :class:`BusCommands` and :class:`BusDocks` (the
+live bus), :class:`Transactions` and :class:`TransactionFlow` (pending changes, Write to
+prosthesis, fitting history), :class:`PolicyController`, :class:`RecoveryController`,
+:class:`StartPage` and :class:`Desktop`. Its actions, menus and toolbar are built from
+one table (:mod:`.actions`). The methods below that only pass a call on keep the window's
+long-standing face for scripts, dialogs and tests.
 """
 
 from __future__ import annotations
 
 import gc
-import logging
+from collections.abc import Callable
+from functools import partial
+from pathlib import Path
 from typing import Any
 
 from PySide6.QtCore import Qt, QTimer, Signal
-from PySide6.QtGui import QCloseEvent, QShowEvent
-from PySide6.QtWidgets import (
-    QDockWidget,
-    QLabel,
-    QMainWindow,
-    QMessageBox,
-    QProgressBar,
-    QWidget,
-)
+from PySide6.QtGui import QCloseEvent, QImage, QShowEvent
+from PySide6.QtWidgets import QDockWidget, QLabel, QMainWindow, QMessageBox, QWidget
 
+from pdcp_studio.app.docks.history_panel import HistoryPanel
 from pdcp_studio.app.docks.inspector import Inspector
-from pdcp_studio.app.docks.plan_panel import PlanPanel
+from pdcp_studio.app.docks.pending_panel import PendingPanel
+from pdcp_studio.app.docks.plan_panel import OPERATIONS, PlanPanel
 from pdcp_studio.app.docks.tree_panel import DeviceTree
 from pdcp_studio.app.documents.document import Document
+from pdcp_studio.app.documents.files import Opened
 from pdcp_studio.app.graph.scene import BusScene
 from pdcp_studio.app.graph.view import GraphView
 from pdcp_studio.app.gui_gc import collect_on_gui_thread
-from pdcp_studio.app.live.live_bus import OFFLINE, LiveController
-from pdcp_studio.app.window import start_view
-from pdcp_studio.app.window.bus import BusMixin
-from pdcp_studio.app.window.export import ExportMixin
-from pdcp_studio.app.window.files import FileHandlingMixin
-from pdcp_studio.app.window.menus import MenusMixin
-from pdcp_studio.app.window.policy import PolicyMixin
-from pdcp_studio.app.window.recovery import RecoveryMixin
-from pdcp_studio.app.window.support import (
-    DEFAULT_BUS,
-    FILE_FILTERS,
-    OFFLINE_SYSTEM,
+from pdcp_studio.app.live.live_bus import LiveController
+from pdcp_studio.app.window import questions
+from pdcp_studio.app.window.actions import LIVE, TASKS, WindowActions
+from pdcp_studio.app.window.bus import BusCommands
+from pdcp_studio.app.window.bus_docks import BusDocks
+from pdcp_studio.app.window.desktop import (
+    Desktop,
+    open_manual_here,
+    show_about,
+    show_about_qt,
+    steady_toolbar,
 )
-from pdcp_studio.app.window.transactions import TransactionsMixin
+from pdcp_studio.app.window.dock_area import add_dock
+from pdcp_studio.app.window.edit_commands import EditCommands
+from pdcp_studio.app.window.export import GraphExport
+from pdcp_studio.app.window.files import FileController, last_dir
+from pdcp_studio.app.window.mode_line import ModeLine, window_title
+from pdcp_studio.app.window.policy import PolicyController
+from pdcp_studio.app.window.recovery import RecoveryController
+from pdcp_studio.app.window.start_view import StartOffers, StartPage, StartView
+from pdcp_studio.app.window.status import StatusLine
+from pdcp_studio.app.window.support import DEFAULT_BUS, FILE_FILTERS, OFFLINE_SYSTEM
+from pdcp_studio.app.window.transaction_flow import TransactionFlow
+from pdcp_studio.app.window.transactions import Transactions
 from pdcp_studio.model.system import System
 
 __all__ = ["DEFAULT_BUS", "FILE_FILTERS", "OFFLINE_SYSTEM", "MainWindow",
            "start_default"]
 
-log = logging.getLogger(__name__)
 
-
-class MainWindow(MenusMixin, FileHandlingMixin, ExportMixin, BusMixin, RecoveryMixin,
-                 TransactionsMixin, PolicyMixin, QMainWindow):
+class MainWindow(QMainWindow):
     """PDCP Studio's window on one document."""
 
     #: The first system is on screen and laid out (a file, a bus, or the offline fallback).
     ready = Signal()
+    #: A scripted run: errors go to the status bar only, nothing is asked.
+    quiet = False
+    #: ``ask_leave_bus`` answers.
+    LEAVE_COMPARE = questions.LEAVE_COMPARE
+    LEAVE_DISCONNECT = questions.LEAVE_DISCONNECT
+    LEAVE_CANCEL = questions.LEAVE_CANCEL
 
     def __init__(self, doc: Document | None = None, parent: QWidget | None = None, *,
                  recovery: Any = None) -> None:
@@ -79,54 +90,68 @@ class MainWindow(MenusMixin, FileHandlingMixin, ExportMixin, BusMixin, RecoveryM
         self.scene = BusScene(self.doc, self)
         self.view = GraphView(self.scene, self)
         self.setCentralWidget(self.view)
-        start_view.install(self)  # the start page shares the central area (app/start_view)
         self.live = LiveController(self.doc, self)
         self.live.on_data = self.scene.note_data
         self.live.layout_shape = lambda: self.scene.layout_aspect
         self._is_ready = False
-        self._leaf_docks: dict[str, QDockWidget] = {}
+        self.recovery = recovery
+        self.status_line = StatusLine(lambda text, ms: self.show_message(text, ms), self,
+                                      lambda: bool(self.quiet))
+        self.start_page = StartPage(self, self.view, StartOffers(
+            open_task=self.open_task, ask_connect=lambda: self.ask_connect(),
+            ask_open=lambda: self.files.ask_open(), try_simulated=self._try_simulated,
+            open_recent=lambda path: self.maybe_save() and self.open_path(path),
+            recent_paths=lambda: self.recent_files.paths()))
         self._build_docks()
         self._build_status()
+        self._build_controllers()
         self._build_actions()
-        self._build_menus()
-        self._build_transactions()
-        self._build_policy()
+        self.policy = PolicyController(self.doc, self.live, self.policy_label,
+                                       self.action_set["autoconfigure"],
+                                       lambda change, title: bool(self.flow.run(change, title)))
+        self.bus_docks = BusDocks(
+            self, self.doc, self.live, self.scene, self.status_line,
+            plan_dock=self.plan_dock, inspector_dock=self.inspector_dock,
+            view_menu=self.view_menu, is_ready=lambda: self._is_ready, ready=self.ready,
+            scan_finished=lambda system: self._scan_finished(system))
         self._connect()
         self._update_title()
-        self.recovery = recovery
-        self.autosaver: Any = None
-        if recovery is not None:
-            self._start_autosave(recovery)
-        from pdcp_studio.app.window.desktop import install_desktop
-
-        install_desktop(self)  # recent files, drops, Help, shortcuts, accessible names
+        self.crash_recovery = RecoveryController(self.doc, recovery, self.status_line, self,
+                                                 self._loaded)
+        self.desktop = Desktop(
+            self, self.status_line, file_menu=self.action_set.menus["file"],
+            before=self.act_save, monitor_dock=lambda: self.bus_docks.monitor_dock(),
+            maybe_save=lambda: self.maybe_save(), open_path=lambda p: self.open_path(p),
+            path_changed=self.doc.pathChanged, is_ready=lambda: self._is_ready,
+            ready=self.ready, bridge_ready=self.live.bridgeReady, graph=self.view)
         from pdcp_studio.app.widgets.combo_popups import install as fit_combo_popups
 
         fit_combo_popups()  # dropdown entries shown whole, never cut in the middle
 
     # -- construction -----------------------------------------------------------------
-    def _dock(self, title: str, name: str, widget: QWidget,
-              area: Qt.DockWidgetArea) -> QDockWidget:
-        dock = QDockWidget(title, self)
-        dock.setObjectName(name)
-        dock.setWidget(widget)
-        self.addDockWidget(area, dock)
-        return dock
-
     def _build_docks(self) -> None:
         # Side docks run the full height; the plan sits under the graph it explains.
         self.setCorner(Qt.Corner.BottomLeftCorner, Qt.DockWidgetArea.LeftDockWidgetArea)
         self.setCorner(Qt.Corner.BottomRightCorner, Qt.DockWidgetArea.RightDockWidgetArea)
+        bottom = Qt.DockWidgetArea.BottomDockWidgetArea
         self.tree = DeviceTree(self.doc)
         self.inspector = Inspector(self.doc)
         self.plan_panel = PlanPanel(self.doc)
-        self.tree_dock = self._dock(self.tr("Devices"), "DevicesDock", self.tree,
+        self.tree_dock = add_dock(self, self.tr("Devices"), "DevicesDock", self.tree,
                                     Qt.DockWidgetArea.LeftDockWidgetArea)
-        self.inspector_dock = self._dock(self.tr("Inspector"), "InspectorDock", self.inspector,
+        self.inspector_dock = add_dock(self, self.tr("Inspector"), "InspectorDock", self.inspector,
                                          Qt.DockWidgetArea.RightDockWidgetArea)
-        self.plan_dock = self._dock(self.tr("Plan"), "PlanDock", self.plan_panel,
-                                    Qt.DockWidgetArea.BottomDockWidgetArea)
+        self.plan_dock = add_dock(self, self.tr("Plan"), "PlanDock", self.plan_panel, bottom)
         self._docks_sized = False
+        self.pending_panel = PendingPanel(self.doc)
+        self.pending_dock = add_dock(self, self.tr("Pending changes"), "PendingDock",
+                                       self.pending_panel, bottom)
+        self.tabifyDockWidget(self.plan_dock, self.pending_dock)
+        self.history_panel = HistoryPanel(self)
+        self.history_dock = add_dock(self, self.tr("Fitting history"), "HistoryDock",
+                                       self.history_panel, bottom)
+        self.tabifyDockWidget(self.plan_dock, self.history_dock)
+        self.plan_dock.raise_()
 
     def showEvent(self, event: QShowEvent) -> None:
         """Size the docks once the window has its real size (earlier sizes do not stick)."""
@@ -138,103 +163,163 @@ class MainWindow(MenusMixin, FileHandlingMixin, ExportMixin, BusMixin, RecoveryM
             self.resizeDocks([self.plan_dock], [220], Qt.Orientation.Vertical)
 
     def _build_status(self) -> None:
-        bar = self.statusBar()
-        self.mode_label = QLabel(self.tr("Offline"))
-        self.mode_label.setContentsMargins(6, 0, 6, 0)
-        self.progress = QProgressBar()
-        self.progress.setMaximumWidth(180)
-        self.progress.setTextVisible(False)
-        self.progress.hide()
-        self._progress_hide = QTimer(self)
-        self._progress_hide.setSingleShot(True)
-        self._progress_hide.setInterval(700)
-        self._progress_hide.timeout.connect(self.progress.hide)
-        bar.addPermanentWidget(self.progress)
-        bar.addPermanentWidget(self.mode_label)
+        self.mode_line = ModeLine(self.statusBar(), self.live)
+        self.mode_label, self.progress = self.mode_line.label, self.mode_line.progress
+        self.policy_label = QLabel()
+        self.statusBar().addPermanentWidget(self.policy_label)
+
+    def _build_controllers(self) -> None:
+        """The controllers, each given what it needs (late-bound: tests answer for it)."""
+        status = self.status_line
+        self.flow = TransactionFlow(
+            self.doc, self.live, status, self,
+            reread_configuration=lambda: self.bus.reread_configuration(),
+            patient_reference=lambda: self.transactions.patient_reference())
+        self.files = FileController(
+            self.doc, self.live, status, self, loaded=self._loaded,
+            is_ready=lambda: self._is_ready, open_config=self._open_config,
+            compare=lambda path: self.bus.compare_with_prosthesis(path),
+            ask_leave_bus=lambda path: self.ask_leave_bus(path),
+            ask_save_changes=lambda: self.ask_save_changes())
+        self.bus = BusCommands(
+            self.doc, self.live, status, self, maybe_save=lambda: self.maybe_save(),
+            connect_bus=lambda url: self.connect_bus(url),
+            offer_arbitrator=self._offer_arbitrator,
+            history_changed=lambda: self.history_panel.refresh())
+        self.editing = EditCommands(self.doc, self, self.scene, self.view, self.plan_dock,
+                                    self.plan_panel, self.tree, self.inspector)
+        self.export = GraphExport(self.scene, self.doc, status, self,
+                                  lambda path: self.write_fitting_report(path))
+
+    def _build_actions(self) -> None:
+        """Actions, menus and the toolbar from the one table (:mod:`.actions`)."""
+        self.action_set = actions = WindowActions(self, self._commands(), self.doc.undo_stack, {
+            "dock_devices": self.tree_dock.toggleViewAction(),
+            "dock_inspector": self.inspector_dock.toggleViewAction(),
+            "dock_plan": self.plan_dock.toggleViewAction(),
+            "dock_pending": self.pending_dock.toggleViewAction(),
+            "history": self.history_dock.toggleViewAction()})
+        self.transactions = Transactions(
+            self.doc, self.live, self.status_line, self.flow, self.pending_panel,
+            self.pending_dock, self.history_panel,
+            write_actions=(actions["write_pending"], actions["discard_pending"]),
+            ask_unwritten=lambda n: self.ask_unwritten(n), quiet=lambda: bool(self.quiet),
+            graph_image=lambda: self.graph_image(), is_ready=lambda: self._is_ready,
+            ready=self.ready)
+        (self.act_open, self.act_save, self.act_save_as, self.act_export_png,
+         self.act_export_svg, self.act_report, self.act_quit, self.act_undo, self.act_redo,
+         self.act_delete, self.act_profiles, self.act_find, self.act_fit, self.act_zoom_in,
+         self.act_zoom_out, self.act_arrange, self.act_legend, self.act_history,
+         self.act_write_pending, self.act_discard_pending, self.act_connect,
+         self.act_connect_sim, self.act_disconnect, self.act_scan, self.act_read_config,
+         self.act_cancel, self.act_compare, self.act_write, self.act_autoconfigure,
+         self.act_manual, self.act_about, self.act_about_qt) = (actions[key] for key in (
+             "open", "save", "save_as", "export_png", "export_svg", "report", "quit", "undo",
+             "redo", "delete", "profiles", "find", "fit", "zoom_in", "zoom_out", "arrange",
+             "legend", "history", "write_pending", "discard_pending", "connect",
+             "connect_sim", "disconnect", "scan", "read_config", "cancel", "compare", "write",
+             "autoconfigure", "manual", "about", "about_qt"))
+        self.plan_actions = actions.with_prefix("plan_")
+        self.task_actions = actions.with_prefix("task_")
+        self.act_legend.setChecked(self.view.legend_visible())
+        self.view.legendVisibleChanged.connect(self.act_legend.setChecked)
+        self.act_manual.setShortcutContext(Qt.ShortcutContext.ApplicationShortcut)
+        self.addAction(self.act_manual)
+        menus = actions.build_menus(self)
+        self.view_menu, self.tasks_menu = menus["view"], menus["tasks"]
+        self.bus_menu, self.help_menu = menus["bus"], menus["help"]
+        toolbar = actions.build_toolbar(self)
+        self.toolbars = [toolbar]
+        steady = steady_toolbar(self, toolbar, self.act_undo, self.act_redo)
+        self.toolbar_undo, self.toolbar_redo = steady["undo"], steady["redo"]
+
+    def _commands(self) -> dict[str, Callable[[], object]]:
+        """What each action of the table does, by its id."""
+        commands: dict[str, Callable[[], object]] = {
+            "open": lambda: self.files.ask_open(),
+            "save": lambda: self.save(),
+            "save_as": lambda: self.files.ask_save_as(),
+            "export_png": lambda: self.export.ask_export("png"),
+            "export_svg": lambda: self.export.ask_export("svg"),
+            "report": lambda: self.export.ask_report(),
+            "quit": self.close,
+            "undo": lambda: self.flow.undo(),
+            "redo": lambda: self.flow.redo(),
+            "delete": self.scene.delete_selected,
+            "profiles": lambda: self.editing.show_profile_tree(),
+            "find": lambda: self.editing.ask_go_to_device(),
+            "fit": self.view.fit_all,
+            "zoom_in": lambda: self.view.zoom_by(1.25),
+            "zoom_out": lambda: self.view.zoom_by(0.8),
+            "arrange": lambda: self.editing.arrange(),
+            "legend": lambda: self.view.set_legend_visible(self.act_legend.isChecked()),
+            "write_pending": lambda: self.write_pending(),
+            "discard_pending": lambda: self.transactions.discard_pending(),
+            "connect": lambda: self.ask_connect(),
+            "connect_sim": self._try_simulated,
+            "disconnect": lambda: self.transactions.disconnect_asking(),
+            "scan": lambda: self.scan_bus(),
+            "read_config": lambda: self.read_configuration(),
+            "cancel": lambda: self.bus.cancel_bus_work(),
+            "compare": lambda: self.bus.show_compare(),
+            "write": lambda: self.ask_write_configuration(),
+            "autoconfigure": lambda: self.policy.set_autoconfigure(
+                self.act_autoconfigure.isChecked()),
+            "manual": lambda: open_manual_here(self),
+            "about": lambda: show_about(self),
+            "about_qt": lambda: show_about_qt(self),
+        }
+        for mode, _text in OPERATIONS:
+            commands[f"plan_{mode}"] = partial(self.editing.preview_plan, mode)
+        for task in TASKS:
+            commands[f"task_{task.id}"] = partial(self.open_task, task.id)
+        return commands
 
     def _connect(self) -> None:
-        doc = self.doc
+        from pdcp_studio.app.dialogs.arbitrator_found import stop_watching
+
+        doc, live = self.doc, self.live
         doc.dirtyChanged.connect(lambda _d: self._update_title())
         doc.pathChanged.connect(lambda _p: self._update_title())
         doc.sessionChanged.connect(lambda _s: self._update_mode())
         doc.selectionChanged.connect(self._reveal)
-        for source in (self.scene, self.inspector, self.plan_panel, self.live):
+        for source in (self.scene, self.inspector, self.plan_panel, live):
             source.statusMessage.connect(self.show_message)
-        self.live.progress.connect(self._on_progress)
-        self.live.busyChanged.connect(self._on_busy)
-        self.live.connected.connect(self._on_connected)
-        self.live.failed.connect(self._on_connect_failed)
-        self.live.disconnected.connect(self._update_mode)
-        self.live.disconnected.connect(self._detach_bus_docks)
-        self.live.stateChanged.connect(lambda _s: self._update_mode())
-        self.live.bridgeReady.connect(self._attach_bus_docks_safely)
-        self.live.sessionStarted.connect(self._session_started)
-        self.live.snapshotTaken.connect(self._bus_seen)
+        live.progress.connect(self.mode_line.on_progress)
+        live.busyChanged.connect(self.mode_line.on_busy)
+        live.connected.connect(self._on_connected)
+        live.failed.connect(self._on_connect_failed)
+        live.disconnected.connect(self._update_mode)
+        live.disconnected.connect(self.bus_docks.detach)
+        live.stateChanged.connect(lambda _s: self._update_mode())
+        live.bridgeReady.connect(self.bus_docks.attach_safely)
+        # A new session: a passive monitor of another bus gives way to it, the bus panels
+        # start afresh on it, and plans get its stored configuration.
+        live.sessionStarted.connect(lambda _b: stop_watching(self))
+        live.sessionStarted.connect(self.bus_docks.session_started)
+        live.sessionStarted.connect(self.bus.session_started)
+        live.snapshotTaken.connect(self.bus_docks.bus_seen)
         self._update_mode()
 
     # -- title, status ----------------------------------------------------------------
     def _update_title(self) -> None:
-        """The document, then the connection (the project and its target), then the app."""
-        state = self.live.state_text()
-        if self.doc.path is None and self.doc.session is not None:  # the bus is the document
-            self.setWindowTitle(
-                self.tr("{v0}{v1}[*] — PDCP Studio").format(v0=state[:1].upper(), v1=state[1:])
-            )
-        else:
-            where = "" if self.live.state == OFFLINE else f" — {state}"
-            self.setWindowTitle(
-                self.tr("{title}[*]{where} — PDCP Studio").format(title=self.doc.title, where=where)
-            )
+        self.setWindowTitle(window_title(self.live, self.doc.title,
+                                         self.doc.path is None and self.doc.session is not None))
         self.setWindowModified(self.doc.is_dirty)
 
     def _update_mode(self) -> None:
-        from pdcp_studio.app.live import live_bus as live_mod
-
         live = self.live.is_live and self.doc.session is self.live.bridge
-        state = self.live.state
-        if state == live_mod.CONNECTING:
-            text = (self.tr("● Live on {0} — connecting to {1}…") if live else
-                    self.tr("Connecting to {1}…")).format(self.live.url,
-                                                          self.live.connecting_url)
-        elif state == live_mod.LIVE and live:
-            text = self.tr("● Live on {0}").format(self.live.url)
-        elif state == live_mod.DISCONNECTED:
-            text = self.tr("Disconnected from {0}").format(self.live.last_url)
-        else:
-            text = self.tr("Offline")
-        self.mode_label.setText(text)
-        colour = {live_mod.LIVE: "color: #0b7a4b; font-weight: bold;",
-                  live_mod.CONNECTING: "color: #8a5a00;",
-                  live_mod.DISCONNECTED: "color: #b91c1c;"}.get(state, "color: #66707b;")
-        self.mode_label.setStyleSheet(colour)
-        self.mode_label.setToolTip(self.tr("The prosthesis this window is connected to "
-                                           "(the document is the project, the prosthesis "
-                                           "the target)"))
-        for a in (self.act_disconnect, self.act_scan, self.act_write, self.act_read_config):
-            a.setEnabled(live)
+        self.mode_line.show_state(live)
+        self.action_set.set_enabled(LIVE, live)
         self.plan_panel._update_buttons()
         self._update_title()
 
     def show_message(self, text: str, timeout_ms: int = 8000) -> None:
         self.statusBar().showMessage(text, timeout_ms)
 
-    def _on_progress(self, done: int, total: int, text: str) -> None:
-        if self.progress.maximum() != max(0, total):
-            self.progress.setMaximum(max(0, total))
-        self.progress.setValue(min(done, total) if total else 0)
-        if text and text != self.statusBar().currentMessage():
-            self.statusBar().showMessage(text, 4000)
-
-    def _on_busy(self, busy: bool) -> None:
-        # Hidden only after a quiet spell: back-to-back jobs (scans, refreshes) must not
-        # re-lay-out and repaint the status bar on every start and end.
-        if busy:
-            self._progress_hide.stop()
-            if self.progress.isHidden():
-                self.progress.setRange(0, 0)
-                self.progress.show()
-        else:
-            self._progress_hide.start()
+    def error_box(self, title: str, text: str) -> None:
+        """Tell the user; in the status bar too, so scripted runs leave a trace."""
+        self.status_line.error(title, text)
 
     def _reveal(self, obj: object) -> None:
         item = self.scene.item_for(obj)
@@ -244,13 +329,13 @@ class MainWindow(MenusMixin, FileHandlingMixin, ExportMixin, BusMixin, RecoveryM
     # -- loading ----------------------------------------------------------------------
     def _loaded(self) -> None:
         """The first system is on screen: fit it, then say so once."""
-        start_view.leave_start(self)
+        self.start_page.leave()
         self.view.fit_all()
         self._mark_ready()
 
     def show_start(self) -> None:
         """Nothing to show (no file, no bus): the start page instead of an empty graph."""
-        start_view.show_start(self)
+        self.start_page.show()
         self._mark_ready()
 
     def _mark_ready(self) -> None:
@@ -271,6 +356,10 @@ class MainWindow(MenusMixin, FileHandlingMixin, ExportMixin, BusMixin, RecoveryM
         (``opening``: the session already being opened, see ``LiveController``)."""
         self.live.connect_bus(url, opening)
 
+    def _try_simulated(self) -> None:
+        if self.maybe_save():
+            self.connect_bus(DEFAULT_BUS)
+
     def _on_connected(self, url: str) -> None:
         self._update_mode()
         self._loaded()
@@ -279,7 +368,7 @@ class MainWindow(MenusMixin, FileHandlingMixin, ExportMixin, BusMixin, RecoveryM
         if not self._is_ready and url == DEFAULT_BUS:
             self.open_offline_default(f"the simulated prosthesis did not start ({message})")
             return
-        if self.offer_other_arbitrator(url, message):
+        if self.bus.offer_other_arbitrator(url, message):
             self._update_mode()
             if not self._is_ready:
                 self._loaded()
@@ -287,7 +376,7 @@ class MainWindow(MenusMixin, FileHandlingMixin, ExportMixin, BusMixin, RecoveryM
         where = "" if message.startswith(url) else f"{url}: "
         self.error_box(self.tr("Cannot connect"), f"{where}{message}")
         self._update_mode()
-        if not self._is_ready and getattr(self, "quiet", False):
+        if not self._is_ready and self.quiet:
             self._loaded()  # a scripted run exits on the failure: nothing to offer
         elif not self._is_ready:
             self.show_start()  # nothing on screen: what the user can do instead
@@ -311,88 +400,170 @@ class MainWindow(MenusMixin, FileHandlingMixin, ExportMixin, BusMixin, RecoveryM
             0,
         )
 
-    def error_box(self, title: str, text: str) -> None:
-        """Tell the user; in the status bar too, so scripted runs leave a trace."""
-        log.warning("%s: %s", title, text)
-        self.show_message(f"{title}: {text}", 0)
-        if not getattr(self, "quiet", False):
-            QMessageBox.warning(self, title, text)
+    def _offer_arbitrator(self, url: str, message: str, later: bool) -> None:
+        from pdcp_studio.app.dialogs import arbitrator_found
+
+        arbitrator_found.offer(self, url, message, later=later)
+
+    def _open_config(self, path: Path, collection: object) -> object:
+        from pdcp_studio.app.documents.config_view import open_config_window
+
+        return open_config_window(self, path, collection)
 
     # -- editing, plans ----------------------------------------------------------------
-    def arrange(self) -> None:
-        from pdcp_studio.app.documents import commands
-
-        new = self.scene.relayout()
-        moves = {k: (self.doc.positions[k], p) for k, p in new.items()
-                 if k in self.doc.positions and self.doc.positions[k] != p}
-        if moves:
-            self.doc.undo_stack.push(commands.MoveDevicesCommand(self.doc, moves))
-        self.view.fit_all()
-
     def preview_plan(self, mode: str) -> Any:
-        self.plan_dock.show()
-        self.plan_dock.raise_()
-        plan = self.plan_panel.preview(mode)
-        if plan is not None:
-            # once the rows have their heights (never after the table is gone)
-            QTimer.singleShot(0, self.plan_panel.actions_view, self._fit_plan_dock)
-        return plan
-
-    def _fit_plan_dock(self, tries: int = 4, asked: int = 0) -> None:
-        """Grow the plan dock so an ordinary plan's rows all show (never past half the
-        window, never shrinking what the user made larger). The dock area's size includes
-        its tab bar and the rows wrap anew at the new width, so it looks again until the
-        rows fit."""
-        view = self.plan_panel.actions_view
-        view.resizeRowsToContents()
-        missing = view.verticalHeader().length() - view.viewport().height()
-        if missing <= 0 or self.plan_dock.isFloating() or not self.plan_dock.isVisible():
-            return
-        height = min(max(asked, self.plan_dock.height()) + missing + 2, self.height() // 2)
-        if height > max(asked, self.plan_dock.height()):
-            self.resizeDocks([self.plan_dock], [height], Qt.Orientation.Vertical)
-            if tries > 1:
-                QTimer.singleShot(30, view, lambda: self._fit_plan_dock(tries - 1, height))
+        return self.editing.preview_plan(mode)
 
     def show_profile_tree(self) -> None:
-        from pdcp_studio.app.dialogs.profile_tree_editor import ProfileTreeDialog
+        self.editing.show_profile_tree()
 
-        dialog = ProfileTreeDialog(parent=self, trees=self.doc.trees)  # edited in place
-        primary = self.doc.tree.primary  # the tree naming most of this system
-        dialog.tabs.setCurrentIndex(self.doc.trees.index(primary)
-                                    if primary in self.doc.trees else 0)
-        dialog.treesChanged.connect(self._tree_changed)
-        dialog.show()
-        self.profile_tree_dialog = dialog
+    @property
+    def profile_tree_dialog(self) -> Any:
+        return self.editing.profile_tree_dialog
 
-    def _tree_changed(self, trees: Any) -> None:
-        self.doc.set_trees(trees)
-        self.scene.update()
-        self.tree.rebuild()
-        self.inspector.show_object(self.doc.selection)
+    @property
+    def device_finder(self) -> Any:
+        return self.editing.device_finder
 
+    def open_task(self, task: str) -> Any:
+        """Open a guided task (a wizard beside the window)."""
+        from pdcp_studio.app.wizards import open_wizard
 
-    def about(self) -> None:
-        from pdcp_studio import __version__
+        return open_wizard(self, task)
 
-        QMessageBox.about(self, self.tr("About PDCP Studio"),
-                          self.tr("PDCP Studio {version__}\nSee and configure the PDCP bus "
-                                  "inside a powered prosthesis.").format(version__=__version__))
+    # -- the window's questions (tests answer them in its place) -----------------------
+    def ask_save_changes(self) -> QMessageBox.StandardButton:
+        """Save, Discard or Cancel."""
+        return questions.ask_save_changes(self, self.doc.title)
+
+    def ask_leave_bus(self, path: Path | None) -> str:
+        """Compare, disconnect or cancel."""
+        return questions.ask_leave_bus(self, self.live.url, path)
+
+    def ask_unwritten(self, n: int) -> bool:
+        """Leave with ``n`` pending changes not written?"""
+        return questions.ask_unwritten(self, n)
+
+    # -- the controllers' calls, as the window always offered them ---------------------
+    def open_path(self, path: str | Path) -> bool:
+        return self.files.open_path(path)
+
+    def show_opened(self, opened: Opened, path: Path | None) -> None:
+        self.files.show_opened(opened, path)
+
+    def save(self) -> bool:
+        return self.files.save()
+
+    def save_to(self, path: str | Path) -> bool:
+        return self.files.save_to(path)
+
+    def maybe_save(self) -> bool:
+        return self.files.maybe_save()
+
+    def _last_dir(self) -> str:
+        return last_dir()
+
+    def export_rect(self) -> Any:
+        return self.export.export_rect()
+
+    def graph_image(self, scale: float = 2.0) -> QImage:
+        return self.export.graph_image(scale)
+
+    def export_graph(self, path: str | Path) -> None:
+        self.export.export_graph(path)
+
+    def ask_connect(self) -> None:
+        self.bus.ask_connect()
+
+    def scan_bus(self) -> Any:
+        return self.bus.scan_bus()
+
+    def _scan_finished(self, system: Any) -> None:
+        self.bus.scan_finished(system)
+
+    def reread_configuration(self) -> None:
+        self.bus.reread_configuration()
+
+    def read_configuration(self) -> None:
+        self.bus.read_configuration()
+
+    @property
+    def compare_dialog(self) -> Any:
+        return self.bus.compare_dialog
+
+    def ask_write_configuration(self) -> None:
+        self.bus.ask_write_configuration()
+
+    def _make_trace_docks(self) -> None:
+        self.bus_docks.make_trace_docks()
+
+    @property
+    def _leaf_docks(self) -> dict[str, QDockWidget]:
+        return self.bus_docks.leaf_docks
+
+    def write_pending(self) -> bool:
+        return self.transactions.write_pending()
+
+    def fitting_info(self, entry: dict[str, Any] | None = None) -> Any:
+        return self.transactions.fitting_info(entry)
+
+    def write_fitting_report(self, path: Any, entry: dict[str, Any] | None = None) -> bool:
+        return self.transactions.write_fitting_report(path, entry)
+
+    def patient_reference(self) -> str:
+        return self.transactions.patient_reference()
+
+    def _load_patient_reference(self) -> None:
+        self.transactions.load_patient_reference()
+
+    def offer_recovery(self) -> bool:
+        return self.crash_recovery.offer_recovery()
+
+    def restore(self, entry: Any) -> bool:
+        return self.crash_recovery.restore(entry)
+
+    @property
+    def autosaver(self) -> Any:
+        return self.crash_recovery.autosaver
+
+    @property
+    def central(self) -> QWidget:
+        return self.start_page.central
+
+    @property
+    def start_view(self) -> StartView | None:
+        return self.start_page.start_view
+
+    @property
+    def _start_put_away(self) -> list[QDockWidget]:
+        return self.start_page.put_away
+
+    @property
+    def recent_files(self) -> Any:
+        return self.desktop.recent_files
+
+    @property
+    def recent_menu(self) -> Any:
+        return self.desktop.recent_menu
+
+    @property
+    def _desktop_filter(self) -> Any:
+        return self.desktop.filter
 
     # -- closing ----------------------------------------------------------------------
     def closeEvent(self, event: QCloseEvent) -> None:
-        if not self.confirm_unwritten() or not self.maybe_save():
+        if not self.transactions.confirm_unwritten() or not self.maybe_save():
             event.ignore()
             return
         self.live.disconnect_bus()
         from pdcp_studio.app.dialogs.arbitrator_found import stop_watching
 
         stop_watching(self)  # a listen-only monitor, if one runs
-        if self.autosaver is not None:
-            self.autosaver.clean()  # closed on purpose: nothing to recover next time
+        self.crash_recovery.clean()  # closed on purpose: nothing to recover next time
         event.accept()
 
 
 def start_default(window: MainWindow) -> None:
     """What bare ``pdcp-studio`` shows: the simulated prosthesis (offline if it fails)."""
     QTimer.singleShot(0, lambda: window.connect_bus(DEFAULT_BUS))
+

@@ -24,8 +24,8 @@ class RecentFiles:
     def _stored(self) -> list[str]:
         value = self.settings.value(KEY, [])
         if isinstance(value, str):  # QSettings gives a lone entry back as a string
-            value = [value]
-        return [str(v) for v in (value or [])]
+            return [value]
+        return [str(v) for v in value] if isinstance(value, list | tuple) else []
 
     def paths(self) -> list[Path]:
         """The recent files that still exist, newest first."""

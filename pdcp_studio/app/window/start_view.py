@@ -3,16 +3,17 @@
 An empty graph tells a prosthetist nothing; this page offers what they came to do — the
 guided tasks (New fitting, Replace a part, Restore a configuration), Connect…, Open…, the
 simulated prosthesis to practise on, and the recent files — each one click away. It sits
-in the window's central area beside the graph (:func:`install`) and gives way to the graph
+in the window's central area beside the graph (:class:`StartPage`) and gives way to the graph
 as soon as a system is on screen.
 """
 
 from __future__ import annotations
 
+from collections.abc import Callable
+from functools import partial
 from pathlib import Path
-from typing import Any
 
-from PySide6.QtCore import QT_TRANSLATE_NOOP, QEvent, QObject, Qt
+from PySide6.QtCore import QEvent, QObject, Qt
 from PySide6.QtWidgets import (
     QCommandLinkButton,
     QDockWidget,
@@ -20,6 +21,7 @@ from PySide6.QtWidgets import (
     QGridLayout,
     QHBoxLayout,
     QLabel,
+    QMainWindow,
     QScrollArea,
     QStackedWidget,
     QVBoxLayout,
@@ -27,21 +29,10 @@ from PySide6.QtWidgets import (
 )
 
 from pdcp_studio.app.i18n import translate
+from pdcp_studio.app.window.actions import TASKS
 
 _CTX = "StartView"
 
-#: The guided tasks as the page offers them: (task, title, what it does).
-TASKS = (
-    ("fitting", QT_TRANSLATE_NOOP("StartView", "New fitting"),
-     QT_TRANSLATE_NOOP("StartView", "Connect to a prosthesis, check it, link its parts and "
-                                    "store the result, step by step.")),
-    ("replace", QT_TRANSLATE_NOOP("StartView", "Replace a part"),
-     QT_TRANSLATE_NOOP("StartView", "Swap a part and link the new one in its place, with "
-                                    "how alike it is said in words.")),
-    ("restore", QT_TRANSLATE_NOOP("StartView", "Restore a configuration"),
-     QT_TRANSLATE_NOOP("StartView", "Put a configuration file or an earlier fitting back on "
-                                    "the prosthesis.")),
-)
 #: The page's widest column (px): lines a reader can follow on a wide screen.
 MAX_WIDTH = 980
 #: Recent files shown on the page (File → Open Recent has them all).
@@ -59,7 +50,8 @@ def _heading(text: str) -> QLabel:
     return label
 
 
-def _link(title: str, description: str, slot: Any) -> QCommandLinkButton:
+def _link(title: str, description: str,
+          slot: Callable[[], object]) -> QCommandLinkButton:
     button = QCommandLinkButton(title, description)
     button.clicked.connect(lambda _c=False: slot())
     return button
@@ -74,12 +66,27 @@ def folder_words(folder: Path) -> str:
     return str(Path("~") / inside)
 
 
-class StartView(QScrollArea):
-    """The page itself; ``window`` is the main window whose actions it offers."""
+class StartOffers:
+    """What the page's buttons do: the window's commands, handed in as callables."""
 
-    def __init__(self, window: Any) -> None:
+    def __init__(self, *, open_task: Callable[[str], object], ask_connect: Callable[[], object],
+                 ask_open: Callable[[], object], try_simulated: Callable[[], object],
+                 open_recent: Callable[[Path], object],
+                 recent_paths: Callable[[], list[Path]]) -> None:
+        self.open_task = open_task
+        self.ask_connect = ask_connect
+        self.ask_open = ask_open
+        self.try_simulated = try_simulated
+        self.open_recent = open_recent
+        self.recent_paths = recent_paths
+
+
+class StartView(QScrollArea):
+    """The page itself; ``offers`` says what its buttons do."""
+
+    def __init__(self, offers: StartOffers) -> None:
         super().__init__()
-        self.window_ = window
+        self.offers = offers
         self.setObjectName("StartView")
         self.setWidgetResizable(True)
         self.setFrameShape(QFrame.Shape.NoFrame)
@@ -110,9 +117,10 @@ class StartView(QScrollArea):
         tasks = QVBoxLayout()
         tasks.addWidget(_heading(_t("Guided tasks")))
         self.task_buttons: dict[str, QCommandLinkButton] = {}
-        for task, text, tip in TASKS:
-            button = _link(_t(text), _t(tip), lambda t=task: window.open_task(t))
-            self.task_buttons[task] = button
+        for task in TASKS:
+            button = _link(_t(task.title), _t(task.description),
+                           partial(offers.open_task, task.id))
+            self.task_buttons[task.id] = button
             tasks.addWidget(button)
         tasks.addStretch(1)
         direct = QVBoxLayout()
@@ -120,16 +128,16 @@ class StartView(QScrollArea):
         self.connect_button = _link(
             _t("Connect to a prosthesis…"),
             _t("Through a CAN adapter or the arbitrator's cable, to see it live."),
-            window.ask_connect)
+            offers.ask_connect)
         self.open_button = _link(
             _t("Open a file…"),
             _t("A saved prosthesis or a stored configuration, to look at or prepare."),
-            window.ask_open)
+            offers.ask_open)
         self.sim_button = _link(
             _t("Try the simulated prosthesis"),
             _t("A transradial prosthesis with a spare hand, to practise on without a "
                "patient."),
-            self._try_simulated)
+            offers.try_simulated)
         for button in (self.connect_button, self.open_button, self.sim_button):
             direct.addWidget(button)
         direct.addStretch(1)
@@ -148,95 +156,87 @@ class StartView(QScrollArea):
         self.setWidget(page)
         self.refresh()
 
-    def _try_simulated(self) -> None:
-        from pdcp_studio.app.window.support import DEFAULT_BUS
-
-        if self.window_.maybe_save():
-            self.window_.connect_bus(DEFAULT_BUS)
-
     def refresh(self) -> None:
         """Show the recent files as they are now (the list changes while the app runs)."""
         for button in self.recent_buttons:
             self.recent_box.removeWidget(button)
             button.deleteLater()
         self.recent_buttons = []
-        recent = getattr(self.window_, "recent_files", None)
-        paths = recent.paths()[:RECENT_SHOWN] if recent is not None else []
+        paths = self.offers.recent_paths()[:RECENT_SHOWN]
         for path in paths:
             button = _link(path.name, folder_words(path.parent),
-                           lambda p=path: self._open_recent(p))
+                           partial(self.offers.open_recent, path))
             button.setToolTip(str(path))
             button.setMaximumWidth(MAX_WIDTH // 2)  # a column like the tasks', not a bar
             self.recent_box.addWidget(button)
             self.recent_buttons.append(button)
         self.no_recent.setVisible(not paths)
 
-    def _open_recent(self, path: Path) -> None:
-        if self.window_.maybe_save():
-            self.window_.open_path(path)
 
+class StartPage(QObject):
+    """The start page's place in ``window``: the graph ``view`` in a stack (``central``)
+    with room for the page (``start_view``, made when first shown). While the page shows,
+    the docks (an empty device list, inspector and plan) are put away (``put_away``)."""
 
-class _DocksBack(QObject):
-    """On closing the window from the start page, show the docks the page put away before
-    the window's layout is saved (``remember_layout``'s filter runs after this one, as Qt
-    runs the filter installed last first), so the next session has them."""
+    def __init__(self, window: QMainWindow, view: QWidget, offers: StartOffers) -> None:
+        super().__init__(window)
+        self.host = window
+        self.view = view
+        self.offers = offers
+        self.central = QStackedWidget()
+        self.central.setObjectName("CentralStack")
+        taken = window.takeCentralWidget()
+        self.central.addWidget(taken if taken is not None else view)
+        window.setCentralWidget(self.central)
+        self.start_view: StartView | None = None
+        self.put_away: list[QDockWidget] = []
 
-    def eventFilter(self, obj: QObject, event: QEvent) -> bool:
+    def eventFilter(self, watched: QObject, event: QEvent) -> bool:
+        """On closing the window from the start page, show the docks the page put away
+        before the window's layout is saved (``remember_layout``'s filter runs after this
+        one, as Qt runs the filter installed last first), so the next session has them."""
         if event.type() == QEvent.Type.Close:
-            _docks_back(obj)
+            self._docks_back()
         return False
 
+    def _docks_back(self) -> None:
+        for dock in self.put_away:
+            dock.show()
+        self.put_away = []
 
-def install(window: Any) -> QStackedWidget:
-    """Put the window's graph view in a stack with room for the start page (made when
-    first shown); ``window.central`` is the stack."""
-    stack = QStackedWidget()
-    stack.setObjectName("CentralStack")
-    view = window.takeCentralWidget()
-    stack.addWidget(view)
-    window.setCentralWidget(stack)
-    window.central = stack
-    window.start_view = None
-    window._start_put_away = []
-    return stack
+    def show(self) -> StartView:
+        """Show the start page in the central area (refreshed), instead of an empty graph;
+        the docks are put away until a system shows."""
+        page = self.start_view
+        if page is None:
+            page = self.start_view = StartView(self.offers)
+            self.central.addWidget(page)
+            self.host.installEventFilter(self)
+        else:
+            page.refresh()
+        self.central.setCurrentWidget(page)
+        if not self.put_away:
+            docks = self.host.findChildren(
+                QDockWidget, options=Qt.FindChildOption.FindDirectChildrenOnly)
+            self.put_away = [d for d in docks if not d.isHidden()]
+            for dock in self.put_away:
+                dock.hide()
+        return page
 
+    def leave(self) -> None:
+        """Back to the graph (a system is on screen), with the docks the page put away."""
+        if self.start_view is not None:
+            self.central.setCurrentWidget(self.view)
+            self._docks_back()
 
-def _docks_back(window: Any) -> None:
-    for dock in window._start_put_away:
-        dock.show()
-    window._start_put_away = []
-
-
-def show_start(window: Any) -> StartView:
-    """Show the start page in the central area (refreshed), instead of an empty graph; the
-    docks (an empty device list, inspector and plan) are put away until a system shows."""
-    view = window.start_view
-    if view is None:
-        view = window.start_view = StartView(window)
-        window.central.addWidget(view)
-        window._start_docks_back = _DocksBack(window)
-        window.installEventFilter(window._start_docks_back)
-    else:
-        view.refresh()
-    window.central.setCurrentWidget(view)
-    if not window._start_put_away:
-        docks = window.findChildren(QDockWidget, options=Qt.FindChildOption.FindDirectChildrenOnly)
-        window._start_put_away = [d for d in docks if not d.isHidden()]
-        for dock in window._start_put_away:
-            dock.hide()
-    return view
+    def is_showing(self) -> bool:
+        return self.start_view is not None and self.central.currentWidget() is self.start_view
 
 
-def leave_start(window: Any) -> None:
-    """Back to the graph (a system is on screen), with the docks the page put away."""
-    if getattr(window, "start_view", None) is not None:
-        window.central.setCurrentWidget(window.view)
-        _docks_back(window)
+def is_showing(window: QMainWindow) -> bool:
+    """Is ``window`` (a main window with a ``start_page``) showing its start page?"""
+    page = getattr(window, "start_page", None)
+    return isinstance(page, StartPage) and page.is_showing()
 
 
-def is_showing(window: Any) -> bool:
-    view = getattr(window, "start_view", None)
-    return view is not None and window.central.currentWidget() is view
-
-
-__all__ = ["StartView", "install", "is_showing", "leave_start", "show_start"]
+__all__ = ["StartOffers", "StartPage", "StartView", "is_showing"]

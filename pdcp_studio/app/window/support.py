@@ -1,7 +1,7 @@
 """What the main window's parts share: the default bus, file filters.
 
-Its own module so that :mod:`main_window` and the mixins it is built from can all import
-these without importing each other.
+Its own module, free of Qt, so that :mod:`main_window`, its controllers and the command
+line can all import these without importing each other.
 """
 
 from __future__ import annotations

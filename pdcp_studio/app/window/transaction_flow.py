@@ -36,6 +36,9 @@ from PySide6.QtWidgets import (
 )
 
 from pdcp_studio.app.documents import fitting, pending
+from pdcp_studio.app.documents.document import Document
+from pdcp_studio.app.live.live_bus import LiveController
+from pdcp_studio.app.window.status import StatusLine
 from pdcp_studio.app.words.plural import count
 from pdcp_studio.model.system import System
 
@@ -95,19 +98,26 @@ class ConfirmDialog(QDialog):
 class TransactionFlow(QObject):
     """Runs the app's changes to the prosthesis (see the module docstring).
 
-    ``window`` gives ``doc``, ``live``, ``show_message``, ``error_box``,
-    ``reread_configuration``. Signals: ``previewed(ChangePreview)``,
-    ``finished(TransactionResult)`` (any outcome), ``busyChanged(bool)``.
+    It gets the document, the live connection, the status line, a parent for its dialogs,
+    ``reread_configuration()`` (after a transaction) and ``patient_reference()`` (recorded
+    with it). Signals: ``previewed(ChangePreview)``, ``finished(TransactionResult)`` (any
+    outcome), ``busyChanged(bool)``.
     """
 
     previewed = Signal(object)
     finished = Signal(object)
     busyChanged = Signal(bool)
 
-    def __init__(self, window: Any) -> None:
-        super().__init__(window)
-        self.window = window
-        self.doc = window.doc
+    def __init__(self, doc: Document, live: LiveController, status: StatusLine,
+                 parent: QWidget, *, reread_configuration: Callable[[], None],
+                 patient_reference: Callable[[], str]) -> None:
+        super().__init__(parent)
+        self.doc = doc
+        self.live = live
+        self.status = status
+        self.parent_widget = parent
+        self._reread_configuration = reread_configuration
+        self._patient_reference = patient_reference
         self.busy = False
         self.last_result: Any = None
         self.progress_dialog: QProgressDialog | None = None
@@ -123,7 +133,7 @@ class TransactionFlow(QObject):
         doc = self.doc
         changes = pending.pending_changes(doc.bus_system, doc.system, doc.link_reasons)
         if not changes or self._bridge() is None:
-            self.window.show_message(self.tr("Nothing to write: the project and the "
+            self.status.say(self.tr("Nothing to write: the project and the "
                                              "prosthesis agree"))
             return False
         change = pending.change_for(changes, doc.system)
@@ -184,10 +194,10 @@ class TransactionFlow(QObject):
         """Preview ``change`` on the worker, ask, then carry it out as one transaction."""
         bridge = self._bridge()
         if bridge is None:
-            self.window.error_box(title, self.tr("not connected to a prosthesis"))
+            self.status.error(title, self.tr("not connected to a prosthesis"))
             return False
         if self.busy:
-            self.window.show_message(self.tr("A change to the prosthesis is still running"))
+            self.status.say(self.tr("A change to the prosthesis is still running"))
             return False
         from pdcp_studio.bus.session.api import preview_change
 
@@ -212,18 +222,17 @@ class TransactionFlow(QObject):
             return
         if preview.empty:
             self._set_busy(False)
-            self.window.show_message(self.tr("{0}: nothing to change on the prosthesis")
+            self.status.say(self.tr("{0}: nothing to change on the prosthesis")
                                      .format(title))
-            self.window.live.refresh()
+            self.live.refresh()
             return
         if not self._ask(title, preview):
             self._set_busy(False)
-            self.window.show_message(self.tr("{0}: not confirmed, nothing written")
+            self.status.say(self.tr("{0}: not confirmed, nothing written")
                                      .format(title))
             return
-        operator = fitting.operator_name(self.window)
-        patient = self.window.patient_reference() if hasattr(
-            self.window, "patient_reference") else ""
+        operator = fitting.operator_name(self.parent_widget)
+        patient = self._patient_reference()
         shown = set(preview.links_before)
 
         def same_bus(p: Any) -> bool:  # the prosthesis must still be as previewed
@@ -250,7 +259,7 @@ class TransactionFlow(QObject):
     def _ask(self, title: str, preview: Any) -> bool:
         if self.confirm is not None:
             return bool(self.confirm(title, preview))
-        dialog = ConfirmDialog(title, preview.lines(), self.window)
+        dialog = ConfirmDialog(title, preview.lines(), self.parent_widget)
         try:
             return dialog.exec() == QDialog.DialogCode.Accepted
         finally:
@@ -258,7 +267,7 @@ class TransactionFlow(QObject):
 
     def _show_progress(self, title: str, worker: Any, stop: threading.Event) -> None:
         dialog = QProgressDialog(self.tr("Writing to the prosthesis…"), self.tr("Cancel"), 0, 0,
-                                 self.window)
+                                 self.parent_widget)
         dialog.setWindowTitle(title)
         dialog.setWindowModality(Qt.WindowModality.WindowModal)
         dialog.setMinimumDuration(300)
@@ -289,30 +298,30 @@ class TransactionFlow(QObject):
             on_result(result)
         status = getattr(result.status, "value", str(result.status))
         if result.ok:
-            self.window.show_message(result.summary())
+            self.status.say(result.summary())
         elif status == "declined":
-            self.window.error_box(title, self.tr(
+            self.status.error(title, self.tr(
                 "The prosthesis changed after the preview, so nothing was written. "
                 "Look at the pending changes again and write them."))
         else:
-            self.window.error_box(title, self.tr("{0}\nThe prosthesis is as it was before.")
+            self.status.error(title, self.tr("{0}\nThe prosthesis is as it was before.")
                                   .format(result.summary()))
         for note in getattr(result, "notes", ()):
             log.info("%s: %s", title, note)
         # The prosthesis and its stored configuration as they are now (previews use them).
-        self.window.live.refresh()
-        self.window.reread_configuration()
+        self.live.refresh()
+        self._reread_configuration()
         self.finished.emit(result)
 
     def _failed(self, title: str, message: str) -> None:
         self._set_busy(False)
-        self.window.error_box(title, message)
-        self.window.live.refresh()
+        self.status.error(title, message)
+        self.live.refresh()
 
     def _cancelled(self, title: str) -> None:
         self._set_busy(False)
-        self.window.show_message(self.tr("{0}: cancelled").format(title))
-        self.window.live.refresh()
+        self.status.say(self.tr("{0}: cancelled").format(title))
+        self.live.refresh()
 
     # -- helpers -------------------------------------------------------------------------
     def _set_busy(self, busy: bool) -> None:
@@ -321,8 +330,7 @@ class TransactionFlow(QObject):
             self.busyChanged.emit(busy)
 
     def _bridge(self) -> Any:
-        live = self.window.live
-        bridge = live.bridge
+        bridge = self.live.bridge
         return bridge if bridge is not None and self.doc.session is bridge else None
 
     def _first_unwritten_index(self) -> int:
