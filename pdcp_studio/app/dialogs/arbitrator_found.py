@@ -10,12 +10,11 @@ with the two safe ways on:
 * **Connect through the host link** — the Connect dialog on its serial tab, to talk to the
   prosthesis's own arbitrator over its cable.
 
-The engineer's detail (what was heard) is one click away in the dialog's details.
+The engineer's detail (what was heard) is one click away in the dialog's details. What
+follows the choice (watching, the host link) is the window's: ``app/window/other_arbitrator.py``.
 """
 
 from __future__ import annotations
-
-from typing import TYPE_CHECKING, Any
 
 from PySide6.QtCore import Qt, Signal
 from PySide6.QtWidgets import (
@@ -25,15 +24,9 @@ from PySide6.QtWidgets import (
     QLabel,
     QLayout,
     QPushButton,
-    QStatusBar,
     QVBoxLayout,
     QWidget,
 )
-
-from pdcp_studio.app.i18n import translate
-
-if TYPE_CHECKING:
-    from pdcp_studio.app.live.passive_monitor import PassiveMonitor
 
 WATCH, HOST_LINK = "watch", "host-link"
 
@@ -129,83 +122,3 @@ class ListeningIndicator(QWidget):
         layout.setContentsMargins(0, 0, 0, 0)
         layout.addWidget(self.label)
         layout.addWidget(self.stop_button)
-
-
-def offer(window: Any, url: str, message: str, *, later: bool = False
-          ) -> ArbitratorFoundDialog:
-    """Show the dialog for ``url`` (not modal: the window stays usable) and act on the choice;
-    ``later``: the other arbitrator appeared while PDCP Studio was arbitrating."""
-    detail = message[len(url) + 2:] if message.startswith(f"{url}: ") else message
-    dialog = ArbitratorFoundDialog(url, detail, window, later=later)
-    dialog.setAttribute(Qt.WidgetAttribute.WA_DeleteOnClose)
-    dialog.chosen.connect(lambda what: _act(window, url, what))
-    window.arbitrator_found_dialog = dialog
-    window.show_message(translate("ArbitratorFound", "{url}: another bus arbitrator is running "
-                                  "this bus — PDCP Studio sent nothing").format(url=url), 0)
-    dialog.open()
-    return dialog
-
-
-def _act(window: Any, url: str, what: str) -> None:
-    if what == WATCH:
-        watch(window, url)
-    elif what == HOST_LINK:
-        open_host_link(window)
-
-
-def open_host_link(window: Any) -> Any:
-    """The Connect dialog on its serial host-link tab; connecting follows its choice."""
-    from pdcp_studio.app.dialogs.connect_dialog import ConnectDialog
-
-    dialog = ConnectDialog(window)
-    dialog.setAttribute(Qt.WidgetAttribute.WA_DeleteOnClose)
-    dialog.tabs.setCurrentWidget(dialog.pages["serial"])
-    dialog.accepted.connect(lambda: dialog.url() and window.connect_bus(dialog.url()))
-    window.host_link_dialog = dialog
-    dialog.open()
-    return dialog
-
-
-def watch(window: Any, url: str) -> Any:
-    """Listen to ``url`` in the monitor dock (never sending); returns the PassiveMonitor."""
-    from pdcp_studio.app.live.passive_monitor import PassiveMonitor
-    from pdcp_studio.app.window.desktop import monitor_dock
-
-    stop_watching(window)
-    dock = monitor_dock(window)
-    dock.clear()
-    dock.show()
-    dock.raise_()
-    monitor = PassiveMonitor(url, window)
-    monitor.frames.connect(dock.add_frames)
-    indicator = ListeningIndicator(url)
-    indicator.stop_button.clicked.connect(lambda: stop_watching(window))
-    bar: QStatusBar = window.statusBar()
-    bar.addPermanentWidget(indicator)
-    monitor.stopped.connect(lambda reason, m=monitor: _stopped(window, m, reason))
-    window.passive_monitor, window.listening_indicator = monitor, indicator
-    monitor.start()
-    window.show_message(translate("ArbitratorFound", "Watching {url} without sending: its "
-                                  "frames appear in the monitor").format(url=url))
-    return monitor
-
-
-def stop_watching(window: Any) -> None:
-    """Stop the passive monitor, if any (when the user says so or connects elsewhere)."""
-    monitor = getattr(window, "passive_monitor", None)
-    indicator = getattr(window, "listening_indicator", None)
-    window.passive_monitor = window.listening_indicator = None
-    if monitor is not None:
-        monitor.stop()
-    if indicator is not None:
-        window.statusBar().removeWidget(indicator)
-        indicator.deleteLater()
-
-
-def _stopped(window: Any, monitor: PassiveMonitor, reason: str) -> None:
-    if getattr(window, "passive_monitor", None) is not monitor:
-        return
-    stop_watching(window)
-    if reason:
-        window.show_message(translate("ArbitratorFound", "Stopped listening to {url}: "
-                                      "{reason}").format(url=monitor.url, reason=reason), 0)

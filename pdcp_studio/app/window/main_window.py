@@ -21,7 +21,7 @@ import gc
 from collections.abc import Callable
 from functools import partial
 from pathlib import Path
-from typing import Any
+from typing import TYPE_CHECKING, Any
 
 from PySide6.QtCore import Qt, QTimer, Signal
 from PySide6.QtGui import QCloseEvent, QImage, QShowEvent
@@ -54,6 +54,7 @@ from pdcp_studio.app.window.edit_commands import EditCommands
 from pdcp_studio.app.window.export import GraphExport
 from pdcp_studio.app.window.files import FileController, last_dir
 from pdcp_studio.app.window.mode_line import ModeLine, window_title
+from pdcp_studio.app.window.other_arbitrator import OtherArbitrator
 from pdcp_studio.app.window.policy import PolicyController
 from pdcp_studio.app.window.recovery import RecoveryController
 from pdcp_studio.app.window.start_view import StartOffers, StartPage, StartView
@@ -62,6 +63,11 @@ from pdcp_studio.app.window.support import DEFAULT_BUS, FILE_FILTERS, OFFLINE_SY
 from pdcp_studio.app.window.transaction_flow import TransactionFlow
 from pdcp_studio.app.window.transactions import Transactions
 from pdcp_studio.model.system import System
+
+if TYPE_CHECKING:
+    from pdcp_studio.app.dialogs.arbitrator_found import ArbitratorFoundDialog, ListeningIndicator
+    from pdcp_studio.app.dialogs.connect_dialog import ConnectDialog
+    from pdcp_studio.app.live.passive_monitor import PassiveMonitor
 
 __all__ = ["DEFAULT_BUS", "FILE_FILTERS", "OFFLINE_SYSTEM", "MainWindow",
            "start_default"]
@@ -114,6 +120,9 @@ class MainWindow(QMainWindow):
             plan_dock=self.plan_dock, inspector_dock=self.inspector_dock,
             view_menu=self.view_menu, is_ready=lambda: self._is_ready, ready=self.ready,
             scan_finished=lambda system: self._scan_finished(system))
+        self.other_arbitrator = OtherArbitrator(
+            self, self.statusBar(), lambda text, ms: self.show_message(text, ms),
+            lambda url: self.connect_bus(url), lambda: self.bus_docks.monitor_dock())
         self._connect()
         self._update_title()
         self.crash_recovery = RecoveryController(self.doc, recovery, self.status_line, self,
@@ -276,8 +285,6 @@ class MainWindow(QMainWindow):
         return commands
 
     def _connect(self) -> None:
-        from pdcp_studio.app.dialogs.arbitrator_found import stop_watching
-
         doc, live = self.doc, self.live
         doc.dirtyChanged.connect(lambda _d: self._update_title())
         doc.pathChanged.connect(lambda _p: self._update_title())
@@ -295,7 +302,7 @@ class MainWindow(QMainWindow):
         live.bridgeReady.connect(self.bus_docks.attach_safely)
         # A new session: a passive monitor of another bus gives way to it, the bus panels
         # start afresh on it, and plans get its stored configuration.
-        live.sessionStarted.connect(lambda _b: stop_watching(self))
+        live.sessionStarted.connect(lambda _b: self.other_arbitrator.stop_watching())
         live.sessionStarted.connect(self.bus_docks.session_started)
         live.sessionStarted.connect(self.bus.session_started)
         live.snapshotTaken.connect(self.bus_docks.bus_seen)
@@ -401,9 +408,24 @@ class MainWindow(QMainWindow):
         )
 
     def _offer_arbitrator(self, url: str, message: str, later: bool) -> None:
-        from pdcp_studio.app.dialogs import arbitrator_found
+        self.other_arbitrator.offer(url, message, later=later)
 
-        arbitrator_found.offer(self, url, message, later=later)
+    # What the other-arbitrator controller started, for the tests and the smoke run:
+    @property
+    def arbitrator_found_dialog(self) -> ArbitratorFoundDialog | None:
+        return self.other_arbitrator.dialog
+
+    @property
+    def host_link_dialog(self) -> ConnectDialog | None:
+        return self.other_arbitrator.host_link_dialog
+
+    @property
+    def passive_monitor(self) -> PassiveMonitor | None:
+        return self.other_arbitrator.passive_monitor
+
+    @property
+    def listening_indicator(self) -> ListeningIndicator | None:
+        return self.other_arbitrator.listening_indicator
 
     def _open_config(self, path: Path, collection: object) -> object:
         from pdcp_studio.app.documents.config_view import open_config_window
@@ -556,9 +578,7 @@ class MainWindow(QMainWindow):
             event.ignore()
             return
         self.live.disconnect_bus()
-        from pdcp_studio.app.dialogs.arbitrator_found import stop_watching
-
-        stop_watching(self)  # a listen-only monitor, if one runs
+        self.other_arbitrator.stop_watching()  # a listen-only monitor, if one runs
         self.crash_recovery.clean()  # closed on purpose: nothing to recover next time
         event.accept()
 
