@@ -106,7 +106,7 @@ def _run_app(path: str | Path | None, bus: str | None, screenshot: str | Path | 
         bridge = window.live.bridge
         if window.progress.isVisible() and (bridge is None or not bridge.busy):
             window.progress.hide()  # the last job's bar, hidden a moment later anyway
-        # A .pdcfg opens in its own window (app/documents/config_view.py): that is what was asked
+        # A .pdcfg opens in its own window (app/configuration/window.py): that is what was asked
         # for.
         target = (getattr(window, "config_windows", None) or [window])[-1]
         target.view.fit_all()

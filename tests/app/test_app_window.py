@@ -43,7 +43,7 @@ def test_open_shows_every_device_and_channel(window):
 
 
 def test_open_configuration_file(window):
-    # A .pdcfg opens as its own document (app/documents/config_view.py, issue 12); this window stays
+    # A .pdcfg opens as its own document (app/configuration/window.py, issue 12); this window stays
     # on its prosthesis and plans against the opened configurations.
     links = set(window.doc.system.links)
     assert window.open_path(ROOT / "resources" / "configs" / "fig410.pdcfg")

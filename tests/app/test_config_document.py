@@ -11,8 +11,8 @@ from pathlib import Path
 import pytest
 from PySide6.QtWidgets import QMessageBox
 
+from pdcp_studio.app.configuration.window import ConfigWindow, system_for_configuration
 from pdcp_studio.app.documents.config_document import ConfigDocument
-from pdcp_studio.app.documents.config_view import ConfigWindow, system_for_configuration
 from pdcp_studio.engine import configuration_from_system, plan_autoconfigure
 from pdcp_studio.model.configuration import (
     ConfigCollection,
@@ -312,7 +312,7 @@ def test_fit_follows_the_live_bus(make_window, qtbot):
 
 
 def test_add_link_and_channel_dialogs(qtbot):
-    from pdcp_studio.app.documents.config_view import AddLinkDialog, ChannelDialog
+    from pdcp_studio.app.configuration.window import AddLinkDialog, ChannelDialog
 
     out = StoredChannel(3, 2641, 513, 201, 0x9000, 0x2220)
     inp = StoredChannel(1, 2641, 770, 302, 0x9300, 0x2220)

@@ -428,7 +428,7 @@ class MainWindow(QMainWindow):
         return self.other_arbitrator.listening_indicator
 
     def _open_config(self, path: Path, collection: object) -> object:
-        from pdcp_studio.app.documents.config_view import open_config_window
+        from pdcp_studio.app.configuration.window import open_config_window
 
         return open_config_window(self, path, collection)
 

@@ -16,8 +16,8 @@ from PySide6.QtWidgets import (
     QWidget,
 )
 
-from pdcp_studio.app.documents.config_dialogs import hex_word
-from pdcp_studio.app.documents.config_words import ConfigWords
+from pdcp_studio.app.configuration.dialogs import hex_word
+from pdcp_studio.app.configuration.words import ConfigWords
 from pdcp_studio.model import profile as prof
 from pdcp_studio.model.configuration import StoredConfiguration
 

@@ -18,8 +18,8 @@ from PySide6.QtWidgets import (
     QWidget,
 )
 
+from pdcp_studio.app.configuration.words import ConfigWords
 from pdcp_studio.app.documents.config_document import ConfigDocument
-from pdcp_studio.app.documents.config_words import ConfigWords
 from pdcp_studio.app.words.plural import count
 from pdcp_studio.errors import PdcpError
 from pdcp_studio.model.system import System

@@ -36,12 +36,12 @@ from PySide6.QtWidgets import (
     QWidget,
 )
 
-from pdcp_studio.app.documents.config_dialogs import AddLinkDialog, ChannelDialog
+from pdcp_studio.app.configuration.dialogs import AddLinkDialog, ChannelDialog
+from pdcp_studio.app.configuration.fit_panel import FitPanel, wrapping_list
+from pdcp_studio.app.configuration.links_panel import LinksPanel
+from pdcp_studio.app.configuration.list_panel import ConfigListPanel
+from pdcp_studio.app.configuration.words import ConfigWords
 from pdcp_studio.app.documents.config_document import ConfigDocument
-from pdcp_studio.app.documents.config_fit_panel import FitPanel, wrapping_list
-from pdcp_studio.app.documents.config_links_panel import LinksPanel
-from pdcp_studio.app.documents.config_list_panel import ConfigListPanel
-from pdcp_studio.app.documents.config_words import ConfigWords
 from pdcp_studio.app.i18n import translate
 from pdcp_studio.app.words.plural import count
 from pdcp_studio.engine.config_checks import ConfigFinding, check_configuration

@@ -1,0 +1,1 @@
+"""The window of one stored-configuration file (``.pdcfg``): its list, links and fit."""
