@@ -33,6 +33,7 @@ Run: ``python benchmarks/gui.py [--only startup|scan|trace|capture] [--frames 10
 
 from __future__ import annotations
 
+import io
 import os
 import statistics
 import subprocess
@@ -40,6 +41,11 @@ import sys
 import tempfile
 import time
 from pathlib import Path
+from typing import TYPE_CHECKING
+
+if TYPE_CHECKING:
+    from pdcp_studio.bus.events import ChannelValue, FrameSeen
+    from pdcp_studio.model.system import System
 
 os.environ.setdefault("QT_QPA_PLATFORM", "offscreen")
 ROOT = Path(__file__).resolve().parents[1]
@@ -145,7 +151,7 @@ def print_startup() -> None:
           f"{'met' if ratio <= STARTUP_RATIO_TARGET else 'NOT met'}); {_load()}", flush=True)
 
 
-def big_system(n: int = 254):
+def big_system(n: int = 254) -> System:
     """n devices: pairs of sensors feeding a control unit feeding a hand."""
     from pdcp_studio.model.refs import Direction
     from pdcp_studio.model.system import Channel, Device, Link, System
@@ -302,6 +308,7 @@ class _Heart:
         self._timer = QTimer()
         self._timer.setInterval(HEARTBEAT_MS)
         self._timer.timeout.connect(self._beat)
+        self._sched: io.FileIO | None
         try:
             self._sched = open("/proc/thread-self/schedstat", "rb", buffering=0)
         except OSError:
@@ -388,7 +395,7 @@ def trace_at_full_load() -> dict[str, float]:
     QTimer.singleShot(300, settle.quit)  # their first paint is not counted here
     settle.exec()
     frames = traffic(int(TRACE_SECONDS * TRACE_RATE) + 10_000)
-    batches: list[tuple[list, list]] = []
+    batches: list[tuple[list[FrameSeen], list[ChannelValue]]] = []
     lock = threading.Lock()
     stop = threading.Event()
 
@@ -563,7 +570,7 @@ def capture_in_the_trace(frames: int) -> dict[str, float]:
 
 def print_capture() -> None:
     """Each size in a process of its own, so each peak RSS is that capture's alone."""
-    sizes = CAPTURE_SIZES
+    sizes: tuple[int, ...] = CAPTURE_SIZES
     if "--frames" in sys.argv:
         sizes = tuple(int(n) for n in sys.argv[sys.argv.index("--frames") + 1].split(","))
     for frames in sizes:

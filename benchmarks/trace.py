@@ -51,13 +51,22 @@ BUS_BOUND_8 = 1_000_000 // 135
 BUS_BOUND_4 = 1_000_000 // 95
 
 
-def node_map():
+#: (node, vid, pid, serial, outputs) of a device; (channel node, device node, channel index,
+#: listener device node, listener channel) of an output.
+DeviceRow = tuple[int, int, int, int, int]
+OutputRow = tuple[int, int, int, int, int]
+#: (arbitration_id, data, is_extended) of a frame.
+Frame = tuple[int, bytes, bool]
+
+
+def node_map() -> tuple[list[DeviceRow], list[OutputRow]]:
     """Eight devices, each with one or two outputs; every output feeds one input elsewhere.
 
     Returns (devices, outputs): devices = [(node, vid, pid, serial, n_outputs)], outputs =
     [(channel node, device node, channel index, listener device node, listener channel)].
     """
-    devices, outputs = [], []
+    devices: list[DeviceRow] = []
+    outputs: list[OutputRow] = []
     next_channel_node = 100
     for k in range(8):
         devices.append((10 + k, 0x0A0 + k, 0x10 + k % 3, 1000 + k, 1 + k % 2))
@@ -69,7 +78,7 @@ def node_map():
     return devices, outputs
 
 
-def traffic(n: int, seed: int = 16):
+def traffic(n: int, seed: int = 16) -> list[Frame]:
     """``n`` frames (arbitration_id, data, is_extended) of a session on the node map."""
     from pdcp_studio.model import parameters as P
     from pdcp_studio.protocol import messages as M
