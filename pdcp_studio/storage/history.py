@@ -11,7 +11,8 @@ whole or absent after a kill or a power cut, readers never block the writer, and
 lock (``BEGIN IMMEDIATE``), reads the last entry and writes the next inside it, so there is one
 writer at a time and the chain never forks. A new archive may be opened by several connections at
 once (the History view's reader and a change's recorder): its switch into WAL is retried while
-another one holds the lock (see :func:`_connect`), and its tables are made in one transaction.
+another one holds the lock (see :func:`_switch_into_wal`), and its tables are made in one
+transaction.
 
 The chain: each entry stores the SHA-256 of the previous entry (``previous_hash``) and its own
 ``hash`` = SHA-256 over its id, its previous hash and its canonical JSON body. ``verify`` walks
@@ -54,7 +55,7 @@ ENV_OPERATOR = "PDCP_STUDIO_OPERATOR"
 GENESIS = "0" * 64
 #: Seconds an open or an append waits for another connection's write to finish.
 BUSY_TIMEOUT_S = 15.0
-#: Seconds between two tries of a new archive's switch into WAL (see :func:`_connect`).
+#: Seconds between two tries of a new archive's switch into WAL (:func:`_switch_into_wal`).
 WAL_RETRY_S = 0.005
 #: The fields of ``history list --json`` (contracts §2), in order.
 LIST_FIELDS = ("id", "time", "operator", "bus", "action", "devices", "links_before",
@@ -304,42 +305,54 @@ class History:
 
 
 def _connect(path: Path) -> sqlite3.Connection:
-    """A connection to the archive at ``path``, in WAL mode with its tables made.
-
-    Safe when several connections open a new archive at once. The busy timeout is set before
-    the first statement (``connect``'s ``timeout``), so the tables are made under the write
-    lock, waiting for another connection's. The switch into WAL cannot wait that way: SQLite
-    reads the file's header and then upgrades to the write lock, and an upgrade that finds
-    another connection writing fails at once (``SQLITE_BUSY``, never the busy handler, which
-    could deadlock) — so the switch is tried again until the busy timeout. Once the archive
-    is in WAL (the mode is kept in the file), the switch is a read and never fails this way.
-    """
+    """A connection to the archive at ``path``, in WAL mode with its tables made; safe when
+    several connections open a new archive at once. The busy timeout is set before the first
+    statement (``connect``'s ``timeout``)."""
     db = sqlite3.connect(str(path), timeout=BUSY_TIMEOUT_S, isolation_level=None,
                          check_same_thread=False)
     try:
-        deadline = time.monotonic() + BUSY_TIMEOUT_S
-        while True:
-            try:
-                db.execute("PRAGMA journal_mode=WAL")
-                break
-            except sqlite3.OperationalError as err:
-                if err.sqlite_errorcode != sqlite3.SQLITE_BUSY or time.monotonic() > deadline:
-                    raise
-                time.sleep(WAL_RETRY_S)
+        _switch_into_wal(db)
         db.execute("PRAGMA synchronous=FULL")
-        db.execute("BEGIN IMMEDIATE")
-        try:
-            for statement in _SCHEMA:
-                db.execute(statement)
-            db.execute("COMMIT")
-        except BaseException:
-            if db.in_transaction:
-                db.execute("ROLLBACK")
-            raise
+        _make_tables(db)
     except BaseException:
         db.close()
         raise
     return db
+
+
+def _switch_into_wal(db: sqlite3.Connection) -> None:
+    """WAL mode, tried again while another connection writes, until the busy timeout.
+
+    The switch cannot wait on the busy timeout as other statements do: SQLite reads the
+    file's header, then upgrades to the write lock, and an upgrade that finds another
+    connection writing fails at once (``SQLITE_BUSY`` without the busy handler, which could
+    deadlock) — as when two connections open a new archive at once. Once the archive is in
+    WAL (the mode is kept in the file) the switch is only a read and cannot fail this way.
+    """
+    deadline = time.monotonic() + BUSY_TIMEOUT_S
+    while True:
+        try:
+            db.execute("PRAGMA journal_mode=WAL")
+            return
+        except sqlite3.OperationalError as err:
+            busy = err.sqlite_errorcode & 0xFF == sqlite3.SQLITE_BUSY  # or an extended BUSY_*
+            if not busy or time.monotonic() > deadline:
+                raise
+            time.sleep(WAL_RETRY_S)
+
+
+def _make_tables(db: sqlite3.Connection) -> None:
+    """The archive's tables, all or none, under the write lock (waiting for another
+    connection's on the busy timeout)."""
+    db.execute("BEGIN IMMEDIATE")
+    try:
+        for statement in _SCHEMA:
+            db.execute(statement)
+        db.execute("COMMIT")
+    except BaseException:
+        if db.in_transaction:
+            db.execute("ROLLBACK")
+        raise
 
 
 def _alive(pid: int) -> bool:
