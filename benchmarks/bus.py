@@ -25,10 +25,17 @@ import argparse
 import queue
 import sys
 import time
+from typing import TYPE_CHECKING, Any
 
 from pdcp_studio.bus.trace.bustime import BITRATE, CRC_BITS, HEADER_BITS, TRAILER_BITS, BusTimeMeter
 from pdcp_studio.model.parameters import needs_bulk
 from pdcp_studio.protocol import packetize
+
+if TYPE_CHECKING:
+    import can
+
+    from pdcp_studio.model.refs import DeviceKey
+    from pdcp_studio.model.system import System
 
 #: Function codes of scan transactions (get, bulk get, bulk data and their responses).
 SCAN_CODES = {0x03, 0x83, 0x0C, 0x8C, 0x0E, 0x8E}
@@ -44,7 +51,7 @@ def _bits_unstuffed(dlc: int) -> int:
     return HEADER_BITS + 8 * dlc + CRC_BITS + TRAILER_BITS
 
 
-def lower_bound_bits(values: dict) -> int:
+def lower_bound_bits(values: dict[Any, bytes | None]) -> int:
     """The least bits the protocol needs to read these values (no stuffing, no retries)."""
     bits = 0
     for data in values.values():
@@ -68,8 +75,8 @@ class Tap:
 
         self.conn = Connection(open_can_bus("virtual", channel), name="benchmark tap")
 
-    def drain(self) -> list:
-        frames = []
+    def drain(self) -> list[can.Message]:
+        frames: list[can.Message] = []
         while True:
             try:
                 item = self.conn.inbound.get_nowait()
@@ -82,7 +89,7 @@ class Tap:
         self.conn.close()
 
 
-def startup_figures(frames: list, system) -> dict:
+def startup_figures(frames: list[can.Message], system: System) -> dict[str, float]:
     """Bus time of the start-up's transaction frames against the bit-level bound."""
     channel_ids = {c.node_id for d in system.devices.values() for c in d.outputs() if c.node_id}
     ours = [m for m in frames if m.data and m.data[0] in STARTUP_CODES
@@ -99,7 +106,7 @@ def startup_figures(frames: list, system) -> dict:
             "startup_bound_s": bound / BITRATE, "startup_all_frames": len(frames)}
 
 
-def run(window: int, repeat: int, rig: str = "large") -> dict:
+def run(window: int, repeat: int, rig: str = "large") -> dict[str, Any]:
     from pdcp_studio.bus.arbitrator import scan as scan_mod
     from pdcp_studio.bus.session.live import open_sim_session
     from pdcp_studio.bus.session.urls import unique_virtual_channel
@@ -121,7 +128,7 @@ def run(window: int, repeat: int, rig: str = "large") -> dict:
             tap.drain()
             stats = session.arbitrator.requests.stats
             before = (stats.frames_sent, stats.frames_received, stats.retries, stats.timeouts)
-            raw: dict = {}
+            raw: dict[DeviceKey, dict[tuple[int, int], bytes | None]] = {}
             start = time.perf_counter()
             system = scan_mod.scan(session.arbitrator, window=window, raw=raw)
             wall = time.perf_counter() - start

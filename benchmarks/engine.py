@@ -17,7 +17,9 @@ import random
 import subprocess
 import sys
 import tempfile
+from functools import partial
 from pathlib import Path
+from typing import Any
 
 from _timing import median_and_best
 
@@ -44,7 +46,7 @@ def make_device(rng: random.Random, serial: int, kind: str) -> Device:
                name=f"{kind} {serial}")
     index = 0
 
-    def add(direction: Direction, root: int, flags: int = 0, **kw) -> Channel:
+    def add(direction: Direction, root: int, flags: int = 0, **kw: Any) -> Channel:
         nonlocal index
         index += 1
         t = rng.choice(TYPES) | (flags if direction is Direction.INPUT else 0)
@@ -108,7 +110,7 @@ def main() -> int:
             s = make_system(n, args.seed + n)
             channels = sum(len(d.channels) for d in s.devices.values())
             plan = plan_autoconfigure(s)
-            auto = median_and_best(lambda s=s: plan_autoconfigure(s), args.runs)
+            auto = median_and_best(partial(plan_autoconfigure, s), args.runs)
 
             configured = s.copy()
             plan.apply(configured)
@@ -116,7 +118,7 @@ def main() -> int:
             after = swapped(configured, args.seed)
             start_plan = plan_startup(after, stored)
             replaced = sum(a.rule.value == "replacement" for a in start_plan.actions)
-            start = median_and_best(lambda a=after, c=stored: plan_startup(a, c), args.runs)
+            start = median_and_best(partial(plan_startup, after, stored), args.runs)
 
             path = Path(tmp) / f"system-{n}.json"
             system_file.save_path(s, path)

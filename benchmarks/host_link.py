@@ -23,6 +23,7 @@ import sys
 import tempfile
 import time
 from pathlib import Path
+from typing import Any
 
 from pdcp_studio.bus.hostlink import records as hr
 from pdcp_studio.bus.hostlink.client import HostLinkSession
@@ -103,11 +104,18 @@ def line(label: str, value: str, bound: str, verdict: str = "") -> None:
     print(f"  {label:<44} {value:>14}   minimum {bound:<12} {verdict}")
 
 
-def run_scan(name: str, rate: float, settle: float) -> dict:
+def _pty(server: HostLinkServer) -> str:
+    """The path of the server's pseudo-terminal (it was opened on ``pty``)."""
+    if server.slave_path is None:
+        raise SystemExit("the host-link server has no pseudo-terminal")
+    return server.slave_path
+
+
+def run_scan(name: str, rate: float, settle: float) -> dict[str, Any]:
     sim = open_sim_session(name, settle_timeout=settle, data_rate_hz=0.0)
     try:
         with HostLinkServer(sim.arbitrator, "pty") as server, \
-                PtyRelay(server.slave_path, bytes_per_s=rate) as relay:
+                PtyRelay(_pty(server), bytes_per_s=rate) as relay:
             session = HostLinkSession(relay.client_path, url="bench", monitor=False)
             try:
                 greet = relay.total
@@ -132,13 +140,13 @@ def run_scan(name: str, rate: float, settle: float) -> dict:
         sim.close()
 
 
-def run_config(rate: float, noise: NoisyLine | None) -> dict:
+def run_config(rate: float, noise: NoisyLine | None) -> dict[str, Any]:
     collection = two_kb_configuration()
     size = len(config_codec.dumps(collection))
     sim = open_sim_session("transradial", data_rate_hz=0.0)
     try:
         with HostLinkServer(sim.arbitrator, "pty") as server, \
-                PtyRelay(server.slave_path, bytes_per_s=rate) as relay:
+                PtyRelay(_pty(server), bytes_per_s=rate) as relay:
             session = HostLinkSession(relay.client_path, url="bench", monitor=False)
             try:
                 relay.spoil = noise

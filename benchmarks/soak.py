@@ -22,7 +22,9 @@ import subprocess
 import sys
 import threading
 import time
+from collections.abc import Callable
 from pathlib import Path
+from typing import IO
 
 ROOT = Path(__file__).resolve().parents[1]
 sys.path.insert(0, str(ROOT))
@@ -46,12 +48,14 @@ def rss_kib(pid: int) -> int:
 class Lines:
     """A child's stdout, line by line, on a thread (it must never block on a full pipe)."""
 
-    def __init__(self, stream) -> None:
+    def __init__(self, stream: IO[str] | None) -> None:
+        if stream is None:
+            raise ValueError("the child was started without this pipe")
         self.q: queue.SimpleQueue[str] = queue.SimpleQueue()
         self.all: list[str] = []
         threading.Thread(target=self._read, args=(stream,), daemon=True).start()
 
-    def _read(self, stream) -> None:
+    def _read(self, stream: IO[str]) -> None:
         for line in stream:
             self.q.put(line.rstrip("\n"))
 
@@ -65,7 +69,7 @@ class Lines:
         self.all.extend(new)
         return new
 
-    def until(self, predicate, timeout: float) -> bool:
+    def until(self, predicate: Callable[[list[str]], bool], timeout: float) -> bool:
         deadline = time.monotonic() + timeout
         while not predicate(self.all):
             if time.monotonic() > deadline:

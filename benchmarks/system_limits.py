@@ -17,7 +17,12 @@ import sys
 import tempfile
 import threading
 import time
+from collections.abc import Callable
 from pathlib import Path
+from typing import TYPE_CHECKING
+
+if TYPE_CHECKING:
+    from pdcp_studio.model.system import System
 
 os.environ.setdefault("QT_QPA_PLATFORM", "offscreen")
 ROOT = Path(__file__).resolve().parents[1]
@@ -26,7 +31,7 @@ sys.path.insert(0, str(ROOT))
 RUNS = 3
 
 
-def largest_system():
+def largest_system() -> System:
     """254 devices and 2,048 channels: odd channels outputs, even ones inputs fed by them."""
     from pdcp_studio.model.refs import Direction
     from pdcp_studio.model.system import Channel, Device, Link, System
@@ -88,7 +93,7 @@ def open_in_app(path: Path) -> dict[str, float]:
     return min(runs, key=lambda r: r["total"])
 
 
-def refusal_s(make) -> tuple[float, str]:
+def refusal_s(make: Callable[[Path], Path]) -> tuple[float, str]:
     """Seconds until load_path refuses what ``make(dir)`` returns, and the message."""
     from pdcp_studio.errors import SystemFileError
     from pdcp_studio.storage import system_file

@@ -38,6 +38,7 @@ import sys
 import tempfile
 import time
 from pathlib import Path
+from typing import IO
 
 ROOT = Path(__file__).resolve().parents[1]
 sys.path.insert(0, str(ROOT))
@@ -51,13 +52,22 @@ BUS_BOUND_8 = 1_000_000 // 135
 BUS_BOUND_4 = 1_000_000 // 95
 
 
-def node_map():
+#: (node, vid, pid, serial, outputs) of a device; (channel node, device node, channel index,
+#: listener device node, listener channel) of an output.
+DeviceRow = tuple[int, int, int, int, int]
+OutputRow = tuple[int, int, int, int, int]
+#: (arbitration_id, data, is_extended) of a frame.
+Frame = tuple[int, bytes, bool]
+
+
+def node_map() -> tuple[list[DeviceRow], list[OutputRow]]:
     """Eight devices, each with one or two outputs; every output feeds one input elsewhere.
 
     Returns (devices, outputs): devices = [(node, vid, pid, serial, n_outputs)], outputs =
     [(channel node, device node, channel index, listener device node, listener channel)].
     """
-    devices, outputs = [], []
+    devices: list[DeviceRow] = []
+    outputs: list[OutputRow] = []
     next_channel_node = 100
     for k in range(8):
         devices.append((10 + k, 0x0A0 + k, 0x10 + k % 3, 1000 + k, 1 + k % 2))
@@ -69,7 +79,7 @@ def node_map():
     return devices, outputs
 
 
-def traffic(n: int, seed: int = 16):
+def traffic(n: int, seed: int = 16) -> list[Frame]:
     """``n`` frames (arbitration_id, data, is_extended) of a session on the node map."""
     from pdcp_studio.model import parameters as P
     from pdcp_studio.protocol import messages as M
@@ -78,7 +88,7 @@ def traffic(n: int, seed: int = 16):
     ok = ResponseCode.SUCCESS
     rng = random.Random(seed)
     devices, outputs = node_map()
-    setup: list = []
+    setup: list[M.Message] = []
     for node, vid, pid, sn, _ in devices:
         setup += [M.BindRequest(node, vid, pid, sn), M.BindResponse(node, node, vid, pid, sn)]
         setup += [M.GetParameter(node, P.DEVICE_VID_PID, 0),
@@ -96,7 +106,7 @@ def traffic(n: int, seed: int = 16):
                                          bytes([dev, chan_node])),
                   M.SetParameter(dev, P.CH_DATA_ENABLED, index, b"\x01"),
                   M.SetParameterResponse(dev, ok, P.CH_DATA_ENABLED, index, b"\x01")]
-    frames = [(*m.encode(), False) for m in setup]
+    frames: list[Frame] = [(*m.encode(), False) for m in setup]
     reads = [(P.DEVICE_VID_PID, 0), (P.DEVICE_SERIAL, 0), (P.CH_TRANSFER_TYPE, 1),
              (P.DEVICE_BEACON_INTERVAL, 0)]
     phase = [rng.random() * 6.28 for _ in outputs]
@@ -141,11 +151,11 @@ def make_data_id(chan_node: int) -> int:
     return make_id(1, 0, chan_node)
 
 
-def exact_bus_bits(frames) -> int:
+def exact_bus_bits(frames: list[Frame]) -> int:
     """The bus bits of the base frames, by the plain bit-stream computation (memoised)."""
     from pdcp_studio.bus.trace import bustime
 
-    memo: dict = {}
+    memo: dict[tuple[int, bytes], int] = {}
     total = 0
     for arbitration_id, data, extended in frames:
         if extended:
@@ -159,7 +169,7 @@ def exact_bus_bits(frames) -> int:
     return total
 
 
-def write_capture(path: Path, frames) -> None:
+def write_capture(path: Path, frames: list[Frame]) -> None:
     import can
 
     t0 = 1_700_000_000.0
@@ -168,6 +178,13 @@ def write_capture(path: Path, frames) -> None:
             logger.on_message_received(can.Message(
                 timestamp=t0 + i / RATE_HZ, arbitration_id=arbitration_id, data=data,
                 is_extended_id=extended, channel=0))
+
+
+def _pipe(stream: IO[str] | None) -> IO[str]:
+    """A child's pipe (it was started with ``subprocess.PIPE``)."""
+    if stream is None:
+        raise ValueError("the child was started without this pipe")
+    return stream
 
 
 def _peak_rss_mb(pid: int) -> float:
@@ -194,7 +211,7 @@ def best_of(repeat: int, cmd: list[str]) -> tuple[float, float, str, float]:
             min(r[3] for r in runs))
 
 
-def timed(cmd: list[str], stdout=subprocess.DEVNULL) -> tuple[float, float, str, float]:
+def timed(cmd: list[str]) -> tuple[float, float, str, float]:
     """Wall seconds, peak RSS in MB, stderr and CPU seconds (user + system) of one child.
 
     On a shared machine wall time follows the load of the moment; CPU time much less, so
@@ -202,7 +219,7 @@ def timed(cmd: list[str], stdout=subprocess.DEVNULL) -> tuple[float, float, str,
     import threading
 
     t0 = time.perf_counter()
-    proc = subprocess.Popen(cmd, stdout=stdout, stderr=subprocess.PIPE, text=True,
+    proc = subprocess.Popen(cmd, stdout=subprocess.DEVNULL, stderr=subprocess.PIPE, text=True,
                             env=dict(os.environ, PYTHONPATH=str(ROOT)))
     peak = [0.0]
     done = threading.Event()
@@ -214,7 +231,7 @@ def timed(cmd: list[str], stdout=subprocess.DEVNULL) -> tuple[float, float, str,
 
     watcher = threading.Thread(target=watch, daemon=True)
     watcher.start()
-    err = proc.stderr.read()
+    err = _pipe(proc.stderr).read()
     _, status, usage = os.wait4(proc.pid, 0)
     proc.returncode = os.waitstatus_to_exitcode(status)
     wall = time.perf_counter() - t0
@@ -300,10 +317,11 @@ def live(seconds: float, rate: int) -> None:
         [sys.executable, "-m", "pdcp_studio", "monitor", "--bus", f"can:udp_multicast:{group}",
          "--seconds", str(listen), "--filter", f"node={PING_NODE}"],
         stdout=subprocess.PIPE, stderr=subprocess.PIPE, text=True, env=env)
-    assert counter.stdout.readline().strip() == "ready"
+    assert _pipe(counter.stdout).readline().strip() == "ready"
     bus = can.Bus(interface="udp_multicast", channel=group)
     shown: list[str] = []
-    reader = threading.Thread(target=lambda: shown.extend(monitor.stdout), daemon=True)
+    out = _pipe(monitor.stdout)
+    reader = threading.Thread(target=lambda: shown.extend(out), daemon=True)
     reader.start()
     while not shown:  # ping until the monitor listens
         bus.send(can.Message(arbitration_id=ping_id, data=ping_data, is_extended_id=False))
@@ -331,7 +349,7 @@ def live(seconds: float, rate: int) -> None:
     counted = int(count_text)
     counter_cpu_s = float(counter_cpu) - float(counter_start)  # after it was ready
     monitor.send_signal(2)  # Ctrl-C: the monitor ends and prints its summary
-    err = monitor.stderr.read()
+    err = _pipe(monitor.stderr).read()
     _, _, usage = os.wait4(monitor.pid, 0)
     reader.join(5)
     bus.shutdown()

@@ -1,15 +1,17 @@
 #!/usr/bin/env bash
-# Build the one-folder desktop app (Python and Qt inside) and smoke-test it:
-#   packaging/build.sh            → build/dist/pdcp-studio/pdcp-studio
-# PYTHON picks the interpreter (default .venv/bin/python, with PyInstaller installed:
-# .venv/bin/pip install pyinstaller). The build is CPU-heavy; it runs under nice.
+# Build the one-folder desktop app (Python and Qt inside) and smoke-test it, in one command:
+#   python3 -m venv .venv && packaging/build.sh     → build/dist/pdcp-studio/pdcp-studio
+# It installs the project with its `build` extra (PyInstaller) into the venv first, so a
+# fresh venv is enough. PYTHON picks the venv's interpreter (default .venv/bin/python).
+# The build is CPU-heavy; it runs under nice.
 set -euo pipefail
 cd "$(dirname "$0")/.."
 PY=${PYTHON:-.venv/bin/python}
-if ! "$PY" -m PyInstaller --version >/dev/null 2>&1; then
-    echo "build.sh: PyInstaller is missing: $PY -m pip install pyinstaller" >&2
+if [ ! -x "$PY" ]; then
+    echo "build.sh: no Python at $PY: python3 -m venv .venv (or set PYTHON)" >&2
     exit 1
 fi
+"$PY" -m pip install -q -e ".[build]"
 
 # Translations: the committed .ts files compiled to the .qm files Qt loads.
 "$PY" - <<'PY'

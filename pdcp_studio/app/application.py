@@ -18,6 +18,11 @@ from typing import TYPE_CHECKING
 if TYPE_CHECKING:
     from concurrent.futures import Future
 
+    from PySide6.QtWidgets import QApplication
+
+    from pdcp_studio.app.documents.recovery import Recovery
+    from pdcp_studio.bus.session.api import BusSession
+
 PROBE_ENV = "PDCP_STUDIO_STARTUP_PROBE"
 #: A screenshot run gives up after this long (a bus that never answers must not hang CI).
 SCREENSHOT_TIMEOUT_MS = 30_000
@@ -62,9 +67,8 @@ def _run_app(path: str | Path | None, bus: str | None, screenshot: str | Path | 
         # A screenshot needs no screen: render off screen (CI, ssh) rather than abort.
         os.environ.setdefault("QT_QPA_PLATFORM", "offscreen")
     from PySide6.QtCore import QTimer
-    from PySide6.QtWidgets import QApplication
 
-    app = QApplication.instance() or QApplication(sys.argv[:1])
+    app = _application()
     app.setApplicationName("PDCP Studio")
     app.setOrganizationName("PDCP Studio")
     app.setApplicationDisplayName("PDCP Studio")
@@ -99,7 +103,7 @@ def _run_app(path: str | Path | None, bus: str | None, screenshot: str | Path | 
         window.resize(*size)
     status = {"code": 0}
 
-    def finish_screenshot() -> None:
+    def finish_screenshot(png: str | Path) -> None:
         window._make_trace_docks()  # made just after the window is up: in the picture too
         app.processEvents()  # their tabs are laid out
         window.view.fit_all()
@@ -113,10 +117,10 @@ def _run_app(path: str | Path | None, bus: str | None, screenshot: str | Path | 
         target.view.settle()  # every card's picture drawn, not the first few
         image = target.grab()
         # Not when what was asked for is not on screen: no picture of an empty window.
-        if not status["code"] and not image.save(str(screenshot), "PNG"):
+        if not status["code"] and not image.save(str(png), "PNG"):
             from pdcp_studio.storage.write_failure import why_not_written  # the CLI's words
 
-            print(f"pdcp-studio: error: {why_not_written(screenshot)}", file=sys.stderr)
+            print(f"pdcp-studio: error: {why_not_written(png)}", file=sys.stderr)
             status["code"] = 1
         window.doc.mark_saved()  # nothing to ask about on the way out
         window.close()
@@ -136,7 +140,8 @@ def _run_app(path: str | Path | None, bus: str | None, screenshot: str | Path | 
         if os.environ.get(PROBE_ENV):
             QTimer.singleShot(0, probe)
         if screenshot is not None:
-            QTimer.singleShot(SETTLE_MS, finish_screenshot)
+            png = screenshot
+            QTimer.singleShot(SETTLE_MS, lambda: finish_screenshot(png))
 
     def probe() -> None:
         app.processEvents()
@@ -170,7 +175,7 @@ def _run_app(path: str | Path | None, bus: str | None, screenshot: str | Path | 
     window.ready.connect(on_ready)
     QTimer.singleShot(START_UP_LIMIT_MS, start_up_over)  # a window that never gets ready
     window.show()
-    if opened is not None:
+    if opened is not None and path is not None:
         window.show_opened(opened, Path(path))
     elif not scripted and window.offer_recovery():
         _discard(opening)  # the recovered document is on screen; connect later (Bus menu)
@@ -190,13 +195,13 @@ def _run_app(path: str | Path | None, bus: str | None, screenshot: str | Path | 
     return status["code"] or int(code)
 
 
-def open_early(url: str) -> Future:
+def open_early(url: str) -> Future[BusSession]:
     """Start opening ``url``'s session on a thread of its own (no Qt there); the window's
     connection takes it (``LiveController.connect_bus``). Its failure is the connection's."""
     import threading
     from concurrent.futures import Future
 
-    opening: Future = Future()
+    opening: Future[BusSession] = Future()
 
     def run() -> None:
         if not opening.set_running_or_notify_cancel():
@@ -212,16 +217,19 @@ def open_early(url: str) -> Future:
     return opening
 
 
-def _has_pending(recovery: object | None) -> bool:
+def _has_pending(recovery: Recovery | None) -> bool:
     """Is there unsaved work from a crash to offer back?"""
-    return recovery is not None and bool(recovery.pending())  # type: ignore[attr-defined]
+    return recovery is not None and bool(recovery.pending())
 
 
-def _discard(opening: Future | None) -> None:
+def _discard(opening: Future[BusSession] | None) -> None:
     """Close the early session nobody takes, once it has opened."""
+    def close(done: Future[BusSession]) -> None:
+        if done.exception() is None:
+            done.result().close()
+
     if opening is not None:
-        opening.add_done_callback(
-            lambda done: done.exception() is None and done.result().close())
+        opening.add_done_callback(close)
 
 
 def start_up_quietly() -> None:
@@ -268,7 +276,7 @@ def share_the_interpreter() -> None:
         sys.setswitchinterval(SWITCH_INTERVAL_S)
 
 
-def _recovery() -> object | None:
+def _recovery() -> Recovery | None:
     """The autosave store, or None when this build has none."""
     try:
         from pdcp_studio.app.documents.recovery import Recovery
@@ -288,12 +296,24 @@ def _preload_layout() -> None:
     threading.Thread(target=load, name="preload networkx", daemon=True).start()
 
 
+def _application() -> QApplication:
+    """The app's QApplication: the one already made (tests make theirs), else a new one."""
+    from PySide6.QtWidgets import QApplication
+
+    existing = QApplication.instance()
+    if existing is None:
+        return QApplication(sys.argv[:1])
+    if not isinstance(existing, QApplication):
+        raise RuntimeError("a QCoreApplication without widgets is already running")
+    return existing
+
+
 def _has_display() -> bool:
     return bool(os.environ.get("DISPLAY") or os.environ.get("WAYLAND_DISPLAY")
                 or os.environ.get("QT_QPA_PLATFORM") or sys.platform in ("win32", "darwin"))
 
 
-def _set_icon(app: object) -> None:
+def _set_icon(app: QApplication) -> None:
     from PySide6.QtGui import QIcon
 
     try:
@@ -303,4 +323,4 @@ def _set_icon(app: object) -> None:
     except FileNotFoundError:
         return
     if icon.is_file():
-        app.setWindowIcon(QIcon(str(icon)))  # type: ignore[attr-defined]
+        app.setWindowIcon(QIcon(str(icon)))

@@ -9,7 +9,10 @@ Storage: one SQLite file (stdlib ``sqlite3``) in WAL mode with ``synchronous=FUL
 whole or absent after a kill or a power cut, readers never block the writer, and two processes
 (two app windows, the app and the CLI) may append at once — each append takes SQLite's write
 lock (``BEGIN IMMEDIATE``), reads the last entry and writes the next inside it, so there is one
-writer at a time and the chain never forks.
+writer at a time and the chain never forks. A new archive may be opened by several connections at
+once (the History view's reader and a change's recorder): its switch into WAL is retried while
+another one holds the lock (see :func:`_switch_into_wal`), and its tables are made in one
+transaction.
 
 The chain: each entry stores the SHA-256 of the previous entry (``previous_hash``) and its own
 ``hash`` = SHA-256 over its id, its previous hash and its canonical JSON body. ``verify`` walks
@@ -36,6 +39,7 @@ import hashlib
 import json
 import os
 import sqlite3
+import time
 from dataclasses import dataclass
 from datetime import UTC, datetime
 from pathlib import Path
@@ -49,31 +53,34 @@ if TYPE_CHECKING:
 ENV_PATH = "PDCP_STUDIO_HISTORY"
 ENV_OPERATOR = "PDCP_STUDIO_OPERATOR"
 GENESIS = "0" * 64
-#: Seconds an append waits for another process's write to finish.
+#: Seconds an open or an append waits for another connection's write to finish.
 BUSY_TIMEOUT_S = 15.0
+#: Seconds between two tries of a new archive's switch into WAL (:func:`_switch_into_wal`).
+WAL_RETRY_S = 0.005
 #: The fields of ``history list --json`` (contracts §2), in order.
 LIST_FIELDS = ("id", "time", "operator", "bus", "action", "devices", "links_before",
                "links_after", "config_crc_before", "config_crc_after", "verified", "interlock")
 
-_SCHEMA = """
-CREATE TABLE IF NOT EXISTS entries (
+#: The archive's tables, made in one write transaction on every open (each ``IF NOT EXISTS``).
+_SCHEMA = (
+    """CREATE TABLE IF NOT EXISTS entries (
     id INTEGER PRIMARY KEY,
     previous_hash TEXT NOT NULL,
     hash TEXT NOT NULL,
     body TEXT NOT NULL
-);
-CREATE TABLE IF NOT EXISTS pending (
+)""",
+    """CREATE TABLE IF NOT EXISTS pending (
     token TEXT PRIMARY KEY,
     pid INTEGER NOT NULL,
     host TEXT NOT NULL,
     body TEXT NOT NULL
-);
-CREATE TABLE IF NOT EXISTS head (
+)""",
+    """CREATE TABLE IF NOT EXISTS head (
     one INTEGER PRIMARY KEY CHECK (one = 1),
     last_id INTEGER NOT NULL,
     last_hash TEXT NOT NULL
-);
-"""
+)""",
+)
 
 
 class HistoryError(PdcpError):
@@ -132,12 +139,7 @@ class History:
         self.path = Path(path)
         try:
             self.path.parent.mkdir(parents=True, exist_ok=True)
-            self._db = sqlite3.connect(str(self.path), timeout=BUSY_TIMEOUT_S,
-                                       isolation_level=None, check_same_thread=False)
-            self._db.execute("PRAGMA journal_mode=WAL")
-            self._db.execute("PRAGMA synchronous=FULL")
-            self._db.execute(f"PRAGMA busy_timeout={int(BUSY_TIMEOUT_S * 1000)}")
-            self._db.executescript(_SCHEMA)
+            self._db = _connect(self.path)
         except (sqlite3.Error, OSError) as err:
             raise HistoryError(f"fitting history {self.path}: cannot open: {err}") from err
 
@@ -300,6 +302,57 @@ class History:
         if head is None and rows:
             return VerifyReport(False, len(rows), 1, "the archive's head record is missing")
         return VerifyReport(True, len(rows))
+
+
+def _connect(path: Path) -> sqlite3.Connection:
+    """A connection to the archive at ``path``, in WAL mode with its tables made; safe when
+    several connections open a new archive at once. The busy timeout is set before the first
+    statement (``connect``'s ``timeout``)."""
+    db = sqlite3.connect(str(path), timeout=BUSY_TIMEOUT_S, isolation_level=None,
+                         check_same_thread=False)
+    try:
+        _switch_into_wal(db)
+        db.execute("PRAGMA synchronous=FULL")
+        _make_tables(db)
+    except BaseException:
+        db.close()
+        raise
+    return db
+
+
+def _switch_into_wal(db: sqlite3.Connection) -> None:
+    """WAL mode, tried again while another connection writes, until the busy timeout.
+
+    The switch cannot wait on the busy timeout as other statements do: SQLite reads the
+    file's header, then upgrades to the write lock, and an upgrade that finds another
+    connection writing fails at once (``SQLITE_BUSY`` without the busy handler, which could
+    deadlock) — as when two connections open a new archive at once. Once the archive is in
+    WAL (the mode is kept in the file) the switch is only a read and cannot fail this way.
+    """
+    deadline = time.monotonic() + BUSY_TIMEOUT_S
+    while True:
+        try:
+            db.execute("PRAGMA journal_mode=WAL")
+            return
+        except sqlite3.OperationalError as err:
+            busy = err.sqlite_errorcode & 0xFF == sqlite3.SQLITE_BUSY  # or an extended BUSY_*
+            if not busy or time.monotonic() > deadline:
+                raise
+            time.sleep(WAL_RETRY_S)
+
+
+def _make_tables(db: sqlite3.Connection) -> None:
+    """The archive's tables, all or none, under the write lock (waiting for another
+    connection's on the busy timeout)."""
+    db.execute("BEGIN IMMEDIATE")
+    try:
+        for statement in _SCHEMA:
+            db.execute(statement)
+        db.execute("COMMIT")
+    except BaseException:
+        if db.in_transaction:
+            db.execute("ROLLBACK")
+        raise
 
 
 def _alive(pid: int) -> bool:

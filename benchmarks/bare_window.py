@@ -1,0 +1,41 @@
+"""The start-up yardstick of ``benchmarks/gui.py``: a bare PySide6 window that imports the
+parts the live app cannot do without (python-can and networkx), shown, then a line.
+
+It prints the app's start-up probe line (``PDCP_STUDIO_STARTUP_PROBE``) once the window is
+shown and its first events are handled, then exits, so ``gui.py`` times both the same way.
+"""
+
+from __future__ import annotations
+
+import sys
+import time
+
+STARTED = time.perf_counter()
+
+
+def main() -> int:
+    import can  # noqa: F401
+    import networkx  # noqa: F401
+    from PySide6.QtCore import QTimer
+    from PySide6.QtWidgets import QApplication, QLabel, QMainWindow
+
+    app = QApplication(sys.argv[:1])
+    window = QMainWindow()
+    window.setCentralWidget(QLabel("bare"))
+    window.resize(1400, 860)
+
+    def probe() -> None:
+        app.processEvents()
+        print(f"startup_s={time.perf_counter() - STARTED:.3f} devices=0 live=True "
+              f"cpu_s={time.process_time():.3f} gui_cpu_s={time.thread_time():.3f}",
+              flush=True)
+        window.close()
+        app.quit()
+
+    window.show()
+    QTimer.singleShot(0, probe)
+    return app.exec()
+
+
+if __name__ == "__main__":
+    sys.exit(main())
