@@ -1,7 +1,7 @@
 """The trace and the live plot are made just after the window is up (issue 11, start-up).
 
 They are hidden tabs when a bus connects and the costliest part of the window (numpy, the
-trace store), so ``window_bus`` makes them once the first system is on screen. Nothing may be
+trace store), so ``app/window/bus_docks.py`` makes them once the first system is on screen. Nothing may be
 lost by waiting: the trace shows every frame since the session started, the tabs and the
 View menu keep their order, and selecting a channel before then gives the plot at once.
 """

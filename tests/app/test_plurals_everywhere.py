@@ -95,7 +95,7 @@ def german(qapp):
 
 
 @pytest.mark.parametrize(("context", "text", "one", "two"), [
-    ("BusMixin", "%n device(s)", "1 device", "2 devices"),
+    ("WindowBus", "%n device(s)", "1 device", "2 devices"),
     ("EventsPanel", "%n event(s)", "1 event", "2 events"),
     ("ConfigWindow", "%n problem(s) found", "1 problem found", "2 problems found"),
     ("FittingReport", "%n set-up(s)", "1 set-up", "2 set-ups"),

@@ -5,7 +5,7 @@ start. This starts ``pdcp-studio gui --bus sim:transradial`` in a fresh interpre
 at ``sys.modules`` the moment the window is ready (shown, laid out, live):
 
 - numpy, the trace store and the live plot come only with the trace and plot docks, made
-  just after the window is up (``window_bus``), never before it;
+  just after the window is up (``app/window/bus_docks.py``), never before it;
 - the other commands' modules are not loaded for the desktop app (``cli/main.py``);
 - the manual and About (``help_viewer``) come when first asked for (``window_desktop``);
 - networkx is there (the graph is laid out with it), and python-can (the simulated
