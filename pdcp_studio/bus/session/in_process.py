@@ -1,0 +1,119 @@
+"""A session on PDCP Studio's own arbitrator, running in this process (``can:`` and ``sim:``).
+
+The arbitrator (bus/arbitrator/core.py) does the bus work on its own thread; the session is
+its face: it passes the arbitrator's events on, follows its hold on the bus (``state``) and
+reads through it. Frames are decoded for display only while someone subscribed here (a
+simulated prosthesis opens with ~450 frames nobody watches yet).
+"""
+
+from __future__ import annotations
+
+import logging
+import threading
+from typing import TYPE_CHECKING, Any
+
+from pdcp_studio.bus import events as ev
+from pdcp_studio.bus.session.base import BusSession, ProgressFn
+from pdcp_studio.bus.transaction import Change, Policy, TransactionResult
+from pdcp_studio.model.configuration import ConfigCollection
+from pdcp_studio.model.refs import DeviceKey
+from pdcp_studio.model.system import System
+
+if TYPE_CHECKING:
+    from pdcp_studio.bus.arbitrator.core import Arbitrator
+
+log = logging.getLogger(__name__)
+
+__all__ = ["ARBITRATOR_OPTIONS", "Session", "arbitrator_options"]
+
+
+class Session(BusSession):
+    """A live bus run by PDCP Studio's own arbitrator. Close it (or use ``with``)."""
+
+    def __init__(self, arbitrator: Arbitrator, *, url: str = "", scan_window: int = 8,
+                 scan_pace_s: float = 0.0) -> None:
+        super().__init__(url)
+        self.arbitrator = arbitrator
+        self.scan_window = scan_window
+        self.scan_pace_s = scan_pace_s
+        self._unsubscribe = arbitrator.subscribe(self._on_event,
+                                                 wants_frames=self._has_subscribers)
+        self._state = "arbitrating"
+        self._state_message = ""
+
+    def _on_event(self, event: object) -> None:
+        if isinstance(event, ev.BusState):
+            self._state, self._state_message = event.state, event.message
+        self._emit(event)
+
+    @property
+    def state(self) -> str:
+        """The hold on the bus: ``arbitrating``, ``yielded``, ``disconnected`` (shown as
+        "disconnected — reconnecting"), ``reconnected`` (see ev.BusState)."""
+        return self._state
+
+    @property
+    def state_message(self) -> str:
+        """The one line that said why the state is what it is ('' at first)."""
+        return self._state_message
+
+    # -- the bus ------------------------------------------------------------------------
+    def system(self) -> System:
+        self._check_open()
+        return self.arbitrator.system()
+
+    def wait_settled(self, timeout: float) -> bool:
+        self._check_open()
+        return bool(self.arbitrator.wait_settled(timeout))
+
+    def get_parameter(self, key: DeviceKey, param: int, channel: int = 0, *,
+                      timeout: float | None = None) -> bytes:
+        self._check_open()
+        return bytes(self.arbitrator.get_parameter(key, param, channel, timeout=timeout))
+
+    def read_configuration(self) -> ConfigCollection:
+        self._check_open()
+        return self.arbitrator.read_memory()
+
+    def read_policy(self) -> Policy:
+        self._check_open()
+        return self.arbitrator.read_policy()
+
+    def carry_out(self, change: Change, progress: ProgressFn | None = None,
+                  cancel: threading.Event | None = None) -> TransactionResult:
+        self._check_open()
+        return self.arbitrator.transact(change, progress, cancel)
+
+    def scan(self, progress: ProgressFn | None = None,
+             cancel: threading.Event | None = None) -> System:
+        """Read every device's parameters (bus/arbitrator/scan.py); ScanCancelled when cancelled.
+
+        Subscribers also get ``Progress`` events (``BusSession._reporting``)."""
+        from pdcp_studio.bus.arbitrator.scan import scan
+
+        self._check_open()
+        return scan(self.arbitrator, self._reporting(progress), cancel, self.scan_window,
+                    pace_s=self.scan_pace_s)
+
+    # -- shutdown -----------------------------------------------------------------------
+    def _release(self) -> None:
+        """Stop listening, then stop the arbitrator and release the bus."""
+        try:
+            self._unsubscribe()
+        except Exception:
+            log.debug("unsubscribe failed", exc_info=True)
+        self._close_parts()
+
+    def _close_parts(self) -> None:
+        self.arbitrator.close()
+
+
+#: The options of ``open_session`` that configure the in-process Arbitrator itself.
+ARBITRATOR_OPTIONS = ("memory", "profile_layer", "autoconfigure", "pace_s", "response_timeout",
+                      "retries", "startup_quiet_s", "duty_quiet_s", "node_ids", "frame_events",
+                      "channel_events", "reset_on_start", "listen_s")
+
+
+def arbitrator_options(options: dict[str, Any]) -> dict[str, Any]:
+    """Take the Arbitrator's own options out of ``options``; the rest are the session's."""
+    return {n: options.pop(n) for n in ARBITRATOR_OPTIONS if n in options}
