@@ -19,7 +19,7 @@ import struct
 import threading
 import time
 from dataclasses import dataclass
-from typing import Any
+from typing import TYPE_CHECKING, Any
 
 from pdcp_studio.bus import events as ev
 from pdcp_studio.bus.hostlink import records as hr
@@ -39,6 +39,9 @@ from pdcp_studio.model.system import Device, Link, System
 from pdcp_studio.protocol import hostlink_messages as hm
 from pdcp_studio.protocol.crc import crc16_ccitt_false
 from pdcp_studio.protocol.hostlink_messages import Event, Req, Status
+
+if TYPE_CHECKING:
+    from pdcp_studio.bus.trace.monitor import FrameDecoder
 
 log = logging.getLogger(__name__)
 
@@ -95,7 +98,7 @@ class HostLinkSession(BusSession):
         self.transact_timeout = transact_timeout
         self._cache = _Cache()
         self._monitor = monitor
-        self._decoder: Any = None
+        self._decoder: FrameDecoder | None = None
         options = dict(link_options)
         if reply_timeout is not None:
             options["reply_timeout"] = reply_timeout
