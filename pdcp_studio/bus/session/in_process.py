@@ -1,9 +1,13 @@
-"""A session on PDCP Studio's own arbitrator, running in this process (``can:`` and ``sim:``).
+"""A session on PDCP Studio's own arbitrator in this process, and opening a ``can:`` bus so.
 
 The arbitrator (bus/arbitrator/core.py) does the bus work on its own thread; the session is
 its face: it passes the arbitrator's events on, follows its hold on the bus (``state``) and
 reads through it. Frames are decoded for display only while someone subscribed here (a
 simulated prosthesis opens with ~450 frames nobody watches yet).
+
+On ``can:INTERFACE:CHANNEL[@BITRATE]`` PDCP Studio is the bus arbitrator: it binds the devices
+it hears and runs start-up with its own memory, once it has listened and heard no other
+arbitrator (reference §5); a pulled adapter is reopened (``Session.state``).
 """
 
 from __future__ import annotations
@@ -14,7 +18,9 @@ from typing import TYPE_CHECKING, Any
 
 from pdcp_studio.bus import events as ev
 from pdcp_studio.bus.session.base import BusSession, ProgressFn
+from pdcp_studio.bus.session.urls import BusSpec
 from pdcp_studio.bus.transaction import Change, Policy, TransactionResult
+from pdcp_studio.errors import TransportError
 from pdcp_studio.model.configuration import ConfigCollection
 from pdcp_studio.model.refs import DeviceKey
 from pdcp_studio.model.system import System
@@ -24,7 +30,13 @@ if TYPE_CHECKING:
 
 log = logging.getLogger(__name__)
 
-__all__ = ["ARBITRATOR_OPTIONS", "Session", "arbitrator_options"]
+#: Seconds ``open_session`` lets a real bus settle (devices binding, start-up) before returning.
+CAN_SETTLE_TIMEOUT_S = 3.0
+#: Least gap between two scan requests on a real adapter (its transmit queue must not fill).
+CAN_SCAN_PACE_S = 0.0002
+
+__all__ = ["ARBITRATOR_OPTIONS", "OtherArbitratorError", "Session", "arbitrator_options",
+           "open_can_session"]
 
 
 class Session(BusSession):
@@ -117,3 +129,34 @@ ARBITRATOR_OPTIONS = ("memory", "profile_layer", "autoconfigure", "pace_s", "res
 def arbitrator_options(options: dict[str, Any]) -> dict[str, Any]:
     """Take the Arbitrator's own options out of ``options``; the rest are the session's."""
     return {n: options.pop(n) for n in ARBITRATOR_OPTIONS if n in options}
+
+
+class OtherArbitratorError(TransportError):
+    """Another bus arbitrator is on the bus: PDCP Studio does not arbitrate there (§5)."""
+
+
+def open_can_session(spec: BusSpec, *, settle_timeout: float = CAN_SETTLE_TIMEOUT_S,
+                     **options: Any) -> Session:
+    """PDCP Studio as the arbitrator of a python-can bus, once it has listened and heard no
+    other arbitrator there (reference §5); OtherArbitratorError (one line) if it heard one."""
+    from pdcp_studio.bus.arbitrator.claim import LISTEN_S
+    from pdcp_studio.bus.arbitrator.core import Arbitrator
+    from pdcp_studio.bus.reopen import open_reopening
+
+    arb_opts = arbitrator_options(options)
+    arb_opts.setdefault("frame_events", True)
+    arb_opts.setdefault("listen_s", LISTEN_S)
+    options.setdefault("scan_pace_s", CAN_SCAN_PACE_S if spec.interface != "virtual" else 0.0)
+    # A pulled adapter is reopened with backoff (bus/reopen.py); the session says
+    # "disconnected — reconnecting" meanwhile (ev.BusState).
+    arbitrator = Arbitrator(open_reopening(spec), name=f"{spec.url} arbitrator", **arb_opts)
+    try:
+        session = Session(arbitrator, url=spec.url, **options)
+        if not arbitrator.wait_claimed(arb_opts["listen_s"] + 2.0):
+            raise OtherArbitratorError(f"{spec.url}: {arbitrator.bus_message}")
+    except BaseException:
+        arbitrator.close()
+        raise
+    if settle_timeout > 0:
+        session.wait_settled(settle_timeout)  # devices may keep binding later: not an error
+    return session

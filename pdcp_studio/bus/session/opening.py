@@ -1,8 +1,8 @@
 """``open_session(url)``: any bus URL (contracts §3) opened through one table of schemes.
 
-- ``sim:NAME`` — a built-in prosthesis on an in-process virtual bus (bus/session/open_sim.py);
+- ``sim:NAME`` — a built-in prosthesis on an in-process virtual bus (bus/session/sim.py);
 - ``can:INTERFACE:CHANNEL[@BITRATE]`` — PDCP Studio as the arbitrator of a python-can bus
-  (bus/session/open_can.py);
+  (bus/session/in_process.py);
 - ``serial:PORT[@BAUD]`` — an arbitrator elsewhere, over its host link
   (bus/hostlink/client.py).
 
@@ -24,8 +24,8 @@ from pdcp_studio.errors import TransportError
 #: Bus URL scheme → (module, opener, what it is in words). An opener takes the parsed
 #: ``BusSpec`` and the caller's options and returns an open session.
 OPENERS: dict[str, tuple[str, str, str]] = {
-    "sim": ("pdcp_studio.bus.session.open_sim", "open_sim_url", "the simulator"),
-    "can": ("pdcp_studio.bus.session.open_can", "open_can_session", "the python-can arbitrator"),
+    "sim": ("pdcp_studio.bus.session.sim", "open_sim_url", "the simulator"),
+    "can": ("pdcp_studio.bus.session.in_process", "open_can_session", "the python-can arbitrator"),
     "serial": ("pdcp_studio.bus.hostlink.client", "open_hostlink_session",
                "the host-link client"),
 }

@@ -1,19 +1,22 @@
-"""A built-in simulated prosthesis as a session: the in-process session plus the simulator.
+"""``sim:NAME``: a built-in simulated prosthesis as a session, and opening one.
 
-The devices are simulated (bus/sim/) on a virtual bus of their own, beside PDCP Studio's
-arbitrator; the session adds the controls a bench would have — plug, unplug, replace, reset
-the arbitrator, restart, run a scripted event (``SimulatorControls``, bus/session/
-capabilities.py).
+The devices are simulated (bus/sim/) on an in-process python-can ``virtual`` bus with a
+channel of its own: PDCP Studio's arbitrator and a DeviceHost with the prosthesis's devices,
+each on its own bus object, talk in frames as on a real bus; ``open_sim_session`` returns once
+the devices are bound and start-up has linked them. The session adds the controls a bench
+would have — plug, unplug, replace, reset the arbitrator, restart, run a scripted event
+(``SimulatorControls``, bus/session/capabilities.py).
 """
 
 from __future__ import annotations
 
 import threading
 import time
-from typing import TYPE_CHECKING
+from typing import TYPE_CHECKING, Any
 
 from pdcp_studio.bus.session.base import ProgressFn
-from pdcp_studio.bus.session.in_process import Session
+from pdcp_studio.bus.session.in_process import Session, arbitrator_options
+from pdcp_studio.bus.session.urls import BusSpec
 from pdcp_studio.bus.transaction import Change, TransactionResult
 from pdcp_studio.errors import PdcpError, TransportError
 from pdcp_studio.model.refs import DeviceKey
@@ -27,6 +30,8 @@ if TYPE_CHECKING:
 
 #: Seconds a simulated prosthesis gets to bind and link when it opens or restarts.
 SIM_SETTLE_TIMEOUT_S = 10.0
+#: Start-up waits this long without bind requests on a simulated bus (binding is in-process).
+SIM_STARTUP_QUIET_S = 0.2
 #: Seconds ``plug`` / ``replace`` wait for the device to join and the arbitrator to settle.
 JOIN_TIMEOUT_S = 5.0
 #: Seconds ``plug`` gives the arbitrator's thread to take a bind request in before waiting.
@@ -34,7 +39,7 @@ JOIN_GRACE_S = 0.03
 #: Seconds a simulator control (plug, reset…) may wait for another one to finish.
 CONTROL_LOCK_TIMEOUT_S = 15.0
 
-__all__ = ["SimSession"]
+__all__ = ["SIM_SETTLE_TIMEOUT_S", "SimSession", "open_sim_session", "open_sim_url"]
 
 
 class SimSession(Session):
@@ -228,3 +233,72 @@ def _known(host: DeviceHost, key: DeviceKey) -> DeviceKey:
         raise PdcpError(f"no simulated device {key} (devices: "
                         + ", ".join(str(k) for k in host.keys()) + ")")
     return key
+
+
+def open_sim_url(spec: BusSpec, **options: Any) -> SimSession:
+    """Open a parsed ``sim:NAME`` URL (the opener the URL table names)."""
+    return open_sim_session(spec.name, url=spec.url, **options)
+
+
+def open_sim_session(name: str, *, url: str = "", settle_timeout: float = SIM_SETTLE_TIMEOUT_S,
+                     data_rate_hz: float | None = None, channel: str | None = None,
+                     **options: Any) -> SimSession:
+    """A built-in prosthesis (or a system file) on a new in-process virtual bus."""
+    from pdcp_studio.bus.arbitrator.core import Arbitrator
+    from pdcp_studio.bus.connection import virtual_channel_in_use
+    from pdcp_studio.bus.session.urls import open_can_bus, unique_virtual_channel
+    from pdcp_studio.bus.sim.device import SimulatedDevice
+    from pdcp_studio.bus.sim.device_host import DeviceHost
+    from pdcp_studio.bus.sim.rigs import resolve_prosthesis
+
+    entry = resolve_prosthesis(name)
+    system = entry.load()
+    if data_rate_hz is None:
+        data_rate_hz = entry.data_rate_hz
+    arb_opts = arbitrator_options(options)
+    arb_opts.setdefault("startup_quiet_s", SIM_STARTUP_QUIET_S)
+    arb_opts.setdefault("frame_events", True)
+    channel = channel or unique_virtual_channel(f"pdcp-sim-{entry.name}")
+    url = url or f"sim:{name}"
+    # On a channel of its own, both parts take their frames straight from the virtual bus
+    # (Connection ``direct``: no Notifier threads; the devices answer on the sender's thread).
+    # Each attaches while the channel is quiet: the devices first, all unplugged, then the
+    # arbitrator, and only then are the devices plugged in. A channel others already use
+    # (a caller's ``channel``) is read with Notifiers, as any bus.
+    direct = not virtual_channel_in_use(channel)
+    kwargs = {} if data_rate_hz is None else {"data_rate_hz": data_rate_hz}
+    devices = [SimulatedDevice(d, **kwargs) for d in system.copy().devices.values()]
+    host = DeviceHost(open_can_bus("virtual", channel, url=url), devices,
+                      name=f"{url} devices", plugged=False, direct=direct)
+    arbitrator = None
+    try:
+        arbitrator = Arbitrator(open_can_bus("virtual", channel, url=url),
+                                name=f"{url} arbitrator", direct=direct, **arb_opts)
+        # The simulated parts are known: start-up need not wait out the quiet time after them.
+        arbitrator.profile.expect({key for key, dev in system.devices.items() if dev.present})
+        for dev in system.devices.values():
+            if dev.present:
+                host.plug(dev.key)
+        session = SimSession(arbitrator, host, entry, system, url=url,
+                             data_rate_hz=data_rate_hz, **options)
+    except BaseException:
+        if arbitrator is not None:
+            arbitrator.close()
+        host.close()
+        raise
+    # Settled means every device that is plugged in has joined (on a starved machine a
+    # device's first bind request can come after the start-up quiet time) and start-up ran.
+    expected = {key for key, dev in system.devices.items() if dev.present}
+    deadline = time.monotonic() + settle_timeout
+    while True:
+        settled = session.wait_settled(max(0.0, deadline - time.monotonic()))
+        joined = expected <= set(arbitrator.devices_present())
+        if settled and joined:
+            return session
+        if time.monotonic() >= deadline:
+            if settled:  # a device that cannot join (IDs exhausted…) is the bus's news
+                return session
+            session.close()
+            raise TransportError(f"{url}: the simulated prosthesis did not settle within "
+                                 f"{settle_timeout:g} s")
+        time.sleep(0.01)
