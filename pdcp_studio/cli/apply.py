@@ -23,7 +23,7 @@ from pdcp_studio.cli.main import BadInput
 from pdcp_studio.cli.plan import CONFIG_MODES, add_mode_arguments, load_config, load_tree, make_plan
 
 
-def add_subparser(subparsers: argparse._SubParsersAction) -> None:
+def add_subparser(subparsers: argparse._SubParsersAction[argparse.ArgumentParser]) -> None:
     p = subparsers.add_parser("apply", help="apply a profile-layer plan to a live prosthesis "
                                             "or a system file",
                               description=__doc__.split("\n\n")[0])

@@ -20,7 +20,7 @@ from typing import Any
 from pdcp_studio.cli import options
 
 
-def add_subparser(subparsers: Any) -> None:
+def add_subparser(subparsers: argparse._SubParsersAction[argparse.ArgumentParser]) -> None:
     parser = subparsers.add_parser(
         "arbitrator",
         help="run a headless PDCP bus arbitrator on a CAN bus",

@@ -14,7 +14,15 @@ import argparse
 import json
 import sys
 from collections.abc import Callable
-from typing import Any
+from typing import TYPE_CHECKING, Any
+
+if TYPE_CHECKING:
+    from pdcp_studio.bus.session.base import BusSession
+    from pdcp_studio.bus.session.change_road import ChangePreview
+    from pdcp_studio.bus.transaction import Change, TransactionResult
+
+#: A command's JSON document for a preview and, once carried out, the transaction's result.
+JsonDoc = Callable[["ChangePreview", "TransactionResult | None"], dict[str, Any]]
 
 EXIT_OK = 0
 EXIT_FAILED = 1
@@ -42,8 +50,8 @@ def ask(question: str) -> bool:
     return answer.strip().lower() in ("y", "yes")
 
 
-def carry_out(session: Any, change: Any, args: argparse.Namespace, *,
-              json_doc: Callable[[Any, Any], dict] | None = None,
+def carry_out(session: BusSession, change: Change, args: argparse.Namespace, *,
+              json_doc: JsonDoc | None = None,
               quiet_preview: bool = False) -> int:
     """Preview ``change`` on ``session``, confirm it (``--yes`` or the terminal), transact,
     print the outcome. Returns the exit status."""
@@ -87,7 +95,8 @@ def carry_out(session: Any, change: Any, args: argparse.Namespace, *,
     return EXIT_OK
 
 
-def _doc(json_doc: Callable[[Any, Any], dict] | None, preview: Any, result: Any) -> dict:
+def _doc(json_doc: JsonDoc | None, preview: ChangePreview,
+         result: TransactionResult | None) -> dict[str, Any]:
     doc = json_doc(preview, result) if json_doc is not None else {}
     doc.setdefault("action", preview.change.action)
     doc.setdefault("bus", preview.url)

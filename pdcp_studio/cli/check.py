@@ -18,7 +18,7 @@ EPILOG = (
 )
 
 
-def add_subparser(subparsers: argparse._SubParsersAction) -> None:
+def add_subparser(subparsers: argparse._SubParsersAction[argparse.ArgumentParser]) -> None:
     p = subparsers.add_parser("check", help="problems in a system: sole access, unmet inputs, …",
                               description=__doc__.split("\n\n")[0], epilog=EPILOG)
     p.add_argument("--system", required=True, metavar="FILE", help="a pdcp-system/1 file")

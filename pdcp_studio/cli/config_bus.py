@@ -13,12 +13,15 @@ shows the difference and exits 0.
 from __future__ import annotations
 
 import argparse
-from typing import Any
+from typing import TYPE_CHECKING
+
+if TYPE_CHECKING:
+    from pdcp_studio.model.configuration import ConfigCollection
 
 from pdcp_studio.cli import options
 
 
-def add_bus_commands(actions: Any) -> None:
+def add_bus_commands(actions: argparse._SubParsersAction[argparse.ArgumentParser]) -> None:
     """Register ``read``, ``write`` and ``save`` under ``config`` (called by
     cli/config_cmd.py)."""
     from pdcp_studio.cli.change_road import add_road_arguments
@@ -48,16 +51,19 @@ def add_bus_commands(actions: Any) -> None:
     save.set_defaults(func=run_save)
 
 
-def describe_change(current: Any, new: Any) -> list[str]:
+def _link_count(collection: ConfigCollection) -> int:
+    return sum(len(c.links) for c in collection.configurations)
+
+
+def describe_change(current: ConfigCollection, new: ConfigCollection) -> list[str]:
     """Lines saying how ``new`` differs from ``current``, link by link (the one
     configuration diff, model/config_diff.py)."""
     from pdcp_studio.model.config_diff import diff_configurations
 
     diff = diff_configurations(current, new)
-    count = lambda c: sum(len(x.links) for x in c.configurations)  # noqa: E731
     lines = [f"stored now: {len(current.configurations)} configuration(s), "
-             f"{count(current)} link(s); to write: {len(new.configurations)} "
-             f"configuration(s), {count(new)} link(s)"]
+             f"{_link_count(current)} link(s); to write: {len(new.configurations)} "
+             f"configuration(s), {_link_count(new)} link(s)"]
     for c in diff.configurations:
         for sl in c.only_in_b:
             lines.append(f"  + configuration {c.index}: {sl.output.ref} → {sl.input.ref}")
@@ -87,7 +93,7 @@ def run_read(args: argparse.Namespace) -> int:
     return 0
 
 
-def _print_change(current: Any, new: Any) -> None:
+def _print_change(current: ConfigCollection, new: ConfigCollection) -> None:
     for line in describe_change(current, new):
         print(line)
 

@@ -28,7 +28,7 @@ MAX_JSON_BYTES = 16 * 1024 * 1024
 MAX_JSON_DEPTH = 16
 
 
-def add_subparser(subparsers: Any) -> None:
+def add_subparser(subparsers: argparse._SubParsersAction[argparse.ArgumentParser]) -> None:
     """Register ``config`` and its actions (``decode``, ``encode``, and the bus ones)."""
     parser = subparsers.add_parser(
         "config", help="stored configurations (.pdcfg): decode, encode, read, write",

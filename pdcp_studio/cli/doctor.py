@@ -29,7 +29,7 @@ VERSIONED = ("pdcp-studio", "PySide6-Essentials", "PySide6", "shiboken6", "pytho
              "pyserial", "networkx", "platformdirs", "msgpack")
 
 
-def add_subparser(subparsers: argparse._SubParsersAction) -> None:
+def add_subparser(subparsers: argparse._SubParsersAction[argparse.ArgumentParser]) -> None:
     p = subparsers.add_parser(
         "doctor", help="what this installation has (for support)",
         description="Versions, modules, CAN interfaces and their drivers, serial ports, "

@@ -16,7 +16,7 @@ from pdcp_studio.cli.main import BadInput
 _STARTED = time.perf_counter()
 
 
-def add_subparser(subparsers: argparse._SubParsersAction) -> None:
+def add_subparser(subparsers: argparse._SubParsersAction[argparse.ArgumentParser]) -> None:
     p = subparsers.add_parser(
         "gui", help="open the desktop app on a file or a bus",
         description="Open the desktop app on a system file (.json), a stored configuration "

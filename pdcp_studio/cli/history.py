@@ -11,12 +11,21 @@ from __future__ import annotations
 
 import argparse
 import json
-from typing import Any
+from pathlib import Path
+from typing import TYPE_CHECKING, Any
 
 from pdcp_studio.cli.main import BadInput
 
+if TYPE_CHECKING:
+    from pdcp_studio.bus.transaction import Change
+    from pdcp_studio.model.system import Link
+    from pdcp_studio.storage.history import History
 
-def add_subparser(subparsers: argparse._SubParsersAction) -> None:
+#: One fitting-history entry as the archive stores it (storage/history.py).
+Entry = dict[str, Any]
+
+
+def add_subparser(subparsers: argparse._SubParsersAction[argparse.ArgumentParser]) -> None:
     p = subparsers.add_parser("history", help="the fitting history of changes to prostheses",
                               description=__doc__.split("\n\n")[0])
     actions = p.add_subparsers(dest="history_command", metavar="ACTION", required=True)
@@ -41,7 +50,7 @@ def add_subparser(subparsers: argparse._SubParsersAction) -> None:
     verify.set_defaults(func=run_verify)
 
 
-def _open() -> Any:
+def _open() -> History | None:
     """The archive, with the changes of PCs that died mid-way recorded as interrupted; None
     when there is none yet (a read command creates nothing)."""
     from pdcp_studio.storage.history import History
@@ -52,13 +61,13 @@ def _open() -> Any:
     return history
 
 
-def _path() -> Any:
+def _path() -> Path:
     from pdcp_studio.storage.history import default_path
 
     return default_path()
 
 
-def _entries() -> list[dict]:
+def _entries() -> list[Entry]:
     history = _open()
     if history is None:
         return []
@@ -66,7 +75,7 @@ def _entries() -> list[dict]:
         return history.entries()
 
 
-def _entry(entry_id: int) -> dict:
+def _entry(entry_id: int) -> Entry:
     history = _open()
     if history is None:
         raise BadInput(f"history: no entry {entry_id}: there is no fitting history at "
@@ -86,7 +95,7 @@ def _crc_text(before: str | None, after: str | None) -> str:
     return f"{before or 'not recorded'} → {after or 'not recorded'}"
 
 
-def _line(e: dict) -> str:
+def _line(e: Entry) -> str:
     outcome = (e.get("outcome") or {}).get("status", "")
     return (f"{e['id']:>4}  {e['time']}  {e['operator']}  {e['action']}  on {e['bus']}  "
             f"{len(e['links_before'])}→"
@@ -110,8 +119,8 @@ def run_list(args: argparse.Namespace) -> int:
     return 0
 
 
-def _links_text(links: list[dict]) -> list[str]:
-    def ref(d: dict) -> str:
+def _links_text(links: list[dict[str, Any]]) -> list[str]:
+    def ref(d: dict[str, Any]) -> str:
         return f"{d['vid']}/{d['pid']}/{d['serial']}#{d['index']}"
 
     return [f"    {ref(lk['output'])} → {ref(lk['input'])}" for lk in links] or ["    none"]
@@ -145,7 +154,7 @@ def run_show(args: argparse.Namespace) -> int:
     return 0
 
 
-def restore_change(entry: dict, links_now: list) -> Any:
+def restore_change(entry: Entry, links_now: list[Link]) -> Change:
     """bus.transaction.restore_change, with an interrupted entry as bad input."""
     from pdcp_studio.bus.transaction import NotRestorable
     from pdcp_studio.bus.transaction import restore_change as change_for

@@ -15,7 +15,7 @@ import json
 import sys
 
 
-def add_subparser(subparsers: argparse._SubParsersAction) -> None:
+def add_subparser(subparsers: argparse._SubParsersAction[argparse.ArgumentParser]) -> None:
     p = subparsers.add_parser("hostlink-test",
                               help="run the host-link conformance suite against an arbitrator",
                               description=__doc__.split("\n\n")[0])

@@ -11,10 +11,12 @@ from __future__ import annotations
 
 import argparse
 
-from pdcp_studio.model.system import Channel, Device, System
+from pdcp_studio.errors import ModelError
+from pdcp_studio.model.refs import ChannelRef
+from pdcp_studio.model.system import Channel, Device, Link, System
 
 
-def add_subparser(subparsers: argparse._SubParsersAction) -> None:
+def add_subparser(subparsers: argparse._SubParsersAction[argparse.ArgumentParser]) -> None:
     for name, helptext, func in (
             ("print", "long listing of a system or a live bus (appendix D style)", run_print),
             ("info", "short listing of a system or a live bus", run_info)):
@@ -141,13 +143,13 @@ def format_long(system: System) -> str:
     return "\n".join(out).rstrip() + "\n"
 
 
-def _link_name(system: System, d: Device, c: Channel, links: list) -> str:
+def _link_name(system: System, d: Device, c: Channel, links: list[Link]) -> str:
     ref = d.ref(c.index)
     names = [f"link {i}" for i, lk in enumerate(links) if lk.input == ref]
     return ", ".join(names) if names else "none"
 
 
-def _link_status(system: System, link) -> str:
+def _link_status(system: System, link: Link) -> str:
     if system.is_present(link.output) and system.is_present(link.input):
         return "connected"
     return "missing end"
@@ -168,9 +170,17 @@ def format_short(system: System) -> str:
             f"{'' if d.node_id is None else f', node {d.node_id}'}{state}"
         )
     for lk in system.links:
-        o, i = system.channel(lk.output), system.channel(lk.input)
+        o, i = _linked(system, lk.output), _linked(system, lk.input)
         out.append(f"  link {lk.output} (0x{o.profile:04X}) → {lk.input} (0x{i.profile:04X})")
     return "\n".join(out) + "\n"
+
+
+def _linked(system: System, ref: ChannelRef) -> Channel:
+    """The channel at one end of a link (a system holds only links between its channels)."""
+    channel = system.channel(ref)
+    if channel is None:
+        raise ModelError(f"link end {ref} is not a channel of the system")
+    return channel
 
 
 def run_print(args: argparse.Namespace) -> int:

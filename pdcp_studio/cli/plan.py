@@ -53,7 +53,7 @@ def add_mode_arguments(p: argparse.ArgumentParser, *, source_required: bool = Tr
                    help="a pdcp-profile-tree/1 file, to name profiles in the text output")
 
 
-def add_subparser(subparsers: argparse._SubParsersAction) -> None:
+def add_subparser(subparsers: argparse._SubParsersAction[argparse.ArgumentParser]) -> None:
     p = subparsers.add_parser("plan", help="what the profile layer would link, and why (dry run)",
                               description=__doc__.split("\n\n")[0])
     add_mode_arguments(p)

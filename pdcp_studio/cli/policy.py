@@ -11,9 +11,14 @@ from __future__ import annotations
 
 import argparse
 import json
+from typing import TYPE_CHECKING, Any
+
+if TYPE_CHECKING:
+    from pdcp_studio.bus.session.change_road import ChangePreview
+    from pdcp_studio.bus.transaction import TransactionResult
 
 
-def add_subparser(subparsers: argparse._SubParsersAction) -> None:
+def add_subparser(subparsers: argparse._SubParsersAction[argparse.ArgumentParser]) -> None:
     p = subparsers.add_parser("policy", help="show or change a live arbitrator's "
                                              "profile-layer policy",
                               description=__doc__.split("\n\n")[0])
@@ -45,8 +50,8 @@ def run(args: argparse.Namespace) -> int:
         wanted = Policy(autoconfigure=args.autoconfigure == "on")
         change = Change(f"policy autoconfigure {args.autoconfigure}", policy=wanted)
 
-        def doc(_preview: object, result: object) -> dict:
-            now = getattr(result, "policy_after", None) or current
+        def doc(_preview: ChangePreview, result: TransactionResult | None) -> dict[str, Any]:
+            now = (result.policy_after if result is not None else None) or current
             return {**now.to_json(), "bus": args.bus}
 
         return carry_out(session, change, args, json_doc=doc)

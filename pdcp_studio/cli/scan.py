@@ -11,15 +11,19 @@ from __future__ import annotations
 
 import argparse
 import sys
-from typing import Any
+from typing import TYPE_CHECKING, Any
 
 from pdcp_studio.cli import options
+
+if TYPE_CHECKING:
+    from pdcp_studio.bus.session.base import BusSession, ProgressFn
+    from pdcp_studio.model.system import System
 
 #: Seconds a can: bus gets to bind its devices and run start-up before the scan.
 DEFAULT_SETTLE_S = 3.0
 
 
-def add_subparser(subparsers: argparse._SubParsersAction) -> None:
+def add_subparser(subparsers: argparse._SubParsersAction[argparse.ArgumentParser]) -> None:
     p = subparsers.add_parser("scan", help="read the whole bus: devices, channels, links",
                               description="Read every device's parameters and the links.")
     p.add_argument("--bus", required=True, metavar="URL",
@@ -36,10 +40,10 @@ def add_subparser(subparsers: argparse._SubParsersAction) -> None:
 
 
 def open_bus_session(url: str, *, memory: str | None = None, settle: float | None = None,
-                     **options: Any) -> Any:
+                     **options: Any) -> BusSession:
     """``open_session`` for a command; a bad URL raises BusUrlError (exit 2, the same line
     from every command), other user errors BadInput."""
-    from pdcp_studio.bus.session.live import open_session
+    from pdcp_studio.bus.session.opening import open_session
     from pdcp_studio.bus.session.urls import check_bus_url
     from pdcp_studio.cli.main import BadInput
 
@@ -79,7 +83,7 @@ def check_memory_path(path: str) -> None:
         raise BadInput(f"--memory {path}: no folder {memory.parent}")
 
 
-def stderr_progress(enabled: bool) -> Any:
+def stderr_progress(enabled: bool) -> ProgressFn | None:
     """A progress callback writing one updating line to stderr, or None."""
     if not enabled:
         return None
@@ -91,14 +95,14 @@ def stderr_progress(enabled: bool) -> Any:
     return report
 
 
-def sorted_system(system: Any) -> Any:
+def sorted_system(system: System) -> System:
     """The same system with its devices in key order (a bus reports them as they joined)."""
     from pdcp_studio.model.system import System
 
     return System(sorted(system.devices.values(), key=lambda d: d.key), system.links)
 
 
-def format_system(system: Any) -> str:
+def format_system(system: System) -> str:
     """A short listing of a scanned system, with node IDs and links."""
     system = sorted_system(system)
     lines = [f"{len(system.devices)} device(s), {len(system.links)} link(s)"]

@@ -17,7 +17,7 @@ import time
 from pdcp_studio.cli import options
 
 
-def add_subparser(subparsers: argparse._SubParsersAction) -> None:
+def add_subparser(subparsers: argparse._SubParsersAction[argparse.ArgumentParser]) -> None:
     p = subparsers.add_parser("sim", help="built-in simulated prostheses",
                               description="List, replay and run simulated prostheses.")
     actions = p.add_subparsers(dest="sim_command", metavar="ACTION", required=True)
@@ -56,6 +56,7 @@ def run_list(args: argparse.Namespace) -> int:
 
 
 def run_replay(args: argparse.Namespace) -> int:
+    from pdcp_studio.bus.session.capabilities import SimulatorControls
     from pdcp_studio.bus.sim.rigs import ScriptError, UnknownProsthesisError, prosthesis
     from pdcp_studio.cli.main import BadInput
     from pdcp_studio.cli.scan import (
@@ -64,6 +65,7 @@ def run_replay(args: argparse.Namespace) -> int:
         sorted_system,
         stderr_progress,
     )
+    from pdcp_studio.errors import TransportError
     from pdcp_studio.storage import system_file
 
     try:
@@ -73,6 +75,8 @@ def run_replay(args: argparse.Namespace) -> int:
         raise BadInput(str(err)) from err
     session = open_bus_session(f"sim:{args.name}")
     try:
+        if not isinstance(session, SimulatorControls):
+            raise TransportError(f"sim:{args.name}: the bus opened has no simulator")
         result = session.run_script(script.name, stderr_progress(sys.stderr.isatty()))
         system = sorted_system(session.system())
     finally:

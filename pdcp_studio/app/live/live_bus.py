@@ -14,14 +14,22 @@ session you have until the new one answers: a failed Connect changes nothing.
 from __future__ import annotations
 
 import logging
+import threading
 import time
 from concurrent.futures import Future
-from typing import Any
+from typing import TYPE_CHECKING, Any
 
 from PySide6.QtCore import QObject, QTimer, Signal
 
 from pdcp_studio.app.documents.document import Document
 from pdcp_studio.app.workers import Worker
+
+if TYPE_CHECKING:
+    from pdcp_studio.app.graph.layout import Position
+    from pdcp_studio.app.live.session_bridge import SessionBridge
+    from pdcp_studio.bus.session.base import BusSession, ProgressFn
+    from pdcp_studio.model.refs import DeviceKey
+    from pdcp_studio.model.system import System
 
 log = logging.getLogger(__name__)
 
@@ -34,16 +42,18 @@ SWAP_WINDOW_S = 60.0
 REMEMBER_MS = 400
 
 
-def open_session_blocking(url: str, progress: Any = None, cancel: Any = None) -> Any:
+def open_session_blocking(url: str, progress: ProgressFn | None = None,
+                          cancel: threading.Event | None = None) -> BusSession:
     """Open a bus session (on a worker thread); PdcpError or ImportError on failure."""
-    from pdcp_studio.bus.session.live import open_session
+    from pdcp_studio.bus.session.opening import open_session
 
     if progress is not None:
         progress(0, 0, f"Connecting to {url}…")
     return open_session(url)
 
 
-def opened_early(opening: Future[Any], url: str, progress: Any = None) -> Any:
+def opened_early(opening: Future[BusSession], url: str,
+                 progress: ProgressFn | None = None) -> BusSession:
     """The session ``opening`` opens (on a thread of its own since start-up,
     ``application.open_early``); what it raised, raised here."""
     if progress is not None:
@@ -51,12 +61,13 @@ def opened_early(opening: Future[Any], url: str, progress: Any = None) -> Any:
     return opening.result()
 
 
-def _on_bus(snapshot: Any, key: Any) -> bool:
+def _on_bus(snapshot: System, key: DeviceKey) -> bool:
     device = snapshot.devices.get(key)
     return device is not None and bool(device.present)
 
 
-def read_and_place(session: Any, shape: float = 1.0) -> tuple[Any, dict[Any, Any]]:
+def read_and_place(session: BusSession,
+                   shape: float = 1.0) -> tuple[System, dict[DeviceKey, Position]]:
     """The bus's first snapshot and its cards' layout (on the worker: the layout imports
     networkx and walks the whole bus, which stalled the GUI thread on ``sim:full``)."""
     from pdcp_studio.app.graph import layout
@@ -87,7 +98,7 @@ class LiveController(QObject):
     def __init__(self, doc: Document, parent: QObject | None = None) -> None:
         super().__init__(parent)
         self.doc = doc
-        self.bridge: Any = None
+        self.bridge: SessionBridge | None = None
         self.url = ""
         #: The URL being connected to (while ``state`` is ``CONNECTING``).
         self.connecting_url = ""
@@ -120,7 +131,7 @@ class LiveController(QObject):
             self.state = state
             self.stateChanged.emit(state)
 
-    def connect_bus(self, url: str, opening: Future[Any] | None = None) -> Worker:
+    def connect_bus(self, url: str, opening: Future[BusSession] | None = None) -> Worker:
         """Open ``url`` on a worker; ``connected`` or ``failed`` follows.
 
         The current session (if any) stays until the new one has opened: a failed Connect
@@ -133,7 +144,7 @@ class LiveController(QObject):
         self._set_state(CONNECTING)
         self.busyChanged.emit(True)
 
-        def work(p: Any, cancel: Any) -> Any:
+        def work(p: ProgressFn, cancel: threading.Event) -> BusSession:
             session = (open_session_blocking(url, p, cancel) if opening is None
                        else opened_early(opening, url, p))
             if cancel.is_set():  # superseded by another Connect: nobody will use it
@@ -157,7 +168,7 @@ class LiveController(QObject):
                         DISCONNECTED if self.last_url else OFFLINE)
         self.failed.emit(url, message)
 
-    def _opened(self, url: str, session: Any) -> None:
+    def _opened(self, url: str, session: BusSession) -> None:
         from pdcp_studio.app.live.session_bridge import SessionBridge
 
         if url != self.connecting_url:  # superseded meanwhile
@@ -188,7 +199,8 @@ class LiveController(QObject):
         bridge.run(lambda _p, _c: read_and_place(session, shape), "Read the bus",
                    lambda result: self._first_snapshot(bridge, *result))
 
-    def _first_snapshot(self, bridge: Any, system: Any, positions: Any) -> None:
+    def _first_snapshot(self, bridge: SessionBridge, system: System,
+                        positions: dict[DeviceKey, Position]) -> None:
         if bridge is not self.bridge:
             return
         self.connecting_url = ""
@@ -265,7 +277,7 @@ class LiveController(QObject):
             self._again = False
             self.refresh()
 
-    def _on_snapshot(self, system: Any) -> None:
+    def _on_snapshot(self, system: System) -> None:
         """Merge a snapshot; one that shows the bus exactly as last seen changes nothing
         and is not passed on (a rescan of the same bus costs the GUI thread ~nothing)."""
         if self.bridge is not None and self.doc.session is self.bridge:
@@ -281,7 +293,7 @@ class LiveController(QObject):
             if joined or left:
                 self._remember_soon()
 
-    def _place_joined(self, snapshot: Any) -> list[Any]:
+    def _place_joined(self, snapshot: System) -> list[DeviceKey]:
         """Before ``snapshot`` is merged: places for the parts new to the view, as a
         connect would give them (:func:`live_layout.place_joined`) — a replacement where
         the part it replaces was, that part put aside. Returns the parts placed as any

@@ -16,11 +16,20 @@ import logging
 import threading
 from collections import deque
 from collections.abc import Callable
-from typing import Any
+from typing import TYPE_CHECKING, Any
 
 from PySide6.QtCore import QObject, QThreadPool, QTimer, Signal
 
 from pdcp_studio.app.workers import Worker
+from pdcp_studio.bus.session.capabilities import SimulatedDevices, SimulatorControls
+from pdcp_studio.errors import PdcpError
+
+if TYPE_CHECKING:
+    from pdcp_studio.bus.session.base import BusSession
+    from pdcp_studio.engine.plan import Plan
+    from pdcp_studio.model.configuration import ConfigCollection
+    from pdcp_studio.model.refs import DeviceKey
+    from pdcp_studio.model.system import Device, System
 
 log = logging.getLogger(__name__)
 
@@ -75,7 +84,7 @@ class SessionBridge(QObject):
     busyChanged = Signal(bool)
     closed = Signal()
 
-    def __init__(self, session: Any, parent: QObject | None = None, *,
+    def __init__(self, session: BusSession, parent: QObject | None = None, *,
                  interval_ms: int = 50, url: str = "") -> None:
         super().__init__(parent)
         self.session = session
@@ -99,7 +108,7 @@ class SessionBridge(QObject):
     @property
     def is_sim(self) -> bool:
         """True when the session is a simulated prosthesis (it has simulator controls)."""
-        return hasattr(self.session, "plug") and hasattr(self.session, "sim_devices")
+        return isinstance(self.session, SimulatedDevices)
 
     @property
     def busy(self) -> bool:
@@ -199,7 +208,7 @@ class SessionBridge(QObject):
         for w in list(self._pending):
             w.cancel()
 
-    def system(self) -> Any:
+    def system(self) -> System:
         """The session's current view of the bus (a copy is the session's business)."""
         return self.session.system()
 
@@ -213,7 +222,7 @@ class SessionBridge(QObject):
         return self.run(lambda p, c: self.session.scan(p, c), "Scan", self._scanned,
                         forward_progress=False)
 
-    def _scanned(self, system: Any) -> None:
+    def _scanned(self, system: System) -> None:
         self.drain()  # the scan's own events (its last Progress) come before its result
         self.scanned.emit(system)
 
@@ -222,12 +231,12 @@ class SessionBridge(QObject):
         return self.run(lambda p, c: self.session.read_configuration(),
                         "Read configuration", self.configurationRead.emit)
 
-    def write_configuration(self, configuration: Any) -> Worker | None:
+    def write_configuration(self, configuration: ConfigCollection) -> Worker | None:
         """Write, and emit ``configurationWritten`` with what the session returned."""
         return self.run(lambda p, c: self.session.write_configuration(configuration),
                         "Write configuration", self.configurationWritten.emit)
 
-    def apply_plan(self, plan: Any) -> Worker | None:
+    def apply_plan(self, plan: Plan) -> Worker | None:
         """Apply a plan; the session reports ``PlanApplied`` which becomes ``planApplied``."""
         return self.run(lambda p, c: self.session.apply_plan(plan, p, c), "Apply plan")
 
@@ -259,29 +268,32 @@ class SessionBridge(QObject):
         """Ask for the simulator's devices; they arrive as ``simDevices(list)``."""
         if not self.is_sim:
             return None
-        return self.run(lambda p, c: list(self.session.sim_devices()), "List simulated devices",
+        session = _simulated(self.session)
+        return self.run(lambda p, c: list(session.sim_devices()), "List simulated devices",
                         self.simDevices.emit)
 
-    def plug(self, key: Any) -> Worker | None:
+    def plug(self, key: DeviceKey) -> Worker | None:
         """Power a simulated device on (``simChanged`` when done)."""
         name = self._name(key)
         return self._sim(self.tr("Plugging in {device}").format(device=name),
-                         lambda: self.session.plug(key),
+                         lambda: _simulated(self.session).plug(key),
                          self.tr("Plugged in {device}").format(device=name))
 
-    def unplug(self, key: Any) -> Worker | None:
+    def unplug(self, key: DeviceKey) -> Worker | None:
         """Cut a simulated device off the bus; ``deviceLeft`` follows once noticed."""
         name = self._name(key)
         return self._sim(self.tr("Unplugging {device}").format(device=name),
-                         lambda: self.session.unplug(key),
+                         lambda: _simulated(self.session).unplug(key),
                          self.tr("Unplugged {device}").format(device=name))
 
-    def replace(self, old: Any, new: Any) -> Worker | None:
+    def replace(self, old: DeviceKey, new: DeviceKey | Device) -> Worker | None:
         """Unplug ``old`` and plug ``new`` in (a simulated device's key or a Device)."""
+        from pdcp_studio.model.system import Device
+
         old_name = self._name(old)
-        new_name = self._name(getattr(new, "key", new))
+        new_name = self._name(new.key if isinstance(new, Device) else new)
         return self._sim(self.tr("Replacing {old} by {new}").format(old=old_name, new=new_name),
-                         lambda: self.session.replace(old, new),
+                         lambda: _simulator(self.session).replace(old, new),
                          self.tr("Replaced {old} by {new}").format(old=old_name, new=new_name))
 
     def reset_arbitrator(self, keep_memory: bool) -> Worker | None:
@@ -291,11 +303,13 @@ class SessionBridge(QObject):
         done = (self.tr("The arbitrator restarted; its stored configuration was kept")
                 if keep_memory else
                 self.tr("The arbitrator restarted with its memory erased"))
-        return self._sim(what, lambda: self.session.reset_arbitrator(keep_memory), done)
+        return self._sim(what, lambda: _simulator(self.session).reset_arbitrator(keep_memory),
+                         done)
 
     def script_names(self) -> list[str]:
         """The simulator's scripted events (a lookup, no bus traffic)."""
-        return list(self.session.script_names()) if self.is_sim else []
+        session = self.session
+        return list(session.script_names()) if isinstance(session, SimulatedDevices) else []
 
     def run_script(self, name: str) -> Worker | None:
         """Run a simulator script with progress and cancel; ``scriptFinished(result)``."""
@@ -311,7 +325,7 @@ class SessionBridge(QObject):
             self.scriptFinished.emit(result)
             self.simChanged.emit(self.tr("Script {name} finished").format(name=name))
 
-        return self.run(lambda p, c: self.session.run_script(name, p, c),
+        return self.run(lambda p, c: _simulator(self.session).run_script(name, p, c),
                         self.tr("Script {name}").format(name=name), done)
 
     def save_configuration(self) -> Worker | None:
@@ -345,3 +359,17 @@ class SessionBridge(QObject):
         worker.start(self._pool)
         if wait_ms:
             self._pool.waitForDone(wait_ms)
+
+
+def _simulated(session: BusSession) -> SimulatedDevices:
+    """``session``'s simulated devices (callers ask ``is_sim`` first)."""
+    if not isinstance(session, SimulatedDevices):
+        raise PdcpError(f"{session.url}: only a simulated bus has simulator controls")
+    return session
+
+
+def _simulator(session: BusSession) -> SimulatorControls:
+    """``session``'s whole simulator (callers ask ``is_sim`` first)."""
+    if not isinstance(session, SimulatorControls):
+        raise PdcpError(f"{session.url}: only a simulated bus has simulator controls")
+    return session

@@ -1,9 +1,9 @@
 """A session over an arbitrator's serial host link (``serial:PORT[@BAUD]`` bus URLs).
 
-The same session face as a simulated or CAN bus (bus/session/live.py), so scan, plans, parameter
-edits, the stored configuration, the monitor and the app work unchanged. The protocol is host
-link 2 (docs/host-link.md); the line, retransmission and reconnection are in
-``hostlink_conn``.
+A :class:`~pdcp_studio.bus.session.base.BusSession` like a simulated or CAN bus, so scan,
+plans, parameter edits, the stored configuration, the monitor and the app work unchanged. The
+protocol is host link 2 (docs/host-link.md); the line, retransmission and reconnection are in
+``bus/hostlink/conn.py``.
 
 What the arbitrator holds is read once and cached: its device table, each device's channel
 table, its links, its stored configuration (by length and CRC). Events say what changed — a
@@ -18,9 +18,8 @@ import logging
 import struct
 import threading
 import time
-from collections.abc import Callable
 from dataclasses import dataclass
-from typing import Any
+from typing import TYPE_CHECKING, Any
 
 from pdcp_studio.bus import events as ev
 from pdcp_studio.bus.hostlink import records as hr
@@ -29,7 +28,8 @@ from pdcp_studio.bus.hostlink.conn import (
     HostLinkError,
     VersionRefused,
 )
-from pdcp_studio.bus.session.api import TransactingMixin
+from pdcp_studio.bus.session.base import BusSession, ProgressFn
+from pdcp_studio.bus.session.urls import BusSpec
 from pdcp_studio.bus.transaction import Change, Policy, TransactionResult
 from pdcp_studio.bus.transaction import Status as TxnStatus
 from pdcp_studio.errors import PdcpError, TransportError
@@ -40,6 +40,9 @@ from pdcp_studio.protocol import hostlink_messages as hm
 from pdcp_studio.protocol.crc import crc16_ccitt_false
 from pdcp_studio.protocol.hostlink_messages import Event, Req, Status
 
+if TYPE_CHECKING:
+    from pdcp_studio.bus.trace.monitor import FrameDecoder
+
 log = logging.getLogger(__name__)
 
 __all__ = ["ChannelCounts", "HostLinkError", "HostLinkSession", "VersionRefused",
@@ -47,8 +50,6 @@ __all__ = ["ChannelCounts", "HostLinkError", "HostLinkSession", "VersionRefused"
 
 #: How long the arbitrator's system must stay the same to count as settled.
 SETTLE_POLL_S = 0.1
-#: Least seconds between two Progress events a scan sends subscribers (as bus/session/live.py).
-PROGRESS_EVENT_INTERVAL_S = 0.1
 #: Seconds TRANSACT_RUN may take: interlock, writes, read-back and perhaps a restore.
 TRANSACT_TIMEOUT_S = 30.0
 #: Reads of the stored configuration restarted when it changes under them.
@@ -87,19 +88,17 @@ class _Cache:
             self.config = None
 
 
-class HostLinkSession(TransactingMixin):
-    """A live arbitrator reached over a serial line; a :class:`BusSession` (bus/session/api.py).
-    Close it (or use ``with``)."""
+class HostLinkSession(BusSession):
+    """A live arbitrator reached over a serial line. Close it (or use ``with``)."""
 
     def __init__(self, port: Any, *, url: str = "", baudrate: int = 128_000,
                  reply_timeout: float | None = None, monitor: bool = True,
                  transact_timeout: float = TRANSACT_TIMEOUT_S, **link_options: Any) -> None:
-        self.url = url
+        super().__init__(url, events_owner="host link")
         self.transact_timeout = transact_timeout
-        self._subs = ev.Subscribers(url or "host link")
         self._cache = _Cache()
         self._monitor = monitor
-        self._decoder: Any = None
+        self._decoder: FrameDecoder | None = None
         options = dict(link_options)
         if reply_timeout is not None:
             options["reply_timeout"] = reply_timeout
@@ -110,38 +109,23 @@ class HostLinkSession(TransactingMixin):
         if monitor:
             self._start_monitor()
 
-    def __enter__(self) -> HostLinkSession:
-        return self
-
-    def __exit__(self, *exc: object) -> None:
-        self.close()
-
-    def __repr__(self) -> str:
-        return f"HostLinkSession({self.url!r}{', closed' if self.closed else ''})"
-
     @property
     def closed(self) -> bool:
-        return self.conn.closed
+        """True once closed here, or once the line closed for good."""
+        return super().closed or self.conn.closed
 
     @property
     def port(self) -> Any:
         return self.conn.port
 
-    def close(self) -> None:
-        """Close the port (idempotent)."""
+    def _release(self) -> None:
+        """Close the port."""
         self.conn.close()
 
     def request(self, code: Req, body: bytes = b"", *, timeout: float | None = None) -> bytes:
         return self.conn.request(code, body, timeout=timeout)
 
-    # -- events --------------------
-    def subscribe(self, callback: Callable[[object], None]) -> Callable[[], None]:
-        """Call ``callback(event)`` (from the line thread: only enqueue); returns unsubscribe."""
-        return self._subs.add(callback)
-
-    def _emit(self, event: object) -> None:
-        self._subs.emit(event)
-
+    # -- events (from the line thread) --------------------
     def _notice(self, text: str) -> None:
         log.warning("%s", text)
         self._emit(ev.BusError(text, "transport"))
@@ -276,7 +260,7 @@ class HostLinkSession(TransactingMixin):
             if len(links) >= total or not page:
                 return links
 
-    def _refresh(self, progress: Callable[[int, int, str], None] | None = None,
+    def _refresh(self, progress: ProgressFn | None = None,
                  cancel: threading.Event | None = None) -> System:
         """Read what events marked out of date. Requests run outside ``cache.lock`` (the line
         thread takes it to mark things stale), one refresh at a time."""
@@ -343,19 +327,10 @@ class HostLinkSession(TransactingMixin):
         """The arbitrator's system (node IDs, presence, links), read only where it changed."""
         return self._refresh()
 
-    def scan(self, progress: Callable[[int, int, str], None] | None = None,
+    def scan(self, progress: ProgressFn | None = None,
              cancel: threading.Event | None = None) -> System:
         """The arbitrator's tables: devices, channels, parameters, links (cached)."""
-        last = [0.0]
-
-        def report(done: int, total: int, text: str) -> None:
-            if progress is not None:
-                progress(done, total, text)
-            now = time.monotonic()
-            if done >= total or now - last[0] >= PROGRESS_EVENT_INTERVAL_S:
-                last[0] = now
-                self._emit(ev.Progress(done, total, text))
-
+        report = self._reporting(progress)
         system = self._refresh(report, cancel)
         present = System([d for d in system.devices.values() if d.present])
         for link in system.links:
@@ -472,7 +447,7 @@ class HostLinkSession(TransactingMixin):
         self.request(Req.CONFIG_WRITE_COMMIT)
 
     # -- the change road ----------------------------------------------------------------
-    def carry_out(self, change: Change, progress: Callable[[int, int, str], None] | None = None,
+    def carry_out(self, change: Change, progress: ProgressFn | None = None,
                   cancel: threading.Event | None = None) -> TransactionResult:
         """The arbitrator carries ``change`` out as one transaction (interlock, write, read
         back, restore on a mismatch, release): staged in chunks with a CRC, then run."""
@@ -535,24 +510,13 @@ class HostLinkSession(TransactingMixin):
         """The arbitrator's profile-layer policy (GET_POLICY)."""
         return Policy(autoconfigure=bool(self.request(Req.GET_POLICY)[0] & 1))
 
-    # -- plans --------------------
-    def preview(self, mode: str, config: ConfigCollection | None = None) -> Any:
-        """The engine's plan on the arbitrator's system (and its memory unless ``config``)."""
-        from pdcp_studio.engine import plan_for, plan_on_bus
-
-        autoconfigure = self.read_policy().autoconfigure
-        if config is not None:
-            return plan_for(mode, self.system(), config, autoconfigure=autoconfigure)
-        return plan_on_bus(mode, self.system(), self.read_configuration(),
-                           autoconfigure=autoconfigure)
-
 
 #: Options of other session kinds (memory, scan window, …) that mean nothing over a host link.
 _SESSION_OPTIONS = ("reply_timeout", "settle_timeout", "monitor", "ack_timeout", "max_attempts",
                     "transact_timeout")
 
 
-def open_hostlink_session(spec: Any, **options: Any) -> HostLinkSession:
+def open_hostlink_session(spec: BusSpec, **options: Any) -> HostLinkSession:
     """Open ``spec`` (a parsed ``serial:`` BusSpec), greet the arbitrator, check the version.
 
     Options meant for an in-process arbitrator (``memory``, ``scan_window``, …) are ignored:

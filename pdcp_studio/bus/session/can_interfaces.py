@@ -21,6 +21,7 @@ from __future__ import annotations
 
 import errno
 import socket
+from typing import Any
 
 from pdcp_studio.errors import TransportError
 
@@ -106,7 +107,7 @@ def refused(url: str, interface: str, why: str) -> Exception:
                        f"({why}); expected {channel_form(interface)}")
 
 
-def check_channel(url: str, interface: str, channel: str, options: dict) -> None:
+def check_channel(url: str, interface: str, channel: str, options: dict[str, Any]) -> None:
     """Raise BusUrlError for what python-can would refuse when opening, checked without
     opening: an option the interface does not know or a value its parameter does not take
     (``bus/session/can_options.py``; python-can would drop the one silently and fail deep in the
