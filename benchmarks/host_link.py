@@ -29,7 +29,7 @@ from pdcp_studio.bus.hostlink import records as hr
 from pdcp_studio.bus.hostlink.client import HostLinkSession
 from pdcp_studio.bus.hostlink.server import HostLinkServer
 from pdcp_studio.bus.hostlink.testing.relay import NoisyLine, PtyRelay
-from pdcp_studio.bus.session.live import open_sim_session
+from pdcp_studio.bus.session.sim import open_sim_session
 from pdcp_studio.model.configuration import (
     ConfigCollection,
     StoredChannel,

@@ -59,7 +59,7 @@ def one_process(url: str, busy: bool) -> None:
     for n in range(1 + LATER_OPENS):
         cpu0, csw0 = _usage()
         t0 = time.perf_counter()
-        from pdcp_studio.bus.session.live import open_session
+        from pdcp_studio.bus.session.opening import open_session
 
         session = open_session(url)
         wall = time.perf_counter() - t0

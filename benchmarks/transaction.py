@@ -25,7 +25,7 @@ from pathlib import Path
 
 import can
 
-from pdcp_studio.bus.session.live import open_session
+from pdcp_studio.bus.session.opening import open_session
 from pdcp_studio.bus.session.urls import unique_virtual_channel
 from pdcp_studio.bus.trace.bustime import BusTimeMeter
 from pdcp_studio.bus.transaction import Change

@@ -207,7 +207,7 @@ def open_early(url: str) -> Future[BusSession]:
         if not opening.set_running_or_notify_cancel():
             return
         try:
-            from pdcp_studio.bus.session.live import open_session
+            from pdcp_studio.bus.session.opening import open_session
 
             opening.set_result(open_session(url))
         except BaseException as err:  # the worker that takes it raises it (as open_session)

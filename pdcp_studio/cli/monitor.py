@@ -200,7 +200,7 @@ def _session_frames(url: str, stop: Callable[[], bool],
     from pdcp_studio.bus.events import DeviceJoined, DeviceLeft, FrameSeen, LinkMade, LinkRemoved
 
     try:
-        from pdcp_studio.bus.session.live import open_session
+        from pdcp_studio.bus.session.opening import open_session
     except ImportError as err:
         from pdcp_studio.errors import TransportError
 

@@ -12,7 +12,7 @@ import time
 
 import pytest
 
-from pdcp_studio.bus.session.live import open_sim_session
+from pdcp_studio.bus.session.sim import open_sim_session
 from pdcp_studio.bus.session.urls import open_can_bus, unique_virtual_channel
 
 

@@ -14,7 +14,7 @@ from PySide6.QtWidgets import QApplication
 
 from pdcp_studio.app.docks.sim_panel import SimPanel
 from pdcp_studio.app.live.session_bridge import SessionBridge
-from pdcp_studio.bus.session.live import open_session
+from pdcp_studio.bus.session.opening import open_session
 from pdcp_studio.model.refs import DeviceKey
 
 pytestmark = pytest.mark.gui

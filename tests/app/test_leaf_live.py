@@ -10,7 +10,7 @@ from pdcp_studio.app.live.plot import LivePlot, as_number
 from pdcp_studio.app.live.session_bridge import SessionBridge
 from pdcp_studio.app.trace.dock import CHANNEL_DATA, MonitorDock, make_row
 from pdcp_studio.bus.events import FrameSeen
-from pdcp_studio.bus.session.live import open_session
+from pdcp_studio.bus.session.opening import open_session
 from pdcp_studio.bus.trace.monitor import read_capture
 from pdcp_studio.model.refs import ChannelRef
 

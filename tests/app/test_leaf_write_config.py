@@ -9,7 +9,7 @@ from pdcp_studio.app.dialogs import write_config_dialog as wcd
 from pdcp_studio.app.dialogs.compare_dialog import CompareDialog
 from pdcp_studio.app.dialogs.write_config_dialog import WriteConfigDialog, diff_rows
 from pdcp_studio.app.live.session_bridge import SessionBridge
-from pdcp_studio.bus.session.live import open_session
+from pdcp_studio.bus.session.opening import open_session
 from pdcp_studio.engine import configuration_from_system
 from pdcp_studio.model.configuration import ConfigCollection, StoredConfiguration
 

@@ -14,7 +14,8 @@ import pytest
 from pdcp_studio.bus import events as ev
 from pdcp_studio.bus.arbitrator.claim import ARBITRATOR_BEACON_S, LISTEN_S, BusClaim, Phase
 from pdcp_studio.bus.arbitrator.core import Arbitrator
-from pdcp_studio.bus.session.live import OtherArbitratorError, open_can_session, open_sim_session
+from pdcp_studio.bus.session.in_process import OtherArbitratorError, open_can_session
+from pdcp_studio.bus.session.sim import open_sim_session
 from pdcp_studio.bus.session.urls import open_can_bus, parse_bus_url, unique_virtual_channel
 from pdcp_studio.bus.sim.device import SimulatedDevice
 from pdcp_studio.bus.sim.device_host import DeviceHost

@@ -9,7 +9,7 @@ from __future__ import annotations
 
 import can
 
-from pdcp_studio.bus.session.live import open_session
+from pdcp_studio.bus.session.opening import open_session
 from pdcp_studio.bus.session.urls import unique_virtual_channel
 from pdcp_studio.errors import FrameError
 from pdcp_studio.protocol import BindResponse, ConfigureGetBulk, GetParameter, decode

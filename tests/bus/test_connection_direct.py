@@ -188,7 +188,7 @@ def test_a_virtual_bus_laid_out_otherwise_is_left_alone(channel):
 
 
 def test_a_simulated_prosthesis_runs_without_notifier_threads():
-    from pdcp_studio.bus.session.live import open_session
+    from pdcp_studio.bus.session.opening import open_session
 
     channel = unique_virtual_channel("pdcp-sim-direct")
     with open_session("sim:thesis-test2", channel=channel) as session:
@@ -267,7 +267,7 @@ def test_a_simulated_prosthesis_on_a_channel_already_in_use_is_read_with_notifie
     devices could otherwise answer on the first's host thread while that one answers on
     theirs), and both work."""
     from pdcp_studio.bus.connection import virtual_channel_in_use
-    from pdcp_studio.bus.session.live import open_sim_session
+    from pdcp_studio.bus.session.sim import open_sim_session
 
     channel = unique_virtual_channel("pdcp-sim-shared")
     assert not virtual_channel_in_use(channel)

@@ -14,7 +14,7 @@ import can
 from pdcp_studio.bus import events as ev
 from pdcp_studio.bus.arbitrator import core as arbitrator_module
 from pdcp_studio.bus.arbitrator.core import Arbitrator
-from pdcp_studio.bus.session.live import open_session
+from pdcp_studio.bus.session.opening import open_session
 from pdcp_studio.bus.session.urls import unique_virtual_channel
 from pdcp_studio.protocol import Beacon, BindRequest
 

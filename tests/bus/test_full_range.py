@@ -10,7 +10,7 @@ import logging
 import subprocess
 import sys
 
-from pdcp_studio.bus.session.live import open_sim_session
+from pdcp_studio.bus.session.sim import open_sim_session
 from pdcp_studio.bus.sim.rigs import LARGE_VID, large_system, list_prostheses
 from pdcp_studio.cli.main import main
 from pdcp_studio.engine import plan_for

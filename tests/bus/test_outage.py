@@ -16,7 +16,7 @@ import pytest
 from pdcp_studio.bus import events as ev
 from pdcp_studio.bus.outage import BACKOFF_S, Outage
 from pdcp_studio.bus.reopen import ReopeningBus
-from pdcp_studio.bus.session.live import open_session
+from pdcp_studio.bus.session.opening import open_session
 from pdcp_studio.bus.session.urls import unique_virtual_channel
 from pdcp_studio.bus.sim.device import SimulatedDevice
 from pdcp_studio.bus.sim.device_host import DeviceHost

@@ -8,11 +8,9 @@ import threading
 import pytest
 
 from pdcp_studio.bus import events as ev
-from pdcp_studio.bus.session.live import (
-    ConfigVerifyError,
-    SimSession,
-    open_session,
-)
+from pdcp_studio.bus.session.base import ConfigVerifyError
+from pdcp_studio.bus.session.opening import open_session
+from pdcp_studio.bus.session.sim import SimSession
 from pdcp_studio.bus.session.urls import BusUrlError, open_can_bus, unique_virtual_channel
 from pdcp_studio.bus.sim.device import SimulatedDevice
 from pdcp_studio.bus.sim.device_host import DeviceHost

@@ -6,7 +6,7 @@ from __future__ import annotations
 
 import time
 
-from pdcp_studio.bus.session.live import open_session
+from pdcp_studio.bus.session.opening import open_session
 from pdcp_studio.bus.sim.rigs import HAND, SPARE_HAND, load_prosthesis, prosthesis
 from pdcp_studio.paths import systems_dir
 from pdcp_studio.storage import system_file

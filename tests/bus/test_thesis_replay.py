@@ -9,7 +9,7 @@ from __future__ import annotations
 
 import pytest
 
-from pdcp_studio.bus.session.live import open_session
+from pdcp_studio.bus.session.opening import open_session
 from pdcp_studio.model.refs import ChannelRef
 from pdcp_studio.model.system import Link
 

@@ -58,7 +58,8 @@ def _link_writes(messages):
 
 def test_every_transport_implements_the_declared_session(rig):
     from pdcp_studio.bus.hostlink.client import HostLinkSession
-    from pdcp_studio.bus.session.live import Session, SimSession
+    from pdcp_studio.bus.session.in_process import Session
+    from pdcp_studio.bus.session.sim import SimSession
 
     session, _ = rig
     assert isinstance(session, BusSession)

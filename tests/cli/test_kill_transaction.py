@@ -43,7 +43,7 @@ MAX_DELAY_S = 0.4
 
 CHILD = r"""
 import sys
-from pdcp_studio.bus.session.live import open_session
+from pdcp_studio.bus.session.opening import open_session
 from pdcp_studio.bus.transaction import Change
 from pdcp_studio.storage import config_codec
 from pdcp_studio.storage.history import History

@@ -33,7 +33,7 @@ WATCH, HOST_LINK = "watch", "host-link"
 
 def is_other_arbitrator(error: BaseException | None) -> bool:
     """True when a failed Connect failed because another arbitrator runs the bus."""
-    from pdcp_studio.bus.session.live import OtherArbitratorError
+    from pdcp_studio.bus.session.in_process import OtherArbitratorError
 
     return isinstance(error, OtherArbitratorError)
 

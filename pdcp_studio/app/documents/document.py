@@ -38,7 +38,7 @@ from pdcp_studio.model.refs import ChannelRef, DeviceKey
 from pdcp_studio.model.system import Channel, Device, Link, System
 
 if TYPE_CHECKING:
-    from pdcp_studio.bus.session.api import BusSession
+    from pdcp_studio.app.live.session_bridge import SessionBridge
 
 log = logging.getLogger(__name__)
 
@@ -145,7 +145,7 @@ class Document(QObject):
         self.tree: ProfileNames = tree_for(self.trees, self.system)
         self.undo_stack = QUndoStack(self)
         self.path: Path | None = None
-        self.session: BusSession | None = None
+        self.session: SessionBridge | None = None
         self.preview_plan: Any = None
         #: Remembered card positions (scene coordinates), kept when a device leaves.
         self.positions: dict[DeviceKey, Position] = {}
@@ -174,7 +174,7 @@ class Document(QObject):
 
     # -- whole document -----------------------------------------------------------
     def set_system(self, system: System, path: Path | str | None = None,
-                   session: BusSession | None = None,
+                   session: SessionBridge | None = None,
                    *, dirty: bool = False, positions: dict[DeviceKey, Position] | None = None,
                    kind: str = "system", config: Any = None) -> None:
         """Show a different system: clears undo history, selection and preview.
@@ -261,7 +261,7 @@ class Document(QObject):
             self.policy = policy
             self.policyChanged.emit(policy)
 
-    def set_session(self, session: BusSession | None) -> None:
+    def set_session(self, session: SessionBridge | None) -> None:
         """Bind or unbind a live session without touching the system."""
         if session is not self.session:
             self.session = session

@@ -9,6 +9,7 @@ The connection itself is :mod:`pdcp_studio.app.live.live_bus`; the docks a bus b
 from __future__ import annotations
 
 from collections.abc import Callable
+from functools import partial
 from pathlib import Path
 from typing import Any
 
@@ -117,7 +118,7 @@ class BusCommands:
             return
         session = bridge.session
         bridge.run(lambda _p, _c: session.read_configuration(), "Read configuration",
-                   lambda c, b=bridge: self._stored_configuration_seen(b, c))
+                   partial(self._stored_configuration_seen, bridge))
 
     def _stored_configuration_seen(self, bridge: Any, collection: Any) -> None:
         if bridge is self.live.bridge and self.doc.session is bridge:

@@ -12,6 +12,7 @@ never a wish.
 from __future__ import annotations
 
 from collections.abc import Callable
+from functools import partial
 from typing import Any
 
 from PySide6.QtGui import QAction
@@ -68,7 +69,7 @@ class PolicyController:
             return
         session = bridge.session
         bridge.run(lambda _p, _c: session.read_policy(), "Read the policy",
-                   lambda policy, b=bridge: self._policy_read(b, policy))
+                   partial(self._policy_read, bridge))
 
     def _policy_read(self, bridge: Any, policy: Any) -> None:
         if bridge is self.live.bridge and self.doc.session is bridge:

@@ -19,7 +19,7 @@ the host link's TRANSACT request calls it on the arbitrator's side of the line. 
   configuration and policy that were there; the result says which step failed and why.
 - **Release.** Release Device (0x09) to every held device, after verify or restore.
 
-Recording in the fitting history is the PC's part (``session_api.run_transaction``).
+Recording in the fitting history is the PC's part (``bus/session/change_road.py``: ``run_transaction``).
 The whole transaction holds the plan lock: no start-up, duty cycle or other plan runs inside it.
 """
 

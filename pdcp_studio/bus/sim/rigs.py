@@ -4,7 +4,7 @@ Each prosthesis is a ``pdcp-system/1`` system (the shipped ``resources/systems/*
 the generated 32-device ``large`` rig) plus scripts: plug, unplug, replace a device, reset
 the arbitrator with or without its memory, wait. A script is data; :func:`run_script`
 carries it out on anything with the simulator controls of a ``SimSession``
-(``bus/session/live.py``), so each thesis test (reference §4) replays end to end on the bus.
+(``bus/session/sim.py``), so each thesis test (reference §4) replays end to end on the bus.
 
 Devices marked ``present: false`` in a system file are simulated but start unplugged (the
 replacement a script plugs in later). Every script names the links it must end in; for the
