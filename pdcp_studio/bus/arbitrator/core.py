@@ -65,7 +65,6 @@ import logging
 import threading
 import time
 from collections.abc import Callable
-from concurrent.futures import ThreadPoolExecutor
 from pathlib import Path
 from typing import TYPE_CHECKING, Any
 
@@ -96,19 +95,22 @@ from pdcp_studio.bus.arbitrator.common import (
     _Node,
 )
 from pdcp_studio.bus.arbitrator.dispatch import Dispatcher
+from pdcp_studio.bus.arbitrator.interlock import Interlock
+from pdcp_studio.bus.arbitrator.jobs import JobPool
 from pdcp_studio.bus.arbitrator.links import LinkWriter
 from pdcp_studio.bus.arbitrator.memory import MemoryStore
 from pdcp_studio.bus.arbitrator.node_ids import NodeIdPool
 from pdcp_studio.bus.arbitrator.nodes import NodeTable
 from pdcp_studio.bus.arbitrator.presence import PresenceTracker
-from pdcp_studio.bus.arbitrator.profile import ProfileDriver
+from pdcp_studio.bus.arbitrator.profile import ProfileDriver, ProfilePorts
 from pdcp_studio.bus.arbitrator.requests import RESPONSE_TIMEOUT_S, RequestEngine
 from pdcp_studio.bus.arbitrator.setup import DeviceSetup
+from pdcp_studio.bus.arbitrator.state import SystemState
 from pdcp_studio.bus.arbitrator.transactions import Transactions
 from pdcp_studio.bus.connection import Connection
 from pdcp_studio.bus.log_limit import LimitedLog, RepeatLimiter
 from pdcp_studio.bus.transaction import INTERLOCK_RENEW_S, Change, Policy, TransactionResult
-from pdcp_studio.errors import ModelError, TransportError
+from pdcp_studio.errors import ModelError, PdcpError, TransportError
 from pdcp_studio.model import parameters as P
 from pdcp_studio.model.configuration import ConfigCollection
 from pdcp_studio.model.param_fields import learn_value, only_inputs
@@ -195,40 +197,26 @@ class Arbitrator:
         if autoconfigure is not None and self.memory.read_policy()["autoconfigure"] != \
                 autoconfigure:  # ``--no-autoconfigure``: the flag sets the stored policy
             self.memory.write_policy({"autoconfigure": autoconfigure})
-        self.bad_frames = 0
-        self.error_frames = 0
-        self.data_frames = 0
         self.conn = Connection(bus, name=name, pace_s=pace_s, drop_own=drop_own, direct=direct)
         self._errors = RepeatLimiter(burst=ERROR_BURST)
-        self._crashes = LimitedLog(log, f"{name}: ")
-        self._disconnected = False  # the adapter was pulled (a ReopeningBus says so)
         self.requests = RequestEngine(self._send, response_timeout=response_timeout,
                                       retries=retries)
-        self._lock = threading.RLock()  # the parts' state and the system
-        self._plan_lock = threading.RLock()  # wire work on links: plans, set-ups, transactions
+        self._state = SystemState()
+        self._lock = self._state.lock  # the parts' state and the system
+        self._plan_lock = self._state.wire_lock  # wire work on links: plans, set-ups, transactions
         self._subscribers = ev.Subscribers(name)
-        self._system = System()
-        self._jobs = 0  # jobs in flight on the set-up pool besides set-ups (departures …)
+        self._jobs = JobPool(SETUP_WORKERS, name, self._lock)
+        self._stop = threading.Event()
+        self._wake = threading.Event()
         now = time.monotonic()
         # One arbitrator per bus (reference §5, arb_claim): on a can: bus it first listens
         # ``listen_s``; until then (and for good once another arbitrator is heard) it writes
         # nothing, not even the start-up reset.
         self.claim = BusClaim(now, listen_s, own_echoes=self.conn.drop_own)
-        self._reset_on_claim = reset_on_start
-        self.bus_message = ""  # the last BusState line (why it arbitrates or not)
         self.nodes = NodeTable(*node_ids)
         self.presence = PresenceTracker()
-        self.setup = DeviceSetup(self)
-        self.links = LinkWriter(self)
-        # Without the start-up reset, devices bound by an earlier arbitrator keep their IDs:
-        # hear them all (beacons) before handing any ID out; the device asking retries.
-        listen_until = max(now if reset_on_start else now + FOREIGN_LISTEN_S,
-                           self.claim.listen_until)
-        self.profile = ProfileDriver(self, now, quiet_s=startup_quiet_s,
-                                     duty_quiet_s=duty_quiet_s, max_wait_s=startup_max_wait_s,
-                                     listen_until=listen_until)
-        self.transactions = Transactions(self)
-        self.dispatch = Dispatcher(self)
+        self._wire(now, reset_on_start=reset_on_start, startup_quiet_s=startup_quiet_s,
+                   duty_quiet_s=duty_quiet_s, startup_max_wait_s=startup_max_wait_s)
         if hasattr(bus, "on_state"):
             bus.on_state = self.dispatch.adapter_state
         # The frame events' decoder (bus/trace/monitor.py), made when a frame is first shown; the
@@ -238,18 +226,58 @@ class Arbitrator:
         self._decoder_lock = threading.Lock()
         self._unshown: list[tuple[int, bytes, float]] = []
         self._frame_gates: list[Callable[[], bool]] = []
-        self._stop = threading.Event()
-        self._wake = threading.Event()
-        self._pool_exec = ThreadPoolExecutor(SETUP_WORKERS, thread_name_prefix=f"pdcp {name} setup")
         self._thread = threading.Thread(target=self.dispatch.run, name=f"pdcp {name}",
                                         daemon=True)
-        self._profile_thread = threading.Thread(target=self.profile.loop,
+        self._profile_thread = threading.Thread(target=self._profile_loop,
                                                 name=f"pdcp {name} profile", daemon=True)
         self._closed = False
         self._thread.start()
         self._profile_thread.start()
         if self.claim.may_write:
             self.dispatch.claim_started(None)
+
+    def _wire(self, now: float, *, reset_on_start: bool, startup_quiet_s: float,
+              duty_quiet_s: float, startup_max_wait_s: float) -> None:
+        """Make the parts and connect their ports: the one place they meet. Methods a test
+        replaces on the instance (``read_memory``, ``_do_link``, ``interlock_renew_s``) are
+        asked each time, through a lambda."""
+        state, name = self._state, self.name
+        self.links = LinkWriter(state, self.nodes, self.requests, send=self._send_quiet,
+                                submit=self._jobs.submit, error=self._error, emit=self._emit,
+                                name=name)
+        interlock = Interlock(suspend=self.suspend, release=self.release,
+                              renew_s=lambda: self.interlock_renew_s, name=name)
+        # Without the start-up reset, devices bound by an earlier arbitrator keep their IDs:
+        # hear them all (beacons) before handing any ID out; the device asking retries.
+        listen_until = max(now if reset_on_start else now + FOREIGN_LISTEN_S,
+                           self.claim.listen_until)
+        self.profile = ProfileDriver(
+            ProfilePorts(state, add_link=self.links.add, remove_link=self.links.remove,
+                         interlock=interlock, read_memory=lambda: self.read_memory(),
+                         read_policy=lambda: self.read_policy(), error=self._error,
+                         emit=self._emit, closed=lambda: self._closed, name=name),
+            now, quiet_s=startup_quiet_s, duty_quiet_s=duty_quiet_s,
+            max_wait_s=startup_max_wait_s, listen_until=listen_until)
+        self.setup = DeviceSetup(state, self.nodes, self.requests, run=self._jobs.run,
+                                 wire_add=self.links.wire_add,
+                                 note_change=self.profile.note_change, send=self._send_quiet,
+                                 error=self._error, emit=self._emit, wake=self._wake.set,
+                                 stopping=self._stop.is_set, name=name)
+        self.transactions = Transactions(
+            state, self.memory, self.links, interlock=interlock, running=self.profile.running,
+            get_parameter=self.get_parameter, set_parameter=self.set_parameter,
+            node_id_of=self.node_id_of, channel_node_id=self.channel_node_id,
+            do_link=lambda op, link: self._do_link(op, link),
+            read_memory=lambda: self.read_memory(), write_memory=self.write_memory,
+            emit=self._emit, name=name)
+        self.dispatch = Dispatcher(
+            state, self.conn, self.claim, self.nodes, self.presence, self.requests,
+            links=self.links, setup=self.setup, profile=self.profile,
+            show_frame=self._frame_event if self.frame_events else None,
+            channel_events=self.channel_events, reset_on_claim=reset_on_start,
+            send=self._send_quiet, error=self._error, flush_errors=self._flush_errors,
+            crashes=LimitedLog(log, f"{name}: "), emit=self._emit, wake=self._wake.set,
+            stop=self._stop, name=name)
 
     # -- lifetime -------------------------------------------------------------------------
     def __enter__(self) -> Arbitrator:
@@ -267,7 +295,7 @@ class Arbitrator:
         self._wake.set()
         self.requests.close()
         self.conn.wake()
-        self._pool_exec.shutdown(wait=False, cancel_futures=True)
+        self._jobs.shutdown()
         for thread in (self._thread, self._profile_thread):
             if thread is not threading.current_thread():
                 thread.join(timeout=JOIN_S)
@@ -276,6 +304,39 @@ class Arbitrator:
     @property
     def closed(self) -> bool:
         return self._closed
+
+    # -- the profile thread ---------------------------------------------------------------
+    def _profile_loop(self) -> None:
+        """Start-up once it is due, then the duty cycle when it is (the profile driver
+        decides when, from what this arbitrator tells it of its business)."""
+        profile = self.profile
+        while not self._stop.is_set():
+            self._wake.wait(0.02)
+            self._wake.clear()
+            if self._stop.is_set() or not self.profile_layer or not self.claim.may_write:
+                continue  # (listening, or another arbitrator is on the bus)
+            now = time.monotonic()
+            try:
+                if not profile.startup_done:
+                    with self._lock:
+                        setting_up = self.setup.under_way()
+                    present = frozenset(self.devices_present()) if profile.expected \
+                        else frozenset()
+                    due = profile.startup_due(now, self._busy(), setting_up,
+                                              self.conn.inbound.empty(), present)
+                    if due == "late":
+                        self._error(f"start-up runs after {profile.startup_max_wait_s:g} s "
+                                    "although binding has not settled (a device keeps asking "
+                                    "for an ID it is not given)", "setup")
+                    if due:
+                        profile.run_startup()
+                elif profile.duty_due(now, self._busy()):
+                    profile.run_duty_cycle()
+            except PdcpError as err:
+                if not self._closed:  # a plan cut off by closing the session is no news
+                    self._error(f"profile layer: {err}", "plan")
+            except Exception:
+                log.exception("%s: the profile layer failed", self.name)
 
     # -- events ---------------------------------------------------------------------------
     def subscribe(self, callback: Callable[[ev.Event], None], *,
@@ -323,8 +384,7 @@ class Arbitrator:
     # -- snapshot and look-ups ------------------------------------------------------------
     def system(self) -> System:
         """A copy of the bus as the arbitrator knows it (every device ever bound)."""
-        with self._lock:
-            return self._system.copy()
+        return self._state.snapshot()
 
     def node_id_of(self, key: DeviceKey) -> int | None:
         """The node ID of a bound device (None if it is not bound)."""
@@ -365,6 +425,25 @@ class Arbitrator:
         return self.nodes.by_id
 
     @property
+    def bad_frames(self) -> int:
+        """Frames heard that are not PDCP (undecodable, extended, remote)."""
+        return self.dispatch.bad_frames
+
+    @property
+    def error_frames(self) -> int:
+        return self.dispatch.error_frames
+
+    @property
+    def data_frames(self) -> int:
+        """Channel data frames heard."""
+        return self.dispatch.data_frames
+
+    @property
+    def bus_message(self) -> str:
+        """The last BusState line (why it arbitrates or not)."""
+        return self.dispatch.bus_message
+
+    @property
     def bus_state(self) -> str:
         """``listening``, ``arbitrating`` or ``yielded`` (ev.BusState says when it changes)."""
         return self.claim.phase.value
@@ -389,15 +468,12 @@ class Arbitrator:
     def _busy(self) -> bool:
         """Binds held or deferred, set-ups or jobs under way."""
         with self._lock:
-            return bool(self.setup.in_flight or self.nodes.held or self.nodes.deferred
-                         or self._jobs)
+            return bool(self.setup.under_way() or self.nodes.held or self.nodes.deferred
+                        or self._jobs.busy())
 
     def _settled(self) -> bool:
         with self._lock:
-            busy = self._busy() or bool(self.profile.plan_running)
-            if self.profile_layer:
-                busy = busy or not self.profile.startup_done or self.profile.duty_needed
-            return not busy
+            return not self._busy() and self.profile.settled(self.profile_layer)
 
     def wait_settled(self, timeout: float) -> bool:
         """True once no bind, set-up or plan is in progress and start-up has run."""
@@ -416,20 +492,6 @@ class Arbitrator:
             raise TransportError(f"{self.name}: device {DeviceKey(*key)} is not on the bus")
         return node_id
 
-    # -- jobs on the set-up pool ----------------------------------------------------------
-    def _submit_job(self, fn: Callable[..., None], *args: Any) -> None:
-        """Run ``fn(*args)`` on the set-up pool, counted until it calls :meth:`_job_done`."""
-        with self._lock:
-            self._jobs += 1
-        try:
-            self._pool_exec.submit(fn, *args)
-        except RuntimeError:  # closing
-            self._job_done()
-
-    def _job_done(self) -> None:
-        with self._lock:
-            self._jobs -= 1
-
     # -- parameters -----------------------------------------------------------------------
     def get_parameter(self, key: DeviceKey, param: int, channel: int = 0, *,
                       timeout: float | None = None) -> bytes:
@@ -447,7 +509,7 @@ class Arbitrator:
         """
         key = DeviceKey(*key)
         with self._lock:
-            device = self._system.device(key)
+            device = self._state.system.device(key)
             ch = device.channels.get(channel) if device and channel else None
         scope = "device" if channel == 0 else ch.direction.value if ch else ""
         if (param, scope) in _MANAGED:
@@ -458,10 +520,11 @@ class Arbitrator:
 
     def _learn(self, key: DeviceKey, param: int, channel: int, value: bytes) -> None:
         with self._lock:
-            device = self._system.device(key)
+            device = self._state.system.device(key)
             if device is not None:
                 learn_value(device, param, channel, value)
                 only_inputs(device)
+                self.nodes.stamp(device)  # node IDs are the node table's, not what was read
             if channel == 0 and param == P.DEVICE_BEACON_INTERVAL and len(value) == 2:
                 node = self.nodes.node(key)
                 if node is not None:
@@ -564,7 +627,7 @@ class Arbitrator:
             self._frame_event(arbitration_id, data, time.time())
 
     def _send_quiet(self, message: Message) -> None:
-        if not self.claim.may_write or self._disconnected:
+        if not self.claim.may_write or self.dispatch.disconnected:
             return  # listening, another arbitrator on the bus, or no adapter: say nothing
         try:
             self._send(message)
@@ -608,7 +671,7 @@ class Arbitrator:
                 now = time.monotonic()
                 self.presence.forget(self.nodes.channel_ids, now)
                 self.setup.forget()
-                self._system = System()
+                self._state.forget()
                 self.nodes.clear()
                 self.profile.restart(now)
             for node_id in node_ids:
@@ -620,7 +683,7 @@ class Arbitrator:
     def devices_present(self) -> list[DeviceKey]:
         """Keys of the devices on the bus and set up."""
         with self._lock:
-            return [k for k, d in self._system.devices.items() if d.present]
+            return [k for k, d in self._state.system.devices.items() if d.present]
 
     def wait_for(self, predicate: Callable[[], bool], timeout: float) -> bool:
         """Poll ``predicate`` until it is true or ``timeout`` passes (tests, scripts)."""

@@ -27,6 +27,7 @@ from pdcp_studio.bus.arbitrator.common import (
 from pdcp_studio.bus.arbitrator.node_ids import NodeIdPool
 from pdcp_studio.errors import NodeIdExhaustedError
 from pdcp_studio.model.refs import ChannelRef, DeviceKey
+from pdcp_studio.model.system import Device
 from pdcp_studio.protocol import BindRequest
 from pdcp_studio.protocol.identifier import NODE_ID_MAX
 
@@ -81,6 +82,14 @@ class NodeTable:
     def output_id(self, ref: ChannelRef) -> int | None:
         """The node ID an output channel sends its data with (None if it has none)."""
         return self.pool.id_of((ref.device, ref.index))
+
+    def stamp(self, device: Device) -> None:
+        """Write the node IDs this table holds for ``device`` and its outputs into the model
+        (None where it holds none): the one place the model's node IDs are set, so they
+        never disagree with the table."""
+        device.node_id = self.node_of.get(device.key)
+        for index, channel in device.channels.items():
+            channel.node_id = self.output_id(device.ref(index))
 
     def is_foreign(self, arbitration_id: int) -> bool:
         """A device-mode frame (not a bind request) from a node ID nobody holds here."""
