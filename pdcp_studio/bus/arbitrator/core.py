@@ -32,30 +32,33 @@ Decisions beyond the reference:
   a Reset Device, so the device binds again; start and :meth:`reset` broadcast one.
 
 The arbitrator is composed of parts, each with one job and its own state (as canopen composes
-its ``Network`` from ``nmt``, ``lss`` and ``sdo``):
+its ``Network`` from ``nmt``, ``lss`` and ``sdo``, which see only ``send_message`` and
+``subscribe``). No part sees the arbitrator: each gets in its constructor the few things it
+needs — the shared :class:`~pdcp_studio.bus.arbitrator.state.SystemState` (the system, its
+lock, the wire lock), the request engine, and callables to send a frame, emit an event,
+report an error or submit a job — and asks another part through a call, never by writing its
+fields. :meth:`Arbitrator._wire` connects them, in one place.
 
 - ``claim`` (:class:`~pdcp_studio.bus.arbitrator.claim.BusClaim`): may we write on this bus at all;
 - ``nodes`` (:class:`~pdcp_studio.bus.arbitrator.nodes.NodeTable`): who holds which node ID, and
-  what
-  to answer a bind request;
+  what to answer a bind request; the model's node IDs are stamped from it (``NodeTable.stamp``);
 - ``presence`` (:class:`~pdcp_studio.bus.arbitrator.presence.PresenceTracker`): who is gone at
   ``now``, twins on one node ID, nodes bound by someone else;
 - ``setup`` (:class:`~pdcp_studio.bus.arbitrator.setup.DeviceSetup`): reading a bound device with
-  the
-  device reader the scan shares (``bus/arbitrator/device_reader.py``) and installing it;
+  the device reader the scan shares (``bus/arbitrator/device_reader.py``) and installing it;
 - ``links`` (:class:`~pdcp_studio.bus.arbitrator.links.LinkWriter`): what to write for a link, and
   writing it;
 - ``profile`` (:class:`~pdcp_studio.bus.arbitrator.profile.ProfileDriver`): start-up, duty cycle,
-  plans;
+  plans, and when they are due;
 - ``transactions`` (:class:`~pdcp_studio.bus.arbitrator.transactions.Transactions`): the change
-  road;
+  road, holding devices through the motion interlock (``bus/arbitrator/interlock.py``);
 - ``dispatch`` (:class:`~pdcp_studio.bus.arbitrator.dispatch.Dispatcher`): the dispatch thread,
-  which
-  hears every frame, asks the deciding parts and carries their decisions out.
+  which hears every frame, asks the deciding parts and carries their decisions out.
 
 The claim, node table and presence tracker decide from ``now`` and the frames heard and return
-decisions (tested without threads); this class owns the bus, the threads, the locks and the
-system, sends, and keeps the public API. ``arb_common`` holds the constants and node state.
+decisions (tested without threads); this class owns the bus, the threads, the set-up pool
+(``bus/arbitrator/jobs.py``), the state and the errors' limiter, sends, and keeps the public
+API. ``bus/arbitrator/common.py`` holds the constants and node state.
 """
 
 
@@ -95,6 +98,7 @@ from pdcp_studio.bus.arbitrator.common import (
     _Node,
 )
 from pdcp_studio.bus.arbitrator.dispatch import Dispatcher
+from pdcp_studio.bus.arbitrator.frame_events import FrameFeed
 from pdcp_studio.bus.arbitrator.interlock import Interlock
 from pdcp_studio.bus.arbitrator.jobs import JobPool
 from pdcp_studio.bus.arbitrator.links import LinkWriter
@@ -126,6 +130,7 @@ from pdcp_studio.protocol.identifier import NODE_ID_MAX, NODE_ID_MIN
 if TYPE_CHECKING:
     import can
 
+    from pdcp_studio.bus.trace.monitor import FrameDecoder
     from pdcp_studio.engine.plan import Plan
 
 log = logging.getLogger(__name__)
@@ -158,10 +163,6 @@ __all__ = [
     "Arbitrator",
     "learn_value",
 ]
-
-#: At most this many frames wait undecoded while nobody wants frame events (``subscribe``).
-FRAME_BACKLOG = 1024
-
 
 def _always() -> bool:
     return True
@@ -206,6 +207,7 @@ class Arbitrator:
         self._plan_lock = self._state.wire_lock  # wire work on links: plans, set-ups, transactions
         self._subscribers = ev.Subscribers(name)
         self._jobs = JobPool(SETUP_WORKERS, name, self._lock)
+        self._frames = FrameFeed(self._emit)
         self._stop = threading.Event()
         self._wake = threading.Event()
         now = time.monotonic()
@@ -219,13 +221,6 @@ class Arbitrator:
                    duty_quiet_s=duty_quiet_s, startup_max_wait_s=startup_max_wait_s)
         if hasattr(bus, "on_state"):
             bus.on_state = self.dispatch.adapter_state
-        # The frame events' decoder (bus/trace/monitor.py), made when a frame is first shown; the
-        # frames before it, and those while nobody watches frames, wait undecoded
-        # (``_frame_event``).
-        self._decoder: Any = None
-        self._decoder_lock = threading.Lock()
-        self._unshown: list[tuple[int, bytes, float]] = []
-        self._frame_gates: list[Callable[[], bool]] = []
         self._thread = threading.Thread(target=self.dispatch.run, name=f"pdcp {name}",
                                         daemon=True)
         self._profile_thread = threading.Thread(target=self._profile_loop,
@@ -273,7 +268,7 @@ class Arbitrator:
         self.dispatch = Dispatcher(
             state, self.conn, self.claim, self.nodes, self.presence, self.requests,
             links=self.links, setup=self.setup, profile=self.profile,
-            show_frame=self._frame_event if self.frame_events else None,
+            show_frame=self._frames.frame if self.frame_events else None,
             channel_events=self.channel_events, reset_on_claim=reset_on_start,
             send=self._send_quiet, error=self._error, flush_errors=self._flush_errors,
             crashes=LimitedLog(log, f"{name}: "), emit=self._emit, wake=self._wake.set,
@@ -349,16 +344,12 @@ class Arbitrator:
         decoded for display: they wait (``FRAME_BACKLOG`` at most) and are decoded, in order,
         before the next frame one is shown, so the texts are the same, and the work is off
         the path of opening a simulated prosthesis, which nobody watches yet."""
-        gate = wants_frames if wants_frames is not None else _always
-        with self._decoder_lock:
-            self._frame_gates.append(gate)
+        unwatch = self._frames.watch(wants_frames if wants_frames is not None else _always)
         remove = self._subscribers.add(callback)
 
         def unsubscribe() -> None:
             remove()
-            with self._decoder_lock:
-                if gate in self._frame_gates:
-                    self._frame_gates.remove(gate)
+            unwatch()
 
         return unsubscribe
 
@@ -415,6 +406,18 @@ class Arbitrator:
     @property
     def applied_plans(self) -> list[Plan]:
         return self.profile.applied_plans
+
+    @property
+    def _decoder(self) -> FrameDecoder | None:  # (tests look at the frame events' decoder …)
+        return self._frames.decoder
+
+    @property
+    def _unshown(self) -> list[tuple[int, bytes, float]]:  # (… the frames waiting for it …)
+        return self._frames.unshown
+
+    @property
+    def _frame_gates(self) -> list[Callable[[], bool]]:  # (… and who wants frames now)
+        return self._frames.gates
 
     @property
     def _pool(self) -> NodeIdPool:  # (tests look at the pool's free IDs)
@@ -624,7 +627,7 @@ class Arbitrator:
         self.claim.sent(arbitration_id, data, time.monotonic())
         self.conn.send(arbitration_id, data, filter_echo=False)
         if self.frame_events:
-            self._frame_event(arbitration_id, data, time.time())
+            self._frames.frame(arbitration_id, data, time.time())
 
     def _send_quiet(self, message: Message) -> None:
         if not self.claim.may_write or self.dispatch.disconnected:
@@ -633,31 +636,6 @@ class Arbitrator:
             self._send(message)
         except TransportError as err:
             self._error(str(err), "transport")
-
-    def _frame_event(self, arbitration_id: int, data: bytes, timestamp: float) -> None:
-        """A FrameSeen event for a frame heard or sent, decoded in the order of the frames
-        (the decoder learns the bus from them); or, while nobody wants frame events, the
-        frame kept to be decoded later (see :meth:`subscribe`)."""
-        with self._decoder_lock:
-            if not any(gate() for gate in self._frame_gates):
-                self._unshown.append((arbitration_id, bytes(data), timestamp))
-                if len(self._unshown) < FRAME_BACKLOG:
-                    return
-                self._catch_up()  # memory stays bounded; the work is the same
-                return
-            self._catch_up()
-            line = self._decoder.decode(arbitration_id, data, timestamp).line
-        self._emit(ev.FrameSeen(timestamp, arbitration_id, bytes(data), line))
-
-    def _catch_up(self) -> None:
-        """Under the decoder lock: the decoder, made if need be, learns the waiting frames."""
-        if self._decoder is None:
-            from pdcp_studio.bus.trace.monitor import FrameDecoder
-
-            self._decoder = FrameDecoder()
-        frames, self._unshown = self._unshown, []
-        for arbitration_id, data, timestamp in frames:
-            self._decoder.decode(arbitration_id, data, timestamp)
 
     # -- reset ----------------------------------------------------------------------------
     def reset(self, keep_memory: bool = True) -> None:
