@@ -267,7 +267,7 @@ class Dispatcher:
                 self._error(decision.report, "node_ids_exhausted")
         elif decision.kind in ("grant", "suggest"):
             self._send(BindResponse(decision.asked, decision.node_id, key.vid, key.pid,
-                                          key.serial))
+                                    key.serial))
 
     def _bound(self, key: DeviceKey, node_id: int, now: float) -> Callable[[], None]:
         """Under the lock: ``key`` holds ``node_id``; its set-up (or a new one) is in flight.
@@ -363,7 +363,7 @@ class Dispatcher:
                 self._send(Reset(node_id))
         if isinstance(message, UpdateDataChannel):
             self._send(UpdateDataChannelResponse(node_id, ResponseCode.FAILURE,
-                                                       message.channel))
+                                                 message.channel))
 
     # -- one arbitrator per bus (reference §5; the claim decides) -------------------------
     def _hear_claim(self, arbitration_id: int, data: bytes, now: float) -> bool:
@@ -391,7 +391,7 @@ class Dispatcher:
             log.info("%s: %s", self._name, decision.message)
             self._emit(ev.BusState("arbitrating", decision.message))
             with self._state.lock:
-                self._presence.unknown_reset.clear()  # resets skipped while listening may go
+                self._presence.claimed()
         if self._reset_on_claim or (decision is not None and decision.takeover):
             self._send(Reset(0))
 
