@@ -529,9 +529,7 @@ class Arbitrator:
                 only_inputs(device)
                 self.nodes.stamp(device)  # node IDs are the node table's, not what was read
             if channel == 0 and param == P.DEVICE_BEACON_INTERVAL and len(value) == 2:
-                node = self.nodes.node(key)
-                if node is not None:
-                    node.beacon_interval = max(int.from_bytes(value, "little"), 1) / 1000.0
+                self.nodes.beacons_every(key, max(int.from_bytes(value, "little"), 1) / 1000.0)
 
     def suspend(self, key: DeviceKey, ms: int = 0) -> None:
         """Suspend Device: stop its data for ``ms`` milliseconds (0 = until released)."""
@@ -618,9 +616,7 @@ class Arbitrator:
         arbitration_id, data = message.encode()
         if message.mode is Mode.ARBITRATOR and message.node_id:
             with self._lock:
-                node = self.nodes.by_id.get(message.node_id)
-                if node is not None:
-                    node.last_request = time.monotonic()
+                self.nodes.asked(message.node_id, time.monotonic())
         # On a bus that echoes, the claim accounts for the copies (arb_claim), not the
         # connection's filter: a copy later than the filter waits must not pass for another
         # arbitrator's frame.

@@ -197,11 +197,7 @@ class Dispatcher:
             self._on_bind(message, now)
             return
         with self._state.lock:
-            node = self._nodes.by_id.get(node_id)
-            if node is not None:
-                node.last_seen = now
-                if isinstance(message, Beacon):
-                    node.last_beacon = now
+            node = self._nodes.heard(node_id, now, beacon=isinstance(message, Beacon))
         if node is None:  # node 0, or a device that left a moment ago
             return
         if isinstance(message, Beacon):
@@ -299,9 +295,7 @@ class Dispatcher:
             else:
                 log.info("%s: device %s binds again (it restarted)", self._name, key)
                 with self._state.lock:
-                    again = self._nodes.node(key)
-                    if again is not None:
-                        again.set_up = False
+                    self._nodes.binds_again(key)
                 self._answer_bind(req, now)
 
     def _twin(self, key: DeviceKey, why: str) -> None:
@@ -421,8 +415,7 @@ class Dispatcher:
         with self._state.lock:
             self.disconnected = state == "disconnected"
             if not self.disconnected:
-                for node in self._nodes.by_id.values():
-                    node.last_seen = max(node.last_seen, now)
+                self._nodes.heard_all(now)
         self._emit(ev.BusState(state, line))
         if not self.disconnected:
             self._links.reread()

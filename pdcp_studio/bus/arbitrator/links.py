@@ -247,7 +247,6 @@ class LinkWriter:
         """Update Data Channel: answer, and re-make the links into that input (a job)."""
         self._send(UpdateDataChannelResponse(node.node_id, ResponseCode.SUCCESS, msg.channel))
         with self._state.lock:
-            node.updates.add(msg.channel)
             if not node.set_up:
                 return  # set-up (step 5) handles it
             ref = ChannelRef(*node.key, msg.channel)

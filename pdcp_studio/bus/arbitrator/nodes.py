@@ -178,6 +178,46 @@ class NodeTable:
                 resolved.append((req, False))
         return resolved
 
+    # -- what is known of a bound node ----------------------------------------------------
+    def heard(self, node_id: int, now: float, *, beacon: bool = False) -> _Node | None:
+        """A frame (``beacon``: a beacon) from ``node_id`` at ``now``; its node, or None when
+        nobody holds that ID here."""
+        node = self.by_id.get(node_id)
+        if node is not None:
+            node.last_seen = now
+            if beacon:
+                node.last_beacon = now
+        return node
+
+    def heard_all(self, now: float) -> None:
+        """The adapter is back: every node gets its beacon intervals to be heard again."""
+        for node in self.by_id.values():
+            node.last_seen = max(node.last_seen, now)
+
+    def asked(self, node_id: int, now: float) -> None:
+        """A request went to ``node_id`` at ``now`` (an echoed answer is judged by it)."""
+        node = self.by_id.get(node_id)
+        if node is not None:
+            node.last_request = now
+
+    def beacons_every(self, key: DeviceKey, interval_s: float) -> None:
+        """``key``'s beacon interval is known (read, or just written)."""
+        node = self.node(key)
+        if node is not None:
+            node.beacon_interval = interval_s
+
+    def set_up(self, node: _Node, beacon_interval_s: float) -> None:
+        """``node``'s device is read and installed: a bind request from it now means a
+        reboot or a twin."""
+        node.beacon_interval = beacon_interval_s
+        node.set_up = True
+
+    def binds_again(self, key: DeviceKey) -> None:
+        """``key`` restarted: its bind request is answered as a fresh device's."""
+        node = self.node(key)
+        if node is not None:
+            node.set_up = False
+
     # -- node IDs in use ------------------------------------------------------------------
     def give_outputs(self, key: DeviceKey, indices: list[int]
                      ) -> tuple[dict[int, int], list[int], str]:

@@ -167,14 +167,12 @@ class DeviceSetup:
             with state.lock:
                 if not self._current(key, node_id, generation, epoch):
                     return
-                node = nodes.by_id[node_id]
                 system = state.system
                 old = system.device(key)
                 joined = old is None or not old.present
                 device.present = True
                 nodes.stamp(device)
                 device.name = old.name if old is not None else ""
-                node.beacon_interval = max(device.beacon_interval, 1) / 1000.0
                 if old is None:
                     system.add_device(device)
                 else:
@@ -188,8 +186,7 @@ class DeviceSetup:
                 links = [lk for lk in system.links
                          if key in (lk.output.device, lk.input.device)
                          and system.is_present(lk.output) and system.is_present(lk.input)]
-                node.set_up = True
-                node.updates.clear()
+                nodes.set_up(nodes.by_id[node_id], max(device.beacon_interval, 1) / 1000.0)
                 self.failures.pop(key, None)
                 self._note_change(time.monotonic(), duty=joined)
             for link in links:
