@@ -234,8 +234,8 @@ class Arbitrator:
     def _wire(self, now: float, *, reset_on_start: bool, startup_quiet_s: float,
               duty_quiet_s: float, startup_max_wait_s: float) -> None:
         """Make the parts and connect their ports: the one place they meet. Methods a test
-        replaces on the instance (``read_memory``, ``_do_link``, ``interlock_renew_s``) are
-        asked each time, through a lambda."""
+        replaces on the instance (``read_memory``, ``_do_link`` and the ``add_link`` it calls,
+        ``interlock_renew_s``) are asked each time, through a lambda."""
         state, name = self._state, self.name
         self.links = LinkWriter(state, self.nodes, self.requests, send=self._send_quiet,
                                 submit=self._jobs.submit, error=self._error, emit=self._emit,
@@ -589,7 +589,13 @@ class Arbitrator:
         return self.transactions.transact(change, progress, cancel)
 
     def _do_link(self, op: str, link: Link) -> None:  # (a test slows a transaction down here)
-        self.transactions.do_link(op, link)
+        """One link action of a change (none when the link is already so)."""
+        with self._lock:
+            exists = self._state.system.has_link(link)
+        if op == "add" and not exists:
+            self.add_link(link)
+        elif op == "remove" and exists:
+            self.remove_link(link)
 
     # -- memory ---------------------------------------------------------------------------
     def read_memory(self) -> ConfigCollection:

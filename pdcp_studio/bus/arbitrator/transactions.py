@@ -70,8 +70,9 @@ class Transactions:
     It reaches the devices through the arbitrator's parameter calls (``get_parameter``,
     ``set_parameter``: node IDs looked up, values learnt), makes links through the link
     writer, holds devices through ``interlock`` and counts as a plan under way through
-    ``running`` (the bus is not settled meanwhile). ``do_link``, ``read_memory`` are the
-    arbitrator's own methods, asked each time (tests replace them on the instance)."""
+    ``running`` (the bus is not settled meanwhile). ``do_link`` (one link action, through the
+    arbitrator's ``add_link`` and ``remove_link``) and ``read_memory`` are the arbitrator's
+    own methods, asked each time (tests replace them on the instance)."""
 
     def __init__(self, state: SystemState, memory: MemoryStore, links: LinkWriter, *,
                  interlock: Interlock, running: Callable[[], AbstractContextManager[None]],
@@ -215,15 +216,6 @@ class Transactions:
             result.reason += "; what was there is restored"
 
     # -- the parts -----------------------------------------------------------------------
-    def do_link(self, op: str, link: Link) -> None:
-        """One link action of a change (none when the link is already so)."""
-        with self._state.lock:
-            exists = self._state.system.has_link(link)
-        if op == "add" and not exists:
-            self._links.add_link(link)
-        elif op == "remove" and exists:
-            self._links.remove_link(link)
-
     def _store_policy(self, policy: Policy) -> None:
         self._memory.write_policy(policy.to_json())
 
