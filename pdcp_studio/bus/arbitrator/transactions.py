@@ -68,7 +68,7 @@ class Transactions:
     memory's and the system's).
 
     It reaches the devices through the arbitrator's parameter calls (``get_parameter``,
-    ``set_parameter``: node IDs looked up, values learnt), makes links through the link
+    ``set_parameter``: node IDs looked up, values learnt), puts links back through the link
     writer, holds devices through ``interlock`` and counts as a plan under way through
     ``running`` (the bus is not settled meanwhile). ``do_link`` (one link action, through the
     arbitrator's ``add_link`` and ``remove_link``) and ``read_memory`` are the arbitrator's
