@@ -69,7 +69,7 @@ import threading
 import time
 from collections.abc import Callable
 from pathlib import Path
-from typing import TYPE_CHECKING, Any
+from typing import TYPE_CHECKING, Any, Protocol, runtime_checkable
 
 from pdcp_studio.bus import events as ev
 from pdcp_studio.bus.arbitrator.claim import BusClaim, Phase
@@ -168,6 +168,14 @@ def _always() -> bool:
     return True
 
 
+@runtime_checkable
+class ReportsAdapterState(Protocol):
+    """A bus that says when its adapter is pulled and back (``bus/reopen.py``'s ReopeningBus):
+    ``on_state(state, line)``."""
+
+    on_state: Callable[[str, str], None] | None
+
+
 #: How a summary names the errors of a kind.
 _ERROR_WORDS = {"bad_frame": "undecodable frames", "error_frame": "error frames",
                 "transport": "transport errors"}
@@ -219,7 +227,7 @@ class Arbitrator:
         self.presence = PresenceTracker()
         self._wire(now, reset_on_start=reset_on_start, startup_quiet_s=startup_quiet_s,
                    duty_quiet_s=duty_quiet_s, startup_max_wait_s=startup_max_wait_s)
-        if hasattr(bus, "on_state"):
+        if isinstance(bus, ReportsAdapterState):
             bus.on_state = self.dispatch.adapter_state
         self._thread = threading.Thread(target=self.dispatch.run, name=f"pdcp {name}",
                                         daemon=True)
