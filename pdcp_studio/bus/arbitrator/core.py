@@ -56,7 +56,8 @@ fields. :meth:`Arbitrator._wire` connects them, in one place.
   which hears every frame, asks the deciding parts and carries their decisions out.
 
 The claim, node table and presence tracker decide from ``now`` and the frames heard and return
-decisions (tested without threads); this class owns the bus, the threads, the set-up pool
+decisions (tested without threads); this class owns the bus, the threads (the profile
+thread's body is ``bus/arbitrator/profile_thread.py``), the set-up pool
 (``bus/arbitrator/jobs.py``), the state and the errors' limiter, sends, and keeps the public
 API. ``bus/arbitrator/common.py`` holds the constants and node state.
 """
@@ -107,6 +108,7 @@ from pdcp_studio.bus.arbitrator.node_ids import NodeIdPool
 from pdcp_studio.bus.arbitrator.nodes import NodeTable
 from pdcp_studio.bus.arbitrator.presence import PresenceTracker
 from pdcp_studio.bus.arbitrator.profile import ProfileDriver, ProfilePorts
+from pdcp_studio.bus.arbitrator.profile_thread import ProfileThread
 from pdcp_studio.bus.arbitrator.requests import RESPONSE_TIMEOUT_S, RequestEngine
 from pdcp_studio.bus.arbitrator.setup import DeviceSetup
 from pdcp_studio.bus.arbitrator.state import SystemState
@@ -114,7 +116,7 @@ from pdcp_studio.bus.arbitrator.transactions import Transactions
 from pdcp_studio.bus.connection import Connection
 from pdcp_studio.bus.log_limit import LimitedLog, RepeatLimiter
 from pdcp_studio.bus.transaction import INTERLOCK_RENEW_S, Change, Policy, TransactionResult
-from pdcp_studio.errors import ModelError, PdcpError, TransportError
+from pdcp_studio.errors import ModelError, TransportError
 from pdcp_studio.model import parameters as P
 from pdcp_studio.model.configuration import ConfigCollection
 from pdcp_studio.model.param_fields import learn_value, only_inputs
@@ -231,8 +233,14 @@ class Arbitrator:
             bus.on_state = self.dispatch.adapter_state
         self._thread = threading.Thread(target=self.dispatch.run, name=f"pdcp {name}",
                                         daemon=True)
-        self._profile_thread = threading.Thread(target=self._profile_loop,
-                                                name=f"pdcp {name} profile", daemon=True)
+        profile = ProfileThread(
+            self.profile, stop=self._stop, wake=self._wake,
+            may_run=lambda: self.profile_layer and self.claim.may_write, busy=self._busy,
+            setting_up=self.setup.under_way, caught_up=self.conn.inbound.empty,
+            present=self.devices_present, error=self._error, closed=lambda: self._closed,
+            name=name)
+        self._profile_thread = threading.Thread(target=profile.run, name=f"pdcp {name} profile",
+                                                daemon=True)
         self._closed = False
         self._thread.start()
         self._profile_thread.start()
@@ -307,39 +315,6 @@ class Arbitrator:
     @property
     def closed(self) -> bool:
         return self._closed
-
-    # -- the profile thread ---------------------------------------------------------------
-    def _profile_loop(self) -> None:
-        """Start-up once it is due, then the duty cycle when it is (the profile driver
-        decides when, from what this arbitrator tells it of its business)."""
-        profile = self.profile
-        while not self._stop.is_set():
-            self._wake.wait(0.02)
-            self._wake.clear()
-            if self._stop.is_set() or not self.profile_layer or not self.claim.may_write:
-                continue  # (listening, or another arbitrator is on the bus)
-            now = time.monotonic()
-            try:
-                if not profile.startup_done:
-                    with self._lock:
-                        setting_up = self.setup.under_way()
-                    present = frozenset(self.devices_present()) if profile.expected \
-                        else frozenset()
-                    due = profile.startup_due(now, self._busy(), setting_up,
-                                              self.conn.inbound.empty(), present)
-                    if due == "late":
-                        self._error(f"start-up runs after {profile.startup_max_wait_s:g} s "
-                                    "although binding has not settled (a device keeps asking "
-                                    "for an ID it is not given)", "setup")
-                    if due:
-                        profile.run_startup()
-                elif profile.duty_due(now, self._busy()):
-                    profile.run_duty_cycle()
-            except PdcpError as err:
-                if not self._closed:  # a plan cut off by closing the session is no news
-                    self._error(f"profile layer: {err}", "plan")
-            except Exception:
-                log.exception("%s: the profile layer failed", self.name)
 
     # -- events ---------------------------------------------------------------------------
     def subscribe(self, callback: Callable[[ev.Event], None], *,

@@ -89,8 +89,9 @@ class DeviceSetup:
         return submit
 
     def under_way(self) -> bool:
-        """Under the lock: a set-up is in flight."""
-        return bool(self.in_flight)
+        """A set-up is in flight."""
+        with self._state.lock:
+            return bool(self.in_flight)
 
     def cancel(self, key: DeviceKey) -> None:
         """Under the lock: ``key`` left; its set-up under way no longer counts (and its
