@@ -5,8 +5,8 @@ What to write for a link is decided by pure functions (:func:`link_writes`,
 :class:`LinkWriter` carries them out through the arbitrator's request engine, updates the
 model's channels after each, and keeps links in step on the bus: after an Update Data Channel
 request, when a source leaves (its inputs stop listening) and after an adapter outage (the
-links are read back and re-made where they differ). Wire work is serialized by the
-arbitrator's plan lock.
+links are read back and re-made where they differ). Wire work is serialized by the wire
+lock (``bus/arbitrator/state.py``).
 """
 
 from __future__ import annotations

@@ -20,7 +20,7 @@ the host link's TRANSACT request calls it on the arbitrator's side of the line. 
 - **Release.** Release Device (0x09) to every held device, after verify or restore.
 
 Recording in the fitting history is the PC's part (``session_api.run_transaction``).
-The whole transaction holds the plan lock: no start-up, duty cycle or other plan runs inside it.
+The whole transaction holds the wire lock: no start-up, duty cycle or other plan runs inside it.
 """
 
 from __future__ import annotations
