@@ -56,7 +56,7 @@ def _rig() -> tuple[SystemState, NodeTable, Requests, LinkWriter, list[object], 
     return state, table, requests, writer, said, jobs
 
 
-def test_the_node_table_stamps_the_model_s_node_ids_and_clears_them_when_a_device_leaves():
+def test_the_node_table_stamps_the_model_s_node_ids_and_clears_them_when_a_device_leaves() -> None:
     table = NodeTable(1, 254)
     _bound(table, SENSOR, 10)
     ids, refused, _ = table.give_outputs(SENSOR, [1])
@@ -71,10 +71,11 @@ def test_the_node_table_stamps_the_model_s_node_ids_and_clears_them_when_a_devic
     assert device.node_id is None and device.channels[1].node_id is None
 
 
-def test_the_link_writer_makes_a_link_through_its_ports_only():
+def test_the_link_writer_makes_a_link_through_its_ports_only() -> None:
     state, table, requests, writer, said, _ = _rig()
     writer.add_link(LINK)
     out_id = table.output_id(LINK.output)
+    assert out_id is not None
     assert requests.sets[0] == (12, P.IN_SOURCE_NODE_IDS, 2, bytes([10, out_id]))
     assert requests.sets[-1] == (10, P.CH_DATA_ENABLED, 1, b"\x01")
     assert state.system.has_link(LINK) and said == [ev.LinkMade(LINK)]
@@ -82,7 +83,7 @@ def test_the_link_writer_makes_a_link_through_its_ports_only():
     assert hand is not None and hand.data_enabled
 
 
-def test_an_update_request_is_answered_through_send_and_the_links_re_made_as_a_job():
+def test_an_update_request_is_answered_through_send_and_the_links_re_made_as_a_job() -> None:
     _, table, requests, writer, said, jobs = _rig()
     writer.add_link(LINK)
     said.clear()
@@ -96,7 +97,7 @@ def test_an_update_request_is_answered_through_send_and_the_links_re_made_as_a_j
     assert len(requests.sets) > before  # the link written again
 
 
-def test_a_job_counts_as_business_until_it_returns():
+def test_a_job_counts_as_business_until_it_returns() -> None:
     lock = threading.RLock()
     pool = JobPool(1, "ports", lock)
     inside, leave = threading.Event(), threading.Event()
