@@ -12,7 +12,7 @@ import time
 import can
 
 from pdcp_studio.bus import events as ev
-from pdcp_studio.bus.arbitrator import core as arbitrator_module
+from pdcp_studio.bus.arbitrator import frame_events as arbitrator_module
 from pdcp_studio.bus.arbitrator.core import Arbitrator
 from pdcp_studio.bus.session.opening import open_session
 from pdcp_studio.bus.session.urls import unique_virtual_channel

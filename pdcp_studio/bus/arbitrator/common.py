@@ -8,7 +8,7 @@ that patches one must patch it in the module that reads it.
 
 from __future__ import annotations
 
-from dataclasses import dataclass, field
+from dataclasses import dataclass
 
 from pdcp_studio.model import parameters as P
 from pdcp_studio.model.refs import DeviceKey, Direction
@@ -95,7 +95,6 @@ class _Node:
     last_beacon: float = 0.0
     generation: int = 0  # unique per binding: a set-up of an older one is discarded
     set_up: bool = False
-    updates: set[int] = field(default_factory=set)  # inputs named in Update Data Channel
     last_response: tuple[int, bytes, float] | None = None
     last_request: float = 0.0
     echoes: int = 0

@@ -32,30 +32,34 @@ Decisions beyond the reference:
   a Reset Device, so the device binds again; start and :meth:`reset` broadcast one.
 
 The arbitrator is composed of parts, each with one job and its own state (as canopen composes
-its ``Network`` from ``nmt``, ``lss`` and ``sdo``):
+its ``Network`` from ``nmt``, ``lss`` and ``sdo``, which see only ``send_message`` and
+``subscribe``). No part sees the arbitrator: each gets in its constructor the few things it
+needs — the shared :class:`~pdcp_studio.bus.arbitrator.state.SystemState` (the system, its
+lock, the wire lock), the request engine, and callables to send a frame, emit an event,
+report an error or submit a job — and asks another part through a call, never by writing its
+fields. :meth:`Arbitrator._wire` connects them, in one place.
 
 - ``claim`` (:class:`~pdcp_studio.bus.arbitrator.claim.BusClaim`): may we write on this bus at all;
 - ``nodes`` (:class:`~pdcp_studio.bus.arbitrator.nodes.NodeTable`): who holds which node ID, and
-  what
-  to answer a bind request;
+  what to answer a bind request; the model's node IDs are stamped from it (``NodeTable.stamp``);
 - ``presence`` (:class:`~pdcp_studio.bus.arbitrator.presence.PresenceTracker`): who is gone at
   ``now``, twins on one node ID, nodes bound by someone else;
 - ``setup`` (:class:`~pdcp_studio.bus.arbitrator.setup.DeviceSetup`): reading a bound device with
-  the
-  device reader the scan shares (``bus/arbitrator/device_reader.py``) and installing it;
+  the device reader the scan shares (``bus/arbitrator/device_reader.py``) and installing it;
 - ``links`` (:class:`~pdcp_studio.bus.arbitrator.links.LinkWriter`): what to write for a link, and
   writing it;
 - ``profile`` (:class:`~pdcp_studio.bus.arbitrator.profile.ProfileDriver`): start-up, duty cycle,
-  plans;
+  plans, and when they are due;
 - ``transactions`` (:class:`~pdcp_studio.bus.arbitrator.transactions.Transactions`): the change
-  road;
+  road, holding devices through the motion interlock (``bus/arbitrator/interlock.py``);
 - ``dispatch`` (:class:`~pdcp_studio.bus.arbitrator.dispatch.Dispatcher`): the dispatch thread,
-  which
-  hears every frame, asks the deciding parts and carries their decisions out.
+  which hears every frame, asks the deciding parts and carries their decisions out.
 
 The claim, node table and presence tracker decide from ``now`` and the frames heard and return
-decisions (tested without threads); this class owns the bus, the threads, the locks and the
-system, sends, and keeps the public API. ``arb_common`` holds the constants and node state.
+decisions (tested without threads); this class owns the bus, the threads (the profile
+thread's body is ``bus/arbitrator/profile_thread.py``), the set-up pool
+(``bus/arbitrator/jobs.py``), the state and the errors' limiter, sends, and keeps the public
+API. ``bus/arbitrator/common.py`` holds the constants and node state.
 """
 
 
@@ -65,9 +69,8 @@ import logging
 import threading
 import time
 from collections.abc import Callable
-from concurrent.futures import ThreadPoolExecutor
 from pathlib import Path
-from typing import TYPE_CHECKING, Any
+from typing import TYPE_CHECKING, Any, Protocol, runtime_checkable
 
 from pdcp_studio.bus import events as ev
 from pdcp_studio.bus.arbitrator.claim import BusClaim, Phase
@@ -96,14 +99,19 @@ from pdcp_studio.bus.arbitrator.common import (
     _Node,
 )
 from pdcp_studio.bus.arbitrator.dispatch import Dispatcher
+from pdcp_studio.bus.arbitrator.frame_events import FrameFeed
+from pdcp_studio.bus.arbitrator.interlock import Interlock
+from pdcp_studio.bus.arbitrator.jobs import JobPool
 from pdcp_studio.bus.arbitrator.links import LinkWriter
 from pdcp_studio.bus.arbitrator.memory import MemoryStore
 from pdcp_studio.bus.arbitrator.node_ids import NodeIdPool
 from pdcp_studio.bus.arbitrator.nodes import NodeTable
 from pdcp_studio.bus.arbitrator.presence import PresenceTracker
-from pdcp_studio.bus.arbitrator.profile import ProfileDriver
+from pdcp_studio.bus.arbitrator.profile import ProfileDriver, ProfilePorts
+from pdcp_studio.bus.arbitrator.profile_thread import ProfileThread
 from pdcp_studio.bus.arbitrator.requests import RESPONSE_TIMEOUT_S, RequestEngine
 from pdcp_studio.bus.arbitrator.setup import DeviceSetup
+from pdcp_studio.bus.arbitrator.state import SystemState
 from pdcp_studio.bus.arbitrator.transactions import Transactions
 from pdcp_studio.bus.connection import Connection
 from pdcp_studio.bus.log_limit import LimitedLog, RepeatLimiter
@@ -124,6 +132,7 @@ from pdcp_studio.protocol.identifier import NODE_ID_MAX, NODE_ID_MIN
 if TYPE_CHECKING:
     import can
 
+    from pdcp_studio.bus.trace.monitor import FrameDecoder
     from pdcp_studio.engine.plan import Plan
 
 log = logging.getLogger(__name__)
@@ -157,12 +166,16 @@ __all__ = [
     "learn_value",
 ]
 
-#: At most this many frames wait undecoded while nobody wants frame events (``subscribe``).
-FRAME_BACKLOG = 1024
-
-
 def _always() -> bool:
     return True
+
+
+@runtime_checkable
+class ReportsAdapterState(Protocol):
+    """A bus that says when its adapter is pulled and back (``bus/reopen.py``'s ReopeningBus):
+    ``on_state(state, line)``."""
+
+    on_state: Callable[[str, str], None] | None
 
 
 #: How a summary names the errors of a kind.
@@ -195,61 +208,87 @@ class Arbitrator:
         if autoconfigure is not None and self.memory.read_policy()["autoconfigure"] != \
                 autoconfigure:  # ``--no-autoconfigure``: the flag sets the stored policy
             self.memory.write_policy({"autoconfigure": autoconfigure})
-        self.bad_frames = 0
-        self.error_frames = 0
-        self.data_frames = 0
         self.conn = Connection(bus, name=name, pace_s=pace_s, drop_own=drop_own, direct=direct)
         self._errors = RepeatLimiter(burst=ERROR_BURST)
-        self._crashes = LimitedLog(log, f"{name}: ")
-        self._disconnected = False  # the adapter was pulled (a ReopeningBus says so)
         self.requests = RequestEngine(self._send, response_timeout=response_timeout,
                                       retries=retries)
-        self._lock = threading.RLock()  # the parts' state and the system
-        self._plan_lock = threading.RLock()  # wire work on links: plans, set-ups, transactions
+        self._state = SystemState()
+        self._lock = self._state.lock  # the parts' state and the system
+        self._plan_lock = self._state.wire_lock  # wire work on links: plans, set-ups, transactions
         self._subscribers = ev.Subscribers(name)
-        self._system = System()
-        self._jobs = 0  # jobs in flight on the set-up pool besides set-ups (departures …)
+        self._jobs = JobPool(SETUP_WORKERS, name, self._lock)
+        self._frames = FrameFeed(self._emit)
+        self._stop = threading.Event()
+        self._wake = threading.Event()
         now = time.monotonic()
         # One arbitrator per bus (reference §5, arb_claim): on a can: bus it first listens
         # ``listen_s``; until then (and for good once another arbitrator is heard) it writes
         # nothing, not even the start-up reset.
         self.claim = BusClaim(now, listen_s, own_echoes=self.conn.drop_own)
-        self._reset_on_claim = reset_on_start
-        self.bus_message = ""  # the last BusState line (why it arbitrates or not)
         self.nodes = NodeTable(*node_ids)
         self.presence = PresenceTracker()
-        self.setup = DeviceSetup(self)
-        self.links = LinkWriter(self)
-        # Without the start-up reset, devices bound by an earlier arbitrator keep their IDs:
-        # hear them all (beacons) before handing any ID out; the device asking retries.
-        listen_until = max(now if reset_on_start else now + FOREIGN_LISTEN_S,
-                           self.claim.listen_until)
-        self.profile = ProfileDriver(self, now, quiet_s=startup_quiet_s,
-                                     duty_quiet_s=duty_quiet_s, max_wait_s=startup_max_wait_s,
-                                     listen_until=listen_until)
-        self.transactions = Transactions(self)
-        self.dispatch = Dispatcher(self)
-        if hasattr(bus, "on_state"):
+        self._wire(now, reset_on_start=reset_on_start, startup_quiet_s=startup_quiet_s,
+                   duty_quiet_s=duty_quiet_s, startup_max_wait_s=startup_max_wait_s)
+        if isinstance(bus, ReportsAdapterState):
             bus.on_state = self.dispatch.adapter_state
-        # The frame events' decoder (bus/trace/monitor.py), made when a frame is first shown; the
-        # frames before it, and those while nobody watches frames, wait undecoded
-        # (``_frame_event``).
-        self._decoder: Any = None
-        self._decoder_lock = threading.Lock()
-        self._unshown: list[tuple[int, bytes, float]] = []
-        self._frame_gates: list[Callable[[], bool]] = []
-        self._stop = threading.Event()
-        self._wake = threading.Event()
-        self._pool_exec = ThreadPoolExecutor(SETUP_WORKERS, thread_name_prefix=f"pdcp {name} setup")
         self._thread = threading.Thread(target=self.dispatch.run, name=f"pdcp {name}",
                                         daemon=True)
-        self._profile_thread = threading.Thread(target=self.profile.loop,
-                                                name=f"pdcp {name} profile", daemon=True)
+        profile = ProfileThread(
+            self.profile, stop=self._stop, wake=self._wake,
+            may_run=lambda: self.profile_layer and self.claim.may_write, busy=self._busy,
+            setting_up=self.setup.under_way, caught_up=self.conn.inbound.empty,
+            present=self.devices_present, error=self._error, closed=lambda: self._closed,
+            name=name)
+        self._profile_thread = threading.Thread(target=profile.run, name=f"pdcp {name} profile",
+                                                daemon=True)
         self._closed = False
         self._thread.start()
         self._profile_thread.start()
         if self.claim.may_write:
             self.dispatch.claim_started(None)
+
+    def _wire(self, now: float, *, reset_on_start: bool, startup_quiet_s: float,
+              duty_quiet_s: float, startup_max_wait_s: float) -> None:
+        """Make the parts and connect their ports: the one place they meet. Methods a test
+        replaces on the instance (``read_memory``, ``_do_link`` and the ``add_link`` it calls,
+        ``interlock_renew_s``) are asked each time, through a lambda."""
+        state, name = self._state, self.name
+        self.links = LinkWriter(state, self.nodes, self.requests, send=self._send_quiet,
+                                submit=self._jobs.submit, error=self._error, emit=self._emit,
+                                name=name)
+        interlock = Interlock(suspend=self.suspend, release=self.release,
+                              renew_s=lambda: self.interlock_renew_s, name=name)
+        # Without the start-up reset, devices bound by an earlier arbitrator keep their IDs:
+        # hear them all (beacons) before handing any ID out; the device asking retries.
+        listen_until = max(now if reset_on_start else now + FOREIGN_LISTEN_S,
+                           self.claim.listen_until)
+        self.profile = ProfileDriver(
+            ProfilePorts(state, add_link=self.links.add, remove_link=self.links.remove,
+                         interlock=interlock, read_memory=lambda: self.read_memory(),
+                         read_policy=lambda: self.read_policy(), error=self._error,
+                         emit=self._emit, closed=lambda: self._closed, name=name),
+            now, quiet_s=startup_quiet_s, duty_quiet_s=duty_quiet_s,
+            max_wait_s=startup_max_wait_s, listen_until=listen_until)
+        self.setup = DeviceSetup(state, self.nodes, self.requests, run=self._jobs.run,
+                                 wire_add=self.links.wire_add,
+                                 note_change=self.profile.note_change, send=self._send_quiet,
+                                 error=self._error, emit=self._emit, wake=self._wake.set,
+                                 stopping=self._stop.is_set, name=name)
+        self.transactions = Transactions(
+            state, self.memory, self.links, interlock=interlock, running=self.profile.running,
+            get_parameter=self.get_parameter, set_parameter=self.set_parameter,
+            node_id_of=self.node_id_of, channel_node_id=self.channel_node_id,
+            do_link=lambda op, link: self._do_link(op, link),
+            read_memory=lambda: self.read_memory(), write_memory=self.write_memory,
+            emit=self._emit, name=name)
+        self.dispatch = Dispatcher(
+            state, self.conn, self.claim, self.nodes, self.presence, self.requests,
+            links=self.links, setup=self.setup, profile=self.profile,
+            show_frame=self._frames.frame if self.frame_events else None,
+            channel_events=self.channel_events, reset_on_claim=reset_on_start,
+            send=self._send_quiet, error=self._error, flush_errors=self._flush_errors,
+            crashes=LimitedLog(log, f"{name}: "), emit=self._emit, wake=self._wake.set,
+            stop=self._stop, name=name)
 
     # -- lifetime -------------------------------------------------------------------------
     def __enter__(self) -> Arbitrator:
@@ -267,7 +306,7 @@ class Arbitrator:
         self._wake.set()
         self.requests.close()
         self.conn.wake()
-        self._pool_exec.shutdown(wait=False, cancel_futures=True)
+        self._jobs.shutdown()
         for thread in (self._thread, self._profile_thread):
             if thread is not threading.current_thread():
                 thread.join(timeout=JOIN_S)
@@ -288,16 +327,12 @@ class Arbitrator:
         decoded for display: they wait (``FRAME_BACKLOG`` at most) and are decoded, in order,
         before the next frame one is shown, so the texts are the same, and the work is off
         the path of opening a simulated prosthesis, which nobody watches yet."""
-        gate = wants_frames if wants_frames is not None else _always
-        with self._decoder_lock:
-            self._frame_gates.append(gate)
+        unwatch = self._frames.watch(wants_frames if wants_frames is not None else _always)
         remove = self._subscribers.add(callback)
 
         def unsubscribe() -> None:
             remove()
-            with self._decoder_lock:
-                if gate in self._frame_gates:
-                    self._frame_gates.remove(gate)
+            unwatch()
 
         return unsubscribe
 
@@ -323,8 +358,7 @@ class Arbitrator:
     # -- snapshot and look-ups ------------------------------------------------------------
     def system(self) -> System:
         """A copy of the bus as the arbitrator knows it (every device ever bound)."""
-        with self._lock:
-            return self._system.copy()
+        return self._state.snapshot()
 
     def node_id_of(self, key: DeviceKey) -> int | None:
         """The node ID of a bound device (None if it is not bound)."""
@@ -357,12 +391,43 @@ class Arbitrator:
         return self.profile.applied_plans
 
     @property
+    def _decoder(self) -> FrameDecoder | None:  # (tests look at the frame events' decoder …)
+        return self._frames.decoder
+
+    @property
+    def _unshown(self) -> list[tuple[int, bytes, float]]:  # (… the frames waiting for it …)
+        return self._frames.unshown
+
+    @property
+    def _frame_gates(self) -> list[Callable[[], bool]]:  # (… and who wants frames now)
+        return self._frames.gates
+
+    @property
     def _pool(self) -> NodeIdPool:  # (tests look at the pool's free IDs)
         return self.nodes.pool
 
     @property
     def _nodes(self) -> dict[int, _Node]:  # (tests look at a node's state)
         return self.nodes.by_id
+
+    @property
+    def bad_frames(self) -> int:
+        """Frames heard that are not PDCP (undecodable, extended, remote)."""
+        return self.dispatch.bad_frames
+
+    @property
+    def error_frames(self) -> int:
+        return self.dispatch.error_frames
+
+    @property
+    def data_frames(self) -> int:
+        """Channel data frames heard."""
+        return self.dispatch.data_frames
+
+    @property
+    def bus_message(self) -> str:
+        """The last BusState line (why it arbitrates or not)."""
+        return self.dispatch.bus_message
 
     @property
     def bus_state(self) -> str:
@@ -389,15 +454,12 @@ class Arbitrator:
     def _busy(self) -> bool:
         """Binds held or deferred, set-ups or jobs under way."""
         with self._lock:
-            return bool(self.setup.in_flight or self.nodes.held or self.nodes.deferred
-                         or self._jobs)
+            return bool(self.setup.under_way() or self.nodes.held or self.nodes.deferred
+                        or self._jobs.busy())
 
     def _settled(self) -> bool:
         with self._lock:
-            busy = self._busy() or bool(self.profile.plan_running)
-            if self.profile_layer:
-                busy = busy or not self.profile.startup_done or self.profile.duty_needed
-            return not busy
+            return not self._busy() and self.profile.settled(self.profile_layer)
 
     def wait_settled(self, timeout: float) -> bool:
         """True once no bind, set-up or plan is in progress and start-up has run."""
@@ -416,20 +478,6 @@ class Arbitrator:
             raise TransportError(f"{self.name}: device {DeviceKey(*key)} is not on the bus")
         return node_id
 
-    # -- jobs on the set-up pool ----------------------------------------------------------
-    def _submit_job(self, fn: Callable[..., None], *args: Any) -> None:
-        """Run ``fn(*args)`` on the set-up pool, counted until it calls :meth:`_job_done`."""
-        with self._lock:
-            self._jobs += 1
-        try:
-            self._pool_exec.submit(fn, *args)
-        except RuntimeError:  # closing
-            self._job_done()
-
-    def _job_done(self) -> None:
-        with self._lock:
-            self._jobs -= 1
-
     # -- parameters -----------------------------------------------------------------------
     def get_parameter(self, key: DeviceKey, param: int, channel: int = 0, *,
                       timeout: float | None = None) -> bytes:
@@ -447,7 +495,7 @@ class Arbitrator:
         """
         key = DeviceKey(*key)
         with self._lock:
-            device = self._system.device(key)
+            device = self._state.system.device(key)
             ch = device.channels.get(channel) if device and channel else None
         scope = "device" if channel == 0 else ch.direction.value if ch else ""
         if (param, scope) in _MANAGED:
@@ -458,14 +506,13 @@ class Arbitrator:
 
     def _learn(self, key: DeviceKey, param: int, channel: int, value: bytes) -> None:
         with self._lock:
-            device = self._system.device(key)
+            device = self._state.system.device(key)
             if device is not None:
                 learn_value(device, param, channel, value)
                 only_inputs(device)
+                self.nodes.stamp(device)  # node IDs are the node table's, not what was read
             if channel == 0 and param == P.DEVICE_BEACON_INTERVAL and len(value) == 2:
-                node = self.nodes.node(key)
-                if node is not None:
-                    node.beacon_interval = max(int.from_bytes(value, "little"), 1) / 1000.0
+                self.nodes.beacons_every(key, max(int.from_bytes(value, "little"), 1) / 1000.0)
 
     def suspend(self, key: DeviceKey, ms: int = 0) -> None:
         """Suspend Device: stop its data for ``ms`` milliseconds (0 = until released)."""
@@ -525,7 +572,13 @@ class Arbitrator:
         return self.transactions.transact(change, progress, cancel)
 
     def _do_link(self, op: str, link: Link) -> None:  # (a test slows a transaction down here)
-        self.transactions.do_link(op, link)
+        """One link action of a change (none when the link is already so)."""
+        with self._lock:
+            exists = self._state.system.has_link(link)
+        if op == "add" and not exists:
+            self.add_link(link)
+        elif op == "remove" and exists:
+            self.remove_link(link)
 
     # -- memory ---------------------------------------------------------------------------
     def read_memory(self) -> ConfigCollection:
@@ -552,49 +605,22 @@ class Arbitrator:
         arbitration_id, data = message.encode()
         if message.mode is Mode.ARBITRATOR and message.node_id:
             with self._lock:
-                node = self.nodes.by_id.get(message.node_id)
-                if node is not None:
-                    node.last_request = time.monotonic()
+                self.nodes.asked(message.node_id, time.monotonic())
         # On a bus that echoes, the claim accounts for the copies (arb_claim), not the
         # connection's filter: a copy later than the filter waits must not pass for another
         # arbitrator's frame.
         self.claim.sent(arbitration_id, data, time.monotonic())
         self.conn.send(arbitration_id, data, filter_echo=False)
         if self.frame_events:
-            self._frame_event(arbitration_id, data, time.time())
+            self._frames.frame(arbitration_id, data, time.time())
 
     def _send_quiet(self, message: Message) -> None:
-        if not self.claim.may_write or self._disconnected:
+        if not self.claim.may_write or self.dispatch.disconnected:
             return  # listening, another arbitrator on the bus, or no adapter: say nothing
         try:
             self._send(message)
         except TransportError as err:
             self._error(str(err), "transport")
-
-    def _frame_event(self, arbitration_id: int, data: bytes, timestamp: float) -> None:
-        """A FrameSeen event for a frame heard or sent, decoded in the order of the frames
-        (the decoder learns the bus from them); or, while nobody wants frame events, the
-        frame kept to be decoded later (see :meth:`subscribe`)."""
-        with self._decoder_lock:
-            if not any(gate() for gate in self._frame_gates):
-                self._unshown.append((arbitration_id, bytes(data), timestamp))
-                if len(self._unshown) < FRAME_BACKLOG:
-                    return
-                self._catch_up()  # memory stays bounded; the work is the same
-                return
-            self._catch_up()
-            line = self._decoder.decode(arbitration_id, data, timestamp).line
-        self._emit(ev.FrameSeen(timestamp, arbitration_id, bytes(data), line))
-
-    def _catch_up(self) -> None:
-        """Under the decoder lock: the decoder, made if need be, learns the waiting frames."""
-        if self._decoder is None:
-            from pdcp_studio.bus.trace.monitor import FrameDecoder
-
-            self._decoder = FrameDecoder()
-        frames, self._unshown = self._unshown, []
-        for arbitration_id, data, timestamp in frames:
-            self._decoder.decode(arbitration_id, data, timestamp)
 
     # -- reset ----------------------------------------------------------------------------
     def reset(self, keep_memory: bool = True) -> None:
@@ -608,7 +634,7 @@ class Arbitrator:
                 now = time.monotonic()
                 self.presence.forget(self.nodes.channel_ids, now)
                 self.setup.forget()
-                self._system = System()
+                self._state.forget()
                 self.nodes.clear()
                 self.profile.restart(now)
             for node_id in node_ids:
@@ -620,7 +646,7 @@ class Arbitrator:
     def devices_present(self) -> list[DeviceKey]:
         """Keys of the devices on the bus and set up."""
         with self._lock:
-            return [k for k, d in self._system.devices.items() if d.present]
+            return [k for k, d in self._state.system.devices.items() if d.present]
 
     def wait_for(self, predicate: Callable[[], bool], timeout: float) -> bool:
         """Poll ``predicate`` until it is true or ``timeout`` passes (tests, scripts)."""

@@ -12,9 +12,10 @@ the arbitrator's set-up pool.
 from __future__ import annotations
 
 import logging
+import threading
 import time
 from collections.abc import Callable
-from typing import TYPE_CHECKING, cast
+from typing import TYPE_CHECKING, Protocol, cast
 
 from pdcp_studio.bus import events as ev
 from pdcp_studio.bus.arbitrator.claim import Decision
@@ -25,9 +26,10 @@ from pdcp_studio.bus.arbitrator.common import (
     _Node,
 )
 from pdcp_studio.bus.arbitrator.nodes import BindDecision
+from pdcp_studio.bus.arbitrator.state import Emit, ReportError, SendFrame, SystemState
 from pdcp_studio.bus.sim.signals import decode_sample
 from pdcp_studio.errors import FrameError
-from pdcp_studio.model.refs import DeviceKey
+from pdcp_studio.model.refs import ChannelRef, DeviceKey
 from pdcp_studio.model.system import Link
 from pdcp_studio.protocol import (
     Beacon,
@@ -45,7 +47,12 @@ from pdcp_studio.protocol import (
 if TYPE_CHECKING:
     import can
 
-    from pdcp_studio.bus.arbitrator.core import Arbitrator
+    from pdcp_studio.bus.arbitrator.claim import BusClaim
+    from pdcp_studio.bus.arbitrator.nodes import NodeTable
+    from pdcp_studio.bus.arbitrator.presence import PresenceTracker
+    from pdcp_studio.bus.arbitrator.requests import RequestEngine
+    from pdcp_studio.bus.connection import Connection
+    from pdcp_studio.bus.log_limit import LimitedLog
 
 log = logging.getLogger("pdcp_studio.bus.arbitrator.core")  # one logger for the arbitrator
 
@@ -56,25 +63,83 @@ STALL_S = 0.15
 STALL_GRACE_S = 0.3
 
 
-class Dispatcher:
-    """The dispatch thread of an :class:`Arbitrator` (its state is the parts')."""
+class LinkPort(Protocol):
+    """What the dispatch thread asks of the link writer."""
 
-    def __init__(self, arb: Arbitrator) -> None:
-        self.arb = arb
+    def on_update(self, node: _Node, msg: UpdateDataChannel) -> None: ...
+    def links_from(self, output: ChannelRef) -> list[Link]: ...
+    def silence_inputs(self, links: list[Link]) -> None: ...
+    def reread(self) -> None: ...
+
+
+class SetupPort(Protocol):
+    """What the dispatch thread asks of the device set-up."""
+
+    def start(self, node: _Node) -> Callable[[], None]: ...
+    def cancel(self, key: DeviceKey) -> None: ...
+
+
+class ProfilePort(Protocol):
+    """What the dispatch thread tells the profile driver."""
+
+    def listening(self, now: float) -> bool: ...
+    def note_bind(self, now: float) -> None: ...
+    def note_change(self, now: float, *, duty: bool = False) -> None: ...
+
+
+class Dispatcher:
+    """The dispatch thread. It owns the frame counters, whether the adapter is there and the
+    last bus-state line; the rest of what it decides on is the deciding parts' (claim, node
+    table, presence tracker), which it gets in its constructor with the other parts' ports.
+
+    ``show_frame``: a frame heard, for the frame events (None: they are off)."""
+
+    def __init__(self, state: SystemState, conn: Connection, claim: BusClaim, nodes: NodeTable,
+                 presence: PresenceTracker, requests: RequestEngine, *, links: LinkPort,
+                 setup: SetupPort, profile: ProfilePort,
+                 show_frame: Callable[[int, bytes, float], None] | None,
+                 channel_events: bool, reset_on_claim: bool, send: SendFrame,
+                 error: ReportError, flush_errors: Callable[[], None], crashes: LimitedLog,
+                 emit: Emit, wake: Callable[[], None], stop: threading.Event,
+                 name: str) -> None:
+        self._state = state
+        self._conn = conn
+        self._claim = claim
+        self._nodes = nodes
+        self._presence = presence
+        self._requests = requests
+        self._links = links
+        self._setup = setup
+        self._profile = profile
+        self._show_frame = show_frame
+        self._channel_events = channel_events
+        self._reset_on_claim = reset_on_claim
+        self._send = send
+        self._error = error
+        self._flush_errors = flush_errors
+        self._crashes = crashes
+        self._emit = emit
+        self._wake = wake
+        self._stop = stop
+        self._name = name
+        self.bad_frames = 0
+        self.error_frames = 0
+        self.data_frames = 0
+        self.disconnected = False  # the adapter was pulled (a ReopeningBus says so)
+        self.bus_message = ""  # the last BusState line (why it arbitrates or not)
 
     def run(self) -> None:
         """The thread: frames as they come, the claim's and presence's tick every TICK_S."""
-        arb = self.arb
         next_tick = 0.0
         last = time.monotonic()
         hold_until = 0.0
-        while not arb._stop.is_set():
-            item = arb.conn.get(TICK_S)
-            if arb._stop.is_set():
+        while not self._stop.is_set():
+            item = self._conn.get(TICK_S)
+            if self._stop.is_set():
                 break
             try:
                 if isinstance(item, Exception):
-                    arb._error(f"the bus reported {item}", "transport")
+                    self._error(f"the bus reported {item}", "transport")
                 elif callable(item):
                     item()
                 elif item is not None:
@@ -85,29 +150,27 @@ class Dispatcher:
                 last = now
                 if now >= next_tick and self._claim_tick(now):
                     next_tick = now + TICK_S
-                    arb._flush_errors()
+                    self._flush_errors()
                     # Presence is judged only when every frame received so far is handled:
                     # a backlog (a busy machine) must not pass for silent devices.
-                    self._tick(now, arb.conn.inbound.empty() and now >= hold_until)
+                    self._tick(now, self._conn.inbound.empty() and now >= hold_until)
             except Exception:  # one bad frame or bug must never stop the arbitrator
-                arb._crashes.exception("dispatch", "dispatch failed")
+                self._crashes.exception("dispatch", "dispatch failed")
 
     def _bad_frame(self, why: str) -> None:
-        arb = self.arb
-        arb.bad_frames += 1
-        arb._error(f"undecodable frame #{arb.bad_frames}: {why}", "bad_frame")
+        self.bad_frames += 1
+        self._error(f"undecodable frame #{self.bad_frames}: {why}", "bad_frame")
 
     def _on_frame(self, msg: can.Message) -> None:
-        arb = self.arb
         data = bytes(msg.data)
         now = time.monotonic()
-        if arb.claim.is_own_echo(msg.arbitration_id, data, now):
+        if self._claim.is_own_echo(msg.arbitration_id, data, now):
             return  # our own frame, handed back by the bus (late or not)
-        if arb.frame_events:
-            arb._frame_event(msg.arbitration_id, data, msg.timestamp or time.time())
+        if self._show_frame is not None:
+            self._show_frame(msg.arbitration_id, data, msg.timestamp or time.time())
         if msg.is_error_frame:
-            arb.error_frames += 1
-            arb._error(f"error frame #{arb.error_frames} on the bus", "error_frame")
+            self.error_frames += 1
+            self._error(f"error frame #{self.error_frames} on the bus", "error_frame")
             return
         if msg.is_extended_id or msg.is_remote_frame:
             kind = "extended identifier" if msg.is_extended_id else "remote frame"
@@ -117,11 +180,11 @@ class Dispatcher:
         node_id = aid & 0xFF
         if not self._hear_claim(aid, data, now):
             return  # another arbitrator is on the bus: nothing here is ours to answer
-        if arb.nodes.is_foreign(aid):
+        if self._nodes.is_foreign(aid):
             self._foreign_frame(node_id, aid, data, now)
             return
         try:
-            message = decode(aid, data, channel_node_ids=arb.nodes.channel_set)
+            message = decode(aid, data, channel_node_ids=self._nodes.channel_set)
         except FrameError as err:
             self._bad_frame(f"0x{aid:03X} [{data.hex(' ').upper()}]: {err}")
             return
@@ -133,53 +196,47 @@ class Dispatcher:
         if isinstance(message, BindRequest):
             self._on_bind(message, now)
             return
-        with arb._lock:
-            node = arb.nodes.by_id.get(node_id)
-            if node is not None:
-                node.last_seen = now
-                if isinstance(message, Beacon):
-                    node.last_beacon = now
+        with self._state.lock:
+            node = self._nodes.heard(node_id, now, beacon=isinstance(message, Beacon))
         if node is None:  # node 0, or a device that left a moment ago
             return
         if isinstance(message, Beacon):
-            why = arb.presence.beacon(node, now, arb.conn.inbound.empty())
+            why = self._presence.beacon(node, now, self._conn.inbound.empty())
             if why:
                 self._twin(node.key, why)
             return
         if isinstance(message, UpdateDataChannel):
-            arb.links.on_update(node, message)
+            self._links.on_update(node, message)
             return
-        echo, why = arb.presence.response(node, aid, data, now,
-                                           2 * arb.requests.response_timeout)
+        echo, why = self._presence.response(node, aid, data, now,
+                                           2 * self._requests.response_timeout)
         if why:
             self._twin(node.key, why)
         if not echo:
-            arb.requests.feed(message)
+            self._requests.feed(message)
 
     def _on_data(self, message: ChannelData, timestamp: float) -> None:
-        arb = self.arb
-        arb.data_frames += 1
-        if not arb.channel_events:
+        self.data_frames += 1
+        if not self._channel_events:
             return
-        with arb._lock:
-            ref = arb.nodes.channel_ids.get(message.node_id)
-            ch = arb._system.channel(ref) if ref else None
+        with self._state.lock:
+            ref = self._nodes.channel_ids.get(message.node_id)
+            ch = self._state.system.channel(ref) if ref else None
             kind = ch.type if ch else 0
         if ref is not None:
-            arb._emit(ev.ChannelValue(ref, decode_sample(kind, message.data), timestamp))
+            self._emit(ev.ChannelValue(ref, decode_sample(kind, message.data), timestamp))
 
     # -- binding (the node table decides) -------------------------------------------------
     def _on_bind(self, req: BindRequest, now: float) -> None:
-        arb = self.arb
         key = DeviceKey(req.vid, req.pid, req.serial)
-        with arb._lock:
-            if (key not in arb.presence.duplicates
-                    and key not in arb.nodes.exhausted_reported):
-                arb.profile.last_bind = now
-        if now < arb.profile.listen_until:
+        with self._state.lock:
+            if (key not in self._presence.duplicates
+                    and key not in self._nodes.exhausted_reported):
+                self._profile.note_bind(now)
+        if self._profile.listening(now):
             return  # still learning which IDs devices of an earlier arbitrator use
-        with arb._lock:
-            decision = arb.nodes.on_bind_request(req, now, arb.presence.duplicates)
+        with self._state.lock:
+            decision = self._nodes.on_bind_request(req, now, self._presence.duplicates)
             set_up = self._bound(decision.key, decision.node_id, now) \
                 if decision.kind == "grant" else None
         try:
@@ -189,9 +246,8 @@ class Dispatcher:
                 set_up()  # after the answer: the set-up's first request must not overtake it
 
     def _answer_bind(self, req: BindRequest, now: float) -> None:
-        arb = self.arb
-        with arb._lock:
-            decision = arb.nodes.decide_bind(req, now)
+        with self._state.lock:
+            decision = self._nodes.decide_bind(req, now)
             set_up = self._bound(decision.key, decision.node_id, now) \
                 if decision.kind == "grant" else None
         try:
@@ -201,37 +257,34 @@ class Dispatcher:
                 set_up()
 
     def _answer(self, decision: BindDecision) -> None:
-        arb = self.arb
         key = decision.key
         if decision.kind == "exhausted":
             if decision.report:  # once per device, not per retry
-                arb._error(decision.report, "node_ids_exhausted")
+                self._error(decision.report, "node_ids_exhausted")
         elif decision.kind in ("grant", "suggest"):
-            arb._send_quiet(BindResponse(decision.asked, decision.node_id, key.vid, key.pid,
-                                          key.serial))
+            self._send(BindResponse(decision.asked, decision.node_id, key.vid, key.pid,
+                                    key.serial))
 
     def _bound(self, key: DeviceKey, node_id: int, now: float) -> Callable[[], None]:
         """Under the lock: ``key`` holds ``node_id``; its set-up (or a new one) is in flight.
         Returns what starts it, called once the bind answer is sent."""
-        arb = self.arb
-        device = arb._system.device(key)
+        device = self._state.system.device(key)
         interval = (max(device.beacon_interval, 1) / 1000.0 if device is not None
                     else max(DEFAULT_BEACON_INTERVAL_S, UNREAD_BEACON_INTERVAL_S))
-        node, old = arb.nodes.install(key, node_id, now, interval)
+        node, old = self._nodes.install(key, node_id, now, interval)
         if old is not None and old != node_id:
-            arb.requests.abort(old, "the device bound again with another node ID")
-        arb.profile.last_change = now
-        return arb.setup.start(node)
+            self._requests.abort(old, "the device bound again with another node ID")
+        self._profile.note_change(now)
+        return self._setup.start(node)
 
     # -- presence (the presence tracker decides) ------------------------------------------
     def _tick(self, now: float, caught_up: bool = True) -> None:
         """Presence, held and foreign node IDs, deferred binds."""
-        arb = self.arb
-        with arb._lock:
-            gone = arb.presence.absent(list(arb.nodes.by_id.values()), now) \
+        with self._state.lock:
+            gone = self._presence.absent(list(self._nodes.by_id.values()), now) \
                 if caught_up else []
-            arb.nodes.expire(now)
-            resolved = arb.nodes.resolve_deferred(now, arb.presence.duplicates) \
+            self._nodes.expire(now)
+            resolved = self._nodes.resolve_deferred(now, self._presence.duplicates) \
                 if caught_up else []
         for node in gone:
             self._depart(node, now)
@@ -240,147 +293,132 @@ class Dispatcher:
             if twin:
                 self._twin(key, "a second one asked to bind while the first kept beaconing")
             else:
-                log.info("%s: device %s binds again (it restarted)", arb.name, key)
-                with arb._lock:
-                    again = arb.nodes.node(key)
-                    if again is not None:
-                        again.set_up = False
+                log.info("%s: device %s binds again (it restarted)", self._name, key)
+                with self._state.lock:
+                    self._nodes.binds_again(key)
                 self._answer_bind(req, now)
 
     def _twin(self, key: DeviceKey, why: str) -> None:
-        arb = self.arb
-        with arb._lock:
-            line = arb.presence.report(key, why)
-        arb._error(line, "duplicate_device")
+        with self._state.lock:
+            line = self._presence.report(key, why)
+        self._error(line, "duplicate_device")
 
     def _depart(self, node: _Node, now: float) -> None:
-        arb = self.arb
         key = node.key
-        with arb._lock:
-            if not arb.nodes.remove(node):
+        with self._state.lock:
+            if not self._nodes.remove(node):
                 return
-            arb.setup.in_flight.pop(key, None)
-            device = arb._system.device(key)
+            self._setup.cancel(key)
+            device = self._state.system.device(key)
             was_present = device is not None and device.present
             fed: list[Link] = []
             if device is not None:
                 device.present = False
-                device.node_id = None
+                self._nodes.stamp(device)  # none: its IDs went back to the pool
                 for ch in device.channels.values():
-                    ch.node_id = None
                     ch.data_enabled = False
                 fed = [lk for ref in (device.ref(c.index) for c in device.outputs())
-                       for lk in arb.links.links_from(ref)
-                       if arb._system.is_present(lk.input)]
-            arb.presence.duplicates.discard(key)
-            arb.profile.last_change = now
-            if was_present:
-                arb.profile.duty_needed = True
-        arb.requests.abort(node.node_id, "the device left the bus")
+                       for lk in self._links.links_from(ref)
+                       if self._state.system.is_present(lk.input)]
+            self._presence.left(key)
+            self._profile.note_change(now, duty=was_present)
+        self._requests.abort(node.node_id, "the device left the bus")
         if not was_present:
             return
-        log.info("%s: device %s left (node %d)", arb.name, key, node.node_id)
-        arb._emit(ev.DeviceLeft(key))
-        arb._submit_job(arb.links.silence_inputs, fed)
-        arb._wake.set()
+        log.info("%s: device %s left (node %d)", self._name, key, node.node_id)
+        self._emit(ev.DeviceLeft(key))
+        self._links.silence_inputs(fed)
+        self._wake()
 
     def _foreign_frame(self, node_id: int, aid: int, data: bytes, now: float) -> None:
         """A frame from a node ID nobody holds here: a device (or output) bound by an earlier
         arbitrator. Its ID is kept out of the pool while it is heard; a device is reset so
         it binds with us; undecodable frames are counted, and shown once per node."""
-        arb = self.arb
-        with arb._lock:
-            arb.nodes.hear_foreign(node_id, now)
+        with self._state.lock:
+            self._nodes.hear_foreign(node_id, now)
         try:
             message = decode(aid, data)
         except FrameError as err:
-            what = arb.presence.bad_stranger_frame(node_id, now)
+            what = self._presence.bad_stranger_frame(node_id, now)
             if what == "stale":
                 return  # data already on the wire when we reset
-            arb.bad_frames += 1
+            self.bad_frames += 1
             if what == "show":
-                arb._error(f"undecodable frame #{arb.bad_frames} 0x{aid:03X} "
+                self._error(f"undecodable frame #{self.bad_frames} 0x{aid:03X} "
                             f"[{data.hex(' ').upper()}] from node {node_id}, which is not "
                             f"bound here: {err} (further ones are counted, not shown)",
                             "bad_frame")
             return
         if isinstance(message, Beacon | UpdateDataChannel):
-            with arb._lock:
-                stranger = node_id not in arb.nodes.channel_ids
-            if stranger and arb.presence.may_reset_stranger(node_id, now):
-                log.info("%s: node %d is not bound here: resetting it", arb.name, node_id)
-                arb._send_quiet(Reset(node_id))
+            with self._state.lock:
+                stranger = node_id not in self._nodes.channel_ids
+            if stranger and self._presence.may_reset_stranger(node_id, now):
+                log.info("%s: node %d is not bound here: resetting it", self._name, node_id)
+                self._send(Reset(node_id))
         if isinstance(message, UpdateDataChannel):
-            arb._send_quiet(UpdateDataChannelResponse(node_id, ResponseCode.FAILURE,
-                                                       message.channel))
+            self._send(UpdateDataChannelResponse(node_id, ResponseCode.FAILURE,
+                                                 message.channel))
 
     # -- one arbitrator per bus (reference §5; the claim decides) -------------------------
     def _hear_claim(self, arbitration_id: int, data: bytes, now: float) -> bool:
         """Feed a received frame to the claim; False once another arbitrator is on the bus
         (then nothing received is ours to handle)."""
-        arb = self.arb
-        decision = arb.claim.heard(arbitration_id, data, now)
+        decision = self._claim.heard(arbitration_id, data, now)
         if decision is not None:
             self._claim_yielded(decision)
-        return not arb.claim.yielded
+        return not self._claim.yielded
 
     def _claim_tick(self, now: float) -> bool:
         """End the listening when it is due, beacon when due; True while arbitrating (and
         the adapter is there: presence is not judged while nobody can be heard)."""
-        arb = self.arb
-        decision = arb.claim.tick(now)
+        decision = self._claim.tick(now)
         if decision is not None:
             self.claim_started(decision)
-        if arb.claim.beacon_due(now):
-            arb._send_quiet(Beacon(0, mode=Mode.ARBITRATOR))
-        return bool(arb.claim.may_write) and not arb._disconnected
+        if self._claim.beacon_due(now):
+            self._send(Beacon(0, mode=Mode.ARBITRATOR))
+        return bool(self._claim.may_write) and not self.disconnected
 
     def claim_started(self, decision: Decision | None) -> None:
         """The bus is ours: the start-up reset (a replaced arbitrator's devices bind again)."""
-        arb = self.arb
         if decision is not None:
-            arb.bus_message = decision.message
-            log.info("%s: %s", arb.name, decision.message)
-            arb._emit(ev.BusState("arbitrating", decision.message))
-            with arb._lock:
-                arb.presence.unknown_reset.clear()  # resets skipped while listening may go
-        if arb._reset_on_claim or (decision is not None and decision.takeover):
-            arb._send_quiet(Reset(0))
+            self.bus_message = decision.message
+            log.info("%s: %s", self._name, decision.message)
+            self._emit(ev.BusState("arbitrating", decision.message))
+            with self._state.lock:
+                self._presence.claimed()
+        if self._reset_on_claim or (decision is not None and decision.takeover):
+            self._send(Reset(0))
 
     def _claim_yielded(self, decision: Decision) -> None:
         """Another arbitrator is on the bus: stop writing at once and say so, once."""
-        arb = self.arb
-        arb.bus_message = decision.message
+        self.bus_message = decision.message
         # Info, not warning: the yield event is what callers show (the CLI's one error line);
         # a warning would reach stderr a second time through logging's last-resort handler.
-        log.info("%s: %s", arb.name, decision.message)
-        with arb._lock:
-            nodes = list(arb.nodes.by_id)
+        log.info("%s: %s", self._name, decision.message)
+        with self._state.lock:
+            nodes = list(self._nodes.by_id)
         for node_id in nodes:
-            arb.requests.abort(node_id, "another bus arbitrator is on the bus")
-        arb._emit(ev.BusState("yielded", decision.message))
-        arb._wake.set()
+            self._requests.abort(node_id, "another bus arbitrator is on the bus")
+        self._emit(ev.BusState("yielded", decision.message))
+        self._wake()
 
     # -- a pulled adapter (bus/reopen.py reopens it) --------------------------------------
     def adapter_state(self, state: str, line: str) -> None:
         """Called on the Notifier's thread: hand it to the dispatch thread."""
-        arb = self.arb
-        arb.conn.post(lambda: self._on_adapter_state(state, line))
+        self._conn.post(lambda: self._on_adapter_state(state, line))
 
     def _on_adapter_state(self, state: str, line: str) -> None:
         """Disconnected: presence is not judged (nobody can be heard) and nothing is sent.
         Reconnected: every device gets its beacon intervals to be heard again, and the links
         are read back from the inputs and re-made where they differ."""
-        arb = self.arb
         now = time.monotonic()
-        with arb._lock:
-            arb._disconnected = state == "disconnected"
-            if not arb._disconnected:
-                for node in arb.nodes.by_id.values():
-                    node.last_seen = max(node.last_seen, now)
-        arb._emit(ev.BusState(state, line))
-        if not arb._disconnected:
-            arb._submit_job(arb.links.reread)
+        with self._state.lock:
+            self.disconnected = state == "disconnected"
+            if not self.disconnected:
+                self._nodes.heard_all(now)
+        self._emit(ev.BusState(state, line))
+        if not self.disconnected:
+            self._links.reread()
 
 
 __all__ = ["STALL_GRACE_S", "STALL_S", "Dispatcher"]

@@ -5,8 +5,8 @@ What to write for a link is decided by pure functions (:func:`link_writes`,
 :class:`LinkWriter` carries them out through the arbitrator's request engine, updates the
 model's channels after each, and keeps links in step on the bus: after an Update Data Channel
 request, when a source leaves (its inputs stop listening) and after an adapter outage (the
-links are read back and re-made where they differ). Wire work is serialized by the
-arbitrator's plan lock.
+links are read back and re-made where they differ). Wire work is serialized by the wire
+lock (``bus/arbitrator/state.py``).
 """
 
 from __future__ import annotations
@@ -17,6 +17,7 @@ from typing import TYPE_CHECKING, Literal
 
 from pdcp_studio.bus import events as ev
 from pdcp_studio.bus.arbitrator.common import _NOT_CONNECTED, _OFF, _ON, _input_value, _Node
+from pdcp_studio.bus.arbitrator.state import Emit, ReportError, SendFrame, SubmitJob, SystemState
 from pdcp_studio.errors import ModelError, NodeIdExhaustedError, PdcpError
 from pdcp_studio.model import parameters as P
 from pdcp_studio.model.refs import ChannelRef
@@ -24,7 +25,8 @@ from pdcp_studio.model.system import NO_SOURCE, Channel, Link, SourceInfo
 from pdcp_studio.protocol import ResponseCode, UpdateDataChannel, UpdateDataChannelResponse
 
 if TYPE_CHECKING:
-    from pdcp_studio.bus.arbitrator.core import Arbitrator
+    from pdcp_studio.bus.arbitrator.nodes import NodeTable
+    from pdcp_studio.bus.arbitrator.requests import RequestEngine
 
 log = logging.getLogger("pdcp_studio.bus.arbitrator.core")  # one logger for the arbitrator
 
@@ -91,21 +93,30 @@ def needs_remaking(out_node: int, out_id: int, sources: bytes, enabled: bytes) -
 
 
 class LinkWriter:
-    """Links on the bus for an :class:`Arbitrator` (it has no state of its own: the links
-    are the system's, the node IDs the node table's)."""
+    """Links on the bus (no state of its own: the links are the system's, the node IDs the
+    node table's). It writes through the request engine, answers Update Data Channel through
+    ``send``, and runs its jobs (silencing, re-making, reading back) through ``submit``."""
 
-    def __init__(self, arb: Arbitrator) -> None:
-        self.arb = arb
+    def __init__(self, state: SystemState, nodes: NodeTable, requests: RequestEngine, *,
+                 send: SendFrame, submit: SubmitJob, error: ReportError, emit: Emit,
+                 name: str) -> None:
+        self._state = state
+        self._nodes = nodes
+        self._requests = requests
+        self._send = send
+        self._submit = submit
+        self._error = error
+        self._emit = emit
+        self._name = name
 
     # -- carrying writes out ----------------------------------------------------------------
     def _write(self, writes: list[Write], in_ch: Channel | None, out_ch: Channel | None,
                source: SourceInfo = NO_SOURCE) -> None:
-        arb = self.arb
         for w in writes:
-            arb.requests.set(w.node_id, w.param, w.channel, w.value)
+            self._requests.set(w.node_id, w.param, w.channel, w.value)
             if not w.then:
                 continue
-            with arb._lock:
+            with self._state.lock:
                 if w.then == "source" and in_ch is not None:
                     in_ch.source = source
                 elif w.then == "input_on" and in_ch is not None:
@@ -119,9 +130,8 @@ class LinkWriter:
 
     def wire_add(self, link: Link) -> None:
         """Make ``link`` on the wire and in the model's channels (both ends on the bus)."""
-        arb = self.arb
-        with arb._lock:
-            system, nodes = arb._system, arb.nodes
+        with self._state.lock:
+            system, nodes = self._state.system, self._nodes
             out_node = nodes.node_of.get(link.output.device)
             in_node = nodes.node_of.get(link.input.device)
             out_id = nodes.output_id(link.output)
@@ -138,11 +148,10 @@ class LinkWriter:
     def wire_remove(self, link: Link) -> None:
         """After the model dropped ``link``: clear the input unless it has another source,
         and stop the output unless it still feeds a present input."""
-        arb = self.arb
-        with arb._lock:
-            system = arb._system
-            in_node = arb.nodes.node_of.get(link.input.device)
-            out_node = arb.nodes.node_of.get(link.output.device)
+        with self._state.lock:
+            system = self._state.system
+            in_node = self._nodes.node_of.get(link.input.device)
+            out_node = self._nodes.node_of.get(link.output.device)
             in_ch = system.channel(link.input)
             out_ch = system.channel(link.output)
             clear_input = in_ch is not None and system.source_of(link.input) is None
@@ -155,10 +164,9 @@ class LinkWriter:
     # -- links in the model and on the wire ---------------------------------------------
     def add_link(self, link: Link) -> None:
         """See :meth:`Arbitrator.add_link`."""
-        arb = self.arb
-        with arb._plan_lock:
-            with arb._lock:
-                system = arb._system
+        with self._state.wire_lock:
+            with self._state.lock:
+                system = self._state.system
                 system.check_link(link)
                 if system.has_link(link):
                     return
@@ -177,129 +185,119 @@ class LinkWriter:
 
     def remove_link(self, link: Link) -> None:
         """See :meth:`Arbitrator.remove_link`."""
-        arb = self.arb
-        with arb._plan_lock:
-            with arb._lock:
-                if not arb._system.has_link(link):
+        with self._state.wire_lock:
+            with self._state.lock:
+                if not self._state.system.has_link(link):
                     raise ModelError(f"link {link} is not in the system")
             self.remove(link)
 
     def add(self, link: Link) -> None:
         """Make ``link`` (on the wire when both ends are present) and say so."""
-        arb = self.arb
-        with arb._lock:
-            present = (arb._system.is_present(link.output)
-                       and arb._system.is_present(link.input))
+        with self._state.lock:
+            present = (self._state.system.is_present(link.output)
+                       and self._state.system.is_present(link.input))
         if present:
             self.wire_add(link)
-        with arb._lock:
-            if not arb._system.has_link(link):
-                arb._system.add_link(link, check=False)
-        arb._emit(ev.LinkMade(link))
+        with self._state.lock:
+            if not self._state.system.has_link(link):
+                self._state.system.add_link(link, check=False)
+        self._emit(ev.LinkMade(link))
 
     def remove(self, link: Link) -> None:
         """Drop ``link`` from the model and the wire and say so."""
-        arb = self.arb
-        with arb._lock:
-            if arb._system.has_link(link):
-                arb._system.remove_link(link)
+        with self._state.lock:
+            if self._state.system.has_link(link):
+                self._state.system.remove_link(link)
         self.wire_remove(link)
-        arb._emit(ev.LinkRemoved(link))
+        self._emit(ev.LinkRemoved(link))
 
     # -- keeping the bus in step ----------------------------------------------------------
     def links_from(self, output: ChannelRef) -> list[Link]:
         """Under the lock: the links ``output`` feeds."""
-        return [Link(output, i) for i in self.arb._system.inputs_fed_by(output)]
+        return [Link(output, i) for i in self._state.system.inputs_fed_by(output)]
 
     def silence_inputs(self, links: list[Link]) -> None:
-        """A job: inputs fed by a departed output stop listening (its node ID may be reused)."""
-        arb = self.arb
-        try:
-            with arb._plan_lock:
-                for link in links:
-                    with arb._lock:
-                        node_id = arb.nodes.node_of.get(link.input.device)
-                        others = [s for s in arb._system.sources_of(link.input)
-                                  if s != link.output and arb._system.is_present(s)]
-                    if node_id is None or others:
-                        continue
-                    try:
-                        arb.requests.set(node_id, P.CH_DATA_ENABLED, link.input.index, _OFF)
-                        arb.requests.set(node_id, P.IN_SOURCE_NODE_IDS, link.input.index,
-                                         b"\0\0")
-                    except PdcpError as err:
-                        arb._error(f"input {link.input} could not be told its source left: "
-                                   f"{err}", "transport")
-                        continue
-                    with arb._lock:
-                        ch = arb._system.channel(link.input)
-                        if ch is not None:
-                            ch.data_enabled = False
-        finally:
-            arb._job_done()
+        """Inputs fed by a departed output stop listening (its node ID may be reused): a job."""
+        self._submit(lambda: self._silence_inputs(links))
+
+    def _silence_inputs(self, links: list[Link]) -> None:
+        state = self._state
+        with state.wire_lock:
+            for link in links:
+                with state.lock:
+                    node_id = self._nodes.node_of.get(link.input.device)
+                    others = [s for s in state.system.sources_of(link.input)
+                              if s != link.output and state.system.is_present(s)]
+                if node_id is None or others:
+                    continue
+                try:
+                    self._requests.set(node_id, P.CH_DATA_ENABLED, link.input.index, _OFF)
+                    self._requests.set(node_id, P.IN_SOURCE_NODE_IDS, link.input.index,
+                                       b"\0\0")
+                except PdcpError as err:
+                    self._error(f"input {link.input} could not be told its source left: "
+                                f"{err}", "transport")
+                    continue
+                with state.lock:
+                    ch = state.system.channel(link.input)
+                    if ch is not None:
+                        ch.data_enabled = False
 
     def on_update(self, node: _Node, msg: UpdateDataChannel) -> None:
-        """Update Data Channel: answer, and re-make the links into that input."""
-        arb = self.arb
-        arb._send_quiet(UpdateDataChannelResponse(node.node_id, ResponseCode.SUCCESS,
-                                                  msg.channel))
-        with arb._lock:
-            node.updates.add(msg.channel)
+        """Update Data Channel: answer, and re-make the links into that input (a job)."""
+        self._send(UpdateDataChannelResponse(node.node_id, ResponseCode.SUCCESS, msg.channel))
+        with self._state.lock:
             if not node.set_up:
                 return  # set-up (step 5) handles it
             ref = ChannelRef(*node.key, msg.channel)
-            links = [Link(s, ref) for s in arb._system.sources_of(ref)]
-        arb._submit_job(self.sync_links, links)
+            links = [Link(s, ref) for s in self._state.system.sources_of(ref)]
+        self._submit(lambda: self._sync_links(links))
 
-    def sync_links(self, links: list[Link]) -> None:
-        """A job: re-make the links still live."""
-        arb = self.arb
-        try:
-            with arb._plan_lock:
-                for link in links:
-                    with arb._lock:
-                        system = arb._system
-                        live = (system.has_link(link) and system.is_present(link.output)
-                                and system.is_present(link.input))
-                    if live:
-                        try:
-                            self.wire_add(link)
-                        except PdcpError as err:
-                            arb._error(f"link {link} could not be re-made: {err}", "transport")
-        finally:
-            arb._job_done()
+    def _sync_links(self, links: list[Link]) -> None:
+        """Re-make the links still live."""
+        state = self._state
+        with state.wire_lock:
+            for link in links:
+                with state.lock:
+                    system = state.system
+                    live = (system.has_link(link) and system.is_present(link.output)
+                            and system.is_present(link.input))
+                if live:
+                    try:
+                        self.wire_add(link)
+                    except PdcpError as err:
+                        self._error(f"link {link} could not be re-made: {err}", "transport")
 
     def reread(self) -> None:
-        """A job after an outage: read each linked input's Source's Node Ids and Data Transfer
+        """After an outage, a job: read each linked input's Source's Node Ids and Data Transfer
         Enabled back; re-make the links whose input does not say what the model says."""
-        arb = self.arb
-        try:
-            with arb._plan_lock:
-                with arb._lock:
-                    links = [lk for lk in arb._system.links
-                             if arb._system.is_present(lk.output)
-                             and arb._system.is_present(lk.input)]
-                for link in links:
-                    with arb._lock:
-                        in_node = arb.nodes.node_of.get(link.input.device)
-                        out_node = arb.nodes.node_of.get(link.output.device)
-                        out_id = arb.nodes.output_id(link.output)
-                    if in_node is None or out_node is None or out_id is None:
-                        continue
-                    try:
-                        sources = arb.requests.get(in_node, P.IN_SOURCE_NODE_IDS,
-                                                   link.input.index)
-                        enabled = arb.requests.get(in_node, P.CH_DATA_ENABLED,
-                                                   link.input.index)
-                        if needs_remaking(out_node, out_id, sources, enabled):
-                            log.info("%s: link %s was lost during the outage: re-making it",
-                                     arb.name, link)
-                            self.wire_add(link)
-                    except PdcpError as err:
-                        arb._error(f"link {link} could not be read back after the outage: "
-                                   f"{err}", "transport")
-        finally:
-            arb._job_done()
+        self._submit(self._reread)
+
+    def _reread(self) -> None:
+        state = self._state
+        with state.wire_lock:
+            with state.lock:
+                links = [lk for lk in state.system.links
+                         if state.system.is_present(lk.output)
+                         and state.system.is_present(lk.input)]
+            for link in links:
+                with state.lock:
+                    in_node = self._nodes.node_of.get(link.input.device)
+                    out_node = self._nodes.node_of.get(link.output.device)
+                    out_id = self._nodes.output_id(link.output)
+                if in_node is None or out_node is None or out_id is None:
+                    continue
+                try:
+                    sources = self._requests.get(in_node, P.IN_SOURCE_NODE_IDS,
+                                                 link.input.index)
+                    enabled = self._requests.get(in_node, P.CH_DATA_ENABLED, link.input.index)
+                    if needs_remaking(out_node, out_id, sources, enabled):
+                        log.info("%s: link %s was lost during the outage: re-making it",
+                                 self._name, link)
+                        self.wire_add(link)
+                except PdcpError as err:
+                    self._error(f"link {link} could not be read back after the outage: "
+                                f"{err}", "transport")
 
 
 __all__ = ["LinkWriter", "Write", "link_writes", "needs_remaking", "unlink_writes",

@@ -27,6 +27,7 @@ from pdcp_studio.bus.arbitrator.common import (
 from pdcp_studio.bus.arbitrator.node_ids import NodeIdPool
 from pdcp_studio.errors import NodeIdExhaustedError
 from pdcp_studio.model.refs import ChannelRef, DeviceKey
+from pdcp_studio.model.system import Device
 from pdcp_studio.protocol import BindRequest
 from pdcp_studio.protocol.identifier import NODE_ID_MAX
 
@@ -81,6 +82,14 @@ class NodeTable:
     def output_id(self, ref: ChannelRef) -> int | None:
         """The node ID an output channel sends its data with (None if it has none)."""
         return self.pool.id_of((ref.device, ref.index))
+
+    def stamp(self, device: Device) -> None:
+        """Write the node IDs this table holds for ``device`` and its outputs into the model
+        (None where it holds none): the one place the model's node IDs are set, so they
+        never disagree with the table."""
+        device.node_id = self.node_of.get(device.key)
+        for index, channel in device.channels.items():
+            channel.node_id = self.output_id(device.ref(index))
 
     def is_foreign(self, arbitration_id: int) -> bool:
         """A device-mode frame (not a bind request) from a node ID nobody holds here."""
@@ -168,6 +177,46 @@ class NodeTable:
                 del self.deferred[key]
                 resolved.append((req, False))
         return resolved
+
+    # -- what is known of a bound node ----------------------------------------------------
+    def heard(self, node_id: int, now: float, *, beacon: bool = False) -> _Node | None:
+        """A frame (``beacon``: a beacon) from ``node_id`` at ``now``; its node, or None when
+        nobody holds that ID here."""
+        node = self.by_id.get(node_id)
+        if node is not None:
+            node.last_seen = now
+            if beacon:
+                node.last_beacon = now
+        return node
+
+    def heard_all(self, now: float) -> None:
+        """The adapter is back: every node gets its beacon intervals to be heard again."""
+        for node in self.by_id.values():
+            node.last_seen = max(node.last_seen, now)
+
+    def asked(self, node_id: int, now: float) -> None:
+        """A request went to ``node_id`` at ``now`` (an echoed answer is judged by it)."""
+        node = self.by_id.get(node_id)
+        if node is not None:
+            node.last_request = now
+
+    def beacons_every(self, key: DeviceKey, interval_s: float) -> None:
+        """``key``'s beacon interval is known (read, or just written)."""
+        node = self.node(key)
+        if node is not None:
+            node.beacon_interval = interval_s
+
+    def set_up(self, node: _Node, beacon_interval_s: float) -> None:
+        """``node``'s device is read and installed: a bind request from it now means a
+        reboot or a twin."""
+        node.beacon_interval = beacon_interval_s
+        node.set_up = True
+
+    def binds_again(self, key: DeviceKey) -> None:
+        """``key`` restarted: its bind request is answered as a fresh device's."""
+        node = self.node(key)
+        if node is not None:
+            node.set_up = False
 
     # -- node IDs in use ------------------------------------------------------------------
     def give_outputs(self, key: DeviceKey, indices: list[int]

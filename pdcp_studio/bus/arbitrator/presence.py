@@ -91,6 +91,14 @@ class PresenceTracker:
                 and node.key not in self.duplicates)
         return echo, f"node {node.node_id} answers requests twice" if twin else ""
 
+    def claimed(self) -> None:
+        """The bus is ours: the strangers' resets skipped while listening may be sent now."""
+        self.unknown_reset.clear()
+
+    def left(self, key: DeviceKey) -> None:
+        """``key`` left the bus: a twin reported before may bind when it comes back."""
+        self.duplicates.discard(key)
+
     def report(self, key: DeviceKey, why: str) -> str:
         """``key`` has a twin: remembered (never bound again while present); the line."""
         self.duplicates.add(key)

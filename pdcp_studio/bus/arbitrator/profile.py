@@ -5,7 +5,7 @@ latest ``startup_max_wait_s`` after the arbitrator started; the duty cycle (list
 ``duty_quiet_s`` after the last join or leave. When is decided by :meth:`ProfileDriver.startup_due`
 and :meth:`ProfileDriver.duty_due` from ``now`` and the arbitrator's business (pure); the plans
 themselves come from :mod:`pdcp_studio.engine` and are carried out by the link writer on the
-profile thread the arbitrator starts (:meth:`ProfileDriver.loop`).
+profile thread (``bus/arbitrator/profile_thread.py``).
 
 Start-up implements a stored configuration and the duty cycle makes and removes links on a
 prosthesis that may be worn and moving: both are changes reference §5's motion interlock
@@ -18,14 +18,18 @@ that changes no link writes nothing and holds nothing.
 
 from __future__ import annotations
 
+import contextlib
 import logging
 import threading
-import time
-from collections.abc import Callable
+from collections.abc import Callable, Iterator
+from dataclasses import dataclass
 from typing import TYPE_CHECKING, Any, Literal
 
 from pdcp_studio.bus import events as ev
+from pdcp_studio.bus.arbitrator.interlock import HoldRefused, Interlock, holding
+from pdcp_studio.bus.arbitrator.state import Emit, ReportError, SystemState
 from pdcp_studio.bus.transaction import (
+    Policy,
     Status,
     TransactionResult,
     describe_interlock,
@@ -34,10 +38,9 @@ from pdcp_studio.bus.transaction import (
 from pdcp_studio.errors import PdcpError
 from pdcp_studio.model.configuration import ConfigCollection
 from pdcp_studio.model.refs import ChannelRef, DeviceKey
-from pdcp_studio.model.system import System
+from pdcp_studio.model.system import Link, System
 
 if TYPE_CHECKING:
-    from pdcp_studio.bus.arbitrator.core import Arbitrator
     from pdcp_studio.engine.plan import Plan
 
 log = logging.getLogger("pdcp_studio.bus.arbitrator.core")  # one logger for the arbitrator
@@ -48,12 +51,35 @@ def present_refs(system: System) -> set[ChannelRef]:
     return {ref for ref, _ in system.channels() if system.is_present(ref)}
 
 
-class ProfileDriver:
-    """Start-up, duty cycle and plans of an :class:`Arbitrator`, and when they are due."""
+@dataclass(frozen=True)
+class ProfilePorts:
+    """What the profile driver needs outside itself: the system, the link writer's ``add`` and
+    ``remove`` (a plan's actions), the motion interlock, the stored configuration and policy
+    (the arbitrator's calls, asked each time: tests replace them), and its voice."""
 
-    def __init__(self, arb: Arbitrator, now: float, *, quiet_s: float, duty_quiet_s: float,
+    state: SystemState
+    add_link: Callable[[Link], None]
+    remove_link: Callable[[Link], None]
+    interlock: Interlock
+    read_memory: Callable[[], ConfigCollection]
+    read_policy: Callable[[], Policy]
+    error: ReportError
+    emit: Emit
+    closed: Callable[[], bool]
+    name: str
+
+
+class ProfileDriver:
+    """Start-up, duty cycle and plans, and when they are due.
+
+    It owns the profile layer's clock (the last bind request, the last change), whether the
+    duty cycle is owed and how many plans are under way; the other parts tell it through
+    :meth:`note_bind`, :meth:`note_change` and :meth:`running`. Its fields are guarded by the
+    arbitrator's lock (the ``state``'s)."""
+
+    def __init__(self, ports: ProfilePorts, now: float, *, quiet_s: float, duty_quiet_s: float,
                  max_wait_s: float, listen_until: float) -> None:
-        self.arb = arb
+        self._ports = ports
         self.startup_quiet_s = quiet_s
         self.duty_quiet_s = duty_quiet_s
         self.startup_max_wait_s = max_wait_s
@@ -106,36 +132,39 @@ class ProfileDriver:
         self.expected = frozenset()
         self.started = self.last_bind = self.last_change = now
 
-    # -- the profile thread ---------------------------------------------------------------
-    def loop(self) -> None:
-        arb = self.arb
-        while not arb._stop.is_set():
-            arb._wake.wait(0.02)
-            arb._wake.clear()
-            if arb._stop.is_set() or not arb.profile_layer or not arb.claim.may_write:
-                continue  # (listening, or another arbitrator is on the bus)
-            now = time.monotonic()
-            try:
-                if not self.startup_done:
-                    with arb._lock:
-                        setting_up = bool(arb.setup.in_flight)
-                    present = frozenset(arb.devices_present()) if self.expected \
-                        else frozenset()
-                    due = self.startup_due(now, arb._busy(), setting_up,
-                                           arb.conn.inbound.empty(), present)
-                    if due == "late":
-                        arb._error(f"start-up runs after {self.startup_max_wait_s:g} s although "
-                                   "binding has not settled (a device keeps asking for an ID "
-                                   "it is not given)", "setup")
-                    if due:
-                        self.run_startup()
-                elif self.duty_due(now, arb._busy()):
-                    self.run_duty_cycle()
-            except PdcpError as err:
-                if not arb.closed:  # a plan cut off by closing the session is no news
-                    arb._error(f"profile layer: {err}", "plan")
-            except Exception:
-                log.exception("%s: the profile layer failed", arb.name)
+    # -- what the other parts tell it ---------------------------------------------------
+    def listening(self, now: float) -> bool:
+        """Binding waits: the node IDs devices of an earlier arbitrator use are being heard."""
+        return now < self.listen_until
+
+    def note_bind(self, now: float) -> None:
+        """Under the lock: a bind request at ``now`` (start-up waits for quiet)."""
+        self.last_bind = now
+
+    def note_change(self, now: float, *, duty: bool = False) -> None:
+        """Under the lock: a join, leave or set-up at ``now``; ``duty``: the devices on the
+        bus changed, the duty cycle is owed."""
+        self.last_change = now
+        if duty:
+            self.duty_needed = True
+
+    def settled(self, profile_layer: bool) -> bool:
+        """Under the lock: no plan or transaction under way and, with the profile layer on,
+        start-up done and no duty cycle owed."""
+        if self.plan_running:
+            return False
+        return not profile_layer or (self.startup_done and not self.duty_needed)
+
+    @contextlib.contextmanager
+    def running(self) -> Iterator[None]:
+        """A plan or transaction is under way around the block: the bus is not settled."""
+        with self._ports.state.lock:
+            self.plan_running += 1
+        try:
+            yield
+        finally:
+            with self._ports.state.lock:
+                self.plan_running -= 1
 
     # -- plans ----------------------------------------------------------------------------
     def apply_plan(self, plan: Plan, progress: Callable[[int, int, str], Any] | None = None,
@@ -144,13 +173,13 @@ class ProfileDriver:
         """See :meth:`Arbitrator.apply_plan` (``interlock``: what held the prosthesis)."""
         from pdcp_studio.engine.plan import Op
 
-        arb = self.arb
+        ports = self._ports
         failures: list[str] = []
         cancelled = ""
-        with arb._plan_lock:
-            with arb._lock:
+        with ports.state.wire_lock:
+            with ports.state.lock:
                 self.plan_running += 1
-                before = arb._system.links
+                before = ports.state.system.links
             try:
                 total = len(plan.actions)
                 for done, action in enumerate(plan.actions):
@@ -161,37 +190,37 @@ class ProfileDriver:
                         progress(done, total, f"{action.op.value} {action.link}")
                     try:
                         if action.op is Op.ADD:
-                            with arb._lock:
-                                arb._system.check_link(action.link)
-                                exists = arb._system.has_link(action.link)
+                            with ports.state.lock:
+                                ports.state.system.check_link(action.link)
+                                exists = ports.state.system.has_link(action.link)
                             if not exists:
-                                arb.links.add(action.link)
+                                ports.add_link(action.link)
                         else:
-                            with arb._lock:
-                                exists = arb._system.has_link(action.link)
+                            with ports.state.lock:
+                                exists = ports.state.system.has_link(action.link)
                             if exists:
-                                arb.links.remove(action.link)
+                                ports.remove_link(action.link)
                     except PdcpError as err:
-                        if arb.closed:  # closing the session cut the plan off: no error
+                        if ports.closed():  # closing the session cut the plan off: no error
                             cancelled = f"the bus was closed after {done} of {total} actions"
                             break
                         failures.append(f"{action.op.value} {action.link}: {err}")
-                        arb._error(f"plan {plan.mode}: {failures[-1]}", "plan")
+                        ports.error(f"plan {plan.mode}: {failures[-1]}", "plan")
                 else:
                     if progress is not None:
                         progress(total, total, f"plan {plan.mode} applied")
                 self.applied_plans.append(plan)
-                log.info("%s: applied plan %s: %d added, %d removed%s", arb.name, plan.mode,
+                log.info("%s: applied plan %s: %d added, %d removed%s", ports.name, plan.mode,
                          len(plan.added), len(plan.removed),
                          f", {len(failures)} failed" if failures else "")
                 for action in plan.actions:
-                    log.info("%s:   %s %s (%s)", arb.name, action.op.value, action.link,
+                    log.info("%s:   %s %s (%s)", ports.name, action.op.value, action.link,
                              action.reason)
             finally:
-                with arb._lock:
+                with ports.state.lock:
                     self.plan_running -= 1
-                    after = arb._system.links
-        arb._emit(ev.PlanApplied(plan))
+                    after = ports.state.system.links
+        ports.emit(ev.PlanApplied(plan))
         result = TransactionResult(Status.APPLIED, f"apply {plan.mode}", links_before=before,
                                    links_after=after, verified=False, interlock=interlock)
         if failures or cancelled:
@@ -206,45 +235,45 @@ class ProfileDriver:
         from pdcp_studio.engine import plan_on_bus
         from pdcp_studio.engine.procedures import missing_devices
 
-        arb = self.arb
-        with arb._plan_lock:
-            with arb._lock:
+        ports = self._ports
+        with ports.state.wire_lock:
+            with ports.state.lock:
                 self.duty_needed = False
             try:
-                stored = arb.read_memory()
+                stored = ports.read_memory()
             except (OSError, PdcpError) as err:
                 # An unreadable memory must not keep the prosthesis unlinked: say so once and
                 # start up from what the devices themselves store (as a replaced arbitrator).
-                arb._error(f"stored configuration unreadable, starting up from the devices' "
-                           f"own source fields: {err}", "plan")
+                ports.error(f"stored configuration unreadable, starting up from the devices' "
+                            f"own source fields: {err}", "plan")
                 stored = ConfigCollection([])
             autoconfigure = self._policy_for_plans()
-            snapshot = arb.system()
+            snapshot = ports.state.snapshot()
             plan = plan_on_bus("startup", snapshot, stored, autoconfigure=autoconfigure)
             try:
                 self._apply_held(plan, snapshot)
                 self._report_policy(plan, autoconfigure)
                 # What the stored configuration names and the bus lacks is shown as missing.
                 stored_cfg = plan.configuration if plan.configuration_source == "stored" else None
-                with arb._lock:
-                    for device in missing_devices(arb._system, stored_cfg):
-                        arb._system.add_device(device)
+                with ports.state.lock:
+                    for device in missing_devices(ports.state.system, stored_cfg):
+                        ports.state.system.add_device(device)
             finally:
-                with arb._lock:
+                with ports.state.lock:
                     self.startup_done = True
-                    self.last_present = present_refs(arb._system)
+                    self.last_present = present_refs(ports.state.system)
         return plan
 
     def run_duty_cycle(self) -> Plan:
         """See :meth:`Arbitrator.run_duty_cycle`."""
         from pdcp_studio.engine import plan_duty_cycle
 
-        arb = self.arb
-        with arb._plan_lock:
-            with arb._lock:
+        ports = self._ports
+        with ports.state.wire_lock:
+            with ports.state.lock:
                 self.duty_needed = False
                 before = set(self.last_present)
-            snapshot = arb.system()
+            snapshot = ports.state.snapshot()
             autoconfigure = self._policy_for_plans()
             plan = plan_duty_cycle(snapshot, before, autoconfigure=autoconfigure)
             written = True
@@ -255,34 +284,32 @@ class ProfileDriver:
                     self._report_policy(plan, autoconfigure)
             finally:
                 if written:  # else the channels that left are still owed a replacement:
-                    with arb._lock:  # the next join or leave plans for them too
-                        self.last_present = present_refs(arb._system)
+                    with ports.state.lock:  # the next join or leave plans for them too
+                        self.last_present = present_refs(ports.state.system)
         return plan
 
     def _apply_held(self, plan: Plan, snapshot: System) -> bool:
         """Write ``plan`` with the motion interlock holding its devices; False (and an error
         said) when a device would not hold still and nothing was written."""
-        from pdcp_studio.bus.arbitrator.transactions import HoldRefused, holding
-
         if not plan.actions:
             return True
-        arb = self.arb
+        ports = self._ports
         notes: list[str] = []
         keys = interlocked_devices(snapshot, snapshot.links, plan.final_links)
-        with arb._lock:
+        with ports.state.lock:
             self.plan_running += 1  # busy from the first hold on: the bus is not settled
         try:
-            with holding(arb, keys, notes) as held:
+            with holding(ports.interlock, keys, notes) as held:
                 self.apply_plan(plan, interlock=describe_interlock(held))
         except HoldRefused as err:
-            arb._error(f"plan {plan.mode} not written: {err}; the prosthesis was left as it "
-                       "was", "plan")
+            ports.error(f"plan {plan.mode} not written: {err}; the prosthesis was left as it "
+                        "was", "plan")
             return False
         finally:
-            with arb._lock:
+            with ports.state.lock:
                 self.plan_running -= 1
             for note in notes:  # a release cut off by closing the session is no news
-                (log.debug if arb.closed else log.warning)("%s: %s", arb.name, note)
+                (log.debug if ports.closed() else log.warning)("%s: %s", ports.name, note)
         return True
 
     def _policy_for_plans(self) -> bool:
@@ -290,7 +317,7 @@ class ProfileDriver:
         be read — start-up already said so once, and an unreadable memory must not leave the
         prosthesis unlinked."""
         try:
-            return self.arb.read_policy().autoconfigure
+            return self._ports.read_policy().autoconfigure
         except (OSError, PdcpError):
             return True
 
@@ -301,12 +328,12 @@ class ProfileDriver:
         from pdcp_studio.engine.layer import ProfileLayer
         from pdcp_studio.engine.procedures import AUTOCONFIGURE_OFF
 
-        arb = self.arb
-        refs = tuple(ProfileLayer(arb.system(), "policy").unconnected_terminals())
+        ports = self._ports
+        refs = tuple(ProfileLayer(ports.state.snapshot(), "policy").unconnected_terminals())
         if refs:
-            log.info("%s: %d terminal channel(s) not connected: %s", arb.name, len(refs),
+            log.info("%s: %d terminal channel(s) not connected: %s", ports.name, len(refs),
                      AUTOCONFIGURE_OFF)
-            arb._emit(ev.TerminalsUnconnected(
+            ports.emit(ev.TerminalsUnconnected(
                 refs, f"{len(refs)} terminal channel(s) not connected — {AUTOCONFIGURE_OFF}: "
                 + ", ".join(str(r) for r in refs)))
 

@@ -94,7 +94,7 @@ class _Waiter:
     def __init__(self, node_id: int) -> None:
         self.node_id = node_id
         self.codes: frozenset[FunctionCode] = _TRANSACTION_CODES
-        self.inbox: queue.SimpleQueue = queue.SimpleQueue()
+        self.inbox: queue.SimpleQueue[Message | _Abort] = queue.SimpleQueue()
 
 
 class RequestEngine:
@@ -184,7 +184,7 @@ class RequestEngine:
                 with self._lock:
                     self.stats.aborted += 1
                 raise TransferAbortedError(f"node {waiter.node_id}: {item.reason}")
-            if item.CODE in codes and match(item):
+            if getattr(item, "CODE", None) in codes and match(item):
                 return item
 
     def _attempts(self, node_id: int, what: str, timeout: float | None,

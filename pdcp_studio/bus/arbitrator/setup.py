@@ -19,47 +19,84 @@ from pdcp_studio.bus import events as ev
 from pdcp_studio.bus.arbitrator.common import SETUP_ATTEMPTS, _Node
 from pdcp_studio.bus.arbitrator.device_reader import SETUP, DeviceReader
 from pdcp_studio.bus.arbitrator.nodes import MAX_KEYS_REMEMBERED
+from pdcp_studio.bus.arbitrator.state import (
+    Emit,
+    NoteChange,
+    ReportError,
+    SendFrame,
+    SystemState,
+)
 from pdcp_studio.errors import ModelError, PdcpError
 from pdcp_studio.model import param_fields
 from pdcp_studio.model import parameters as P
 from pdcp_studio.model.refs import DeviceKey
-from pdcp_studio.model.system import Device
+from pdcp_studio.model.system import Device, Link
 from pdcp_studio.protocol import Reset
 
 if TYPE_CHECKING:
-    from pdcp_studio.bus.arbitrator.core import Arbitrator
+    from pdcp_studio.bus.arbitrator.nodes import NodeTable
+    from pdcp_studio.bus.arbitrator.requests import RequestEngine
 
 log = logging.getLogger("pdcp_studio.bus.arbitrator.core")  # one logger for the arbitrator
 
 
 class DeviceSetup:
-    """The set-up jobs of an :class:`Arbitrator` (one per binding) and their bookkeeping."""
+    """The set-up jobs (one per binding) and their bookkeeping: which set-ups are in flight
+    and how often a device's failed.
 
-    def __init__(self, arb: Arbitrator) -> None:
-        self.arb = arb
-        self.reader = DeviceReader(arb.requests, descriptor_bulk=False)
+    ``run`` puts a set-up on the pool; ``wire_add`` re-makes a link (the link writer's);
+    ``note_change`` tells the profile layer a device was set up (``duty``: it joined);
+    ``stopping`` says the arbitrator is closing; ``wake`` wakes the profile thread."""
+
+    def __init__(self, state: SystemState, nodes: NodeTable, requests: RequestEngine, *,
+                 run: Callable[[Callable[[], None]], None], wire_add: Callable[[Link], None],
+                 note_change: NoteChange, send: SendFrame, error: ReportError,
+                 emit: Emit, wake: Callable[[], None], stopping: Callable[[], bool],
+                 name: str) -> None:
+        self._state = state
+        self._nodes = nodes
+        self._requests = requests
+        self._run = run
+        self._wire_add = wire_add
+        self._note_change = note_change
+        self._send = send
+        self._error = error
+        self._emit = emit
+        self._wake = wake
+        self._stopping = stopping
+        self._name = name
+        self.reader = DeviceReader(requests, descriptor_bulk=False)
         self.in_flight: dict[DeviceKey, tuple[int, int]] = {}  # key → (epoch, generation)
         self.failures: dict[DeviceKey, int] = {}
         self.epoch = 0  # bumped by a reset: stale set-ups discard their results
 
     def start(self, node: _Node) -> Callable[[], None]:
-        """Under the arbitrator's lock: ``node``'s device is to be set up (it counts as in
-        flight from now on). Returns what puts the set-up on the pool, to be called once the
-        bind answer is on the bus: the set-up's first request must not overtake the answer
-        that binds the device, or the device ignores it and it is asked again a response
-        timeout later."""
+        """Under the lock: ``node``'s device is to be set up (it counts as in flight from now
+        on). Returns what puts the set-up on the pool, to be called once the bind answer is
+        on the bus: the set-up's first request must not overtake the answer that binds the
+        device, or the device ignores it and it is asked again a response timeout later."""
         key, node_id, generation, epoch = node.key, node.node_id, node.generation, self.epoch
         self.in_flight[key] = (epoch, generation)
 
         def submit() -> None:
             try:
-                self.arb._pool_exec.submit(self._job, key, node_id, generation, epoch)
+                self._run(lambda: self._job(key, node_id, generation, epoch))
             except RuntimeError:  # closing
-                with self.arb._lock:
+                with self._state.lock:
                     if self.in_flight.get(key) == (epoch, generation):
                         del self.in_flight[key]
 
         return submit
+
+    def under_way(self) -> bool:
+        """A set-up is in flight."""
+        with self._state.lock:
+            return bool(self.in_flight)
+
+    def cancel(self, key: DeviceKey) -> None:
+        """Under the lock: ``key`` left; its set-up under way no longer counts (and its
+        result is discarded: the node it was for is gone)."""
+        self.in_flight.pop(key, None)
 
     def forget(self) -> None:
         """Under the lock: a reset; set-ups under way will discard their results."""
@@ -68,14 +105,12 @@ class DeviceSetup:
         self.failures.clear()
 
     def _current(self, key: DeviceKey, node_id: int, generation: int, epoch: int) -> bool:
-        arb = self.arb
-        with arb._lock:
-            node = arb.nodes.by_id.get(node_id)
+        with self._state.lock:
+            node = self._nodes.by_id.get(node_id)
             return (epoch == self.epoch and node is not None and node.key == key
                     and node.generation == generation)
 
     def _job(self, key: DeviceKey, node_id: int, generation: int, epoch: int) -> None:
-        arb = self.arb
         try:
             if not self._current(key, node_id, generation, epoch):
                 return  # it left (or bound again) while queued: a bind flood of made-up
@@ -84,24 +119,24 @@ class DeviceSetup:
             if self._current(key, node_id, generation, epoch):
                 self._commit(key, node_id, generation, epoch, device)
         except PdcpError as err:
-            if self._current(key, node_id, generation, epoch) and not arb._stop.is_set():
-                with arb._lock:
+            if self._current(key, node_id, generation, epoch) and not self._stopping():
+                with self._state.lock:
                     if key not in self.failures and len(self.failures) >= MAX_KEYS_REMEMBERED:
                         del self.failures[next(iter(self.failures))]  # the oldest
                     failures = self.failures[key] = self.failures.get(key, 0) + 1
                 again = failures < SETUP_ATTEMPTS
-                arb._error(f"set-up of device {key} (node {node_id}) failed: {err}"
-                           + ("; resetting it to try again" if again else ""), "setup")
+                self._error(f"set-up of device {key} (node {node_id}) failed: {err}"
+                            + ("; resetting it to try again" if again else ""), "setup")
                 if again:
-                    arb._send_quiet(Reset(node_id))
+                    self._send(Reset(node_id))
         except Exception:
-            log.exception("%s: set-up of %s failed", arb.name, key)
+            log.exception("%s: set-up of %s failed", self._name, key)
         finally:
-            with arb._lock:
+            with self._state.lock:
                 if self.in_flight.get(key) == (epoch, generation):
                     del self.in_flight[key]
-                arb.profile.last_change = time.monotonic()
-            arb._wake.set()
+                self._note_change(time.monotonic())
+            self._wake()
 
     def read_device(self, key: DeviceKey, node_id: int) -> Device:
         """Steps 1–3 and the reads of steps 4–5: the device and all its channels."""
@@ -109,38 +144,36 @@ class DeviceSetup:
         self.reader.read_device(key, node_id, SETUP, values)
         problem = self.reader.identity_problem(key, node_id, values)
         if problem:
-            self.arb._error(f"device {key} after binding: {problem}", "setup")
+            self._error(f"device {key} after binding: {problem}", "setup")
         self.reader.read_channels(key, node_id, SETUP, values,
-                                  lambda why: self.arb._error(why, "setup"))
+                                  lambda why: self._error(why, "setup"))
         return param_fields.device_from_values(key, values)
 
     def _commit(self, key: DeviceKey, node_id: int, generation: int, epoch: int,
                 device: Device) -> None:
         """Steps 4 (channel node IDs), 5 and 6: install the device, re-make its links."""
-        arb = self.arb
-        with arb._plan_lock:
-            with arb._lock:
+        state, nodes = self._state, self._nodes
+        with state.wire_lock:
+            with state.lock:
                 if not self._current(key, node_id, generation, epoch):
                     return
-                ids, refused, why = arb.nodes.give_outputs(key, [c.index for c in
-                                                                 device.outputs()])
+                ids, refused, why = nodes.give_outputs(key, [c.index for c in
+                                                             device.outputs()])
             if refused:  # one line per device naming every output left without an ID
                 names = ", output ".join(str(device.ref(i)) for i in refused)
-                arb._error(f"output {names} gets no node ID and cannot be linked: {why}",
-                           "node_ids_exhausted")
+                self._error(f"output {names} gets no node ID and cannot be linked: {why}",
+                            "node_ids_exhausted")
             for index, channel_id in ids.items():
-                arb.requests.set(node_id, P.OUT_NODE_ID, index, bytes([channel_id]))
-                device.channels[index].node_id = channel_id
-            with arb._lock:
+                self._requests.set(node_id, P.OUT_NODE_ID, index, bytes([channel_id]))
+            with state.lock:
                 if not self._current(key, node_id, generation, epoch):
                     return
-                node = arb.nodes.by_id[node_id]
-                system = arb._system
+                system = state.system
                 old = system.device(key)
                 joined = old is None or not old.present
-                device.present, device.node_id = True, node_id
+                device.present = True
+                nodes.stamp(device)
                 device.name = old.name if old is not None else ""
-                node.beacon_interval = max(device.beacon_interval, 1) / 1000.0
                 if old is None:
                     system.add_device(device)
                 else:
@@ -154,22 +187,19 @@ class DeviceSetup:
                 links = [lk for lk in system.links
                          if key in (lk.output.device, lk.input.device)
                          and system.is_present(lk.output) and system.is_present(lk.input)]
-                node.set_up = True
-                node.updates.clear()
+                nodes.set_up(nodes.by_id[node_id], max(device.beacon_interval, 1) / 1000.0)
                 self.failures.pop(key, None)
-                if joined:
-                    arb.profile.duty_needed = True
-                arb.profile.last_change = time.monotonic()
+                self._note_change(time.monotonic(), duty=joined)
             for link in links:
                 try:
-                    arb.links.wire_add(link)
+                    self._wire_add(link)
                 except PdcpError as err:
-                    arb._error(f"link {link} could not be re-made: {err}", "transport")
+                    self._error(f"link {link} could not be re-made: {err}", "transport")
         if joined:
-            log.info("%s: device %s joined (node %d, %d channels)", arb.name, key, node_id,
+            log.info("%s: device %s joined (node %d, %d channels)", self._name, key, node_id,
                      len(device.channels))
-            arb._emit(ev.DeviceJoined(key))
-        arb._wake.set()
+            self._emit(ev.DeviceJoined(key))
+        self._wake()
 
 
 __all__ = ["DeviceSetup"]

@@ -19,21 +19,22 @@ the host link's TRANSACT request calls it on the arbitrator's side of the line. 
   configuration and policy that were there; the result says which step failed and why.
 - **Release.** Release Device (0x09) to every held device, after verify or restore.
 
-Recording in the fitting history is the PC's part (``bus/session/change_road.py``: ``run_transaction``).
-The whole transaction holds the plan lock: no start-up, duty cycle or other plan runs inside it.
+Recording in the fitting history is the PC's part (``bus/session/change_road.py``).
+The whole transaction holds the wire lock: no start-up, duty cycle or other plan runs inside it.
 """
 
 from __future__ import annotations
 
-import contextlib
 import logging
 import threading
-from collections.abc import Callable, Iterator
+from collections.abc import Callable
+from contextlib import AbstractContextManager
 from typing import TYPE_CHECKING, Any
 
 from pdcp_studio.bus import events as ev
+from pdcp_studio.bus.arbitrator.interlock import HoldRefused, Interlock, holding
+from pdcp_studio.bus.arbitrator.state import Emit, SystemState
 from pdcp_studio.bus.transaction import (
-    INTERLOCK_MS,
     Change,
     Policy,
     Status,
@@ -46,11 +47,12 @@ from pdcp_studio.errors import PdcpError
 from pdcp_studio.model import parameters as P
 from pdcp_studio.model.config_diff import diff_configurations
 from pdcp_studio.model.configuration import ConfigCollection
-from pdcp_studio.model.refs import DeviceKey
+from pdcp_studio.model.refs import ChannelRef, DeviceKey
 from pdcp_studio.model.system import Link, System
 
 if TYPE_CHECKING:
-    from pdcp_studio.bus.arbitrator.core import Arbitrator
+    from pdcp_studio.bus.arbitrator.links import LinkWriter
+    from pdcp_studio.bus.arbitrator.memory import MemoryStore
 
 log = logging.getLogger("pdcp_studio.bus.arbitrator.core")
 
@@ -61,78 +63,41 @@ class _Stop(Exception):
     """The change was cancelled between two writes."""
 
 
-class Renewer:
-    """Renews the interlock's bounded suspension until stopped."""
-
-    def __init__(self, suspend: Callable[[DeviceKey, int], None], keys: list[DeviceKey],
-                 interval: float, name: str) -> None:
-        self._suspend, self._keys, self._interval = suspend, keys, interval
-        self._stop = threading.Event()
-        self.failures: list[str] = []
-        self._thread = threading.Thread(target=self._run, name=f"pdcp {name} interlock",
-                                        daemon=True)
-        if keys:
-            self._thread.start()
-
-    def _run(self) -> None:
-        while not self._stop.wait(self._interval):
-            for key in self._keys:
-                try:
-                    self._suspend(key, INTERLOCK_MS)
-                except PdcpError as err:
-                    self.failures.append(f"renewing the suspension of {key}: {err}")
-
-    def stop(self) -> None:
-        self._stop.set()
-        if self._thread.is_alive():
-            self._thread.join(timeout=5.0)
-
-
-class HoldRefused(PdcpError):
-    """A device did not suspend for the motion interlock; those held before it are released."""
-
-    def __init__(self, key: DeviceKey, why: PdcpError) -> None:
-        self.key, self.why = key, why
-        super().__init__(f"device {key} did not suspend ({why})")
-
-
-@contextlib.contextmanager
-def holding(arb: Arbitrator, keys: list[DeviceKey], notes: list[str]
-            ) -> Iterator[list[DeviceKey]]:
-    """Reference §5's motion interlock around a block: each of ``keys`` suspended (bounded,
-    renewed), every one held released afterwards whatever happens; HoldRefused when one does
-    not suspend. Renewal and release failures are added to ``notes`` (a lost release ends
-    on its own within ``INTERLOCK_MS``). Transactions and the profile layer's own plans use
-    it alike."""
-    held: list[DeviceKey] = []
-    try:
-        for key in keys:
-            try:
-                arb.suspend(key, INTERLOCK_MS)
-            except PdcpError as err:
-                raise HoldRefused(key, err) from err
-            held.append(key)
-        renewer = Renewer(arb.suspend, held, arb.interlock_renew_s, arb.name)
-        try:
-            yield held
-        finally:
-            renewer.stop()
-            notes += renewer.failures
-    finally:
-        for key in held:
-            try:
-                arb.release(key)
-            except PdcpError as err:
-                notes.append(f"release of {key} failed ({err}); its suspension ends within "
-                             f"{INTERLOCK_MS} ms on its own")
-
-
 class Transactions:
-    """``transact`` and the policy of an :class:`Arbitrator` (no state of its own: what it
-    changes is the bus's, the memory's and the system's)."""
+    """``transact`` and the policy (no state of its own: what it changes is the bus's, the
+    memory's and the system's).
 
-    def __init__(self, arb: Arbitrator) -> None:
-        self.arb = arb
+    It reaches the devices through the arbitrator's parameter calls (``get_parameter``,
+    ``set_parameter``: node IDs looked up, values learnt), puts links back through the link
+    writer, holds devices through ``interlock`` and counts as a plan under way through
+    ``running`` (the bus is not settled meanwhile). ``do_link`` (one link action, through the
+    arbitrator's ``add_link`` and ``remove_link``) and ``read_memory`` are the arbitrator's
+    own methods, asked each time (tests replace them on the instance)."""
+
+    def __init__(self, state: SystemState, memory: MemoryStore, links: LinkWriter, *,
+                 interlock: Interlock, running: Callable[[], AbstractContextManager[None]],
+                 get_parameter: Callable[[DeviceKey, int, int], bytes],
+                 set_parameter: Callable[[DeviceKey, int, int, bytes], None],
+                 node_id_of: Callable[[DeviceKey], int | None],
+                 channel_node_id: Callable[[ChannelRef], int | None],
+                 do_link: Callable[[str, Link], None],
+                 read_memory: Callable[[], ConfigCollection],
+                 write_memory: Callable[[ConfigCollection], None],
+                 emit: Emit, name: str) -> None:
+        self._state = state
+        self._memory = memory
+        self._links = links
+        self._interlock = interlock
+        self._running = running
+        self._get = get_parameter
+        self._set = set_parameter
+        self._node_id_of = node_id_of
+        self._channel_node_id = channel_node_id
+        self._do_link = do_link
+        self._read_memory = read_memory
+        self._write_memory = write_memory
+        self._emit = emit
+        self._name = name
 
     # -- the policy (issue 17) ---------------------------------------------------------
     def read_policy(self) -> Policy:
@@ -140,9 +105,9 @@ class Transactions:
         unreadable memory gives the thesis's default (autoconfigure on), as start-up
         falls back to the devices' own configuration then."""
         try:
-            stored = self.arb.memory.read_policy()
+            stored = self._memory.read_policy()
         except (OSError, PdcpError) as err:
-            log.warning("%s: policy unreadable (%s): autoconfigure on", self.arb.name, err)
+            log.warning("%s: policy unreadable (%s): autoconfigure on", self._name, err)
             return Policy()
         return Policy(autoconfigure=stored.get("autoconfigure", True))
 
@@ -151,24 +116,18 @@ class Transactions:
                  cancel: threading.Event | None = None) -> TransactionResult:
         """Carry ``change`` out as one transaction; never raises for a bus failure — the
         result says applied, failed or rolled back, at which step and why."""
-        with self.arb._plan_lock:
-            with self.arb._lock:
-                self.arb.profile.plan_running += 1
-            try:
-                result = self._transact(change, progress, cancel)
-            finally:
-                with self.arb._lock:
-                    self.arb.profile.plan_running -= 1
-        log.info("%s: transaction %s: %s", self.arb.name, change.action, result.summary())
-        self.arb._emit(ev.TransactionDone(result))
+        with self._state.wire_lock, self._running():
+            result = self._transact(change, progress, cancel)
+        log.info("%s: transaction %s: %s", self._name, change.action, result.summary())
+        self._emit(ev.TransactionDone(result))
         return result
 
     def _transact(self, change: Change, progress: ProgressFn | None,
                   cancel: threading.Event | None) -> TransactionResult:
-        system = self.arb.system()
+        system = self._state.snapshot()
         before = system.links
         after = change.links_after(before)
-        cfg_before = self.arb.memory.read_bytes()
+        cfg_before = self._memory.read_bytes()
         policy_before = self.read_policy()
         result = TransactionResult(
             Status.FAILED, change.action, links_before=before, links_after=before,
@@ -182,7 +141,7 @@ class Transactions:
         keys = interlocked_devices(system, before, after, change.parameters) \
             if change.moves else []
         try:
-            with holding(self.arb, keys, result.notes) as held:
+            with holding(self._interlock, keys, result.notes) as held:
                 result.held = list(held)
                 result.interlock = describe_interlock(held)
                 self._write_verify_restore(change, after, cfg_before, policy_before, result,
@@ -192,8 +151,8 @@ class Transactions:
             result.reason = f"device {err.key} did not suspend ({err.why}); nothing was written"
             result.interlock = describe_interlock([], refused=err.key)
             return result
-        result.links_after = self.arb.system().links
-        result.config_crc_after = crc_of_bytes(self.arb.memory.read_bytes())
+        result.links_after = self._state.snapshot().links
+        result.config_crc_after = crc_of_bytes(self._memory.read_bytes())
         result.policy_after = self.read_policy()
         return result
 
@@ -206,23 +165,23 @@ class Transactions:
         step, why = "", ""
         try:
             for p in change.parameters:  # read what is there first, to restore it
-                old_params.append((p, bytes(self.arb.get_parameter(p.device, p.param, p.channel))))
+                old_params.append((p, bytes(self._get(p.device, p.param, p.channel))))
             for n, action in enumerate(change.links):
                 _check_cancel(cancel, n, total)
                 if progress is not None:
                     progress(n, total, f"{action.op} {action.link}")
-                self.arb._do_link(action.op, action.link)
+                self._do_link(action.op, action.link)
             for n, p in enumerate(change.parameters, len(change.links)):
                 _check_cancel(cancel, n, total)
                 if progress is not None:
                     progress(n, total, f"parameter 0x{p.param:02X} of {p.device}")
-                self.arb.set_parameter(p.device, p.param, p.channel, p.value)
+                self._set(p.device, p.param, p.channel, p.value)
             done = len(change.links) + len(change.parameters)
             if change.configuration is not None:
                 _check_cancel(cancel, done, total)
                 if progress is not None:
                     progress(done, total, "stored configuration")
-                self.arb.write_memory(change.configuration)
+                self._write_memory(change.configuration)
                 done += 1
             if change.policy is not None:
                 if progress is not None:
@@ -257,22 +216,13 @@ class Transactions:
             result.reason += "; what was there is restored"
 
     # -- the parts -----------------------------------------------------------------------
-    def do_link(self, op: str, link: Link) -> None:
-        """One link action of a change (none when the link is already so)."""
-        with self.arb._lock:
-            exists = self.arb._system.has_link(link)
-        if op == "add" and not exists:
-            self.arb.add_link(link)
-        elif op == "remove" and exists:
-            self.arb.remove_link(link)
-
     def _store_policy(self, policy: Policy) -> None:
-        self.arb.memory.write_policy(policy.to_json())
+        self._memory.write_policy(policy.to_json())
 
     def _verify(self, change: Change, after: list[Link]) -> list[str]:
         """What does not read back as written (empty: verified)."""
         problems: list[str] = []
-        system = self.arb.system()
+        system = self._state.snapshot()
         if set(system.links) != set(after):
             missing = set(after) - set(system.links)
             extra = set(system.links) - set(after)
@@ -282,14 +232,14 @@ class Transactions:
         for ref in sorted(touched):
             problems += self._verify_input(system, ref)
         for p in change.parameters:
-            got = bytes(self.arb.get_parameter(p.device, p.param, p.channel))
+            got = bytes(self._get(p.device, p.param, p.channel))
             if got != p.value:
                 problems.append(f"parameter 0x{p.param:02X} of {p.device} channel {p.channel} "
                                 f"reads {got.hex()}, {p.value.hex()} was written")
         if change.configuration is not None:
             from pdcp_studio.storage import config_codec
 
-            back = self.arb.read_memory()
+            back = self._read_memory()
             if config_codec.dumps(back) != config_codec.dumps(change.configuration):
                 problems.append("the stored configuration does not verify when read back: "
                                 + diff_configurations(change.configuration, back)
@@ -298,20 +248,20 @@ class Transactions:
             problems.append("the policy does not read back as written")
         return problems
 
-    def _verify_input(self, system: System, ref: Any) -> list[str]:
+    def _verify_input(self, system: System, ref: ChannelRef) -> list[str]:
         """Read an input's Data Transfer Enabled and Source's Node Ids from the device."""
         if not system.is_present(ref):
             return []
         live = [s for s in system.sources_of(ref) if system.is_present(s)]
-        enabled = self.arb.get_parameter(ref.device, P.CH_DATA_ENABLED, ref.index)
+        enabled = self._get(ref.device, P.CH_DATA_ENABLED, ref.index)
         if not live:
             if enabled[:1] not in (b"\x00", b""):
                 return [f"input {ref} still receives data after its link was removed"]
             return []
         source = live[0]
-        want = bytes([self.arb.node_id_of(source.device) or 0,
-                      self.arb.channel_node_id(source) or 0])
-        ids = self.arb.get_parameter(ref.device, P.IN_SOURCE_NODE_IDS, ref.index)
+        want = bytes([self._node_id_of(source.device) or 0,
+                      self._channel_node_id(source) or 0])
+        ids = self._get(ref.device, P.IN_SOURCE_NODE_IDS, ref.index)
         out: list[str] = []
         if enabled[:1] != b"\x01":
             out.append(f"input {ref} does not receive data from {source}")
@@ -325,34 +275,34 @@ class Transactions:
                  change: Change) -> list[str]:
         """Put back what was there; returns what could not be put back."""
         errors: list[str] = []
-        current = set(self.arb.system().links)
+        current = set(self._state.snapshot().links)
         wanted = set(links_before)
         for link in sorted(current - wanted):
             try:
-                self.arb.links.remove(link)
+                self._links.remove(link)
             except PdcpError as err:
                 errors.append(f"removing {link}: {err}")
         for link in sorted(wanted - current):
             try:
-                with self.arb._lock:
-                    if not self.arb._system.has_link(link):
-                        self.arb._system.check_link(link)
-                self.arb.links.add(link)
+                with self._state.lock:
+                    if not self._state.system.has_link(link):
+                        self._state.system.check_link(link)
+                self._links.add(link)
             except PdcpError as err:
                 errors.append(f"re-making {link}: {err}")
         for p, value in reversed(old_params):
             try:
-                self.arb.set_parameter(p.device, p.param, p.channel, value)
+                self._set(p.device, p.param, p.channel, value)
             except PdcpError as err:
                 errors.append(f"parameter 0x{p.param:02X} of {p.device}: {err}")
         if change.configuration is not None:
             try:
                 from pdcp_studio.storage import config_codec
 
-                if self.arb.memory.read_bytes() != cfg_before:
+                if self._memory.read_bytes() != cfg_before:
                     old = (config_codec.loads(cfg_before) if cfg_before is not None
                            else ConfigCollection())
-                    self.arb.write_memory(old)
+                    self._write_memory(old)
             except (PdcpError, OSError) as err:
                 errors.append(f"the stored configuration: {err}")
         if change.policy is not None and self.read_policy() != policy_before:
