@@ -71,10 +71,16 @@ HEARTBEAT_ROUNDS = 3
 #: system, every thread) when it printed that line and when it exited, and the GUI thread's
 #: CPU seconds when it printed that line.
 Run = tuple[float, float, float, float]
+#: When each phase of one start-up ended, as its probe line says (``<phase>_s=<wall>/<cpu>``,
+#: from the process's start): phase → (wall seconds, process CPU seconds).
+Phases = dict[str, tuple[float, float]]
+#: The phases in the order they end (the app's; the bare window has the first three).
+PHASES = ("imported", "built", "shown", "opened", "ready")
 
 
-def _probe(command: list[str], cwd: Path) -> Run:
-    """Spawn ``command`` (the app or the bare window) and time it to its probe line."""
+def _probe(command: list[str], cwd: Path, phases: list[Phases] | None = None) -> Run:
+    """Spawn ``command`` (the app or the bare window) and time it to its probe line (the
+    ends of its phases appended to ``phases``)."""
     env = dict(os.environ, PDCP_STUDIO_STARTUP_PROBE="1", QT_QPA_PLATFORM="offscreen")
     t0 = time.perf_counter()
     proc = subprocess.Popen(command, stdout=subprocess.PIPE, stderr=subprocess.DEVNULL,
@@ -88,24 +94,43 @@ def _probe(command: list[str], cwd: Path) -> Run:
     if not line.startswith("startup_s=") or "live=True" not in line:
         raise SystemExit(f"start-up probe of {command[1:]} failed: {line!r}")
     fields = dict(f.split("=", 1) for f in line.split() if "=" in f)
+    if phases is not None:
+        phases.append({name[:-2]: (float(wall), float(cpu)) for name, value in fields.items()
+                       if name[:-2] in PHASES for wall, cpu in [value.split("/")]})
     return (t1 - t0, float(fields.get("cpu_s", "nan")), usage.ru_utime + usage.ru_stime,
             float(fields.get("gui_cpu_s", "nan")))
 
 
-def startup(root: Path = ROOT) -> tuple[list[Run], list[Run]]:
+def startup(root: Path = ROOT, app_phases: list[Phases] | None = None,
+            bare_phases: list[Phases] | None = None) -> tuple[list[Run], list[Run]]:
     """``STARTUP_RUNS`` interleaved pairs: the app live on ``sim:transradial`` (from
     ``root``), then the bare window — one after the other, so each pair shares the load."""
     app = [sys.executable, "-m", "pdcp_studio", "gui", "--bus", "sim:transradial"]
     bare = [sys.executable, str(BARE_WINDOW)]
     apps, bares = [], []
     for _ in range(STARTUP_RUNS):
-        apps.append(_probe(app, root))
-        bares.append(_probe(bare, root))
+        apps.append(_probe(app, root, app_phases))
+        bares.append(_probe(bare, root, bare_phases))
     return apps, bares
 
 
 def _median(runs: list[Run], field: int) -> float:
     return statistics.median(r[field] for r in runs)
+
+
+def _phases_text(runs: list[Phases]) -> str:
+    """Each phase's median end (wall / process CPU seconds from the process's start) and
+    the median CPU it took after the phase before it."""
+    parts = []
+    for i, phase in enumerate(PHASES):
+        ends = [r[phase] for r in runs if phase in r]
+        if not ends:
+            continue
+        took = [r[phase][1] - (r[PHASES[i - 1]][1] if i else 0.0) for r in runs
+                if phase in r and (not i or PHASES[i - 1] in r)]
+        parts.append(f"{phase} {statistics.median(w for w, _ in ends):.3f}/"
+                     f"{statistics.median(c for _, c in ends):.3f} s (+{statistics.median(took):.3f})")
+    return ", ".join(parts)
 
 
 def print_startup() -> None:
@@ -127,7 +152,9 @@ def print_startup() -> None:
             os.environ["PYTHONDONTWRITEBYTECODE"] = "1"
         else:
             compileall.compile_dir(copy / "pdcp_studio", quiet=1)
-        runs, bare = startup(copy)
+        app_phases: list[Phases] = []
+        bare_phases: list[Phases] = []
+        runs, bare = startup(copy, app_phases, bare_phases)
     finally:
         if env_before is None:
             os.environ.pop("PYTHONDONTWRITEBYTECODE", None)
@@ -149,6 +176,10 @@ def print_startup() -> None:
           f"{statistics.median(pairs):.2f}×), {_median(runs, 1) / _median(bare, 1):.2f}× its "
           f"process CPU (target ≤ {STARTUP_RATIO_TARGET}×: "
           f"{'met' if ratio <= STARTUP_RATIO_TARGET else 'NOT met'}); {_load()}", flush=True)
+    print("phases, median end in wall/process CPU s since the program's first line (+ CPU "
+          "since the phase before): "
+          f"app {_phases_text(app_phases)}; bare window {_phases_text(bare_phases)}",
+          flush=True)
 
 
 def big_system(n: int = 254) -> System:
