@@ -3,7 +3,7 @@ parts the live app cannot do without (python-can and networkx), shown, then a li
 
 It prints the app's start-up probe line (``PDCP_STUDIO_STARTUP_PROBE``) once the window is
 shown and its first events are handled, with the ends of the phases both have (imported,
-built, shown: ``<phase>_s=<wall>/<cpu>``), then exits, so ``gui.py`` times both the same way.
+built, shown: ``<phase>_s=<wall>/<cpu>/<gui cpu>``), then exits, so ``gui.py`` times both the same way.
 """
 
 from __future__ import annotations
@@ -18,7 +18,8 @@ def main() -> int:
     ends: list[str] = []
 
     def end(phase: str) -> None:
-        ends.append(f"{phase}_s={time.perf_counter() - STARTED:.3f}/{time.process_time():.3f}")
+        ends.append(f"{phase}_s={time.perf_counter() - STARTED:.3f}/{time.process_time():.3f}"
+                    f"/{time.thread_time():.3f}")
 
     import can  # noqa: F401
     import networkx  # noqa: F401

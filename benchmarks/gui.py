@@ -71,9 +71,10 @@ HEARTBEAT_ROUNDS = 3
 #: system, every thread) when it printed that line and when it exited, and the GUI thread's
 #: CPU seconds when it printed that line.
 Run = tuple[float, float, float, float]
-#: When each phase of one start-up ended, as its probe line says (``<phase>_s=<wall>/<cpu>``,
-#: from the process's start): phase → (wall seconds, process CPU seconds).
-Phases = dict[str, tuple[float, float]]
+#: When each phase of one start-up ended, as its probe line says
+#: (``<phase>_s=<wall>/<cpu>/<gui cpu>``, from the program's first line): phase → (wall
+#: seconds, the process's CPU seconds, the GUI thread's CPU seconds).
+Phases = dict[str, tuple[float, float, float]]
 #: The phases in the order they end (the app's; the bare window has the first three).
 PHASES = ("imported", "built", "shown", "opened", "ready")
 
@@ -95,8 +96,9 @@ def _probe(command: list[str], cwd: Path, phases: list[Phases] | None = None) ->
         raise SystemExit(f"start-up probe of {command[1:]} failed: {line!r}")
     fields = dict(f.split("=", 1) for f in line.split() if "=" in f)
     if phases is not None:
-        phases.append({name[:-2]: (float(wall), float(cpu)) for name, value in fields.items()
-                       if name[:-2] in PHASES for wall, cpu in [value.split("/")]})
+        phases.append({name[:-2]: (float(wall), float(cpu), float(gui))
+                       for name, value in fields.items() if name[:-2] in PHASES
+                       for wall, cpu, gui in [value.split("/")]})
     return (t1 - t0, float(fields.get("cpu_s", "nan")), usage.ru_utime + usage.ru_stime,
             float(fields.get("gui_cpu_s", "nan")))
 
@@ -119,17 +121,20 @@ def _median(runs: list[Run], field: int) -> float:
 
 
 def _phases_text(runs: list[Phases]) -> str:
-    """Each phase's median end (wall / process CPU seconds from the process's start) and
-    the median CPU it took after the phase before it."""
+    """Each phase's median end (wall / process CPU seconds) and the median CPU seconds it
+    took after the phase before it: the process's, the GUI thread's."""
     parts = []
-    for i, phase in enumerate(PHASES):
-        ends = [r[phase] for r in runs if phase in r]
-        if not ends:
+    start = (0.0, 0.0, 0.0)
+    for previous, phase in zip((None, *PHASES), PHASES, strict=False):
+        had = [(r[phase], r[previous] if previous else start) for r in runs
+               if phase in r and (previous is None or previous in r)]
+        if not had:
             continue
-        took = [r[phase][1] - (r[PHASES[i - 1]][1] if i else 0.0) for r in runs
-                if phase in r and (not i or PHASES[i - 1] in r)]
-        parts.append(f"{phase} {statistics.median(w for w, _ in ends):.3f}/"
-                     f"{statistics.median(c for _, c in ends):.3f} s (+{statistics.median(took):.3f})")
+        wall = statistics.median(end[0] for end, _ in had)
+        cpu = statistics.median(end[1] for end, _ in had)
+        took = statistics.median(end[1] - before[1] for end, before in had)
+        gui = statistics.median(end[2] - before[2] for end, before in had)
+        parts.append(f"{phase} {wall:.3f}/{cpu:.3f} (+{took:.3f}, GUI thread +{gui:.3f})")
     return ", ".join(parts)
 
 
@@ -176,7 +181,7 @@ def print_startup() -> None:
           f"{statistics.median(pairs):.2f}×), {_median(runs, 1) / _median(bare, 1):.2f}× its "
           f"process CPU (target ≤ {STARTUP_RATIO_TARGET}×: "
           f"{'met' if ratio <= STARTUP_RATIO_TARGET else 'NOT met'}); {_load()}", flush=True)
-    print("phases, median end in wall/process CPU s since the program's first line (+ CPU "
+    print("phases, median end in wall/process CPU s since the program's first line (+ CPU s "
           "since the phase before): "
           f"app {_phases_text(app_phases)}; bare window {_phases_text(bare_phases)}",
           flush=True)
