@@ -18,11 +18,14 @@ Panel = TypeVar("Panel", bound=QWidget)
 
 class DeferredPanel(Generic[Panel]):
     """The panel ``make()`` builds, put in ``dock`` the first time the dock is shown or
-    :meth:`panel` is called (whichever comes first; once)."""
+    :meth:`panel` is called (whichever comes first; once); ``placed(panel)`` is called
+    once it is in the dock (to name its controls, as the window's own were)."""
 
-    def __init__(self, dock: QDockWidget, make: Callable[[], Panel]) -> None:
+    def __init__(self, dock: QDockWidget, make: Callable[[], Panel],
+                 placed: Callable[[Panel], object] | None = None) -> None:
         self._dock = dock
         self._make = make
+        self._placed = placed
         self._panel: Panel | None = None
         dock.visibilityChanged.connect(self._visibility_changed)
 
@@ -38,6 +41,8 @@ class DeferredPanel(Generic[Panel]):
     def panel(self) -> Panel:
         """The panel, made (and put in the dock) now if it was not yet."""
         if self._panel is None:
-            self._panel = self._make()
-            self._dock.setWidget(self._panel)
+            self._panel = panel = self._make()
+            self._dock.setWidget(panel)
+            if self._placed is not None:
+                self._placed(panel)
         return self._panel

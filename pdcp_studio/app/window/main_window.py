@@ -160,7 +160,8 @@ class MainWindow(QMainWindow):
         # A hidden tab: its panel is made when first shown or asked for (history_panel).
         self.history_dock = add_dock(self, self.tr("Fitting history"), "HistoryDock", None,
                                      bottom)
-        self._history = DeferredPanel(self.history_dock, self._make_history_panel)
+        self._history = DeferredPanel(self.history_dock, self._make_history_panel,
+                                      lambda panel: self.desktop.name_when_live(panel))
         self.tabifyDockWidget(self.plan_dock, self.history_dock)
         self.plan_dock.raise_()
 
