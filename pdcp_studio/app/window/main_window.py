@@ -160,15 +160,10 @@ class MainWindow(QMainWindow):
         # A hidden tab: its panel is made when first shown or asked for (history_panel).
         self.history_dock = add_dock(self, self.tr("Fitting history"), "HistoryDock", None,
                                      bottom)
-        self._history = DeferredPanel(self.history_dock, self._make_history_panel,
+        self._history = DeferredPanel(self.history_dock, lambda: _new_history_panel(self),
                                       lambda panel: self.desktop.name_when_live(panel))
         self.tabifyDockWidget(self.plan_dock, self.history_dock)
         self.plan_dock.raise_()
-
-    def _make_history_panel(self) -> HistoryPanel:
-        from pdcp_studio.app.docks.history_panel import HistoryPanel
-
-        return HistoryPanel(self)
 
     @property
     def history_panel(self) -> HistoryPanel:
@@ -594,6 +589,13 @@ class MainWindow(QMainWindow):
         self.other_arbitrator.stop_watching()  # a listen-only monitor, if one runs
         self.crash_recovery.clean()  # closed on purpose: nothing to recover next time
         event.accept()
+
+
+def _new_history_panel(window: MainWindow) -> HistoryPanel:
+    """The Fitting history panel of ``window`` (its module imported only now)."""
+    from pdcp_studio.app.docks.history_panel import HistoryPanel
+
+    return HistoryPanel(window)
 
 
 def start_default(window: MainWindow) -> None:
