@@ -71,10 +71,17 @@ HEARTBEAT_ROUNDS = 3
 #: system, every thread) when it printed that line and when it exited, and the GUI thread's
 #: CPU seconds when it printed that line.
 Run = tuple[float, float, float, float]
+#: When each phase of one start-up ended, as its probe line says
+#: (``<phase>_s=<wall>/<cpu>/<gui cpu>``, from the program's first line): phase → (wall
+#: seconds, the process's CPU seconds, the GUI thread's CPU seconds).
+Phases = dict[str, tuple[float, float, float]]
+#: The phases in the order they end (the app's; the bare window has the first three).
+PHASES = ("imported", "built", "shown", "opened", "ready")
 
 
-def _probe(command: list[str], cwd: Path) -> Run:
-    """Spawn ``command`` (the app or the bare window) and time it to its probe line."""
+def _probe(command: list[str], cwd: Path, phases: list[Phases] | None = None) -> Run:
+    """Spawn ``command`` (the app or the bare window) and time it to its probe line (the
+    ends of its phases appended to ``phases``)."""
     env = dict(os.environ, PDCP_STUDIO_STARTUP_PROBE="1", QT_QPA_PLATFORM="offscreen")
     t0 = time.perf_counter()
     proc = subprocess.Popen(command, stdout=subprocess.PIPE, stderr=subprocess.DEVNULL,
@@ -88,24 +95,47 @@ def _probe(command: list[str], cwd: Path) -> Run:
     if not line.startswith("startup_s=") or "live=True" not in line:
         raise SystemExit(f"start-up probe of {command[1:]} failed: {line!r}")
     fields = dict(f.split("=", 1) for f in line.split() if "=" in f)
+    if phases is not None:
+        phases.append({name[:-2]: (float(wall), float(cpu), float(gui))
+                       for name, value in fields.items() if name[:-2] in PHASES
+                       for wall, cpu, gui in [value.split("/")]})
     return (t1 - t0, float(fields.get("cpu_s", "nan")), usage.ru_utime + usage.ru_stime,
             float(fields.get("gui_cpu_s", "nan")))
 
 
-def startup(root: Path = ROOT) -> tuple[list[Run], list[Run]]:
+def startup(root: Path = ROOT, app_phases: list[Phases] | None = None,
+            bare_phases: list[Phases] | None = None) -> tuple[list[Run], list[Run]]:
     """``STARTUP_RUNS`` interleaved pairs: the app live on ``sim:transradial`` (from
     ``root``), then the bare window — one after the other, so each pair shares the load."""
     app = [sys.executable, "-m", "pdcp_studio", "gui", "--bus", "sim:transradial"]
     bare = [sys.executable, str(BARE_WINDOW)]
     apps, bares = [], []
     for _ in range(STARTUP_RUNS):
-        apps.append(_probe(app, root))
-        bares.append(_probe(bare, root))
+        apps.append(_probe(app, root, app_phases))
+        bares.append(_probe(bare, root, bare_phases))
     return apps, bares
 
 
 def _median(runs: list[Run], field: int) -> float:
     return statistics.median(r[field] for r in runs)
+
+
+def _phases_text(runs: list[Phases]) -> str:
+    """Each phase's median end (wall / process CPU seconds) and the median CPU seconds it
+    took after the phase before it: the process's, the GUI thread's."""
+    parts = []
+    start = (0.0, 0.0, 0.0)
+    for previous, phase in zip((None, *PHASES), PHASES, strict=False):
+        had = [(r[phase], r[previous] if previous else start) for r in runs
+               if phase in r and (previous is None or previous in r)]
+        if not had:
+            continue
+        wall = statistics.median(end[0] for end, _ in had)
+        cpu = statistics.median(end[1] for end, _ in had)
+        took = statistics.median(end[1] - before[1] for end, before in had)
+        gui = statistics.median(end[2] - before[2] for end, before in had)
+        parts.append(f"{phase} {wall:.3f}/{cpu:.3f} (+{took:.3f}, GUI thread +{gui:.3f})")
+    return ", ".join(parts)
 
 
 def print_startup() -> None:
@@ -127,7 +157,9 @@ def print_startup() -> None:
             os.environ["PYTHONDONTWRITEBYTECODE"] = "1"
         else:
             compileall.compile_dir(copy / "pdcp_studio", quiet=1)
-        runs, bare = startup(copy)
+        app_phases: list[Phases] = []
+        bare_phases: list[Phases] = []
+        runs, bare = startup(copy, app_phases, bare_phases)
     finally:
         if env_before is None:
             os.environ.pop("PYTHONDONTWRITEBYTECODE", None)
@@ -149,6 +181,10 @@ def print_startup() -> None:
           f"{statistics.median(pairs):.2f}×), {_median(runs, 1) / _median(bare, 1):.2f}× its "
           f"process CPU (target ≤ {STARTUP_RATIO_TARGET}×: "
           f"{'met' if ratio <= STARTUP_RATIO_TARGET else 'NOT met'}); {_load()}", flush=True)
+    print("phases, median end in wall/process CPU s since the program's first line (+ CPU s "
+          "since the phase before): "
+          f"app {_phases_text(app_phases)}; bare window {_phases_text(bare_phases)}",
+          flush=True)
 
 
 def big_system(n: int = 254) -> System:

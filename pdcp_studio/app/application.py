@@ -3,8 +3,8 @@
 ``run_app`` is what ``pdcp-studio`` and ``pdcp-studio gui`` call. With ``screenshot`` it
 waits until the first system is on screen and laid out, saves the window as a PNG and
 exits (contracts §2). With the environment variable ``PDCP_STUDIO_STARTUP_PROBE`` set it
-prints how long start-up took once the window is shown and laid out, then exits — the
-start-up benchmark uses it.
+prints how long start-up took once the window is shown and laid out, and when each of its
+phases ended (:class:`StartUpPhases`), then exits — the start-up benchmark uses it.
 """
 
 from __future__ import annotations
@@ -34,6 +34,27 @@ SWITCH_INTERVAL_S = 0.001
 START_UP_SWITCH_INTERVAL_S = 0.005
 #: Start-up's settings are given back after this long even if the window never gets ready.
 START_UP_LIMIT_MS = 10_000
+
+
+class StartUpPhases:
+    """When each phase of start-up ended: seconds since ``started``, the process's CPU
+    seconds (all threads) and the GUI thread's then, printed by the probe as
+    ``<phase>_s=<wall>/<cpu>/<gui cpu>`` so the benchmark can say where the time goes
+    (imported: the window's modules; built: the window made; shown: shown, the bus
+    connecting; opened: the session open; ready: the first system on screen)."""
+
+    def __init__(self, started: float) -> None:
+        self.started = started
+        self.ends: dict[str, tuple[float, float, float]] = {}
+
+    def end(self, phase: str) -> None:
+        """``phase`` ends now (the first time only; on the GUI thread)."""
+        self.ends.setdefault(phase, (time.perf_counter() - self.started, time.process_time(),
+                                     time.thread_time()))
+
+    def fields(self) -> str:
+        return " ".join(f"{phase}_s={wall:.3f}/{cpu:.3f}/{gui:.3f}"
+                        for phase, (wall, cpu, gui) in self.ends.items())
 
 
 def run_app(path: str | Path | None = None, bus: str | None = None,
@@ -93,6 +114,8 @@ def _run_app(path: str | Path | None, bus: str | None, screenshot: str | Path | 
         _preload_layout()  # networkx too: the bus's first snapshot is laid out with it
     from pdcp_studio.app.window.main_window import DEFAULT_BUS, MainWindow
 
+    phases = StartUpPhases(started)
+    phases.end("imported")
     window = MainWindow(recovery=recovery)
     window.quiet = scripted
     if not scripted:
@@ -101,6 +124,7 @@ def _run_app(path: str | Path | None, bus: str | None, screenshot: str | Path | 
         remember_layout(window)  # last session's size and docks; saved again on close
     if size is not None:
         window.resize(*size)
+    phases.end("built")
     status = {"code": 0}
 
     def finish_screenshot(png: str | Path) -> None:
@@ -148,7 +172,8 @@ def _run_app(path: str | Path | None, bus: str | None, screenshot: str | Path | 
         print(f"startup_s={time.perf_counter() - started:.3f} "
               f"devices={len(window.doc.system.devices)} live={window.live.is_live} "
               f"cpu_s={time.process_time():.3f} "  # the process's, all threads
-              f"gui_cpu_s={time.thread_time():.3f}", flush=True)  # this (the GUI) thread's
+              f"gui_cpu_s={time.thread_time():.3f} "  # this (the GUI) thread's
+              f"{phases.fields()}", flush=True)
         window.doc.mark_saved()
         window.close()
         app.quit()
@@ -171,6 +196,8 @@ def _run_app(path: str | Path | None, bus: str | None, screenshot: str | Path | 
             status["code"] = 1
 
     window.live.failed.connect(on_failed)
+    window.live.bridgeReady.connect(lambda _bridge: phases.end("opened"))
+    window.ready.connect(lambda: phases.end("ready"))
     window.ready.connect(start_up_over)  # before on_ready: the probe's CPU is the app's
     window.ready.connect(on_ready)
     QTimer.singleShot(START_UP_LIMIT_MS, start_up_over)  # a window that never gets ready
@@ -190,6 +217,7 @@ def _run_app(path: str | Path | None, bus: str | None, screenshot: str | Path | 
             QTimer.singleShot(0, _preload_layout)
     if screenshot is not None or os.environ.get(PROBE_ENV) or smoke_report:
         QTimer.singleShot(SCREENSHOT_TIMEOUT_MS, give_up)
+    phases.end("shown")
     code = app.exec()
     window.live.disconnect_bus()
     return status["code"] or int(code)

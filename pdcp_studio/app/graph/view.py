@@ -357,13 +357,14 @@ class GraphFooter(QWidget):
         returns its height) or beside it (a column ``height`` tall; returns its width)."""
         self.side = side
         pad = self.PAD
-        buttons = [self.legend_button, self.overview_button]
         x = pad
-        for b in buttons:
-            hint = b.sizeHint()
+        row = 0
+        for b in (self.legend_button, self.overview_button):
+            hint = b.sizeHint()  # (asked once: a window's first layout arranges ~20 times)
             b.setGeometry(x, pad, hint.width(), hint.height())
             x += hint.width() + pad
-        row = max(b.sizeHint().height() for b in buttons) + 2 * pad
+            row = max(row, hint.height())
+        row += 2 * pad
         show_overview = self.overview.isVisibleTo(self)
         show_legend = self.legend.isVisibleTo(self)
         if side:

@@ -27,7 +27,6 @@ from PySide6.QtCore import Qt, QTimer, Signal
 from PySide6.QtGui import QCloseEvent, QImage, QShowEvent
 from PySide6.QtWidgets import QDockWidget, QLabel, QMainWindow, QMessageBox, QWidget
 
-from pdcp_studio.app.docks.history_panel import HistoryPanel
 from pdcp_studio.app.docks.inspector import Inspector
 from pdcp_studio.app.docks.pending_panel import PendingPanel
 from pdcp_studio.app.docks.plan_panel import OPERATIONS, PlanPanel
@@ -42,6 +41,7 @@ from pdcp_studio.app.window import questions
 from pdcp_studio.app.window.actions import LIVE, TASKS, WindowActions
 from pdcp_studio.app.window.bus import BusCommands
 from pdcp_studio.app.window.bus_docks import BusDocks
+from pdcp_studio.app.window.deferred_panel import DeferredPanel
 from pdcp_studio.app.window.desktop import (
     Desktop,
     open_manual_here,
@@ -67,6 +67,7 @@ from pdcp_studio.model.system import System
 if TYPE_CHECKING:
     from pdcp_studio.app.dialogs.arbitrator_found import ArbitratorFoundDialog, ListeningIndicator
     from pdcp_studio.app.dialogs.connect_dialog import ConnectDialog
+    from pdcp_studio.app.docks.history_panel import HistoryPanel
     from pdcp_studio.app.live.passive_monitor import PassiveMonitor
 
 __all__ = ["DEFAULT_BUS", "FILE_FILTERS", "OFFLINE_SYSTEM", "MainWindow",
@@ -156,11 +157,18 @@ class MainWindow(QMainWindow):
         self.pending_dock = add_dock(self, self.tr("Pending changes"), "PendingDock",
                                        self.pending_panel, bottom)
         self.tabifyDockWidget(self.plan_dock, self.pending_dock)
-        self.history_panel = HistoryPanel(self)
-        self.history_dock = add_dock(self, self.tr("Fitting history"), "HistoryDock",
-                                       self.history_panel, bottom)
+        # A hidden tab: its panel is made when first shown or asked for (history_panel).
+        self.history_dock = add_dock(self, self.tr("Fitting history"), "HistoryDock", None,
+                                     bottom)
+        self._history = DeferredPanel(self.history_dock, lambda: _new_history_panel(self),
+                                      lambda panel: self.desktop.name_when_live(panel))
         self.tabifyDockWidget(self.plan_dock, self.history_dock)
         self.plan_dock.raise_()
+
+    @property
+    def history_panel(self) -> HistoryPanel:
+        """The Fitting history panel (made now if its tab was never shown)."""
+        return self._history.panel()
 
     def showEvent(self, event: QShowEvent) -> None:
         """Size the docks once the window has its real size (earlier sizes do not stick)."""
@@ -210,7 +218,7 @@ class MainWindow(QMainWindow):
             "history": self.history_dock.toggleViewAction()})
         self.transactions = Transactions(
             self.doc, self.live, self.status_line, self.flow, self.pending_panel,
-            self.pending_dock, self.history_panel,
+            self.pending_dock, self._history,
             write_actions=(actions["write_pending"], actions["discard_pending"]),
             ask_unwritten=lambda n: self.ask_unwritten(n), quiet=lambda: bool(self.quiet),
             graph_image=lambda: self.graph_image(), is_ready=lambda: self._is_ready,
@@ -581,6 +589,13 @@ class MainWindow(QMainWindow):
         self.other_arbitrator.stop_watching()  # a listen-only monitor, if one runs
         self.crash_recovery.clean()  # closed on purpose: nothing to recover next time
         event.accept()
+
+
+def _new_history_panel(window: MainWindow) -> HistoryPanel:
+    """The Fitting history panel of ``window`` (its module imported only now)."""
+    from pdcp_studio.app.docks.history_panel import HistoryPanel
+
+    return HistoryPanel(window)
 
 
 def start_default(window: MainWindow) -> None:

@@ -13,7 +13,7 @@ from __future__ import annotations
 
 from collections.abc import Callable
 from functools import partial
-from typing import Any
+from typing import TYPE_CHECKING, Any
 
 from PySide6.QtGui import QAction
 from PySide6.QtWidgets import QLabel
@@ -21,6 +21,9 @@ from PySide6.QtWidgets import QLabel
 from pdcp_studio.app.documents.document import Document
 from pdcp_studio.app.i18n import translate
 from pdcp_studio.app.live.live_bus import LiveController
+
+if TYPE_CHECKING:
+    from pdcp_studio.app.live.session_bridge import SessionBridge
 
 _CTX = "WindowPolicy"
 
@@ -64,8 +67,9 @@ class PolicyController:
 
     def read_policy(self) -> None:
         """Ask the prosthesis for its policy (on the bridge's worker, never the GUI thread)."""
-        bridge = self.live.bridge
-        if bridge is None or self.doc.session is not bridge:
+        bridge: SessionBridge | None = self.live.bridge
+        shown: object = self.doc.session  # the bridge, when the document shows the bus
+        if bridge is None or shown is not bridge:
             return
         session = bridge.session
         bridge.run(lambda _p, _c: session.read_policy(), "Read the policy",

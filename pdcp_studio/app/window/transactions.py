@@ -10,21 +10,24 @@ is kept by :mod:`pdcp_studio.app.documents.fitting`.
 from __future__ import annotations
 
 from collections.abc import Callable
-from typing import Any
+from typing import TYPE_CHECKING, Any
 
 from PySide6.QtCore import QObject, QTimer, SignalInstance
 from PySide6.QtGui import QAction, QImage
 from PySide6.QtWidgets import QDockWidget
 
-from pdcp_studio.app.docks.history_panel import HistoryPanel
 from pdcp_studio.app.docks.pending_panel import PendingPanel
 from pdcp_studio.app.documents import commands, fitting, pending
 from pdcp_studio.app.documents.document import Document
 from pdcp_studio.app.i18n import translate
 from pdcp_studio.app.live.live_bus import LiveController
+from pdcp_studio.app.window.deferred_panel import DeferredPanel
 from pdcp_studio.app.window.status import StatusLine
 from pdcp_studio.app.window.transaction_flow import TransactionFlow
 from pdcp_studio.app.words.plural import count
+
+if TYPE_CHECKING:
+    from pdcp_studio.app.docks.history_panel import HistoryPanel
 
 #: A new window reads the fitting history this long after it is live.
 HISTORY_AFTER_MS = 100
@@ -39,7 +42,7 @@ class Transactions(QObject):
 
     def __init__(self, doc: Document, live: LiveController, status: StatusLine,
                  flow: TransactionFlow, pending_panel: PendingPanel,
-                 pending_dock: QDockWidget, history_panel: HistoryPanel, *,
+                 pending_dock: QDockWidget, history: DeferredPanel[HistoryPanel], *,
                  write_actions: tuple[QAction, QAction],
                  ask_unwritten: Callable[[int], bool], quiet: Callable[[], bool],
                  graph_image: Callable[[], QImage], is_ready: Callable[[], bool],
@@ -51,7 +54,7 @@ class Transactions(QObject):
         self.flow = flow
         self.pending_panel = pending_panel
         self.pending_dock = pending_dock
-        self.history_panel = history_panel
+        self._history = history
         self.write_actions = write_actions
         self._ask_unwritten = ask_unwritten
         self._quiet = quiet
@@ -64,7 +67,7 @@ class Transactions(QObject):
         pending_panel.discardRequested.connect(self.discard_pending)
         pending_panel.patientChanged.connect(self.set_patient_reference)
         pending_panel.changed.connect(self._update_write_actions)
-        flow.finished.connect(lambda _r: history_panel.refresh())
+        flow.finished.connect(lambda _r: history.panel().refresh())
         live.sessionStarted.connect(lambda _b: self.load_patient_reference())
         live.sessionStarted.connect(lambda _b: self._note_session_start())
         self._update_write_actions()
@@ -144,7 +147,7 @@ class Transactions(QObject):
 
         if not self._session_start:
             return []
-        entries = for_prosthesis(self.history_panel.all_entries(),
+        entries = for_prosthesis(self._history_entries(),
                                  set(self._prosthesis_devices()))
         return [e for e in entries if str(e.get("time", "")) >= self._session_start]
 
@@ -202,17 +205,23 @@ class Transactions(QObject):
 
     def load_patient_reference(self) -> None:
         devices = self._prosthesis_devices()
-        entries = self.history_panel.all_entries() if devices else []
+        entries = self._history_entries() if devices else []
         text = fitting.patient_reference(devices, history_entries=entries) if devices else ""
         self.pending_panel.set_patient(text)
         if self._is_ready():
-            self.history_panel.refresh()
+            self._history.panel().refresh()
         elif not self._history_when_live:
             # A hidden tab: read once the window is live (the archive's read and check of
             # its chain took ~25 ms of start-up on a worker, for one entry).
             self._history_when_live = True
-            self._ready.connect(lambda: QTimer.singleShot(HISTORY_AFTER_MS, self,
-                                                          self.history_panel.refresh))
+            self._ready.connect(lambda: QTimer.singleShot(
+                HISTORY_AFTER_MS, self, lambda: self._history.panel().refresh()))
+
+    def _history_entries(self) -> list[dict[str, Any]]:
+        """The fitting history as last read (none while its panel was never made: the
+        archive is read only by the panel)."""
+        panel = self._history.made
+        return panel.all_entries() if panel is not None else []
 
 
 def policy_of_entry(entry: dict[str, Any]) -> Any:
