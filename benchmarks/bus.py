@@ -107,7 +107,7 @@ def startup_figures(frames: list[can.Message], system: System) -> dict[str, floa
 
 
 def run(window: int, repeat: int, rig: str = "large") -> dict[str, Any]:
-    from pdcp_studio.bus.arbitrator import scan as scan_mod
+    from pdcp_studio.bus.arbitrator.reading import scan as scan_mod
     from pdcp_studio.bus.session.sim import open_sim_session
     from pdcp_studio.bus.session.urls import unique_virtual_channel
 

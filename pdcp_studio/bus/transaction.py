@@ -8,9 +8,9 @@ which step and why, the links and the stored configuration's CRC before and afte
 change was read back and verified, and what the motion interlock held.
 
 Both are plain values with a JSON form, so the same change runs in-process (simulated and CAN
-buses) and over the host link; the arbitrator carries it out (bus/arbitrator/transactions.py),
-the session previews, asks for confirmation and records it in the fitting history
-(bus/session/change_road.py).
+buses) and over the host link; the arbitrator carries it out
+(bus/arbitrator/change/transactions.py), the session previews, asks for confirmation and records it
+in the fitting history (bus/session/change_road.py).
 
 Steps, in order (``TransactionResult.step`` names the one that failed)::
 

@@ -1,10 +1,9 @@
 """``hostlink-test --bus serial:PORT [--json]``: the host-link conformance suite.
 
 Runs every case of ``bus/hostlink/testing/conformance.py`` against the arbitrator on PORT — a
-firmware
-under development, or PDCP Studio's own (``arbitrator --host-serial``) — and prints one line
-per case (``--json``: ``{"passed": [...], "failed": [...], "why": {case: reason}}``). Exit 0
-only when every case passes, 1 when one fails or the port cannot be opened, 2 for a bus URL
+firmware under development, or PDCP Studio's own (``arbitrator --host-serial``) — and prints one
+line per case (``--json``: ``{"passed": [...], "failed": [...], "why": {case: reason}}``). Exit
+0 only when every case passes, 1 when one fails or the port cannot be opened, 2 for a bus URL
 that is not ``serial:``.
 """
 

@@ -18,7 +18,6 @@ from pdcp_studio.bus.arbitrator.common import (
     UNKNOWN_RESET_S,
     _Node,
 )
-from pdcp_studio.bus.arbitrator.device_reader import EVERYTHING, SETUP, DeviceReader
 from pdcp_studio.bus.arbitrator.links import (
     link_writes,
     needs_remaking,
@@ -27,8 +26,9 @@ from pdcp_studio.bus.arbitrator.links import (
 )
 from pdcp_studio.bus.arbitrator.nodes import BindDecision, NodeTable
 from pdcp_studio.bus.arbitrator.presence import PresenceTracker
-from pdcp_studio.bus.arbitrator.profile import ProfileDriver
-from pdcp_studio.bus.arbitrator.requests import DeviceRefusedError
+from pdcp_studio.bus.arbitrator.profile.driver import ProfileDriver
+from pdcp_studio.bus.arbitrator.reading.device_reader import EVERYTHING, SETUP, DeviceReader
+from pdcp_studio.bus.arbitrator.reading.requests import DeviceRefusedError
 from pdcp_studio.model import param_fields
 from pdcp_studio.model import parameters as P
 from pdcp_studio.model.refs import ChannelRef, DeviceKey, Direction
@@ -293,7 +293,7 @@ def test_the_reader_names_a_device_that_answers_as_another():
 def test_a_first_start_up_with_every_expected_device_does_not_wait_out_the_quiet_time():
     """A simulated prosthesis knows its parts: once they have all joined and nothing is
     being set up, start-up is due at once; a restart waits the quiet time again."""
-    from pdcp_studio.bus.arbitrator.profile import ProfileDriver
+    from pdcp_studio.bus.arbitrator.profile.driver import ProfileDriver
     from pdcp_studio.model.refs import DeviceKey
 
     a, b = DeviceKey(1, 1, 1), DeviceKey(1, 1, 2)

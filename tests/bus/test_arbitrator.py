@@ -10,7 +10,7 @@ import pytest
 
 from pdcp_studio.bus import events as ev
 from pdcp_studio.bus.arbitrator.core import MISSED_BEACONS, Arbitrator
-from pdcp_studio.bus.arbitrator.requests import DeviceRefusedError
+from pdcp_studio.bus.arbitrator.reading.requests import DeviceRefusedError
 from pdcp_studio.bus.sim.device import State
 from pdcp_studio.engine import plan_autoconfigure, plan_startup
 from pdcp_studio.errors import ModelError, TransportError

@@ -9,7 +9,7 @@ import time
 import can
 import pytest
 
-from pdcp_studio.bus.arbitrator.requests import DeviceRefusedError, RequestEngine
+from pdcp_studio.bus.arbitrator.reading.requests import DeviceRefusedError, RequestEngine
 from pdcp_studio.bus.session.urls import unique_virtual_channel
 from pdcp_studio.bus.sim.device import SimulatedDevice, State
 from pdcp_studio.bus.sim.device_host import DeviceHost

@@ -17,7 +17,7 @@ import pytest
 
 from pdcp_studio.bus import events as ev
 from pdcp_studio.bus.arbitrator.memory import MemoryStore
-from pdcp_studio.bus.arbitrator.requests import TransferAbortedError
+from pdcp_studio.bus.arbitrator.reading.requests import TransferAbortedError
 from pdcp_studio.bus.sim.device import SimulatedDevice
 from pdcp_studio.bus.sim.device_host import DeviceHost
 from pdcp_studio.errors import NodeIdExhaustedError, TransportError

@@ -9,7 +9,7 @@ from collections.abc import Callable
 
 import pytest
 
-from pdcp_studio.bus.arbitrator.requests import (
+from pdcp_studio.bus.arbitrator.reading.requests import (
     DeviceRefusedError,
     RequestEngine,
     TransferAbortedError,

@@ -8,7 +8,7 @@ import time
 
 import pytest
 
-from pdcp_studio.bus.arbitrator.scan import ScanCancelled, estimate_reads, scan
+from pdcp_studio.bus.arbitrator.reading.scan import ScanCancelled, estimate_reads, scan
 from pdcp_studio.bus.session.opening import open_session
 from pdcp_studio.bus.sim.rigs import load_prosthesis
 from pdcp_studio.model import parameters as P

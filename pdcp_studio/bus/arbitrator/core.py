@@ -45,19 +45,20 @@ fields. :meth:`Arbitrator._wire` connects them, in one place.
 - ``presence`` (:class:`~pdcp_studio.bus.arbitrator.presence.PresenceTracker`): who is gone at
   ``now``, twins on one node ID, nodes bound by someone else;
 - ``setup`` (:class:`~pdcp_studio.bus.arbitrator.setup.DeviceSetup`): reading a bound device with
-  the device reader the scan shares (``bus/arbitrator/device_reader.py``) and installing it;
+  the device reader the scan shares (``bus/arbitrator/reading/device_reader.py``) and installing it;
 - ``links`` (:class:`~pdcp_studio.bus.arbitrator.links.LinkWriter`): what to write for a link, and
   writing it;
-- ``profile`` (:class:`~pdcp_studio.bus.arbitrator.profile.ProfileDriver`): start-up, duty cycle,
-  plans, and when they are due;
-- ``transactions`` (:class:`~pdcp_studio.bus.arbitrator.transactions.Transactions`): the change
-  road, holding devices through the motion interlock (``bus/arbitrator/interlock.py``);
+- ``profile`` (:class:`~pdcp_studio.bus.arbitrator.profile.driver.ProfileDriver`): start-up, duty
+  cycle, plans, and when they are due;
+- ``transactions`` (:class:`~pdcp_studio.bus.arbitrator.change.transactions.Transactions`): the
+  change road, holding devices through the motion interlock
+  (``bus/arbitrator/change/interlock.py``);
 - ``dispatch`` (:class:`~pdcp_studio.bus.arbitrator.dispatch.Dispatcher`): the dispatch thread,
   which hears every frame, asks the deciding parts and carries their decisions out.
 
 The claim, node table and presence tracker decide from ``now`` and the frames heard and return
 decisions (tested without threads); this class owns the bus, the threads (the profile
-thread's body is ``bus/arbitrator/profile_thread.py``), the set-up pool
+thread's body is ``bus/arbitrator/profile/thread.py``), the set-up pool
 (``bus/arbitrator/jobs.py``), the state and the errors' limiter, sends, and keeps the public
 API. ``bus/arbitrator/common.py`` holds the constants and node state.
 """
@@ -73,6 +74,8 @@ from pathlib import Path
 from typing import TYPE_CHECKING, Any, Protocol, runtime_checkable
 
 from pdcp_studio.bus import events as ev
+from pdcp_studio.bus.arbitrator.change.interlock import Interlock
+from pdcp_studio.bus.arbitrator.change.transactions import Transactions
 from pdcp_studio.bus.arbitrator.claim import BusClaim, Phase
 from pdcp_studio.bus.arbitrator.common import (
     _MANAGED,
@@ -100,19 +103,17 @@ from pdcp_studio.bus.arbitrator.common import (
 )
 from pdcp_studio.bus.arbitrator.dispatch import Dispatcher
 from pdcp_studio.bus.arbitrator.frame_events import FrameFeed
-from pdcp_studio.bus.arbitrator.interlock import Interlock
 from pdcp_studio.bus.arbitrator.jobs import JobPool
 from pdcp_studio.bus.arbitrator.links import LinkWriter
 from pdcp_studio.bus.arbitrator.memory import MemoryStore
 from pdcp_studio.bus.arbitrator.node_ids import NodeIdPool
 from pdcp_studio.bus.arbitrator.nodes import NodeTable
 from pdcp_studio.bus.arbitrator.presence import PresenceTracker
-from pdcp_studio.bus.arbitrator.profile import ProfileDriver, ProfilePorts
-from pdcp_studio.bus.arbitrator.profile_thread import ProfileThread
-from pdcp_studio.bus.arbitrator.requests import RESPONSE_TIMEOUT_S, RequestEngine
+from pdcp_studio.bus.arbitrator.profile.driver import ProfileDriver, ProfilePorts
+from pdcp_studio.bus.arbitrator.profile.thread import ProfileThread
+from pdcp_studio.bus.arbitrator.reading.requests import RESPONSE_TIMEOUT_S, RequestEngine
 from pdcp_studio.bus.arbitrator.setup import DeviceSetup
 from pdcp_studio.bus.arbitrator.state import SystemState
-from pdcp_studio.bus.arbitrator.transactions import Transactions
 from pdcp_studio.bus.connection import Connection
 from pdcp_studio.bus.log_limit import LimitedLog, RepeatLimiter
 from pdcp_studio.bus.transaction import INTERLOCK_RENEW_S, Change, Policy, TransactionResult

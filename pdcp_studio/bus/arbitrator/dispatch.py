@@ -50,7 +50,7 @@ if TYPE_CHECKING:
     from pdcp_studio.bus.arbitrator.claim import BusClaim
     from pdcp_studio.bus.arbitrator.nodes import NodeTable
     from pdcp_studio.bus.arbitrator.presence import PresenceTracker
-    from pdcp_studio.bus.arbitrator.requests import RequestEngine
+    from pdcp_studio.bus.arbitrator.reading.requests import RequestEngine
     from pdcp_studio.bus.connection import Connection
     from pdcp_studio.bus.log_limit import LimitedLog
 

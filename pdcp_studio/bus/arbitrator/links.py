@@ -26,7 +26,7 @@ from pdcp_studio.protocol import ResponseCode, UpdateDataChannel, UpdateDataChan
 
 if TYPE_CHECKING:
     from pdcp_studio.bus.arbitrator.nodes import NodeTable
-    from pdcp_studio.bus.arbitrator.requests import RequestEngine
+    from pdcp_studio.bus.arbitrator.reading.requests import RequestEngine
 
 log = logging.getLogger("pdcp_studio.bus.arbitrator.core")  # one logger for the arbitrator
 

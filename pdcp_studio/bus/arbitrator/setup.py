@@ -1,11 +1,10 @@
 """Device set-up after binding (reference §1 steps 1–6), on the arbitrator's set-up pool.
 
 Reads a newly bound device and its channels with the device reader the scan uses too
-(``bus/arbitrator/device_reader.py``), gives its outputs node IDs from the node table, installs it
-in the
-system and re-makes its links through the link writer. A set-up of an older binding (or from
-before a reset: another ``epoch``) discards its result. A failed set-up resets the device so
-it binds again, up to ``SETUP_ATTEMPTS`` times.
+(``bus/arbitrator/reading/device_reader.py``), gives its outputs node IDs from the node table,
+installs it in the system and re-makes its links through the link writer. A set-up of an older
+binding (or from before a reset: another ``epoch``) discards its result. A failed set-up resets
+the device so it binds again, up to ``SETUP_ATTEMPTS`` times.
 """
 
 from __future__ import annotations
@@ -17,8 +16,8 @@ from typing import TYPE_CHECKING
 
 from pdcp_studio.bus import events as ev
 from pdcp_studio.bus.arbitrator.common import SETUP_ATTEMPTS, _Node
-from pdcp_studio.bus.arbitrator.device_reader import SETUP, DeviceReader
 from pdcp_studio.bus.arbitrator.nodes import MAX_KEYS_REMEMBERED
+from pdcp_studio.bus.arbitrator.reading.device_reader import SETUP, DeviceReader
 from pdcp_studio.bus.arbitrator.state import (
     Emit,
     NoteChange,
@@ -35,7 +34,7 @@ from pdcp_studio.protocol import Reset
 
 if TYPE_CHECKING:
     from pdcp_studio.bus.arbitrator.nodes import NodeTable
-    from pdcp_studio.bus.arbitrator.requests import RequestEngine
+    from pdcp_studio.bus.arbitrator.reading.requests import RequestEngine
 
 log = logging.getLogger("pdcp_studio.bus.arbitrator.core")  # one logger for the arbitrator
 

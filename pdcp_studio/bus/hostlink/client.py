@@ -284,7 +284,7 @@ class HostLinkSession(BusSession):
             try:
                 for n, key in enumerate(todo):
                     if cancel is not None and cancel.is_set():
-                        from pdcp_studio.bus.arbitrator.scan import ScanCancelled
+                        from pdcp_studio.bus.arbitrator.reading.scan import ScanCancelled
 
                         raise ScanCancelled(f"scan cancelled after {n} of {len(todo)} devices",
                                             self._snapshot())

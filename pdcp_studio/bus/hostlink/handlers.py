@@ -56,7 +56,7 @@ class Refused(Exception):
 
 
 def _status_of(err: Exception) -> Status:
-    from pdcp_studio.bus.arbitrator.requests import DeviceRefusedError
+    from pdcp_studio.bus.arbitrator.reading.requests import DeviceRefusedError
 
     if isinstance(err, DeviceRefusedError):
         return Status.DEVICE_REFUSED

@@ -8,9 +8,8 @@ socketcan without the kernel module, a serial port that does not exist), ``TypeE
 ``ValueError`` (a channel or option the interface does not accept). :func:`explain_open_error`
 sorts them into the two answers the command line gives (contracts §2):
 
-- :class:`~pdcp_studio.bus.session.urls.BusUrlError` — bad input, exit 2: the interface python-can
-  does
-  not have, a channel or option it refuses; the message says what was expected;
+- :class:`~pdcp_studio.bus.session.urls.BusUrlError` — bad input, exit 2: the interface
+  python-can does not have, a channel or option it refuses; the message says what was expected;
 - :class:`DriverMissingError` / :class:`AdapterMissingError` — exit 1: a known interface whose
   driver package or adapter is missing; the message carries the fix.
 

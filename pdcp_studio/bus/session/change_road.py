@@ -1,9 +1,10 @@
 """The session half of the change road: preview, the user's confirmation, the record.
 
 The change road (reference §5) is split where it must be: the arbitrator carries a change out
-(interlock → write → verify → restore on mismatch → release: ``bus/arbitrator/transactions.py``,
-reached in-process or over the host link by ``BusSession.carry_out``), and
-:func:`run_transaction` — behind every session's ``transact`` — does what belongs to the PC.
+(interlock → write → verify → restore on mismatch → release:
+``bus/arbitrator/change/transactions.py``, reached in-process or over the host link by
+``BusSession.carry_out``), and :func:`run_transaction` — behind every session's ``transact`` — does
+what belongs to the PC.
 """
 
 from __future__ import annotations

@@ -98,10 +98,11 @@ class Session(BusSession):
 
     def scan(self, progress: ProgressFn | None = None,
              cancel: threading.Event | None = None) -> System:
-        """Read every device's parameters (bus/arbitrator/scan.py); ScanCancelled when cancelled.
+        """Read every device's parameters (bus/arbitrator/reading/scan.py); ScanCancelled when
+        cancelled.
 
         Subscribers also get ``Progress`` events (``BusSession._reporting``)."""
-        from pdcp_studio.bus.arbitrator.scan import scan
+        from pdcp_studio.bus.arbitrator.reading.scan import scan
 
         self._check_open()
         return scan(self.arbitrator, self._reporting(progress), cancel, self.scan_window,

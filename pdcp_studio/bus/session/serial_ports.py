@@ -1,12 +1,12 @@
 """Why a serial port did not open, in one line with the fix (contracts §2).
 
 A known interface whose device is missing is exit 1 "with the fix in one line", as the ``can:``
-adapters give (``bus/session/can_interfaces.py``). For the host link's serial port the fix depends
-on
-why pyserial refused: a port that is not there (name the ports pyserial's ``list_ports`` sees,
-or say none is plugged in), one the user may not open, one another program holds, a network
-port nobody serves, a file that is not a serial port. :func:`open_failure` is pure (the ports
-are given) so each case is tested without hardware; :func:`seen_ports` asks pyserial.
+adapters give (``bus/session/can_interfaces.py``). For the host link's serial port the fix
+depends on why pyserial refused: a port that is not there (name the ports pyserial's
+``list_ports`` sees, or say none is plugged in), one the user may not open, one another program
+holds, a network port nobody serves, a file that is not a serial port. :func:`open_failure` is
+pure (the ports are given) so each case is tested without hardware; :func:`seen_ports` asks
+pyserial.
 """
 
 from __future__ import annotations

@@ -7,14 +7,13 @@ are outstanding on the bus at any moment (the bounded window), so an adapter's t
 holds at most that many frames from the scan; ``pace_s`` adds a least gap between two
 requests for slow adapters.
 
-What is read: the device parameters of the catalog (``model/parameters.py``) under channel
-0, then for each channel 1…N its Transfer Type and every parameter of that direction (the
-reader the arbitrator's set-up uses too: ``bus/arbitrator/device_reader.py``; the values become
-model
-fields through the catalog's one mapping, ``model/param_fields.py``). A
-parameter a device refuses (it does not implement it) is left at its default. Links are
-taken as the bus has them: an input whose Data Transfer Enabled flag is set and whose
-Source's Node Ids name the node ID of an output channel on the bus.
+What is read: the device parameters of the catalog (``model/parameters.py``) under channel 0,
+then for each channel 1…N its Transfer Type and every parameter of that direction (the reader
+the arbitrator's set-up uses too: ``bus/arbitrator/reading/device_reader.py``; the values become
+model fields through the catalog's one mapping, ``model/param_fields.py``). A parameter a device
+refuses (it does not implement it) is left at its default. Links are taken as the bus has them:
+an input whose Data Transfer Enabled flag is set and whose Source's Node Ids name the node ID of
+an output channel on the bus.
 
 Cancellation: when ``cancel`` is set, the workers stop before their next request and
 :class:`ScanCancelled` is raised; its ``partial`` holds the devices read completely so far.
@@ -31,7 +30,7 @@ from concurrent.futures import ThreadPoolExecutor
 from dataclasses import dataclass, field
 from typing import Any
 
-from pdcp_studio.bus.arbitrator.device_reader import EVERYTHING, DeviceReader
+from pdcp_studio.bus.arbitrator.reading.device_reader import EVERYTHING, DeviceReader
 from pdcp_studio.errors import PdcpError
 from pdcp_studio.model import param_fields
 from pdcp_studio.model import parameters as P

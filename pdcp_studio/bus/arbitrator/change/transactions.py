@@ -32,7 +32,7 @@ from contextlib import AbstractContextManager
 from typing import TYPE_CHECKING, Any
 
 from pdcp_studio.bus import events as ev
-from pdcp_studio.bus.arbitrator.interlock import HoldRefused, Interlock, holding
+from pdcp_studio.bus.arbitrator.change.interlock import HoldRefused, Interlock, holding
 from pdcp_studio.bus.arbitrator.state import Emit, SystemState
 from pdcp_studio.bus.transaction import (
     Change,

@@ -14,7 +14,7 @@ from collections.abc import Callable
 from dataclasses import dataclass
 from typing import Any
 
-from pdcp_studio.bus.arbitrator.requests import DeviceRefusedError
+from pdcp_studio.bus.arbitrator.reading.requests import DeviceRefusedError
 from pdcp_studio.model import param_fields
 from pdcp_studio.model import parameters as P
 from pdcp_studio.model.param_fields import Values

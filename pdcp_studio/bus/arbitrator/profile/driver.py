@@ -5,7 +5,7 @@ latest ``startup_max_wait_s`` after the arbitrator started; the duty cycle (list
 ``duty_quiet_s`` after the last join or leave. When is decided by :meth:`ProfileDriver.startup_due`
 and :meth:`ProfileDriver.duty_due` from ``now`` and the arbitrator's business (pure); the plans
 themselves come from :mod:`pdcp_studio.engine` and are carried out by the link writer on the
-profile thread (``bus/arbitrator/profile_thread.py``).
+profile thread (``bus/arbitrator/profile/thread.py``).
 
 Start-up implements a stored configuration and the duty cycle makes and removes links on a
 prosthesis that may be worn and moving: both are changes reference §5's motion interlock
@@ -26,7 +26,7 @@ from dataclasses import dataclass
 from typing import TYPE_CHECKING, Any, Literal
 
 from pdcp_studio.bus import events as ev
-from pdcp_studio.bus.arbitrator.interlock import HoldRefused, Interlock, holding
+from pdcp_studio.bus.arbitrator.change.interlock import HoldRefused, Interlock, holding
 from pdcp_studio.bus.arbitrator.state import Emit, ReportError, SystemState
 from pdcp_studio.bus.transaction import (
     Policy,

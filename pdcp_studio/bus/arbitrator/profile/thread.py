@@ -12,7 +12,7 @@ import threading
 import time
 from collections.abc import Callable
 
-from pdcp_studio.bus.arbitrator.profile import ProfileDriver
+from pdcp_studio.bus.arbitrator.profile.driver import ProfileDriver
 from pdcp_studio.bus.arbitrator.state import ReportError
 from pdcp_studio.errors import PdcpError
 from pdcp_studio.model.refs import DeviceKey
