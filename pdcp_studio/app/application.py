@@ -119,7 +119,7 @@ def _run_app(path: str | Path | None, bus: str | None, screenshot: str | Path | 
     window = MainWindow(recovery=recovery)
     window.quiet = scripted
     if not scripted:
-        from pdcp_studio.app.window.desktop import remember_layout
+        from pdcp_studio.app.window.controllers.desktop import remember_layout
 
         remember_layout(window)  # last session's size and docks; saved again on close
     if size is not None:

@@ -56,7 +56,7 @@ def _dialogs(window: Any) -> list[tuple[str, Callable[[], QWidget]]]:
 
 def exercise(window: Any) -> dict[str, str]:
     """Open and close every dialog and dock of ``window``; name → "ok" or what failed."""
-    from pdcp_studio.app.window import desktop as window_desktop
+    from pdcp_studio.app.window.controllers import desktop as window_desktop
 
     steps: dict[str, str] = {}
 

@@ -290,7 +290,7 @@ def test_leaving_with_unwritten_changes_asks(live, qtbot):
 def test_the_confirmation_never_writes_on_enter(qtbot):
     from PySide6.QtCore import Qt
 
-    from pdcp_studio.app.window.transaction_flow import ConfirmDialog
+    from pdcp_studio.app.window.controllers.transaction_flow import ConfirmDialog
 
     dialog = ConfirmDialog("Write to prosthesis", ["write to prosthesis on sim:x:",
                                                    "  - link a → b"])

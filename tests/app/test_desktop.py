@@ -12,7 +12,7 @@ from PySide6.QtGui import QAction, QDragEnterEvent, QDropEvent
 from PySide6.QtWidgets import QApplication, QToolBar
 
 from pdcp_studio.app.dialogs import help_viewer
-from pdcp_studio.app.window import desktop as window_desktop
+from pdcp_studio.app.window.controllers import desktop as window_desktop
 from pdcp_studio.app.window.recent_files import RecentFiles
 
 ROOT = Path(__file__).resolve().parents[2]

@@ -67,7 +67,7 @@ def test_a_recent_file_opens_and_the_graph_comes_back_with_its_docks(start, qtbo
 
 def test_connect_open_and_the_simulated_prosthesis(start, qtbot, monkeypatch):
     from pdcp_studio.app.dialogs import connect_dialog
-    from pdcp_studio.app.window import files as window_files
+    from pdcp_studio.app.window.controllers import files as window_files
 
     asked = []
     monkeypatch.setattr(connect_dialog.ConnectDialog, "get_url",
@@ -102,7 +102,7 @@ def test_without_recent_files_the_page_says_where_they_will_appear(make_window):
 def test_closing_on_the_start_page_saves_the_layout_with_the_docks(make_window):
     from PySide6.QtCore import QSettings
 
-    from pdcp_studio.app.window.desktop import STATE_KEY, remember_layout
+    from pdcp_studio.app.window.controllers.desktop import STATE_KEY, remember_layout
 
     window = make_window()
     remember_layout(window)

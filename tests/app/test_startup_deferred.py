@@ -8,7 +8,7 @@ from __future__ import annotations
 import pytest
 from PySide6.QtWidgets import QTreeView
 
-from pdcp_studio.app.window import desktop as window_desktop
+from pdcp_studio.app.window.controllers import desktop as window_desktop
 
 pytestmark = pytest.mark.gui
 

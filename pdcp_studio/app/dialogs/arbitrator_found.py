@@ -10,8 +10,9 @@ with the two safe ways on:
 * **Connect through the host link** — the Connect dialog on its serial tab, to talk to the
   prosthesis's own arbitrator over its cable.
 
-The engineer's detail (what was heard) is one click away in the dialog's details. What
-follows the choice (watching, the host link) is the window's: ``app/window/other_arbitrator.py``.
+The engineer's detail (what was heard) is one click away in the dialog's details. What follows
+the choice (watching, the host link) is the window's:
+``app/window/controllers/other_arbitrator.py``.
 """
 
 from __future__ import annotations

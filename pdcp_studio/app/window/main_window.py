@@ -39,29 +39,29 @@ from pdcp_studio.app.gui_gc import collect_on_gui_thread
 from pdcp_studio.app.live.live_bus import LiveController
 from pdcp_studio.app.window import questions
 from pdcp_studio.app.window.actions import LIVE, TASKS, WindowActions
-from pdcp_studio.app.window.bus import BusCommands
 from pdcp_studio.app.window.bus_docks import BusDocks
-from pdcp_studio.app.window.deferred_panel import DeferredPanel
-from pdcp_studio.app.window.desktop import (
+from pdcp_studio.app.window.controllers.bus import BusCommands
+from pdcp_studio.app.window.controllers.desktop import (
     Desktop,
     open_manual_here,
     show_about,
     show_about_qt,
     steady_toolbar,
 )
+from pdcp_studio.app.window.controllers.edit_commands import EditCommands
+from pdcp_studio.app.window.controllers.export import GraphExport
+from pdcp_studio.app.window.controllers.files import FileController, last_dir
+from pdcp_studio.app.window.controllers.other_arbitrator import OtherArbitrator
+from pdcp_studio.app.window.controllers.policy import PolicyController
+from pdcp_studio.app.window.controllers.recovery import RecoveryController
+from pdcp_studio.app.window.controllers.transaction_flow import TransactionFlow
+from pdcp_studio.app.window.controllers.transactions import Transactions
+from pdcp_studio.app.window.deferred_panel import DeferredPanel
 from pdcp_studio.app.window.dock_area import add_dock
-from pdcp_studio.app.window.edit_commands import EditCommands
-from pdcp_studio.app.window.export import GraphExport
-from pdcp_studio.app.window.files import FileController, last_dir
 from pdcp_studio.app.window.mode_line import ModeLine, window_title
-from pdcp_studio.app.window.other_arbitrator import OtherArbitrator
-from pdcp_studio.app.window.policy import PolicyController
-from pdcp_studio.app.window.recovery import RecoveryController
 from pdcp_studio.app.window.start_view import StartOffers, StartPage, StartView
 from pdcp_studio.app.window.status import StatusLine
 from pdcp_studio.app.window.support import DEFAULT_BUS, FILE_FILTERS, OFFLINE_SYSTEM
-from pdcp_studio.app.window.transaction_flow import TransactionFlow
-from pdcp_studio.app.window.transactions import Transactions
 from pdcp_studio.model.system import System
 
 if TYPE_CHECKING:

@@ -1,9 +1,9 @@
 """A wizard's calls to the prosthesis, off the GUI thread: read, preview, and the one
 transaction at the end of each guided task.
 
-The transaction is the change road's (``session.transact``: interlock, write, read back,
-restore on a mismatch, release, record in the fitting history), exactly as the main
-window's Write to prosthesis runs it (:mod:`pdcp_studio.app.window.transaction_flow`): the wizard's
+The transaction is the change road's (``session.transact``: interlock, write, read back, restore
+on a mismatch, release, record in the fitting history), exactly as the main window's Write to
+prosthesis runs it (:mod:`pdcp_studio.app.window.controllers.transaction_flow`): the wizard's
 Write button is the user's confirmation of the preview shown on the page before, and the
 prosthesis must still be as previewed, else nothing is written.
 """

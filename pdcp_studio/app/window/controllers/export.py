@@ -16,7 +16,7 @@ from PySide6.QtWidgets import QFileDialog, QGraphicsItem, QWidget
 from pdcp_studio.app.documents.document import Document
 from pdcp_studio.app.graph.scene import BusScene
 from pdcp_studio.app.i18n import translate
-from pdcp_studio.app.window.files import last_dir
+from pdcp_studio.app.window.controllers.files import last_dir
 from pdcp_studio.app.window.status import StatusLine
 
 _CTX = "WindowExport"

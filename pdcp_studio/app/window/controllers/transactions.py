@@ -3,7 +3,7 @@
 Write to prosthesis and Discard pending changes, the question before leaving unwritten
 changes behind, and what the fitting report says of this session (who, for whom, which
 changes); the transactions themselves run in
-:class:`~pdcp_studio.app.window.transaction_flow.TransactionFlow`, the patient reference
+:class:`~pdcp_studio.app.window.controllers.transaction_flow.TransactionFlow`, the patient reference
 is kept by :mod:`pdcp_studio.app.documents.fitting`.
 """
 
@@ -21,9 +21,9 @@ from pdcp_studio.app.documents import commands, fitting, pending
 from pdcp_studio.app.documents.document import Document
 from pdcp_studio.app.i18n import translate
 from pdcp_studio.app.live.live_bus import LiveController
+from pdcp_studio.app.window.controllers.transaction_flow import TransactionFlow
 from pdcp_studio.app.window.deferred_panel import DeferredPanel
 from pdcp_studio.app.window.status import StatusLine
-from pdcp_studio.app.window.transaction_flow import TransactionFlow
 from pdcp_studio.app.words.plural import count
 
 if TYPE_CHECKING:

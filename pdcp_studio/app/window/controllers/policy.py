@@ -1,12 +1,12 @@
 """The main window's side of the profile-layer policy (issue 17): may the prosthesis
 autoconfigure unconnected terminal channels on its own?
 
-The policy is shown beside the connection in the status bar while live, read on the
-bridge's worker after connecting, after every transaction and after an arbitrator reset.
-Bus ▸ Autoconfigure on this prosthesis changes it through the one transaction road
-(:class:`~pdcp_studio.app.window.transaction_flow.TransactionFlow`: previewed, confirmed,
-recorded in the fitting history); the check mark always shows what the prosthesis has,
-never a wish.
+The policy is shown beside the connection in the status bar while live, read on the bridge's
+worker after connecting, after every transaction and after an arbitrator reset. Bus ▸
+Autoconfigure on this prosthesis changes it through the one transaction road
+(:class:`~pdcp_studio.app.window.controllers.transaction_flow.TransactionFlow`: previewed,
+confirmed, recorded in the fitting history); the check mark always shows what the prosthesis
+has, never a wish.
 """
 
 from __future__ import annotations
