@@ -662,10 +662,14 @@ class Arbitrator:
             return [k for k, d in self._state.system.devices.items() if d.present]
 
     def wait_for(self, predicate: Callable[[], bool], timeout: float) -> bool:
-        """Poll ``predicate`` until it is true or ``timeout`` passes (tests, scripts)."""
+        """Wait until ``predicate()`` is true or ``timeout`` passes (tests, scripts): asked
+        again on news of a set-up, bind or plan, and every 5 ms at least."""
         deadline = time.monotonic() + timeout
-        while not predicate():
-            if time.monotonic() >= deadline:
+        while True:
+            self._news.clear()  # before asking: news from now on wakes the wait below
+            if predicate():
+                return True
+            left = deadline - time.monotonic()
+            if left <= 0:
                 return False
-            time.sleep(0.005)
-        return True
+            self._news.wait(min(0.005, left))
