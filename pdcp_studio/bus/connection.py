@@ -17,7 +17,10 @@ An in-process simulation (``direct=True``, issue 11) skips the Notifier: on pyth
 thread into this connection's queue (:func:`attach_direct`), through the same listener and its
 flood bound. Each frame then wakes one thread instead of two, and a simulated prosthesis
 that opens ~450 frames at start-up no longer waits for a Notifier thread to get the
-interpreter between its sender and its reader. Real adapters always have a Notifier.
+interpreter between its sender and its reader. Such a connection also sends as the virtual
+bus does but without its ``deepcopy`` of each frame for each receiver (:func:`send_virtual`:
+a new Message of the same fields, ~1 µs against ~8 µs a frame). Real adapters always have a
+Notifier and python-can's own ``send``.
 """
 
 from __future__ import annotations
@@ -143,7 +146,8 @@ def attach_direct(bus: object, listener: _Enqueue) -> _DirectInbound | None:
     lock = getattr(virtual, "channels_lock", None)
     old = getattr(bus, "queue", None)
     channel = getattr(bus, "channel", None)
-    if lock is None or not isinstance(old, queue.Queue) or not isinstance(channel, list):
+    if lock is None or not isinstance(old, queue.Queue) or not isinstance(channel, list) \
+            or not all(hasattr(bus, name) for name in _VIRTUAL_SEND_FIELDS):
         return None
     adapter = _DirectInbound(listener)
     with lock:
@@ -159,6 +163,36 @@ def attach_direct(bus: object, listener: _Enqueue) -> _DirectInbound | None:
             listener(old.get_nowait())
         except queue.Empty:
             return adapter
+
+
+#: What :func:`send_virtual` reads of a python-can ``VirtualBus`` (besides ``queue`` and
+#: ``channel``); a virtual bus without them is not attached.
+_VIRTUAL_SEND_FIELDS = ("_check_if_open", "preserve_timestamps", "receive_own_messages",
+                        "channel_id")
+
+
+def send_virtual(bus: Any, msg: can.Message, timeout: float | None) -> None:
+    """Send a base data frame on an attached ``VirtualBus`` (:func:`attach_direct`) as its
+    ``send`` does — to every other bus of the channel, stamped now (or with its own time when
+    the bus preserves timestamps), marked received, on the channel — but as a new Message per
+    receiver instead of a ``deepcopy``: the same fields, at an eighth of the cost."""
+    import can
+
+    bus._check_if_open()
+    timestamp = msg.timestamp if bus.preserve_timestamps else time.time()
+    all_sent = True
+    for target in bus.channel:
+        if target is bus.queue and not bus.receive_own_messages:
+            continue
+        copy = can.Message(timestamp=timestamp, arbitration_id=msg.arbitration_id,
+                           is_extended_id=msg.is_extended_id, channel=bus.channel_id,
+                           data=bytearray(msg.data), is_rx=target is not bus.queue)
+        try:
+            target.put(copy, block=True, timeout=timeout)
+        except queue.Full:
+            all_sent = False
+    if not all_sent:
+        raise can.CanOperationError("Could not send message to one or more recipients")
 
 
 def virtual_channel_in_use(channel: object) -> bool:
@@ -326,7 +360,10 @@ class Connection:
                 if wait > 0:
                     time.sleep(wait)
             try:
-                self.bus.send(msg, timeout=SEND_TIMEOUT_S)
+                if self._direct is not None:
+                    send_virtual(self.bus, msg, SEND_TIMEOUT_S)
+                else:
+                    self.bus.send(msg, timeout=SEND_TIMEOUT_S)
             except can.CanError as err:
                 raise TransportError(f"{self.name}: cannot send 0x{arbitration_id:03X}: {err}") \
                     from err
