@@ -133,7 +133,7 @@ from pdcp_studio.protocol.identifier import NODE_ID_MAX, NODE_ID_MIN
 if TYPE_CHECKING:
     import can
 
-    from pdcp_studio.bus.trace.monitor import FrameDecoder
+    from pdcp_studio.bus.trace.decoder import FrameDecoder
     from pdcp_studio.engine.plan import Plan
 
 log = logging.getLogger(__name__)
