@@ -7,7 +7,9 @@ prints, for the first open (imports of the arbitrator's modules included) and fo
 opens: CPU seconds of the whole process, wall seconds, frames on the bus, and voluntary
 context switches (each a thread that slept and was woken: a queue or lock hand-over).
 ``--busy`` adds a thread that keeps the interpreter busy, as the GUI thread does while the
-window is built; then every hand-over of a frame between threads waits for the lock.
+window is built; then every hand-over of a frame between threads waits for the lock. Each
+open's CPU is also split by thread (the opening thread, the arbitrator's dispatch, set-up and
+profile threads, the device host's), read from each thread's own clock before it is closed.
 
 The physical bound: the devices' bind requests, the arbitrator's set-up reads and start-up's
 link writes are ~450 frames of 8 bytes, 60 ms on a 1 Mbit/s bus; the in-process bus has no
@@ -40,6 +42,27 @@ def _usage() -> tuple[float, int]:
     return ru.ru_utime + ru.ru_stime, ru.ru_nvcsw
 
 
+def _role(thread: threading.Thread) -> str:
+    """A thread's job in a name without the URL or a pool number: ``setup``, ``devices``…"""
+    words = thread.name.split()
+    role = words[-1].rstrip("_0123456789") if len(words) > 1 else "other"
+    return {"arbitrator": "dispatch"}.get(role, role)
+
+
+def _thread_cpu(older: set[threading.Thread]) -> dict[str, float]:
+    """CPU seconds of each role's threads, those not in ``older`` and still running."""
+    cpu: dict[str, float] = {}
+    for thread in threading.enumerate():
+        if thread in older or thread.ident is None:
+            continue
+        try:
+            used = time.clock_gettime(time.pthread_getcpuclockid(thread.ident))
+        except (OSError, AttributeError):  # a thread that has just ended
+            continue
+        cpu[_role(thread)] = cpu.get(_role(thread), 0.0) + used
+    return cpu
+
+
 def _busy(stop: threading.Event) -> None:
     """A thread that wants the interpreter all the time (the GUI thread building a window)."""
     n = 0
@@ -57,20 +80,25 @@ def one_process(url: str, busy: bool) -> None:
     if busy:
         threading.Thread(target=_busy, args=(stop,), daemon=True).start()
     for n in range(1 + LATER_OPENS):
+        before = set(threading.enumerate())
         cpu0, csw0 = _usage()
+        opener0 = time.thread_time()
         t0 = time.perf_counter()
         from pdcp_studio.bus.session.opening import open_session
 
         session = open_session(url)
         wall = time.perf_counter() - t0
         cpu1, csw1 = _usage()
+        threads = {"opener": time.thread_time() - opener0, **_thread_cpu(before)}
         arb, host = session.arbitrator.conn, session.host.conn  # type: ignore[attr-defined]
         frames = arb.sent + host.sent
         t1 = time.perf_counter()
         session.close()
         close = time.perf_counter() - t1
         print(f"open={n} cpu={cpu1 - cpu0:.4f} wall={wall:.4f} frames={frames} "
-              f"wakeups={csw1 - csw0} close={close:.4f}", flush=True)
+              f"wakeups={csw1 - csw0} close={close:.4f} "
+              + " ".join(f"cpu_{role}={s:.4f}" for role, s in sorted(threads.items())),
+              flush=True)
     stop.set()
 
 
@@ -115,10 +143,12 @@ def main() -> None:
                     rows[name][0 if row["open"] == 0 else 1].append(row)
 
     def show(label: str, got: list[dict[str, float]]) -> None:
-        med = {k: statistics.median(r[k] for r in got) for k in got[0]}
+        med = {k: statistics.median(r.get(k, 0.0) for r in got) for k in got[0]}
+        roles = ", ".join(f"{k[4:]} {v * 1000:.1f}" for k, v in med.items()
+                          if k.startswith("cpu_"))
         print(f"    {label}: CPU {med['cpu']:.3f} s, wall {med['wall']:.3f} s, "
               f"{med['frames']:.0f} frames, {med['wakeups']:.0f} thread wake-ups, "
-              f"close {med['close']:.3f} s (medians of {len(got)})")
+              f"close {med['close']:.3f} s (medians of {len(got)}); CPU ms by thread: {roles}")
 
     print(f"open_session({url!r}){' beside a busy thread' if busy else ''}, switch interval "
           f"{SWITCH_INTERVAL_S * 1000:g} ms; bound: the frames' 60 ms on a 1 Mbit/s wire")

@@ -17,12 +17,16 @@ An in-process simulation (``direct=True``, issue 11) skips the Notifier: on pyth
 thread into this connection's queue (:func:`attach_direct`), through the same listener and its
 flood bound. Each frame then wakes one thread instead of two, and a simulated prosthesis
 that opens ~450 frames at start-up no longer waits for a Notifier thread to get the
-interpreter between its sender and its reader. Real adapters always have a Notifier.
+interpreter between its sender and its reader. Such a bus also sends as python-can's virtual
+bus does but without its ``deepcopy`` of each frame for each receiver (its ``send`` is
+:func:`send_virtual` then: a new Message of the same fields, ~1 µs against ~8 µs a frame).
+Real adapters always have a Notifier and python-can's own ``send``.
 """
 
 from __future__ import annotations
 
 import collections
+import functools
 import logging
 import queue
 import threading
@@ -128,9 +132,10 @@ def attach_direct(bus: object, listener: _Enqueue) -> _DirectInbound | None:
     Only an exact python-can ``VirtualBus`` whose receive queue is where this version of
     python-can keeps it (``bus.queue``, a member of the channel's list ``bus.channel``) is
     attached: its queue is swapped for a :class:`_DirectInbound` under python-can's channel
-    lock, and frames already waiting in the old queue are passed on first; returns the
-    stand-in. None (nothing changed) for any other bus, and for a python-can whose virtual bus
-    is laid out otherwise: the caller then reads it with a Notifier. A frame that another
+    lock, and frames already waiting in the old queue are passed on first; from then on the
+    bus sends with :func:`send_virtual`; returns the stand-in. None (nothing changed) for any
+    other bus, and for a python-can whose virtual bus is laid out otherwise: the caller then
+    reads it with a Notifier. A frame that another
     thread is sending at the very moment of the swap may land in the old queue and be lost:
     attach while the channel is quiet (the simulator attaches its buses before its devices are
     plugged in)."""
@@ -143,7 +148,8 @@ def attach_direct(bus: object, listener: _Enqueue) -> _DirectInbound | None:
     lock = getattr(virtual, "channels_lock", None)
     old = getattr(bus, "queue", None)
     channel = getattr(bus, "channel", None)
-    if lock is None or not isinstance(old, queue.Queue) or not isinstance(channel, list):
+    if lock is None or not isinstance(old, queue.Queue) or not isinstance(channel, list) \
+            or not all(hasattr(bus, name) for name in _VIRTUAL_SEND_FIELDS):
         return None
     adapter = _DirectInbound(listener)
     with lock:
@@ -154,11 +160,46 @@ def attach_direct(bus: object, listener: _Enqueue) -> _DirectInbound | None:
         else:
             return None
         bus.queue = adapter  # type: ignore[assignment]  # what shutdown() removes
+    bus.send = functools.partial(send_virtual, bus)  # type: ignore[method-assign]
     while True:
         try:
             listener(old.get_nowait())
         except queue.Empty:
             return adapter
+
+
+#: What :func:`send_virtual` reads of a python-can ``VirtualBus`` (besides ``queue`` and
+#: ``channel``); a virtual bus without them is not attached.
+_VIRTUAL_SEND_FIELDS = ("_check_if_open", "preserve_timestamps", "receive_own_messages",
+                        "channel_id")
+
+
+def send_virtual(bus: Any, msg: can.Message, timeout: float | None = None) -> None:
+    """Send a frame on an attached ``VirtualBus`` (:func:`attach_direct`) as its own
+    ``send`` does — to every other bus of the channel, stamped now (or with its own time when
+    the bus preserves timestamps), marked received, on the channel — but as a new Message per
+    receiver instead of a ``deepcopy``: the same fields, at an eighth of the cost."""
+    import can
+
+    bus._check_if_open()
+    timestamp = msg.timestamp if bus.preserve_timestamps else time.time()
+    all_sent = True
+    for target in bus.channel:
+        if target is bus.queue and not bus.receive_own_messages:
+            continue
+        copy = can.Message(timestamp=timestamp, arbitration_id=msg.arbitration_id,
+                           is_extended_id=msg.is_extended_id,
+                           is_remote_frame=msg.is_remote_frame,
+                           is_error_frame=msg.is_error_frame, channel=bus.channel_id,
+                           dlc=msg.dlc, data=bytearray(msg.data), is_fd=msg.is_fd,
+                           is_rx=target is not bus.queue, bitrate_switch=msg.bitrate_switch,
+                           error_state_indicator=msg.error_state_indicator)
+        try:
+            target.put(copy, block=True, timeout=timeout)
+        except queue.Full:
+            all_sent = False
+    if not all_sent:
+        raise can.CanOperationError("Could not send message to one or more recipients")
 
 
 def virtual_channel_in_use(channel: object) -> bool:

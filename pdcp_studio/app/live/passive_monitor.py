@@ -94,7 +94,7 @@ class PassiveMonitor(QObject):
 
     def _run(self) -> None:  # the listening thread
         from pdcp_studio.bus.events import FrameSeen
-        from pdcp_studio.bus.trace.monitor import FrameDecoder
+        from pdcp_studio.bus.trace.decoder import FrameDecoder
 
         try:
             bus = open_listen_only(self.url)

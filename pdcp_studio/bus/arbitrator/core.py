@@ -133,11 +133,14 @@ from pdcp_studio.protocol.identifier import NODE_ID_MAX, NODE_ID_MIN
 if TYPE_CHECKING:
     import can
 
-    from pdcp_studio.bus.trace.monitor import FrameDecoder
+    from pdcp_studio.bus.trace.decoder import FrameDecoder
     from pdcp_studio.engine.plan import Plan
 
 log = logging.getLogger(__name__)
 
+#: ``wait_settled`` looks again at least this often; it is woken sooner by news of a set-up,
+#: bind or plan (a second waiter may take the news: it then looks at its next poll).
+SETTLE_POLL_S = 0.01
 #: Errors of one kind (undecodable frames, error frames …) told in full before the limit:
 #: then one a second, and the rest as one summary a second (``bus/log_limit.py``).
 ERROR_BURST = 8
@@ -221,6 +224,9 @@ class Arbitrator:
         self._frames = FrameFeed(self._emit)
         self._stop = threading.Event()
         self._wake = threading.Event()
+        #: Set whenever the bus may have settled (a set-up, a bind, a start-up or duty cycle
+        #: ended): ``wait_settled`` looks again at once instead of at its next poll.
+        self._news = threading.Event()
         now = time.monotonic()
         # One arbitrator per bus (reference §5, arb_claim): on a can: bus it first listens
         # ``listen_s``; until then (and for good once another arbitrator is heard) it writes
@@ -239,7 +245,7 @@ class Arbitrator:
             may_run=lambda: self.profile_layer and self.claim.may_write, busy=self._busy,
             setting_up=self.setup.under_way, caught_up=self.conn.inbound.empty,
             present=self.devices_present, error=self._error, closed=lambda: self._closed,
-            name=name)
+            ran=self._news.set, name=name)
         self._profile_thread = threading.Thread(target=profile.run, name=f"pdcp {name} profile",
                                                 daemon=True)
         self._closed = False
@@ -273,7 +279,7 @@ class Arbitrator:
         self.setup = DeviceSetup(state, self.nodes, self.requests, run=self._jobs.run,
                                  wire_add=self.links.wire_add,
                                  note_change=self.profile.note_change, send=self._send_quiet,
-                                 error=self._error, emit=self._emit, wake=self._wake.set,
+                                 error=self._error, emit=self._emit, wake=self._stir,
                                  stopping=self._stop.is_set, name=name)
         self.transactions = Transactions(
             state, self.memory, self.links, interlock=interlock, running=self.profile.running,
@@ -288,7 +294,7 @@ class Arbitrator:
             show_frame=self._frames.frame if self.frame_events else None,
             channel_events=self.channel_events, reset_on_claim=reset_on_start,
             send=self._send_quiet, error=self._error, flush_errors=self._flush_errors,
-            crashes=LimitedLog(log, f"{name}: "), emit=self._emit, wake=self._wake.set,
+            crashes=LimitedLog(log, f"{name}: "), emit=self._emit, wake=self._stir,
             stop=self._stop, name=name)
 
     # -- lifetime -------------------------------------------------------------------------
@@ -304,7 +310,7 @@ class Arbitrator:
             return
         self._closed = True
         self._stop.set()
-        self._wake.set()
+        self._stir()
         self.requests.close()
         self.conn.wake()
         self._jobs.shutdown()
@@ -466,12 +472,13 @@ class Arbitrator:
         """True once no bind, set-up or plan is in progress and start-up has run."""
         deadline = time.monotonic() + timeout
         while True:
+            self._news.clear()  # before looking: news from now on wakes the wait below
             if self._settled():
                 return True
             left = deadline - time.monotonic()
             if left <= 0 or self._closed:
                 return False
-            time.sleep(min(0.01, left))
+            self._news.wait(min(SETTLE_POLL_S, left))
 
     def _node_for(self, key: DeviceKey) -> int:
         node_id = self.node_id_of(key)
@@ -642,7 +649,12 @@ class Arbitrator:
                 self.requests.abort(node_id, "the arbitrator was reset")
             log.info("%s: reset (%s memory)", self.name, "kept" if keep_memory else "erased")
             self._send_quiet(Reset(0))
+        self._stir()
+
+    def _stir(self) -> None:
+        """Something changed: the profile thread and ``wait_settled`` look again now."""
         self._wake.set()
+        self._news.set()
 
     def devices_present(self) -> list[DeviceKey]:
         """Keys of the devices on the bus and set up."""
@@ -650,10 +662,14 @@ class Arbitrator:
             return [k for k, d in self._state.system.devices.items() if d.present]
 
     def wait_for(self, predicate: Callable[[], bool], timeout: float) -> bool:
-        """Poll ``predicate`` until it is true or ``timeout`` passes (tests, scripts)."""
+        """Wait until ``predicate()`` is true or ``timeout`` passes (tests, scripts): asked
+        again on news of a set-up, bind or plan, and every 5 ms at least."""
         deadline = time.monotonic() + timeout
-        while not predicate():
-            if time.monotonic() >= deadline:
+        while True:
+            self._news.clear()  # before asking: news from now on wakes the wait below
+            if predicate():
+                return True
+            left = deadline - time.monotonic()
+            if left <= 0:
                 return False
-            time.sleep(0.005)
-        return True
+            self._news.wait(min(0.005, left))

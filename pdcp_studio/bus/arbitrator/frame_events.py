@@ -16,7 +16,7 @@ from pdcp_studio.bus import events as ev
 from pdcp_studio.bus.arbitrator.state import Emit
 
 if TYPE_CHECKING:
-    from pdcp_studio.bus.trace.monitor import FrameDecoder
+    from pdcp_studio.bus.trace.decoder import FrameDecoder
 
 #: At most this many frames wait undecoded while nobody wants frame events.
 FRAME_BACKLOG = 1024
@@ -61,7 +61,7 @@ class FrameFeed:
     def _catch_up(self) -> FrameDecoder:
         """Under the lock: the decoder, made if need be, learns the waiting frames."""
         if self.decoder is None:
-            from pdcp_studio.bus.trace.monitor import FrameDecoder
+            from pdcp_studio.bus.trace.decoder import FrameDecoder
 
             self.decoder = FrameDecoder()
         frames, self.unshown = self.unshown, []

@@ -29,7 +29,6 @@ from pathlib import Path
 
 from pdcp_studio.errors import ConfigFormatError, PdcpError
 from pdcp_studio.model.configuration import ConfigCollection
-from pdcp_studio.storage import config_codec
 from pdcp_studio.storage.atomic import atomic_write_bytes
 
 log = logging.getLogger(__name__)
@@ -42,8 +41,9 @@ _HEADER = struct.Struct("<4sHHQII")
 #: Policy flag: start-up and the duty cycle never autoconfigure (issue 17, ``--no-autoconfigure``).
 FLAG_NO_AUTOCONFIGURE = 0x0001
 HEADER_SIZE = _HEADER.size
-#: Room for the largest collection the codec accepts.
-SLOT_CAPACITY = config_codec.MAX_INPUT_BYTES
+#: Room for the largest collection the codec accepts (``config_codec.MAX_INPUT_BYTES``, 1 MiB;
+#: not imported from it: an empty memory, as a simulated prosthesis opens with, needs no codec).
+SLOT_CAPACITY = 1 << 20
 #: Payload bytes per write call (the step hook runs between them).
 CHUNK = 512
 
@@ -161,6 +161,8 @@ class MemoryStore:
         payload = self._backend.read(self._offset(slot) + HEADER_SIZE, length)
         if len(payload) != length or _crc(generation, payload, flags) != crc:
             return f"checksum mismatch (generation {generation})"
+        from pdcp_studio.storage import config_codec
+
         try:
             config_codec.loads(payload)
         except ConfigFormatError as err:
@@ -182,9 +184,11 @@ class MemoryStore:
     def _legacy(self) -> bytes | None:
         """A plain stored-configuration file in place of the slots, if that is what we have."""
         size = self._backend.size()
-        if not size or size > config_codec.MAX_INPUT_BYTES:
+        if not size or size > SLOT_CAPACITY:
             return None
         data = self._backend.read(0, size)
+        from pdcp_studio.storage import config_codec
+
         try:
             config_codec.loads(data)
         except ConfigFormatError:
@@ -222,11 +226,17 @@ class MemoryStore:
     def read(self) -> ConfigCollection:
         """The stored configuration collection (empty when nothing is stored)."""
         payload = self.read_bytes()
-        return config_codec.loads(payload) if payload is not None else ConfigCollection()
+        if payload is None:
+            return ConfigCollection()
+        from pdcp_studio.storage import config_codec
+
+        return config_codec.loads(payload)
 
     def write(self, configs: ConfigCollection) -> int:
         """Store ``configs`` in the older slot (the policy is kept); returns the new
         generation. The written slot is read back and checked before this returns."""
+        from pdcp_studio.storage import config_codec
+
         payload = config_codec.dumps(configs)
         if len(payload) > self.capacity:
             raise MemoryStoreError(f"the configuration takes {len(payload)} bytes; the memory "
@@ -242,6 +252,8 @@ class MemoryStore:
 
     def write_policy(self, policy: dict[str, bool]) -> int:
         """Store the policy with the current configuration (a safe two-slot write)."""
+        from pdcp_studio.storage import config_codec
+
         with self._lock:
             flags = self._flags() & ~FLAG_NO_AUTOCONFIGURE
             if not policy.get("autoconfigure", True):

@@ -23,7 +23,6 @@ from collections.abc import Callable
 from typing import TYPE_CHECKING, Self
 
 from pdcp_studio.bus import events as ev
-from pdcp_studio.bus.session.change_road import ConfirmFn, ProgressFn, run_transaction
 from pdcp_studio.bus.transaction import (
     Change,
     LinkAction,
@@ -37,10 +36,13 @@ from pdcp_studio.model.refs import DeviceKey
 from pdcp_studio.model.system import Link, System
 
 if TYPE_CHECKING:
+    from pdcp_studio.bus.session.change_road import ConfirmFn
     from pdcp_studio.engine.plan import Plan
     from pdcp_studio.storage.history import History
 
 Subscriber = Callable[[object], None]
+#: ``progress(done, total, what)``: how far a long call (a scan, a transaction) has come.
+ProgressFn = Callable[[int, int, str], None]
 
 #: Least seconds between two Progress events a scan sends subscribers.
 PROGRESS_EVENT_INTERVAL_S = 0.1
@@ -170,7 +172,10 @@ class BusSession(abc.ABC):
                  patient: str | None = None, confirm: ConfirmFn | None = None,
                  progress: ProgressFn | None = None, cancel: threading.Event | None = None,
                  history: History | None = None, record: bool = True) -> TransactionResult:
-        """The whole change road (reference §5); see :func:`run_transaction`."""
+        """The whole change road (reference §5); see :func:`run_transaction` (imported
+        here: opening a session, on the app's start-up path, needs none of it)."""
+        from pdcp_studio.bus.session.change_road import run_transaction
+
         return run_transaction(self, change, operator=operator, patient=patient,
                                confirm=confirm, progress=progress, cancel=cancel,
                                history=history, record=record)

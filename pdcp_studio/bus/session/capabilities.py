@@ -11,7 +11,7 @@ from __future__ import annotations
 import threading
 from typing import TYPE_CHECKING, Protocol, runtime_checkable
 
-from pdcp_studio.bus.session.change_road import ProgressFn
+from pdcp_studio.bus.session.base import ProgressFn
 from pdcp_studio.model.refs import DeviceKey
 from pdcp_studio.model.system import Device, System
 

@@ -14,6 +14,7 @@ from collections.abc import Callable
 from dataclasses import dataclass, field
 from typing import TYPE_CHECKING
 
+from pdcp_studio.bus.session.base import ProgressFn
 from pdcp_studio.bus.transaction import (
     Change,
     Policy,
@@ -31,8 +32,6 @@ from pdcp_studio.model.system import Link
 if TYPE_CHECKING:
     from pdcp_studio.bus.session.base import BusSession
     from pdcp_studio.storage.history import History
-
-ProgressFn = Callable[[int, int, str], None]
 
 __all__ = ["ChangePreview", "ConfirmFn", "ProgressFn", "preview_change", "run_transaction"]
 

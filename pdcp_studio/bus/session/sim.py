@@ -82,15 +82,13 @@ class SimSession(Session):
         deadline = time.monotonic() + timeout
         time.sleep(JOIN_GRACE_S)  # let the arbitrator's thread take the bind request in
 
-        def joined() -> bool:  # no system() copy per poll
+        def joined() -> bool:  # no system() copy per look
             return (key in self.arbitrator.devices_present()
                     and self.arbitrator.node_id_of(key) is not None)
 
-        while not joined():
-            if time.monotonic() >= deadline:
-                raise TransportError(f"{self.url}: device {key} was plugged in but did not "
-                                     f"join within {timeout:g} s")
-            time.sleep(0.01)
+        if not self.arbitrator.wait_for(joined, max(0.0, deadline - time.monotonic())):
+            raise TransportError(f"{self.url}: device {key} was plugged in but did not "
+                                 f"join within {timeout:g} s")
         self.arbitrator.wait_settled(max(0.0, deadline - time.monotonic()))
 
     # -- the simulator's controls ---------------------------------------------------------

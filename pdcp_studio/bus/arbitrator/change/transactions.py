@@ -45,7 +45,6 @@ from pdcp_studio.bus.transaction import (
 )
 from pdcp_studio.errors import PdcpError
 from pdcp_studio.model import parameters as P
-from pdcp_studio.model.config_diff import diff_configurations
 from pdcp_studio.model.configuration import ConfigCollection
 from pdcp_studio.model.refs import ChannelRef, DeviceKey
 from pdcp_studio.model.system import Link, System
@@ -237,6 +236,7 @@ class Transactions:
                 problems.append(f"parameter 0x{p.param:02X} of {p.device} channel {p.channel} "
                                 f"reads {got.hex()}, {p.value.hex()} was written")
         if change.configuration is not None:
+            from pdcp_studio.model.config_diff import diff_configurations
             from pdcp_studio.storage import config_codec
 
             back = self._read_memory()

@@ -24,13 +24,14 @@ class ProfileThread:
     """The body of the profile thread. ``may_run``: the profile layer is on and the bus is
     ours; ``busy``: binds held or deferred, set-ups or jobs under way; ``setting_up``: a
     set-up is; ``caught_up``: every frame received is handled; ``present``: the devices on
-    the bus; ``closed``: the arbitrator is closing (a plan cut off then is no news)."""
+    the bus; ``closed``: the arbitrator is closing (a plan cut off then is no news);
+    ``ran``: told after start-up or a duty cycle ran (the bus may have settled)."""
 
     def __init__(self, driver: ProfileDriver, *, stop: threading.Event, wake: threading.Event,
                  may_run: Callable[[], bool], busy: Callable[[], bool],
                  setting_up: Callable[[], bool], caught_up: Callable[[], bool],
                  present: Callable[[], list[DeviceKey]], error: ReportError,
-                 closed: Callable[[], bool], name: str) -> None:
+                 closed: Callable[[], bool], ran: Callable[[], None], name: str) -> None:
         self._driver = driver
         self._stop, self._wake = stop, wake
         self._may_run = may_run
@@ -40,6 +41,7 @@ class ProfileThread:
         self._present = present
         self._error = error
         self._closed = closed
+        self._ran = ran
         self._name = name
 
     def run(self) -> None:
@@ -61,9 +63,15 @@ class ProfileThread:
                                     "although binding has not settled (a device keeps asking "
                                     "for an ID it is not given)", "setup")
                     if due:
-                        driver.run_startup()
+                        try:
+                            driver.run_startup()
+                        finally:
+                            self._ran()
                 elif driver.duty_due(now, self._busy()):
-                    driver.run_duty_cycle()
+                    try:
+                        driver.run_duty_cycle()
+                    finally:
+                        self._ran()
             except PdcpError as err:
                 if not self._closed():  # a plan cut off by closing the session is no news
                     self._error(f"profile layer: {err}", "plan")
