@@ -11,6 +11,7 @@ from __future__ import annotations
 
 import contextlib
 import threading
+import time
 from collections.abc import Iterator
 from pathlib import Path
 from typing import Any
@@ -69,6 +70,21 @@ class FrameRecorder:
     def _on(self, msg: can.Message) -> None:
         with self._lock:
             self.frames.append(msg)
+
+    def caught_up(self, quiet_s: float = 0.03, timeout: float = 2.0) -> int:
+        """Wait until no frame came for ``quiet_s`` (the frames sent so far are all here, not
+        still in the recorder's queue); the number recorded."""
+        deadline = time.monotonic() + timeout
+        with self._lock:
+            count = len(self.frames)
+        while time.monotonic() < deadline:
+            time.sleep(quiet_s)
+            with self._lock:
+                now = len(self.frames)
+            if now == count:
+                break
+            count = now
+        return count
 
     def messages(self) -> list[Message]:
         with self._lock:

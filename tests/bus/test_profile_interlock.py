@@ -78,6 +78,7 @@ def test_start_up_holds_the_devices_feeding_terminal_channels_while_it_links():
 
 def test_a_hot_swap_repair_holds_the_feeders_then_releases_them():
     with recorded("sim:thesis-test4") as (session, recorder):
+        recorder.caught_up()  # start-up's last frames are in, not counted as the swap's
         start = len(recorder.messages())
         assert session.run_script("hot-swap").ok
         time.sleep(0.1)
@@ -98,6 +99,7 @@ def test_a_device_that_will_not_hold_still_stops_the_repair_before_any_write():
                                                     True))
         session.subscribe(
             lambda e: errors.append(e.message) if isinstance(e, ev.BusError) else None)
+        recorder.caught_up()
         start = len(recorder.messages())
         session.run_script("hot-swap")  # ends without the repair: nobody would hold still
         time.sleep(0.2)
