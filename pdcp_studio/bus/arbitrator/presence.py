@@ -71,11 +71,11 @@ class PresenceTracker:
                 node.window_start = now
             return ""
         node.window_beacons += 1
-        span = BEACON_WINDOW * node.beacon_interval
-        if now - node.window_start < span or not caught_up:
+        span = now - node.window_start  # (longer than the window when it closes late)
+        if span < BEACON_WINDOW * node.beacon_interval or not caught_up:
             return ""
         why = ""
-        if (node.window_beacons > TWIN_BEACON_RATIO * BEACON_WINDOW
+        if (node.window_beacons > TWIN_BEACON_RATIO * span / node.beacon_interval
                 and node.key not in self.duplicates):
             why = f"node {node.node_id} beacons {node.window_beacons} times in {span:.2f} s"
         node.window_start, node.window_beacons = now, 0
