@@ -481,8 +481,15 @@ class GraphView(QGraphicsView):
             room = self.maximumViewportSize()
             width, height = room.width(), max(40, room.height())
             factor = min(width / rect.width(), height / rect.height())
+            # Scroll bars shown before (zoomed in) would stay: the margin left around the
+            # graph is narrower than a bar, so with them the graph would not quite fit.
+            bars = self.horizontalScrollBarPolicy(), self.verticalScrollBarPolicy()
+            self.setHorizontalScrollBarPolicy(Qt.ScrollBarPolicy.ScrollBarAlwaysOff)
+            self.setVerticalScrollBarPolicy(Qt.ScrollBarPolicy.ScrollBarAlwaysOff)
             self.set_zoom(min(FIT_MAX_ZOOM, factor))
             self.centerOn(rect.center())
+            self.setHorizontalScrollBarPolicy(bars[0])
+            self.setVerticalScrollBarPolicy(bars[1])
             self._fitted = True
         finally:
             self._adjusting = adjusting
