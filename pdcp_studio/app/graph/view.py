@@ -430,6 +430,11 @@ class GraphView(QGraphicsView):
         self.overview = self.footer.overview
         #: The user's own choice for the overview (None: shown for large graphs only).
         self._overview_choice: bool | None = None
+        #: A fit holds until the user zooms or scrolls: when the viewport changes size after
+        #: it (a panel or bar of the window appearing) the graph is fitted again, so no card
+        #: is left cut off. ``_adjusting``: the view is moving itself (a fit, a resize).
+        self._fitted = False
+        self._adjusting = False
         shown = QSettings().value(LEGEND_KEY, True)
         shown = shown not in (False, "false", "0", 0)
         self.footer.legend_button.setChecked(shown)
@@ -451,6 +456,8 @@ class GraphView(QGraphicsView):
     def set_zoom(self, factor: float) -> None:
         """Absolute zoom, clamped so cards never vanish or fill the screen with one port."""
         factor = max(MIN_ZOOM, min(MAX_ZOOM, factor))
+        if not self._adjusting:
+            self._fitted = False
         self.scale(factor / self.zoom, factor / self.zoom)
         self.bus_scene().set_view_zoom(self.zoom)
         self._look()
@@ -462,17 +469,30 @@ class GraphView(QGraphicsView):
     def fit_all(self) -> None:
         """Show every card: zoom out as far as that needs, zoom in on a small graph up to
         FIT_MAX_ZOOM (readable, not bloated). The scale is computed from the viewport
-        without scroll bars (the legend and overview are outside it, in the footer)."""
-        self.arrange_footer()
-        rect = self.bus_scene().graph_rect()
-        if rect.isEmpty():
-            return
-        rect = rect.adjusted(-FIT_MARGIN, -FIT_MARGIN, FIT_MARGIN, FIT_MARGIN)
-        room = self.maximumViewportSize()
-        width, height = room.width(), max(40, room.height())
-        factor = min(width / rect.width(), height / rect.height())
-        self.set_zoom(min(FIT_MAX_ZOOM, factor))
-        self.centerOn(rect.center())
+        without scroll bars (the legend and overview are outside it, in the footer). The
+        fit holds while the viewport changes size, until the user zooms or scrolls."""
+        adjusting, self._adjusting = self._adjusting, True
+        try:
+            self.arrange_footer()
+            rect = self.bus_scene().graph_rect()
+            if rect.isEmpty():
+                return
+            rect = rect.adjusted(-FIT_MARGIN, -FIT_MARGIN, FIT_MARGIN, FIT_MARGIN)
+            room = self.maximumViewportSize()
+            width, height = room.width(), max(40, room.height())
+            factor = min(width / rect.width(), height / rect.height())
+            # Scroll bars shown before (zoomed in) would stay: the margin left around the
+            # graph is narrower than a bar, so with them the graph would not quite fit.
+            bars = self.horizontalScrollBarPolicy(), self.verticalScrollBarPolicy()
+            self.setHorizontalScrollBarPolicy(Qt.ScrollBarPolicy.ScrollBarAlwaysOff)
+            self.setVerticalScrollBarPolicy(Qt.ScrollBarPolicy.ScrollBarAlwaysOff)
+            self.set_zoom(min(FIT_MAX_ZOOM, factor))
+            self.centerOn(rect.center())
+            self.setHorizontalScrollBarPolicy(bars[0])
+            self.setVerticalScrollBarPolicy(bars[1])
+            self._fitted = True
+        finally:
+            self._adjusting = adjusting
 
     def settle(self) -> None:
         """Build and draw now what is built and drawn in batches (a large bus's items,
@@ -567,12 +587,18 @@ class GraphView(QGraphicsView):
     # -- Qt virtuals ----------------------------------------------------------------
     def scrollContentsBy(self, dx: int, dy: int) -> None:
         super().scrollContentsBy(dx, dy)
+        if not self._adjusting:
+            self._fitted = False
         self._look()
 
     def resizeEvent(self, event: QResizeEvent) -> None:
-        super().resizeEvent(event)
-        self._look()
-        self.arrange_footer()
+        adjusting, self._adjusting = self._adjusting, True
+        try:
+            super().resizeEvent(event)
+            self._look()
+            self.arrange_footer()
+        finally:
+            self._adjusting = adjusting
         scene = self.scene()
         if not isinstance(scene, BusScene):
             return
@@ -580,6 +606,8 @@ class GraphView(QGraphicsView):
         vp = self.viewport().size()
         if vp.height() > 40 and vp.width() > 40:
             scene.layout_aspect = vp.width() / vp.height()
+        if self._fitted and not adjusting:
+            self.fit_all()
 
     def wheelEvent(self, event: QWheelEvent) -> None:
         delta = event.angleDelta().y()

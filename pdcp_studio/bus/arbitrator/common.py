@@ -99,5 +99,5 @@ class _Node:
     last_request: float = 0.0
     echoes: int = 0
     answers: int = 0
-    window_start: float = 0.0
+    window_start: float | None = None  # the open beacon-count window's start (None: none)
     window_beacons: int = 0

@@ -127,12 +127,12 @@ class Dispatcher:
         self.data_frames = 0
         self.disconnected = False  # the adapter was pulled (a ReopeningBus says so)
         self.bus_message = ""  # the last BusState line (why it arbitrates or not)
+        self._hold_until = 0.0  # after a stall: frames may still wait in the driver till then
 
     def run(self) -> None:
         """The thread: frames as they come, the claim's and presence's tick every TICK_S."""
         next_tick = 0.0
         last = time.monotonic()
-        hold_until = 0.0
         while not self._stop.is_set():
             item = self._conn.get(TICK_S)
             if self._stop.is_set():
@@ -146,16 +146,21 @@ class Dispatcher:
                     self._on_frame(cast("can.Message", item))
                 now = time.monotonic()
                 if now - last > STALL_S:  # this process did not run (a loaded PC, a pause):
-                    hold_until = now + STALL_GRACE_S  # frames may still wait in the driver
+                    self._hold_until = now + STALL_GRACE_S  # frames may still wait in the driver
                 last = now
                 if now >= next_tick and self._claim_tick(now):
                     next_tick = now + TICK_S
                     self._flush_errors()
                     # Presence is judged only when every frame received so far is handled:
                     # a backlog (a busy machine) must not pass for silent devices.
-                    self._tick(now, self._conn.inbound.empty() and now >= hold_until)
+                    self._tick(now, self._caught_up(now))
             except Exception:  # one bad frame or bug must never stop the arbitrator
                 self._crashes.exception("dispatch", "dispatch failed")
+
+    def _caught_up(self, now: float) -> bool:
+        """Every frame received so far is handled: none queued, none left in the driver
+        after a stall."""
+        return self._conn.inbound.empty() and now >= self._hold_until
 
     def _bad_frame(self, why: str) -> None:
         self.bad_frames += 1
@@ -201,7 +206,7 @@ class Dispatcher:
         if node is None:  # node 0, or a device that left a moment ago
             return
         if isinstance(message, Beacon):
-            why = self._presence.beacon(node, now, self._conn.inbound.empty())
+            why = self._presence.beacon(node, now, self._caught_up(now))
             if why:
                 self._twin(node.key, why)
             return
@@ -235,6 +240,8 @@ class Dispatcher:
                 self._profile.note_bind(now)
         if self._profile.listening(now):
             return  # still learning which IDs devices of an earlier arbitrator use
+        if not self._claim_tick(now):
+            return  # not ours to answer (yet): the device asks again
         with self._state.lock:
             decision = self._nodes.on_bind_request(req, now, self._presence.duplicates)
             set_up = self._bound(decision.key, decision.node_id, now) \
@@ -370,7 +377,10 @@ class Dispatcher:
 
     def _claim_tick(self, now: float) -> bool:
         """End the listening when it is due, beacon when due; True while arbitrating (and
-        the adapter is there: presence is not judged while nobody can be heard)."""
+        the adapter is there: presence is not judged while nobody can be heard). A bind
+        request asks it first: one handled after the listening ended but before the loop's
+        next tick would be granted while every write is still refused, and the set-up of
+        the device it binds would fail on its first request."""
         decision = self._claim.tick(now)
         if decision is not None:
             self.claim_started(decision)

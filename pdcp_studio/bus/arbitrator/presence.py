@@ -56,17 +56,26 @@ class PresenceTracker:
     def beacon(self, node: _Node, now: float, caught_up: bool = True) -> str:
         """A beacon from ``node``; why it has a twin ('' when it has none, or is known).
 
-        Judged only on frames handled as they come: after a backlog (a flood, a busy
-        machine) a second's beacons are handled in a moment and would look like twins."""
-        if not node.set_up or not caught_up:
-            node.window_start, node.window_beacons = now, 0
+        ``caught_up``: every frame received so far is handled. After a backlog (a flood, a
+        busy machine) a second's beacons are handled in a moment, so a window is opened and
+        judged only on a beacon handled caught up: the beacons counted between are then the
+        ones received in that span, however late each was handled. A beacon handled behind
+        others is counted but neither opens nor closes a window: twins powered together
+        beacon back to back, each one's beacon queued behind the other's, and restarting the
+        window on every such beacon would never let it fill."""
+        if not node.set_up:
+            node.window_start, node.window_beacons = None, 0
+            return ""
+        if node.window_start is None:
+            if caught_up:
+                node.window_start = now
             return ""
         node.window_beacons += 1
-        span = BEACON_WINDOW * node.beacon_interval
-        if now - node.window_start < span:
+        span = now - node.window_start  # (longer than the window when it closes late)
+        if span < BEACON_WINDOW * node.beacon_interval or not caught_up:
             return ""
         why = ""
-        if (node.window_beacons > TWIN_BEACON_RATIO * BEACON_WINDOW
+        if (node.window_beacons > TWIN_BEACON_RATIO * span / node.beacon_interval
                 and node.key not in self.duplicates):
             why = f"node {node.node_id} beacons {node.window_beacons} times in {span:.2f} s"
         node.window_start, node.window_beacons = now, 0
