@@ -106,7 +106,7 @@ class MainWindow(QMainWindow):
                                       lambda: bool(self.quiet))
         self.start_page = StartPage(self, self.view, StartOffers(
             open_task=self.open_task, ask_connect=lambda: self.ask_connect(),
-            ask_open=lambda: self.files.ask_open(), try_simulated=self._try_simulated,
+            ask_open=lambda: self.files.ask_open(), try_simulated=self.try_simulated,
             open_recent=lambda path: self.maybe_save() and self.open_path(path),
             recent_paths=lambda: self.recent_files.paths()))
         self._build_docks()
@@ -210,12 +210,14 @@ class MainWindow(QMainWindow):
 
     def _build_actions(self) -> None:
         """Actions, menus and the toolbar from the one table (:mod:`.actions`)."""
-        self.action_set = actions = WindowActions(self, self._commands(), self.doc.undo_stack, {
+        given = {
             "dock_devices": self.tree_dock.toggleViewAction(),
             "dock_inspector": self.inspector_dock.toggleViewAction(),
             "dock_plan": self.plan_dock.toggleViewAction(),
             "dock_pending": self.pending_dock.toggleViewAction(),
-            "history": self.history_dock.toggleViewAction()})
+            "history": self.history_dock.toggleViewAction()}
+        self.action_set = actions = WindowActions(self, window_commands(self),
+                                                  self.doc.undo_stack, given)
         self.transactions = Transactions(
             self.doc, self.live, self.status_line, self.flow, self.pending_panel,
             self.pending_dock, self._history,
@@ -249,48 +251,6 @@ class MainWindow(QMainWindow):
         self.toolbars = [toolbar]
         steady = steady_toolbar(self, toolbar, self.act_undo, self.act_redo)
         self.toolbar_undo, self.toolbar_redo = steady["undo"], steady["redo"]
-
-    def _commands(self) -> dict[str, Callable[[], object]]:
-        """What each action of the table does, by its id."""
-        commands: dict[str, Callable[[], object]] = {
-            "open": lambda: self.files.ask_open(),
-            "save": lambda: self.save(),
-            "save_as": lambda: self.files.ask_save_as(),
-            "export_png": lambda: self.export.ask_export("png"),
-            "export_svg": lambda: self.export.ask_export("svg"),
-            "report": lambda: self.export.ask_report(),
-            "quit": self.close,
-            "undo": lambda: self.flow.undo(),
-            "redo": lambda: self.flow.redo(),
-            "delete": self.scene.delete_selected,
-            "profiles": lambda: self.editing.show_profile_tree(),
-            "find": lambda: self.editing.ask_go_to_device(),
-            "fit": self.view.fit_all,
-            "zoom_in": lambda: self.view.zoom_by(1.25),
-            "zoom_out": lambda: self.view.zoom_by(0.8),
-            "arrange": lambda: self.editing.arrange(),
-            "legend": lambda: self.view.set_legend_visible(self.act_legend.isChecked()),
-            "write_pending": lambda: self.write_pending(),
-            "discard_pending": lambda: self.transactions.discard_pending(),
-            "connect": lambda: self.ask_connect(),
-            "connect_sim": self._try_simulated,
-            "disconnect": lambda: self.transactions.disconnect_asking(),
-            "scan": lambda: self.scan_bus(),
-            "read_config": lambda: self.read_configuration(),
-            "cancel": lambda: self.bus.cancel_bus_work(),
-            "compare": lambda: self.bus.show_compare(),
-            "write": lambda: self.ask_write_configuration(),
-            "autoconfigure": lambda: self.policy.set_autoconfigure(
-                self.act_autoconfigure.isChecked()),
-            "manual": lambda: open_manual_here(self),
-            "about": lambda: show_about(self),
-            "about_qt": lambda: show_about_qt(self),
-        }
-        for mode, _text in OPERATIONS:
-            commands[f"plan_{mode}"] = partial(self.editing.preview_plan, mode)
-        for task in TASKS:
-            commands[f"task_{task.id}"] = partial(self.open_task, task.id)
-        return commands
 
     def _connect(self) -> None:
         doc, live = self.doc, self.live
@@ -371,7 +331,7 @@ class MainWindow(QMainWindow):
         (``opening``: the session already being opened, see ``LiveController``)."""
         self.live.connect_bus(url, opening)
 
-    def _try_simulated(self) -> None:
+    def try_simulated(self) -> None:
         if self.maybe_save():
             self.connect_bus(DEFAULT_BUS)
 
@@ -602,3 +562,46 @@ def start_default(window: MainWindow) -> None:
     """What bare ``pdcp-studio`` shows: the simulated prosthesis (offline if it fails)."""
     QTimer.singleShot(0, lambda: window.connect_bus(DEFAULT_BUS))
 
+
+def window_commands(self: MainWindow) -> dict[str, Callable[[], object]]:
+    """What each action of the table (:mod:`.actions`) does, by its id: the window hands
+    each to the controller that owns it."""
+    commands: dict[str, Callable[[], object]] = {
+        "open": lambda: self.files.ask_open(),
+        "save": lambda: self.save(),
+        "save_as": lambda: self.files.ask_save_as(),
+        "export_png": lambda: self.export.ask_export("png"),
+        "export_svg": lambda: self.export.ask_export("svg"),
+        "report": lambda: self.export.ask_report(),
+        "quit": self.close,
+        "undo": lambda: self.flow.undo(),
+        "redo": lambda: self.flow.redo(),
+        "delete": self.scene.delete_selected,
+        "profiles": lambda: self.editing.show_profile_tree(),
+        "find": lambda: self.editing.ask_go_to_device(),
+        "fit": self.view.fit_all,
+        "zoom_in": lambda: self.view.zoom_by(1.25),
+        "zoom_out": lambda: self.view.zoom_by(0.8),
+        "arrange": lambda: self.editing.arrange(),
+        "legend": lambda: self.view.set_legend_visible(self.act_legend.isChecked()),
+        "write_pending": lambda: self.write_pending(),
+        "discard_pending": lambda: self.transactions.discard_pending(),
+        "connect": lambda: self.ask_connect(),
+        "connect_sim": self.try_simulated,
+        "disconnect": lambda: self.transactions.disconnect_asking(),
+        "scan": lambda: self.scan_bus(),
+        "read_config": lambda: self.read_configuration(),
+        "cancel": lambda: self.bus.cancel_bus_work(),
+        "compare": lambda: self.bus.show_compare(),
+        "write": lambda: self.ask_write_configuration(),
+        "autoconfigure": lambda: self.policy.set_autoconfigure(
+            self.act_autoconfigure.isChecked()),
+        "manual": lambda: open_manual_here(self),
+        "about": lambda: show_about(self),
+        "about_qt": lambda: show_about_qt(self),
+    }
+    for mode, _text in OPERATIONS:
+        commands[f"plan_{mode}"] = partial(self.editing.preview_plan, mode)
+    for task in TASKS:
+        commands[f"task_{task.id}"] = partial(self.open_task, task.id)
+    return commands
