@@ -40,6 +40,7 @@ from PySide6.QtWidgets import (
 from pdcp_studio.app.widgets.combo_popups import keep_whole
 from pdcp_studio.app.widgets.tree_items import set_current, top_level_items
 from pdcp_studio.app.workers import Worker
+from pdcp_studio.bus.session.capabilities import SimulatorControls
 from pdcp_studio.model.refs import DeviceKey
 from pdcp_studio.model.system import Device
 
@@ -260,8 +261,9 @@ class SimPanel(QWidget):
 
     def _names(self, devices: list[SimDevice]) -> dict[DeviceKey, str]:
         """Every simulated device's name (:func:`sim_names`)."""
-        system = getattr(self.bridge.session, "initial_system", None)
-        models = dict(getattr(system, "devices", {}) or {})
+        session = self.bridge.session
+        models = dict(session.initial_system.devices) if isinstance(
+            session, SimulatorControls) else {}
         return sim_names([(DeviceKey(*k), str(lb)) for k, lb, _p in devices], self.name_of,
                          models)
 
@@ -359,10 +361,10 @@ class SimPanel(QWidget):
 
     def _describe_script(self, name: str) -> None:
         description = ""
-        prosthesis = getattr(self.bridge.session, "prosthesis", None)
-        if prosthesis is not None and name:
+        session = self.bridge.session
+        if isinstance(session, SimulatorControls) and name:
             try:
-                description = prosthesis.script(name).description
+                description = session.prosthesis.script(name).description
             except Exception:
                 description = ""
         self.script_info.setText(description)

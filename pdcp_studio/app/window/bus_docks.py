@@ -11,7 +11,7 @@ from __future__ import annotations
 import logging
 import threading
 from collections.abc import Callable
-from typing import Any
+from typing import TYPE_CHECKING, Any
 
 from PySide6.QtCore import QObject, Qt, QTimer, SignalInstance
 from PySide6.QtWidgets import QDockWidget, QMainWindow, QMenu
@@ -22,6 +22,9 @@ from pdcp_studio.app.i18n import translate
 from pdcp_studio.app.live.live_bus import LiveController
 from pdcp_studio.app.window.dock_area import add_dock
 from pdcp_studio.app.window.status import StatusLine
+
+if TYPE_CHECKING:
+    from pdcp_studio.app.live.session_bridge import SessionBridge
 
 log = logging.getLogger("pdcp_studio.app.window.main_window")  # the name it always logged under
 #: The trace and live plot docks are made this long after the window is up (they are
@@ -69,12 +72,12 @@ class BusDocks(QObject):
         self._ready = ready
         self._scan_finished = scan_finished
         self.leaf_docks: dict[str, QDockWidget] = {}
-        self._trace_bridge: Any = None
+        self._trace_bridge: SessionBridge | None = None
         self._trace_docks_wired = False
         self._keeping_from: Any = None
         self._early_frames: list[Any] = []
 
-    def attach_safely(self, bridge: Any) -> None:
+    def attach_safely(self, bridge: SessionBridge) -> None:
         """A dock that fails to build must not cost the connection: log it and go on."""
         try:
             self.attach(bridge)
@@ -82,7 +85,7 @@ class BusDocks(QObject):
             log.exception("bus docks")
             self.status.say(_t("Some bus panels are unavailable: {err}").format(err=err))
 
-    def attach(self, bridge: Any) -> None:
+    def attach(self, bridge: SessionBridge) -> None:
         """Bus events, simulator panel, trace and live plot for a new bridge (made once,
         reused). The trace and the plot are hidden tabs at first and the costliest part of
         the window (numpy, the trace store: ~0.3 s of a 2-core machine): the first ones are
@@ -158,7 +161,7 @@ class BusDocks(QObject):
 
         QTimer.singleShot(TRACE_DOCKS_AFTER_MS, self, start)
 
-    def _keep_frames(self, bridge: Any) -> None:
+    def _keep_frames(self, bridge: SessionBridge | None) -> None:
         """Keep ``bridge``'s frames until the trace exists (None: stop keeping them)."""
         old = self._keeping_from
         if old is not None:
@@ -267,7 +270,7 @@ class BusDocks(QObject):
             name_controls(dock)
         return dock
 
-    def session_started(self, bridge: Any) -> None:
+    def session_started(self, bridge: SessionBridge) -> None:
         """A new session is on screen: the bus panels start afresh on it (no frames,
         values or node map of the previous session)."""
         system = self.doc.system

@@ -21,6 +21,7 @@ from pdcp_studio.app.wizards.task_wizard import Page, TaskWizard, bullets
 
 if TYPE_CHECKING:
     from pdcp_studio.bus.session.api import ChangePreview
+    from pdcp_studio.bus.session.base import BusSession
     from pdcp_studio.bus.transaction import Change, Policy, TransactionResult
     from pdcp_studio.model.configuration import ConfigCollection
     from pdcp_studio.model.system import Link, System
@@ -53,7 +54,7 @@ def work_out(task: TaskWizard, build: Build) -> Callable[[Any], Worked]:
     """What the bus worker runs to work ``build``'s change out and preview it (the engine
     is pure; the session is read there, never on the GUI thread)."""
 
-    def work(session: Any) -> Worked:
+    def work(session: BusSession) -> Worked:
         from pdcp_studio.bus.session.api import preview_change
 
         system, stored, policy = look(session)

@@ -21,6 +21,7 @@ from pdcp_studio.app.documents import fitting
 
 if TYPE_CHECKING:
     from pdcp_studio.bus.session.api import ChangePreview
+    from pdcp_studio.bus.session.base import BusSession
     from pdcp_studio.bus.transaction import Change, Policy, TransactionResult
     from pdcp_studio.model.configuration import ConfigCollection
     from pdcp_studio.model.system import Link, System
@@ -130,6 +131,6 @@ def on_bus(window: Any, fn: Callable[[Any], R], description: str,
     return True
 
 
-def look(session: Any) -> Look:
+def look(session: BusSession) -> Look:
     """The prosthesis as it is: its system, stored configuration and policy."""
     return Look(session.system(), session.read_configuration(), session.read_policy())

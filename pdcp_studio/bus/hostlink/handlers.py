@@ -16,7 +16,7 @@ from __future__ import annotations
 import logging
 import struct
 import time
-from typing import Any
+from typing import TYPE_CHECKING, Any
 
 from pdcp_studio import __version__
 from pdcp_studio.bus import events as ev
@@ -33,6 +33,10 @@ from pdcp_studio.protocol import hostlink_messages as hm
 from pdcp_studio.protocol.crc import crc16_ccitt_false
 from pdcp_studio.protocol.hostlink import MAX_PAYLOAD
 from pdcp_studio.protocol.hostlink_messages import Req, Status
+
+if TYPE_CHECKING:
+    from pdcp_studio.bus.arbitrator.core import Arbitrator
+    from pdcp_studio.bus.hostlink.server import HostLinkServer
 
 log = logging.getLogger(__name__)
 
@@ -76,7 +80,7 @@ def _status_of(err: Exception) -> Status:
 class Handlers:
     """The request handlers of one :class:`HostLinkServer`."""
 
-    def __init__(self, arbitrator: Any, server: Any) -> None:
+    def __init__(self, arbitrator: Arbitrator, server: HostLinkServer) -> None:
         self.arb = arbitrator
         self.server = server
         self.greeted = False

@@ -13,9 +13,12 @@ from __future__ import annotations
 import threading
 import time
 from collections import deque
-from typing import Any
+from typing import TYPE_CHECKING, Any
 
 from pdcp_studio.protocol import hostlink_messages as hm
+
+if TYPE_CHECKING:
+    from pdcp_studio.bus.arbitrator.core import Arbitrator
 
 #: Share of the line's bytes per second the monitor may use.
 SHARE = 0.5
@@ -55,7 +58,7 @@ class MonitorFeed:
     def stop(self) -> None:
         self.configure(False, False, self._period, time.monotonic())
 
-    def observe(self, event: Any, arbitrator: Any) -> None:
+    def observe(self, event: Any, arbitrator: Arbitrator) -> None:
         """A FrameSeen from the arbitrator: queue it, or count it when it is channel data."""
         if not (self._on_frames or self._on_counts) or not hasattr(event, "arbitration_id"):
             return

@@ -14,7 +14,7 @@ import logging
 import queue
 import threading
 import time
-from typing import Any
+from typing import TYPE_CHECKING
 
 from pdcp_studio.bus import events as ev
 from pdcp_studio.bus.hostlink.handlers import Handlers
@@ -29,6 +29,9 @@ from pdcp_studio.bus.hostlink.port import (
 from pdcp_studio.protocol import hostlink_messages as hm
 from pdcp_studio.protocol.hostlink_link import LinkEndpoint
 from pdcp_studio.protocol.hostlink_v1 import V1Sniffer, encode_v1
+
+if TYPE_CHECKING:
+    from pdcp_studio.bus.arbitrator.core import Arbitrator
 
 log = logging.getLogger(__name__)
 
@@ -45,7 +48,7 @@ EVENT_QUEUE = 16
 class HostLinkServer:
     """Answers host-link requests from ``port`` with ``arbitrator``; close it (or ``with``)."""
 
-    def __init__(self, arbitrator: Any, port: Port | str, *, baudrate: int = DEFAULT_BAUD,
+    def __init__(self, arbitrator: Arbitrator, port: Port | str, *, baudrate: int = DEFAULT_BAUD,
                  name: str = "host link") -> None:
         self.arbitrator = arbitrator
         self.name = name

@@ -11,7 +11,7 @@ from __future__ import annotations
 from collections.abc import Callable
 from functools import partial
 from pathlib import Path
-from typing import Any
+from typing import TYPE_CHECKING, Any
 
 from PySide6.QtWidgets import QWidget
 
@@ -20,6 +20,9 @@ from pdcp_studio.app.i18n import translate
 from pdcp_studio.app.live.live_bus import LiveController
 from pdcp_studio.app.window.status import StatusLine
 from pdcp_studio.app.words.plural import count
+
+if TYPE_CHECKING:
+    from pdcp_studio.app.live.session_bridge import SessionBridge
 
 _CTX = "WindowBus"
 
@@ -82,7 +85,7 @@ class BusCommands:
             devices=count(_CTX, "%n device(s)", devices),
             links=count(_CTX, "%n link(s)", links)))
 
-    def session_started(self, bridge: Any) -> None:
+    def session_started(self, bridge: SessionBridge) -> None:
         """Plans get the new session's stored configuration, read again whenever it may
         have changed."""
         bridge.simChanged.connect(self._sim_changed)
@@ -120,7 +123,7 @@ class BusCommands:
         bridge.run(lambda _p, _c: session.read_configuration(), "Read configuration",
                    partial(self._stored_configuration_seen, bridge))
 
-    def _stored_configuration_seen(self, bridge: Any, collection: Any) -> None:
+    def _stored_configuration_seen(self, bridge: SessionBridge, collection: Any) -> None:
         if bridge is self.live.bridge and self.doc.session is bridge:
             self.doc.config = collection
 

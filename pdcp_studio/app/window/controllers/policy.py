@@ -51,7 +51,7 @@ class PolicyController:
         live.stateChanged.connect(lambda _s: self.show_policy())
         self.show_policy()
 
-    def _session_started(self, bridge: Any) -> None:
+    def _session_started(self, bridge: SessionBridge) -> None:
         self.doc.set_policy(None)  # the previous prosthesis's policy is not this one's
         bridge.busEvent.connect(self._bus_event)
         bridge.simChanged.connect(lambda _what: self.read_policy())
@@ -75,7 +75,7 @@ class PolicyController:
         bridge.run(lambda _p, _c: session.read_policy(), "Read the policy",
                    partial(self._policy_read, bridge))
 
-    def _policy_read(self, bridge: Any, policy: Any) -> None:
+    def _policy_read(self, bridge: SessionBridge, policy: Any) -> None:
         if bridge is self.live.bridge and self.doc.session is bridge:
             self.doc.set_policy(policy)
             self.show_policy()  # the check mark follows the prosthesis, even if unchanged

@@ -20,7 +20,7 @@ from __future__ import annotations
 import logging
 import threading
 from collections.abc import Callable
-from typing import Any
+from typing import TYPE_CHECKING, Any
 
 from PySide6.QtCore import QObject, Qt, Signal
 from PySide6.QtGui import QFont, QUndoCommand
@@ -41,6 +41,9 @@ from pdcp_studio.app.live.live_bus import LiveController
 from pdcp_studio.app.window.status import StatusLine
 from pdcp_studio.app.words.plural import count
 from pdcp_studio.model.system import System
+
+if TYPE_CHECKING:
+    from pdcp_studio.app.live.session_bridge import SessionBridge
 
 log = logging.getLogger(__name__)
 
@@ -214,7 +217,7 @@ class TransactionFlow(QObject):
         worker.cancelled.connect(lambda: self._set_busy(False))
         return True
 
-    def _previewed(self, bridge: Any, change: Any, title: str, preview: Any,
+    def _previewed(self, bridge: SessionBridge, change: Any, title: str, preview: Any,
                    on_result: Callable[[Any], None] | None) -> None:
         self.previewed.emit(preview)
         if bridge is not self._bridge():

@@ -28,7 +28,7 @@ import time
 from collections.abc import Callable
 from concurrent.futures import ThreadPoolExecutor
 from dataclasses import dataclass, field
-from typing import Any
+from typing import TYPE_CHECKING
 
 from pdcp_studio.bus.arbitrator.reading.device_reader import EVERYTHING, DeviceReader
 from pdcp_studio.errors import PdcpError
@@ -37,6 +37,9 @@ from pdcp_studio.model import parameters as P
 from pdcp_studio.model.param_fields import Values
 from pdcp_studio.model.refs import ChannelRef, DeviceKey, Direction
 from pdcp_studio.model.system import Device, Link, System
+
+if TYPE_CHECKING:
+    from pdcp_studio.bus.arbitrator.core import Arbitrator
 
 log = logging.getLogger(__name__)
 
@@ -115,7 +118,7 @@ def links_on_bus(devices: list[Device], values: dict[DeviceKey, Values]) -> list
     return links
 
 
-def scan(arbitrator: Any, progress: ProgressFn | None = None,
+def scan(arbitrator: Arbitrator, progress: ProgressFn | None = None,
          cancel: threading.Event | None = None, window: int = DEFAULT_WINDOW, *,
          pace_s: float = 0.0, read_timeout: float = READ_TIMEOUT_S,
          problems: list[str] | None = None,
