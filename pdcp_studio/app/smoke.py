@@ -56,6 +56,7 @@ def _dialogs(window: Any) -> list[tuple[str, Callable[[], QWidget]]]:
 
 def exercise(window: Any) -> dict[str, str]:
     """Open and close every dialog and dock of ``window``; name → "ok" or what failed."""
+    from pdcp_studio.app.widgets.accessible_names import name_controls
     from pdcp_studio.app.window.controllers import desktop as window_desktop
 
     steps: dict[str, str] = {}
@@ -75,7 +76,7 @@ def exercise(window: Any) -> dict[str, str]:
             _settle()
             if not dialog.isVisible():
                 raise RuntimeError("did not show")
-            unnamed = window_desktop.name_controls(dialog)
+            unnamed = name_controls(dialog)
             if unnamed:
                 raise RuntimeError(f"controls without an accessible name: {unnamed}")
             dialog.close()

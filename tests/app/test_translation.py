@@ -181,7 +181,8 @@ def test_no_untranslated_string_in_the_german_window_and_dialogs(make_window, qt
     kept = _kept_in_german()
     left = {}
     for part, texts in german.items():
-        same = (texts & english[part]) - kept
+        same = {t for t in (texts & english[part]) - kept
+                if not t.startswith("/")}  # a file's path (the history archive's) is data
         if same:
             left[part] = sorted(same)
     assert not left, f"untranslated in the German build: {left}"

@@ -226,7 +226,7 @@ class BusDocks(QObject):
             QTimer.singleShot(0, self, lambda: self._restore_made_docks(made))
 
     def _restore_made_docks(self, docks: list[QDockWidget]) -> None:
-        from pdcp_studio.app.window.controllers.desktop import name_controls
+        from pdcp_studio.app.widgets.accessible_names import name_controls
 
         for dock in docks:
             self.host.restoreDockWidget(dock)
@@ -260,7 +260,7 @@ class BusDocks(QObject):
 
         dock = self.leaf_docks.get("monitor")
         if dock is None:
-            from pdcp_studio.app.window.controllers.desktop import name_controls
+            from pdcp_studio.app.widgets.accessible_names import name_controls
 
             dock = MonitorDock(self.host)
             self.host.addDockWidget(Qt.DockWidgetArea.BottomDockWidgetArea, dock)

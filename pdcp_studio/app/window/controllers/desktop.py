@@ -18,51 +18,32 @@ from PySide6.QtCore import (
     QByteArray,
     QChildEvent,
     QEvent,
-    QModelIndex,
     QObject,
     QSettings,
-    Qt,
     QTimer,
     SignalInstance,
 )
 from PySide6.QtGui import QAction, QDragEnterEvent, QDragMoveEvent, QDropEvent
 from PySide6.QtWidgets import (
-    QAbstractButton,
-    QAbstractItemView,
-    QAbstractSlider,
-    QAbstractSpinBox,
     QApplication,
-    QComboBox,
     QDockWidget,
-    QFormLayout,
     QGraphicsView,
-    QHeaderView,
-    QLabel,
-    QLineEdit,
     QMainWindow,
     QMenu,
-    QPlainTextEdit,
-    QScrollBar,
     QStyle,
-    QTableView,
-    QTextEdit,
     QToolBar,
-    QTreeView,
     QWidget,
 )
 from shiboken6 import isValid
 
 from pdcp_studio.app.i18n import translate
+from pdcp_studio.app.widgets.accessible_names import name_controls, plain_label
 from pdcp_studio.app.window.recent_files import RecentFiles, RecentMenu
 from pdcp_studio.app.window.status import StatusLine
 
 #: What a dropped file is, by suffix.
 DOCUMENT_SUFFIXES = (".json", ".pdcfg")
 CAPTURE_SUFFIXES = (".asc", ".blf", ".csv", ".log", ".trc", ".mf4", ".db")
-
-#: The controls that need an accessible name.
-CONTROLS = (QAbstractButton, QLineEdit, QComboBox, QAbstractSpinBox, QAbstractSlider,
-            QAbstractItemView, QTextEdit, QPlainTextEdit, QGraphicsView)
 
 #: A new window's controls are named this long after it is live (painted, in the user's
 #: hands: see name_when_live).
@@ -71,107 +52,6 @@ NAMES_AFTER_MS = 100
 GEOMETRY_KEY = "window/geometry"
 STATE_KEY = "window/state"
 LAYOUT_VERSION = 1
-
-
-def _plain(text: str) -> str:
-    return text.replace("&&", "\0").replace("&", "").replace("\0", "&").rstrip("…:. ").strip()
-
-
-def _form_label(widget: QWidget) -> str:
-    """The text of the label a form layout shows for ``widget``, if any."""
-    parent = widget.parentWidget()
-    layout = parent.layout() if parent is not None else None
-    if isinstance(layout, QFormLayout):
-        label = layout.labelForField(widget)
-        if isinstance(label, QLabel):
-            return _plain(label.text())
-    return ""
-
-
-def _buddy_label(widget: QWidget) -> str:
-    top = widget.window()
-    for label in top.findChildren(QLabel):
-        if label.buddy() is widget:
-            return _plain(label.text())
-    return ""
-
-
-def _qt_part_name(widget: QWidget) -> str:
-    """Names for the buttons Qt adds itself (menu bar and toolbar overflow)."""
-    names = {"qt_menubar_ext_button": translate("Desktop", "More menus"),
-             "qt_toolbar_ext_button": translate("Desktop", "More tools"),
-             "qt_tableview_cornerbutton": translate("Desktop", "Select all")}
-    return names.get(widget.objectName(), "")
-
-
-def _headers(view: QAbstractItemView) -> str:
-    """A table's or tree's column titles, as a name for it."""
-    model = view.model()
-    if model is None or not isinstance(view, QTableView | QTreeView):
-        return ""  # a list's model has no columns to name it by
-    try:
-        count = model.columnCount(QModelIndex())
-    except TypeError:  # a list model seen through a table: no column titles
-        return ""
-    titles = [str(model.headerData(c, Qt.Orientation.Horizontal) or "")
-              for c in range(min(count, 4))]
-    return ", ".join(t for t in titles if t and not t.isdigit())
-
-
-def _part_of_another_control(widget: QWidget) -> bool:
-    """Scroll bars, headers, a combo box's list and line edit: named by their owner."""
-    if isinstance(widget, QScrollBar | QHeaderView):
-        return True
-    parent = widget.parentWidget()
-    while parent is not None:
-        if isinstance(parent, QComboBox | QAbstractSpinBox):
-            return True
-        parent = parent.parentWidget()
-    return False
-
-
-def accessible_name(widget: QWidget) -> str:
-    """The best name for ``widget`` from what the user sees next to it."""
-    candidates: list[str] = [_qt_part_name(widget)]
-    if isinstance(widget, QAbstractButton):
-        candidates.append(_plain(widget.text()))
-    candidates += [_form_label(widget), _buddy_label(widget)]
-    if isinstance(widget, QLineEdit):
-        candidates.append(widget.placeholderText())
-    candidates += [_plain(widget.toolTip()), _plain(widget.statusTip()),
-                   _plain(widget.whatsThis())]
-    if isinstance(widget, QComboBox) and widget.count():
-        candidates.append(widget.itemText(0))
-    if isinstance(widget, QAbstractItemView):
-        candidates.append(_headers(widget))
-    dock = widget.parentWidget()
-    while dock is not None and not isinstance(dock, QDockWidget):
-        dock = dock.parentWidget()
-    if dock is not None:
-        candidates.append(_plain(dock.windowTitle()))
-    if isinstance(widget, QAbstractItemView | QTextEdit | QPlainTextEdit):
-        candidates.append(_plain(widget.window().windowTitle()))
-    return next((c for c in candidates if c), "")
-
-
-def name_controls(root: QWidget) -> list[QWidget]:
-    """Give every control under ``root`` an accessible name (and a description from its
-    tooltip) where it has none; returns the controls still without one."""
-    unnamed: list[QWidget] = []
-    for widget in [root, *root.findChildren(QWidget)]:
-        if not isinstance(widget, CONTROLS) or _part_of_another_control(widget):
-            continue
-        if not widget.accessibleName():
-            name = accessible_name(widget)
-            if name:
-                widget.setAccessibleName(name)
-            else:
-                unnamed.append(widget)
-        if not widget.accessibleDescription():
-            tip = widget.toolTip() or widget.statusTip()
-            if tip and _plain(tip) != widget.accessibleName():
-                widget.setAccessibleDescription(tip)
-    return unnamed
 
 
 def dropped_files(event: QDragEnterEvent | QDragMoveEvent | QDropEvent) -> list[Path]:
@@ -234,7 +114,7 @@ def _plain_follow(action: QAction, steady: QAction) -> None:
     window is being torn down: Qt says an action changed as it deletes it)."""
     if isValid(action) and isValid(steady):
         steady.setEnabled(action.isEnabled())
-        steady.setToolTip(_plain(action.text()))
+        steady.setToolTip(plain_label(action.text()))
 
 
 def steady_toolbar(window: QWidget, toolbar: QToolBar, undo: QAction,
@@ -254,7 +134,7 @@ def steady_toolbar(window: QWidget, toolbar: QToolBar, undo: QAction,
         steady = QAction(style.standardIcon(icon), text, window)
         steady.setObjectName(key)
         steady.setEnabled(action.isEnabled())
-        steady.setToolTip(_plain(action.text()))
+        steady.setToolTip(plain_label(action.text()))
         steady.triggered.connect(action.trigger)
         action.changed.connect(lambda a=action, s=steady: _plain_follow(a, s))
         toolbar.insertAction(action, steady)
