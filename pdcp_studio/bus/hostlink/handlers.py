@@ -16,7 +16,7 @@ from __future__ import annotations
 import logging
 import struct
 import time
-from typing import TYPE_CHECKING, Any
+from typing import TYPE_CHECKING, Any, Protocol
 
 from pdcp_studio import __version__
 from pdcp_studio.bus import events as ev
@@ -36,9 +36,19 @@ from pdcp_studio.protocol.hostlink_messages import Req, Status
 
 if TYPE_CHECKING:
     from pdcp_studio.bus.arbitrator.core import Arbitrator
-    from pdcp_studio.bus.hostlink.server import HostLinkServer
+    from pdcp_studio.bus.hostlink.monitor import MonitorFeed
 
 log = logging.getLogger(__name__)
+
+
+class ServerState(Protocol):
+    """What the handlers read of the server that owns them: its change and lost-event
+    counters and its raw-frame monitor (``bus/hostlink/server.py``)."""
+
+    changes: int
+    events_lost: int
+    monitor: MonitorFeed
+
 
 #: Largest parameter value moved over the link (the arbitrator's value buffer).
 MAX_VALUE = 512
@@ -80,7 +90,7 @@ def _status_of(err: Exception) -> Status:
 class Handlers:
     """The request handlers of one :class:`HostLinkServer`."""
 
-    def __init__(self, arbitrator: Arbitrator, server: HostLinkServer) -> None:
+    def __init__(self, arbitrator: Arbitrator, server: ServerState) -> None:
         self.arb = arbitrator
         self.server = server
         self.greeted = False
