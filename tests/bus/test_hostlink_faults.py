@@ -183,7 +183,7 @@ def test_a_dropped_port_is_reopened_with_one_calm_message(rig, tmp_path):
         relay = PtyRelay(server.slave_path)  # plugged in again (a new pty behind the name)
         link_path.unlink()
         link_path.symlink_to(relay.client_path)
-        assert wait_for(lambda: not session.conn._reopener.down, 5.0)
+        assert wait_for(lambda: not session.conn.line.down, 5.0)
         assert session.status()["devices"] == 4
         assert len([n for n in notices if "lost" in n]) == 1
     finally:
@@ -367,7 +367,7 @@ def test_the_arbitrator_reopens_its_dropped_port_with_one_calm_message(rig, tmp_
             port_name.symlink_to(cpath)
             bridge = _Bridge(cm, bm)
             os.close(cslave)
-            assert wait_for(lambda: not server._reopener.down, 5.0)
+            assert wait_for(lambda: not server.line.down, 5.0)
             assert session.status()["devices"] == 4  # greets again by itself
         lost = [r for r in caplog.records if "lost" in r.getMessage()]
         assert len(lost) == 1, [r.getMessage() for r in caplog.records]

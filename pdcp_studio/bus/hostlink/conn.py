@@ -18,13 +18,7 @@ import time
 from collections.abc import Callable
 from typing import Any, TypedDict
 
-from pdcp_studio.bus.hostlink.port import (
-    DEFAULT_BAUD,
-    Port,
-    Reopener,
-    open_port,
-    read_available,
-)
+from pdcp_studio.bus.hostlink.port import DEFAULT_BAUD, Port, SerialLine
 from pdcp_studio.errors import BusTimeoutError, PdcpError, TransportError
 from pdcp_studio.protocol import hostlink_messages as hm
 from pdcp_studio.protocol.hostlink_link import LinkEndpoint
@@ -88,9 +82,10 @@ class HostLinkConnection:
             self._link_options["ack_timeout"] = ack_timeout
         if max_attempts is not None:
             self._link_options["max_attempts"] = max_attempts
-        self._port_name = port if isinstance(port, str) else None
-        self.port: Port = (open_port(port, baudrate, self.where) if isinstance(port, str)
-                          else port)
+        self._stop = threading.Event()
+        self.line = SerialLine(port, baudrate, self.where, self._stop,
+                               on_notice or (lambda text: log.warning(text)),
+                               on_lost=self._lost, on_reopened=self._reopened)
         self.link = LinkEndpoint(host=True, **self._link_options)
         self.info: dict[str, Any] = {}
         self.greetings = 0
@@ -101,8 +96,6 @@ class HostLinkConnection:
         self._waiting: int | None = None
         self._v1 = V1Sniffer()
         self._v1_replies: queue.SimpleQueue[tuple[int, bytes]] = queue.SimpleQueue()
-        self._stop = threading.Event()
-        self._reopener = Reopener(self.where, on_notice or (lambda text: log.warning(text)))
         self._thread = threading.Thread(target=self._run, name="pdcp host link", daemon=True)
         self._thread.start()
         try:
@@ -110,6 +103,11 @@ class HostLinkConnection:
         except BaseException:
             self.close()
             raise
+
+    @property
+    def port(self) -> Port:
+        """The serial port now open (a new one after a reopen)."""
+        return self.line.port
 
     @property
     def closed(self) -> bool:
@@ -120,10 +118,7 @@ class HostLinkConnection:
             return
         self._stop.set()
         self._thread.join(timeout=2.0)
-        try:
-            self.port.close()
-        except Exception:
-            log.debug("closing the port failed", exc_info=True)
+        self.line.close()
 
     # -- greeting --------------------
     def greet(self) -> None:
@@ -213,7 +208,7 @@ class HostLinkConnection:
         name = code.name if isinstance(code, Req) else f"request 0x{int(code):02X}"
         if self._stop.is_set():
             raise TransportError(f"{self.where}: the host link is closed")
-        if self._reopener.down:
+        if self.line.down:
             raise TransportError(f"{self.where}: the serial port is lost; reopening it")
         message = bytes([code]) + bytes(body)
         if len(message) > hm.MAX_BODY + 1:
@@ -268,14 +263,8 @@ class HostLinkConnection:
 
     def _run(self) -> None:
         while not self._stop.is_set():
-            if self._reopener.down and not self._reopen():
-                continue
-            try:
-                data = read_available(self.port)
-            except Exception as err:
-                if self._stop.is_set():
-                    return
-                self._lose(err)
+            data = self.line.read()
+            if data is None:
                 continue
             now = time.monotonic()
             if data and not self._greeted:
@@ -300,31 +289,12 @@ class HostLinkConnection:
                     except Exception:
                         log.exception("%s: an event handler failed", self.where)
 
-    def _lose(self, err: object) -> None:
-        self._reopener.lost(err)
+    def _lost(self, err: object) -> None:
+        """The port failed: greet again once it is back; a waiting request fails now."""
         self._greeted = False
         if self._waiting is not None:
             self._replies.put(_Lost(f"the serial port was lost ({err})"))
-        if self._port_name is None:
-            self._stop.wait(0.2)
-            return
-        try:
-            self.port.close()
-        except Exception:
-            log.debug("closing the lost port failed", exc_info=True)
 
-    def _reopen(self) -> bool:
-        if self._port_name is None:
-            self._reopener.back()
-            return True
-        self._reopener.wait(self._stop)
-        if self._stop.is_set():
-            return False
-        try:
-            self.port = open_port(self._port_name, self.baudrate, self.where)
-        except Exception:
-            return False
+    def _reopened(self) -> None:
         with self._io:
             self.link = LinkEndpoint(host=True, **self._link_options)
-        self._reopener.back()
-        return True

@@ -3,7 +3,8 @@
 ``open_port("pty")`` makes a new pseudo-terminal (its ``slave_path`` is where the other end
 connects), anything else is a pyserial URL (``/dev/ttyUSB0``, ``COM3``, ``socket://…``).
 :class:`Reopener` paces attempts to reopen a dropped port (backoff 0.1 s doubling to 2 s) and
-says so once per outage, not once per attempt.
+says so once per outage, not once per attempt; :class:`SerialLine` is the read-or-reopen loop
+both ends of the link run on it (the PC's ``conn.py`` and the arbitrator's ``server.py``).
 """
 
 from __future__ import annotations
@@ -143,3 +144,70 @@ class Reopener:
         if self._down:
             self._down = False
             log.info("%s: the serial port is open again", self.what)
+
+
+class SerialLine:
+    """A serial port that survives being pulled out: each :meth:`read` gives what the port
+    has, and when it fails the port is closed, the outage said once and the port opened again
+    by name with backoff. The owner is told through ``on_lost(err)`` (before the port is
+    closed) and ``on_reopened()`` (before the line counts as back: make a fresh link state).
+    A port handed in, or a pseudo-terminal made here (``"pty"``), cannot be opened again by
+    name: its line waits instead until it reads again."""
+
+    def __init__(self, port: Port | str, baudrate: int, where: str, stop: threading.Event,
+                 report: Callable[[str], None], *, on_lost: Callable[[object], None],
+                 on_reopened: Callable[[], None]) -> None:
+        self._name = port if isinstance(port, str) and port != "pty" else None
+        self.port: Port = open_port(port, baudrate, where) if isinstance(port, str) else port
+        self.baudrate = baudrate
+        self.where = where
+        self.reopener = Reopener(where, report)
+        self._stop = stop
+        self._on_lost = on_lost
+        self._on_reopened = on_reopened
+
+    @property
+    def down(self) -> bool:
+        """The port was lost and is not open again yet."""
+        return self.reopener.down
+
+    def read(self) -> bytes | None:
+        """What the port has now (b"" when nothing came within its read timeout); None when
+        there is nothing to handle this round: the port is down, or it just failed."""
+        if self.reopener.down and not self._reopen():
+            return None
+        try:
+            return read_available(self.port)
+        except Exception as err:
+            if not self._stop.is_set():
+                self._lose(err)
+            return None
+
+    def close(self) -> None:
+        try:
+            self.port.close()
+        except Exception:
+            log.debug("%s: closing the port failed", self.where, exc_info=True)
+
+    def _lose(self, err: object) -> None:
+        self.reopener.lost(err)
+        self._on_lost(err)
+        if self._name is None:
+            self._stop.wait(0.2)
+            return
+        self.close()
+
+    def _reopen(self) -> bool:
+        if self._name is None:
+            self.reopener.back()
+            return True
+        self.reopener.wait(self._stop)
+        if self._stop.is_set():
+            return False
+        try:
+            self.port = open_port(self._name, self.baudrate, self.where)
+        except Exception:
+            return False
+        self._on_reopened()
+        self.reopener.back()
+        return True

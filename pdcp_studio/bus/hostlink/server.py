@@ -19,13 +19,7 @@ from typing import TYPE_CHECKING
 from pdcp_studio.bus import events as ev
 from pdcp_studio.bus.hostlink.handlers import Handlers
 from pdcp_studio.bus.hostlink.monitor import MonitorFeed
-from pdcp_studio.bus.hostlink.port import (
-    DEFAULT_BAUD,
-    Port,
-    Reopener,
-    open_port,
-    read_available,
-)
+from pdcp_studio.bus.hostlink.port import DEFAULT_BAUD, Port, SerialLine
 from pdcp_studio.protocol import hostlink_messages as hm
 from pdcp_studio.protocol.hostlink_link import LinkEndpoint
 from pdcp_studio.protocol.hostlink_v1 import V1Sniffer, encode_v1
@@ -53,8 +47,10 @@ class HostLinkServer:
         self.arbitrator = arbitrator
         self.name = name
         self.baudrate = baudrate
-        self._port_name = port if isinstance(port, str) else None
-        self.port: Port = open_port(port, baudrate) if isinstance(port, str) else port
+        self._stop = threading.Event()
+        self.line = SerialLine(port, baudrate, name, self._stop,
+                               lambda text: log.warning("%s", text),
+                               on_lost=lambda _err: self.lost_host(), on_reopened=self._reopened)
         self.link = LinkEndpoint(host=False)
         self.handlers = Handlers(arbitrator, self)
         self.monitor = MonitorFeed(getattr(self.port, "baudrate", 0) or baudrate)
@@ -62,10 +58,8 @@ class HostLinkServer:
         self.changes = 0
         self._lost_pending = False
         self._io = threading.Lock()
-        self._stop = threading.Event()
         self._requests: queue.SimpleQueue[bytes | None] = queue.SimpleQueue()
         self._events: queue.SimpleQueue[bytes] = queue.SimpleQueue()
-        self._reopener = Reopener(name, lambda text: log.warning("%s", text))
         self._v1 = V1Sniffer()
         self._unsubscribe = arbitrator.subscribe(self._on_event)
         self._line = threading.Thread(target=self._run_line, name=f"pdcp {name} line",
@@ -74,6 +68,11 @@ class HostLinkServer:
                                         daemon=True)
         self._line.start()
         self._worker.start()
+
+    @property
+    def port(self) -> Port:
+        """The serial port now open (a new one after a reopen)."""
+        return self.line.port
 
     @property
     def slave_path(self) -> str | None:
@@ -102,10 +101,7 @@ class HostLinkServer:
         self._requests.put(None)
         self._line.join(timeout=2.0)
         self._worker.join(timeout=5.0)
-        try:
-            self.port.close()
-        except Exception:
-            log.debug("closing the port failed", exc_info=True)
+        self.line.close()
 
     # -- sending --------------------
     def post(self, message: bytes) -> None:
@@ -141,14 +137,8 @@ class HostLinkServer:
     # -- the line thread --------------------
     def _run_line(self) -> None:
         while not self._stop.is_set():
-            if self._reopener.down and not self._reopen():
-                continue
-            try:
-                data = read_available(self.port)
-            except Exception as err:
-                if self._stop.is_set():
-                    return
-                self._lose(err)
+            data = self.line.read()
+            if data is None:
                 continue
             now = time.monotonic()
             if data:
@@ -202,32 +192,9 @@ class HostLinkServer:
                     except Exception as err:
                         log.debug("%s: write failed: %s", self.name, err)
 
-    def _lose(self, err: object) -> None:
-        self._reopener.lost(err)
-        self.lost_host()
-        if self._port_name is None or self._port_name == "pty":
-            self._stop.wait(0.2)
-            return
-        try:
-            self.port.close()
-        except Exception:
-            log.debug("closing the lost port failed", exc_info=True)
-
-    def _reopen(self) -> bool:
-        if self._port_name is None or self._port_name == "pty":
-            self._reopener.back()
-            return True
-        self._reopener.wait(self._stop)
-        if self._stop.is_set():
-            return False
-        try:
-            self.port = open_port(self._port_name, self.baudrate)
-        except Exception:
-            return False
+    def _reopened(self) -> None:
         with self._io:
             self.link = LinkEndpoint(host=False)
-        self._reopener.back()
-        return True
 
     # -- the request thread --------------------
     def _run_requests(self) -> None:
