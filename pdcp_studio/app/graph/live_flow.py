@@ -81,6 +81,9 @@ class LiveFlow(QObject):
         self._changed.update(stale)
         if self._changed:
             self.apply()
+        if not self._live:  # nothing sends any more: no tick until data comes again
+            self._flow_timer.stop()
+            return
         live = [item for link, item in self._link_items.items() if link.output in self._live]
         if self.animated(len(live)):
             self.phase = (self.phase + 1.5) % 70.0
