@@ -201,6 +201,21 @@ def test_serial_without_the_host_link_client_says_so(monkeypatch):
         open_session("serial:/dev/ttyUSB0")
 
 
+def test_serial_without_the_whole_host_link_package_says_so(monkeypatch):
+    class HidePackage:  # a build without bus/hostlink/: its import finds nothing
+        @staticmethod
+        def find_spec(name, path=None, target=None):
+            if name == "pdcp_studio.bus.hostlink":
+                raise ModuleNotFoundError(f"No module named {name!r}", name=name)
+            return None
+
+    for name in ("pdcp_studio.bus.hostlink", "pdcp_studio.bus.hostlink.client"):
+        monkeypatch.delitem(sys.modules, name, raising=False)
+    monkeypatch.setattr(sys, "meta_path", [HidePackage, *sys.meta_path])
+    with pytest.raises(TransportError, match="host-link client is not available"):
+        open_session("serial:/dev/ttyUSB0")
+
+
 def test_serial_delegates_to_the_host_link_client(monkeypatch):
     import types
 

@@ -38,8 +38,9 @@ def _opener(spec: BusSpec) -> Callable[..., BusSession]:
     try:
         module = importlib.import_module(module_name)
     except ModuleNotFoundError as err:
-        if err.name != module_name:
-            raise
+        missing = err.name or ""
+        if not missing or not (module_name == missing or module_name.startswith(missing + ".")):
+            raise  # the transport is there, something it imports is not: not this case
         raise TransportError(f"{spec.url}: {what} is not available in this build, so "
                              f"{spec.kind}: buses cannot be opened") from err
     opener: Callable[..., BusSession] = getattr(module, name)
