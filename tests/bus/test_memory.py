@@ -186,3 +186,11 @@ def test_a_process_dying_between_writes_leaves_old_or_new(tmp_path):
         got = MemoryStore(path, capacity=16384).read()
         new = cut >= len(steps) - 1
         assert got == (collection(3, 200) if new else collection(2, 200)), cut
+
+
+def test_a_slot_holds_exactly_the_largest_collection_the_codec_accepts():
+    """The memory keeps its own copy of the codec's limit (so an empty memory needs no codec
+    at start-up); the two must never drift apart."""
+    from pdcp_studio.storage import config_codec
+
+    assert M.SLOT_CAPACITY == config_codec.MAX_INPUT_BYTES

@@ -264,10 +264,10 @@ def test_transactions_and_the_duty_cycle_never_overlap(rig):
             Change.from_plan(session.preview("clear"))))
         t.start()
         assert inside.wait(5)
-        assert not arb._plan_lock.acquire(timeout=0.01)
+        assert not arb._state.wire_lock.acquire(timeout=0.01)
         t.join(10)
-        assert arb._plan_lock.acquire(timeout=1)
-        arb._plan_lock.release()
+        assert arb._state.wire_lock.acquire(timeout=1)
+        arb._state.wire_lock.release()
     finally:
         del arb._do_link
 

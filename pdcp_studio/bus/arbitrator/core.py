@@ -206,8 +206,8 @@ class Arbitrator:
         self.name = name
         self.profile_layer = profile_layer
         self.retries = retries
-        self.frame_events = frame_events
-        self.channel_events = channel_events
+        self._frame_events = frame_events  # fixed for its life: sent frames here, heard
+        # ones by the dispatcher (``show_frame``)
         self.memory = memory if isinstance(memory, MemoryStore) else MemoryStore(memory)
         if autoconfigure is not None and self.memory.read_policy()["autoconfigure"] != \
                 autoconfigure:  # ``--no-autoconfigure``: the flag sets the stored policy
@@ -217,10 +217,8 @@ class Arbitrator:
         self.requests = RequestEngine(self._send, response_timeout=response_timeout,
                                       retries=retries)
         self._state = SystemState()
-        self._lock = self._state.lock  # the parts' state and the system
-        self._plan_lock = self._state.wire_lock  # wire work on links: plans, set-ups, transactions
         self._subscribers = ev.Subscribers(name)
-        self._jobs = JobPool(SETUP_WORKERS, name, self._lock)
+        self._jobs = JobPool(SETUP_WORKERS, name, self._state.lock)
         self._frames = FrameFeed(self._emit)
         self._stop = threading.Event()
         self._wake = threading.Event()
@@ -235,7 +233,8 @@ class Arbitrator:
         self.nodes = NodeTable(*node_ids)
         self.presence = PresenceTracker()
         self._wire(now, reset_on_start=reset_on_start, startup_quiet_s=startup_quiet_s,
-                   duty_quiet_s=duty_quiet_s, startup_max_wait_s=startup_max_wait_s)
+                   duty_quiet_s=duty_quiet_s, startup_max_wait_s=startup_max_wait_s,
+                   channel_events=channel_events)
         if isinstance(bus, ReportsAdapterState):
             bus.on_state = self.dispatch.adapter_state
         self._thread = threading.Thread(target=self.dispatch.run, name=f"pdcp {name}",
@@ -255,7 +254,7 @@ class Arbitrator:
             self.dispatch.claim_started(None)
 
     def _wire(self, now: float, *, reset_on_start: bool, startup_quiet_s: float,
-              duty_quiet_s: float, startup_max_wait_s: float) -> None:
+              duty_quiet_s: float, startup_max_wait_s: float, channel_events: bool) -> None:
         """Make the parts and connect their ports: the one place they meet. Methods a test
         replaces on the instance (``read_memory``, ``_do_link`` and the ``add_link`` it calls,
         ``interlock_renew_s``) are asked each time, through a lambda."""
@@ -291,8 +290,8 @@ class Arbitrator:
         self.dispatch = Dispatcher(
             state, self.conn, self.claim, self.nodes, self.presence, self.requests,
             links=self.links, setup=self.setup, profile=self.profile,
-            show_frame=self._frames.frame if self.frame_events else None,
-            channel_events=self.channel_events, reset_on_claim=reset_on_start,
+            show_frame=self._frames.frame if self._frame_events else None,
+            channel_events=channel_events, reset_on_claim=reset_on_start,
             send=self._send_quiet, error=self._error, flush_errors=self._flush_errors,
             crashes=LimitedLog(log, f"{name}: "), emit=self._emit, wake=self._stir,
             stop=self._stop, name=name)
@@ -369,12 +368,12 @@ class Arbitrator:
 
     def node_id_of(self, key: DeviceKey) -> int | None:
         """The node ID of a bound device (None if it is not bound)."""
-        with self._lock:
+        with self._state.lock:
             return self.nodes.node_of.get(DeviceKey(*key))
 
     def channel_node_id(self, ref: ChannelRef) -> int | None:
         """The node ID an output channel sends its data with (None if it has none)."""
-        with self._lock:
+        with self._state.lock:
             return self.nodes.output_id(ref)
 
     @property
@@ -460,12 +459,12 @@ class Arbitrator:
 
     def _busy(self) -> bool:
         """Binds held or deferred, set-ups or jobs under way."""
-        with self._lock:
+        with self._state.lock:
             return bool(self.setup.under_way() or self.nodes.held or self.nodes.deferred
                         or self._jobs.busy())
 
     def _settled(self) -> bool:
-        with self._lock:
+        with self._state.lock:
             return not self._busy() and self.profile.settled(self.profile_layer)
 
     def wait_settled(self, timeout: float) -> bool:
@@ -502,7 +501,7 @@ class Arbitrator:
         use links for them. A new Beacon Interval takes effect for presence at once.
         """
         key = DeviceKey(*key)
-        with self._lock:
+        with self._state.lock:
             device = self._state.system.device(key)
             ch = device.channels.get(channel) if device and channel else None
         scope = "device" if channel == 0 else ch.direction.value if ch else ""
@@ -513,7 +512,7 @@ class Arbitrator:
         self._learn(key, param, channel, bytes(value))
 
     def _learn(self, key: DeviceKey, param: int, channel: int, value: bytes) -> None:
-        with self._lock:
+        with self._state.lock:
             device = self._state.system.device(key)
             if device is not None:
                 learn_value(device, param, channel, value)
@@ -581,7 +580,7 @@ class Arbitrator:
 
     def _do_link(self, op: str, link: Link) -> None:  # (a test slows a transaction down here)
         """One link action of a change (none when the link is already so)."""
-        with self._lock:
+        with self._state.lock:
             exists = self._state.system.has_link(link)
         if op == "add" and not exists:
             self.add_link(link)
@@ -612,14 +611,14 @@ class Arbitrator:
                                  "another arbitrator is on it or it is still being heard)")
         arbitration_id, data = message.encode()
         if message.mode is Mode.ARBITRATOR and message.node_id:
-            with self._lock:
+            with self._state.lock:
                 self.nodes.asked(message.node_id, time.monotonic())
         # On a bus that echoes, the claim accounts for the copies (arb_claim), not the
         # connection's filter: a copy later than the filter waits must not pass for another
         # arbitrator's frame.
         self.claim.sent(arbitration_id, data, time.monotonic())
         self.conn.send(arbitration_id, data, filter_echo=False)
-        if self.frame_events:
+        if self._frame_events:
             self._frames.frame(arbitration_id, data, time.time())
 
     def _send_quiet(self, message: Message) -> None:
@@ -634,10 +633,10 @@ class Arbitrator:
     def reset(self, keep_memory: bool = True) -> None:
         """Restart the arbitrator: forget the bus, reset every device (they bind again) and
         run start-up again; ``keep_memory=False`` erases the stored configuration first."""
-        with self._plan_lock:
+        with self._state.wire_lock:
             if not keep_memory:
                 self.memory.erase()
-            with self._lock:
+            with self._state.lock:
                 node_ids = list(self.nodes.by_id)
                 now = time.monotonic()
                 self.presence.forget(self.nodes.channel_ids, now)
@@ -658,7 +657,7 @@ class Arbitrator:
 
     def devices_present(self) -> list[DeviceKey]:
         """Keys of the devices on the bus and set up."""
-        with self._lock:
+        with self._state.lock:
             return [k for k, d in self._state.system.devices.items() if d.present]
 
     def wait_for(self, predicate: Callable[[], bool], timeout: float) -> bool:

@@ -1,6 +1,6 @@
 """Frame events: every frame heard or sent, decoded for display, in the order of the frames.
 
-The decoder (``bus/trace/monitor.py``) learns the bus from the frames, so none may be skipped;
+The decoder (``bus/trace/decoder.py``) learns the bus from the frames, so none may be skipped;
 but decoding costs, and while no subscriber shows frames (a session opening a simulated
 prosthesis nobody watches yet) the frames wait undecoded — ``FRAME_BACKLOG`` at most, then
 they are decoded in a batch — and are decoded, in order, before the next one is shown.

@@ -41,7 +41,7 @@ from pdcp_studio.protocol.crc import crc16_ccitt_false
 from pdcp_studio.protocol.hostlink_messages import Event, Req, Status
 
 if TYPE_CHECKING:
-    from pdcp_studio.bus.trace.monitor import FrameDecoder
+    from pdcp_studio.bus.trace.decoder import FrameDecoder
 
 log = logging.getLogger(__name__)
 
@@ -194,7 +194,7 @@ class HostLinkSession(BusSession):
             log.warning("%s: a malformed event 0x%02X: %s", self.url, code, err)
 
     def _frames(self, body: bytes) -> None:
-        from pdcp_studio.bus.trace.monitor import FrameDecoder
+        from pdcp_studio.bus.trace.decoder import FrameDecoder
 
         frames, dropped = hm.unpack_frames(body)
         if dropped:

@@ -115,9 +115,6 @@ class Session(BusSession):
             self._unsubscribe()
         except Exception:
             log.debug("unsubscribe failed", exc_info=True)
-        self._close_parts()
-
-    def _close_parts(self) -> None:
         self.arbitrator.close()
 
 

@@ -20,7 +20,7 @@ from pdcp_studio.bus.session.urls import BusSpec
 from pdcp_studio.bus.transaction import Change, TransactionResult
 from pdcp_studio.errors import PdcpError, TransportError
 from pdcp_studio.model.refs import DeviceKey
-from pdcp_studio.model.system import Device, Link, System
+from pdcp_studio.model.system import Device, System
 
 if TYPE_CHECKING:
     from pdcp_studio.bus.arbitrator.core import Arbitrator
@@ -185,28 +185,16 @@ class SimSession(Session):
         self._changed()
         return run_script(self, script, self.initial_system, progress, cancel)
 
-    # -- changes through the session also leave the initial state ---------------------------
-    def add_link(self, link: Link) -> None:
-        self._changed()
-        super().add_link(link)
-
-    def remove_link(self, link: Link) -> None:
-        self._changed()
-        super().remove_link(link)
-
+    # -- every change through the session (links, parameters: all carried out) leaves the
+    # -- initial state
     def carry_out(self, change: Change, progress: ProgressFn | None = None,
                   cancel: threading.Event | None = None) -> TransactionResult:
         self._changed()
         return super().carry_out(change, progress, cancel)
 
-    def set_parameter(self, key: DeviceKey, param: int, channel: int, value: bytes, *,
-                      timeout: float | None = None) -> None:
-        self._changed()
-        super().set_parameter(key, param, channel, value, timeout=timeout)
-
-    def _close_parts(self) -> None:
+    def _release(self) -> None:
         try:
-            self.arbitrator.close()
+            super()._release()
         finally:
             self.host.close()
 

@@ -296,20 +296,17 @@ class ProfileDriver:
         ports = self._ports
         notes: list[str] = []
         keys = interlocked_devices(snapshot, snapshot.links, plan.final_links)
-        with ports.state.lock:
-            self.plan_running += 1  # busy from the first hold on: the bus is not settled
-        try:
-            with holding(ports.interlock, keys, notes) as held:
-                self.apply_plan(plan, interlock=describe_interlock(held))
-        except HoldRefused as err:
-            ports.error(f"plan {plan.mode} not written: {err}; the prosthesis was left as it "
-                        "was", "plan")
-            return False
-        finally:
-            with ports.state.lock:
-                self.plan_running -= 1
-            for note in notes:  # a release cut off by closing the session is no news
-                (log.debug if ports.closed() else log.warning)("%s: %s", ports.name, note)
+        with self.running():  # busy from the first hold on: the bus is not settled
+            try:
+                with holding(ports.interlock, keys, notes) as held:
+                    self.apply_plan(plan, interlock=describe_interlock(held))
+            except HoldRefused as err:
+                ports.error(f"plan {plan.mode} not written: {err}; the prosthesis was left "
+                            "as it was", "plan")
+                return False
+            finally:
+                for note in notes:  # a release cut off by closing the session is no news
+                    (log.debug if ports.closed() else log.warning)("%s: %s", ports.name, note)
         return True
 
     def _policy_for_plans(self) -> bool:
