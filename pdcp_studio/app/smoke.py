@@ -57,7 +57,6 @@ def _dialogs(window: Any) -> list[tuple[str, Callable[[], QWidget]]]:
 def exercise(window: Any) -> dict[str, str]:
     """Open and close every dialog and dock of ``window``; name → "ok" or what failed."""
     from pdcp_studio.app.widgets.accessible_names import name_controls
-    from pdcp_studio.app.window.controllers import desktop as window_desktop
 
     steps: dict[str, str] = {}
 
@@ -83,7 +82,7 @@ def exercise(window: Any) -> dict[str, str]:
             dialog.deleteLater()
         step(name, open_close)
 
-    window_desktop.monitor_dock(window)  # the monitor exists even before a bus made it
+    window.bus_docks.monitor_dock()  # the monitor exists even before a bus made it
     for dock in window.findChildren(QDockWidget):
         def show_dock(dock: QDockWidget = dock) -> None:
             dock.show()

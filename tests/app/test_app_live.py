@@ -153,7 +153,7 @@ def test_connect_hot_swap_and_live_edits_with_fake_session(window, fake, qtbot):
     assert fake.written == []
     # Data on a link lights it up.
     fake.send_data(ChannelRef(*FLEXOR, 1))
-    qtbot.waitUntil(lambda: ChannelRef(*FLEXOR, 1) in window.scene.live_outputs(), timeout=3000)
+    qtbot.waitUntil(lambda: ChannelRef(*FLEXOR, 1) in window.scene.flow.outputs(), timeout=3000)
     window.live.disconnect_bus()
     assert fake.closed or window.live.bridge is None
     assert window.mode_label.text() == "Disconnected from sim:fake"

@@ -279,15 +279,15 @@ def test_a_zoom_on_a_large_bus_redraws_what_is_seen_first(make_window, qtbot):
     scene.render_pending()
     view.set_zoom(1.0)
     view.centerOn(0, 0)
-    qtbot.waitUntil(lambda: not scene._render_timer.isActive(), timeout=5000)
-    waiting = set(scene._to_render)
+    qtbot.waitUntil(lambda: not scene.pictures.timer.isActive(), timeout=5000)
+    waiting = set(scene.pictures.waiting)
     assert waiting  # far cards keep their old picture for now…
     seen = view.mapToScene(view.viewport().rect()).boundingRect()
     assert not any(seen.intersects(scene.cards[k].sceneBoundingRect()) for k in waiting)
     assert all(c.has_picture() for c in scene.cards.values())
     far = max(waiting, key=lambda k: scene.cards[k].pos().x() + scene.cards[k].pos().y())
     view.centerOn(scene.cards[far].sceneBoundingRect().center())  # …until the view goes there
-    qtbot.waitUntil(lambda: far not in scene._to_render, timeout=5000)
+    qtbot.waitUntil(lambda: far not in scene.pictures.waiting, timeout=5000)
     assert len(scene.cards[far].texts()) > 1  # drawn again: its rows, not the summary
 
 

@@ -86,15 +86,15 @@ def test_a_backlog_of_live_frames_is_taken_a_slice_per_turn_of_the_event_loop(qt
     dock.add_frames(frames)
     dock._tick()
     assert dock.model.rowCount() == INGEST_SLICE  # one slice, the rest after other events
-    assert len(dock._incoming) == len(frames) - INGEST_SLICE
+    assert len(dock.feed.incoming) == len(frames) - INGEST_SLICE
     qtbot.waitUntil(lambda: dock.model.rowCount() == len(frames), timeout=5000)
-    assert not dock._incoming and dock.frames_seen == len(frames)
+    assert not dock.feed.incoming and dock.frames_seen == len(frames)
     assert [f.timestamp for f in dock.shown_rows()] == [f.timestamp for f in frames]
     other = MonitorDock()  # flush() still takes everything at once
     qtbot.addWidget(other)
     other.add_frames(frames)
     other.flush()
-    assert other.model.rowCount() == len(frames) and not other._incoming
+    assert other.model.rowCount() == len(frames) and not other.feed.incoming
 
 
 @pytest.mark.gui

@@ -134,12 +134,11 @@ def _build(make_window, qtbot) -> dict[str, set[str]]:
     from pdcp_studio.app.dialogs.profile_tree_editor import ProfileTreeDialog
     from pdcp_studio.app.dialogs.write_config_dialog import WriteConfigDialog
     from pdcp_studio.app.documents.recovery import RecoveryDialog
-    from pdcp_studio.app.window.controllers.desktop import monitor_dock
 
     window = make_window(TRANSRADIAL, size=(1300, 850))
     with qtbot.waitSignal(window.live.connected, timeout=20000):
         window.connect_bus("sim:transradial")
-    monitor_dock(window)
+    window.bus_docks.monitor_dock()
     parts = {"main window": _texts(window)}
     for menu in window.findChildren(QMenu):
         menu.aboutToShow.emit()  # menus that fill themselves when opened

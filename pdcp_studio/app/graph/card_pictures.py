@@ -58,8 +58,8 @@ class PictureQueue(QObject):
         if budget_s is not None:
             sight = self._sight
             near = [k for k in keys if sight.intersects(waiting[k].sceneBoundingRect())]
-            keys = near + [k for k in keys if k not in set(near)
-                           and not waiting[k].has_picture()]
+            seen = set(near)
+            keys = near + [k for k in keys if k not in seen and not waiting[k].has_picture()]
         start = time.perf_counter()
         for key in keys:
             card = waiting.pop(key)

@@ -246,14 +246,6 @@ class BusScene(QGraphicsScene):
         are drawn soon."""
         self.pictures.look_at(sight)
 
-    @property
-    def _to_render(self) -> dict[DeviceKey, DeviceItem]:
-        return self.pictures.waiting
-
-    @property
-    def _render_timer(self) -> QTimer:
-        return self.pictures.timer
-
     @contextmanager
     def full_detail(self) -> Iterator[None]:
         """Every card painting its rows as vectors for a while (an export: read at its
@@ -440,13 +432,6 @@ class BusScene(QGraphicsScene):
     def flow_phase(self) -> float:
         """Where the dashes of a flowing link are (links draw them there)."""
         return self.flow.phase
-
-    def note_data(self, output: ChannelRef) -> None:
-        """An output sent data just now (from the live session): animate its links."""
-        self.flow.note_data(output)
-
-    def live_outputs(self) -> set[ChannelRef]:
-        return self.flow.outputs()
 
     # -- gestures: selection and moves ----------------------------------------------
     def _on_qt_selection(self) -> None:

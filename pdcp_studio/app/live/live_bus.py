@@ -108,7 +108,7 @@ class LiveController(QObject):
         self.connecting: Worker | None = None
         self._refreshing = False
         self._again = False
-        #: A callable given each output ref that sent data (the scene's ``note_data``).
+        #: A callable given each output ref that sent data (the scene's ``flow.note_data``).
         self.on_data: Any = None
         #: A callable giving the graph's shape (width / height) for the first layout.
         self.layout_shape: Any = None

@@ -4,7 +4,7 @@ When connecting finds another bus arbitrator (the prosthesis's own control unit)
 must not arbitrate; it may still show the traffic. :class:`PassiveMonitor` opens the
 python-can bus in the interface's listen-only mode where it has one (as ``monitor --bus``
 does), wraps it so that a send is impossible, decodes every frame off the GUI thread with a
-passive :class:`~pdcp_studio.bus.trace.monitor.FrameDecoder` (it learns the node map from what it
+passive :class:`~pdcp_studio.bus.trace.decoder.FrameDecoder` (it learns the node map from what it
 hears) and hands batches of ``FrameSeen`` to the monitor dock.
 
 Signals: ``frames(list[FrameSeen])`` (one batch per ``BATCH_S``), ``stopped(str)`` (the

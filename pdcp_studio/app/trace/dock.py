@@ -301,11 +301,6 @@ class MonitorDock(QDockWidget):
         self.feed.add(frames)
 
     @property
-    def _incoming(self) -> list[Any]:
-        """The live frames queued for the next tick."""
-        return self.feed.incoming
-
-    @property
     def frames_seen(self) -> int:
         """Live frames counted since the last clear, kept or not."""
         return self.feed.frames_seen

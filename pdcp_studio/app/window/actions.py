@@ -11,18 +11,16 @@ from __future__ import annotations
 
 from collections.abc import Callable, Mapping
 from dataclasses import dataclass
-from typing import NamedTuple, cast
+from typing import NamedTuple
 
-from PySide6 import QtCore
 from PySide6.QtCore import QObject
 from PySide6.QtGui import QAction, QKeySequence, QUndoStack
 from PySide6.QtWidgets import QMainWindow, QMenu, QToolBar
 
 from pdcp_studio.app.docks.plan_panel import OPERATIONS
-from pdcp_studio.app.i18n import translate
+from pdcp_studio.app.i18n import QT_TRANSLATE_NOOP, translate
+from pdcp_studio.app.wizards import TASKS as wizard_tasks
 
-#: Marks a text for translation (Qt's, typed: it gives the text back).
-QT_TRANSLATE_NOOP = cast(Callable[[str, str], str], QtCore.QT_TRANSLATE_NOOP)
 #: The translation context of the window's own action texts.
 CONTEXT = "WindowActions"
 
@@ -39,26 +37,33 @@ class Task(NamedTuple):
     description: str  # context "StartView"
 
 
-TASKS = (
-    Task("fitting", QT_TRANSLATE_NOOP("Wizards", "&New fitting…"),
-         QT_TRANSLATE_NOOP("Wizards", "Connect, scan, check, link and store a prosthesis "
-                                      "step by step"),
-         QT_TRANSLATE_NOOP("StartView", "New fitting"),
-         QT_TRANSLATE_NOOP("StartView", "Connect to a prosthesis, check it, link its parts "
-                                        "and store the result, step by step.")),
-    Task("replace", QT_TRANSLATE_NOOP("Wizards", "&Replace a part…"),
-         QT_TRANSLATE_NOOP("Wizards", "Swap a part and link the new one in its place step "
-                                      "by step"),
-         QT_TRANSLATE_NOOP("StartView", "Replace a part"),
-         QT_TRANSLATE_NOOP("StartView", "Swap a part and link the new one in its place, "
-                                        "with how alike it is said in words.")),
-    Task("restore", QT_TRANSLATE_NOOP("Wizards", "Re&store a configuration…"),
-         QT_TRANSLATE_NOOP("Wizards", "Put a configuration file or an earlier fitting back "
-                                      "on the prosthesis"),
-         QT_TRANSLATE_NOOP("StartView", "Restore a configuration"),
-         QT_TRANSLATE_NOOP("StartView", "Put a configuration file or an earlier fitting "
-                                        "back on the prosthesis.")),
-)
+#: What the Tasks menu and the start page say of each guided task, by its id.
+_TASK_WORDS: dict[str, tuple[str, str, str, str]] = {
+    "fitting": (
+        QT_TRANSLATE_NOOP("Wizards", "&New fitting…"),
+        QT_TRANSLATE_NOOP("Wizards", "Connect, scan, check, link and store a prosthesis "
+                                     "step by step"),
+        QT_TRANSLATE_NOOP("StartView", "New fitting"),
+        QT_TRANSLATE_NOOP("StartView", "Connect to a prosthesis, check it, link its parts "
+                                       "and store the result, step by step.")),
+    "replace": (
+        QT_TRANSLATE_NOOP("Wizards", "&Replace a part…"),
+        QT_TRANSLATE_NOOP("Wizards", "Swap a part and link the new one in its place step "
+                                     "by step"),
+        QT_TRANSLATE_NOOP("StartView", "Replace a part"),
+        QT_TRANSLATE_NOOP("StartView", "Swap a part and link the new one in its place, "
+                                       "with how alike it is said in words.")),
+    "restore": (
+        QT_TRANSLATE_NOOP("Wizards", "Re&store a configuration…"),
+        QT_TRANSLATE_NOOP("Wizards", "Put a configuration file or an earlier fitting back "
+                                     "on the prosthesis"),
+        QT_TRANSLATE_NOOP("StartView", "Restore a configuration"),
+        QT_TRANSLATE_NOOP("StartView", "Put a configuration file or an earlier fitting "
+                                       "back on the prosthesis.")),
+}
+
+#: The guided tasks, in the order and with the ids the wizards declare them (app/wizards).
+TASKS = tuple(Task(task_id, *_TASK_WORDS[task_id]) for task_id in wizard_tasks)
 
 #: Plan shortcuts, in the order of the Plan menu.
 PLAN_KEYS = ("Ctrl+1", "Ctrl+2", "Ctrl+3", "Ctrl+4", "Ctrl+5", "Ctrl+6", "Ctrl+7")

@@ -98,7 +98,7 @@ class MainWindow(QMainWindow):
         self.view = GraphView(self.scene, self)
         self.setCentralWidget(self.view)
         self.live = LiveController(self.doc, self)
-        self.live.on_data = self.scene.note_data
+        self.live.on_data = self.scene.flow.note_data
         self.live.layout_shape = lambda: self.scene.layout_aspect
         self._is_ready = False
         self.recovery = recovery

@@ -195,16 +195,6 @@ def show_about_qt(window: QWidget) -> None:
     _help().show_about_qt(window)
 
 
-def monitor_dock(window: QMainWindow) -> Any:
-    """The window's monitor dock, made now if no bus has made it yet."""
-    from pdcp_studio.app.window.bus_docks import BusDocks
-
-    docks = getattr(window, "bus_docks", None)
-    if not isinstance(docks, BusDocks):
-        raise TypeError(f"{type(window).__name__} has no bus docks")
-    return docks.monitor_dock()
-
-
 class Desktop(QObject):
     """The desktop conventions of one main ``window`` (see the module docstring).
 
