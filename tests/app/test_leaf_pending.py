@@ -91,8 +91,8 @@ def test_the_patient_reference_belongs_to_the_prosthesis(tmp_path):
 
 
 def test_the_report_fills_in_the_session(qapp):
-    from pdcp_studio.app.documents.document import load_profile_tree
     from pdcp_studio.app.report import FittingInfo, report_html
+    from pdcp_studio.storage.profile_trees import load_profile_tree
 
     system = _linked()
     system.devices[HAND].present = False

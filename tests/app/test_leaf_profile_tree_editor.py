@@ -135,8 +135,8 @@ def test_dialog_asks_before_discarding_unsaved_edits(qtbot, resources, monkeypat
 
 def test_new_trees_are_offered_in_the_user_profile_folder(tmp_path, monkeypatch):
     from pdcp_studio.app.dialogs.profile_tree_editor import default_save_path
-    from pdcp_studio.app.documents import document
     from pdcp_studio.model.profile_tree import ProfileTree
+    from pdcp_studio.storage import profile_trees as document
 
     monkeypatch.setattr(document, "user_profiles_dir", lambda: tmp_path / "profiles")
     path = default_save_path(ProfileTree("Acme hands / 2026"))
@@ -149,7 +149,7 @@ def test_new_trees_are_offered_in_the_user_profile_folder(tmp_path, monkeypatch)
 def test_the_shipped_trees_are_two_named_trees_with_no_vendor_reserved_node(qtbot):
     """Issue 11: the prosthetic tree and the thesis test tree are shown apart, by name, and
     none of their shipped nodes is marked vendor-reserved."""
-    from pdcp_studio.app.documents.document import load_profile_trees
+    from pdcp_studio.storage.profile_trees import load_profile_trees
 
     trees = load_profile_trees(user_dir=False)
     dialog = ProfileTreeDialog(trees=trees)
@@ -174,7 +174,7 @@ def test_the_shipped_trees_are_two_named_trees_with_no_vendor_reserved_node(qtbo
 
 
 def test_a_vendors_odd_node_added_to_the_prosthetic_tree_is_still_marked(qtbot):
-    from pdcp_studio.app.documents.document import load_profile_trees
+    from pdcp_studio.storage.profile_trees import load_profile_trees
 
     prosthesis = load_profile_trees(user_dir=False)[0]
     editor = ProfileTreeEditor(prosthesis)

@@ -11,12 +11,12 @@ import pytest
 from PySide6.QtGui import QColor, QImage
 from PySide6.QtPdf import QPdfDocument
 
-from pdcp_studio.app.documents.document import load_profile_tree
 from pdcp_studio.app.report import configuration_checksum, write_report
 from pdcp_studio.engine import configuration_from_system
 from pdcp_studio.model.configuration import ConfigCollection
 from pdcp_studio.protocol.crc import crc16_ccitt_false
 from pdcp_studio.storage import config_codec, system_file
+from pdcp_studio.storage.profile_trees import load_profile_tree
 
 pytestmark = pytest.mark.gui
 
@@ -92,9 +92,9 @@ def test_the_report_speaks_plainly_with_the_detail_in_its_own_section(systems_di
     report's body; the engineer's codes are in the Technical detail section at the end."""
     import re
 
-    from pdcp_studio.app.documents.document import load_profile_trees, tree_for
     from pdcp_studio.app.report import FittingInfo, action_words, report_html
     from pdcp_studio.engine import plan_autoconfigure
+    from pdcp_studio.storage.profile_trees import load_profile_trees, tree_for
 
     system = system_file.load_path(systems_dir / "transradial.json")
     plan_autoconfigure(system).apply(system)

@@ -100,8 +100,8 @@ def test_a_mixed_system_has_every_channel_named_everywhere(make_window, tmp_path
 
 
 def test_the_precedence_between_trees_is_the_devices_then_the_system():
-    from pdcp_studio.app.documents.document import load_profile_trees
     from pdcp_studio.model.profile_tree import ProfileNames
+    from pdcp_studio.storage.profile_trees import load_profile_trees
 
     trees = load_profile_trees(user_dir=False)
     hand, emg, button = [0x2220, 0x2240], [0x4222], [0x2200, 0x2110]

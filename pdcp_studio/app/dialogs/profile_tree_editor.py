@@ -77,8 +77,8 @@ def save_tree(tree: ProfileTree, path: str | Path) -> None:
 
 def default_save_path(tree: ProfileTree) -> Path:
     """Where a new tree is offered to be saved: the user profile folder, which the app merges
-    into its profile names at start-up (``document.load_profile_tree``)."""
-    from pdcp_studio.app.documents.document import user_profiles_dir
+    into its profile names at start-up (``storage.profile_trees.load_profile_tree``)."""
+    from pdcp_studio.storage.profile_trees import user_profiles_dir
 
     stem = "".join(c if c.isalnum() or c in "-_" else "-" for c in tree.name).strip("-")
     folder = user_profiles_dir()

@@ -20,7 +20,6 @@ Signals
 
 from __future__ import annotations
 
-import json
 import logging
 from collections.abc import Iterable
 from dataclasses import replace
@@ -31,11 +30,12 @@ from PySide6.QtCore import QObject, QTimer, Signal
 from PySide6.QtGui import QUndoStack
 
 from pdcp_studio.app.documents import live_sync
-from pdcp_studio.errors import ModelError, ProfileError
+from pdcp_studio.errors import ModelError
 from pdcp_studio.model import profile as prof
 from pdcp_studio.model.profile_tree import ProfileNames, ProfileTree
 from pdcp_studio.model.refs import ChannelRef, DeviceKey
 from pdcp_studio.model.system import Channel, Device, Link, System
+from pdcp_studio.storage.profile_trees import load_profile_trees, tree_for
 
 if TYPE_CHECKING:
     from pdcp_studio.app.live.session_bridge import SessionBridge
@@ -44,10 +44,6 @@ log = logging.getLogger(__name__)
 
 Selection = DeviceKey | ChannelRef | Link | None
 Position = tuple[float, float]
-
-#: Profile trees shipped in resources/profiles: the prosthetic tree, then the thesis test
-#: tree. Each stands alone (their values overlap): a system is named by the one that fits it.
-BUILTIN_TREES = ("prosthesis.json", "thesis-tests.json")
 
 #: Undo commands that only move cards (a live view is not dirty for them).
 MOVE_COMMANDS = frozenset({"MoveDeviceCommand", "MoveDevicesCommand"})
@@ -65,57 +61,6 @@ DEVICE_FIELDS = frozenset({
     "bind_timeout", "fw_version", "hw_version", "device_type", "device_profile",
     "ean_low", "ean_high",
 })
-
-
-def user_profiles_dir() -> Path | None:
-    """Where user and vendor profile trees live (the user's data folder, ``profiles``)."""
-    from pdcp_studio.paths import user_profiles_dir as folder
-
-    return folder()
-
-
-def load_profile_trees(extra: Iterable[Path] = (), *,
-                       user_dir: bool = True) -> list[ProfileTree]:
-    """The named trees: the shipped ones, then the user's and vendors' (a user tree with a
-    shipped tree's name is the user's edit of it and takes its place). A broken user file
-    is logged, not fatal."""
-    from pdcp_studio.paths import profiles_dir
-
-    files = [profiles_dir() / name for name in BUILTIN_TREES]
-    udir = user_profiles_dir() if user_dir else None
-    if udir is not None and udir.is_dir():
-        files += sorted(udir.glob("*.json"))
-    files += list(extra)
-    trees: list[ProfileTree] = []
-    for path in files:
-        try:
-            tree = ProfileTree.from_json(json.loads(Path(path).read_text("utf-8")), str(path))
-        except (OSError, ValueError, ProfileError) as err:
-            log.warning("profile tree %s skipped: %s", path, err)
-            continue
-        same = next((i for i, t in enumerate(trees) if t.name == tree.name), None)
-        if same is None:
-            trees.append(tree)
-        else:
-            trees[same] = tree
-    return trees
-
-
-def load_profile_tree(extra: Iterable[Path] = (), *, user_dir: bool = True,
-                      system: System | None = None) -> ProfileTree:
-    """The names of ``system``'s profiles from every named tree (:func:`tree_for`); without a
-    system the prosthetic tree comes first."""
-    return tree_for(load_profile_trees(extra, user_dir=user_dir), system)
-
-
-def tree_for(trees: list[ProfileTree], system: System | None) -> ProfileNames:
-    """The names of ``system``'s profiles from all the named trees, each profile from the
-    tree that knows it (:class:`ProfileNames`: a system mixing thesis test devices and
-    prosthetic devices is named by both shipped trees)."""
-    devices = [] if system is None else [
-        [p for ch in device.channels.values() for p in (ch.profile, ch.terminal_profile)]
-        for device in system.devices.values()]
-    return ProfileNames(trees, devices)
 
 
 class Document(QObject):
