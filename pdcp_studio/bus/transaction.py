@@ -124,6 +124,9 @@ class Change(MutableRecord):
     configuration: ConfigCollection | None = None
     policy: Policy | None = None
     plan: Plan | None = None
+    #: Store the links after the change as the arbitrator's configuration, in the same
+    #: transaction (``--store``): resolved into ``configuration`` by the preview.
+    store: bool = False
 
     @classmethod
     def from_plan(cls, plan: Plan, action: str = "") -> Change:
@@ -320,20 +323,70 @@ def describe_interlock(held: list[DeviceKey], refused: DeviceKey | None = None) 
 
 
 class NotRestorable(PdcpError):
-    """A fitting-history entry does not say what it left (an interrupted transaction)."""
+    """A fitting-history entry cannot be put back: it was interrupted (what it left is not
+    known), or a part it needs is not on the bus (``missing`` names them)."""
+
+    def __init__(self, message: str, missing: Sequence[DeviceKey] = ()) -> None:
+        super().__init__(message)
+        self.missing = list(missing)
 
 
-def restore_change(entry: dict[str, Any], links_now: Sequence[Link]) -> Change:
-    """The Change that puts back what a fitting-history ``entry`` left: its links after, the
-    stored configuration read after it, its policy after (one restore for the CLI and app)."""
+def parts_needed(entry: dict[str, Any]) -> list[DeviceKey]:
+    """The parts a restore of ``entry`` writes to: the ends of its links after, and the
+    parts whose values it recorded."""
+    needed = {r.device for d in entry.get("links_after") or []
+              for r in (ref_from_json(d["output"]), ref_from_json(d["input"]))}
+    for where in (entry.get("parameters_after") or {}):
+        vid, pid, serial = where.split("#", 1)[0].split("/")
+        needed.add(DeviceKey(int(vid), int(pid), int(serial)))
+    return sorted(needed)
+
+
+def restore_writes(recorded: dict[str, dict[str, str]], system: System
+                   ) -> list[ParameterWrite]:
+    """The parameter writes that put back the named values ``recorded`` (an entry's
+    ``parameters_after``) on the parts of ``system`` that differ; absent parts are skipped
+    (:func:`parts_needed` refuses them first)."""
+    from pdcp_studio.model import param_names
+
+    writes: list[ParameterWrite] = []
+    for where, wanted in sorted(recorded.items()):
+        head, _, index = where.partition("#")
+        vid, pid, serial = (int(x) for x in head.split("/"))
+        key = DeviceKey(vid, pid, serial)
+        device = system.device(key)
+        if device is None or not device.present:
+            continue
+        obj = device.channels.get(int(index)) if index else device
+        if obj is None:
+            continue
+        now = param_names.values(obj)
+        differ = {name: value for name, value in wanted.items() if now.get(name) != value}
+        for param, data in param_names.writes_for(obj, differ):
+            writes.append(ParameterWrite(key, param, int(index or 0), data))
+    return writes
+
+
+def restore_change(entry: dict[str, Any], system: System) -> Change:
+    """The Change that puts back what a fitting-history ``entry`` left on the prosthesis
+    ``system`` (as read now): its links after, its parts' parameter values, the stored
+    configuration read after it and its policy after (one restore for the CLI and app).
+    NotRestorable for an interrupted entry, or when a part it needs is absent (before
+    anything is written)."""
     from pdcp_studio.storage import config_codec
 
     if entry.get("links_after") is None:
         raise NotRestorable(f"history: entry {entry['id']} was interrupted; what it left is "
                             "not known (restore the entry before it)")
+    missing = [k for k in parts_needed(entry)
+               if (d := system.device(k)) is None or not d.present]
+    if missing:
+        raise NotRestorable(f"history: entry {entry['id']} needs parts that are not on the "
+                            "bus: " + ", ".join(str(k) for k in missing), missing)
     after = [link_from_json(d) for d in entry["links_after"]]
-    change = Change.links_to(list(links_now), after, f"history restore {entry['id']}",
+    change = Change.links_to(list(system.links), after, f"history restore {entry['id']}",
                              reason=f"as after fitting history entry {entry['id']}")
+    change.parameters = restore_writes(entry.get("parameters_after") or {}, system)
     cfg = entry.get("configuration_after")
     if cfg is not None:
         change.configuration = config_codec.from_json(cfg)

@@ -81,7 +81,6 @@ def run_bus(args: argparse.Namespace) -> int:
     from pdcp_studio.cli.scan import open_bus_session
     from pdcp_studio.errors import EngineError
 
-    tree = load_tree(args.profiles)
     config = load_config(args.config) if args.mode in CONFIG_MODES and args.config else None
     session = open_bus_session(args.bus, memory=args.memory)
     try:
@@ -89,10 +88,12 @@ def run_bus(args: argparse.Namespace) -> int:
             plan = session.preview(args.mode, config)
         except EngineError as err:
             raise BadInput(f"{args.config or args.bus}: {err}") from err
-        if not args.json:
-            print(summary(plan.to_text(tree)), end="")
+        if not args.json:  # the plan's head line and notes; its actions are in the preview
+            print(plan.to_text(load_tree(args.profiles)).splitlines()[0])
+            for note in plan.notes:
+                print(f"note: {note}")
         change = Change.from_plan(plan, f"apply {args.mode}")
-        return carry_out(session, change, args, quiet_preview=True,
+        return carry_out(session, change, args,
                          json_doc=lambda _preview, _result: plan.to_json())
     finally:
         session.close()

@@ -28,10 +28,22 @@ EXIT_OK = 0
 EXIT_FAILED = 1
 
 
-def add_road_arguments(p: argparse.ArgumentParser, *, json_flag: bool = True) -> None:
-    """``--yes``, ``--patient`` and (optionally) ``--json`` for a command that changes."""
+def add_road_arguments(p: argparse.ArgumentParser, *, json_flag: bool = True,
+                       store: bool = True) -> None:
+    """``--yes``, ``--patient``, (optionally) ``--store``/``--no-store`` and ``--json`` for a
+    command that changes a prosthesis."""
     p.add_argument("--yes", action="store_true",
                    help="carry the change out (without it, only the preview is printed)")
+    if store:
+        group = p.add_mutually_exclusive_group()
+        group.add_argument("--store", dest="store", action="store_true", default=None,
+                           help="also store the links after the change as the arbitrator's "
+                                "configuration, in the same transaction, so the next "
+                                "power-on keeps them (the default for apply, param set and "
+                                "policy)")
+        group.add_argument("--no-store", dest="store", action="store_false",
+                           help="leave the stored configuration as it is (the preview says "
+                                "what the next power-on will then undo)")
     p.add_argument("--patient", metavar="REF",
                    help="the patient reference to record with the change (free text)")
     if json_flag:
@@ -51,20 +63,24 @@ def ask(question: str) -> bool:
 
 
 def carry_out(session: BusSession, change: Change, args: argparse.Namespace, *,
-              json_doc: JsonDoc | None = None,
-              quiet_preview: bool = False) -> int:
+              json_doc: JsonDoc | None = None, default_store: bool = True) -> int:
     """Preview ``change`` on ``session``, confirm it (``--yes`` or the terminal), transact,
-    print the outcome. Returns the exit status."""
+    print the outcome. Returns the exit status.
+
+    ``--store``/``--no-store`` (``args.store``; ``default_store`` when neither is given)
+    decides whether the links after the change become the stored configuration in the same
+    transaction. The preview says what the change does and what the next power-on does, in
+    words; the codes come last, under "Technical detail".
+    """
     from pdcp_studio.bus.session.api import preview_change
 
+    store = getattr(args, "store", None)
+    change.store = default_store if store is None else bool(store)
     want_json = bool(getattr(args, "json", False))
     preview = preview_change(session, change)
+    change = preview.change
     if not want_json:
-        lines = preview.lines()
-        if quiet_preview:  # the caller printed the plan: add only what it does not say
-            lines = [ln for ln in lines if ln.strip().startswith(
-                ("motion interlock", "links after", "nothing to change", "autoconfigure"))]
-        for line in lines:
+        for line in preview.lines():
             print(line)
     if preview.empty:
         if want_json:
@@ -98,6 +114,10 @@ def carry_out(session: BusSession, change: Change, args: argparse.Namespace, *,
 def _doc(json_doc: JsonDoc | None, preview: ChangePreview,
          result: TransactionResult | None) -> dict[str, Any]:
     doc = json_doc(preview, result) if json_doc is not None else {}
+    if preview.effect is not None:
+        doc["effect"] = preview.effect.to_json()
+        doc["next_power_on"] = preview.effect.power_on_json()
+    doc["store"] = preview.change.store
     doc.setdefault("action", preview.change.action)
     doc.setdefault("bus", preview.url)
     doc["written"] = bool(result is not None and result.written)

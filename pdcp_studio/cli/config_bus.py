@@ -47,7 +47,7 @@ def add_bus_commands(actions: argparse._SubParsersAction[argparse.ArgumentParser
                                            "configuration (the thesis's save)")
     save.add_argument("--bus", required=True, metavar="URL", help="the bus (contracts §3)")
     save.add_argument("--memory", metavar="FILE", help="PDCP Studio's own arbitrator memory")
-    add_road_arguments(save)
+    add_road_arguments(save, store=False)
     save.set_defaults(func=run_save)
 
 
@@ -120,7 +120,7 @@ def run_write(args: argparse.Namespace) -> int:
             raise BadInput(f"not written to {args.bus}: add --yes to write {args.file} "
                            "(the difference is shown above)")
         change = Change(f"config write {args.file}", configuration=collection)
-        code = carry_out(session, change, args, quiet_preview=True)
+        code = carry_out(session, change, args, default_store=False)
         if code == 0:
             back = session.read_configuration()
             links = sum(len(c.links) for c in back.configurations)
@@ -143,6 +143,6 @@ def run_save(args: argparse.Namespace) -> int:
         if not args.json:
             _print_change(session.read_configuration(), collection)
         return carry_out(session, Change("config save", configuration=collection), args,
-                         quiet_preview=True)
+                         default_store=False)
     finally:
         session.close()

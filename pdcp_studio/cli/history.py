@@ -17,8 +17,8 @@ from typing import TYPE_CHECKING, Any
 from pdcp_studio.cli.main import BadInput
 
 if TYPE_CHECKING:
-    from pdcp_studio.bus.transaction import Change
-    from pdcp_studio.model.system import Link
+    from pdcp_studio.model.refs import DeviceKey
+    from pdcp_studio.model.system import System
     from pdcp_studio.storage.history import History
 
 #: One fitting-history entry as the archive stores it (storage/history.py).
@@ -36,8 +36,16 @@ def add_subparser(subparsers: argparse._SubParsersAction[argparse.ArgumentParser
     show.add_argument("id", type=int, metavar="ID")
     show.add_argument("--json", action="store_true", help="print the entry as JSON")
     show.set_defaults(func=run_show)
-    restore = actions.add_parser("restore", help="put back what an entry left (a new "
-                                                  "previewed transaction)")
+    restore = actions.add_parser(
+        "restore", help="put back the state recorded AFTER entry ID (a new previewed "
+                        "transaction)",
+        description="Brings the prosthesis back to the state recorded after fitting history "
+                    "entry ID: its links, its parts' parameter values, the stored "
+                    "configuration and the policy. The preview says in words what will "
+                    "change; it is written only with --yes. Refused before anything is "
+                    "written (exit 1) when a part it needs is not on the bus. By default the "
+                    "stored configuration recorded with the entry is put back; --store stores "
+                    "the restored links instead, --no-store leaves it as it is.")
     restore.add_argument("id", type=int, metavar="ID")
     restore.add_argument("--bus", required=True, metavar="URL", help="the prosthesis")
     restore.add_argument("--memory", metavar="FILE",
@@ -154,19 +162,9 @@ def run_show(args: argparse.Namespace) -> int:
     return 0
 
 
-def restore_change(entry: Entry, links_now: list[Link]) -> Change:
-    """bus.transaction.restore_change, with an interrupted entry as bad input."""
-    from pdcp_studio.bus.transaction import NotRestorable
-    from pdcp_studio.bus.transaction import restore_change as change_for
-
-    try:
-        return change_for(entry, links_now)
-    except NotRestorable as err:
-        raise BadInput(str(err)) from err
-
-
 def run_restore(args: argparse.Namespace) -> int:
     from pdcp_studio.bus.session.urls import check_bus_url
+    from pdcp_studio.bus.transaction import NotRestorable, restore_change
     from pdcp_studio.cli.change_road import carry_out
     from pdcp_studio.cli.scan import open_bus_session
 
@@ -174,10 +172,51 @@ def run_restore(args: argparse.Namespace) -> int:
     entry = _entry(args.id)
     session = open_bus_session(args.bus, memory=args.memory)
     try:
-        change = restore_change(entry, session.system().links)
-        return carry_out(session, change, args)
+        system = session.system()
+        try:
+            change = restore_change(entry, system)
+        except NotRestorable as err:
+            if not err.missing:
+                raise BadInput(str(err)) from err
+            _refuse_missing(entry, system, err.missing, args.bus)
+            return 1
+        if args.store is False:  # --no-store: the stored configuration stays as it is
+            change.configuration = None
+        return carry_out(session, change, args, default_store=False)
     finally:
         session.close()
+
+
+def _refuse_missing(entry: Entry, system: System, missing: list[DeviceKey], bus: str) -> None:
+    """Say which parts a restore needs and lacks, and what a replacement would do."""
+    import sys
+
+    from pdcp_studio.bus.transaction import link_from_json
+    from pdcp_studio.engine import configuration_from_system
+    from pdcp_studio.engine.modes import plan_replacements
+    from pdcp_studio.model.names import Names
+
+    names = Names(system)
+    print(f"pdcp-studio: history restore {entry['id']}: refused, nothing was written: it needs "
+          + ", ".join(f"{names.part(k)} [{k}]" for k in missing)
+          + ", which " + ("is" if len(missing) == 1 else "are") + " not on the bus.",
+          file=sys.stderr)
+    wanted = system.copy()
+    for link in list(wanted.links):
+        wanted.remove_link(link)
+    links = [link_from_json(d) for d in entry.get("links_after") or []]
+    for link in links:
+        if wanted.channel(link.output) is not None and wanted.channel(link.input) is not None:
+            wanted.add_link(link, check=False)
+    plan = plan_replacements(system, configuration_from_system(wanted))
+    if plan.added:
+        print("The replacement plan would instead make:", file=sys.stderr)
+        for a in plan.added:
+            print(f"  {names.link(a.link)}  ({a.reason})", file=sys.stderr)
+        print(f"Carry it out with: pdcp-studio apply replacements --bus {bus}", file=sys.stderr)
+    else:
+        print("No part on the bus can take its place; plug it in and try again.",
+              file=sys.stderr)
 
 
 def run_verify(args: argparse.Namespace) -> int:

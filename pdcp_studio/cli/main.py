@@ -33,6 +33,7 @@ COMMAND_MODULES = (
     "apply",
     "policy",
     "history",
+    "param",
     "check",
     "scan",
     "sim",

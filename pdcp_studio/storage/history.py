@@ -388,9 +388,13 @@ def list_json(entry: dict[str, Any]) -> dict[str, Any]:
 
 def entry_from_result(result: TransactionResult, change: Change, *, bus: str,
                       operator: str | None = None, patient: str | None = None,
-                      configuration_after: Any = None) -> dict[str, Any]:
+                      configuration_after: Any = None, effect: Any = None,
+                      parameters_after: dict[str, dict[str, str]] | None = None
+                      ) -> dict[str, Any]:
     """The history entry for a finished transaction (without ``id``); ``configuration_after``
-    is the stored configuration read after it (what ``history restore`` writes back)."""
+    is the stored configuration read after it and ``parameters_after`` the parts' named
+    values then (what ``history restore`` writes back); ``effect`` (``engine.effect.Effect``)
+    is what the change did and what the next power-on does, in words."""
     from pdcp_studio.storage import config_codec
 
     plan: dict[str, Any] = {"actions": change.plan_json()}
@@ -422,4 +426,7 @@ def entry_from_result(result: TransactionResult, change: Change, *, bus: str,
         "policy_after": doc["policy_after"],
         "outcome": {"status": result.status.value, "step": result.step,
                     "reason": result.reason, "notes": list(result.notes)},
+        "effect": effect.to_json() if effect is not None else None,
+        "next_power_on": effect.power_on_json() if effect is not None else None,
+        "parameters_after": parameters_after,
     }

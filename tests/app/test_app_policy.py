@@ -86,7 +86,7 @@ def test_turning_autoconfigure_off_is_a_recorded_transaction(live, qtbot, tmp_pa
     assert title == "Turn autoconfigure off"
     assert preview.change.policy.autoconfigure is False
     assert preview.change.links == [] and preview.change.configuration is None
-    assert any("autoconfigure: on → off" in line for line in preview.lines())
+    assert any("(autoconfigure): on → off" in line for line in preview.lines())
     # Written: the prosthesis has it now, read back through the session.
     assert _bus_policy(live).autoconfigure is False
     # Recorded in the fitting history.

@@ -224,7 +224,10 @@ def test_preview_names_the_held_devices(rig):
     session, _ = rig
     preview = preview_change(session, Change.from_plan(session.preview("clear")))
     assert preview.held == [D2] and not preview.empty
-    assert any("motion interlock: held 1 device (2/2/5)" in ln for ln in preview.lines())
+    lines = preview.lines()
+    held = next(ln for ln in lines if "held still" in ln)
+    assert "Control unit board" in held and "2/2/5" not in held  # names in words
+    assert any(ln.strip() == "held 2/2/5" for ln in lines)  # the code in the detail
 
 
 def test_after_a_hot_swap_the_snapshot_agrees_with_the_devices():

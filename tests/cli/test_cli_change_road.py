@@ -66,7 +66,8 @@ def test_apply_without_yes_prints_the_plan_and_writes_nothing(bus, capsys):
     assert main(bus.args("apply", "clear")) == 0
     out, err = capsys.readouterr()
     assert "Plan: clear — add 0, remove 3" in out
-    assert "motion interlock: held 1 device (2/2/5)" in out
+    assert "these parts are held still: Control unit board" in out
+    assert "held 2/2/5" in out.split("Technical detail:")[1]
     assert "not written" in err and "--yes" in err
     assert len(bus.links(capsys)) == 3
     assert history_entries() == []
@@ -178,7 +179,7 @@ def test_policy_is_shown_and_changed_as_a_recorded_transaction(bus, capsys):
     assert main(bus.args("policy", "--json")) == 0
     assert json.loads(capsys.readouterr().out)["autoconfigure"] is True
     assert main(bus.args("policy", "--autoconfigure", "off")) == 0
-    assert "autoconfigure: on → off" in capsys.readouterr().out
+    assert "(autoconfigure): on → off" in capsys.readouterr().out
     assert MemoryStore(bus.memory).read_policy() == {"autoconfigure": True}
     assert main(bus.args("policy", "--autoconfigure", "off", "--yes", "--json")) == 0
     doc = json.loads(capsys.readouterr().out)

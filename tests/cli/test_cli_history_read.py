@@ -62,5 +62,6 @@ def test_show_of_a_real_change_without_crcs_says_not_recorded(tmp_path, monkeypa
     if entry["config_crc_before"] is None and entry["config_crc_after"] is None:
         assert crc.strip() == "stored configuration CRC: not recorded"
     else:
-        assert crc.strip() == (f"stored configuration CRC: {entry['config_crc_before']} → "
-                               f"{entry['config_crc_after']}")
+        before, after = (entry[k] or "not recorded"
+                         for k in ("config_crc_before", "config_crc_after"))
+        assert crc.strip() == f"stored configuration CRC: {before} → {after}"

@@ -405,7 +405,7 @@ class HistoryPanel(QWidget):
         from pdcp_studio.bus.transaction import NotRestorable, restore_change
 
         try:
-            change = restore_change(entry, list(bus.links))  # the CLI's restore too
+            change = restore_change(entry, bus)  # the CLI's restore too
         except NotRestorable as err:
             self.main.error_box(self.tr("Restore"), str(err))
             return False

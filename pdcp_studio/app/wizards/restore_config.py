@@ -208,7 +208,7 @@ def restore_step(task: TaskWizard, system: System,
         lines = [_t("From the file {0}.").format(path.name)]
     else:
         entry = source[1]
-        change = restore_change(entry, system.links)
+        change = restore_change(entry, system)
         lines = [_t("As the fitting of {0} left the prosthesis (fitting history entry {1}).")
                  .format(str(entry.get("time", ""))[:19].replace("T", " "), entry["id"])]
     after = change.links_after(system.links)

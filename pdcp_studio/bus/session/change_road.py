@@ -9,6 +9,7 @@ what belongs to the PC.
 
 from __future__ import annotations
 
+import copy
 import threading
 from collections.abc import Callable
 from dataclasses import dataclass, field
@@ -21,24 +22,32 @@ from pdcp_studio.bus.transaction import (
     Status,
     TransactionResult,
     config_crc,
-    describe_interlock,
     interlocked_devices,
 )
+from pdcp_studio.engine import configuration_from_system
+from pdcp_studio.engine.effect import Effect, effect_of, system_after
 from pdcp_studio.model.config_diff import ConfigDiff, diff_configurations
 from pdcp_studio.model.configuration import ConfigCollection
+from pdcp_studio.model.names import Names
+from pdcp_studio.model.param_names import snapshot
 from pdcp_studio.model.refs import DeviceKey
-from pdcp_studio.model.system import Link
+from pdcp_studio.model.system import Link, System
+
+Translate = Callable[[str], str]
 
 if TYPE_CHECKING:
     from pdcp_studio.bus.session.base import BusSession
     from pdcp_studio.storage.history import History
 
-__all__ = ["ChangePreview", "ConfirmFn", "ProgressFn", "preview_change", "run_transaction"]
+__all__ = ["ChangePreview", "ConfirmFn", "ProgressFn", "names_for", "preview_change",
+           "resolve_store", "run_transaction"]
 
 
 @dataclass
 class ChangePreview:
-    """What a change will do, shown before the user confirms it."""
+    """What a change will do, shown before the user confirms it: the change (its stored
+    configuration resolved when it is to be stored) and its :class:`Effect`, the one source
+    of every text about it."""
 
     change: Change
     url: str
@@ -49,6 +58,7 @@ class ChangePreview:
     policy_before: Policy
     held: list[DeviceKey]
     devices: list[DeviceKey] = field(default_factory=list)
+    effect: Effect | None = None
 
     @property
     def empty(self) -> bool:
@@ -56,45 +66,57 @@ class ChangePreview:
         links_same = set(self.links_before) == set(self.links_after)
         cfg_same = self.config_diff is None or self.config_diff.equal
         pol_same = self.change.policy is None or self.change.policy == self.policy_before
-        return links_same and cfg_same and pol_same and not self.change.parameters
+        params_same = (self.effect is None and not self.change.parameters) or (
+            self.effect is not None and not self.effect.parameters)
+        return links_same and cfg_same and pol_same and params_same
 
-    def lines(self) -> list[str]:
-        """The preview in plain words (the plan's reasons, the configuration difference)."""
+    def lines(self, tr: Translate | None = None) -> list[str]:
+        """The preview in plain words: what changes, what the next power-on does, and the
+        codes last, under "Technical detail"."""
+        t: Translate = tr or (lambda text: text)
         out = [f"{self.change.action} on {self.url}:"]
-        current = set(self.links_before)
-        for a in self.change.links:
-            if (a.op == "add") == (a.link in current):
-                continue
-            (current.add if a.op == "add" else current.discard)(a.link)
-            sign = "+" if a.op == "add" else "-"
-            out.append(f"  {sign} link {a.link}" + (f"  ({a.reason})" if a.reason else ""))
-        for p in self.change.parameters:
-            out.append(f"  set parameter 0x{p.param:02X} of {p.device} channel {p.channel} "
-                       f"to {p.value.hex() or '(empty)'}")
-        if self.config_diff is not None:
-            diff = self.config_diff.lines("stored now", "to store")
-            out += [f"  stored configuration: {line}" for line in diff]
-            if not diff:
-                out.append("  stored configuration: unchanged")
-        if self.change.policy is not None:
-            old, new = self.policy_before.autoconfigure, self.change.policy.autoconfigure
-            out.append(f"  autoconfigure: {'on' if old else 'off'} → {'on' if new else 'off'}")
-        if self.empty:
-            out.append("  nothing to change")
-        elif self.change.moves:
-            out.append(f"  motion interlock: {describe_interlock(self.held)} "
-                       + (f"({', '.join(str(k) for k in self.held)}) " if self.held else "")
-                       + "while the change is made")
-        out.append(f"  links after: {len(self.links_after)}")
+        if self.effect is None:
+            return out
+        reasons = {a.link: a.reason for a in self.change.links if a.reason}
+        out += [f"  {line}" for line in self.effect.lines(t, reasons)]
+        out += [f"  {line}" for line in self.effect.power_on_lines(t)]
+        technical = self.effect.technical()
+        if technical:
+            out.append("  " + t("Technical detail:"))
+            out += [f"    {line}" for line in technical]
         return out
 
 
 ConfirmFn = Callable[[ChangePreview], bool]
 
 
-def preview_change(session: BusSession, change: Change) -> ChangePreview:
+def resolve_store(system: System, change: Change) -> Change:
+    """``change`` with ``store`` carried out: the links (and parameters) after it become
+    the stored configuration it writes. A change that moves nothing stores nothing."""
+    if not change.store:
+        return change
+    after = change.links_after(system.links)
+    if set(after) == set(system.links) and not change.parameters:
+        return change
+    written = system_after(system, after, change.parameters)
+    resolved = copy.copy(change)
+    resolved.configuration = ConfigCollection([configuration_from_system(written)])
+    return resolved
+
+
+def names_for(system: System, tr: Translate | None = None) -> Names:
+    """The names every text of a change uses (the profile names from the named trees)."""
+    from pdcp_studio.storage.profile_trees import load_profile_trees, tree_for
+
+    return Names(system, profiles=tree_for(load_profile_trees(), system),
+                 tr=tr or (lambda text: text))
+
+
+def preview_change(session: BusSession, change: Change, *,
+                   names: Names | None = None) -> ChangePreview:
     """The preview of ``change`` on ``session``'s prosthesis as it is now."""
     system = session.system()
+    change = resolve_store(system, change)
     before = system.links
     after = change.links_after(before)
     config_before = session.read_configuration()
@@ -102,8 +124,15 @@ def preview_change(session: BusSession, change: Change) -> ChangePreview:
             if change.configuration is not None else None)
     held = interlocked_devices(system, before, after, change.parameters) if change.moves else []
     devices = sorted(k for k, d in system.devices.items() if d.present)
+    policy_before = session.read_policy()
+    effect = effect_of(system, links_after=after, parameters=change.parameters,
+                       config_before=config_before, config_after=change.configuration,
+                       policy_before=policy_before.autoconfigure,
+                       policy_after=(change.policy.autoconfigure
+                                     if change.policy is not None else None),
+                       held=held, names=names or names_for(system), crc=config_crc)
     return ChangePreview(change, session.url, before, after, config_before,
-                         diff, session.read_policy(), held, devices)
+                         diff, policy_before, held, devices, effect)
 
 
 def run_transaction(session: BusSession, change: Change, *, operator: str | None = None,
@@ -125,6 +154,7 @@ def run_transaction(session: BusSession, change: Change, *, operator: str | None
         preview = preview_change(session, change)
     except Exception as err:  # any failure to read is the preview's
         return TransactionResult(Status.FAILED, change.action, "preview", str(err))
+    change = preview.change  # its stored configuration resolved (``store``)
     if preview.empty:
         before = preview.links_before
         crc = config_crc(preview.config_before)
@@ -171,8 +201,14 @@ def run_transaction(session: BusSession, change: Change, *, operator: str | None
                 after = session.read_configuration()
             except Exception:  # the record still says what happened, without the contents
                 after = None
+            try:
+                values = snapshot(d for d in session.system().devices.values() if d.present)
+            except Exception:  # the record still says what happened, without the values
+                values = None
             entry = entry_from_result(result, change, bus=bus, operator=operator,
-                                      patient=patient, configuration_after=after)
+                                      patient=patient, configuration_after=after,
+                                      effect=preview.effect if result.written else None,
+                                      parameters_after=values)
             result.history_id = archive.finish(token, entry)
         except Exception as err:  # the change stands; its announcement is recovered later
             result.notes.append(f"not recorded in the fitting history: {err}")
