@@ -567,3 +567,17 @@ def _links(docs: list[dict[str, Any]] | None) -> list[Link] | None:
     if docs is None:
         return None
     return [Link(_ref(d["output"]), _ref(d["input"])) for d in docs]
+
+
+def parameter_words(system: System, writes: Sequence[ParameterWriteLike],
+                    names: Names | None = None, tr: Translate = _same, *,
+                    only: str | None = None) -> list[str]:
+    """Parameter writes on ``system`` (as it is before them) in the effect's own words, one
+    line per named value that changes ("Hand, Power grip: control mode position →
+    velocity"): for texts about a change that is not previewed whole — a staged edit in
+    the pending changes, an undo step. ``only``: just this named value (``type``,
+    ``profile``, ``descriptor``…)."""
+    changes = [p for p in _parameter_changes(system, writes) if only is None or p.name == only]
+    effect = Effect([], [], [], changes, None, None, False, True, True, [], PowerOn())
+    effect.names = _names_for(effect, names or Names(system), system)
+    return [effect.parameter_text(p, tr) for p in changes]

@@ -183,6 +183,14 @@
             <source>Linked {v0} → {v1}</source>
             <translation>Verbunden: {v0} → {v1}</translation>
         </message>
+        <message>
+            <source>Cannot link: {0}</source>
+            <translation>Kann nicht verbunden werden: {0}</translation>
+        </message>
+        <message>
+            <source>Release to link {0} → {1}</source>
+            <translation>Loslassen, um {0} → {1} zu verbinden</translation>
+        </message>
     </context>
     <context>
         <name>CanPage</name>
@@ -923,6 +931,22 @@
             <source>Write to prosthesis</source>
             <translation>Auf die Prothese schreiben</translation>
         </message>
+        <message>
+            <source>Store as the prosthesis's configuration (keeps this after the next power-on)</source>
+            <translation>Als Konfiguration der Prothese speichern (bleibt nach dem nächsten Einschalten erhalten)</translation>
+        </message>
+        <message>
+            <source>Working out what the next power-on does…</source>
+            <translation>Es wird ermittelt, was das nächste Einschalten bewirkt…</translation>
+        </message>
+        <message>
+            <source>Technical detail</source>
+            <translation>Technische Einzelheiten</translation>
+        </message>
+        <message>
+            <source>The change could not be previewed again: {0}</source>
+            <translation>Die Änderung konnte nicht erneut angezeigt werden: {0}</translation>
+        </message>
     </context>
     <context>
         <name>ConnectDialog</name>
@@ -1147,6 +1171,279 @@ Das Öffnen von {1} beendet diese Verbindung.</translation>
             <location filename="../../pdcp_studio/app/window_files.py" line="177" />
             <source>Save the changes to {title}?</source>
             <translation>Änderungen an {title} speichern?</translation>
+        </message>
+    </context>
+    <context>
+        <name>Effect</name>
+        <message>
+            <source>acknowledgement timeout</source>
+            <translation>Bestätigungs-Zeitlimit</translation>
+        </message>
+        <message>
+            <source>beacon interval</source>
+            <translation>Beacon-Intervall</translation>
+        </message>
+        <message>
+            <source>bind request timeout</source>
+            <translation>Zeitlimit der Bindungsanfrage</translation>
+        </message>
+        <message>
+            <source>{bits}-bit {kind}</source>
+            <translation>{bits}-Bit {kind}</translation>
+        </message>
+        <message>
+            <source>{what} {old} → {new}</source>
+            <translation>{what} {old} → {new}</translation>
+        </message>
+        <message>
+            <source>control mode</source>
+            <translation>Regelungsart</translation>
+        </message>
+        <message>
+            <source>data transfer</source>
+            <translation>Datenübertragung</translation>
+        </message>
+        <message>
+            <source>data type</source>
+            <translation>Datentyp</translation>
+        </message>
+        <message>
+            <source>desired inputs</source>
+            <translation>gewünschte Eingänge</translation>
+        </message>
+        <message>
+            <source>While the change is made, these parts are held still: {parts}.</source>
+            <translation>Während der Änderung werden diese Teile stillgehalten: {parts}.</translation>
+        </message>
+        <message>
+            <source>No part needs to be held still for this change.</source>
+            <translation>Für diese Änderung muss kein Teil stillgehalten werden.</translation>
+        </message>
+        <message>
+            <source>Link made: {link}</source>
+            <translation>Verbindung hergestellt: {link}</translation>
+        </message>
+        <message>
+            <source>Link removed: {link}</source>
+            <translation>Verbindung entfernt: {link}</translation>
+        </message>
+        <message>
+            <source>{n} ms</source>
+            <translation>{n} ms</translation>
+        </message>
+        <message>
+            <source>name</source>
+            <translation>Name</translation>
+        </message>
+        <message>
+            <source>no</source>
+            <translation>nein</translation>
+        </message>
+        <message>
+            <source>none</source>
+            <translation>keine</translation>
+        </message>
+        <message>
+            <source>Nothing changes on the prosthesis.</source>
+            <translation>An der Prothese ändert sich nichts.</translation>
+        </message>
+        <message>
+            <source>off</source>
+            <translation>aus</translation>
+        </message>
+        <message>
+            <source>on</source>
+            <translation>an</translation>
+        </message>
+        <message>
+            <source>{where}: {what}</source>
+            <translation>{where}: {what}</translation>
+        </message>
+        <message>
+            <source>Automatic set-up (autoconfigure): {old} → {new}.</source>
+            <translation>Automatische Einrichtung (Autokonfiguration): {old} → {new}.</translation>
+        </message>
+        <message>
+            <source>Turning automatic set-up off removes nothing: the {n} link(s) stay.</source>
+            <translation>Das Ausschalten der automatischen Einrichtung entfernt nichts: die {n} Verbindung(en) bleiben.</translation>
+        </message>
+        <message>
+            <source>  is made: {link}</source>
+            <translation>  wird hergestellt: {link}</translation>
+        </message>
+        <message>
+            <source>Automatic set-up is on: start-up links unconnected terminal channels.</source>
+            <translation>Die automatische Einrichtung ist an: der Hochlauf verbindet unverbundene Endkanäle.</translation>
+        </message>
+        <message>
+            <source>  comes back: {link}</source>
+            <translation>  kommt zurück: {link}</translation>
+        </message>
+        <message>
+            <source>  is removed: {link}</source>
+            <translation>  wird entfernt: {link}</translation>
+        </message>
+        <message>
+            <source>At the next power-on, start-up will change the links:</source>
+            <translation>Beim nächsten Einschalten ändert der Hochlauf die Verbindungen:</translation>
+        </message>
+        <message>
+            <source>Start-up undoes part of this change.</source>
+            <translation>Der Hochlauf macht einen Teil dieser Änderung rückgängig.</translation>
+        </message>
+        <message>
+            <source>No configuration is stored: start-up rebuilds the links from what the parts themselves remember.</source>
+            <translation>Es ist keine Konfiguration gespeichert: der Hochlauf baut die Verbindungen aus dem auf, was die Teile selbst wissen.</translation>
+        </message>
+        <message>
+            <source>This change is not stored: the next power-on undoes it. Store it as the prosthesis's configuration to keep it.</source>
+            <translation>Diese Änderung ist nicht gespeichert: das nächste Einschalten macht sie rückgängig. Speichern Sie sie als Konfiguration der Prothese, um sie zu behalten.</translation>
+        </message>
+        <message>
+            <source>Even stored, start-up's automatic set-up makes this again (autoconfigure is on): turn automatic set-up off to keep the change.</source>
+            <translation>Auch gespeichert stellt die automatische Einrichtung des Hochlaufs dies wieder her (Autokonfiguration ist an): schalten Sie die automatische Einrichtung aus, um die Änderung zu behalten.</translation>
+        </message>
+        <message>
+            <source>At the next power-on: nothing changes; start-up keeps these links.</source>
+            <translation>Beim nächsten Einschalten: nichts ändert sich; der Hochlauf behält diese Verbindungen.</translation>
+        </message>
+        <message>
+            <source>prescaler</source>
+            <translation>Vorteiler</translation>
+        </message>
+        <message>
+            <source>profile</source>
+            <translation>Profil</translation>
+        </message>
+        <message>
+            <source>required inputs</source>
+            <translation>benötigte Eingänge</translation>
+        </message>
+        <message>
+            <source>sole access</source>
+            <translation>Alleinzugriff</translation>
+        </message>
+        <message>
+            <source>  stored from now on: {link}</source>
+            <translation>  ab jetzt gespeichert: {link}</translation>
+        </message>
+        <message>
+            <source>Stored configuration: cleared (nothing stored).</source>
+            <translation>Gespeicherte Konfiguration: gelöscht (nichts gespeichert).</translation>
+        </message>
+        <message>
+            <source>  no longer stored: {link}</source>
+            <translation>  nicht mehr gespeichert: {link}</translation>
+        </message>
+        <message>
+            <source>Stored configuration: stored for the first time, {n} link(s).</source>
+            <translation>Gespeicherte Konfiguration: zum ersten Mal gespeichert, {n} Verbindung(en).</translation>
+        </message>
+        <message>
+            <source>Stored configuration: replaced; it will hold {n} link(s) ({added} added, {removed} removed).</source>
+            <translation>Gespeicherte Konfiguration: ersetzt; sie enthält dann {n} Verbindung(en) ({added} hinzu, {removed} entfernt).</translation>
+        </message>
+        <message>
+            <source>Stored configuration: unchanged.</source>
+            <translation>Gespeicherte Konfiguration: unverändert.</translation>
+        </message>
+        <message>
+            <source>terminal channel</source>
+            <translation>Endkanal</translation>
+        </message>
+        <message>
+            <source>terminal profile</source>
+            <translation>Endprofil</translation>
+        </message>
+        <message>
+            <source>yes</source>
+            <translation>ja</translation>
+        </message>
+        <message>
+            <source>position</source>
+            <translation>Position</translation>
+        </message>
+        <message>
+            <source>velocity</source>
+            <translation>Geschwindigkeit</translation>
+        </message>
+        <message>
+            <source>acceleration</source>
+            <translation>Beschleunigung</translation>
+        </message>
+        <message>
+            <source>other</source>
+            <translation>andere</translation>
+        </message>
+        <message>
+            <source>signed int</source>
+            <translation>Ganzzahl mit Vorzeichen</translation>
+        </message>
+        <message>
+            <source>unsigned int</source>
+            <translation>Ganzzahl ohne Vorzeichen</translation>
+        </message>
+        <message>
+            <source>float</source>
+            <translation>Gleitkommazahl</translation>
+        </message>
+        <message>
+            <source>boolean</source>
+            <translation>Wahrheitswert</translation>
+        </message>
+    </context>
+    <context>
+        <name>LinkRefusal</name>
+        <message>
+            <source>that channel is not in the system</source>
+            <translation>dieser Kanal ist nicht im System</translation>
+        </message>
+        <message>
+            <source>a link starts at an output: {0} is an input</source>
+            <translation>eine Verbindung beginnt an einem Ausgang: {0} ist ein Eingang</translation>
+        </message>
+        <message>
+            <source>a link ends at an input: {0} is an output</source>
+            <translation>eine Verbindung endet an einem Eingang: {0} ist ein Ausgang</translation>
+        </message>
+        <message>
+            <source>a device must not send to itself (same-device link)</source>
+            <translation>ein Gerät darf nicht an sich selbst senden (Verbindung im selben Gerät)</translation>
+        </message>
+        <message>
+            <source>a channel of a missing device cannot be linked</source>
+            <translation>ein Kanal eines fehlenden Geräts kann nicht verbunden werden</translation>
+        </message>
+        <message>
+            <source>these channels are already linked</source>
+            <translation>diese Kanäle sind bereits verbunden</translation>
+        </message>
+        <message>
+            <source>input {0} already has a source ({1}); remove that link first</source>
+            <translation>Eingang {0} hat bereits eine Quelle ({1}); entfernen Sie zuerst diese Verbindung</translation>
+        </message>
+        <message>
+            <source>sole access: output {0} already feeds the sole-access input {1}</source>
+            <translation>Alleinzugriff: Ausgang {0} speist bereits den Alleinzugriffs-Eingang {1}</translation>
+        </message>
+    </context>
+    <context>
+        <name>Commands</name>
+        <message>
+            <source>{0}: {1} changed</source>
+            <translation>{0}: {1} geändert</translation>
+        </message>
+        <message>
+            <source>Link {0}</source>
+            <translation>Verbinden: {0}</translation>
+        </message>
+        <message>
+            <source>Remove link {0}</source>
+            <translation>Verbindung entfernen: {0}</translation>
+        </message>
+        <message>
+            <source>Remove {0} links</source>
+            <translation>{0} Verbindungen entfernen</translation>
         </message>
     </context>
     <context>

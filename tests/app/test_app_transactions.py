@@ -290,10 +290,18 @@ def test_leaving_with_unwritten_changes_asks(live, qtbot):
 def test_the_confirmation_never_writes_on_enter(qtbot):
     from PySide6.QtCore import Qt
 
-    from pdcp_studio.app.window.controllers.transaction_flow import ConfirmDialog
+    from pdcp_studio.app.dialogs.confirm_change import ConfirmDialog
+    from pdcp_studio.bus.session.api import open_session, preview_change
+    from pdcp_studio.bus.transaction import Change
 
-    dialog = ConfirmDialog("Write to prosthesis", ["write to prosthesis on sim:x:",
-                                                   "  - link a → b"])
+    session = open_session("sim:transradial")
+    try:
+        links = session.system().links
+        preview = preview_change(session, Change.links_to(
+            links, [lk for lk in links if lk != HAND_LINK], "write to prosthesis"))
+    finally:
+        session.close()
+    dialog = ConfirmDialog("Write to prosthesis", preview, store=True)
     qtbot.addWidget(dialog)
     dialog.show()
     assert not dialog.write_button.isDefault() and not dialog.write_button.autoDefault()

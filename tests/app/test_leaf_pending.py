@@ -42,7 +42,11 @@ def test_pending_changes_and_their_one_change():
     assert [(c.kind, c.field) for c in changes] == [
         ("remove", ""), ("parameter", "beacon_interval"), ("parameter", "descriptor")]
     assert changes[0].reason == "removed by hand"
-    assert changes[2].describe(project) == "Hand #2: descriptor “Pinch grip” → “Pinch motor”"
+    # In the words of the change's effect: the part and channel by name, as on the
+    # prosthesis now, the value old → new (the confirmation says the same).
+    assert changes[2].describe(bus, project) == "Hand, Pinch grip: name “Pinch grip” → “Pinch motor”"
+    assert changes[1].describe(bus, project) == "Hand: beacon interval 100 ms → 150 ms"
+    assert changes[0].describe(bus, project) == "Control unit, Power grip set point → Hand, Power grip"
     change = pending.change_for(changes, project)
     assert change.action == pending.WRITE_ACTION
     assert [(a.op, a.link) for a in change.links] == [("remove", HAND_LINK)]

@@ -26,6 +26,7 @@ from PySide6.QtWidgets import (
 from pdcp_studio.app.documents import fitting, pending
 from pdcp_studio.app.documents.document import Document
 from pdcp_studio.app.graph import style
+from pdcp_studio.app.words.effect_words import app_names, effect_tr
 from pdcp_studio.app.words.plural import count
 
 ROLE = Qt.ItemDataRole.UserRole
@@ -114,14 +115,17 @@ class PendingPanel(QWidget):
         self.changes = pending.pending_changes(doc.bus_system, doc.system,
                                                getattr(doc, "link_reasons", {}))
         self.view.clear()
+        bus = doc.bus_system
+        names = app_names(bus if bus is not None else doc.system, doc.tree)
         for change in self.changes:
             kind = {pending.ADD: self.tr("+ link"), pending.REMOVE: self.tr("− link"),
                     pending.PARAMETER: self.tr("parameter")}[change.kind]
-            item = QTreeWidgetItem([kind, change.describe(doc.system), change.reason])
+            what = change.describe(bus, doc.system, names, effect_tr)
+            item = QTreeWidgetItem([kind, what, change.reason])
             colour = {pending.ADD: style.PREVIEW_ADD, pending.REMOVE: style.PREVIEW_REMOVE}.get(
                 change.kind, style.PENDING)
             item.setForeground(0, QBrush(colour))
-            item.setToolTip(1, change.describe(doc.system))
+            item.setToolTip(1, what)
             item.setData(0, ROLE, change)
             self.view.addTopLevelItem(item)
         n = len(self.changes)

@@ -12,6 +12,7 @@ the document's signals.
 
 from __future__ import annotations
 
+import copy
 from collections.abc import Iterable
 from typing import Any
 
@@ -19,8 +20,48 @@ from PySide6.QtGui import QUndoCommand
 
 from pdcp_studio.app.documents import live_sync, pending
 from pdcp_studio.app.documents.document import Document, Position
+from pdcp_studio.app.i18n import translate
+from pdcp_studio.app.words.effect_words import app_names, effect_tr
+from pdcp_studio.errors import PdcpError
+from pdcp_studio.model.names import Names
 from pdcp_studio.model.refs import ChannelRef, DeviceKey
 from pdcp_studio.model.system import Link
+
+
+def _tr(text: str) -> str:
+    return translate("Commands", text)
+
+
+def _names(doc: Document) -> Names:
+    """The names the undo texts use (the same as every other text about a change)."""
+    return app_names(doc.system, doc.tree)
+
+
+def field_words(doc: Document, key: DeviceKey, index: int, name: str, value: Any) -> str:
+    """An edit of one field in the words of a change's effect ("Hand, Power grip: control
+    mode position → velocity"), for the undo and redo texts."""
+    from pdcp_studio.bus.transaction import ParameterWrite
+    from pdcp_studio.engine.effect import parameter_words
+    from pdcp_studio.model import param_fields
+
+    names = _names(doc)
+    device = doc.system.device(key)
+    obj: Any = device.channels.get(index) if device is not None and index else device
+    params = pending.CHANNEL_PARAMS if index else pending.DEVICE_PARAMS
+    where = names.channel(ChannelRef(*key, index)) if index else names.part(key)
+    if obj is not None and name in params:
+        changed = copy.copy(obj)
+        setattr(changed, name, value)
+        try:
+            data = param_fields.encode_field_value(changed, params[name])
+        except (PdcpError, ValueError, AssertionError, ArithmeticError):
+            data = b""
+        if data:
+            words = parameter_words(doc.system, [ParameterWrite(key, params[name], index, data)],
+                                    names, effect_tr, only=pending.FIELD_NAMES.get(name))
+            if words:
+                return "; ".join(words)
+    return _tr("{0}: {1} changed").format(where, name.replace("_", " "))
 
 #: Command ids for ``mergeWith`` (consecutive moves of one drag merge into one step).
 MOVE_ID = 1001
@@ -58,14 +99,14 @@ def _action(op: str, link: Link, reason: str) -> Any:
 class AddLinkCommand(LinksCommand):
     def __init__(self, doc: Document, link: Link, parent: QUndoCommand | None = None) -> None:
         super().__init__(doc, [_action("add", link, "linked by hand")],
-                         f"Link {link.output} → {link.input}", parent=parent)
+                         _tr("Link {0}").format(_names(doc).link(link)), parent=parent)
         self.link = link
 
 
 class RemoveLinkCommand(LinksCommand):
     def __init__(self, doc: Document, link: Link, parent: QUndoCommand | None = None) -> None:
         super().__init__(doc, [_action("remove", link, "removed by hand")],
-                         f"Remove link {link.output} → {link.input}", parent=parent)
+                         _tr("Remove link {0}").format(_names(doc).link(link)), parent=parent)
         self.link = link
 
 
@@ -88,7 +129,7 @@ class SetChannelFieldCommand(QUndoCommand):
 
     def __init__(self, doc: Document, ref: ChannelRef, name: str, value: Any,
                  text: str = "", parent: QUndoCommand | None = None) -> None:
-        super().__init__(text or f"Set {name.replace('_', ' ')} of {ref}", parent)
+        super().__init__(text or field_words(doc, ref.device, ref.index, name, value), parent)
         self.doc, self.ref, self.name, self.value = doc, ref, name, value
         self.old = getattr(doc.channel(ref), name)
 
@@ -104,7 +145,7 @@ class SetDeviceFieldCommand(QUndoCommand):
 
     def __init__(self, doc: Document, key: DeviceKey, name: str, value: Any,
                  text: str = "", parent: QUndoCommand | None = None) -> None:
-        super().__init__(text or f"Set {name.replace('_', ' ')} of {key}", parent)
+        super().__init__(text or field_words(doc, key, 0, name, value), parent)
         self.doc, self.key, self.name, self.value = doc, key, name, value
         self.old = getattr(doc.device(key), name)
 
@@ -195,8 +236,8 @@ def push_remove_links(doc: Document, links: Iterable[Link]) -> int:
     links = [lk for lk in links if doc.system.has_link(lk)]
     if not links:
         return 0
-    text = (f"Remove link {links[0].output} → {links[0].input}" if len(links) == 1
-            else f"Remove {len(links)} links")
+    text = (_tr("Remove link {0}").format(_names(doc).link(links[0])) if len(links) == 1
+            else _tr("Remove {0} links").format(len(links)))
     doc.undo_stack.push(LinksCommand(
         doc, [_action("remove", lk, "removed by hand") for lk in links], text))
     return len(links)

@@ -13,10 +13,12 @@ links imply (the arbitrator sets it with every link it makes or removes).
 
 from __future__ import annotations
 
+from collections.abc import Callable
 from dataclasses import dataclass
 from typing import Any
 
 from pdcp_studio.model import param_fields
+from pdcp_studio.model.names import Names
 from pdcp_studio.model.refs import ChannelRef, DeviceKey
 from pdcp_studio.model.system import Link, System
 
@@ -31,6 +33,19 @@ DEVICE_PARAMS = {name: param_fields.param_of_field(name, "device") for name in (
 WRITE_ACTION = "write to prosthesis"
 
 ADD, REMOVE, PARAMETER = "add", "remove", "parameter"
+
+#: A staged field → its name in ``model.param_names`` (the effect's parameter names).
+FIELD_NAMES = {"type": "type", "profile": "profile", "descriptor": "descriptor",
+               "data_enabled": "data-transfer", "required_inputs": "required-inputs",
+               "desired_inputs": "desired-inputs", "terminal_profile": "terminal-profile",
+               "beacon_interval": "beacon-interval", "ack_timeout": "ack-timeout",
+               "bind_timeout": "bind-timeout"}
+
+Translate = Callable[[str], str]
+
+
+def _same(text: str) -> str:
+    return text
 
 
 @dataclass(frozen=True)
@@ -57,26 +72,27 @@ class PendingChange:
             return None
         return ChannelRef(*self.key, self.index)
 
-    def describe(self, system: System | None = None) -> str:
-        """One line in plain words (device names from ``system`` when it knows them)."""
+    def describe(self, bus: System | None, project: System | None = None,
+                 names: Names | None = None, tr: Translate = _same) -> str:
+        """One line in the words of a change's effect (``engine.effect``): a link by its
+        channels' names, a parameter old → new as the confirmation will say it. ``bus`` is
+        the prosthesis as it is, ``project`` the document; ``names`` and ``tr`` the app's
+        (plain names and English without them)."""
+        base = bus if bus is not None else project
+        names = names or Names(base)
         if self.kind in (ADD, REMOVE) and self.link is not None:
-            verb = "Link" if self.kind == ADD else "Remove the link"
-            return (f"{verb} {_end(system, self.link.output)} → "
-                    f"{_end(system, self.link.input)}")
-        where = _device(system, self.key) if self.key is not None else "?"
-        if self.index:
-            where += f" #{self.index}"
-        name = self.field.replace("_", " ")
-        return f"{where}: {name} {_value(self.old)} → {_value(self.new)}"
+            return names.link(self.link)
+        if bus is not None and project is not None and self.key is not None:
+            from pdcp_studio.engine.effect import parameter_words
 
-
-def _device(system: System | None, key: DeviceKey) -> str:
-    device = system.device(key) if system is not None else None
-    return device.label if device is not None else str(key)
-
-
-def _end(system: System | None, ref: ChannelRef) -> str:
-    return f"{_device(system, ref.device)} #{ref.index}"
+            words = parameter_words(bus, [parameter_write(project, self)], names, tr,
+                                    only=FIELD_NAMES.get(self.field))
+            if words:
+                return "; ".join(words)
+        if self.key is None:
+            return "?"
+        where = (names.channel(self.ref) if self.ref is not None else names.part(self.key))
+        return f"{where}: {self.field.replace('_', ' ')} {_value(self.old)} → {_value(self.new)}"
 
 
 def _value(value: Any) -> str:
@@ -88,8 +104,6 @@ def _value(value: Any) -> str:
         return f"“{value}”"
     if isinstance(value, tuple):
         return "{" + ", ".join(str(v) for v in value) + "}"
-    if isinstance(value, int) and value > 255:
-        return f"0x{value:04X}"
     return str(value)
 
 

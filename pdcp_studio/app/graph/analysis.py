@@ -6,6 +6,7 @@ bar) without a scene.
 
 from __future__ import annotations
 
+from collections.abc import Callable
 from dataclasses import dataclass, field
 
 from pdcp_studio.model.refs import ChannelRef, DeviceKey
@@ -100,28 +101,37 @@ def compute_states(system: System) -> SystemStates:
     return states
 
 
-def link_refusal(system: System, a: ChannelRef, b: ChannelRef) -> str | None:
-    """Why ``a → b`` may not be linked (None: allowed). ``a`` is where the drag started."""
+def link_refusal(system: System, a: ChannelRef, b: ChannelRef,
+                 name: Callable[[ChannelRef], str] = str) -> str | None:
+    """Why ``a → b`` may not be linked (None: allowed). ``a`` is where the drag started;
+    ``name`` names a channel in words (the scene's names; refs when not given)."""
+    from pdcp_studio.app.i18n import translate
+
+    def tr(text: str) -> str:
+        return translate("LinkRefusal", text)
+
     out_ch, in_ch = system.channel(a), system.channel(b)
     if out_ch is None or in_ch is None:
-        return "that channel is not in the system"
+        return tr("that channel is not in the system")
     if not out_ch.is_output:
-        return f"a link starts at an output: {a} is an input"
+        return tr("a link starts at an output: {0} is an input").format(name(a))
     if not in_ch.is_input:
-        return f"a link ends at an input: {b} is an output"
+        return tr("a link ends at an input: {0} is an output").format(name(b))
     if a.device == b.device:
-        return "a device must not send to itself (same-device link)"
+        return tr("a device must not send to itself (same-device link)")
     if not system.is_present(a) or not system.is_present(b):
-        return "a channel of a missing device cannot be linked"
+        return tr("a channel of a missing device cannot be linked")
     link = Link(a, b)
     if system.has_link(link):
-        return "these channels are already linked"
+        return tr("these channels are already linked")
     source = system.source_of(b)
     if source is not None:
-        return f"input {b} already has a source ({source}); remove that link first"
+        return tr("input {0} already has a source ({1}); remove that link first").format(
+            name(b), name(source))
     if in_ch.sole_access:
         for other in system.inputs_fed_by(a):
             other_ch = system.channel(other)
             if other_ch is not None and other_ch.sole_access:
-                return (f"sole access: output {a} already feeds the sole-access input {other}")
+                return tr("sole access: output {0} already feeds the sole-access input "
+                          "{1}").format(name(a), name(other))
     return None

@@ -77,12 +77,15 @@ class LinkDrag:
             rubber.set_ok(True)
             rubber.follow(pos)
             return
-        drop = decide_drop(self._doc.system, rubber.start.ref, target.ref)
+        drop = decide_drop(self._doc.system, rubber.start.ref, target.ref, self._describe)
         rubber.set_ok(not drop.reason)
         target.set_hover(not drop.reason)
         rubber.follow(target.scenePos())
-        self._say(f"Cannot link: {drop.reason}" if drop.reason
-                  else f"Release to link {drop.output} → {drop.input}")
+        if drop.reason:
+            self._say(_tr("Cannot link: {0}").format(drop.reason))
+        elif drop.output is not None and drop.input is not None:
+            self._say(_tr("Release to link {0} → {1}").format(
+                self._describe(drop.output), self._describe(drop.input)))
 
     def end(self, pos: QPointF) -> Link | None:
         """Drop at ``pos``: the link made (one undo step), or None (refused, said why)."""
@@ -92,14 +95,16 @@ class LinkDrag:
         self.cancel()
         target = self.port_at(pos)
         drop = decide_drop(self._doc.system, rubber.start.ref,
-                           None if target is None or target is rubber.start else target.ref)
+                           None if target is None or target is rubber.start else target.ref,
+                           self._describe)
         link = drop.link
         self.last_result = (link, drop.reason)
         if drop.output is None or drop.input is None:
             self._say(_tr("Link cancelled: release over a port to link"))
         elif link is None:
             self._say(_tr("Cannot link {a} → {b}: {reason}").format(
-                a=drop.output, b=drop.input, reason=drop.reason))
+                a=self._describe(drop.output), b=self._describe(drop.input),
+                reason=drop.reason))
         else:
             commands.push_add_link(self._doc, link)
             self._say(_tr("Linked {v0} → {v1}").format(

@@ -4,6 +4,7 @@ not. Pure (no Qt): the scene's drag gesture asks it, tests ask it without a scen
 
 from __future__ import annotations
 
+from collections.abc import Callable
 from dataclasses import dataclass
 
 from pdcp_studio.app.graph.analysis import link_refusal
@@ -42,9 +43,11 @@ def link_ends(system: System, start: ChannelRef,
     return start, target
 
 
-def decide_drop(system: System, start: ChannelRef, target: ChannelRef | None) -> LinkDrop:
-    """The drop of a drag that started at ``start`` over ``target`` (None: no port)."""
+def decide_drop(system: System, start: ChannelRef, target: ChannelRef | None,
+                name: Callable[[ChannelRef], str] = str) -> LinkDrop:
+    """The drop of a drag that started at ``start`` over ``target`` (None: no port);
+    a refusal names the channels by ``name``."""
     if target is None or target == start:
         return LinkDrop(None, None, NO_TARGET)
     out, into = link_ends(system, start, target)
-    return LinkDrop(out, into, link_refusal(system, out, into) or "")
+    return LinkDrop(out, into, link_refusal(system, out, into, name) or "")

@@ -17,24 +17,17 @@ them again. Bus I/O never runs on the GUI thread.
 
 from __future__ import annotations
 
+import copy
 import logging
 import threading
 from collections.abc import Callable
 from typing import TYPE_CHECKING, Any
 
 from PySide6.QtCore import QObject, Qt, Signal
-from PySide6.QtGui import QFont, QUndoCommand
-from PySide6.QtWidgets import (
-    QDialog,
-    QDialogButtonBox,
-    QLabel,
-    QPlainTextEdit,
-    QProgressDialog,
-    QPushButton,
-    QVBoxLayout,
-    QWidget,
-)
+from PySide6.QtGui import QUndoCommand
+from PySide6.QtWidgets import QProgressDialog, QWidget
 
+from pdcp_studio.app.dialogs.confirm_change import ConfirmDialog
 from pdcp_studio.app.documents import fitting, pending
 from pdcp_studio.app.documents.document import Document
 from pdcp_studio.app.live.live_bus import LiveController
@@ -66,36 +59,20 @@ class WrittenCommand(QUndoCommand):
         pass
 
 
-class ConfirmDialog(QDialog):
-    """The preview of a change in plain words; writing needs a click (never the default)."""
+def with_store(change: Any, on: bool) -> Any:
+    """``change`` storing (or not) the links after it as the prosthesis's configuration."""
+    chosen = copy.copy(change)
+    chosen.store = on
+    return chosen
 
-    def __init__(self, title: str, lines: list[str], parent: QWidget | None = None) -> None:
-        super().__init__(parent)
-        self.setWindowTitle(title)
-        self.resize(720, 420)
-        head = QLabel(self.tr("This is what will change on the prosthesis. The devices that "
-                              "drive a hand, wrist or elbow are held still while it is "
-                              "written, then it is read back and verified; on any mismatch "
-                              "the prosthesis is put back as it was."))
-        head.setWordWrap(True)
-        text = QPlainTextEdit("\n".join(lines))
-        text.setReadOnly(True)
-        font = QFont("monospace")
-        font.setStyleHint(QFont.StyleHint.Monospace)
-        text.setFont(font)
-        buttons = QDialogButtonBox()
-        self.write_button = QPushButton(self.tr("Write to prosthesis"))
-        self.write_button.setAutoDefault(False)
-        self.write_button.setDefault(False)
-        buttons.addButton(self.write_button, QDialogButtonBox.ButtonRole.AcceptRole)
-        cancel = buttons.addButton(QDialogButtonBox.StandardButton.Cancel)
-        cancel.setDefault(True)
-        buttons.accepted.connect(self.accept)
-        buttons.rejected.connect(self.reject)
-        box = QVBoxLayout(self)
-        box.addWidget(head)
-        box.addWidget(text, 1)
-        box.addWidget(buttons)
+
+def preview_in_words(session: Any, change: Any) -> Any:
+    """The preview of ``change``, its effect naming parts and channels in the user's
+    language (runs on the bridge's worker)."""
+    from pdcp_studio.app.words.effect_words import app_names
+    from pdcp_studio.bus.session.api import preview_change
+
+    return preview_change(session, change, names=app_names(session.system()))
 
 
 class TransactionFlow(QObject):
@@ -128,6 +105,8 @@ class TransactionFlow(QObject):
         self.cancel_event: threading.Event | None = None
         #: ``confirm(title, preview) -> bool`` replaces the dialog (tests).
         self.confirm: Callable[[str, Any], bool] | None = None
+        #: The confirmation on screen (None when none is).
+        self.dialog: ConfirmDialog | None = None
 
     # -- entry points --------------------------------------------------------------------
     def write_pending(self) -> bool:
@@ -148,7 +127,7 @@ class TransactionFlow(QObject):
                 text = count("TransactionFlow", "Write to prosthesis (%n change(s))",
                              len(changes))
                 doc.undo_stack.push(WrittenCommand(first, bus_before, result, text))
-        return self.run(change, self.tr("Write to prosthesis"), done)
+        return self.run(change, self.tr("Write to prosthesis"), done, store=True)
 
     def undo(self) -> None:
         """Undo; a written change is undone on the prosthesis by a new transaction."""
@@ -168,7 +147,8 @@ class TransactionFlow(QObject):
         def done(result: Any) -> None:
             if result.ok and stack.index() > cmd.first_index:
                 stack.setIndex(cmd.first_index)  # the project steps back over those edits
-        self.run(change, self.tr("Undo on the prosthesis: {0}").format(cmd.text()), done)
+        self.run(change, self.tr("Undo on the prosthesis: {0}").format(cmd.text()), done,
+                 store=True)
 
     def redo(self) -> None:
         """Redo; redoing a written change writes it again (a new transaction)."""
@@ -189,12 +169,19 @@ class TransactionFlow(QObject):
             if result.written and stack.command(stack.index()) is cmd:
                 cmd.result = result
                 stack.redo()
-        self.run(change, self.tr("Redo on the prosthesis: {0}").format(cmd.text()), done)
+        self.run(change, self.tr("Redo on the prosthesis: {0}").format(cmd.text()), done,
+                 store=True)
 
     # -- the road ------------------------------------------------------------------------
     def run(self, change: Any, title: str,
-            on_result: Callable[[Any], None] | None = None) -> bool:
-        """Preview ``change`` on the worker, ask, then carry it out as one transaction."""
+            on_result: Callable[[Any], None] | None = None, *, store: bool | None = None,
+            choose: Callable[[Any, bool], Any] = with_store) -> bool:
+        """Preview ``change`` on the worker, ask, then carry it out as one transaction.
+
+        ``store`` None offers no store box (a policy, a configuration written whole);
+        True/False offers it, checked or not, and ``choose(change, on)`` is the change the
+        box asks for (default: :func:`with_store`; a restore keeps or leaves the stored
+        configuration it recorded)."""
         bridge = self._bridge()
         if bridge is None:
             self.status.error(title, self.tr("not connected to a prosthesis"))
@@ -202,37 +189,95 @@ class TransactionFlow(QObject):
         if self.busy:
             self.status.say(self.tr("A change to the prosthesis is still running"))
             return False
-        from pdcp_studio.bus.session.api import preview_change
-
+        if store is not None:
+            change = choose(change, store)
         session = bridge.session
         self._set_busy(True)
-        worker = bridge.run(lambda _p, _c: preview_change(session, change),
+        worker = bridge.run(lambda _p, _c: preview_in_words(session, change),
                             self.tr("Preview the change"))
         if worker is None:
             self._set_busy(False)
             return False
-        worker.finished.connect(lambda preview: self._previewed(bridge, change, title,
-                                                                preview, on_result))
+        worker.finished.connect(lambda preview: self._previewed(
+            bridge, change, title, preview, on_result, store,
+            lambda on: choose(change, on)))
         worker.failed.connect(lambda msg: self._failed(title, msg))
         worker.cancelled.connect(lambda: self._set_busy(False))
         return True
 
     def _previewed(self, bridge: SessionBridge, change: Any, title: str, preview: Any,
-                   on_result: Callable[[Any], None] | None) -> None:
+                   on_result: Callable[[Any], None] | None, store: bool | None,
+                   choose: Callable[[bool], Any]) -> None:
         self.previewed.emit(preview)
         if bridge is not self._bridge():
             self._set_busy(False)
             return
-        if preview.empty:
+        if preview.empty and store is None:
             self._set_busy(False)
             self.status.say(self.tr("{0}: nothing to change on the prosthesis")
                                      .format(title))
             self.live.refresh()
             return
-        if not self._ask(title, preview):
+        if self.confirm is not None:  # tests answer without the dialog
+            if self.confirm(title, preview):
+                self._transact(bridge, change, title, preview, on_result)
+            else:
+                self._declined(title)
+            return
+        self._ask(bridge, change, title, preview, on_result, store, choose)
+
+    def _ask(self, bridge: SessionBridge, change: Any, title: str, preview: Any,
+             on_result: Callable[[Any], None] | None, store: bool | None,
+             choose: Callable[[bool], Any]) -> None:
+        """The confirmation (window-modal, not a nested event loop): the store box
+        previews the change again; Write carries out the change last previewed."""
+        dialog = ConfirmDialog(title, preview, self.parent_widget, store=store)
+        self.dialog = dialog
+        shown = {"change": change}
+        session = bridge.session
+
+        def store_toggled(on: bool) -> None:
+            variant = choose(on)
+            worker = bridge.run(lambda _p, _c: preview_in_words(session, variant),
+                                self.tr("Preview the change"))
+            if worker is None:
+                dialog.preview_failed(self.tr("not connected to a prosthesis"))
+                return
+
+            def got(new: Any) -> None:
+                if self.dialog is dialog:
+                    shown["change"] = variant
+                    dialog.set_preview(new)
+                    self.previewed.emit(new)
+            worker.finished.connect(got)
+            worker.failed.connect(dialog.preview_failed)
+
+        def finished(code: int) -> None:
+            self.dialog = None
+            dialog.deleteLater()
+            if code != ConfirmDialog.DialogCode.Accepted:
+                self._declined(title)
+            elif dialog.preview.empty:
+                self._set_busy(False)
+                self.status.say(self.tr("{0}: nothing to change on the prosthesis")
+                                .format(title))
+            else:
+                self._transact(bridge, shown["change"], title, dialog.preview, on_result)
+
+        dialog.storeToggled.connect(store_toggled)
+        dialog.finished.connect(finished)
+        dialog.setWindowModality(Qt.WindowModality.WindowModal)
+        dialog.show()
+
+    def _declined(self, title: str) -> None:
+        self._set_busy(False)
+        self.status.say(self.tr("{0}: not confirmed, nothing written").format(title))
+
+    def _transact(self, bridge: SessionBridge, change: Any, title: str, preview: Any,
+                  on_result: Callable[[Any], None] | None) -> None:
+        """Carry out the confirmed ``change`` (the one ``preview`` showed) on the worker."""
+        if bridge is not self._bridge():
             self._set_busy(False)
-            self.status.say(self.tr("{0}: not confirmed, nothing written")
-                                     .format(title))
             return
         operator = fitting.operator_name(self.parent_widget)
         patient = self._patient_reference()
@@ -258,15 +303,6 @@ class TransactionFlow(QObject):
         worker.finished.connect(lambda result: self._done(title, result, on_result))
         worker.failed.connect(lambda msg: self._failed(title, msg))
         worker.cancelled.connect(lambda: self._cancelled(title))
-
-    def _ask(self, title: str, preview: Any) -> bool:
-        if self.confirm is not None:
-            return bool(self.confirm(title, preview))
-        dialog = ConfirmDialog(title, preview.lines(), self.parent_widget)
-        try:
-            return dialog.exec() == QDialog.DialogCode.Accepted
-        finally:
-            dialog.deleteLater()
 
     def _show_progress(self, title: str, worker: Any, stop: threading.Event) -> None:
         dialog = QProgressDialog(self.tr("Writing to the prosthesis…"), self.tr("Cancel"), 0, 0,
@@ -294,7 +330,15 @@ class TransactionFlow(QObject):
         worker.done.connect(dialog.deleteLater)
         self.progress_dialog = dialog
 
+    def _close_progress(self) -> None:
+        """Close the progress dialog before anything is said: an error shown under it would
+        be hidden (the worker's ``done``, which also closes it, comes after the outcome)."""
+        dialog, self.progress_dialog = self.progress_dialog, None
+        if dialog is not None:
+            dialog.close()
+
     def _done(self, title: str, result: Any, on_result: Callable[[Any], None] | None) -> None:
+        self._close_progress()
         self._set_busy(False)
         self.last_result = result
         if on_result is not None:
@@ -317,11 +361,13 @@ class TransactionFlow(QObject):
         self.finished.emit(result)
 
     def _failed(self, title: str, message: str) -> None:
+        self._close_progress()
         self._set_busy(False)
         self.status.error(title, message)
         self.live.refresh()
 
     def _cancelled(self, title: str) -> None:
+        self._close_progress()
         self._set_busy(False)
         self.status.say(self.tr("{0}: cancelled").format(title))
         self.live.refresh()
