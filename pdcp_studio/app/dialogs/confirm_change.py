@@ -41,12 +41,17 @@ def reasons_of(change: Any) -> dict[Any, str]:
 
 
 def effect_words(preview: Any) -> list[str]:
-    """What the change does, then what the next power-on does: the effect's own words."""
+    """What the change does, in the effect's own words."""
     effect = preview.effect
     if effect is None:
         return []
-    lines = effect.lines(effect_tr, reasons_of(preview.change))
-    return [*lines, "", *effect.power_on_lines(effect_tr)]
+    return list(effect.lines(effect_tr, reasons_of(preview.change)))
+
+
+def power_on_words(preview: Any) -> list[str]:
+    """What the next power-on does after the change, in the effect's own words."""
+    effect = preview.effect
+    return list(effect.power_on_lines(effect_tr)) if effect is not None else []
 
 
 class ConfirmDialog(QDialog):
@@ -62,7 +67,7 @@ class ConfirmDialog(QDialog):
                  store: bool | None = None) -> None:
         super().__init__(parent)
         self.setWindowTitle(title)
-        self.resize(760, 480)
+        self.resize(860, 640)
         self.preview = preview
         head = QLabel(self.tr("This is what will change on the prosthesis. The devices that "
                               "drive a hand, wrist or elbow are held still while it is "
@@ -72,6 +77,10 @@ class ConfirmDialog(QDialog):
         self.words = QPlainTextEdit()
         self.words.setReadOnly(True)
         self.words.setLineWrapMode(QPlainTextEdit.LineWrapMode.WidgetWidth)
+        self.power_on = QLabel()
+        self.power_on.setWordWrap(True)
+        self.power_on.setTextInteractionFlags(Qt.TextInteractionFlag.TextSelectableByMouse)
+        self.power_on.setMargin(6)
         self.store_box = QCheckBox(self.tr("Store as the prosthesis's configuration (keeps "
                                            "this after the next power-on)"))
         self.store_box.setVisible(store is not None)
@@ -104,6 +113,7 @@ class ConfirmDialog(QDialog):
         box = QVBoxLayout(self)
         box.addWidget(head)
         box.addWidget(self.words, 3)
+        box.addWidget(self.power_on)
         box.addWidget(self.store_box)
         box.addWidget(self.waiting)
         box.addWidget(self.detail_button, 0, Qt.AlignmentFlag.AlignLeft)
@@ -117,6 +127,12 @@ class ConfirmDialog(QDialog):
         self.preview = preview
         self.words.setPlainText("\n".join(effect_words(preview)))
         effect = preview.effect
+        self.power_on.setText("\n".join(power_on_words(preview)))
+        undone = effect is not None and effect.next_power_on.reverts
+        # Amber when the next power-on undoes (part of) the change: it must not be missed.
+        self.power_on.setStyleSheet(
+            "QLabel { background: %s; border: 1px solid %s; border-radius: 3px; }"
+            % (("#fff3cd", "#d9a400") if undone else ("#eef5ee", "#9cbf9c")))
         self.detail.setPlainText("\n".join(effect.technical() if effect is not None else []))
         self.waiting.hide()
         self.store_box.setEnabled(True)
@@ -124,7 +140,7 @@ class ConfirmDialog(QDialog):
 
     def words_text(self) -> str:
         """What the prosthetist reads (the technical detail apart)."""
-        return self.words.toPlainText()
+        return self.words.toPlainText() + "\n" + self.power_on.text()
 
     def technical_text(self) -> str:
         return self.detail.toPlainText()
