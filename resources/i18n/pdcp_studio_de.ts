@@ -1447,6 +1447,36 @@ Das Öffnen von {1} beendet diese Verbindung.</translation>
         </message>
     </context>
     <context>
+        <name>RestoreRefusal</name>
+        <message>
+            <source>Fitting history entry {0} cannot be put back: it needs {1}, which is not on the bus. Nothing was written.</source>
+            <translation>Eintrag {0} der Anpassungshistorie kann nicht wiederhergestellt werden: er braucht {1}, das nicht am Bus ist. Es wurde nichts geschrieben.</translation>
+        </message>
+        <message>
+            <source>Fitting history entry {0} cannot be put back: it needs {1}, which are not on the bus. Nothing was written.</source>
+            <translation>Eintrag {0} der Anpassungshistorie kann nicht wiederhergestellt werden: er braucht {1}, die nicht am Bus sind. Es wurde nichts geschrieben.</translation>
+        </message>
+        <message>
+            <source>Plug the part in and try again, or use Replace a part to give its links to the part that took its place.</source>
+            <translation>Stecken Sie das Teil ein und versuchen Sie es erneut, oder geben Sie mit „Ein Teil ersetzen“ seine Verbindungen an das Teil, das seinen Platz eingenommen hat.</translation>
+        </message>
+        <message>
+            <source>Replace a part…</source>
+            <translation>Ein Teil ersetzen…</translation>
+        </message>
+    </context>
+    <context>
+        <name>HistoryWords</name>
+        <message>
+            <source>(and {0} more)</source>
+            <translation>(und {0} weitere)</translation>
+        </message>
+        <message>
+            <source>This entry was recorded before PDCP Studio kept what a change does in words: it is shown as it was recorded.</source>
+            <translation>Dieser Eintrag wurde aufgezeichnet, bevor PDCP Studio die Wirkung einer Änderung in Worten festhielt: er wird so gezeigt, wie er aufgezeichnet wurde.</translation>
+        </message>
+    </context>
+    <context>
         <name>Fitting</name>
         <message>
             <location filename="../../pdcp_studio/app/fitting.py" line="77" />

@@ -189,8 +189,9 @@ class TransactionFlow(QObject):
         if self.busy:
             self.status.say(self.tr("A change to the prosthesis is still running"))
             return False
+        original = change
         if store is not None:
-            change = choose(change, store)
+            change = choose(original, store)
         session = bridge.session
         self._set_busy(True)
         worker = bridge.run(lambda _p, _c: preview_in_words(session, change),
@@ -200,7 +201,7 @@ class TransactionFlow(QObject):
             return False
         worker.finished.connect(lambda preview: self._previewed(
             bridge, change, title, preview, on_result, store,
-            lambda on: choose(change, on)))
+            lambda on: choose(original, on)))
         worker.failed.connect(lambda msg: self._failed(title, msg))
         worker.cancelled.connect(lambda: self._set_busy(False))
         return True
