@@ -199,9 +199,10 @@ def _lines_html(lines: list[str]) -> str:
 
 def _change_rows(system: System, changes: list[dict[str, Any]]) -> str:
     rows = []
-    for e in changes:
-        what = _e(entries.change_words(e))
-        what += _lines_html(entries.replaced_lines(system, e) + entries.effect_lines(e))
+    for i, e in enumerate(changes):
+        what = _e(entries.change_words(e, changes[:i]))
+        what += _lines_html(entries.replaced_lines(system, e, changes[:i])
+                            + entries.effect_lines(e))
         power_on = entries.power_on_lines(e)
         if entries.has_prediction(e):
             what += "<br><i>" + _e(_t("At the next power-on: {0}").format(" ".join(power_on)))
@@ -235,13 +236,14 @@ def _power_on_html(changes: list[dict[str, Any]]) -> str:
 
 
 def _policy_html(info: FittingInfo | None) -> str:
+    """The prosthesis's profile-layer policy, in a sentence."""
     if info is None or info.policy is None:
-        return _e(_t("not known (the prosthesis was not connected)"))
+        return _e(_t("Autoconfigure: not known (the prosthesis was not connected)"))
     if info.policy.autoconfigure:
-        return _t("{on} (the prosthesis may link parts that nothing drives on its own)").format(
-            on=f"<b>{_e(_t('on'))}</b>")
-    return _t("{off} (the prosthesis repairs known links and finds replacements for "
-              "missing parts, but links nothing new on its own)").format(
+        return _t("Autoconfigure: {on} (the prosthesis may link parts that nothing drives on "
+                  "its own)").format(on=f"<b>{_e(_t('on'))}</b>")
+    return _t("Autoconfigure: {off} (the prosthesis repairs known links and finds "
+              "replacements for missing parts, but links nothing new on its own)").format(
                   off=f"<b>{_e(_t('off'))}</b>")
 
 
@@ -350,9 +352,9 @@ def report_html(system: System, tree: ProfileTree, *, title: str | None = None,
  <td width=20%>{_e(_t("Prosthesis:"))}</td><td width=30%>{prosthesis}</td></tr>
  <tr><td>{_e(_t("Patient:"))}</td><td>{patient}</td>
  <td>{_e(_t("Prosthetist:"))}</td><td>{prosthetist}</td></tr>
- <tr><td>{_e(_t("Autoconfigure:"))}</td><td colspan=3>{_policy_html(info)}</td></tr>
  <tr><td>{_e(_t("Signature:"))}</td><td colspan=3>{blank}</td></tr>
 </table>
+<p>{_policy_html(info)}</p>
 <h2>{_e(_t("Devices ({n})").format(n=len(system.devices)))}</h2>
 {devices}
 <h2>{_e(_t("Links ({n})").format(n=len(system.links)))}</h2>

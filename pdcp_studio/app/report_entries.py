@@ -11,6 +11,7 @@ it was plugged in (they were not on the bus before the swap, and the write keeps
 
 from __future__ import annotations
 
+from collections.abc import Sequence
 from typing import Any
 
 from pdcp_studio.app.i18n import QT_TRANSLATE_NOOP, translate
@@ -108,10 +109,36 @@ def _ends(link: Link) -> tuple[DeviceKey, DeviceKey]:
     return link.output.device, link.input.device
 
 
-def replaced_pairs(entry: dict[str, Any]) -> list[tuple[DeviceKey, DeviceKey]]:
+def stored_links(entry: dict[str, Any]) -> set[Link] | None:
+    """The links of the stored configuration the entry left (None: it did not record it)."""
+    from pdcp_studio.storage import config_codec
+
+    doc = entry.get("configuration_after")
+    if not isinstance(doc, dict):
+        return None
+    try:
+        collection = config_codec.from_json(doc)
+    except (KeyError, TypeError, ValueError):
+        return None
+    return {Link(sl.output.ref, sl.input.ref) for c in collection.configurations
+            for sl in c.links}
+
+
+def _stored_before(earlier: Sequence[dict[str, Any]]) -> set[Link]:
+    """The stored configuration before an entry: the last earlier entry's, if one says."""
+    for e in reversed(earlier):
+        links = stored_links(e)
+        if links is not None:
+            return links
+    return set()
+
+
+def replaced_pairs(entry: dict[str, Any], earlier: Sequence[dict[str, Any]] = (),
+                   ) -> list[tuple[DeviceKey, DeviceKey]]:
     """(old part, new part) of a swap: the entry's ``replaced`` list when it has one; for a
-    "replace a part" entry recorded before that field, the part whose links the change
-    removed and that keeps none, with the part of the same product linked after it."""
+    "replace a part" entry recorded before that field, each part linked before it (on the
+    bus or in the stored configuration of an ``earlier`` entry) and by no link after it,
+    with the part of the same product linked after it."""
     pairs = []
     for item in entry.get("replaced") or []:
         old, new = _key((item or {}).get("old")), _key((item or {}).get("new"))
@@ -123,8 +150,8 @@ def replaced_pairs(entry: dict[str, Any]) -> list[tuple[DeviceKey, DeviceKey]]:
     if before is None or after is None:
         return []
     linked_after = {k for lk in after for k in _ends(lk)}
-    gone = sorted({k for lk in before - after for k in _ends(lk)} - linked_after)
-    for old in gone:
+    was = {k for lk in before | _stored_before(earlier) for k in _ends(lk)}
+    for old in sorted(was - linked_after):
         same = sorted(k for k in linked_after
                       if (k.vid, k.pid) == (old.vid, old.pid) and k != old)
         if same:
@@ -132,22 +159,37 @@ def replaced_pairs(entry: dict[str, Any]) -> list[tuple[DeviceKey, DeviceKey]]:
     return pairs
 
 
-def link_changes(entry: dict[str, Any]) -> tuple[set[Link], set[Link]] | None:
-    """The links the change made and removed, from the links recorded before and after it
-    (a swap adds the links to the new part); None when the entry has no ``links_after``
-    (it stopped before writing)."""
+def link_changes(entry: dict[str, Any], earlier: Sequence[dict[str, Any]] = (),
+                 ) -> tuple[set[Link], set[Link]] | None:
+    """The links the change made and removed, from the links recorded before and after it;
+    None when the entry has no ``links_after`` (it stopped before writing).
+
+    A swap counts the links to the new part as made and the old part's links as removed,
+    even when the prosthesis had already made or dropped them on its own between the
+    plug-in and the write (then the old part's links are those it had on the bus, else in
+    the stored configuration of an ``earlier`` entry)."""
     before, after = _links(entry.get("links_before")), _links(entry.get("links_after"))
     if before is None or after is None or entry.get("links_after") is None:
         return None
-    added = after - before
-    new_parts = {new for _old, new in replaced_pairs(entry)}
-    added |= {lk for lk in after if set(_ends(lk)) & new_parts}
-    return added, before - after
+    added, removed = after - before, before - after
+    pairs = replaced_pairs(entry, earlier)
+    if pairs:
+        new_parts = {new for _old, new in pairs}
+        old_parts = {old for old, _new in pairs}
+        added |= {lk for lk in after if set(_ends(lk)) & new_parts}
+        old_links = {lk for lk in before if set(_ends(lk)) & old_parts}
+        if not old_links:
+            old_links = {lk for lk in _stored_before(earlier)
+                         if set(_ends(lk)) & old_parts}
+        removed |= old_links - after
+    return added, removed
 
 
-def change_words(entry: dict[str, Any]) -> str:
-    """``3 links added, 3 removed`` (and the parameters it set)."""
-    changes = link_changes(entry)
+def change_words(entry: dict[str, Any], earlier: Sequence[dict[str, Any]] = (),
+                 ) -> str:
+    """``3 links added, 3 removed`` (and the parameters it set); ``earlier``: the entries
+    before it, oldest first (a swap looks up the old part's stored links there)."""
+    changes = link_changes(entry, earlier)
     plan = entry.get("plan") or {}
     if changes is not None:
         adds, removes = len(changes[0]), len(changes[1])
@@ -172,10 +214,12 @@ def _lines(doc: Any, key: str) -> list[str]:
     return [str(x) for x in lines] if isinstance(lines, list) else []
 
 
-def replaced_lines(system: System, entry: dict[str, Any]) -> list[str]:
+def replaced_lines(system: System, entry: dict[str, Any],
+                   earlier: Sequence[dict[str, Any]] = (),
+                   ) -> list[str]:
     """``Multi-grip hand (serial 301) replaced by Multi-grip hand (serial 302)``."""
     out = []
-    for old, new in replaced_pairs(entry):
+    for old, new in replaced_pairs(entry, earlier):
         a, b = part_name(system, old), part_name(system, new)
         if a == b:
             a = twin_format().format(name=a, serial=old.serial)

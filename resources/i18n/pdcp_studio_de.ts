@@ -5050,24 +5050,8 @@ Die Prothese ist wie zuvor.</translation>
             <translation>Nach Eintrag {0}, der zuletzt geschriebenen Änderung:</translation>
         </message>
         <message>
-            <source>not known (the prosthesis was not connected)</source>
-            <translation>unbekannt (die Prothese war nicht verbunden)</translation>
-        </message>
-        <message>
-            <source>{off} (the prosthesis repairs known links and finds replacements for missing parts, but links nothing new on its own)</source>
-            <translation>{off} (die Prothese repariert bekannte Verbindungen und findet Ersatz für fehlende Teile, verbindet aber nichts Neues von selbst)</translation>
-        </message>
-        <message>
-            <source>{on} (the prosthesis may link parts that nothing drives on its own)</source>
-            <translation>{on} (die Prothese darf Teile, die nichts ansteuert, selbst verbinden)</translation>
-        </message>
-        <message>
             <source>Date:</source>
             <translation>Datum:</translation>
-        </message>
-        <message>
-            <source>Autoconfigure:</source>
-            <translation>Autokonfiguration:</translation>
         </message>
         <message>
             <source>Patient: {0}</source>
@@ -5136,6 +5120,10 @@ Die Prothese ist wie zuvor.</translation>
         <message>
             <source>{old} replaced by {new}</source>
             <translation>{old} ersetzt durch {new}</translation>
+        </message>
+        <message>
+            <source>Autoconfigure: not known (the prosthesis was not connected)</source>
+            <translation>Autokonfiguration: unbekannt (die Prothese war nicht verbunden)</translation>
         </message>
     </context>
     <context>
