@@ -269,10 +269,10 @@ def _technical_html(system: System, checksum: int | None,
                  else f"<p><i>{_e(_t('no links'))}</i></p>")
     for e in changes:
         lines = [_e(x) for x in entries.technical_lines(e)]
-        crc = (e.get("config_crc_before"), e.get("config_crc_after"))
-        if any(crc):
+        crcs = (e.get("config_crc_before"), e.get("config_crc_after"))
+        if any(crcs):
             lines.append(_e(_t("stored configuration check number {before} → {after}").format(
-                before=crc[0] or "—", after=crc[1] or "—")))
+                before=crcs[0] or "—", after=crcs[1] or "—")))
         pon = e.get("next_power_on")
         if isinstance(pon, dict):
             for key, word in (("links_added", _t("next power-on adds")),

@@ -4235,6 +4235,22 @@ Die Prothese ist wie zuvor.</translation>
             <source>Yes, clear the stored configuration</source>
             <translation>Ja, die gespeicherte Konfiguration löschen</translation>
         </message>
+        <message>
+            <source>optional, e.g. the clinic&apos;s case number</source>
+            <translation>freiwillig, z. B. die Fallnummer der Klinik</translation>
+        </message>
+        <message>
+            <source>Patient reference:</source>
+            <translation>Patientenreferenz:</translation>
+        </message>
+        <message>
+            <source>Go on</source>
+            <translation>Fortfahren</translation>
+        </message>
+        <message>
+            <source>{0} goes on without writing anything.</source>
+            <translation>„{0}“ fährt fort, ohne etwas zu schreiben.</translation>
+        </message>
     </context>
     <context>
         <name>ArbitratorFoundDialog</name>
