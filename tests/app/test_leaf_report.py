@@ -197,6 +197,10 @@ def test_the_word_check_sees_a_word_broken_in_a_narrow_column(qapp):
     assert broken_words(doc)
 
 
+def _part(t):
+    return {"vid": t[0], "pid": t[1], "serial": t[2]}
+
+
 def _key(t):
     from pdcp_studio.model.refs import DeviceKey
 
@@ -224,8 +228,8 @@ def test_a_swap_that_made_three_links_counts_three_added_three_removed(qapp):
     assert entries.change_words(recorded) == "3 links added, 3 removed"
     assert entries.replaced_pairs(recorded) == [(_key(HAND), _key(SPARE))]
     # With the replacement recorded (another session adds "replaced"), the same count.
-    told = {**recorded, "replaced": [{"old": dict(zip(("vid", "pid", "serial"), HAND)),
-                                      "new": dict(zip(("vid", "pid", "serial"), SPARE))}]}
+    told = {**recorded, "replaced": [{"old": _part(HAND),
+                                      "new": _part(SPARE)}]}
     assert entries.change_words(told) == "3 links added, 3 removed"
     # Not a swap: links before and after, never the other way round.
     plain = {"action": "write to prosthesis", "links_before": _KEPT,
@@ -273,8 +277,8 @@ def test_effect_and_next_power_on_are_shown_and_an_old_entry_says_it_predates_th
                       "technical": ["2641/769/301#1 parameter 0x01: 0x9300 → 0x9700"]},
            "next_power_on": {"links_added": [_OLD[0]], "links_removed": [],
                              "text": ["the control unit links the hand's power grip again."]},
-           "replaced": [{"old": dict(zip(("vid", "pid", "serial"), HAND)),
-                         "new": dict(zip(("vid", "pid", "serial"), SPARE))}]}
+           "replaced": [{"old": _part(HAND),
+                         "new": _part(SPARE)}]}
     html = report_html(system, tree, checksum=0x1234, fitting=FittingInfo(
         "P-9", "A. Prosthetist", dt.datetime(2026, 11, 28, 9, 10), "sim:transradial",
         [old, new]))
