@@ -4244,12 +4244,12 @@ Die Prothese ist wie zuvor.</translation>
             <translation>Patientenreferenz:</translation>
         </message>
         <message>
-            <source>Go on</source>
+            <source>Continue</source>
             <translation>Fortfahren</translation>
         </message>
         <message>
-            <source>{0} goes on without writing anything.</source>
-            <translation>„{0}“ fährt fort, ohne etwas zu schreiben.</translation>
+            <source>Press {0} to carry on; nothing is written.</source>
+            <translation>„{0}“ drücken, um fortzufahren; es wird nichts geschrieben.</translation>
         </message>
     </context>
     <context>

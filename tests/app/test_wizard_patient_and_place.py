@@ -55,8 +55,8 @@ def test_the_write_page_names_the_button_it_shows_and_records_the_patient(live, 
     shown = [b for b in (QWizard.WizardButton.NextButton, QWizard.WizardButton.CommitButton)
              if w.button(b).isVisible()]
     assert shown == [QWizard.WizardButton.CommitButton]
-    assert _commit_text(w) == "Go on"
-    assert page.status.text() == "Go on goes on without writing anything."
+    assert _commit_text(w) == "Continue"
+    assert page.status.text() == "Press Continue to carry on; nothing is written."
     assert "Next" not in page.status.text()
     assert not page.patient.isVisible()  # nothing is written, nothing recorded
     _go(w, qtbot, w.write_page, w.store_page)
@@ -142,3 +142,26 @@ def test_the_wizard_does_not_cover_the_simulator_panel(live, qtbot, task):
         assert w.frameGeometry().intersects(panel)
         w.missing_page.show_simulator()
         assert not w.frameGeometry().intersects(panel)
+
+
+def test_in_german_the_write_page_names_the_button_it_shows(live, qtbot):
+    from PySide6.QtWidgets import QApplication
+
+    from pdcp_studio.app import i18n
+
+    app = QApplication.instance()
+    i18n.install(app, "de")
+    try:
+        w = open_wizard(live, "fitting")
+        _go(w, qtbot, w.connect_page, w.scan_page)
+        _go(w, qtbot, w.scan_page, w.checks_page)
+        _go(w, qtbot, w.checks_page, w.plan_page)
+        _go(w, qtbot, w.plan_page, w.write_page)
+        qtbot.waitUntil(w.write_page.isComplete, timeout=T)
+        button = _commit_text(w)
+        assert button == "Fortfahren"
+        assert f"„{button}“" in w.write_page.status.text()
+        assert w.write_page.patient_label.text() == "Patientenreferenz:"
+        w.close()
+    finally:
+        i18n.uninstall(app)

@@ -124,7 +124,7 @@ class WritePage(Page):
     The page asks for the patient reference (optional; the window's, as the Pending changes
     panel has it, or the one given on an earlier page of the task): it is recorded in the
     fitting history entry and remembered for the prosthesis. When nothing needs writing the
-    button is Go on, and the page says that."""
+    button is Continue, and the page says that."""
 
     def __init__(self, title: str, subtitle: str, button: str,
                  build: Build | None = None) -> None:
@@ -192,11 +192,11 @@ class WritePage(Page):
         for widget in (self.patient, self.patient_label):
             widget.setVisible(not preview.empty)  # nothing written: nothing recorded
         if preview.empty:
-            go_on = _t("Go on")
+            go_on = _t("Continue")
             self.setButtonText(QWizard.WizardButton.CommitButton, go_on)
             self.view.setHtml(intro + bullets(
                 what, _t("Nothing needs writing: the prosthesis already holds this.")))
-            self.idle(_t("{0} goes on without writing anything.").format(go_on))
+            self.idle(_t("Press {0} to carry on; nothing is written.").format(go_on))
         else:
             self.setButtonText(QWizard.WizardButton.CommitButton, self.write_label)
             how = (_t("Press the button below to write this to the prosthesis. The parts "
