@@ -110,7 +110,7 @@ def _words(e: Entry) -> str:
             if not ln.startswith(("Stored configuration: unchanged", "While the change",
                                   "No part needs", " "))]
     if not text:
-        return e["action"]
+        return str(e["action"])
     more = f" (+{len(text) - 2} more)" if len(text) > 2 else ""
     return "; ".join(text[:2]) + more
 
