@@ -1,25 +1,28 @@
-"""A one-page fitting report as PDF: what was fitted, how it is linked, its checksum.
+"""The fitting report as PDF: what was fitted, how it is linked, what changed, what the next
+power-on does, its checksum — on A4 portrait pages, each with "Page N of M".
 
 Public API
     ``write_report(path, system, tree, graph_image=None, title=..., *, date=None,
-    collection=None) -> Path`` — GUI thread (text layout); about 50 ms for a small rig.
-    ``graph_image`` is a ``QImage`` of the bus graph (the main window renders its scene);
-    ``collection`` a stored configuration whose checksum to print instead of the on-screen
-    links'. ``configuration_checksum(system, collection=None) -> int`` and
+    collection=None, fitting=None) -> Path`` — GUI thread (text layout); about 50 ms for a
+    small rig. ``graph_image`` is a ``QImage`` of the bus graph (the main window renders its
+    scene); ``collection`` a stored configuration whose checksum to print instead of the
+    on-screen links'. ``configuration_checksum(system, collection=None) -> int`` and
     ``report_html(...)`` are the parts, for previews and tests.
 
-The prosthetist files it with the patient's records, so it names every device by
-VID/PID/serial, every link with its profile names, and the CRC-16 checksum the stored
-configuration carries (the value ``pdcp-studio config decode`` verifies), so a later
+The prosthetist files it with the patient's records, so it names every part as the app does
+(``words/part_names.py``), every link with its profile names, and the CRC-16 checksum the
+stored configuration carries (the value ``pdcp-studio config decode`` verifies), so a later
 reading of the arbitrator can be matched against the paper. With a :class:`FittingInfo`
-(``fitting=``) the report fills in the patient reference, the prosthetist and the time of
-the session, lists the changes made in this session (from the fitting history) and the
-findings of the checks; devices carry their firmware and hardware versions, and links to a
-missing device are marked as such. Without one, those fields are blank lines to fill in.
+(``fitting=``) the report fills in the patient reference, the prosthetist, the time and the
+policy, lists the changes made in this session with their effect and what the next power-on
+does (from the fitting history: :mod:`.report_entries`) and the findings of the checks.
+Without one, those fields are blank lines to fill in. Codes and hex appear only in the
+closing Technical detail section.
 
-The page is an HTML ``QTextDocument`` laid out at 96 dpi and drawn on a ``QPdfWriter``
-through a scaled painter; if the content is taller than the page it is scaled down to fit,
-so the report is always exactly one page.
+The page is an HTML ``QTextDocument`` laid out at 96 dpi with the page's size, so it breaks
+its own pages (tables read down, one part per row, their header repeated on each page, text
+wrapped inside cells); each page is drawn on a ``QPdfWriter`` through a scaled painter, with
+a footer line.
 """
 
 from __future__ import annotations
@@ -30,7 +33,7 @@ from dataclasses import dataclass, field
 from pathlib import Path
 from typing import TYPE_CHECKING, Any
 
-from PySide6.QtCore import QBuffer, QIODevice, QMarginsF, QSizeF, Qt, QUrl
+from PySide6.QtCore import QBuffer, QIODevice, QMarginsF, QRectF, QSizeF, Qt, QUrl
 from PySide6.QtGui import (
     QGuiApplication,
     QImage,
@@ -41,6 +44,7 @@ from PySide6.QtGui import (
     QTextDocument,
 )
 
+from pdcp_studio.app import report_entries as entries
 from pdcp_studio.app.i18n import QT_TRANSLATE_NOOP, translate
 from pdcp_studio.app.words.plural import count
 from pdcp_studio.model import profile as prof
@@ -54,11 +58,14 @@ if TYPE_CHECKING:
     from pdcp_studio.bus.transaction import Policy
 
 _CTX = "FittingReport"
+#: Kept here for callers of the report's words.
+action_words = entries.action_words
 #: The source text; shown translated (``_t``) like every word of the report.
 DEFAULT_TITLE = QT_TRANSLATE_NOOP("FittingReport", "PDCP fitting report")
 LAYOUT_DPI = 96.0
 PDF_DPI = 300
-GRAPH_MAX_HEIGHT_FRACTION = 0.38  # of the page: leaves room for the tables
+GRAPH_MAX_HEIGHT_FRACTION = 0.45  # of the page
+FOOTER_HEIGHT = 24.0  # layout pixels at the foot of each page for its number
 _GRAPH_URL = QUrl("pdcp-report:graph")
 _app: QGuiApplication | None = None
 
@@ -84,23 +91,6 @@ def _t(text: str) -> str:
     return translate(_CTX, text)
 
 
-#: Fitting-history actions and their words, by the action's first words.
-_ACTIONS = (
-    ("config write", QT_TRANSLATE_NOOP("FittingReport", "Stored set-up written")),
-    ("config save", QT_TRANSLATE_NOOP("FittingReport", "Current links stored as the set-up")),
-    ("policy autoconfigure on", QT_TRANSLATE_NOOP("FittingReport", "Autoconfigure turned on")),
-    ("policy autoconfigure off", QT_TRANSLATE_NOOP("FittingReport", "Autoconfigure turned off")),
-    ("add link", QT_TRANSLATE_NOOP("FittingReport", "Link added")),
-    ("remove link", QT_TRANSLATE_NOOP("FittingReport", "Link removed")),
-    ("set parameter", QT_TRANSLATE_NOOP("FittingReport", "Setting changed")),
-    ("write to prosthesis",
-     QT_TRANSLATE_NOOP("FittingReport", "Changes written to the prosthesis")),
-)
-_OUTCOMES = {
-    "applied": QT_TRANSLATE_NOOP("FittingReport", "applied"),
-    "rolled_back": QT_TRANSLATE_NOOP("FittingReport", "rolled back"),
-    "failed": QT_TRANSLATE_NOOP("FittingReport", "failed"),
-}
 _SEVERITIES = {
     "error": QT_TRANSLATE_NOOP("FittingReport", "Error"),
     "warning": QT_TRANSLATE_NOOP("FittingReport", "Warning"),
@@ -110,52 +100,6 @@ _SEVERITIES = {
 
 def _version(value: int) -> str:
     return f"{value >> 8}.{value & 0xFF}" if value else "—"
-
-
-def action_words(action: str) -> str:
-    """A fitting-history action (``config write``, ``apply autoconfigure``, ``policy
-    autoconfigure off``…) in words for the report; unknown ones as they are."""
-    from pdcp_studio.app.docks.plan_panel import OPERATIONS
-
-    words = action.strip()
-    low = words.lower()
-    if low.startswith("undo "):
-        return _t("Undone: {0}").format(action_words(words[5:]))
-    if low.startswith("redo "):
-        return _t("Done again: {0}").format(action_words(words[5:]))
-    if low.startswith("apply "):
-        mode = low.split()[1] if len(low.split()) > 1 else ""
-        known = dict(OPERATIONS).get(mode)
-        title = translate("PlanPanel", known) if known else mode.replace("-", " ")
-        return _t("{0} carried out").format(title)
-    for prefix, text in _ACTIONS:
-        if low.startswith(prefix):
-            return _t(text)
-    return words
-
-
-def _change_rows(changes: list[dict[str, Any]]) -> str:
-    rows = []
-    for e in changes:
-        outcome = e.get("outcome") or {}
-        status = outcome.get("status", "")
-        word = _t(_OUTCOMES[status]) if status in _OUTCOMES else status
-        if status == "applied" and e.get("verified"):
-            word = _t("applied, verified")
-        actions = (e.get("plan") or {}).get("actions") or []
-        adds = sum(1 for a in actions if a.get("op") == "add")
-        removes = len(actions) - adds
-        params = len((e.get("plan") or {}).get("parameters") or [])
-        what = _t("{added}, {removed}").format(added=count(_CTX, "%n link(s) added", adds),
-                                               removed=count(_CTX, "%n removed", removes))
-        if params:
-            what += ", " + count(_CTX, "%n parameter(s)", params)
-        rows.append(f"<tr><td>{_e(e.get('id', ''))}</td>"
-                    f"<td>{_e(str(e.get('time', '')).replace('T', ' ').rstrip('Z'))}</td>"
-                    f"<td>{_e(action_words(str(e.get('action', ''))))}</td><td>{_e(what)}</td>"
-                    f"<td>{_e(word)}</td><td>{_e(e.get('operator') or '')}</td></tr>")
-    return "".join(rows) or (f"<tr><td colspan=6><i>{_e(_t('no change was made in this session'))}"
-                             "</i></td></tr>")
 
 
 def _finding_rows(system: System, autoconfigure: bool = True) -> str:
@@ -199,117 +143,194 @@ def _device_name(system: System, key: DeviceKey) -> str:
     return part_name(system, key)
 
 
-def _end(system: System, tree: ProfileTree, ref: ChannelRef, compact: bool = False) -> str:
+def _end(system: System, tree: ProfileTree, ref: ChannelRef) -> str:
+    """One end of a link: the part and channel by name, then what the channel carries."""
     ch = system.channel(ref)
     name = _device_name(system, ref.device)
-    if compact:
-        what = tree.short_name(ch.profile) if ch and tree.node(ch.profile) else ""
-        return (_t("{device}, channel {n}").format(device=_e(name), n=ref.index)
-                + (f" ({_e(what)})" if what else ""))
     desc = f" — {ch.descriptor}" if ch and ch.descriptor else ""
     profile = _profile(tree, ch.profile) if ch else "?"
     end = _t("{device}, channel {n}").format(device=f"<b>{_e(name)}</b>", n=ref.index)
     return f"{end}{_e(desc)}<br>{profile}"
 
 
-def _detail_rows(system: System) -> str:
-    """The engineer's detail: identities and channel codes, for matching a reading."""
-    rows = []
-    for i, lk in enumerate(system.links, 1):
-        ends = []
-        for ref in (lk.output, lk.input):
-            ch = system.channel(ref)
-            codes = (_t("type {type}, profile {profile}").format(
-                type=prof.fmt(ch.type), profile=prof.fmt(ch.profile)) if ch
-                else _t("not on the bus"))
-            ends.append(_t("VID {vid} PID {pid} serial {serial} channel {index} ({codes})")
-                        .format(vid=f"0x{ref.vid:04X}", pid=f"0x{ref.pid:04X}",
-                                serial=ref.serial, index=ref.index, codes=_e(codes)))
-        rows.append(f"<tr><td>{i}</td><td>{ends[0]}</td><td>→</td><td>{ends[1]}</td></tr>")
-    return "".join(rows)
+def _ref_codes(system: System, ref: ChannelRef) -> str:
+    ch = system.channel(ref)
+    codes = (_t("type {type}, profile {profile}").format(
+        type=prof.fmt(ch.type), profile=prof.fmt(ch.profile)) if ch
+        else _t("not on the bus"))
+    return _t("VID {vid} PID {pid} serial {serial} channel {index} ({codes})").format(
+        vid=f"0x{ref.vid:04X}", pid=f"0x{ref.pid:04X}", serial=ref.serial, index=ref.index,
+        codes=codes)
 
 
-def _device_rows(system: System, per_row: int) -> str:
+def _detail_links(system: System, links: list[Link]) -> str:
+    """Links by identity and channel codes, one line each (for matching a reading)."""
+    return "".join(f"<li>{_e(_ref_codes(system, lk.output))} → "
+                   f"{_e(_ref_codes(system, lk.input))}</li>" for lk in links)
+
+
+def _device_rows(system: System) -> str:
+    """One row per part (never several parts side by side: the table must read down)."""
     from pdcp_studio.model.catalog import default_catalog
 
     catalog = default_catalog()
-    cells = []
+    rows = []
     for d in system.devices.values():
         state = f" <i>{_e(_t('(missing)'))}</i>" if not d.present else ""
         entry = catalog.lookup(d.vid, d.pid)
         product = (_t("{product} ({vendor})").format(product=entry.product, vendor=entry.vendor)
                    if entry else _t("not in the catalogue"))
-        cells.append(f"<td>{_e(_device_name(system, d.key))}{state}</td><td>{_e(product)}</td>"
-                     f"<td>{d.vid} / {d.pid} / {d.serial}</td>"
-                     f"<td>{_version(d.fw_version)}</td><td>{_version(d.hw_version)}</td>")
-    if not cells:
-        return f"<tr><td colspan=5><i>{_e(_t('no devices'))}</i></td></tr>"
-    cells += ["<td></td>" * 5] * (-len(cells) % per_row)
-    return "".join("<tr>" + "".join(cells[i:i + per_row]) + "</tr>"
-                   for i in range(0, len(cells), per_row))
+        rows.append(f"<tr><td>{_e(_device_name(system, d.key))}{state}</td>"
+                    f"<td>{_e(product)}</td><td>{d.vid} / {d.pid} / {d.serial}</td>"
+                    f"<td>{_version(d.fw_version)}</td><td>{_version(d.hw_version)}</td></tr>")
+    return "".join(rows) or f"<tr><td colspan=5><i>{_e(_t('no devices'))}</i></td></tr>"
+
+
+def _table(heads: list[tuple[str, int]], rows: str) -> str:
+    """A full-width grid whose header row repeats on every page it runs onto."""
+    cells = "".join(f"<th width={w}%>{_e(h)}</th>" for h, w in heads)
+    return (f"<table class=grid width=100% cellspacing=0 cellpadding=3>"
+            f"<thead><tr>{cells}</tr></thead>{rows}</table>")
+
+
+def _lines_html(lines: list[str]) -> str:
+    return "".join(f"<br>{_e(line)}" for line in lines)
+
+
+def _change_rows(system: System, changes: list[dict[str, Any]]) -> str:
+    rows = []
+    for i, e in enumerate(changes):
+        what = _e(entries.change_words(e, changes[:i]))
+        what += _lines_html(entries.replaced_lines(system, e, changes[:i])
+                            + entries.effect_lines(e))
+        power_on = entries.power_on_lines(e)
+        if entries.has_prediction(e):
+            what += "<br><i>" + _e(_t("At the next power-on: {0}").format(" ".join(power_on)))
+        else:
+            what += "<br><i>" + _e(" ".join(power_on))
+        what += "</i>"
+        rows.append(f"<tr><td>{_e(e.get('id', ''))}</td>"
+                    f"<td>{_e(str(e.get('time', '')).replace('T', ' ').rstrip('Z'))}</td>"
+                    f"<td>{_e(entries.action_words(str(e.get('action', ''))))}</td>"
+                    f"<td>{what}</td><td>{_e(entries.outcome_words(e))}</td>"
+                    f"<td>{_e(e.get('operator') or '')}</td></tr>")
+    return "".join(rows) or (f"<tr><td colspan=6><i>{_e(_t('no change was made in this session'))}"
+                             "</i></td></tr>")
+
+
+def _power_on_html(changes: list[dict[str, Any]]) -> str:
+    """The next-power-on statement: the last change that reached the prosthesis decides."""
+    written = [e for e in changes if entries.link_changes(e) is not None]
+    if not written:
+        text = _t("No change was written in this session: the prosthesis starts up as it "
+                  "did before.")
+        return f"<p>{_e(text)}</p>"
+    last = written[-1]
+    lines = entries.power_on_lines(last)
+    head = _t("After entry {0}, the last change written:").format(last.get("id", ""))
+    if entries.has_prediction(last):
+        body = _e(_t("At the next power-on: {0}").format(" ".join(lines)))
+    else:
+        body = _e(" ".join(lines))
+    return f"<p>{_e(head)}<br><b>{body}</b></p>"
+
+
+def _policy_html(info: FittingInfo | None) -> str:
+    """The prosthesis's profile-layer policy, in a sentence."""
+    if info is None or info.policy is None:
+        return _e(_t("Autoconfigure: not known (the prosthesis was not connected)"))
+    if info.policy.autoconfigure:
+        return _t("Autoconfigure: {on} (the prosthesis may link parts that nothing drives on "
+                  "its own)").format(on=f"<b>{_e(_t('on'))}</b>")
+    return _t("Autoconfigure: {off} (the prosthesis repairs known links and finds "
+              "replacements for missing parts, but links nothing new on its own)").format(
+                  off=f"<b>{_e(_t('off'))}</b>")
+
+
+def _technical_html(system: System, checksum: int | None,
+                    changes: list[dict[str, Any]]) -> str:
+    """The closing section: every code the body leaves out, complete."""
+    from pdcp_studio.bus.transaction import link_from_json
+
+    crc = "—" if checksum is None else f"0x{checksum:04X}"
+    crc_words = _t("Check number: CRC-16/CCITT-FALSE of the stored configuration record")
+    parts = [f"<p>{_e(crc_words)}: <span class=hex>{crc}</span></p>"]
+    identity = _t("VID {vid} PID {pid} serial {serial}")
+    devices = "".join(
+        "<li>" + _e(_device_name(system, d.key)) + ": " + _e(identity.format(
+            vid=f"0x{d.vid:04X}", pid=f"0x{d.pid:04X}", serial=d.serial)) + "</li>"
+        for d in system.devices.values())
+    if devices:
+        parts.append(f"<p>{_e(_t('Parts by identity:'))}</p><ul>{devices}</ul>")
+    links_words = _t("Links by identity (VID, PID, serial number, channel index) with the "
+                     "channels' type and profile codes:")
+    parts.append(f"<p>{_e(links_words)}</p>")
+    parts.append(f"<ul>{_detail_links(system, list(system.links))}</ul>" if system.links
+                 else f"<p><i>{_e(_t('no links'))}</i></p>")
+    for e in changes:
+        lines = [_e(x) for x in entries.technical_lines(e)]
+        crcs = (e.get("config_crc_before"), e.get("config_crc_after"))
+        if any(crcs):
+            lines.append(_e(_t("stored configuration check number {before} → {after}").format(
+                before=crcs[0] or "—", after=crcs[1] or "—")))
+        pon = e.get("next_power_on")
+        if isinstance(pon, dict):
+            for key, word in (("links_added", _t("next power-on adds")),
+                              ("links_removed", _t("next power-on removes"))):
+                for doc in pon.get(key) or []:
+                    try:
+                        lk = link_from_json(doc)
+                    except (KeyError, TypeError, ValueError):
+                        continue
+                    lines.append(f"{_e(word)}: {_e(_ref_codes(system, lk.output))} → "
+                                 f"{_e(_ref_codes(system, lk.input))}")
+        if lines:
+            parts.append(f"<p>{_e(_t('Entry {0}:').format(e.get('id', '')))}</p><ul>"
+                         + "".join(f"<li>{x}</li>" for x in lines) + "</ul>")
+    return "".join(parts)
 
 
 def report_html(system: System, tree: ProfileTree, *, title: str | None = None,
                 date: _dt.date | None = None, graph_size: QSizeF | None = None,
-                checksum: int | None = None, compact: bool = False,
-                stored_note: str = "", fitting: FittingInfo | None = None) -> str:
-    """The report's HTML (for tests and previews); ``graph_size`` adds the graph image.
-
-    ``compact`` (for big systems) puts three devices on a row and one line per link.
-    """
+                checksum: int | None = None, stored_note: str = "",
+                fitting: FittingInfo | None = None) -> str:
+    """The report's HTML (for tests and previews); ``graph_size`` adds the graph image."""
     date = date or _dt.date.today()
     title = title or _t(DEFAULT_TITLE)
-    blank = "_" * 38
-    per_row = 3 if compact else 1
-    columns = (_t("Name"), _t("Product"), _t("Maker / product / serial no."), _t("Firmware"),
-               _t("Hardware"))
-    widths = ("", "", "", "", "") if compact else (" width=26%", " width=26%", " width=22%",
-                                                   " width=13%", " width=13%")
-    heads = "".join(f"<th{w}>{_e(c)}</th>" for w, c in zip(widths, columns, strict=True))
-    devices = f"<tr>{heads * per_row}</tr>{_device_rows(system, per_row)}"
-
-    def missing(lk: Link) -> str:
-        gone = [system.device(r.device) for r in (lk.output, lk.input)]
-        if any(d is None or not d.present for d in gone):
-            return f" <i style='color:#b00000'>{_e(_t('(to a missing device)'))}</i>"
-        return ""
-
-    links = "".join(
-        f"<tr><td>{i}</td><td>{_end(system, tree, lk.output, compact)}</td><td>→</td>"
-        f"<td>{_end(system, tree, lk.input, compact)}{missing(lk)}</td></tr>"
-        for i, lk in enumerate(system.links, 1)
-    ) or f"<tr><td colspan=4><i>{_e(_t('no links'))}</i></td></tr>"
+    blank = "_" * 30
     info = fitting
     when = date.isoformat()
     patient = prosthetist = prosthesis = blank
-    session_html = ""
-    policy_html = ""
+    changes: list[dict[str, Any]] = []
     autoconfigure = True
-    if info is not None and info.policy is not None:
-        autoconfigure = bool(info.policy.autoconfigure)
-        policy_html = "<p>" + (
-            _t("Autoconfigure: {on} (the prosthesis may link parts that nothing drives on "
-               "its own)").format(on=f"<b>{_e(_t('on'))}</b>") if autoconfigure
-            else _t("Autoconfigure: {off} (the prosthesis repairs known links and finds "
-                    "replacements for missing parts, but links nothing new on its own)")
-            .format(off=f"<b>{_e(_t('off'))}</b>")) + "</p>"
     if info is not None:
         if info.time is not None:
             when = info.time.strftime("%Y-%m-%d %H:%M UTC")
         patient = _e(info.patient) or blank
         prosthetist = _e(info.prosthetist) or blank
         prosthesis = _e(info.bus) or blank
-        cells = "".join(f"<th>{_e(c)}</th>" for c in (
-            "#", _t("Time (UTC)"), _t("Action"), _t("Change"), _t("Outcome"), _t("By")))
+        changes = info.changes
+        if info.policy is not None:
+            autoconfigure = bool(info.policy.autoconfigure)
+    devices = _table([(_t("Name"), 26), (_t("Product"), 30),
+                      (_t("Maker / product / serial no."), 18), (_t("Firmware"), 13),
+                      (_t("Hardware"), 13)], _device_rows(system))
+    links = _table([("#", 5), (_t("Output"), 46), ("", 3), (_t("Input"), 46)], "".join(
+        f"<tr><td>{i}</td><td>{_end(system, tree, lk.output)}</td><td>→</td>"
+        f"<td>{_end(system, tree, lk.input)}{_missing(system, lk)}</td></tr>"
+        for i, lk in enumerate(system.links, 1)
+    ) or f"<tr><td colspan=4><i>{_e(_t('no links'))}</i></td></tr>")
+    session_html = ""
+    if info is not None:
         session_html = (
-            f"<h2>{_e(_t('Changes made in this session ({n})').format(n=len(info.changes)))}"
-            f"</h2><table class=grid width=100%><tr>{cells}</tr>"
-            f"{_change_rows(info.changes)}</table>")
-    findings = (f"<h2>{_e(_t('Checks'))}</h2><table class=grid width=100%><tr>"
-                f"<th width=12%>{_e(_t('Finding'))}</th><th>{_e(_t('What'))}</th></tr>"
-                f"{_finding_rows(system, autoconfigure)}</table>")
+            f"<h2>{_e(_t('Changes made in this session ({n})').format(n=len(changes)))}</h2>"
+            + _table([("#", 5), (_t("Time (UTC)"), 15), (_t("Action"), 20), (_t("Change"), 36),
+                      (_t("Outcome"), 12), (_t("By"), 12)], _change_rows(system, changes))
+            + f"<h2>{_e(_t('Next power-on'))}</h2>{_power_on_html(changes)}")
+    findings = (f"<h2>{_e(_t('Checks'))}</h2>"
+                + _table([(_t("Finding"), 14), (_t("What"), 86)],
+                         _finding_rows(system, autoconfigure)))
     crc = "—" if checksum is None else f"0x{checksum:04X}"
-    detail = _detail_rows(system) if not compact else ""
     graph = ""
     if graph_size is not None:
         graph = (f"<p align=center><img src='{_GRAPH_URL.toString()}' "
@@ -318,28 +339,26 @@ def report_html(system: System, tree: ProfileTree, *, title: str | None = None,
 <style>
  body {{ font-family: 'DejaVu Sans', sans-serif; font-size: 9pt; }}
  h1 {{ font-size: 16pt; margin-bottom: 2px; }}
- h2 {{ font-size: 11pt; margin-top: 10px; margin-bottom: 3px; }}
+ h2 {{ font-size: 11pt; margin-top: 12px; margin-bottom: 4px; }}
  table.grid {{ border-collapse: collapse; }}
- table.grid td, table.grid th {{ border: 1px solid #999; padding: 2px 5px; }}
+ table.grid td, table.grid th {{ border: 1px solid #999; padding: 2px 4px; }}
  th {{ background: #e8e8e8; text-align: left; }}
- .hex {{ color: #555; font-family: 'DejaVu Sans Mono', monospace; }}
+ .hex {{ color: #333; font-family: 'DejaVu Sans Mono', monospace; }}
+ .detail {{ font-size: 7.5pt; color: #333; }}
 </style>
 <h1>{_e(title)}</h1>
-<p>{_e(_t("Date: {0}").format(when))}</p>
-<table cellpadding=3>
- <tr><td>{_e(_t("Patient:"))}</td><td>{patient}</td><td>{_e(_t("Prosthesis:"))}</td>
- <td>{prosthesis}</td></tr>
- <tr><td>{_e(_t("Prosthetist:"))}</td><td>{prosthetist}</td><td>{_e(_t("Signature:"))}</td>
- <td>{blank}</td></tr>
+<table cellpadding=3 width=100%>
+ <tr><td width=22%>{_e(_t("Date:"))}</td><td width=28%>{_e(when)}</td>
+ <td width=20%>{_e(_t("Prosthesis:"))}</td><td width=30%>{prosthesis}</td></tr>
+ <tr><td>{_e(_t("Patient:"))}</td><td>{patient}</td>
+ <td>{_e(_t("Prosthetist:"))}</td><td>{prosthetist}</td></tr>
+ <tr><td>{_e(_t("Signature:"))}</td><td colspan=3>{blank}</td></tr>
 </table>
-{policy_html}
+<p>{_policy_html(info)}</p>
 <h2>{_e(_t("Devices ({n})").format(n=len(system.devices)))}</h2>
-<table class=grid width=100%>{devices}</table>
+{devices}
 <h2>{_e(_t("Links ({n})").format(n=len(system.links)))}</h2>
-<table class=grid width=100%>
- <tr><th width=4%>#</th><th width=46%>{_e(_t("Output"))}</th><th width=3%></th>
- <th width=47%>{_e(_t("Input"))}</th></tr>{links}
-</table>
+{links}
 <h2>{_e(_t("Stored set-up"))}</h2>
 <p>{_t("Check number: {crc}{note}. A later reading of the prosthesis that shows the same "
        "number has the same links.").format(crc=f"<b class=hex>{crc}</b>",
@@ -347,13 +366,17 @@ def report_html(system: System, tree: ProfileTree, *, title: str | None = None,
 {session_html}
 {findings}
 {graph}
-<h2 style='font-size:8pt'>{_e(_t("Technical detail"))}</h2>
-<p style='font-size:7pt; color:#444'>{_e(_t(
-    "Check number: CRC-16/CCITT-FALSE of the stored configuration record. Links by identity "
-    "(VID, PID, serial number, channel index) with the channels' type and profile codes:"))}</p>
-<table style='font-size:7pt; color:#444' cellpadding=1>{detail}</table>
+<h2>{_e(_t("Technical detail"))}</h2>
+<div class=detail>{_technical_html(system, checksum, changes)}</div>
 <p style='color:#777; font-size:7pt'>{_e(_t("Generated by PDCP Studio."))}</p>
 """
+
+
+def _missing(system: System, lk: Link) -> str:
+    gone = [system.device(r.device) for r in (lk.output, lk.input)]
+    if any(d is None or not d.present for d in gone):
+        return f" <i style='color:#b00000'>{_e(_t('(to a missing device)'))}</i>"
+    return ""
 
 
 def _ensure_gui_app() -> None:
@@ -363,12 +386,66 @@ def _ensure_gui_app() -> None:
         _app = QGuiApplication([])
 
 
+def footer_text(page: int, pages: int, when: str, patient: str) -> str:
+    """The line at the foot of every page: whose report, when, and ``Page 1 of 3``."""
+    who = _t("Patient: {0}").format(patient) if patient else ""
+    left = " · ".join(x for x in (_t(DEFAULT_TITLE), who, when) if x)
+    return f"{left} — " + _t("Page {page} of {pages}").format(page=page, pages=pages)
+
+
+def _note(system: System, collection: ConfigCollection | None) -> str:
+    if collection is None:
+        return " " + count(_CTX, "(the %n link(s) above, as they would be stored)",
+                           len(system.links))
+    n = sum(len(c.links) for c in collection.configurations)
+    return " " + _t("(what the prosthesis stores: {links} in {setups})").format(
+        links=count(_CTX, "%n link(s)", n),
+        setups=count(_CTX, "%n set-up(s)", len(collection.configurations)))
+
+
+def page_layout() -> QPageLayout:
+    """A4 portrait; the bottom margin leaves room for the page number."""
+    return QPageLayout(QPageSize(QPageSize.PageSizeId.A4), QPageLayout.Orientation.Portrait,
+                       QMarginsF(15, 15, 15, 12), QPageLayout.Unit.Millimeter)
+
+
+def body_size() -> QSizeF:
+    """One page's text area in 96-dpi layout pixels (the page less its margins and footer)."""
+    rect = page_layout().paintRect(QPageLayout.Unit.Inch)
+    return QSizeF(rect.width() * LAYOUT_DPI, rect.height() * LAYOUT_DPI - FOOTER_HEIGHT)
+
+
+def report_document(system: System, tree: ProfileTree, graph_image: QImage | None = None,
+                    title: str | None = None, *, date: _dt.date | None = None,
+                    collection: ConfigCollection | None = None,
+                    fitting: FittingInfo | None = None) -> QTextDocument:
+    """The report laid out in pages of :func:`body_size` (what :func:`write_report` draws;
+    tests look at its layout)."""
+    _ensure_gui_app()
+    size = body_size()
+    doc = QTextDocument()
+    graph_size = None
+    if graph_image is not None and not graph_image.isNull():
+        graph_size = QSizeF(graph_image.size())
+        graph_size.scale(QSizeF(size.width() - 20, size.height() * GRAPH_MAX_HEIGHT_FRACTION),
+                         Qt.AspectRatioMode.KeepAspectRatio)
+        doc.addResource(QTextDocument.ResourceType.ImageResource, _GRAPH_URL, graph_image)
+    doc.setDocumentMargin(0)
+    doc.setPageSize(size)  # the document breaks its own pages
+    doc.setHtml(report_html(system, tree, title=title or _t(DEFAULT_TITLE), date=date,
+                            graph_size=graph_size,
+                            checksum=configuration_checksum(system, collection),
+                            stored_note=_note(system, collection), fitting=fitting))
+    return doc
+
+
 def write_report(path: str | Path, system: System, tree: ProfileTree,
                  graph_image: QImage | None = None, title: str | None = None, *,
                  date: _dt.date | None = None,
                  collection: ConfigCollection | None = None,
                  fitting: FittingInfo | None = None) -> Path:
-    """Write the one-page A4 PDF report to ``path``; returns the path.
+    """Write the A4 portrait PDF report to ``path`` (as many pages as it takes, each with
+    its page number); returns the path.
 
     The checksum is that of ``collection`` (e.g. the arbitrator's stored configuration) or,
     by default, of the system's links stored as configuration 1. OSError if it cannot write.
@@ -376,59 +453,47 @@ def write_report(path: str | Path, system: System, tree: ProfileTree,
     _ensure_gui_app()
     path = Path(path)
     title = title or _t(DEFAULT_TITLE)
-    checksum = configuration_checksum(system, collection)
-    if collection is None:
-        note = " " + count(_CTX, "(the %n link(s) above, as they would be stored)",
-                           len(system.links))
-    else:
-        n = sum(len(c.links) for c in collection.configurations)
-        note = " " + _t("(what the prosthesis stores: {links} in {setups})").format(
-            links=count(_CTX, "%n link(s)", n),
-            setups=count(_CTX, "%n set-up(s)", len(collection.configurations)))
+    doc = report_document(system, tree, graph_image, title, date=date, collection=collection,
+                          fitting=fitting)
     buffer = QBuffer()
     buffer.open(QIODevice.OpenModeFlag.WriteOnly)
     writer = QPdfWriter(buffer)
     writer.setResolution(PDF_DPI)
     writer.setTitle(title)
     writer.setCreator("PDCP Studio")
-    writer.setPageLayout(QPageLayout(QPageSize(QPageSize.PageSizeId.A4),
-                                     QPageLayout.Orientation.Portrait,
-                                     QMarginsF(15, 15, 15, 15), QPageLayout.Unit.Millimeter))
+    writer.setPageLayout(page_layout())
     px_per_layout = writer.resolution() / LAYOUT_DPI
-    page_w = writer.width() / px_per_layout  # page in 96-dpi layout pixels
-    page_h = writer.height() / px_per_layout
-
-    graph_size = None
-    doc = QTextDocument()
-    if graph_image is not None and not graph_image.isNull():
-        size = QSizeF(graph_image.size())
-        size.scale(QSizeF(page_w - 20, page_h * GRAPH_MAX_HEIGHT_FRACTION),
-                   Qt.AspectRatioMode.KeepAspectRatio)
-        graph_size = size
-        doc.addResource(QTextDocument.ResourceType.ImageResource, _GRAPH_URL, graph_image)
-    doc.setDocumentMargin(0)
-    doc.setTextWidth(page_w)
-    for compact in (False, True):
-        doc.setHtml(report_html(system, tree, title=title, date=date, graph_size=graph_size,
-                                checksum=checksum, compact=compact, stored_note=note,
-                                fitting=fitting))
-        if doc.size().height() <= page_h:
-            break
-    height = doc.size().height()
-    scale = min(1.0, page_h / height) if height > 0 else 1.0
-    if scale < 1.0:  # too tall: lay out wider so it scales down evenly, then fit
-        doc.setTextWidth(page_w / scale)
-        scale = min(page_w / doc.textWidth(), page_h / doc.size().height())
+    size = body_size()
+    page_w, body_h = size.width(), size.height()
+    page_h = body_h + FOOTER_HEIGHT
+    pages = max(1, doc.pageCount())
+    when = (fitting.time.strftime("%Y-%m-%d %H:%M UTC") if fitting and fitting.time
+            else (date or _dt.date.today()).isoformat())
+    foot = QTextDocument()
+    foot.setDocumentMargin(0)
+    foot.setTextWidth(page_w)
 
     painter = QPainter()
     if not painter.begin(writer):
         raise OSError(_t("{path}: cannot write the PDF").format(path=path))
     try:
-        painter.scale(px_per_layout * scale, px_per_layout * scale)
-        doc.drawContents(painter)
+        painter.scale(px_per_layout, px_per_layout)
+        for page in range(pages):
+            if page:
+                writer.newPage()
+            painter.save()
+            painter.translate(0, -page * body_h)
+            doc.drawContents(painter, QRectF(0, page * body_h, page_w, body_h))
+            painter.restore()
+            line = footer_text(page + 1, pages, when, fitting.patient if fitting else "")
+            foot.setHtml("<p style='font-family: \"DejaVu Sans\"; font-size: 7pt; "
+                         f"color: #555' align=right>{_e(line)}</p>")
+            painter.save()
+            painter.translate(0, page_h - foot.size().height())
+            foot.drawContents(painter)
+            painter.restore()
     finally:
         painter.end()
     buffer.close()
     atomic_write_bytes(path, bytes(buffer.data().data()))  # a crash leaves no half PDF
     return path
-

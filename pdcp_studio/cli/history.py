@@ -103,9 +103,21 @@ def _crc_text(before: str | None, after: str | None) -> str:
     return f"{before or 'not recorded'} → {after or 'not recorded'}"
 
 
+def _words(e: Entry) -> str:
+    """The change in words: the first lines of its effect (entries recorded before the
+    effect was kept say only the action)."""
+    text = [ln for ln in ((e.get("effect") or {}).get("text") or [])
+            if not ln.startswith(("Stored configuration: unchanged", "While the change",
+                                  "No part needs", " "))]
+    if not text:
+        return str(e["action"])
+    more = f" (+{len(text) - 2} more)" if len(text) > 2 else ""
+    return "; ".join(text[:2]) + more
+
+
 def _line(e: Entry) -> str:
     outcome = (e.get("outcome") or {}).get("status", "")
-    return (f"{e['id']:>4}  {e['time']}  {e['operator']}  {e['action']}  on {e['bus']}  "
+    return (f"{e['id']:>4}  {e['time']}  {e['operator']}  {_words(e)}  on {e['bus']}  "
             f"{len(e['links_before'])}→"
             f"{'?' if e['links_after'] is None else len(e['links_after'])} link(s)  "
             f"{'verified' if e['verified'] else 'not verified'}  {outcome}  "
@@ -141,6 +153,18 @@ def run_show(args: argparse.Namespace) -> int:
         return 0
     outcome = e.get("outcome") or {}
     print(_line(e))
+    effect, power_on = e.get("effect"), e.get("next_power_on")
+    if effect:
+        print("  what it did:")
+        print("\n".join(f"    {ln}" for ln in effect.get("text", [])))
+    if power_on:
+        print("\n".join(f"  {ln}" for ln in power_on.get("text", [])))
+    if not effect:
+        print("  (recorded before PDCP Studio kept a change's effect in words)")
+    print("  technical detail:")
+    print(f"    action: {e['action']}")
+    for ln in (effect or {}).get("technical", []):
+        print(f"    {ln}")
     print(f"  outcome: {outcome.get('status', '')}"
           + (f" at step {outcome['step']}: {outcome['reason']}" if outcome.get("reason") else ""))
     print("  devices: " + ", ".join(f"{d['vid']}/{d['pid']}/{d['serial']}"

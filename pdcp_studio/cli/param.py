@@ -144,7 +144,7 @@ def run_set(args: argparse.Namespace) -> int:
             writes = param_names.writes_for(obj, wanted)
         except ParameterError as err:
             raise BadInput(f"{args.part}: {err}") from err
-        change = Change("param set " + " ".join(f"{k}={v}" for k, v in wanted.items()),
+        change = Change("param set",
                         parameters=[ParameterWrite(device.key, param, channel or 0, data)
                                     for param, data in writes])
 

@@ -393,10 +393,15 @@ def effect_of(system: System, *, links_after: Iterable[Link],
     effect = Effect(before, sorted(set(after) - set(before)), sorted(set(before) - set(after)),
                     pchanges, stored_before, stored_after, changed, policy_before, policy,
                     sorted(held), po,
-                    crc_before=crc(config_before) if crc else None,
-                    crc_after=crc(stored_next) if crc else None)
+                    crc_before=_crc(crc, stored_now), crc_after=_crc(crc, stored_next))
     effect.names = _names_for(effect, names, written)
     return effect
+
+
+def _crc(crc: Callable[[ConfigCollection | None], str | None] | None,
+         collection: ConfigCollection) -> str | None:
+    """A stored configuration's CRC; None when nothing is stored (as the arbitrator says)."""
+    return crc(collection) if crc is not None and collection.configurations else None
 
 
 def predict_power_on(system: System, stored: ConfigCollection, *, autoconfigure: bool

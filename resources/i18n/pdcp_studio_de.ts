@@ -4562,6 +4562,22 @@ Die Prothese ist wie zuvor.</translation>
             <source>Yes, clear the stored configuration</source>
             <translation>Ja, die gespeicherte Konfiguration löschen</translation>
         </message>
+        <message>
+            <source>optional, e.g. the clinic&apos;s case number</source>
+            <translation>freiwillig, z. B. die Fallnummer der Klinik</translation>
+        </message>
+        <message>
+            <source>Patient reference:</source>
+            <translation>Patientenreferenz:</translation>
+        </message>
+        <message>
+            <source>Continue</source>
+            <translation>Fortfahren</translation>
+        </message>
+        <message>
+            <source>Press {0} to carry on; nothing is written.</source>
+            <translation>„{0}“ drücken, um fortzufahren; es wird nichts geschrieben.</translation>
+        </message>
     </context>
     <context>
         <name>ArbitratorFoundDialog</name>
@@ -5355,6 +5371,102 @@ Die Prothese ist wie zuvor.</translation>
                 <numerusform>%n Einrichtung</numerusform>
                 <numerusform>%n Einrichtungen</numerusform>
             </translation>
+        </message>
+        <message>
+            <source>Check number: CRC-16/CCITT-FALSE of the stored configuration record</source>
+            <translation>Prüfnummer: CRC-16/CCITT-FALSE des gespeicherten Konfigurationsdatensatzes</translation>
+        </message>
+        <message>
+            <source>VID {vid} PID {pid} serial {serial}</source>
+            <translation>VID {vid} PID {pid} Seriennummer {serial}</translation>
+        </message>
+        <message>
+            <source>Links by identity (VID, PID, serial number, channel index) with the channels&apos; type and profile codes:</source>
+            <translation>Verbindungen nach Identität (VID, PID, Seriennummer, Kanalindex) mit den Typ- und Profilcodes der Kanäle:</translation>
+        </message>
+        <message>
+            <source>No change was written in this session: the prosthesis starts up as it did before.</source>
+            <translation>In dieser Sitzung wurde keine Änderung geschrieben: Die Prothese startet wie zuvor.</translation>
+        </message>
+        <message>
+            <source>After entry {0}, the last change written:</source>
+            <translation>Nach Eintrag {0}, der zuletzt geschriebenen Änderung:</translation>
+        </message>
+        <message>
+            <source>Date:</source>
+            <translation>Datum:</translation>
+        </message>
+        <message>
+            <source>Patient: {0}</source>
+            <translation>Patient: {0}</translation>
+        </message>
+        <message>
+            <source>Page {page} of {pages}</source>
+            <translation>Seite {page} von {pages}</translation>
+        </message>
+        <message>
+            <source>At the next power-on: {0}</source>
+            <translation>Beim nächsten Einschalten: {0}</translation>
+        </message>
+        <message>
+            <source>next power-on adds</source>
+            <translation>nächstes Einschalten fügt hinzu</translation>
+        </message>
+        <message>
+            <source>next power-on removes</source>
+            <translation>nächstes Einschalten entfernt</translation>
+        </message>
+        <message>
+            <source>Parts by identity:</source>
+            <translation>Teile nach Identität:</translation>
+        </message>
+        <message>
+            <source>Next power-on</source>
+            <translation>Nächstes Einschalten</translation>
+        </message>
+        <message>
+            <source>stored configuration check number {before} → {after}</source>
+            <translation>Prüfnummer der gespeicherten Konfiguration {before} → {after}</translation>
+        </message>
+        <message>
+            <source>Entry {0}:</source>
+            <translation>Eintrag {0}:</translation>
+        </message>
+        <message>
+            <source>New fitting: links written</source>
+            <translation>Neue Anpassung: Verbindungen geschrieben</translation>
+        </message>
+        <message>
+            <source>New fitting: configuration stored</source>
+            <translation>Neue Anpassung: Konfiguration gespeichert</translation>
+        </message>
+        <message>
+            <source>Part replaced</source>
+            <translation>Teil ersetzt</translation>
+        </message>
+        <message>
+            <source>Configuration restored from a file</source>
+            <translation>Konfiguration aus einer Datei wiederhergestellt</translation>
+        </message>
+        <message>
+            <source>This entry was recorded before PDCP Studio predicted the next power-on, so the report cannot say what the prosthesis does at its next start-up.</source>
+            <translation>Dieser Eintrag wurde aufgezeichnet, bevor PDCP Studio das nächste Einschalten vorhersagte; der Bericht kann daher nicht sagen, was die Prothese beim nächsten Start tut.</translation>
+        </message>
+        <message>
+            <source>the prosthesis starts up with the links as they are now.</source>
+            <translation>die Prothese startet mit den Verbindungen, wie sie jetzt sind.</translation>
+        </message>
+        <message>
+            <source>Fitting history entry {0} restored</source>
+            <translation>Eintrag {0} der Anpassungshistorie wiederhergestellt</translation>
+        </message>
+        <message>
+            <source>{old} replaced by {new}</source>
+            <translation>{old} ersetzt durch {new}</translation>
+        </message>
+        <message>
+            <source>Autoconfigure: not known (the prosthesis was not connected)</source>
+            <translation>Autokonfiguration: unbekannt (die Prothese war nicht verbunden)</translation>
         </message>
     </context>
     <context>

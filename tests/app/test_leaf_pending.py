@@ -117,4 +117,4 @@ def test_the_report_fills_in_the_session(qapp):
         1 for lk in system.links if HAND in (lk.output.device, lk.input.device))
     assert "<h2>Checks</h2>" in html
     blank = report_html(system, load_profile_tree(user_dir=False))
-    assert "P-17" not in blank and "_" * 38 in blank
+    assert "P-17" not in blank and "_" * 30 in blank

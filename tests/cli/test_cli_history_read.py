@@ -56,7 +56,7 @@ def test_show_of_a_real_change_without_crcs_says_not_recorded(tmp_path, monkeypa
     assert main(["history", "show", "1"]) == 0
     out = capsys.readouterr().out
     assert "None" not in out
-    crc = next(line for line in out.splitlines() if "stored configuration CRC" in line)
+    crc = next(line for line in out.splitlines() if "stored configuration CRC:" in line)
     entry = History(tmp_path / "history.sqlite").get(1)
     assert entry is not None
     if entry["config_crc_before"] is None and entry["config_crc_after"] is None:

@@ -12,7 +12,14 @@ from collections.abc import Callable
 from typing import TYPE_CHECKING, Any, NamedTuple
 
 from PySide6.QtCore import Qt, QTimer
-from PySide6.QtWidgets import QPlainTextEdit, QPushButton, QWizard
+from PySide6.QtWidgets import (
+    QHBoxLayout,
+    QLabel,
+    QLineEdit,
+    QPlainTextEdit,
+    QPushButton,
+    QWizard,
+)
 
 from pdcp_studio.app.i18n import translate
 from pdcp_studio.app.wizards import words
@@ -112,14 +119,29 @@ class ChangePage(Page):
 class WritePage(Page):
     """Write the previewed change as one transaction, with progress and Stop; the page's
     Write button confirms it. With ``build`` the page works its change out itself (as a
-    :class:`ChangePage` does) and shows it before writing."""
+    :class:`ChangePage` does) and shows it before writing.
+
+    The page asks for the patient reference (optional; the window's, as the Pending changes
+    panel has it, or the one given on an earlier page of the task): it is recorded in the
+    fitting history entry and remembered for the prosthesis. When nothing needs writing the
+    button is Continue, and the page says that."""
 
     def __init__(self, title: str, subtitle: str, button: str,
                  build: Build | None = None) -> None:
         super().__init__(title, subtitle)
         self.setCommitPage(True)
+        self.write_label = button
         self.setButtonText(QWizard.WizardButton.CommitButton, button)
         self.build = build
+        self.patient = QLineEdit()
+        self.patient.setPlaceholderText(_t("optional, e.g. the clinic's case number"))
+        self.patient.setClearButtonEnabled(True)
+        self.patient_label = QLabel(_t("Patient reference:"))
+        self.patient_label.setBuddy(self.patient)
+        row = QHBoxLayout()
+        row.addWidget(self.patient_label)
+        row.addWidget(self.patient, 1)
+        self.box.insertLayout(self.box.indexOf(self.busy), row)
         self.runner = TransactionRunner(None, self)
         self.runner.progress.connect(self._progress)
         self.runner.finished.connect(self._finished)
@@ -141,6 +163,8 @@ class WritePage(Page):
         self.result = None
         self.set_ready(False)
         task = self.task
+        known = task.patient if task.patient is not None else task.main.patient_reference()
+        self.patient.setText(known or "")
         if self.build is None:
             self._show(task.system, task.change, task.preview)
             return
@@ -165,11 +189,16 @@ class WritePage(Page):
         what = words.preview_lines(system, preview)
         head, *rest = lines or [""]
         intro = bullets(rest, head)
+        for widget in (self.patient, self.patient_label):
+            widget.setVisible(not preview.empty)  # nothing written: nothing recorded
         if preview.empty:
+            go_on = _t("Continue")
+            self.setButtonText(QWizard.WizardButton.CommitButton, go_on)
             self.view.setHtml(intro + bullets(
                 what, _t("Nothing needs writing: the prosthesis already holds this.")))
-            self.idle(_t("Next goes on without writing anything."))
+            self.idle(_t("Press {0} to carry on; nothing is written.").format(go_on))
         else:
+            self.setButtonText(QWizard.WizardButton.CommitButton, self.write_label)
             how = (_t("Press the button below to write this to the prosthesis. The parts "
                       "that move are held still while it is written, then everything is read "
                       "back and checked; on any difference the prosthesis is put back as it "
@@ -188,7 +217,8 @@ class WritePage(Page):
             return True
         if self.runner.running or self.change is None or self.preview is None:
             return False
-        if not self.runner.start(self.change, list(self.preview.links_before)):
+        patient = self.remember_patient()
+        if not self.runner.start(self.change, list(self.preview.links_before), patient):
             self.idle(_t("No prosthesis is connected."))
             return False
         self.result = None
@@ -198,6 +228,17 @@ class WritePage(Page):
         self.working(_t("Writing to the prosthesis…"))
         self._buttons(False)
         return False
+
+    def remember_patient(self) -> str:
+        """The patient reference given here, kept for the task's other pages and for the
+        window (the Pending changes panel, remembered per prosthesis)."""
+        text = self.patient.text().strip()
+        self.task.patient = text
+        keep = getattr(getattr(self.task.main, "transactions", None), "set_patient_reference",
+                       None)
+        if callable(keep):
+            keep(text)
+        return text
 
     def _buttons(self, enabled: bool) -> None:
         for b in (QWizard.WizardButton.BackButton, QWizard.WizardButton.CancelButton):

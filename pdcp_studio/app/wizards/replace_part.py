@@ -81,6 +81,7 @@ class _FollowsBus(Page):
         if dock is not None:
             dock.show()
             dock.raise_()
+            self.task.keep_clear_of_simulator()
 
     def sim_panel(self) -> SimPanel | None:
         """The window's Simulator panel (a simulated prosthesis), else None."""

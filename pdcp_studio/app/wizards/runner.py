@@ -52,13 +52,16 @@ class TransactionRunner(QObject):
         self.stop: threading.Event | None = None
         self.running = False
 
-    def start(self, change: Change, links_previewed: list[Link]) -> bool:
-        """Write ``change`` (already previewed and confirmed); False when not connected."""
+    def start(self, change: Change, links_previewed: list[Link],
+              patient: str | None = None) -> bool:
+        """Write ``change`` (already previewed and confirmed), recording ``patient`` (default:
+        the window's patient reference) in the fitting history; False when not connected."""
         bridge = self.window.live.bridge
         if bridge is None or self.running:
             return False
         operator = fitting.operator_name(self.window)
-        patient = self.window.patient_reference()
+        if patient is None:
+            patient = self.window.patient_reference()
         shown = set(links_previewed)
 
         def same_bus(preview: ChangePreview) -> bool:  # the prosthesis must be as previewed

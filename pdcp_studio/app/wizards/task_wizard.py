@@ -13,8 +13,8 @@ from collections.abc import Callable
 from pathlib import Path
 from typing import TYPE_CHECKING, Any, Literal
 
-from PySide6.QtCore import Qt
-from PySide6.QtGui import QCloseEvent, QKeyEvent
+from PySide6.QtCore import Qt, QTimer
+from PySide6.QtGui import QCloseEvent, QKeyEvent, QShowEvent
 from PySide6.QtWidgets import QLabel, QProgressBar, QTextBrowser, QVBoxLayout, QWizard, QWizardPage
 
 from pdcp_studio.app.i18n import translate
@@ -91,6 +91,20 @@ class TaskWizard(QWizard):
         self.new_parts: list[DeviceKey] = []
         # Restore: where the configuration comes from.
         self.source: Source | None = None
+        #: The patient reference the write pages record (asked there; None: not asked yet).
+        self.patient: str | None = None
+
+    def showEvent(self, event: QShowEvent) -> None:
+        super().showEvent(event)
+        # Once the window system has framed it: beside the Simulator panel, not over it.
+        QTimer.singleShot(0, self, self.keep_clear_of_simulator)
+
+    def keep_clear_of_simulator(self) -> bool:
+        """Place the wizard so that the Simulator panel it points to stays in view."""
+        from pdcp_studio.app.wizards.placement import keep_clear
+
+        docks = getattr(self.main, "_leaf_docks", None) or {}
+        return keep_clear(self, docks.get("sim"))
 
     @property
     def writing(self) -> bool:
