@@ -102,7 +102,7 @@ def test_new_fitting_from_scratch_to_a_recorded_history_entry_and_report(live, q
     assert "Nothing needs writing" in _text(w.write_page)
     _next(w, qtbot, w.write_page, w.store_page)
     _ready(w, qtbot, w.store_page)
-    assert "Will be stored" in _text(w.store_page)
+    assert "stored from now on: " in _text(w.store_page)  # the effect's words
     assert not _session(live).read_configuration().configurations  # not yet
     w.next()  # the commit button: store the configuration (one transaction)
     qtbot.waitUntil(lambda: w.currentPage() is w.report_page, timeout=T)
@@ -134,7 +134,8 @@ def test_new_fitting_writes_the_autoconfigure_plan_with_the_motion_interlock(liv
     _ready(w, qtbot, w.plan_page)
     text = _text(w.plan_page)
     assert text.count("Connect ") >= 5 and "drives a part of the prosthesis" in text
-    assert "Held still meanwhile, so the prosthesis cannot move: Pattern-recognition control unit" in text
+    assert "these parts are held still: Pattern-recognition control unit" in text
+    assert "At the next power-on" in text  # the effect's next power-on, in words
     _next(w, qtbot, w.plan_page, w.write_page)
     w.next()
     qtbot.waitUntil(lambda: w.currentPage() is w.store_page, timeout=T)
@@ -320,7 +321,9 @@ def test_restore_from_a_file(live, qtbot, tmp_path):
     _ready(w, qtbot, w.diff_page)
     text = _text(w.diff_page)
     assert "From the file fitted.pdcfg" in text
-    assert text.count("Connect ") >= 2 and "Will be stored" in text
+    # The effect's words: links made, the stored configuration, the next power-on.
+    assert text.count("Link made: ") >= 2 and "stored from now on: " in text
+    assert "At the next power-on" in text
     # Back to the choice and forward again: the same difference.
     w.back()
     _next(w, qtbot, page, w.diff_page)

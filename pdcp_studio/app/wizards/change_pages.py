@@ -62,12 +62,13 @@ def work_out(task: TaskWizard, build: Build) -> Callable[[Any], Worked]:
     is pure; the session is read there, never on the GUI thread)."""
 
     def work(session: BusSession) -> Worked:
+        from pdcp_studio.app.words.effect_words import app_names
         from pdcp_studio.bus.session.api import preview_change
 
         system, stored, policy = look(session)
         lines, change, expected = build(task, system, stored)
         return Worked(system, stored, policy, lines, change, expected,
-                      preview_change(session, change))
+                      preview_change(session, change, names=app_names(system)))
 
     return work
 
@@ -89,6 +90,9 @@ class ChangePage(Page):
         self.box.addWidget(self.detail_button, 0, Qt.AlignmentFlag.AlignLeft)
         self.box.addWidget(self.detail, 1)
         self.lines: list[str] = []
+        #: The effect's words include the links made and removed (False: the lines
+        #: ``build`` gives, a plan's steps, already say them).
+        self.effect_links = False
 
     def initializePage(self) -> None:
         self.set_ready(False)
@@ -103,12 +107,14 @@ class ChangePage(Page):
         task = self.task
         (task.system, task.stored, task.policy, self.lines, task.change,
          task.expected_links, task.preview) = got
-        preview_words = words.preview_lines(got.system, got.preview, links=False)
+        preview_words = words.preview_lines(got.system, got.preview,
+                                            links=self.effect_links)
         head, *lines = self.lines or [""]
         self.view.setHtml(bullets(lines, head)
                           + bullets(preview_words, _t("When it is written:")))
         plan = got.change.plan
-        detail = list(got.preview.lines())
+        effect = got.preview.effect  # the codes behind the words, as in the confirmation
+        detail = list(effect.technical()) if effect is not None else list(got.preview.lines())
         if plan is not None:
             detail += ["", plan.to_text(task.main.doc.tree)]
         self.detail.setPlainText("\n".join(detail))

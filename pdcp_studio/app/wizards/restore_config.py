@@ -21,6 +21,7 @@ from PySide6.QtWidgets import (
     QLineEdit,
     QListWidget,
     QListWidgetItem,
+    QMessageBox,
     QPushButton,
     QRadioButton,
 )
@@ -207,19 +208,26 @@ def restore_step(task: TaskWizard, system: System,
         change = logic.restore_file_change(system, collection, path.name)
         lines = [_t("From the file {0}.").format(path.name)]
     else:
+        from pdcp_studio.app.widgets.restore_refusal import missing_words
+        from pdcp_studio.bus.transaction import NotRestorable
+
         entry = source[1]
-        change = restore_change(entry, system)
+        task.missing_parts = []
+        try:
+            change = restore_change(entry, system)
+        except NotRestorable as err:
+            if not err.missing:
+                raise
+            task.missing_parts = list(err.missing)
+            # Refused before anything is written: the page names the parts (by the names
+            # every text uses) and offers Replace a part.
+            raise NotRestorable(missing_words(entry["id"], err.missing, system),
+                                err.missing) from err
         lines = [_t("As the fitting of {0} left the prosthesis (fitting history entry {1}).")
                  .format(str(entry.get("time", ""))[:19].replace("T", " "), entry["id"])]
-    after = change.links_after(system.links)
-    added = set(after) - set(system.links)
-    removed = set(system.links) - set(after)
-    lines += [_t("Connect {0}").format(words.link_words(system, lk)) for lk in sorted(added)]
-    lines += [_t("Disconnect {0}").format(words.link_words(system, lk))
-              for lk in sorted(removed)]
-    if not added and not removed:
-        lines.append(_t("The links on the prosthesis are already as in this configuration."))
-    return lines, change, after
+    # The links made and removed, the parameters, the stored configuration, the policy and
+    # the next power-on: the change's effect says them (the page asks it, links included).
+    return lines, change, change.links_after(system.links)
 
 
 class DifferencePage(ChangePage):
@@ -233,6 +241,9 @@ class DifferencePage(ChangePage):
             _t("Difference"),
             _t("What changes on the prosthesis when this configuration is put back. Nothing "
                "is written yet."), restore_step)
+        self.effect_links = True  # nothing above says the links: the effect does
+        #: The refusal on screen when a part the restore needs is absent (tests read it).
+        self.refusal: QMessageBox | None = None
         self.warning = QLabel(_t(
             "Warning: this fitting was made before any configuration was stored on the "
             "prosthesis. Putting it back clears the stored configuration: after a restart, "
@@ -246,6 +257,19 @@ class DifferencePage(ChangePage):
         self.box.insertWidget(2, self.confirm)
         self.clears = False
         self._warn(False)
+
+    def failed(self, message: str) -> None:
+        """A restore refused for an absent part says so on top, with Replace a part (the
+        wizard's change is never written: the page does not go on)."""
+        from pdcp_studio.app.widgets.restore_refusal import refuse
+
+        task = self.task
+        if not task.missing_parts:
+            super().failed(message)
+            return
+        self.idle(message)
+        self.refusal = refuse(task, _t("Restore a configuration"), message,
+                              lambda: _replace_instead(task))
 
     def _warn(self, clears: bool) -> None:
         self.clears = clears
@@ -267,6 +291,12 @@ class DifferencePage(ChangePage):
 
     def validatePage(self) -> bool:
         return self.isComplete()  # Next by keyboard or code waits for the tick too
+
+
+def _replace_instead(task: TaskWizard) -> None:
+    """Leave the restore for Replace a part."""
+    task.reject()
+    task.main.open_task("replace")
 
 
 class RestoreWizard(TaskWizard):

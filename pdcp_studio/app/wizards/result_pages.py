@@ -63,7 +63,14 @@ class VerifyPage(Page):
                 lines.append(f"{OK_MARK} " + _t("Fitting history entry {0}: written and "
                                                 "verified by the prosthesis.")
                              .format(result.history_id))
-        self.view.setHtml(bullets(lines, marks=True))
+        html = bullets(lines, marks=True)
+        effect = task.preview.effect if task.preview is not None else None
+        if effect is not None and task.results:  # what was written stays, or not
+            from pdcp_studio.app.words.effect_words import effect_tr
+
+            html += bullets(effect.power_on_lines(effect_tr),
+                            _t("When the prosthesis is next switched on:"))
+        self.view.setHtml(html)
         self.idle(_t("Everything is as written.") if not self.problems else
                   _t("The prosthesis is not as written: look at the points above."))
         self.set_ready(True)

@@ -93,6 +93,8 @@ class TaskWizard(QWizard):
         self.source: Source | None = None
         #: The patient reference the write pages record (asked there; None: not asked yet).
         self.patient: str | None = None
+        #: The parts a restore needs that are not on the bus (it was refused for them).
+        self.missing_parts: list[DeviceKey] = []
 
     def showEvent(self, event: QShowEvent) -> None:
         super().showEvent(event)

@@ -208,8 +208,27 @@ def config_lines(system: System, diff: ConfigDiff | None) -> list[str]:
 
 
 def preview_lines(system: System, preview: ChangePreview, links: bool = True) -> list[str]:
-    """What the transaction will do on the prosthesis, in words (``links`` False: without
-    the links made and removed, when the plan above already says them)."""
+    """What the transaction will do on the prosthesis and what the next power-on does, in
+    the words of the change's effect (``links`` False: without the links made and removed,
+    when the plan above already says them)."""
+    effect = preview.effect
+    if effect is None:  # a preview made without one: the older words
+        return _preview_lines_without_effect(system, preview, links)
+    from pdcp_studio.app.words.effect_words import effect_tr
+    from pdcp_studio.engine import effect as E
+
+    out = effect.lines(effect_tr)
+    if not links:
+        said = {effect_tr(E.T_LINK_ADDED).format(link=effect.name(lk))
+                for lk in effect.links_added}
+        said |= {effect_tr(E.T_LINK_REMOVED).format(link=effect.name(lk))
+                 for lk in effect.links_removed}
+        out = [line for line in out if line not in said]
+    return [*out, *effect.power_on_lines(effect_tr)]
+
+
+def _preview_lines_without_effect(system: System, preview: ChangePreview,
+                                  links: bool = True) -> list[str]:
     out = []
     current = set(preview.links_before)
     for a in preview.change.links if links else ():
