@@ -76,6 +76,7 @@ class BusDocks(QObject):
         self._trace_docks_wired = False
         self._keeping_from: Any = None
         self._early_frames: list[Any] = []
+        self._events_from: SessionBridge | None = None
 
     def attach_safely(self, bridge: SessionBridge) -> None:
         """A dock that fails to build must not cost the connection: log it and go on."""
@@ -113,6 +114,9 @@ class BusDocks(QObject):
             self._ready.connect(self._trace_docks_soon)  # the first system is on screen
             self.doc.selectionChanged.connect(self._plot_selection)
         events = self.events_dock()
+        if bridge is not self._events_from:  # another prosthesis: none of the last one's
+            self._events_from = bridge
+            self._widget(events).clear()
         bridge.busEvent.connect(self._widget(events).add_event)
         bridge.scanned.connect(self._scan_finished)  # any scan's end is said in the status bar
         if bridge.is_sim:
@@ -122,6 +126,7 @@ class BusDocks(QObject):
                             Qt.DockWidgetArea.RightDockWidgetArea)
             self.host.tabifyDockWidget(self.inspector_dock, dock)
             self.inspector_dock.raise_()
+            self.view_menu.addAction(dock.toggleViewAction())  # a wizard may point to it
             self.leaf_docks["sim"] = dock
 
     @staticmethod
@@ -281,8 +286,11 @@ class BusDocks(QObject):
             monitor.reset_for_session(system)
         plot = self.leaf_docks.get("plot")
         if plot is not None:
-            self._widget(plot).set_channel(None)
-            self._widget(plot).set_system(system)  # names and units of its signals
+            widget = self._widget(plot)
+            for series in list(widget.series):  # signals of the previous prosthesis go
+                widget.remove_channel(series.ref)
+            widget.clear()
+            widget.set_system(system)  # names and units of its signals
 
     def bus_seen(self, system: Any) -> None:
         """After any bus event: the monitor names frames by the bus's node IDs as they are
