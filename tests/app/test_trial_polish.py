@@ -49,3 +49,30 @@ def test_switching_prosthesis_clears_events_and_plot(make_window, qtbot):
     assert not ({s.ref for s in plot.series} & before)
     assert all(s.ref.device in window.doc.system.devices for s in plot.series)
     window.live.disconnect_bus()
+
+
+# -- the history panel: a detail pane with room, a hint that follows the selection -------
+def test_history_details_have_room_and_the_hint_follows(make_window, qtbot):
+    from pdcp_studio.bus.transaction import Change
+
+    window = make_window(size=(1500, 950))
+    _connect(window, qtbot, "sim:transradial")
+    session = window.live.bridge.session
+    links = sorted(session.system().links)
+    assert session.transact(Change.links_to(links, links[1:], "one less")).written
+    assert session.transact(Change.links_to(links[1:], links, "again")).written
+    window.history_dock.show()
+    window.history_dock.raise_()
+    panel = window.history_panel
+    with qtbot.waitSignal(panel.loaded, timeout=5000):
+        panel.refresh()
+    qtbot.waitUntil(lambda: panel.split.width() > 600, timeout=5000)
+    table, details = panel.split.sizes()
+    assert details >= 0.4 * (table + details) - 2, (table, details)
+    panel.select_ids()
+    assert panel.hint.isVisibleTo(panel) and "two" in panel.hint.text()
+    panel.select_ids(1)
+    assert panel.hint.isVisibleTo(panel) and "second" in panel.hint.text()
+    panel.select_ids(1, 2)
+    assert not panel.hint.isVisibleTo(panel), panel.hint.text()
+    window.live.disconnect_bus()
