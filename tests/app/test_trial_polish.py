@@ -2,6 +2,9 @@
 
 from __future__ import annotations
 
+import shutil
+import subprocess
+
 import pytest
 
 pytestmark = pytest.mark.gui
@@ -75,4 +78,46 @@ def test_history_details_have_room_and_the_hint_follows(make_window, qtbot):
     assert panel.hint.isVisibleTo(panel) and "second" in panel.hint.text()
     panel.select_ids(1, 2)
     assert not panel.hint.isVisibleTo(panel), panel.hint.text()
+    window.live.disconnect_bus()
+
+
+# -- the graph's export: no selection highlight, and a PDF beside PNG and SVG --------------
+RIG_FILE = "appendix-d.json"  # a system with links
+
+
+def test_png_export_shows_no_selection(make_window, systems_dir, qtbot):
+    window = make_window(systems_dir / RIG_FILE)
+    plain = window.graph_image(1.0)
+    card = next(iter(window.doc.system.devices))
+    link = next(iter(window.doc.system.links))
+    for chosen in (card, link.output, link):
+        window.doc.select(chosen)
+        assert window.scene.selectedItems()
+        shown = window.graph_image(1.0)
+        assert shown == plain, f"the export shows the selection of {chosen}"
+        # The window's selection is as it was.
+        assert window.doc.selection == chosen
+        assert window.scene.selectedItems()
+
+
+def test_graph_exports_a_one_page_vector_pdf(make_window, qtbot, tmp_path):
+    import re
+
+    window = make_window()
+    _connect(window, qtbot, "sim:transradial")
+    window.doc.select(next(iter(window.doc.system.devices)))
+    path = tmp_path / "bus.pdf"
+    window.export_graph(path)
+    data = path.read_bytes()
+    assert data.startswith(b"%PDF-") and data.rstrip().endswith(b"%%EOF")
+    assert len(re.findall(rb"/Type\s*/Page[^s]", data)) == 1
+    assert b"/Subtype /Image" not in data and b"/Subtype/Image" not in data  # vectors
+    assert window.scene.selectedItems()  # the selection stays on screen
+    menus = [a.menu() for a in window.menuBar().actions() if a.menu() is not None]
+    texts = [a.text().replace("&", "") for m in menus for a in m.actions()]
+    assert "Export graph as PDF…" in texts
+    if shutil.which("pdfinfo"):
+        info = subprocess.run(["pdfinfo", str(path)], capture_output=True, text=True,
+                              check=True).stdout
+        assert re.search(r"^Pages:\s+1$", info, re.M), info
     window.live.disconnect_bus()

@@ -572,6 +572,7 @@ def window_commands(self: MainWindow) -> dict[str, Callable[[], object]]:
         "save_as": lambda: self.files.ask_save_as(),
         "export_png": lambda: self.export.ask_export("png"),
         "export_svg": lambda: self.export.ask_export("svg"),
+        "export_pdf": lambda: self.export.ask_export("pdf"),
         "report": lambda: self.export.ask_report(),
         "quit": self.close,
         "undo": lambda: self.flow.undo(),
