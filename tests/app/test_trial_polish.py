@@ -121,3 +121,49 @@ def test_graph_exports_a_one_page_vector_pdf(make_window, qtbot, tmp_path):
                               check=True).stdout
         assert re.search(r"^Pages:\s+1$", info, re.M), info
     window.live.disconnect_bus()
+
+
+# -- quitting a live view with pending changes asks once, in words of the prosthesis -------
+def _live_with_a_pending_change(make_window, qtbot):
+    from pdcp_studio.app.documents import commands
+
+    window = make_window()
+    _connect(window, qtbot, "sim:transradial")
+    doc = window.doc
+    doc.undo_stack.push(commands.RemoveLinkCommand(doc, doc.system.links[0]))
+    qtbot.waitUntil(lambda: window.transactions.unwritten() == 1, timeout=5000)
+    return window
+
+
+def test_quitting_a_live_view_with_pending_changes_asks_once(make_window, qtbot, monkeypatch):
+    from pdcp_studio.app.window import questions
+
+    window = _live_with_a_pending_change(make_window, qtbot)
+    asked: list[int] = []
+    answers = iter([questions.QUIT_CANCEL, questions.QUIT_DISCARD])
+
+    def ask_quit_live(n):
+        asked.append(n)
+        return next(answers)
+
+    monkeypatch.setattr(window, "ask_quit_live", ask_quit_live)
+    monkeypatch.setattr(window, "ask_unwritten", lambda n: pytest.fail("asked twice"))
+    monkeypatch.setattr(window, "ask_save_changes",
+                        lambda: pytest.fail("asked to save a live view to the prosthesis"))
+    window.quiet = False
+    try:
+        assert not window.close()  # cancelled: nothing lost
+        assert asked == [1] and window.isVisible() and window.live.is_live
+        assert window.close()  # discarded: closes, after one question
+        assert asked == [1, 1]
+    finally:
+        window.quiet = True
+
+
+def test_the_quit_question_says_what_is_pending_and_where_it_goes():
+    from pdcp_studio.app.window.questions import quit_live_words
+
+    text, more = quit_live_words(3, "sim:transradial")
+    assert text == "3 changes not written to the prosthesis on sim:transradial yet."
+    assert "discard" in more and "Save" not in text + more
+    assert quit_live_words(1, "sim:x")[0] == "1 change not written to the prosthesis on sim:x yet."
