@@ -167,3 +167,53 @@ def test_the_quit_question_says_what_is_pending_and_where_it_goes():
     assert text == "3 changes not written to the prosthesis on sim:transradial yet."
     assert "discard" in more and "Save" not in text + more
     assert quit_live_words(1, "sim:x")[0] == "1 change not written to the prosthesis on sim:x yet."
+
+
+# -- German: plurals, the simulator's scripts, the arbiter's cable ---------------------------
+@pytest.fixture
+def german(qapp):
+    from pdcp_studio.app import i18n
+
+    i18n.install(qapp, "de")
+    yield
+    i18n.uninstall(qapp)
+
+
+def test_german_counts_findings_with_its_own_plural(german):
+    from pdcp_studio.app.docks.inspector import checks_title
+
+    assert checks_title(1) == "<b>Prüfungen</b> — 1 Befund"
+    assert checks_title(3) == "<b>Prüfungen</b> — 3 Befunde"
+    assert checks_title(0) == "<b>Prüfungen</b> — keine Befunde"
+
+
+def test_english_counts_findings(qapp):
+    from pdcp_studio.app.docks.inspector import checks_title
+
+    assert checks_title(1) == "<b>Checks</b> — 1 finding"
+    assert checks_title(2) == "<b>Checks</b> — 2 findings"
+
+
+def test_every_simulator_script_reads_in_german(german):
+    from pdcp_studio.app.docks.sim_panel import script_name_words, script_words
+    from pdcp_studio.bus.sim.rigs import list_prostheses, prosthesis
+
+    seen = 0
+    for name in list_prostheses():
+        for script in prosthesis(name).scripts:
+            said = script_words(script.description, lambda key: "Die Hand")
+            assert said != script.description, (name, script.name, said)
+            assert script_name_words(script.name) != script.name, script.name
+            seen += 1
+    assert seen > 10
+    said = script_words("pull 2641/769/301 and plug it back in: it keeps its sources and "
+                        "the arbitrator links it again", lambda key: f"Hand {key.serial}")
+    assert said.startswith("Hand 301 abziehen und wieder anstecken")
+
+
+def test_the_german_file_names_the_arbiters_cable_in_german():
+    from pathlib import Path
+
+    ts = (Path(__file__).resolve().parents[2] / "resources" / "i18n"
+          / "pdcp_studio_de.ts").read_text(encoding="utf-8")
+    assert "Arbiter-Kabel" not in ts and "Befund(e)" not in ts
