@@ -25,6 +25,27 @@ def test_simulator_panel_is_in_the_view_menu(make_window, qtbot):
     assert dock.toggleViewAction() in window.view_menu.actions()
     dock.toggleViewAction().trigger()
     assert dock.isHidden()
+    dock.toggleViewAction().trigger()
+    assert not dock.isHidden()
+    window.live.disconnect_bus()
+    qtbot.waitUntil(lambda: "sim" not in window.bus_docks.leaf_docks, timeout=5000)
+    assert dock.isHidden() and not dock.toggleViewAction().isEnabled()
+
+
+def test_the_simulator_panel_stays_after_switching_prosthesis(make_window, qtbot):
+    """A new Simulator dock made after a switch came back hidden (the old one's place was
+    restored as closed): the one dock stays, with the new session's panel."""
+    window = make_window()
+    _connect(window, qtbot, "sim:transradial")
+    first = window.bus_docks.leaf_docks["sim"].widget()
+    _connect(window, qtbot, "sim:thesis-test1")
+    qtbot.wait(200)  # the docks made after start-up are restored on the next turn
+    dock = window.bus_docks.leaf_docks["sim"]
+    assert not dock.isHidden()
+    assert dock.widget() is not first and dock.widget().bridge is window.live.bridge
+    assert dock.toggleViewAction() in window.view_menu.actions()
+    assert [a for a in window.view_menu.actions() if a.text() == "Simulator"] == [
+        dock.toggleViewAction()]
     window.live.disconnect_bus()
 
 
