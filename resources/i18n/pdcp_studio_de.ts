@@ -1587,6 +1587,20 @@ Ihr Name (wird einmal erfragt):</translation>
                 <numerusform>&lt;b&gt;Prüfungen&lt;/b&gt; — %n Befunde</numerusform>
             </translation>
         </message>
+        <message numerus="yes">
+            <source>%n device(s)</source>
+            <translation>
+                <numerusform>%n Gerät</numerusform>
+                <numerusform>%n Geräte</numerusform>
+            </translation>
+        </message>
+        <message numerus="yes">
+            <source>%n link(s)</source>
+            <translation>
+                <numerusform>%n Verbindung</numerusform>
+                <numerusform>%n Verbindungen</numerusform>
+            </translation>
+        </message>
     </context>
     <context>
         <name>Legend</name>

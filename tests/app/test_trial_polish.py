@@ -238,3 +238,17 @@ def test_the_german_file_names_the_arbiters_cable_in_german():
     ts = (Path(__file__).resolve().parents[2] / "resources" / "i18n"
           / "pdcp_studio_de.ts").read_text(encoding="utf-8")
     assert "Arbiter-Kabel" not in ts and "Befund(e)" not in ts
+
+
+def test_the_inspector_counts_parts_and_links_with_plurals(make_window, qtbot, german):
+    from PySide6.QtWidgets import QLabel
+
+    window = make_window()
+    _connect(window, qtbot, "sim:thesis-test1")  # 2 parts, 1 link
+    window.doc.select(None)
+    qtbot.waitUntil(lambda: any("Verbindung" in lb.text()
+                                for lb in window.inspector.findChildren(QLabel)), timeout=5000)
+    texts = [lb.text() for lb in window.inspector.findChildren(QLabel)]
+    assert any("2 Geräte, 1 Verbindung · " in t for t in texts), texts
+    assert not any("1 Verbindungen" in t or "Befund(e)" in t for t in texts), texts
+    window.live.disconnect_bus()

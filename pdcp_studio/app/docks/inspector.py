@@ -176,9 +176,11 @@ class Inspector(QScrollArea):
         missing = sum(1 for d in system.devices.values() if not d.present)
         where = (self.tr("live: {0}").format(getattr(self.doc.session, 'url', '') or 'bus')
                  if self.doc.session is not None else self.doc.title)
-        self.form.title(box, self.tr("System"), self.tr("{0} devices").format(len(system.devices))
-                    + (self.tr(" ({0} missing)").format(missing) if missing else "")
-                    + self.tr(", {0} links · {1}").format(len(system.links), where))
+        self.form.title(box, self.tr("System"),
+                        count("Inspector", "%n device(s)", len(system.devices))
+                        + (self.tr(" ({0} missing)").format(missing) if missing else "")
+                        + ", " + count("Inspector", "%n link(s)", len(system.links))
+                        + f" · {where}")
         hint = QLabel(self.tr("Select a device, channel or link on the graph or in the tree to see "
                       "and edit its parameters."))
         hint.setWordWrap(True)
