@@ -4,6 +4,9 @@
 passed or Ctrl-C; ``monitor --replay FILE`` decodes a capture in any python-can log format.
 ``--log`` writes every frame (filters only change what is shown), so it also converts a replayed
 capture to another format. The statistics go to stderr, so stdout holds only frames.
+
+Every line has one time base, live and replayed alike: seconds since the first frame, six
+decimals; stderr says so after the statistics, with when the first frame was.
 """
 
 from __future__ import annotations
@@ -30,10 +33,30 @@ ROTATE_MB = options.number(low=0.0, high=1e6, low_open=True, what="size (MB)")
 #: Frames a replay reads ahead to tell a PDCP capture from another bus's.
 PROBE_FRAMES = 2000
 _DIRECTIONS = {"to-ba": "device→BA", "from-ba": "BA→device", "data": "channel data"}
+#: The time column, as the help and the closing lines say it.
+TIME_BASE = "Times are seconds since the first frame"
+#: Timestamps above this are seconds since 1970 (a live bus, most capture formats); below,
+#: a capture's own clock (an ASC file's seconds since its start).
+EPOCH_AFTER = 1e8
+
+
+def time_base_line(t0: float | None) -> str | None:
+    """The closing line that says what the time column counts from (None: no frame)."""
+    if t0 is None:
+        return None
+    if t0 >= EPOCH_AFTER:
+        import datetime as dt
+
+        when = dt.datetime.fromtimestamp(t0, dt.UTC).strftime("%Y-%m-%d %H:%M:%S.%f UTC")
+    else:
+        when = f"{t0:.6f} s on the capture's clock"
+    return f"{TIME_BASE} (the first at {when})"
 
 
 def add_subparser(subparsers: argparse._SubParsersAction[argparse.ArgumentParser]) -> None:
-    p = subparsers.add_parser("monitor", help="decoded frames, live from a bus or from a capture")
+    p = subparsers.add_parser(
+        "monitor", help="decoded frames, live from a bus or from a capture",
+        description="Decoded frames, live from a bus or from a capture. " + TIME_BASE + ".")
     source = p.add_mutually_exclusive_group(required=True)
     source.add_argument("--bus", metavar="URL", help="sim:NAME, can:INTERFACE:CHANNEL[@BITRATE] …")
     source.add_argument("--replay", metavar="FILE",
@@ -389,6 +412,9 @@ def run(args: argparse.Namespace) -> int:
         limiter.tick(final=True)
     elapsed = None if args.replay else time.monotonic() - clock["started"]
     print(decoder.stats.summary(elapsed), file=sys.stderr)
+    base = None if args.json else time_base_line(decoder.t0)
+    if base is not None:
+        print(base, file=sys.stderr)
     if counted.total:
         print(counted.summary(), file=sys.stderr)
     if cut_short:

@@ -392,6 +392,36 @@
                 <numerusform>%n Verbindungen</numerusform>
             </translation>
         </message>
+        <message>
+            <source>Technical details</source>
+            <translation>Technische Details</translation>
+        </message>
+        <message>
+            <source>Where they differ:</source>
+            <translation>Wo sie sich unterscheiden:</translation>
+        </message>
+        <message numerus="yes">
+            <source>and %n more</source>
+            <translation>
+                <numerusform>und %n weitere</numerusform>
+                <numerusform>und %n weitere</numerusform>
+            </translation>
+        </message>
+        <message numerus="yes">
+            <source>The stored configurations of {0} and of the arbitrator differ in %n place(s).</source>
+            <translation>
+                <numerusform>Die gespeicherten Konfigurationen in {0} und im Arbiter unterscheiden sich an %n Stelle.</numerusform>
+                <numerusform>Die gespeicherten Konfigurationen in {0} und im Arbiter unterscheiden sich an %n Stellen.</numerusform>
+            </translation>
+        </message>
+        <message>
+            <source>The stored configurations of {0} and of the arbitrator are the same, record by record.</source>
+            <translation>Die gespeicherten Konfigurationen in {0} und im Arbiter sind Eintrag für Eintrag gleich.</translation>
+        </message>
+        <message>
+            <source>the file</source>
+            <translation>der Datei</translation>
+        </message>
     </context>
     <context>
         <name>ConfigDocument</name>
@@ -1728,6 +1758,10 @@ Ihr Name (wird einmal erfragt):</translation>
             <source>PDF (*.pdf)</source>
             <translation>PDF (*.pdf)</translation>
         </message>
+        <message>
+            <source>Ctrl+click a second entry to see how the two differ.</source>
+            <translation>Mit Strg+Klick einen zweiten Eintrag wählen, um zu sehen, wie sich die beiden unterscheiden.</translation>
+        </message>
     </context>
     <context>
         <name>Inspector</name>
@@ -1799,11 +1833,6 @@ Ihr Name (wird einmal erfragt):</translation>
             <translation>Ein Gerät, einen Kanal oder eine Verbindung in der Grafik oder im Baum auswählen, um die Parameter zu sehen und zu bearbeiten.</translation>
         </message>
         <message>
-            <location filename="../../pdcp_studio/app/inspector.py" line="235" />
-            <source>&lt;b&gt;Checks&lt;/b&gt; — {v0} finding{v1}</source>
-            <translation>&lt;b&gt;Prüfungen&lt;/b&gt; — {v0} Befund(e)</translation>
-        </message>
-        <message>
             <location filename="../../pdcp_studio/app/inspector.py" line="236" />
             <source>no</source>
             <translation>keine</translation>
@@ -1873,6 +1902,31 @@ Ihr Name (wird einmal erfragt):</translation>
             <location filename="../../pdcp_studio/app/inspector.py" line="553" />
             <source>Refused: {reason}</source>
             <translation>Abgelehnt: {reason}</translation>
+        </message>
+        <message>
+            <source>&lt;b&gt;Checks&lt;/b&gt; — no findings</source>
+            <translation>&lt;b&gt;Prüfungen&lt;/b&gt; — keine Befunde</translation>
+        </message>
+        <message numerus="yes">
+            <source>&lt;b&gt;Checks&lt;/b&gt; — %n finding(s)</source>
+            <translation>
+                <numerusform>&lt;b&gt;Prüfungen&lt;/b&gt; — %n Befund</numerusform>
+                <numerusform>&lt;b&gt;Prüfungen&lt;/b&gt; — %n Befunde</numerusform>
+            </translation>
+        </message>
+        <message numerus="yes">
+            <source>%n device(s)</source>
+            <translation>
+                <numerusform>%n Gerät</numerusform>
+                <numerusform>%n Geräte</numerusform>
+            </translation>
+        </message>
+        <message numerus="yes">
+            <source>%n link(s)</source>
+            <translation>
+                <numerusform>%n Verbindung</numerusform>
+                <numerusform>%n Verbindungen</numerusform>
+            </translation>
         </message>
     </context>
     <context>
@@ -2189,6 +2243,25 @@ Den PDCP-Bus einer aktiven Prothese ansehen und einrichten.</translation>
 („Auf die Prothese schreiben“ schreibt sie; das Dokument behält sie in jedem Fall.)</numerusform>
             </translation>
         </message>
+        <message numerus="yes">
+            <source>%n change(s) not written to the prosthesis on {url} yet.</source>
+            <translation>
+                <numerusform>%n Änderung ist noch nicht auf die Prothese an {url} geschrieben.</numerusform>
+                <numerusform>%n Änderungen sind noch nicht auf die Prothese an {url} geschrieben.</numerusform>
+            </translation>
+        </message>
+        <message>
+            <source>Write them now (you see the difference and confirm it), or quit and discard them: the prosthesis stays as it is.</source>
+            <translation>Schreiben Sie sie jetzt (Sie sehen den Unterschied und bestätigen ihn), oder beenden Sie und verwerfen Sie sie: Die Prothese bleibt, wie sie ist.</translation>
+        </message>
+        <message>
+            <source>Write to prosthesis…</source>
+            <translation>Auf die Prothese schreiben…</translation>
+        </message>
+        <message>
+            <source>Discard and quit</source>
+            <translation>Verwerfen und beenden</translation>
+        </message>
     </context>
     <context>
         <name>WindowActions</name>
@@ -2376,6 +2449,10 @@ Den PDCP-Bus einer aktiven Prothese ansehen und einrichten.</translation>
             <location filename="../../pdcp_studio/app/window_menus.py" line="136" />
             <source>&amp;Help</source>
             <translation>&amp;Hilfe</translation>
+        </message>
+        <message>
+            <source>Export graph as P&amp;DF…</source>
+            <translation>Grafik als P&amp;DF exportieren…</translation>
         </message>
     </context>
     <context>
@@ -3420,6 +3497,77 @@ Den PDCP-Bus einer aktiven Prothese ansehen und einrichten.</translation>
         </message>
     </context>
     <context>
+        <name>SimScripts</name>
+        <message>
+            <source>Start-up</source>
+            <translation>Hochlauf</translation>
+        </message>
+        <message>
+            <source>Thesis test</source>
+            <translation>Test aus der Thesis</translation>
+        </message>
+        <message>
+            <source>Swap while running</source>
+            <translation>Tausch im Betrieb</translation>
+        </message>
+        <message>
+            <source>Unplug and plug back in</source>
+            <translation>Abziehen und wieder anstecken</translation>
+        </message>
+        <message>
+            <source>Reset, keep memory</source>
+            <translation>Zurücksetzen, Speicher behalten</translation>
+        </message>
+        <message>
+            <source>Reset, erase memory</source>
+            <translation>Zurücksetzen, Speicher löschen</translation>
+        </message>
+        <message>
+            <source>power on: the arbitrator binds, sets up and runs start-up</source>
+            <translation>Einschalten: Der Arbiter bindet die Geräte, richtet sie ein und führt den Hochlauf aus</translation>
+        </message>
+        <message>
+            <source>Test 1: D1.O1 → D2.I1 autoconfigured and stored; D2 is replaced by D3 and the prosthesis restarts: find_replacements links D1.O1 → D3.I1</source>
+            <translation>Test 1: D1.O1 → D2.I1 wird automatisch verbunden und gespeichert; D2 wird durch D3 ersetzt und die Prothese neu gestartet: find_replacements verbindet D1.O1 → D3.I1</translation>
+        </message>
+        <message>
+            <source>Test 1 without a restart: D2 is pulled and D3 plugged in while running; the duty cycle repairs the link</source>
+            <translation>Test 1 ohne Neustart: D2 wird im Betrieb abgezogen und D3 angesteckt; der Arbeitszyklus repariert die Verbindung</translation>
+        </message>
+        <message>
+            <source>Test 2: no stored configuration: autoconfigure (appendix D's links)</source>
+            <translation>Test 2: keine gespeicherte Konfiguration: automatisch verbinden (die Verbindungen aus Anhang D)</translation>
+        </message>
+        <message>
+            <source>Test 3: configure, save, reset the arbitrator keeping its memory: start-up recalls the stored configuration</source>
+            <translation>Test 3: konfigurieren, speichern, den Arbiter zurücksetzen, sein Speicher bleibt: Der Hochlauf ruft die gespeicherte Konfiguration ab</translation>
+        </message>
+        <message>
+            <source>Test 4: D1.O1 → D3.I2 autoconfigured and stored; D1 is replaced by D2 and the prosthesis restarts: find_replacements links D2.O2 → D3.I2</source>
+            <translation>Test 4: D1.O1 → D3.I2 wird automatisch verbunden und gespeichert; D1 wird durch D2 ersetzt und die Prothese neu gestartet: find_replacements verbindet D2.O2 → D3.I2</translation>
+        </message>
+        <message>
+            <source>Test 4 without a restart: D1 is pulled and D2 plugged in while running</source>
+            <translation>Test 4 ohne Neustart: D1 wird im Betrieb abgezogen und D2 angesteckt</translation>
+        </message>
+        <message>
+            <source>Test 5: configure, then reset the arbitrator with its memory erased (a replaced arbitrator): start-up rebuilds the links from the devices' source fields</source>
+            <translation>Test 5: konfigurieren, dann den Arbiter mit gelöschtem Speicher zurücksetzen (ein ausgetauschter Arbiter): Der Hochlauf baut die Verbindungen aus den Quellfeldern der Geräte neu auf</translation>
+        </message>
+        <message>
+            <source>reset the arbitrator keeping its memory</source>
+            <translation>den Arbiter zurücksetzen, sein Speicher bleibt erhalten</translation>
+        </message>
+        <message>
+            <source>reset the arbitrator with its memory erased: rebuild from devices</source>
+            <translation>den Arbiter mit gelöschtem Speicher zurücksetzen: Neuaufbau aus den Geräten</translation>
+        </message>
+        <message>
+            <source>pull {device} and plug it back in: it keeps its sources and the arbitrator links it again</source>
+            <translation>{device} abziehen und wieder anstecken: Es behält seine Quellen, und der Arbiter verbindet es erneut</translation>
+        </message>
+    </context>
+    <context>
         <name>Style</name>
         <message>
             <location filename="../../pdcp_studio/app/graph/style.py" line="28" />
@@ -3948,7 +4096,7 @@ Die Prothese ist wie zuvor.</translation>
         </message>
         <message>
             <source>Another connection (CAN adapter or arbitrator cable):</source>
-            <translation>Eine andere Verbindung (CAN-Adapter oder Arbiter-Kabel):</translation>
+            <translation>Eine andere Verbindung (CAN-Adapter oder serielles Kabel des Arbiters):</translation>
         </message>
         <message>
             <source>Choose…</source>
@@ -5517,7 +5665,7 @@ Die Prothese ist wie zuvor.</translation>
         </message>
         <message>
             <source>Through a CAN adapter or the arbitrator's cable, to see it live.</source>
-            <translation>Über einen CAN-Adapter oder das Kabel des Arbiters, um sie live zu sehen.</translation>
+            <translation>Über einen CAN-Adapter oder das serielle Kabel des Arbiters, um sie live zu sehen.</translation>
         </message>
         <message>
             <source>Open a file…</source>

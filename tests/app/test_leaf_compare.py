@@ -61,14 +61,14 @@ def test_dialog_compares_screen_file_and_shows_differences(qtbot, rig, tmp_path)
     assert headers == ["Output", "Input", "On screen", "stored.pdcfg", "Status"]
     status = {dialog.table.item(r, 1).text(): dialog.table.item(r, 4).text()
               for r in range(dialog.table.rowCount())}
-    # Device names from the on-screen system label the ends.
-    assert status["LED terminal #2 (2/2/6)"] == "only in On screen"
-    assert status["Control unit #2 (2/2/5)"] == "in all"
+    # Part and channel names from the on-screen system label the ends.
+    assert status["LED terminal, channel 2 (On-off LED)"] == "only in On screen"
+    assert status["Control unit, channel 2 (Joystick axis)"] == "in all"
     assert "1 only in On screen" in dialog.summary.text()
 
     dialog.set_differences_only(True)
     assert dialog.table.rowCount() == 1
-    assert dialog.table.item(0, 0).text() == "Control unit #5 (2/2/5)"
+    assert dialog.table.item(0, 0).text() == "Control unit, channel 5 (Fader B / on-off)"
 
     # A system file as the file source; the on-screen system changes too.
     json_file = tmp_path / "other.json"
@@ -92,3 +92,40 @@ def test_dialog_reports_a_bad_file_and_no_bus(qtbot, rig, tmp_path):
     assert not dialog.read_button.isEnabled()
     with qtbot.waitSignal(dialog.error, timeout=1000):
         assert dialog.read_arbitrator() is None
+
+
+def test_rows_read_apart_and_the_summary_is_in_words(qtbot, rig, tmp_path):
+    """The trial: three rows of one part read the same (the channel was cut away) and the
+    summary was codes. Each end now says part, channel and what it carries (wrapped, not
+    cut), its numbers in the tooltip; the record-by-record codes are the technical part."""
+    import re
+
+    from PySide6.QtWidgets import QHeaderView
+
+    other = rig.copy()
+    other.remove_link(rig.links[2])
+    stored = ConfigCollection([configuration_from_system(other)])
+    dialog = CompareDialog(rig)
+    qtbot.addWidget(dialog)
+    dialog.resize(520, 400)  # narrow: names must still read apart
+    dialog.set_file_sources(sources_of_collection("stored.pdcfg", stored), stored)
+    dialog.set_arbitrator(ConfigCollection([configuration_from_system(rig)]))
+    ends = [(dialog.table.item(r, 0).text(), dialog.table.item(r, 1).text())
+            for r in range(dialog.table.rowCount())]
+    assert len(set(ends)) == len(ends) == 3
+    outputs = [o for o, _i in ends]
+    assert len(set(outputs)) == 3 and all(", channel " in o for o in outputs)
+    assert dialog.table.wordWrap()
+    assert (dialog.table.verticalHeader().sectionResizeMode(0)
+            == QHeaderView.ResizeMode.ResizeToContents)
+    tip = dialog.table.item(0, 0).toolTip()
+    assert outputs[0] in tip and str(rig.links[0].output) in tip
+    summary = dialog.summary.text()
+    codes = re.compile(r"\d+/\d+/\d+|0x[0-9A-F]{4}|configuration \d+:")
+    assert not codes.search(summary), summary
+    assert "LED terminal, channel 2 (On-off LED)" in summary
+    assert "differ in 1 place" in summary
+    assert not dialog.details.isVisibleTo(dialog)
+    dialog.details_button.setChecked(True)
+    assert dialog.details.isVisibleTo(dialog)
+    assert codes.search(dialog.details.toPlainText())

@@ -12,19 +12,23 @@ Public API
     ``set_differences_only(bool)``. Signals: ``compared()`` after the table was rebuilt,
     ``error(str)``.
 
-Pure helpers (no widgets): ``links_of_system``, ``links_of_configuration``,
+Pure helpers (no widgets): ``links_of_system``, ``links_of_configuration``, ``end_words``,
+``link_label``,
 ``sources_of_collection``, ``load_file_sources(path)``, ``compare(sources)``.
 
-When a stored configuration is known on both sides (a ``.pdcfg`` and the arbitrator's), the
-summary also says how they differ record by record — with the one configuration diff
-(:mod:`pdcp_studio.model.config_diff`) that ``config diff`` and the write dialog use.
+Each end of a link is named as the plan table names it (part, channel, what it carries;
+the serial number where two parts read alike), wrapped rather than cut, with the numbers in
+its tooltip. The summary is in words (counts, the differing links by name); when a stored
+configuration is known on both sides (a ``.pdcfg`` and the arbitrator's), how they differ
+record by record — with the one configuration diff (:mod:`pdcp_studio.model.config_diff`)
+that ``config diff`` and the write dialog use — is in the Technical details below it.
 """
 
 from __future__ import annotations
 
 import html
 import threading
-from collections.abc import Sequence
+from collections.abc import Callable, Sequence
 from pathlib import Path
 from typing import TYPE_CHECKING, NamedTuple
 
@@ -38,9 +42,11 @@ from PySide6.QtWidgets import (
     QHBoxLayout,
     QHeaderView,
     QLabel,
+    QPlainTextEdit,
     QPushButton,
     QTableWidget,
     QTableWidgetItem,
+    QToolButton,
     QVBoxLayout,
     QWidget,
 )
@@ -59,6 +65,10 @@ ON_SCREEN = QT_TRANSLATE_NOOP("CompareDialog", "On screen")
 ARBITRATOR = "Arbitrator"
 ONLY_COLOUR = QColor(255, 236, 200)
 TICK = "✓"
+#: The differing links the summary names (the table has them all).
+SUMMARY_LINKS = 5
+#: ``profile_name(profile)``: what a channel's profile is called (empty: unknown).
+ProfileName = Callable[[int], str]
 
 
 class LinkSource(NamedTuple):
@@ -145,12 +155,34 @@ def compare(sources: Sequence[LinkSource]) -> list[CompareRow]:
 
 
 def ref_label(system: System | None, ref: ChannelRef) -> str:
-    """``Control unit #3 (2/2/5)`` when the system knows the device, else the reference."""
+    """``Control unit #3 (2/2/5)`` when the system knows the device, else the reference
+    (the write dialog's engineer's form)."""
     device = system.device(ref.device) if system is not None else None
     if device is None:
         return str(ref)
     name = device.name or device.descriptor
     return f"{name} #{ref.index} ({ref.device})" if name else str(ref)
+
+
+def end_words(system: System | None, ref: ChannelRef,
+              profile_name: ProfileName | None = None) -> str:
+    """``Control unit, channel 3 (Power grip)``: the part as every panel names it (its
+    serial number where two read alike), the channel and what it carries."""
+    from pdcp_studio.app.words.plan_words import channel_words
+
+    ch = system.channel(ref) if system is not None else None
+    carries = ""
+    if ch is not None and ch.profile and profile_name is not None:
+        carries = profile_name(ch.profile)
+        carries = "" if carries.startswith("0x") else carries
+    return channel_words(system, ref, carries or (ch.descriptor if ch is not None else ""))
+
+
+def link_label(system: System | None, link: Link,
+               profile_name: ProfileName | None = None) -> str:
+    """A link in words: its output's label → its input's."""
+    return (f"{end_words(system, link.output, profile_name)} → "
+            f"{end_words(system, link.input, profile_name)}")
 
 
 class CompareDialog(QDialog):
@@ -160,11 +192,13 @@ class CompareDialog(QDialog):
     error = Signal(str)
 
     def __init__(self, system: System, *, bridge: SessionBridge | None = None,
+                 profile_name: ProfileName | None = None,
                  parent: QWidget | None = None) -> None:
         super().__init__(parent)
         self.setWindowTitle(self.tr("Compare configurations"))
-        self.resize(860, 480)
+        self.resize(980, 520)
         self.system = system
+        self.profile_name = profile_name
         self.bridge = bridge
         self.file_sources: list[LinkSource] = []
         self.arbitrator_sources: list[LinkSource] = []
@@ -178,10 +212,24 @@ class CompareDialog(QDialog):
         self.table.setEditTriggers(QTableWidget.EditTrigger.NoEditTriggers)
         self.table.setSelectionBehavior(QTableWidget.SelectionBehavior.SelectRows)
         self.table.verticalHeader().setVisible(False)
-        self.table.setWordWrap(False)
-        self.table.setTextElideMode(Qt.TextElideMode.ElideMiddle)  # keep the keys visible
+        self.table.setWordWrap(True)  # long names wrap: rows alike never read the same
+        self.table.setTextElideMode(Qt.TextElideMode.ElideMiddle)  # cut, the channel stays
+        self.table.verticalHeader().setSectionResizeMode(
+            QHeaderView.ResizeMode.ResizeToContents)
         self.summary = QLabel()
         self.summary.setWordWrap(True)
+        self.summary.setTextFormat(Qt.TextFormat.RichText)
+        self.summary.setTextInteractionFlags(Qt.TextInteractionFlag.TextSelectableByMouse)
+        self.details_button = QToolButton()
+        self.details_button.setText(self.tr("Technical details"))
+        self.details_button.setCheckable(True)
+        self.details_button.setToolButtonStyle(Qt.ToolButtonStyle.ToolButtonTextBesideIcon)
+        self.details_button.setArrowType(Qt.ArrowType.RightArrow)
+        self.details_button.toggled.connect(self._show_details)
+        self.details = QPlainTextEdit()
+        self.details.setReadOnly(True)
+        self.details.setMaximumHeight(140)
+        self.details.setVisible(False)
         self.open_button = QPushButton(self.tr("Open file…"))
         self.open_button.clicked.connect(self._ask_file)
         self.read_button = QPushButton(self.tr("Read arbitrator"))
@@ -200,13 +248,20 @@ class CompareDialog(QDialog):
         bar.addStretch(1)
         layout = QVBoxLayout(self)
         layout.addLayout(bar)
-        layout.addWidget(self.table)
+        layout.addWidget(self.table, 1)
         layout.addWidget(self.summary)
+        layout.addWidget(self.details_button)
+        layout.addWidget(self.details)
         layout.addWidget(buttons)
         self.error.connect(
             lambda msg: self.summary.setText(self.tr("<b>Error:</b> {msg}").format(msg=msg))
         )
         self.refresh()
+
+    def _show_details(self, shown: bool) -> None:
+        self.details.setVisible(shown)
+        self.details_button.setArrowType(Qt.ArrowType.DownArrow if shown
+                                         else Qt.ArrowType.RightArrow)
 
     # -- sources ---------------------------------------------------------------------------
     def sources(self) -> list[LinkSource]:
@@ -309,13 +364,16 @@ class CompareDialog(QDialog):
             [self.tr("Output"), self.tr("Input"), *names, self.tr("Status")]
         )
         self.table.setRowCount(len(shown))
+        label = {ref: end_words(self.system, ref, self.profile_name)
+                 for row in shown for ref in (row.link.output, row.link.input)}
         for i, row in enumerate(shown):
-            cells = [ref_label(self.system, row.link.output),
-                     ref_label(self.system, row.link.input),
+            ends = (row.link.output, row.link.input)
+            cells = [label[ends[0]], label[ends[1]],
                      *[TICK if p else "" for p in row.present], row.status(names)]
             for col, text in enumerate(cells):
                 item = QTableWidgetItem(text)
-                item.setToolTip(text)
+                # The whole name, and the numbers an engineer reads.
+                item.setToolTip(f"{text}\n{ends[col]}" if col < 2 else text)
                 if 2 <= col < 2 + len(names):
                     item.setTextAlignment(Qt.AlignmentFlag.AlignCenter)
                 if not row.everywhere:
@@ -327,19 +385,46 @@ class CompareDialog(QDialog):
         for col in range(self.table.columnCount()):  # the ends share the width; ticks fit
             header.setSectionResizeMode(col, QHeaderView.ResizeMode.Stretch if col < 2
                                         else QHeaderView.ResizeMode.ResizeToContents)
+        text, technical = self._summary(names)
+        self.details.setPlainText(technical)
+        self.details_button.setVisible(bool(technical))
+        self.details.setVisible(bool(technical) and self.details_button.isChecked())
+        self.summary.setText(text)
+        self.compared.emit()
+
+    def _summary(self, names: list[str]) -> tuple[str, str]:
+        """The summary in words (rich text) and the technical part (codes; may be empty)."""
         counts: dict[str, int] = {}
         for row in self._rows:
             status = row.status(names)
             counts[status] = counts.get(status, 0) + 1
         parts = [f"{n} {status}" for status, n in sorted(counts.items())]
-        text = self.tr("{0}: {1}").format(count("CompareDialog", "%n link(s)", len(self._rows)),
-                                                  ", ".join(parts) or self.tr("none"))
+        text = html.escape(self.tr("{0}: {1}").format(
+            count("CompareDialog", "%n link(s)", len(self._rows)),
+            ", ".join(parts) or self.tr("none")))
+        differing = [r for r in self._rows if not r.everywhere]
+        if differing and len(names) > 1:
+            lines = [html.escape(f"{link_label(self.system, r.link, self.profile_name)}: "
+                                 f"{r.status(names)}") for r in differing[:SUMMARY_LINKS]]
+            more = len(differing) - SUMMARY_LINKS
+            if more > 0:
+                lines.append(html.escape(count("CompareDialog", "and %n more", more)))
+            text += "<br>" + html.escape(self.tr("Where they differ:")) + "<br>&nbsp;&nbsp;" \
+                + "<br>&nbsp;&nbsp;".join(lines)
+        technical = ""
         if self.file_collection is not None and self.arbitrator_collection is not None:
             from pdcp_studio.model.config_diff import diff_configurations
 
-            name = self.file_sources[0].name.split(" #")[0] if self.file_sources else "file"
+            name = (self.file_sources[0].name.split(" #")[0] if self.file_sources
+                    else self.tr("the file"))
             diff = diff_configurations(self.file_collection, self.arbitrator_collection)
-            text += ("<br>Stored configurations, record by record: "
-                     + html.escape(diff.describe(name, ARBITRATOR)))
-        self.summary.setText(text)
-        self.compared.emit()
+            records = diff.lines(name, ARBITRATOR)
+            if records:
+                said = count("CompareDialog", "The stored configurations of {0} and of the "
+                             "arbitrator differ in %n place(s).", len(records))
+            else:
+                said = self.tr("The stored configurations of {0} and of the arbitrator are "
+                               "the same, record by record.")
+            text += "<br>" + html.escape(said.format(name))
+            technical = "\n".join(records) or "no difference"
+        return text, technical

@@ -17,7 +17,14 @@ from pathlib import Path
 from typing import TYPE_CHECKING, Any
 
 from PySide6.QtCore import QCoreApplication, QEvent, QPoint, Qt, Signal
-from PySide6.QtGui import QBrush, QColor, QHelpEvent, QTextCharFormat, QTextCursor
+from PySide6.QtGui import (
+    QBrush,
+    QColor,
+    QHelpEvent,
+    QResizeEvent,
+    QTextCharFormat,
+    QTextCursor,
+)
 from PySide6.QtWidgets import (
     QComboBox,
     QFileDialog,
@@ -54,6 +61,8 @@ COLUMNS = (
 )
 THIS, ALL = "this", "all"
 FAILED_COLOUR = QColor(250, 215, 215)
+#: The details pane's share of the panel's width (what an entry changed needs room).
+DETAILS_SHARE = 0.42
 
 #: How a link is said in the details: ``str`` gives the engineer's ``2641/513/201#3 →
 #: 2641/769/301#1``; the panel passes part and channel names (:meth:`HistoryPanel.link_words`).
@@ -258,21 +267,36 @@ class HistoryPanel(QWidget):
         bar.addWidget(self.chain, 1)
         bar.addWidget(self.refresh_button)
         buttons = QHBoxLayout()
-        buttons.addWidget(QLabel(self.tr("Select two entries to see how they differ.")), 1)
+        self.hint = QLabel()
+        self.hint.setWordWrap(True)
+        buttons.addWidget(self.hint, 1)
         buttons.addWidget(self.report_button)
         buttons.addWidget(self.restore_button)
         split = QSplitter(Qt.Orientation.Horizontal)
         split.addWidget(self.table)
         split.addWidget(self.details)
-        split.setStretchFactor(0, 5)
+        split.setStretchFactor(0, 3)
         split.setStretchFactor(1, 2)
-        split.setSizes([860, 260])
+        split.setChildrenCollapsible(False)
+        self.split = split
+        self._shared = False  # the details' share is set once the panel has its width
         box = QVBoxLayout(self)
         box.setContentsMargins(6, 6, 6, 6)
         box.addLayout(bar)
         box.addWidget(split, 1)
         box.addLayout(buttons)
+        self._update_hint(0)
         self._update_buttons()
+
+    def resizeEvent(self, event: QResizeEvent) -> None:
+        """The first time the panel has a real width, the details get their share of it
+        (sizes set before that were scaled down to a 130 px sliver)."""
+        super().resizeEvent(event)
+        width = self.split.width()
+        if not self._shared and width > 200:
+            self._shared = True
+            details = round(width * DETAILS_SHARE)
+            self.split.setSizes([width - details, details])
 
     # -- reading -------------------------------------------------------------------------
     def refresh(self) -> Worker:
@@ -382,7 +406,19 @@ class HistoryPanel(QWidget):
         else:
             self.details.setPlainText(self.tr("Select an entry to see what it changed, or two "
                                               "to compare them."))
+        self._update_hint(len(chosen))
         self._update_buttons()
+
+    def _update_hint(self, chosen: int) -> None:
+        """What a further selection would show; nothing once two are compared."""
+        if chosen == 0:
+            text = self.tr("Select two entries to see how they differ.")
+        elif chosen == 1:
+            text = self.tr("Ctrl+click a second entry to see how the two differ.")
+        else:
+            text = ""
+        self.hint.setText(text)
+        self.hint.setVisible(bool(text))
 
     def _update_buttons(self) -> None:
         one = len(self.selected()) == 1

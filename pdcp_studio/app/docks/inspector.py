@@ -41,6 +41,8 @@ from pdcp_studio.app.docks.inspector_editors import (
 from pdcp_studio.app.docks.inspector_form import DIM_STYLE, Form, selectable
 from pdcp_studio.app.documents import commands
 from pdcp_studio.app.documents.document import Document
+from pdcp_studio.app.i18n import translate
+from pdcp_studio.app.words.plural import count
 from pdcp_studio.errors import ParameterError
 from pdcp_studio.model import param_fields
 from pdcp_studio.model import parameters as params
@@ -58,6 +60,13 @@ _DETAIL_PARAMS = frozenset({params.CH_TRANSFER_TYPE, params.IN_SOURCE_VID_PID,
 DEVICE_FIELD = {m.param: m.fields[0] for m in param_fields.FIELD_MAPS
                 if m.scope == "device" and len(m.fields) == 1 and not m.identity
                 and params.device_parameter(m.param).writable}
+
+
+def checks_title(n: int) -> str:
+    """``Checks — 3 findings``: the count with the language's own plural (never "(s)")."""
+    if not n:
+        return translate("Inspector", "<b>Checks</b> — no findings")
+    return count("Inspector", "<b>Checks</b> — %n finding(s)", n)
 
 
 class Inspector(QScrollArea):
@@ -167,9 +176,11 @@ class Inspector(QScrollArea):
         missing = sum(1 for d in system.devices.values() if not d.present)
         where = (self.tr("live: {0}").format(getattr(self.doc.session, 'url', '') or 'bus')
                  if self.doc.session is not None else self.doc.title)
-        self.form.title(box, self.tr("System"), self.tr("{0} devices").format(len(system.devices))
-                    + (self.tr(" ({0} missing)").format(missing) if missing else "")
-                    + self.tr(", {0} links · {1}").format(len(system.links), where))
+        self.form.title(box, self.tr("System"),
+                        count("Inspector", "%n device(s)", len(system.devices))
+                        + (self.tr(" ({0} missing)").format(missing) if missing else "")
+                        + ", " + count("Inspector", "%n link(s)", len(system.links))
+                        + f" · {where}")
         hint = QLabel(self.tr("Select a device, channel or link on the graph or in the tree to see "
                       "and edit its parameters."))
         hint.setWordWrap(True)
@@ -180,13 +191,7 @@ class Inspector(QScrollArea):
         if checked is None:
             checked = checked_findings(system, self.doc.autoconfigure)
         findings, texts = checked
-        box.addWidget(
-            QLabel(
-                self.tr("<b>Checks</b> — {v0} finding{v1}").format(
-                    v0=len(findings) or self.tr("no"), v1="s" * (len(findings) != 1)
-                )
-            )
-        )
+        box.addWidget(QLabel(checks_title(len(findings))))
         lst = QListWidget()
         lst.setWordWrap(True)
         colours = {"error": "#b91c1c", "warning": "#b45309", "info": "#475569"}

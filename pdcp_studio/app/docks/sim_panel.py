@@ -15,6 +15,7 @@ Public API
 
 from __future__ import annotations
 
+import re
 import time
 from collections.abc import Callable
 from typing import TYPE_CHECKING
@@ -37,6 +38,7 @@ from PySide6.QtWidgets import (
     QWidget,
 )
 
+from pdcp_studio.app.i18n import QT_TRANSLATE_NOOP, translate
 from pdcp_studio.app.widgets.combo_popups import keep_whole
 from pdcp_studio.app.widgets.tree_items import set_current, top_level_items
 from pdcp_studio.app.workers import Worker
@@ -52,6 +54,61 @@ KEY_ROLE = Qt.ItemDataRole.UserRole
 COL_NAME, COL_KEY, COL_PLUGGED, COL_BUS = range(4)
 MAX_LOG = 500
 _GONE = QColor(150, 150, 150)
+
+#: The simulator's scripts (``bus/sim/rigs.py``) in the user's words: their names, and what
+#: each does (the rigs hold them in English, as data for the CLI's ``sim`` commands).
+_SCRIPTS = "SimScripts"
+SCRIPT_NAMES = {
+    "start-up": QT_TRANSLATE_NOOP(_SCRIPTS, "Start-up"),
+    "thesis": QT_TRANSLATE_NOOP(_SCRIPTS, "Thesis test"),
+    "hot-swap": QT_TRANSLATE_NOOP(_SCRIPTS, "Swap while running"),
+    "unplug-replug": QT_TRANSLATE_NOOP(_SCRIPTS, "Unplug and plug back in"),
+    "reset-keep-memory": QT_TRANSLATE_NOOP(_SCRIPTS, "Reset, keep memory"),
+    "reset-erase-memory": QT_TRANSLATE_NOOP(_SCRIPTS, "Reset, erase memory"),
+}
+SCRIPT_DESCRIPTIONS = (
+    QT_TRANSLATE_NOOP(_SCRIPTS, "power on: the arbitrator binds, sets up and runs start-up"),
+    QT_TRANSLATE_NOOP(_SCRIPTS, "Test 1: D1.O1 → D2.I1 autoconfigured and stored; D2 is "
+                                "replaced by D3 and the prosthesis restarts: "
+                                "find_replacements links D1.O1 → D3.I1"),
+    QT_TRANSLATE_NOOP(_SCRIPTS, "Test 1 without a restart: D2 is pulled and D3 plugged in "
+                                "while running; the duty cycle repairs the link"),
+    QT_TRANSLATE_NOOP(_SCRIPTS, "Test 2: no stored configuration: autoconfigure (appendix "
+                                "D's links)"),
+    QT_TRANSLATE_NOOP(_SCRIPTS, "Test 3: configure, save, reset the arbitrator keeping its "
+                                "memory: start-up recalls the stored configuration"),
+    QT_TRANSLATE_NOOP(_SCRIPTS, "Test 4: D1.O1 → D3.I2 autoconfigured and stored; D1 is "
+                                "replaced by D2 and the prosthesis restarts: "
+                                "find_replacements links D2.O2 → D3.I2"),
+    QT_TRANSLATE_NOOP(_SCRIPTS, "Test 4 without a restart: D1 is pulled and D2 plugged in "
+                                "while running"),
+    QT_TRANSLATE_NOOP(_SCRIPTS, "Test 5: configure, then reset the arbitrator with its "
+                                "memory erased (a replaced arbitrator): start-up rebuilds the "
+                                "links from the devices' source fields"),
+    QT_TRANSLATE_NOOP(_SCRIPTS, "reset the arbitrator keeping its memory"),
+    QT_TRANSLATE_NOOP(_SCRIPTS, "reset the arbitrator with its memory erased: rebuild from "
+                                "devices"),
+)
+_REPLUG = re.compile(r"pull (\d+)/(\d+)/(\d+) and plug it back in: .*")
+REPLUG_WORDS = QT_TRANSLATE_NOOP(_SCRIPTS, "pull {device} and plug it back in: it keeps its "
+                                           "sources and the arbitrator links it again")
+
+
+def script_name_words(name: str) -> str:
+    """A script's name as the panel shows it (an unknown one, e.g. from a file, as it is)."""
+    words = SCRIPT_NAMES.get(name)
+    return translate(_SCRIPTS, words) if words else name
+
+
+def script_words(description: str, name_of: Callable[[DeviceKey], str]) -> str:
+    """What a script does, in the user's language (its parts by name)."""
+    replug = _REPLUG.fullmatch(description)
+    if replug is not None:
+        key = DeviceKey(*(int(n) for n in replug.groups()))
+        return translate(_SCRIPTS, REPLUG_WORDS).format(device=name_of(key))
+    return translate(_SCRIPTS, description) if description in SCRIPT_DESCRIPTIONS \
+        else description
+
 
 #: ``name_of(key)``: the name the graph shows for a part (None: it is not on the graph).
 NameOf = Callable[[DeviceKey], "str | None"]
@@ -161,8 +218,10 @@ class SimPanel(QWidget):
         self.reset_keep_button.clicked.connect(lambda: self.reset(True))
         self.reset_erase_button.clicked.connect(lambda: self.reset(False))
         self.save_button.clicked.connect(self.save_links)
-        self.script_button.clicked.connect(lambda: self.run_script(self.script_combo.currentText()))
-        self.script_combo.currentTextChanged.connect(self._describe_script)
+        self.script_button.clicked.connect(
+            lambda: self.run_script(str(self.script_combo.currentData() or "")))
+        self.script_combo.currentIndexChanged.connect(
+            lambda _i: self._describe_script(str(self.script_combo.currentData() or "")))
 
         devices = QGroupBox(self.tr("Devices"))
         grid = QGridLayout(devices)
@@ -201,7 +260,8 @@ class SimPanel(QWidget):
         bridge.scriptFinished.connect(self._script_finished)
         bridge.busyChanged.connect(self._busy_changed)
         bridge.error.connect(self._error)
-        self.script_combo.addItems(bridge.script_names())
+        for name in bridge.script_names():
+            self.script_combo.addItem(script_name_words(name), name)
         self._initial_presence()
         self.refresh()
 
@@ -337,7 +397,7 @@ class SimPanel(QWidget):
         self.refresh()
 
     def _script_finished(self, result: ScriptResult) -> None:
-        name = result.script.name
+        name = script_name_words(result.script.name)
         if result.ok:
             self._log(self.tr("Script {name}: ended in the expected links").format(name=name))
         else:
@@ -367,7 +427,7 @@ class SimPanel(QWidget):
                 description = session.prosthesis.script(name).description
             except Exception:
                 description = ""
-        self.script_info.setText(description)
+        self.script_info.setText(script_words(description, self._label))
 
     def _update_buttons(self) -> None:
         key = self.selected_key()
@@ -433,4 +493,5 @@ class SimPanel(QWidget):
         if not name:
             return None
         return self._started(self.bridge.run_script(name),
-                             self.tr("Running script {name}…").format(name=name))
+                             self.tr("Running script {name}…").format(
+                                 name=script_name_words(name)))

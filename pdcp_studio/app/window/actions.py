@@ -119,6 +119,7 @@ ACTIONS: tuple[ActionSpec, ...] = (
       shortcut=K.SaveAs),
     A("export_png", QT_TRANSLATE_NOOP("WindowActions", "Export graph as &PNG…"), "file", 1),
     A("export_svg", QT_TRANSLATE_NOOP("WindowActions", "Export graph as S&VG…"), "file", 1),
+    A("export_pdf", QT_TRANSLATE_NOOP("WindowActions", "Export graph as P&DF…"), "file", 1),
     A("report", QT_TRANSLATE_NOOP("WindowActions", "Fitting &report (PDF)…"), "file", 1),
     A("quit", QT_TRANSLATE_NOOP("WindowActions", "&Quit"), "file", 2, shortcut=K.Quit),
     A("undo", QT_TRANSLATE_NOOP("WindowActions", "&Undo"), "edit", 0, shortcut=K.Undo,

@@ -14,7 +14,7 @@ from collections.abc import Callable
 from typing import TYPE_CHECKING, Any
 
 from PySide6.QtCore import QObject, Qt, QTimer, SignalInstance
-from PySide6.QtWidgets import QDockWidget, QMainWindow, QMenu
+from PySide6.QtWidgets import QDockWidget, QMainWindow, QMenu, QWidget
 
 from pdcp_studio.app.documents.document import Document
 from pdcp_studio.app.graph.scene import BusScene
@@ -76,6 +76,9 @@ class BusDocks(QObject):
         self._trace_docks_wired = False
         self._keeping_from: Any = None
         self._early_frames: list[Any] = []
+        self._events_from: SessionBridge | None = None
+        self._sim_dock: QDockWidget | None = None
+        self._sim_shown = True
 
     def attach_safely(self, bridge: SessionBridge) -> None:
         """A dock that fails to build must not cost the connection: log it and go on."""
@@ -113,27 +116,53 @@ class BusDocks(QObject):
             self._ready.connect(self._trace_docks_soon)  # the first system is on screen
             self.doc.selectionChanged.connect(self._plot_selection)
         events = self.events_dock()
+        if bridge is not self._events_from:  # another prosthesis: none of the last one's
+            self._events_from = bridge
+            self._widget(events).clear()
         bridge.busEvent.connect(self._widget(events).add_event)
         bridge.scanned.connect(self._scan_finished)  # any scan's end is said in the status bar
         if bridge.is_sim:
-            self._drop("sim")
-            panel = sim_panel.SimPanel(bridge, name_of=self._device_name)
+            self._sim_panel_off()
+            self._sim_panel_on(sim_panel.SimPanel(bridge, name_of=self._device_name))
+
+    def _sim_panel_on(self, panel: QWidget) -> None:
+        """The Simulator panel of a new simulated session, in the one Simulator dock (made
+        the first time, with its View-menu entry; a wizard may point to it). The dock is
+        kept between sessions: a new one made after a switch came back hidden, its
+        predecessor's place restored as closed."""
+        dock = self._sim_dock
+        if dock is None:
             dock = add_dock(self.host, _t("Simulator"), "SimDock", panel,
                             Qt.DockWidgetArea.RightDockWidgetArea)
             self.host.tabifyDockWidget(self.inspector_dock, dock)
             self.inspector_dock.raise_()
-            self.leaf_docks["sim"] = dock
+            self.view_menu.addAction(dock.toggleViewAction())
+            self._sim_dock = dock
+        else:
+            dock.setWidget(panel)
+            dock.toggleViewAction().setEnabled(True)
+            if self._sim_shown:
+                dock.show()
+        self.leaf_docks["sim"] = dock
+
+    def _sim_panel_off(self) -> None:
+        """No simulated session: its panel goes (it must not act on a closed session); the
+        dock waits, hidden, for the next one, remembering whether it was shown."""
+        dock = self.leaf_docks.pop("sim", None)
+        if dock is None:
+            return
+        self._sim_shown = dock.toggleViewAction().isChecked()
+        panel = dock.widget()
+        if panel is not None:
+            panel.setParent(None)
+            panel.deleteLater()
+        dock.hide()
+        dock.toggleViewAction().setEnabled(False)
 
     @staticmethod
     def _widget(dock: QDockWidget) -> Any:
         """The panel in ``dock`` (its own methods, not a QWidget's)."""
         return dock.widget()
-
-    def _drop(self, key: str) -> None:
-        old = self.leaf_docks.pop(key, None)
-        if old is not None:
-            old.close()
-            old.deleteLater()
 
     def _device_name(self, key: Any) -> str | None:
         """The name the graph gives a device on screen (None if it is not there)."""
@@ -281,8 +310,11 @@ class BusDocks(QObject):
             monitor.reset_for_session(system)
         plot = self.leaf_docks.get("plot")
         if plot is not None:
-            self._widget(plot).set_channel(None)
-            self._widget(plot).set_system(system)  # names and units of its signals
+            widget = self._widget(plot)
+            for series in list(widget.series):  # signals of the previous prosthesis go
+                widget.remove_channel(series.ref)
+            widget.clear()
+            widget.set_system(system)  # names and units of its signals
 
     def bus_seen(self, system: Any) -> None:
         """After any bus event: the monitor names frames by the bus's node IDs as they are
@@ -306,7 +338,7 @@ class BusDocks(QObject):
 
     def detach(self) -> None:
         """The session ended: no panel may keep acting on it (the simulator's goes)."""
-        self._drop("sim")
+        self._sim_panel_off()
         plot = self.leaf_docks.get("plot")
         if plot is not None:
             self._widget(plot).set_channel(None)

@@ -434,6 +434,10 @@ class MainWindow(QMainWindow):
         """Leave with ``n`` pending changes not written?"""
         return questions.ask_unwritten(self, n)
 
+    def ask_quit_live(self, n: int) -> str:
+        """Quit a live view with ``n`` pending changes: write, discard or cancel."""
+        return questions.ask_quit_live(self, n, self.live.url)
+
     # -- the controllers' calls, as the window always offered them ---------------------
     def open_path(self, path: str | Path) -> bool:
         return self.files.open_path(path)
@@ -541,8 +545,24 @@ class MainWindow(QMainWindow):
         return self.desktop.filter
 
     # -- closing ----------------------------------------------------------------------
+    def may_close(self) -> bool:
+        """Ask once before closing. A live view's edits are pending changes for the
+        prosthesis: written through the change road or discarded, never "saved" to it
+        (its card positions are remembered unasked). A file's are saved."""
+        if not self.doc.is_live_view:
+            return self.transactions.confirm_unwritten() and self.maybe_save()
+        self.doc.remember_layout()
+        n = self.transactions.unwritten()
+        if not n or self.quiet:
+            return True
+        answer = self.ask_quit_live(n)
+        if answer == questions.QUIT_WRITE:
+            self.transactions.write_pending()  # the window stays: quit again once written
+            return False
+        return answer == questions.QUIT_DISCARD
+
     def closeEvent(self, event: QCloseEvent) -> None:
-        if not self.transactions.confirm_unwritten() or not self.maybe_save():
+        if not self.may_close():
             event.ignore()
             return
         self.live.disconnect_bus()
@@ -572,6 +592,7 @@ def window_commands(self: MainWindow) -> dict[str, Callable[[], object]]:
         "save_as": lambda: self.files.ask_save_as(),
         "export_png": lambda: self.export.ask_export("png"),
         "export_svg": lambda: self.export.ask_export("svg"),
+        "export_pdf": lambda: self.export.ask_export("pdf"),
         "report": lambda: self.export.ask_report(),
         "quit": self.close,
         "undo": lambda: self.flow.undo(),

@@ -1,5 +1,5 @@
 """The questions the main window asks before it drops something (unsaved changes, the
-connection, unwritten changes to the prosthesis).
+connection, unwritten changes to the prosthesis, quitting a live view with them).
 
 Plain functions over a parent widget: the window asks them through methods of its own,
 which tests replace with scripted answers.
@@ -14,6 +14,8 @@ from PySide6.QtWidgets import QMessageBox, QWidget
 from pdcp_studio.app.i18n import translate
 from pdcp_studio.app.words.plural import count
 
+#: ``ask_quit_live`` answers.
+QUIT_WRITE, QUIT_DISCARD, QUIT_CANCEL = "write", "discard", "cancel"
 #: ``ask_leave_bus`` answers.
 LEAVE_COMPARE, LEAVE_DISCONNECT, LEAVE_CANCEL = "compare", "disconnect", "cancel"
 
@@ -78,3 +80,37 @@ def ask_unwritten(parent: QWidget, n: int) -> bool:
         SB.Cancel,
     )
     return answer == SB.Discard
+
+
+def quit_live_words(n: int, url: str) -> tuple[str, str]:
+    """What quitting a live view with ``n`` pending changes leaves behind, and the ways on:
+    the changes are for the prosthesis (written through the change road), not a file."""
+    text = count("MainWindow", "%n change(s) not written to the prosthesis on {url} yet.",
+                 n).format(url=url)
+    more = translate("MainWindow", "Write them now (you see the difference and confirm it), "
+                                   "or quit and discard them: the prosthesis stays as it is.")
+    return text, more
+
+
+def ask_quit_live(parent: QWidget, n: int, url: str) -> str:
+    """Quitting a live view with ``n`` pending changes: write them first, discard them
+    and quit, or cancel (one question: nothing is "saved" to the prosthesis)."""
+    box = QMessageBox(parent)
+    box.setIcon(QMessageBox.Icon.Question)
+    box.setWindowTitle(translate("MainWindow", "Pending changes"))
+    text, more = quit_live_words(n, url)
+    box.setText(text)
+    box.setInformativeText(more)
+    write = box.addButton(translate("MainWindow", "Write to prosthesis…"),
+                          QMessageBox.ButtonRole.AcceptRole)
+    discard = box.addButton(translate("MainWindow", "Discard and quit"),
+                            QMessageBox.ButtonRole.DestructiveRole)
+    cancel = box.addButton(QMessageBox.StandardButton.Cancel)
+    box.setDefaultButton(cancel)
+    box.exec()
+    clicked = box.clickedButton()
+    if clicked is write:
+        return QUIT_WRITE
+    if clicked is discard:
+        return QUIT_DISCARD
+    return QUIT_CANCEL

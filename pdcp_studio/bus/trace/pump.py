@@ -132,7 +132,12 @@ class TracePump:
         managed = managed_at_decode = 0  # frames counted here / when one was last decoded
         timestamp = 0.0
         repeats = self._repeats
+        # One time base for every line: seconds since the first frame (the decoder's t0).
+        # Before the first frame is decoded there is none yet; the fast paths below only
+        # see identifiers decoded before, so t0 is taken as soon as the decoder has it (read
+        # once at the start, it stayed 0 and those lines showed the epoch).
         t0 = decoder.t0 or 0.0
+        t0_known = decoder.t0 is not None
         if self._version != decoder.version:
             heads.clear()
             repeats.clear()
@@ -273,6 +278,8 @@ class TracePump:
                     if recorder is not None:
                         recorder.write_message(msg)
                     frame = decode(msg)
+                    if not t0_known and decoder.t0 is not None:
+                        t0, t0_known = decoder.t0, True
                 if frame.error is not None and on_error is not None:
                     on_error(frame)
                 shown = show is None or show(frame)

@@ -155,7 +155,8 @@ class BusCommands:
     def show_compare(self) -> None:
         from pdcp_studio.app.dialogs import compare_dialog as mod
 
-        dialog = mod.CompareDialog(self.doc.system, bridge=self.live.bridge, parent=self.parent)
+        dialog = mod.CompareDialog(self.doc.system, bridge=self.live.bridge,
+                                   profile_name=self.doc.profile_name, parent=self.parent)
         if self.doc.config is not None:
             dialog.set_file_sources(mod.sources_of_collection(self.doc.title, self.doc.config),
                                     self.doc.config)
@@ -166,7 +167,8 @@ class BusCommands:
         configuration), staying connected; returns the dialog."""
         from pdcp_studio.app.dialogs import compare_dialog as mod
 
-        dialog = mod.CompareDialog(self.doc.system, bridge=self.live.bridge, parent=self.parent)
+        dialog = mod.CompareDialog(self.doc.system, bridge=self.live.bridge,
+                                   profile_name=self.doc.profile_name, parent=self.parent)
         dialog.load_file(path)
         if self.live.bridge is not None:
             dialog.read_arbitrator()

@@ -1,12 +1,15 @@
-"""Exporting the graph (PNG, SVG) and the fitting report (PDF) from the main window.
+"""Exporting the graph (PNG, SVG, PDF) and the fitting report (PDF) from the main window.
 
-Output that leaves the app, as opposed to saving the document (:mod:`.files`).
+Output that leaves the app, as opposed to saving the document (:mod:`.files`). An export
+shows the graph, not the user's pointer: the selection and hover highlights are taken off
+while it is drawn and put back after.
 """
 
 from __future__ import annotations
 
 import math
-from collections.abc import Callable
+from collections.abc import Callable, Iterator
+from contextlib import contextmanager
 from pathlib import Path
 
 from PySide6.QtCore import QRectF, Qt
@@ -27,7 +30,7 @@ def _t(text: str) -> str:
 
 
 class GraphExport:
-    """The graph as an image or a file (PNG, SVG), and the dialogs that ask where;
+    """The graph as an image or a file (PNG, SVG, PDF), and the dialogs that ask where;
     ``write_report(path)`` writes the fitting report."""
 
     def __init__(self, scene: BusScene, doc: Document, status: StatusLine, parent: QWidget,
@@ -54,6 +57,35 @@ class GraphExport:
         return QRectF(left, top, math.ceil(rect.right()) - left,
                       math.ceil(rect.bottom()) - top)
 
+    @contextmanager
+    def _unhighlighted(self) -> Iterator[None]:
+        """The graph without selection or hover highlights for a while (an export); the
+        document's selection is untouched (the scene's signals are held meanwhile)."""
+        scene = self.scene
+        was_blocked = scene.blockSignals(True)
+        selected = scene.selectedItems()
+        rows = {card: card.selected_ref for card in scene.cards.values()
+                if card.selected_ref is not None}
+        hovered = [item for item in scene.items() if getattr(item, "_hover", False)]
+        try:
+            for item in selected:
+                item.setSelected(False)
+            for card in rows:
+                card.selected_ref = None
+                card.refresh()
+            for item in hovered:
+                item.set_hover(False)  # type: ignore[attr-defined]
+            yield
+        finally:
+            for item in hovered:
+                item.set_hover(True)  # type: ignore[attr-defined]
+            for card, ref in rows.items():
+                card.selected_ref = ref
+                card.refresh()
+            for item in selected:
+                item.setSelected(True)
+            scene.blockSignals(was_blocked)
+
     def graph_image(self, scale: float = 2.0) -> QImage:
         """The whole graph rendered off screen (for PNG export and the report)."""
         rect = self.export_rect()
@@ -62,11 +94,57 @@ class GraphExport:
         image.fill(self.scene.backgroundBrush().color())
         painter = QPainter(image)
         painter.setRenderHint(QPainter.RenderHint.Antialiasing)
-        with self.scene.full_detail():  # the cards' rows, whatever the view's zoom
+        with self._unhighlighted(), self.scene.full_detail():  # rows, whatever the zoom
             self.scene.render(painter, QRectF(0, 0, image.width(), image.height()), rect,
                               Qt.AspectRatioMode.IgnoreAspectRatio)
         painter.end()
         return image
+
+    @contextmanager
+    def _vectors(self) -> Iterator[None]:
+        """Cards keep a pixmap cache for the screen; a vector file wants their vectors."""
+        cached = [(item, item.cacheMode()) for item in self.scene.items()
+                  if item.cacheMode() != QGraphicsItem.CacheMode.NoCache]
+        for item, _mode in cached:
+            item.setCacheMode(QGraphicsItem.CacheMode.NoCache)
+        try:
+            with self._unhighlighted(), self.scene.full_detail():  # vectors and rows
+                yield
+        finally:
+            for item, mode in cached:
+                item.setCacheMode(mode)
+
+    def export_pdf(self, path: Path) -> None:
+        """The graph as a one-page vector PDF, the page the graph's own shape (in points)."""
+        from PySide6.QtCore import QBuffer, QByteArray, QIODevice, QMarginsF, QSizeF
+        from PySide6.QtGui import QPageLayout, QPageSize, QPdfWriter
+
+        from pdcp_studio.storage.atomic import atomic_write_bytes
+
+        rect = self.export_rect()
+        data = QByteArray()
+        buffer = QBuffer(data)
+        buffer.open(QIODevice.OpenModeFlag.WriteOnly)
+        writer = QPdfWriter(buffer)  # rendered in memory, then written atomically
+        writer.setTitle(self.doc.title)
+        writer.setCreator("PDCP Studio")
+        writer.setResolution(72)  # a scene unit is a point
+        size = QPageSize(QSizeF(rect.width(), rect.height()), QPageSize.Unit.Point,
+                         "graph", QPageSize.SizeMatchPolicy.ExactMatch)
+        writer.setPageLayout(QPageLayout(size, QPageLayout.Orientation.Portrait,
+                                         QMarginsF(0, 0, 0, 0)))
+        painter = QPainter()
+        if not painter.begin(writer):
+            raise OSError(f"{path}: the PDF writer did not start")
+        painter.setRenderHint(QPainter.RenderHint.Antialiasing)
+        with self._vectors():
+            self.scene.render(painter, QRectF(0, 0, rect.width(), rect.height()), rect,
+                              Qt.AspectRatioMode.KeepAspectRatio)
+        painter.end()
+        buffer.close()
+        if data.isEmpty():
+            raise OSError(f"{path}: the PDF writer produced nothing")
+        atomic_write_bytes(path, bytes(data.data()))
 
     def export_graph(self, path: str | Path) -> None:
         path = Path(path)
@@ -89,24 +167,16 @@ class GraphExport:
             gen.setSize(page.size().toSize())
             gen.setViewBox(page)
             gen.setTitle(self.doc.title)
-            # Cards keep a pixmap cache for the screen; a vector file wants their vectors.
-            cached = [(item, item.cacheMode()) for item in self.scene.items()
-                      if item.cacheMode() != QGraphicsItem.CacheMode.NoCache]
-            for item, _mode in cached:
-                item.setCacheMode(QGraphicsItem.CacheMode.NoCache)
-            try:
-                painter = QPainter(gen)
-                with self.scene.full_detail():  # vectors and rows, whatever the zoom
-                    self.scene.render(painter, page, rect,
-                                      Qt.AspectRatioMode.IgnoreAspectRatio)
-                painter.end()
-            finally:
-                for item, mode in cached:
-                    item.setCacheMode(mode)
+            painter = QPainter(gen)
+            with self._vectors():  # vectors and rows, whatever the zoom
+                self.scene.render(painter, page, rect, Qt.AspectRatioMode.IgnoreAspectRatio)
+            painter.end()
             buffer.close()
             if data.isEmpty():
                 raise OSError(f"{path}: the SVG renderer produced nothing")
             atomic_write_bytes(path, bytes(data.data()))
+        elif path.suffix.lower() == ".pdf":
+            self.export_pdf(path)
         elif not self.graph_image().save(str(path)):
             raise OSError(f"{path}: could not write the image")
 

@@ -122,10 +122,14 @@ class Transactions(QObject):
         )
         return len(changes)
 
+    def unwritten(self) -> int:
+        """How many pending changes are not written to the connected prosthesis."""
+        return len(self.pending_panel.changes) if self.doc.bus_system is not None else 0
+
     def confirm_unwritten(self) -> bool:
         """Before leaving a live prosthesis (closing, disconnecting): True when no pending
         change would be lost unwritten, or the user chose to leave them."""
-        n = len(self.pending_panel.changes) if self.doc.bus_system is not None else 0
+        n = self.unwritten()
         if not n or self._quiet():
             return True
         return self._ask_unwritten(n)
