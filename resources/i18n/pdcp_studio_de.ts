@@ -1762,6 +1762,10 @@ Ihr Name (wird einmal erfragt):</translation>
             <source>Ctrl+click a second entry to see how the two differ.</source>
             <translation>Mit Strg+Klick einen zweiten Eintrag wählen, um zu sehen, wie sich die beiden unterscheiden.</translation>
         </message>
+        <message>
+            <source>Technical detail</source>
+            <translation>Technische Einzelheiten</translation>
+        </message>
     </context>
     <context>
         <name>Inspector</name>

@@ -84,3 +84,74 @@ def test_the_restore_wizard_refuses_naming_the_absent_part_and_offers_replace(li
     replace[0].click()
     qtbot.waitUntil(lambda: getattr(live, "task_wizard", None) is not w, timeout=T)
     assert type(live.task_wizard).__name__ == "ReplacePartWizard"
+
+
+def test_the_history_panel_refuses_naming_the_absent_part_before_any_progress(live, qtbot):
+    links = _hand_unplugged_after_an_entry(live, qtbot)
+    panel = live.history_panel
+    with qtbot.waitSignal(panel.loaded, timeout=T):
+        panel.refresh()
+    panel.select_ids(_entries()[0]["id"])
+    assert panel.restore_selected() is False
+    box = panel.refusal
+    assert box is not None and box.isVisible()
+    assert "Multi-grip hand" in box.text() and "not on the bus" in box.text()
+    assert "2641/" not in box.text()
+    assert any(b.text() == "Replace a part…" for b in box.buttons())
+    # Refused before the road: no preview, no progress dialog, nothing written.
+    assert not live.flow.busy and live.flow.progress_dialog is None
+    assert live.flow.dialog is None
+    assert set(live.live.bridge.session.system().links) == links
+    assert len(_entries()) == 1
+    box.reject()
+
+
+def test_a_history_restore_previews_in_words_and_puts_back_a_control_mode(live, qtbot):
+    from pdcp_studio.app.wizards import logic
+    from pdcp_studio.bus.transaction import Change, ParameterWrite
+
+    session = live.live.bridge.session
+    assert session.transact(logic.store_change(session.system())).written  # entry 1
+    links = sorted(session.system().links)
+    change = Change.links_to(links, [lk for lk in links if lk != HAND_LINK], "lose one")
+    change.parameters = [ParameterWrite(HAND, 1, 1, bytes.fromhex("00972022"))]  # velocity
+    assert session.transact(change).written  # entry 2
+    live.live.refresh()
+    panel = live.history_panel
+    with qtbot.waitSignal(panel.loaded, timeout=T):
+        panel.refresh()
+    first = min(e["id"] for e in panel.all_entries())
+    panel.select_ids(first)
+    assert panel.restore_selected()
+    qtbot.waitUntil(lambda: live.flow.dialog is not None and live.flow.dialog.isVisible(),
+                    timeout=T)
+    dialog = live.flow.dialog
+    words = dialog.words_text()
+    assert "Link made: " in words and "control mode velocity → position" in words, words
+    assert "At the next power-on" in words
+    assert "0x" not in words and "2641/" not in words
+    assert dialog.store_box.isChecked()  # the recorded stored configuration goes back
+    with qtbot.waitSignal(live.flow.finished, timeout=T) as got:
+        dialog.write_button.click()
+    assert got.args[0].written, got.args[0].summary()
+    assert set(session.system().links) == set(links)
+    assert session.system().channel(ChannelRef(*HAND, 1)).ctype.control_mode.label == "position"
+
+
+def test_an_entry_from_before_the_effect_says_so(live, qtbot):
+    from pdcp_studio.app.words.history_words import entry_summary, predates
+    from pdcp_studio.bus.transaction import Change
+
+    session = live.live.bridge.session
+    links = sorted(session.system().links)
+    assert session.transact(Change.links_to(links, links[1:], "config write")).written
+    panel = live.history_panel
+    with qtbot.waitSignal(panel.loaded, timeout=T):
+        panel.refresh()
+    old = dict(panel.all_entries()[0])
+    assert entry_summary(old).startswith("Link removed: ")
+    old.pop("effect")
+    old.pop("next_power_on")
+    assert entry_summary(old) == "config write"  # as recorded
+    panel._show_entry(old)
+    assert predates() in panel.details.toPlainText()

@@ -40,18 +40,19 @@ def test_the_details_word_the_links_and_keep_the_numbers_in_the_tooltip(make_win
                      "Multi-grip hand with wrist rotator, channel 1 (Power Grip)")
     panel.select_ids(1)
     text = panel.details.toPlainText()
-    assert f"− {words}" in text, text
+    # The entry's effect, in words (the names every text uses), and the next power-on.
+    assert ("Link removed: Pattern-recognition control unit, Power grip set point → "
+            "Multi-grip hand with wrist rotator, Power grip") in text, text
+    assert "At the next power-on" in text
     assert not RAW.search(text), text
-    # The raw form stays one hover away, on the line that words it.
-    doc = panel.details.document()
-    line = next(b for b in (doc.findBlockByNumber(i) for i in range(doc.blockCount()))
-                if words in b.text())
-    from PySide6.QtGui import QTextCursor
-
-    cursor = QTextCursor(line)
-    cursor.movePosition(QTextCursor.MoveOperation.EndOfBlock)
-    tip = panel.details.tip_at(panel.details.cursorRect(cursor).center())
-    assert "2641/513/201#3 → 2641/769/301#1" in tip, tip
+    # The codes one click away: the technical detail, collapsed.
+    assert panel.technical.isHidden() and not panel.technical_button.isHidden()
+    assert "- link 2641/513/201#3 → 2641/769/301#1" in panel.technical.toPlainText()
+    panel.technical_button.click()
+    assert not panel.technical.isHidden()
+    # The list says what each change did, not "config write".
+    row = panel.shown.index(next(e for e in panel.shown if e["id"] == 1))
+    assert panel.table.item(row, 2).text().startswith("Link removed: Pattern-recognition")
     # Two entries compared: the difference in words too.
     panel.select_ids(1, 2)
     text = panel.details.toPlainText()

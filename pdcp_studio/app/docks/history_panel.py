@@ -31,17 +31,26 @@ from PySide6.QtWidgets import (
     QHBoxLayout,
     QHeaderView,
     QLabel,
+    QMessageBox,
     QPlainTextEdit,
     QPushButton,
     QSplitter,
     QTableWidget,
     QTableWidgetItem,
+    QToolButton,
     QToolTip,
     QVBoxLayout,
     QWidget,
 )
 
 from pdcp_studio.app.i18n import QT_TRANSLATE_NOOP, translate
+from pdcp_studio.app.words.history_words import (
+    entry_effect,
+    entry_summary,
+    entry_words,
+    headline,
+    predates,
+)
 from pdcp_studio.app.workers import ProgressFn, Worker
 from pdcp_studio.model.refs import ChannelRef, DeviceKey
 from pdcp_studio.model.system import Link
@@ -59,6 +68,8 @@ COLUMNS = (
     QT_TRANSLATE_NOOP("HistoryPanel", "Links"),
     QT_TRANSLATE_NOOP("HistoryPanel", "Bus"),
 )
+#: The Action column: what the change did, the first line of its effect.
+ACTION_COLUMN = 2
 THIS, ALL = "this", "all"
 FAILED_COLOUR = QColor(250, 215, 215)
 #: The details pane's share of the panel's width (what an entry changed needs room).
@@ -89,6 +100,15 @@ def entry_devices(entry: Entry) -> set[DeviceKey]:
 def for_prosthesis(entries: list[Entry], devices: set[DeviceKey]) -> list[Entry]:
     """The entries of a prosthesis: those that share a device with it."""
     return [e for e in entries if entry_devices(e) & devices]
+
+
+def summary_tip(entry: Entry) -> str:
+    """The Action cell's tooltip: every headline of the effect, and the recorded action."""
+    effect = entry_effect(entry)
+    action = str(entry.get("action") or "")
+    if effect is None:
+        return action + "\n" + predates()
+    return "\n".join([*headline(effect), f"({action})"])
 
 
 def outcome_text(entry: Entry) -> str:
@@ -254,6 +274,25 @@ class HistoryPanel(QWidget):
         self.table.itemSelectionChanged.connect(self._show_selection)
         self.details = DetailsView()
         self.details.setReadOnly(True)
+        self.technical_button = QToolButton()
+        self.technical_button.setText(self.tr("Technical detail"))
+        self.technical_button.setCheckable(True)
+        self.technical_button.setAutoRaise(True)
+        self.technical_button.setToolButtonStyle(Qt.ToolButtonStyle.ToolButtonTextBesideIcon)
+        self.technical_button.setArrowType(Qt.ArrowType.RightArrow)
+        self.technical = QPlainTextEdit()
+        self.technical.setReadOnly(True)
+        self.technical.hide()
+        self.technical_button.toggled.connect(self._show_technical)
+        detail_side = QWidget()
+        side = QVBoxLayout(detail_side)
+        side.setContentsMargins(0, 0, 0, 0)
+        side.addWidget(self.details, 3)
+        side.addWidget(self.technical_button, 0, Qt.AlignmentFlag.AlignLeft)
+        side.addWidget(self.technical, 2)
+        self.technical.setMinimumHeight(60)
+        #: The refusal on screen when a restore needs a part not on the bus (tests read it).
+        self.refusal: QMessageBox | None = None
         self.restore_button = QPushButton(self.tr("Restore on the prosthesis…"))
         self.restore_button.setToolTip(self.tr("Put the connected prosthesis back as it was "
                                                "after this entry (previewed, confirmed)"))
@@ -274,7 +313,7 @@ class HistoryPanel(QWidget):
         buttons.addWidget(self.restore_button)
         split = QSplitter(Qt.Orientation.Horizontal)
         split.addWidget(self.table)
-        split.addWidget(self.details)
+        split.addWidget(detail_side)
         split.setStretchFactor(0, 3)
         split.setStretchFactor(1, 2)
         split.setChildrenCollapsible(False)
@@ -341,12 +380,12 @@ class HistoryPanel(QWidget):
         for row, e in enumerate(self.shown):
             before, after = len(e.get("links_before") or ()), len(e.get("links_after") or ())
             cells = [str(e["id"]), str(e.get("time", "")).replace("T", " ").rstrip("Z"),
-                     e.get("action") or "", outcome_text(e), e.get("operator") or "",
+                     entry_summary(e), outcome_text(e), e.get("operator") or "",
                      e.get("patient") or "", f"{before} → {after}", e.get("bus") or ""]
             failed = (e.get("outcome") or {}).get("status") in ("failed", "rolled_back")
             for col, text in enumerate(cells):
                 item = QTableWidgetItem(text)
-                item.setToolTip(text)
+                item.setToolTip(summary_tip(e) if col == ACTION_COLUMN else text)
                 if failed:
                     item.setBackground(QBrush(FAILED_COLOUR))
                 self.table.setItem(row, col, item)
@@ -401,13 +440,40 @@ class HistoryPanel(QWidget):
             self._show_lines(entries_difference(older, newer, self.link_words),
                              entries_difference(older, newer))
         elif len(chosen) == 1:
-            self._show_lines(entry_details(chosen[0], self.link_words),
-                             entry_details(chosen[0]))
+            self._show_entry(chosen[0])
+            self._update_hint(1)
+            self._update_buttons()
+            return
         else:
             self.details.setPlainText(self.tr("Select an entry to see what it changed, or two "
                                               "to compare them."))
+        self.technical.clear()
+        self.technical_button.setChecked(False)
+        self.technical_button.setVisible(False)
         self._update_hint(len(chosen))
         self._update_buttons()
+
+    def _show_entry(self, entry: Entry) -> None:
+        """One entry: who, when and how it ended, then its effect in words and the next
+        power-on (the codes under Technical detail); an older entry as it was recorded."""
+        worded, raw = entry_details(entry, self.link_words), entry_details(entry)
+        said = entry_words(entry)
+        effect = entry_effect(entry)
+        if said is None or effect is None:
+            self._show_lines([*worded[:3], predates(), *worded[3:]],
+                             [*raw[:3], predates(), *raw[3:]])
+            technical = raw[3:]
+        else:
+            lines = [*worded[:3], "", *said]
+            self._show_lines(lines, lines)
+            technical = [*effect.technical(), *raw[3:]]
+        self.technical.setPlainText("\n".join(technical))
+        self.technical_button.setVisible(True)
+
+    def _show_technical(self, shown: bool) -> None:
+        self.technical.setVisible(shown)
+        self.technical_button.setArrowType(Qt.ArrowType.DownArrow if shown
+                                           else Qt.ArrowType.RightArrow)
 
     def _update_hint(self, chosen: int) -> None:
         """What a further selection would show; nothing once two are compared."""
@@ -438,15 +504,27 @@ class HistoryPanel(QWidget):
             self.main.error_box(self.tr("Restore"), self.tr("connect to the prosthesis "
                                                               "first"))
             return False
+        from pdcp_studio.app.widgets.restore_refusal import (
+            keep_recorded_configuration,
+            missing_words,
+            refuse,
+        )
         from pdcp_studio.bus.transaction import NotRestorable, restore_change
 
+        title = self.tr("Restore history entry {0}").format(entry["id"])
         try:
             change = restore_change(entry, bus)  # the CLI's restore too
         except NotRestorable as err:
-            self.main.error_box(self.tr("Restore"), str(err))
+            if err.missing:  # refused before anything is written, before any progress
+                self.refusal = refuse(self, title, missing_words(entry["id"], err.missing, bus),
+                                      lambda: self.main.open_task("replace"))
+            else:
+                self.main.error_box(self.tr("Restore"), str(err))
             return False
-        return bool(self.main.flow.run(
-            change, self.tr("Restore history entry {0}").format(entry["id"])))
+        # As ``history restore``: the stored configuration the entry recorded goes back
+        # unless the confirmation's box is unticked.
+        return bool(self.main.flow.run(change, title, store=True,
+                                       choose=keep_recorded_configuration))
 
     def ask_report(self) -> None:
         chosen = self.selected()
