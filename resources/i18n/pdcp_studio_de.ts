@@ -2845,6 +2845,18 @@ Den PDCP-Bus einer aktiven Prothese ansehen und einrichten.</translation>
                 <numerusform>%n vorgemerkte Änderungen</numerusform>
             </translation>
         </message>
+        <message>
+            <source>linked by hand</source>
+            <translation>von Hand verbunden</translation>
+        </message>
+        <message>
+            <source>removed by hand</source>
+            <translation>von Hand entfernt</translation>
+        </message>
+        <message>
+            <source>as on the prosthesis</source>
+            <translation>wie an der Prothese</translation>
+        </message>
     </context>
     <context>
         <name>PlanPanel</name>

@@ -144,6 +144,13 @@ def test_the_confirmation_in_german(make_window, qtbot):
             window.connect_bus("sim:transradial")
         qtbot.waitUntil(lambda: window.doc.config is not None, timeout=5000)
         assert commands.push_channel_field(window.doc, POWER, "type", 0x9700)
+        assert window.doc.undo_stack.undoText().endswith("Regelungsart Position → Geschwindigkeit")
+        assert commands.push_remove_links(window.doc, [HAND_LINK]) == 1
+        panel = window.pending_panel
+        qtbot.waitUntil(lambda: len(panel.changes) == 2, timeout=3000)
+        rows = [[panel.view.topLevelItem(i).text(c) for c in (1, 2)] for i in range(2)]
+        assert rows[0][1] == "von Hand entfernt"
+        assert rows[1][0].endswith("Regelungsart Position → Geschwindigkeit"), rows
         dialog = _confirmation(window, qtbot)
         words = dialog.words_text()
         _no_codes(words)

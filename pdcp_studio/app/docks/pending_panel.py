@@ -26,10 +26,18 @@ from PySide6.QtWidgets import (
 from pdcp_studio.app.documents import fitting, pending
 from pdcp_studio.app.documents.document import Document
 from pdcp_studio.app.graph import style
+from pdcp_studio.app.i18n import QT_TRANSLATE_NOOP
 from pdcp_studio.app.words.effect_words import app_names, effect_tr
 from pdcp_studio.app.words.plural import count
 
 ROLE = Qt.ItemDataRole.UserRole
+
+#: The reasons the app gives its own staged links (a plan's reasons are the plan's).
+OWN_REASONS = (
+    QT_TRANSLATE_NOOP("PendingPanel", "linked by hand"),
+    QT_TRANSLATE_NOOP("PendingPanel", "removed by hand"),
+    QT_TRANSLATE_NOOP("PendingPanel", "as on the prosthesis"),
+)
 
 
 class PendingPanel(QWidget):
@@ -121,7 +129,8 @@ class PendingPanel(QWidget):
             kind = {pending.ADD: self.tr("+ link"), pending.REMOVE: self.tr("− link"),
                     pending.PARAMETER: self.tr("parameter")}[change.kind]
             what = change.describe(bus, doc.system, names, effect_tr)
-            item = QTreeWidgetItem([kind, what, change.reason])
+            why = self.tr(change.reason) if change.reason in OWN_REASONS else change.reason
+            item = QTreeWidgetItem([kind, what, why])
             colour = {pending.ADD: style.PREVIEW_ADD, pending.REMOVE: style.PREVIEW_REMOVE}.get(
                 change.kind, style.PENDING)
             item.setForeground(0, QBrush(colour))
