@@ -83,13 +83,15 @@ T_NO = "no"
 T_NONE = "none"
 T_BITS = "{bits}-bit {kind}"
 T_STORED_SAME = "Stored configuration: unchanged."
-T_STORED_NEW = ("Stored configuration: replaced; it will hold {n} link(s) "
+T_STORED_NEW = ("Stored configuration: replaced; it will hold {links} "
                 "({added} added, {removed} removed).")
 T_STORED_CLEARED = "Stored configuration: cleared (nothing stored)."
 T_STORED_ADD = "  stored from now on: {link}"
 T_STORED_DROP = "  no longer stored: {link}"
 T_POLICY = "Automatic set-up (autoconfigure): {old} → {new}."
-T_POLICY_OFF_STAY = "Turning automatic set-up off removes nothing: the {n} link(s) stay."
+T_POLICY_OFF_STAY = "Turning automatic set-up off removes nothing: {links} stay as they are."
+T_ONE_LINK = "{n} link"
+T_LINKS = "{n} links"
 T_HELD = "While the change is made, these parts are held still: {parts}."
 T_HELD_NONE = "No part needs to be held still for this change."
 T_NOTHING = "Nothing changes on the prosthesis."
@@ -103,7 +105,7 @@ T_PO_REVERT = ("This change is not stored: the next power-on undoes it. Store it
 T_PO_REVERT_AUTO = ("Even stored, start-up's automatic set-up makes this again (autoconfigure "
                     "is on): turn automatic set-up off to keep the change.")
 T_PO_PARTLY = "Start-up undoes part of this change."
-T_STORED_FIRST = "Stored configuration: stored for the first time, {n} link(s)."
+T_STORED_FIRST = "Stored configuration: stored for the first time, {links}."
 T_PO_RETRIEVED = ("No configuration is stored: start-up rebuilds the links from what the "
                   "parts themselves remember.")
 T_PO_AUTO = "Automatic set-up is on: start-up links unconnected terminal channels."
@@ -246,9 +248,10 @@ class Effect:
         before = set(self.stored_before or [])
         after = set(self.stored_after)
         if self.stored_before is None:
-            return [tr(T_STORED_FIRST).format(n=len(after))] + [
+            return [tr(T_STORED_FIRST).format(links=_links_count(len(after), tr))] + [
                 tr(T_STORED_ADD).format(link=self.name(lk, tr)) for lk in sorted(after)]
-        out = [tr(T_STORED_NEW).format(n=len(after), added=len(after - before),
+        out = [tr(T_STORED_NEW).format(links=_links_count(len(after), tr),
+                                       added=len(after - before),
                                        removed=len(before - after))]
         out += [tr(T_STORED_ADD).format(link=self.name(lk, tr)) for lk in sorted(after - before)]
         out += [tr(T_STORED_DROP).format(link=self.name(lk, tr))
@@ -261,7 +264,8 @@ class Effect:
         out = [tr(T_POLICY).format(old=tr(T_ON if self.policy_before else T_OFF),
                                    new=tr(T_ON if self.policy_after else T_OFF))]
         if not self.policy_after:
-            out.append(tr(T_POLICY_OFF_STAY).format(n=len(self.links_after)))
+            out.append(tr(T_POLICY_OFF_STAY).format(
+                links=_links_count(len(self.links_after), tr)))
         return out
 
     def power_on_lines(self, tr: Translate = _same) -> list[str]:
@@ -550,6 +554,12 @@ def _names_for(effect: Effect, names: Names, written: System) -> dict[str, str]:
     for key in effect.held:
         out.setdefault(str(key), names.part(key))
     return out
+
+
+def _links_count(n: int, tr: Translate) -> str:
+    """``1 link`` / ``3 links`` (each form translated on its own, so German reads
+    "1 Verbindung" / "3 Verbindungen")."""
+    return tr(T_ONE_LINK if n == 1 else T_LINKS).format(n=n)
 
 
 def _key_json(key: DeviceKey) -> dict[str, int]:

@@ -1294,8 +1294,16 @@ Das Öffnen von {1} beendet diese Verbindung.</translation>
             <translation>Automatische Einrichtung (Autokonfiguration): {old} → {new}.</translation>
         </message>
         <message>
-            <source>Turning automatic set-up off removes nothing: the {n} link(s) stay.</source>
-            <translation>Das Ausschalten der automatischen Einrichtung entfernt nichts: die {n} Verbindung(en) bleiben.</translation>
+            <source>Turning automatic set-up off removes nothing: {links} stay as they are.</source>
+            <translation>Das Ausschalten der automatischen Einrichtung entfernt nichts: {links} bleiben, wie sie sind.</translation>
+        </message>
+        <message>
+            <source>{n} link</source>
+            <translation>{n} Verbindung</translation>
+        </message>
+        <message>
+            <source>{n} links</source>
+            <translation>{n} Verbindungen</translation>
         </message>
         <message>
             <source>  is made: {link}</source>
@@ -1366,12 +1374,12 @@ Das Öffnen von {1} beendet diese Verbindung.</translation>
             <translation>  nicht mehr gespeichert: {link}</translation>
         </message>
         <message>
-            <source>Stored configuration: stored for the first time, {n} link(s).</source>
-            <translation>Gespeicherte Konfiguration: zum ersten Mal gespeichert, {n} Verbindung(en).</translation>
+            <source>Stored configuration: stored for the first time, {links}.</source>
+            <translation>Gespeicherte Konfiguration: zum ersten Mal gespeichert, {links}.</translation>
         </message>
         <message>
-            <source>Stored configuration: replaced; it will hold {n} link(s) ({added} added, {removed} removed).</source>
-            <translation>Gespeicherte Konfiguration: ersetzt; sie enthält dann {n} Verbindung(en) ({added} hinzu, {removed} entfernt).</translation>
+            <source>Stored configuration: replaced; it will hold {links} ({added} added, {removed} removed).</source>
+            <translation>Gespeicherte Konfiguration: ersetzt; sie enthält dann {links} ({added} hinzu, {removed} entfernt).</translation>
         </message>
         <message>
             <source>Stored configuration: unchanged.</source>

@@ -45,8 +45,10 @@ MARKED: tuple[str, ...] = (
     QT_TRANSLATE_NOOP("Effect", "on"),
     QT_TRANSLATE_NOOP("Effect", "{where}: {what}"),
     QT_TRANSLATE_NOOP("Effect", "Automatic set-up (autoconfigure): {old} → {new}."),
-    QT_TRANSLATE_NOOP("Effect", "Turning automatic set-up off removes nothing: the {n} "
-                                "link(s) stay."),
+    QT_TRANSLATE_NOOP("Effect", "Turning automatic set-up off removes nothing: {links} stay "
+                                "as they are."),
+    QT_TRANSLATE_NOOP("Effect", "{n} link"),
+    QT_TRANSLATE_NOOP("Effect", "{n} links"),
     QT_TRANSLATE_NOOP("Effect", "  is made: {link}"),
     QT_TRANSLATE_NOOP("Effect", "Automatic set-up is on: start-up links unconnected terminal "
                                 "channels."),
@@ -70,9 +72,8 @@ MARKED: tuple[str, ...] = (
     QT_TRANSLATE_NOOP("Effect", "  stored from now on: {link}"),
     QT_TRANSLATE_NOOP("Effect", "Stored configuration: cleared (nothing stored)."),
     QT_TRANSLATE_NOOP("Effect", "  no longer stored: {link}"),
-    QT_TRANSLATE_NOOP("Effect", "Stored configuration: stored for the first time, {n} "
-                                "link(s)."),
-    QT_TRANSLATE_NOOP("Effect", "Stored configuration: replaced; it will hold {n} link(s) "
+    QT_TRANSLATE_NOOP("Effect", "Stored configuration: stored for the first time, {links}."),
+    QT_TRANSLATE_NOOP("Effect", "Stored configuration: replaced; it will hold {links} "
                                 "({added} added, {removed} removed)."),
     QT_TRANSLATE_NOOP("Effect", "Stored configuration: unchanged."),
     QT_TRANSLATE_NOOP("Effect", "terminal channel"),
