@@ -11,6 +11,7 @@ Qt's ``qtbase_<lang>.qm``.
 
 from __future__ import annotations
 
+import hashlib
 import logging
 import shutil
 import subprocess
@@ -78,8 +79,12 @@ def qm_path(lang: str) -> Path | None:
         return None
     import platformdirs
 
-    cached = platformdirs.user_cache_path("pdcp-studio", appauthor=False) / shipped.name
-    if cached.is_file() and cached.stat().st_mtime >= ts.stat().st_mtime:
+    # Named by the translation's content: two installs (or checkouts) of different versions
+    # never load each other's compiled file, whatever the files' times say.
+    digest = hashlib.sha256(ts.read_bytes()).hexdigest()[:16]
+    cached = (platformdirs.user_cache_path("pdcp-studio", appauthor=False)
+              / f"{shipped.stem}-{digest}.qm")
+    if cached.is_file():
         return cached
     return cached if compile_ts(ts, cached) else None
 

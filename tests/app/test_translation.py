@@ -218,3 +218,19 @@ def test_a_missing_compiled_translation_is_built_at_first_start(monkeypatch, tmp
         (tmp_path / "src" / TS.name).write_bytes(TS.read_bytes())
     qm = i18n.qm_path("de")
     assert qm is not None and qm.is_file() and str(qm).startswith(str(tmp_path))
+
+
+def test_two_versions_of_the_translation_never_share_a_compiled_file(monkeypatch, tmp_path):
+    """The compiled file is named by the translation's content: an older checkout's cached
+    .qm (however new its time) is never loaded for a newer .ts."""
+    monkeypatch.setenv("XDG_CACHE_HOME", str(tmp_path / "cache"))
+    src = tmp_path / "src"
+    src.mkdir()
+    ts = src / TS.name
+    monkeypatch.setattr(i18n, "ts_path", lambda lang: ts)
+    ts.write_bytes(TS.read_bytes())
+    first = i18n.qm_path("de")
+    ts.write_bytes(TS.read_bytes().replace(b"</TS>", b"<!-- another version --></TS>"))
+    second = i18n.qm_path("de")
+    assert first is not None and second is not None and first != second
+    assert first.is_file() and second.is_file()
