@@ -452,6 +452,12 @@ class MainWindow(QMainWindow):
         return self.files.save_to(path)
 
     def maybe_save(self) -> bool:
+        """Before the document gives way (another file, another prosthesis): a file's
+        changes are saved or discarded; a live view's are pending changes for the
+        prosthesis, written or left — never "saved" to it."""
+        if self.doc.is_live_view:
+            self.doc.remember_layout()
+            return bool(self.transactions.confirm_unwritten())
         return self.files.maybe_save()
 
     def _last_dir(self) -> str:
