@@ -2025,8 +2025,22 @@ Ihr Name (wird einmal erfragt):</translation>
         </message>
         <message>
             <location filename="../../pdcp_studio/app/live.py" line="159" />
-            <source>Live: {url} — {n_devices} devices, {n_links} links</source>
-            <translation>Live: {url} — {n_devices} Geräte, {n_links} Verbindungen</translation>
+            <source>Live: {url} — {devices}, {links}</source>
+            <translation>Live: {url} — {devices}, {links}</translation>
+        </message>
+        <message numerus="yes">
+            <source>%n device(s)</source>
+            <translation>
+                <numerusform>%n Gerät</numerusform>
+                <numerusform>%n Geräte</numerusform>
+            </translation>
+        </message>
+        <message numerus="yes">
+            <source>%n link(s)</source>
+            <translation>
+                <numerusform>%n Verbindung</numerusform>
+                <numerusform>%n Verbindungen</numerusform>
+            </translation>
         </message>
         <message>
             <location filename="../../pdcp_studio/app/live.py" line="189" />

@@ -36,3 +36,13 @@ def test_switching_prosthesis_with_pending_changes_asks_about_them(make_window, 
         assert window.maybe_save() is True and asked == [1, 1]  # left without them
     finally:
         window.quiet = True
+
+
+def test_the_live_status_line_counts_with_plurals(make_window, qtbot):
+    window = make_window()
+    said: list[str] = []
+    window.live.statusMessage.connect(said.append)
+    window.connect_bus("sim:transradial")
+    qtbot.waitUntil(lambda: any(s.startswith("Live: ") for s in said), timeout=20000)
+    line = next(s for s in said if s.startswith("Live: "))
+    assert "4 devices, 5 links" in line and "(s)" not in line

@@ -22,6 +22,7 @@ from typing import TYPE_CHECKING, Any
 from PySide6.QtCore import QObject, QTimer, Signal
 
 from pdcp_studio.app.documents.document import Document
+from pdcp_studio.app.words.plural import count
 from pdcp_studio.app.workers import Worker
 
 if TYPE_CHECKING:
@@ -213,9 +214,10 @@ class LiveController(QObject):
         self.snapshotTaken.emit(system)
         self.connected.emit(self.url)
         self.statusMessage.emit(
-            self.tr("Live: {url} — {n_devices} devices, {n_links} links").format(
-                url=self.url, n_devices=len(system.devices), n_links=len(system.links)
-            )
+            self.tr("Live: {url} — {devices}, {links}").format(
+                url=self.url,
+                devices=count("LiveController", "%n device(s)", len(system.devices)),
+                links=count("LiveController", "%n link(s)", len(system.links)))
         )
 
     def _close_bridge(self) -> bool:
