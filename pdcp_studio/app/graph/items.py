@@ -626,28 +626,17 @@ def _over(base: QColor, tint: QColor) -> QColor:
 
 
 def _shorten(text: str, metrics: QFontMetricsF, width: float) -> str:
-    """``text`` abbreviated to fit ``width``: numbers kept whole, the longest word cut
-    first ("EMG flexor 11" → "EMG flex. 11"), then a leading word dropped ("flex. 11"),
-    then words cut to their initial ("H. 10"); elided only as a last resort — so
-    "flexor 11" and "extensor 11" stay apart."""
-    full = text.split()
-    for least in (3, 1):
-        for start in range(len(full)):
-            words = full[start:]
-            if start and len(words) < 2:
-                break
-            while True:
-                candidate = " ".join(words)
-                if metrics.horizontalAdvance(candidate) <= width:
-                    return candidate
-                cuttable = [i for i, w in enumerate(words)
-                            if not any(c.isdigit() for c in w) and len(w.rstrip(".")) > least]
-                if not cuttable:
-                    break
-                i = max(cuttable, key=lambda j: len(words[j].rstrip(".")))
-                stem = words[i].rstrip(".")
-                words = [*words[:i], stem[:-1] + ".", *words[i + 1:]]
-    return metrics.elidedText(text, Qt.TextElideMode.ElideRight, width)
+    """``text`` abbreviated to fit ``width``: the first of its fixed short forms
+    (``model/names.py`` :func:`short_forms`: "EMG flexor 11" → "EMG flex. 11" → "flex. 11")
+    that fits, so a word is cut alike on every card whatever its width; elided only as a
+    last resort. The full name is in the card's tooltip and the inspector."""
+    from pdcp_studio.model.names import short_forms
+
+    forms = short_forms(text)
+    for candidate in forms:
+        if metrics.horizontalAdvance(candidate) <= width:
+            return candidate
+    return metrics.elidedText(forms[-1], Qt.TextElideMode.ElideRight, width)
 
 
 def _wrap(text: str, metrics: QFontMetricsF, width: float, max_lines: int) -> list[str]:
