@@ -40,7 +40,6 @@ from PySide6.QtWidgets import (
 from pdcp_studio.app.graph import style
 from pdcp_studio.app.graph.layout import card_height
 from pdcp_studio.app.i18n import translate
-from pdcp_studio.model import profile as prof
 from pdcp_studio.model.refs import ChannelRef
 from pdcp_studio.model.system import Channel, Device
 
@@ -509,7 +508,7 @@ class DeviceItem(QGraphicsRectItem):
 
         # Channel rows.
         n_in = sum(1 for c in self.rows if c.is_input)
-        name_of = self._scene_ref.doc.profile_name
+        channel_label = self._scene_ref.words.channel_label
         idx_w = row_m.horizontalAdvance("000")
         avail = w - 2 * 14 - idx_w - 6
         p.setFont(row_f)
@@ -532,12 +531,11 @@ class DeviceItem(QGraphicsRectItem):
             if i == n_in and n_in:
                 p.setPen(QPen(style.GRID, 1.0))
                 p.drawLine(QPointF(10, y), QPointF(w - 10, y))
-            # The profile's name from the tree; its hex code is in the row's tooltip.
+            # The channel's one name (its descriptor, else its profile's name: as every
+            # other text calls it), shortened alike on every card; the full name, the
+            # profile and its hex code are in the row's tooltip.
             idx_text = str(ch.index)
-            pname = name_of(ch.profile)
-            if pname == prof.fmt(ch.profile):
-                pname = ch.descriptor or pname
-            pname = row_m.elidedText(pname, Qt.TextElideMode.ElideRight, avail)
+            pname = _shorten(channel_label(d.ref(ch.index)), row_m, avail)
             drawn.append(pname)
             if ch.is_input:
                 p.setPen(dim)

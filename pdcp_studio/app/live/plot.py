@@ -93,6 +93,15 @@ def nice_ticks(lo: float, hi: float, target: int = 5) -> list[float]:
     return ticks
 
 
+def bounded_ticks(ticks: list[float], bounds: tuple[float, float], step: float) -> list[float]:
+    """``ticks`` with the type's least and greatest value added (0 and 4095 on a 12-bit
+    axis, so its range reads on the axis however short the lane); a tick within a third of
+    a step of either is left out, so no two labels overlap."""
+    lo, hi = bounds
+    inner = [t for t in ticks if lo + step / 3 < t < hi - step / 3]
+    return [lo, *inner, hi]
+
+
 def tick_text(value: float, step: float) -> str:
     """A tick label with as many decimals as the step needs."""
     decimals = max(0, -math.floor(math.log10(step))) if step > 0 else 0
@@ -398,6 +407,8 @@ class PlotCanvas(QWidget):
         ticks = [0.0, 1.0] if s.boolean else nice_ticks(
             lo, hi, max(2, int(body.height() // (m.height() * 2))))
         step = ticks[1] - ticks[0] if len(ticks) > 1 else 1.0
+        if bounds is not None and not s.boolean:
+            ticks = bounded_ticks(ticks, bounds, step)
         for v in ticks:
             y = body.bottom() - (v - lo) / (hi - lo) * body.height()
             _hline(p, body.left(), body.right(), y, grid)
