@@ -61,8 +61,12 @@ def test_a_part_and_a_channel_read_the_same_in_every_view(make_window, qtbot):
     assert graph[HAND] == HAND_NAME and graph[SPARE] == SPARE_NAME
     assert graph[EMG] == "EMG electrode (wrist flexors)"
 
-    # The device tree.
+    # The device tree, its parts and its channel rows (the graph's rows say the same).
     qtbot.waitUntil(lambda: _tree(window) == graph, timeout=T)
+    hand_row = next(window.tree.topLevelItem(i) for i in range(window.tree.topLevelItemCount())
+                    if window.tree.topLevelItem(i).data(0, 0x0100) == HAND)
+    assert hand_row.child(0).text(0) == "← #1 Power grip"
+    assert window.scene.words.channel_label(GRIP_IN) == "Power grip"
     # The graph's card tooltip: the name in bold, the numbers in the grey detail.
     tip = window.scene.words.tooltip_for(devices[SPARE], None)
     assert tip.startswith(f"<b>{SPARE_NAME}</b>")
