@@ -368,7 +368,7 @@ class MonitorDock(QDockWidget):
         from pdcp_studio.app.words.part_names import part_names
 
         for key, name in part_names(system).items():  # the one name of every part
-            self.model.names[tuple(key)] = name
+            self.model.names[(key.vid, key.pid, key.serial)] = name
         for ref, ch in system.channels():
             if ch.is_output and ch.node_id is not None:
                 self.feed.learn_output(ch.node_id, (ref, tuple(system.inputs_fed_by(ref))))
