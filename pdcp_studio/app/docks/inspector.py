@@ -391,7 +391,8 @@ class Inspector(QScrollArea):
 
     def _delete_link(self, link: Link) -> None:
         if commands.push_remove_links(self.doc, [link]):
-            self.statusMessage.emit(self.tr("Removed link {link}").format(link=link))
+            self.statusMessage.emit(self.tr("Removed link {link}").format(
+                link=f"{self._describe(link.output)} → {self._describe(link.input)}"))
 
     # -- committing -----------------------------------------------------------------
     def _refuse(self, field: str, reason: str) -> None:
