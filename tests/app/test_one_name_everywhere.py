@@ -149,3 +149,28 @@ def test_a_narrow_card_abbreviates_a_word_alike_on_every_card():
     assert all("(serial 302)" in form for form in short_forms(SPARE_NAME))
     assert not any("fle." in f for f in short_forms("EMG flexor 11") + short_forms(
         "EMG flexor 1"))
+
+
+def test_summary_cards_cut_a_word_alike_whatever_their_number(make_window, qtbot):
+    """On the large rig zoomed out, every card shows its name or one of its fixed short
+    forms: "flexor" reads "flex." on every card that shortens it (the trial saw "EMG flex.
+    1" beside "EMG fle. 11"), and no two cards read the same."""
+    window = make_window(size=(1400, 900))
+    with qtbot.waitSignal(window.ready, timeout=60000):
+        window.connect_bus("sim:large")
+    scene = window.scene
+    qtbot.waitUntil(lambda: len(scene.cards) >= 32, timeout=60000)
+    window.view.set_zoom(0.22)
+    scene.render_pending()
+    shown = {}
+    for key, card in scene.cards.items():
+        assert card.summary
+        label = scene.device_label(card.device)
+        text = card.texts()[0]
+        assert text in short_forms(label) or any(
+            text.endswith(form) for form in short_forms(label)), (label, text)
+        shown[key] = text
+    words = {w for text in shown.values() for w in text.split() if w.endswith(".")}
+    assert not any(w.startswith("fle") and w != "flex." for w in words), words
+    assert len(set(shown.values())) == len(shown)
+    window.live.disconnect_bus()
