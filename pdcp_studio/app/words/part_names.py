@@ -38,9 +38,6 @@ _TEMPLATES = (
     QT_TRANSLATE_NOOP("Names", "VID {vid} · PID {pid} · serial {serial}"),
 )
 _CACHE: dict[tuple[object, ...], Names] = {}
-#: Every part named this run, by key: a part since gone from the system (the hand taken
-#: out, a part a history entry or an event names) keeps the name it had.
-_SEEN: dict[DeviceKey, Device] = {}
 
 
 def tr(text: str) -> str:
@@ -68,10 +65,6 @@ def names(system: System | None, among: Iterable[Device] = (),
     if found is None:
         if len(_CACHE) > 8:
             _CACHE.clear()
-        if len(_SEEN) > 4096:
-            _SEEN.clear()
-        _SEEN.update((d.key, Device(d.vid, d.pid, d.serial, name=d.name,
-                                    descriptor=d.descriptor)) for d in devices + others)
         found = _CACHE[fingerprint] = Names(system, profiles=profiles, among=others, tr=tr)
     return found
 
@@ -97,10 +90,7 @@ def part_names(system: System | None, among: Iterable[Device] = ()
 def part_name(system: System | None, key: DeviceKey, among: Iterable[Device] = ()) -> str:
     """The name of the part ``key`` (in ``system`` if it is there, else by its product,
     with its serial number where a part of ``system`` reads the same)."""
-    found = names(system, among)
-    if not found.knows(key) and key in _SEEN:  # gone, but named before: as it was
-        found = names(system, [*among, _SEEN[key]])
-    return found.part(key)
+    return names(system, among).part(key)
 
 
 def channel_name(system: System | None, ref: ChannelRef, profile_name: str = "",
