@@ -156,22 +156,27 @@ def _link_status(system: System, link: Link) -> str:
 
 
 def format_short(system: System) -> str:
-    """One line per device and per link."""
+    """One line per device and per link: each by its one name (``cli/naming.py``), the
+    numbers beside it in brackets."""
     out = [
         f"{len(system.devices)} devices "
         f"({sum(not d.present for d in system.devices.values())} missing), "
         f"{sum(len(d.channels) for d in system.devices.values())} channels, "
         f"{len(system.links)} links"
     ]
+    from pdcp_studio.cli.naming import names_for
+
+    names = names_for(system)
     for d in system.devices.values():
-        state = "" if d.present else "  [missing]"
+        state = "  (missing)" if not d.present else ""
         out.append(
-            f"  {d.key}  {d.label}: {len(d.inputs())} in, {len(d.outputs())} out"
-            f"{'' if d.node_id is None else f', node {d.node_id}'}{state}"
+            f"  {names.part(d.key)}: {len(d.inputs())} in, {len(d.outputs())} out{state}"
+            f"  [{d.key}{'' if d.node_id is None else f', node {d.node_id}'}]"
         )
     for lk in system.links:
         o, i = _linked(system, lk.output), _linked(system, lk.input)
-        out.append(f"  link {lk.output} (0x{o.profile:04X}) → {lk.input} (0x{i.profile:04X})")
+        out.append(f"  link {names.link(lk)}  [{lk.output} (0x{o.profile:04X}) → "
+                   f"{lk.input} (0x{i.profile:04X})]")
     return "\n".join(out) + "\n"
 
 

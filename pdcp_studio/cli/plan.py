@@ -137,9 +137,11 @@ def make_plan(args: argparse.Namespace) -> tuple[System, Plan]:
 
 def run(args: argparse.Namespace) -> int:
     tree = load_tree(args.profiles)
-    _, plan = make_plan(args)
+    system, plan = make_plan(args)
     if args.json:
         print(json.dumps(plan.to_json(), indent=2))
     else:
-        print(plan.to_text(tree), end="")
+        from pdcp_studio.cli.naming import names_for
+
+        print(plan.to_text(tree, names_for(system, tree)), end="")
     return 0

@@ -103,20 +103,24 @@ def sorted_system(system: System) -> System:
 
 
 def format_system(system: System) -> str:
-    """A short listing of a scanned system, with node IDs and links."""
+    """A short listing of a scanned system, with node IDs and links: each part and channel
+    by its one name (``cli/naming.py``), the numbers beside it in brackets."""
+    from pdcp_studio.cli.naming import names_for
+
     system = sorted_system(system)
+    names = names_for(system)
     lines = [f"{len(system.devices)} device(s), {len(system.links)} link(s)"]
     for dev in system.devices.values():
-        state = "" if dev.present else "  [missing]"
+        state = "  (missing)" if not dev.present else ""
         node = f"node {dev.node_id}" if dev.node_id else "no node ID"
-        lines.append(f"{dev.key}  {node}  {dev.label}{state}")
+        lines.append(f"{names.part(dev.key)}{state}  [{dev.key}, {node}]")
         for ch in sorted(dev.channels.values(), key=lambda c: c.index):
-            extra = f"  node {ch.node_id}" if ch.is_output and ch.node_id else ""
-            desc = f"  “{ch.descriptor}”" if ch.descriptor else ""
-            lines.append(f"  #{ch.index} {ch.direction.value:<6} type 0x{ch.type:04X} "
-                         f"profile 0x{ch.profile:04X}{extra}{desc}")
+            extra = f", node {ch.node_id}" if ch.is_output and ch.node_id else ""
+            lines.append(f"  {ch.direction.value:<6} {names.channel_only(dev.ref(ch.index))}  "
+                         f"[#{ch.index}, type 0x{ch.type:04X}, profile 0x{ch.profile:04X}"
+                         f"{extra}]")
     for link in system.links:
-        lines.append(f"link {link}")
+        lines.append(f"link {names.link(link)}  [{link}]")
     return "\n".join(lines)
 
 

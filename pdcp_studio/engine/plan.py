@@ -20,6 +20,7 @@ from pdcp_studio.model.refs import ChannelRef
 from pdcp_studio.model.system import NO_SOURCE, Link, SourceInfo, System
 
 if TYPE_CHECKING:
+    from pdcp_studio.model.names import Names
     from pdcp_studio.model.profile_tree import ProfileTree
 
 
@@ -229,11 +230,12 @@ class Plan:
         }
         return doc
 
-    def to_text(self, tree: ProfileTree | None = None) -> str:
-        """Readable prose; profile names come from ``tree`` when one is given."""
+    def to_text(self, tree: ProfileTree | None = None, names: Names | None = None) -> str:
+        """Readable prose; profile names come from ``tree`` when one is given, part and
+        channel names from ``names`` (the one naming, ``model/names.py``)."""
         from pdcp_studio.engine.render import plan_to_text
 
-        return plan_to_text(self, tree)
+        return plan_to_text(self, tree, names)
 
     # -- applying ------------------------------------------------------------------
     def apply(self, system: System) -> None:

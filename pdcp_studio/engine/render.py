@@ -1,8 +1,10 @@
 """A plan as readable text: what will change, why, and what was tried and refused.
 
-Written for a prosthetist at a terminal: every link names both channels with their
-profile (and its name, given a profile tree) and descriptor; nested actions are indented
-by how deep in ``intelligently_connect`` they were made.
+Written for a prosthetist at a terminal: every link names both channels, given the system's
+:class:`~pdcp_studio.model.names.Names` by the one name every other text uses ("Hand, Power
+grip") with the engineer's numbers beside it in brackets (reference, profile code and name),
+else by its reference, profile and descriptor; nested actions are indented by how deep in
+``intelligently_connect`` they were made.
 """
 
 from __future__ import annotations
@@ -14,12 +16,23 @@ from pdcp_studio.model.refs import ChannelRef
 
 if TYPE_CHECKING:
     from pdcp_studio.engine.plan import Plan
+    from pdcp_studio.model.names import Names
     from pdcp_studio.model.profile_tree import ProfileTree
     from pdcp_studio.model.system import Link
 
 
-def _channel(plan: Plan, ref: ChannelRef, tree: ProfileTree | None) -> str:
+def _channel(plan: Plan, ref: ChannelRef, tree: ProfileTree | None,
+             names: Names | None = None) -> str:
     facts = plan.channels.get(ref)
+    if names is not None:
+        profile = ""
+        if facts is not None and tree is not None and tree.names_exactly(facts.profile):
+            profile = tree.short_name(facts.profile)
+        numbers = str(ref) if facts is None else f"{ref}, {fmt(facts.profile)}"
+        if facts is not None and tree is not None:
+            numbers += f" {tree.name_of(facts.profile)}"
+        missing = " (missing)" if facts is not None and not facts.present else ""
+        return f"{names.channel(ref, profile)}{missing} [{numbers}]"
     if facts is None:
         return str(ref)
     text = f"{ref} {fmt(facts.profile)}"
@@ -32,11 +45,14 @@ def _channel(plan: Plan, ref: ChannelRef, tree: ProfileTree | None) -> str:
     return text
 
 
-def _link(plan: Plan, link: Link, tree: ProfileTree | None) -> str:
-    return f"{_channel(plan, link.output, tree)} → {_channel(plan, link.input, tree)}"
+def plan_to_text(plan: Plan, tree: ProfileTree | None = None,
+                 names: Names | None = None) -> str:
+    """The plan in words (see the module doc); ``names``: the system's one naming."""
 
+    def _link(plan: Plan, link: Link, tree: ProfileTree | None) -> str:
+        return (f"{_channel(plan, link.output, tree, names)} → "
+                f"{_channel(plan, link.input, tree, names)}")
 
-def plan_to_text(plan: Plan, tree: ProfileTree | None = None) -> str:
     final = plan.final_links
     lines = [
         f"Plan: {plan.mode} — add {len(plan.added)}, remove {len(plan.removed)} "
@@ -63,7 +79,8 @@ def plan_to_text(plan: Plan, tree: ProfileTree | None = None) -> str:
         for r in plan.rejections:
             at = r.attempt
             subject = (_link(plan, at.link, tree) if at.link is not None
-                       else _channel(plan, at.channel, tree) if at.channel is not None else "")
+                       else _channel(plan, at.channel, tree, names) if at.channel is not None
+                       else "")
             lines.append(f"  - [{r.kind.value}] {subject}")
             lines.append(f"      {r.reason}")
             if r.rolled_back:

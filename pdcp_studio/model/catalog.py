@@ -79,21 +79,19 @@ class Catalog:
         return self.label(device.key, device.name or device.descriptor or "")
 
     def own_name(self, device: Device) -> str:
-        """What a part is called before any serial number is added: its own name or
-        descriptor, else its product from the catalogue, else ``unknown device (…)``."""
-        own = (device.name or device.descriptor or "").strip()
-        return own or self.product_name(device.key) or unknown_device_label(device.key)
+        """What a part is called before any serial number is added: the one rule of
+        ``model/names.py`` (own name, descriptor, product, ``unknown device (…)``)."""
+        from pdcp_studio.model.names import own_name
+
+        return own_name(device, self)
 
     def part_names(self, devices: Iterable[Device],
                    twin: str = "{name} (serial {serial})") -> dict[DeviceKey, str]:
-        """One name per part (:meth:`own_name`); the serial number (``twin``) only where
+        """One name per part (``model/names.py``); the serial number (``twin``) only where
         two of ``devices`` would otherwise read the same."""
-        own = {d.key: self.own_name(d) for d in devices}
-        seen: dict[str, int] = {}
-        for name in own.values():
-            seen[name] = seen.get(name, 0) + 1
-        return {key: twin.format(name=name, serial=key.serial) if seen[name] > 1 else name
-                for key, name in own.items()}
+        from pdcp_studio.model.names import parts_named
+
+        return parts_named(devices, self, twin)
 
     def add(self, entries: Iterable[CatalogEntry]) -> Catalog:
         merged = dict(self.entries)

@@ -69,8 +69,10 @@ class DeviceCatalogue:
 
     @classmethod
     def from_system(cls, system: object) -> DeviceCatalogue:
-        """The names an open system (a file or the live bus) gives its devices."""
-        devices = getattr(system, "devices", {})
-        return cls.from_names(
-            (key, (getattr(d, "name", "") or getattr(d, "descriptor", "") or "").strip())
-            for key, d in devices.items())
+        """The names an open system (a file or the live bus) gives its devices: their one
+        names (``model/names.py``), a serial number where two would read alike."""
+        from pdcp_studio.model.names import parts_named
+
+        devices = [d for d in getattr(system, "devices", {}).values()
+                   if (getattr(d, "name", "") or getattr(d, "descriptor", "") or "").strip()]
+        return cls.from_names(parts_named(devices, Catalog()))

@@ -191,6 +191,14 @@
             <source>Release to link {0} → {1}</source>
             <translation>Loslassen, um {0} → {1} zu verbinden</translation>
         </message>
+        <message>
+            <source>Drag from {channel} to an input to link them</source>
+            <translation>Von {channel} zu einem Eingang ziehen, um sie zu verbinden</translation>
+        </message>
+        <message>
+            <source>Drag from {channel} to an output to link them</source>
+            <translation>Von {channel} zu einem Ausgang ziehen, um sie zu verbinden</translation>
+        </message>
     </context>
     <context>
         <name>CanPage</name>
@@ -2086,6 +2094,14 @@ Ihr Name (wird einmal erfragt):</translation>
             <location filename="../../pdcp_studio/app/live.py" line="248" />
             <source>The prosthesis changed its links ({why}): {added} made, {removed} removed — see Bus events</source>
             <translation>Die Prothese hat ihre Verbindungen geändert ({why}): {added} hergestellt, {removed} entfernt — siehe Busereignisse</translation>
+        </message>
+        <message>
+            <source>{part} joined the bus</source>
+            <translation>{part} ist dem Bus beigetreten</translation>
+        </message>
+        <message>
+            <source>{part} left the bus</source>
+            <translation>{part} hat den Bus verlassen</translation>
         </message>
     </context>
     <context>
@@ -5229,6 +5245,22 @@ Die Prothese ist wie zuvor.</translation>
             <source>No output channels known yet</source>
             <translation>Noch keine Ausgangskanäle bekannt</translation>
         </message>
+        <message>
+            <source>{what} (on/off)</source>
+            <translation>{what} (ein/aus)</translation>
+        </message>
+        <message>
+            <source>unsigned</source>
+            <translation>vorzeichenlos</translation>
+        </message>
+        <message>
+            <source>signed</source>
+            <translation>vorzeichenbehaftet</translation>
+        </message>
+        <message>
+            <source>float</source>
+            <translation>Gleitkomma</translation>
+        </message>
     </context>
     <context>
         <name>FittingReport</name>
@@ -6130,6 +6162,33 @@ Wählen Sie ein Profil aus dem Namensbaum oder geben Sie eines hexadezimal ein.<
                 <numerusform>%n Verbindung ausgelassen: </numerusform>
                 <numerusform>%n Verbindungen ausgelassen: </numerusform>
             </translation>
+        </message>
+    </context>
+    <context>
+        <name>Names</name>
+        <message>
+            <source>{name} (serial {serial})</source>
+            <translation>{name} (Seriennummer {serial})</translation>
+        </message>
+        <message>
+            <source>{part}, {channel}</source>
+            <translation>{part}, {channel}</translation>
+        </message>
+        <message>
+            <source>channel {n}</source>
+            <translation>Kanal {n}</translation>
+        </message>
+        <message>
+            <source>{name} ({channel})</source>
+            <translation>{name} ({channel})</translation>
+        </message>
+        <message>
+            <source>{output} → {input}</source>
+            <translation>{output} → {input}</translation>
+        </message>
+        <message>
+            <source>VID {vid} · PID {pid} · serial {serial}</source>
+            <translation>VID {vid} · PID {pid} · Seriennummer {serial}</translation>
         </message>
     </context>
 </TS>

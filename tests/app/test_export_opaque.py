@@ -94,7 +94,7 @@ def exported(make_window, tmp_path):
 def test_the_exported_svg_has_no_translucent_fill(exported):
     _window, svg = exported
     text = svg.read_text(encoding="utf-8")
-    assert "Power Grip" in text and "#9333ea" in text  # rows and the pending wash's border
+    assert "Power grip" in text and "#9333ea" in text  # rows (the channels' one names) and the pending wash's border
     assert _translucent(svg) == []
 
 

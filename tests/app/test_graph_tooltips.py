@@ -39,7 +39,9 @@ def test_a_planned_link_says_what_the_plan_does_and_why(qtbot):
     assert any("Why: it drives a part of the prosthesis" in t for t in tips), tips
     for tip in tips:
         assert not ENGINE.search(tip), tip
-        assert "channel" in tip
+        # Each end by its one name: the part, and the channel's descriptor.
+        link = tip.splitlines()[1]
+        assert link.count(", ") == 2 and " → " in link, link
 
 
 def test_card_and_row_tooltips_are_worded_and_translated(qtbot):

@@ -36,8 +36,8 @@ def test_the_details_word_the_links_and_keep_the_numbers_in_the_tooltip(make_win
         panel.refresh()
     qtbot.waitUntil(lambda: HAND_LINK.input.device in window.doc.system.devices, timeout=T)
     words = panel.link_words(HAND_LINK)
-    assert words == ("Pattern-recognition control unit, channel 3 (Power Grip) → "
-                     "Multi-grip hand with wrist rotator, channel 1 (Power Grip)")
+    assert words == ("Pattern-recognition control unit, Power grip set point → "
+                     "Multi-grip hand with wrist rotator, Power grip")  # the one names
     panel.select_ids(1)
     text = panel.details.toPlainText()
     # The entry's effect, in words (the names every text uses), and the next power-on.

@@ -155,7 +155,7 @@ def test_node_filter_is_a_list_of_names_without_magic_numbers(qtbot):
     items = [(box.itemText(i), box.itemData(i)) for i in range(box.count())]
     assert items[0] == ("Any node", None) and items[1] == ("Broadcast", 0)
     assert ("Multi-grip hand (node 5)", 5) in items and ("Control unit (node 7)", 7) in items
-    assert ("Control unit output 3 (node 201)", 201) in items
+    assert ("Control unit, channel 3 (node 201)", 201) in items  # its one name
     assert all(data is None or data >= 0 for _, data in items)
     frames = [FrameSeen(1.0, 0x100, b"\x09", "   0.0  P0  BA→all Release Device"),
               FrameSeen(1.1, 5, b"\x0a", "   0.1  P0  #5→BA Device Beacon"),

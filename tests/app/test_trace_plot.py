@@ -73,12 +73,16 @@ def test_two_signals_with_names_units_cursors_and_window(qtbot):
     plot.set_system(system)
     plot.set_channel(emg.ref(1))  # follows the selection
     plot.add_channel(cu.ref(3))  # picked from Signals: stays
-    assert [s.label for s in plot.series] == ["EMG sensor output 1 → Control unit",
-                                              "Control unit output 3 → Multi-grip hand"]
-    assert [s.unit for s in plot.series] == ["position (raw)", "velocity (raw)"]
+    # The channels' one names (no descriptor, no profile: "channel N"), what they feed.
+    assert [s.label for s in plot.series] == ["EMG sensor, channel 1 → Control unit",
+                                              "Control unit, channel 3 → Multi-grip hand"]
+    # Nothing names what they carry: the control mode is the quantity, the type the range.
+    assert [s.unit for s in plot.series] == ["position (unsigned, 0–65535)",
+                                             "velocity (signed, −32768–32767)"]
     assert [s.hint_text for s in plot.series] == ["suggested ×10⁻³", ""]
-    assert plot.series[0].title == ("EMG sensor output 1 → Control unit — position (raw), "
-                                    "suggested ×10⁻³")
+    assert plot.series[0].title == ("position (unsigned, 0–65535) — EMG sensor → Control "
+                                    "unit, suggested ×10⁻³")
+    assert plot.axis_range() == (0.0, 65535.0)
     values = []
     for i in range(500):  # 5 s at 100 Hz: a ramp and a square wave
         t = 1000 + i / 100
@@ -92,8 +96,8 @@ def test_two_signals_with_names_units_cursors_and_window(qtbot):
     h = image.height()
     for s, (y0, y1) in zip(plot.series, ((0, h // 2), (h // 2, h)), strict=True):
         colour = QColor(s.color)
-        drawn = sum(1 for x in range(0, image.width(), 2) for y in range(y0, y1, 2)
-                    if image.pixelColor(x, y) == colour)
+        drawn = sum(1 for x in range(0, image.width(), 2) for y in range(y0, y1)
+                    if image.pixelColor(x, y) == colour)  # every row: ±100 of ±32768 is flat
         assert drawn > 20, f"{s.label} not drawn in its lane"
 
     plot.set_cursors(4.0, 1.5)  # seconds before the end
@@ -104,7 +108,7 @@ def test_two_signals_with_names_units_cursors_and_window(qtbot):
     # At 4 s before the end (i = 99): 990 raw; at 1.5 s before (i = 349): 3490 raw — the
     # values as sent, never multiplied by the prescaler's suggested factor.
     assert "A 990" in emg_line and "B 3490" in emg_line and "Δ +2500" in emg_line
-    assert emg_line.endswith("(position (raw))")
+    assert emg_line.endswith("(position (unsigned, 0–65535))")
     assert plot.y_range() == (0.0, 4990.0)
     assert plot.readout.isVisibleTo(plot) and "Δt" in plot.readout.text()
 
@@ -132,10 +136,11 @@ def test_signals_menu_lists_the_output_channels_by_name(qtbot):
     plot.set_system(_system())
     plot._fill_signals_menu()
     names = [a.text() for a in plot.signals_menu.actions()]
-    assert names == ["EMG sensor output 1 → Control unit",
-                     "Control unit output 3 → Multi-grip hand", "Control unit output 4"]
+    assert names == ["EMG sensor, channel 1 → Control unit",
+                     "Control unit, channel 3 → Multi-grip hand", "Control unit, channel 4"]
     plot.signals_menu.actions()[2].setChecked(True)
-    assert plot.series and plot.series[0].unit == "on/off"
+    assert plot.series and plot.series[0].unit == "value (on/off)"
+    assert plot.axis_range() == (0.0, 1.0)
 
 
 def test_a_dense_trace_repaints_quickly(qtbot):
@@ -160,3 +165,36 @@ def test_a_dense_trace_repaints_quickly(qtbot):
         times.append((time.perf_counter() - t0) * 1000)
     # Drawn point by point (antialiased) the same trace takes ~400 ms.
     assert min(times) < 60, f"{min(times):.1f} ms a repaint at best"
+
+
+def test_the_axis_of_an_emg_envelope_and_a_velocity_channel_on_the_transradial_rig(qtbot):
+    """Issue 26 item 8: the value axis in the range the channel type gives and named by
+    what the channel carries (its one name): never "position (raw)" 0–1 for an EMG
+    envelope (unsigned 12-bit: 0–4095); the wrist's velocity says it is a velocity."""
+    from pdcp_studio.bus.sim.rigs import load_prosthesis
+    from pdcp_studio.model.refs import ChannelRef
+    from pdcp_studio.storage.profile_trees import load_profile_trees, tree_for
+
+    system = load_prosthesis("transradial")
+    tree = tree_for(load_profile_trees(), system)
+    plot = LivePlot()
+    qtbot.addWidget(plot)
+    plot.profile_name = tree.short_name
+    plot.set_system(system)
+    emg = ChannelRef(2641, 257, 101, 1)  # type 0x9000: unsigned 12-bit, position mode
+    plot.set_channel(emg)
+    s = plot.series[0]
+    assert s.unit == "Flexor EMG envelope (unsigned, 0–4095)"
+    assert plot.axis_range() == (0.0, 4095.0)  # before any value arrived
+    assert s.title.startswith("Flexor EMG envelope (unsigned, 0–4095) — EMG flexor site")
+    assert "position" not in s.title and "raw" not in s.title
+    velocity = ChannelRef(2641, 513, 201, 5)  # type 0x8400: signed 12-bit, velocity mode
+    plot.set_channel(velocity)
+    s = plot.series[0]
+    assert s.unit == "Wrist rotation velocity (velocity, signed, −2048–2047)"
+    assert plot.axis_range() == (-2048.0, 2047.0)
+    # Without a descriptor the profile tree's name says what it carries.
+    system.channel(emg).descriptor = ""
+    plot.set_system(system)
+    plot.set_channel(emg)
+    assert plot.series[0].unit == "Flexor (unsigned, 0–4095)"

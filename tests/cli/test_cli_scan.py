@@ -65,7 +65,10 @@ def test_scan_text_listing(capsys):
     assert main(["scan", "--bus", "sim:thesis-test1"]) == 0
     out = capsys.readouterr().out
     assert out.startswith("2 device(s), 1 link(s)")
-    assert "link 2/2/4#1 → 2/2/5#1" in out
+    # Names first (the app's: model/names.py), the numbers beside them in brackets.
+    assert "link Joystick, Joystick X axis → LED terminal A, X axis LEDs  [2/2/4#1 → 2/2/5#1]" \
+        in out
+    assert "Joystick  [2/2/4, node 1]" in out
 
 
 @pytest.mark.parametrize("argv, says", [

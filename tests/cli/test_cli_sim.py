@@ -40,7 +40,8 @@ def test_replay_text_shows_the_steps_and_final_links(capsys):
     assert main(["sim", "replay", "thesis-test1", "--script", "hot-swap"]) == 0
     out = capsys.readouterr().out
     assert "unplug 2/2/5" in out and "plug 2/2/6" in out
-    assert out.rstrip().endswith("link 2/2/4#1 → 2/2/6#1")
+    last = out.rstrip().splitlines()[-1]  # the final link: names first, numbers beside
+    assert last.startswith("link Joystick, ") and last.endswith("  [2/2/4#1 → 2/2/6#1]"), last
 
 
 def test_replay_refuses_unknown_names_and_scripts(capsys):

@@ -65,8 +65,10 @@ class Rig:
         return [*argv, "--bus", self.url, *extra]
 
     def links(self, capsys) -> list[str]:
+        """The links ``info`` lists, by their numbers (given in brackets after the names)."""
         assert main(self.args("info")) == 0
-        return [ln.strip() for ln in capsys.readouterr().out.splitlines()
+        return ["link " + ln.strip().rpartition("  [")[2].rstrip("]")
+                for ln in capsys.readouterr().out.splitlines()
                 if ln.strip().startswith("link ")]
 
 
@@ -155,7 +157,7 @@ def test_info_mode_is_info_bus(rig, capsys):
     assert main(rig.args("info")) == 0
     out = capsys.readouterr().out
     assert out.splitlines()[0] == "3 devices (0 missing), 8 channels, 3 links"
-    assert "2/2/5  Control unit board: 2 in, 3 out, node 2" in out
+    assert "Control unit board: 2 in, 3 out  [2/2/5, node 2]" in out  # names first
 
 
 def test_clear_mode_is_apply_clear(rig, capsys):

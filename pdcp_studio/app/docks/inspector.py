@@ -271,12 +271,13 @@ class Inspector(QScrollArea):
 
     # -- channels -------------------------------------------------------------------
     def _build_channel(self, box: QVBoxLayout, ref: ChannelRef, ch: Channel) -> None:
-        from pdcp_studio.app.words.part_names import part_name
+        from pdcp_studio.app.words.part_names import names, part_name
 
         d = self.doc.device(ref.device)
         name = self.doc.tree.name_of(ch.profile)
+        what = names(self.doc.system).channel_only(ref, self.doc.profile_name(ch.profile))
         head = (self.tr("Input {n}: {what}") if ch.is_input else
-                self.tr("Output {n}: {what}")).format(n=ch.index, what=ch.descriptor or name)
+                self.tr("Output {n}: {what}")).format(n=ch.index, what=what)
         self.form.title(box, head, f"{part_name(self.doc.system, d.key)} · {name}")
         box.addWidget(self._links_summary(ref, ch))
         grid = self.form.plain_grid(box, self.doc.session is not None)
@@ -390,7 +391,8 @@ class Inspector(QScrollArea):
 
     def _delete_link(self, link: Link) -> None:
         if commands.push_remove_links(self.doc, [link]):
-            self.statusMessage.emit(self.tr("Removed link {link}").format(link=link))
+            self.statusMessage.emit(self.tr("Removed link {link}").format(
+                link=f"{self._describe(link.output)} → {self._describe(link.input)}"))
 
     # -- committing -----------------------------------------------------------------
     def _refuse(self, field: str, reason: str) -> None:

@@ -201,8 +201,7 @@ class PlanPanel(QWidget):
     def _ref_text(self, plan: Plan, ref: ChannelRef) -> str:
         """The engineer's form of a channel: device, index, profile name and code."""
         facts = plan.channels.get(ref)
-        dev = self.doc.system.device(ref.device)
-        who = dev.label if dev else str(ref.device)
+        who = f"{W.device_words(self.doc.system, ref.device)} ({ref.device})"
         if facts is None:
             return f"{who} #{ref.index}"
         missing = "" if facts.present else " [missing]"

@@ -117,9 +117,10 @@ SimDevice = tuple[DeviceKey, str, bool]
 
 
 def default_name(key: DeviceKey) -> str:
-    from pdcp_studio.model.catalog import default_catalog
+    """A part the panel does not list: by its one name (as last named, else its product)."""
+    from pdcp_studio.app.words.part_names import part_name
 
-    return default_catalog().label(key)
+    return part_name(None, key)
 
 
 def _bus_name(key: DeviceKey, model: Device | None, label: str) -> str:

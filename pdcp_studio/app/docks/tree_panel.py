@@ -15,7 +15,13 @@ from pdcp_studio.app.documents.document import Document
 from pdcp_studio.app.graph import style
 from pdcp_studio.app.graph.analysis import ROLE_LAYER, device_role
 from pdcp_studio.app.i18n import translate
-from pdcp_studio.app.words.part_names import keep_serials_seen, numbers, part_name, part_names
+from pdcp_studio.app.words.part_names import (
+    keep_serials_seen,
+    names,
+    numbers,
+    part_name,
+    part_names,
+)
 from pdcp_studio.model import profile as prof
 from pdcp_studio.model.refs import ChannelRef, DeviceKey
 from pdcp_studio.model.system import Link
@@ -95,10 +101,12 @@ class DeviceTree(QTreeWidget):
             item.setForeground(0, QBrush(style.MISSING_TEXT))
         self._rows[key] = item
         channels = sorted(device.channels.values(), key=lambda c: (c.is_output, c.index))
+        naming = names(self.doc.system)
         for ch in channels:
             ref = device.ref(ch.index)
             arrow = "→" if ch.is_output else "←"
-            name = ch.descriptor or ch.direction.value
+            # The channel's one name (descriptor, else profile name), as the graph's row.
+            name = naming.channel_only(ref, self.doc.profile_name(ch.profile))
             child = QTreeWidgetItem([f"{arrow} #{ch.index} {name}",
                                      self.doc.profile_name(ch.profile)])
             child.setToolTip(1, f"{self.doc.tree.name_of(ch.profile)} {prof.fmt(ch.profile)}")

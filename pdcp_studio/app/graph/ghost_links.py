@@ -30,6 +30,8 @@ class GhostLinks:
 
     def show_unwritten(self) -> None:
         """Ghost links: on the prosthesis, removed in the project (not yet written)."""
+        from pdcp_studio.app.words.plan_words import link_words
+
         self._drop(self.unwritten)
         doc = self._scene.doc
         bus = doc.bus_system
@@ -40,7 +42,7 @@ class GhostLinks:
             if item is not None:
                 item.setToolTip(translate(
                     "BusScene", "Pending removal (still on the prosthesis): {link}"
-                ).format(link=link))
+                ).format(link=link_words(doc.system, link.output, link.input)))
                 self.unwritten.append(item)
 
     def show_preview(self, plan: Any) -> None:

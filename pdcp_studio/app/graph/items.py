@@ -40,7 +40,6 @@ from PySide6.QtWidgets import (
 from pdcp_studio.app.graph import style
 from pdcp_studio.app.graph.layout import card_height
 from pdcp_studio.app.i18n import translate
-from pdcp_studio.model import profile as prof
 from pdcp_studio.model.refs import ChannelRef
 from pdcp_studio.model.system import Channel, Device
 
@@ -509,7 +508,7 @@ class DeviceItem(QGraphicsRectItem):
 
         # Channel rows.
         n_in = sum(1 for c in self.rows if c.is_input)
-        name_of = self._scene_ref.doc.profile_name
+        channel_label = self._scene_ref.words.channel_label
         idx_w = row_m.horizontalAdvance("000")
         avail = w - 2 * 14 - idx_w - 6
         p.setFont(row_f)
@@ -532,12 +531,11 @@ class DeviceItem(QGraphicsRectItem):
             if i == n_in and n_in:
                 p.setPen(QPen(style.GRID, 1.0))
                 p.drawLine(QPointF(10, y), QPointF(w - 10, y))
-            # The profile's name from the tree; its hex code is in the row's tooltip.
+            # The channel's one name (its descriptor, else its profile's name: as every
+            # other text calls it), shortened alike on every card; the full name, the
+            # profile and its hex code are in the row's tooltip.
             idx_text = str(ch.index)
-            pname = name_of(ch.profile)
-            if pname == prof.fmt(ch.profile):
-                pname = ch.descriptor or pname
-            pname = row_m.elidedText(pname, Qt.TextElideMode.ElideRight, avail)
+            pname = _shorten(channel_label(d.ref(ch.index)), row_m, avail)
             drawn.append(pname)
             if ch.is_input:
                 p.setPen(dim)
@@ -626,28 +624,17 @@ def _over(base: QColor, tint: QColor) -> QColor:
 
 
 def _shorten(text: str, metrics: QFontMetricsF, width: float) -> str:
-    """``text`` abbreviated to fit ``width``: numbers kept whole, the longest word cut
-    first ("EMG flexor 11" → "EMG flex. 11"), then a leading word dropped ("flex. 11"),
-    then words cut to their initial ("H. 10"); elided only as a last resort — so
-    "flexor 11" and "extensor 11" stay apart."""
-    full = text.split()
-    for least in (3, 1):
-        for start in range(len(full)):
-            words = full[start:]
-            if start and len(words) < 2:
-                break
-            while True:
-                candidate = " ".join(words)
-                if metrics.horizontalAdvance(candidate) <= width:
-                    return candidate
-                cuttable = [i for i, w in enumerate(words)
-                            if not any(c.isdigit() for c in w) and len(w.rstrip(".")) > least]
-                if not cuttable:
-                    break
-                i = max(cuttable, key=lambda j: len(words[j].rstrip(".")))
-                stem = words[i].rstrip(".")
-                words = [*words[:i], stem[:-1] + ".", *words[i + 1:]]
-    return metrics.elidedText(text, Qt.TextElideMode.ElideRight, width)
+    """``text`` abbreviated to fit ``width``: the first of its fixed short forms
+    (``model/names.py`` :func:`short_forms`: "EMG flexor 11" → "EMG flex. 11" → "flex. 11")
+    that fits, so a word is cut alike on every card whatever its width; elided only as a
+    last resort. The full name is in the card's tooltip and the inspector."""
+    from pdcp_studio.model.names import short_forms
+
+    forms = short_forms(text)
+    for candidate in forms:
+        if metrics.horizontalAdvance(candidate) <= width:
+            return candidate
+    return metrics.elidedText(forms[-1], Qt.TextElideMode.ElideRight, width)
 
 
 def _wrap(text: str, metrics: QFontMetricsF, width: float, max_lines: int) -> list[str]:

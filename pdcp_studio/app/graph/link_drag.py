@@ -60,8 +60,9 @@ class LinkDrag:
         self._rubber = DragLinkItem(port)
         self._scene.addItem(self._rubber)
         self._rubber.follow(pos)
-        what = "an input" if port.is_output else "an output"
-        self._say(_tr("Drag from {ref} to {what} to link them").format(ref=port.ref, what=what))
+        self._say((_tr("Drag from {channel} to an input to link them") if port.is_output else
+                   _tr("Drag from {channel} to an output to link them")).format(
+                       channel=self._describe(port.ref)))
 
     def move(self, pos: QPointF) -> None:
         rubber = self._rubber

@@ -34,10 +34,28 @@ class SceneWords:
         self._doc = doc
         self._states = states
         self._names: dict[DeviceKey, str] | None = None
+        self._channels: dict[tuple[ChannelRef, str, int], str] = {}
 
     def forget(self) -> None:
         """Name the parts again at the next label (a new system, a changed catalogue)."""
         self._names = None
+        self._channels.clear()
+
+    def channel_label(self, ref: ChannelRef) -> str:
+        """A card row's text: the channel's one name without its part (``model/names.py``:
+        descriptor, else profile name, else "channel N"); remembered per descriptor and
+        profile, as a card repaints often."""
+        from pdcp_studio.app.words.part_names import names
+
+        ch = self._doc.system.channel(ref)
+        key = (ref, ch.descriptor if ch else "", ch.profile if ch else 0)
+        text = self._channels.get(key)
+        if text is None:
+            if len(self._channels) > 20000:
+                self._channels.clear()
+            profile = self._doc.profile_name(ch.profile) if ch is not None else ""
+            text = self._channels[key] = names(self._doc.system).channel_only(ref, profile)
+        return text
 
     def device_label(self, device: Device) -> str:
         """The device's own name, else its product from the device catalogue (looked up

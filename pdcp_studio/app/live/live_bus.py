@@ -115,6 +115,8 @@ class LiveController(QObject):
         self.layout_shape: Any = None
         #: Parts that joined this session as newcomers: identity, place given, when.
         self._newcomers: dict[Any, tuple[str, tuple[float, float], float]] = {}
+        #: Parts that joined before a snapshot read them: named once one does.
+        self._joined_unread: set[Any] = set()
         #: The remembered layouts, read once a session when a part joins (None: not yet).
         self._layouts: list[Any] | None = None
         self._remember_timer = QTimer(self)
@@ -288,6 +290,9 @@ class LiveController(QObject):
             joined = self._place_joined(system)
             if self.doc.sync_live(system):
                 self.snapshotTaken.emit(system)
+            read = [k for k in self._joined_unread if k in self.doc.system.devices]
+            self._joined_unread.difference_update(read)
+            self._say_joined(read)
             if joined:
                 self._note_newcomers(joined)
             if left:
@@ -376,8 +381,20 @@ class LiveController(QObject):
 
     def _on_joined(self, key: Any) -> None:
         self.doc.set_present(key, True)
-        self.statusMessage.emit(self.tr("Device {key} joined the bus").format(key=key))
+        if key in self.doc.system.devices:
+            self._say_joined([key])
+        else:  # not read yet: named once the snapshot that reads it is merged
+            self._joined_unread.add(key)
         self.refresh()
+
+    def _say_joined(self, keys: list[Any]) -> None:
+        """"EMG flexor site joined the bus": the part by its one name (its numbers are in
+        the Bus events' detail)."""
+        from pdcp_studio.app.words.part_names import part_name
+
+        for key in keys:
+            self.statusMessage.emit(self.tr("{part} joined the bus").format(
+                part=part_name(self.doc.system, key)))
 
     def _on_left(self, key: Any) -> None:
         device = self.doc.system.devices.get(key)
@@ -385,10 +402,11 @@ class LiveController(QObject):
         self.doc.set_present(key, False)
         if was_here and self._swap_in([key]):
             self._remember_soon()
-        device = self.doc.system.device(key)
+        from pdcp_studio.app.words.part_names import part_name
+
+        self._joined_unread.discard(key)
         self.statusMessage.emit(
-            self.tr("{v0} left the bus").format(v0=device.label if device else key)
-        )
+            self.tr("{part} left the bus").format(part=part_name(self.doc.system, key)))
         self.refresh()
 
     def _on_plan_applied(self, plan: Any) -> None:

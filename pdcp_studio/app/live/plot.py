@@ -13,10 +13,13 @@ Public API
     ``paint_count``. Signal: ``channelChanged(ChannelRef | None)``.
 
 Each signal has a lane of its own with its own value axis: the raw values the channel sends,
-named by the channel type's control mode ("position (raw)"; booleans get an on/off axis);
-the prescaler's suggested factor is a hint in the lane's title only, never multiplied in
-(reference §2, Decision: no computation depends on it). Its title comes from the device and
-channel names.
+over the range its channel type gives (``model/value_axis.py``: unsigned 12-bit 0–4095,
+signed, boolean on/off; a float over the values seen) and named by what the channel carries
+(its one name, ``model/names.py``: descriptor, else profile name) with the type's form:
+"Flexor EMG envelope (unsigned, 0–4095)"; a velocity or acceleration says so. The
+prescaler's suggested factor is a hint in the lane's title only, never multiplied in
+(reference §2, Decision: no computation depends on it). The title goes on with the part and
+the parts it feeds, by their one names.
 Ticks are 1-2-5 steps on both axes. Two vertical cursors (left click sets A, right click B,
 drag moves the nearest) show Δt and each signal's values at A and B and their difference.
 
@@ -31,7 +34,7 @@ from __future__ import annotations
 
 import math
 from array import array
-from collections.abc import Iterable
+from collections.abc import Callable, Iterable
 from typing import Any, cast
 
 import numpy as np
@@ -52,6 +55,7 @@ from PySide6.QtWidgets import (
 )
 
 from pdcp_studio.app.i18n import translate
+from pdcp_studio.model.value_axis import ValueAxis, value_axis
 
 DEFAULT_WINDOW_S = 10.0
 WINDOWS_S = (1.0, 2.0, 5.0, 10.0, 30.0, 60.0)
@@ -87,6 +91,15 @@ def nice_ticks(lo: float, hi: float, target: int = 5) -> list[float]:
         ticks.append(round(first + k * step, 12))
         k += 1
     return ticks
+
+
+def bounded_ticks(ticks: list[float], bounds: tuple[float, float], step: float) -> list[float]:
+    """``ticks`` with the type's least and greatest value added (0 and 4095 on a 12-bit
+    axis, so its range reads on the axis however short the lane); a tick within a third of
+    a step of either is left out, so no two labels overlap."""
+    lo, hi = bounds
+    inner = [t for t in ticks if lo + step / 3 < t < hi - step / 3]
+    return [lo, *inner, hi]
 
 
 def tick_text(value: float, step: float) -> str:
@@ -126,6 +139,35 @@ def channel_axis(ctype: int | None) -> tuple[str, str, bool]:
     return names[t.control_mode], t.prescaler_hint, t.data_type is DataType.BOOLEAN
 
 
+def axis_words(what: str, axis: ValueAxis) -> str:
+    """``Flexor EMG envelope (unsigned, 0–4095)``: the value axis's name, from what the
+    channel carries and its type (a velocity or acceleration says so; no physical unit is
+    known, so none is claimed)."""
+    from pdcp_studio.model.channel_type import ControlMode, DataType
+
+    mode = {ControlMode.POSITION: translate("LivePlot", "position"),
+            ControlMode.VELOCITY: translate("LivePlot", "velocity"),
+            ControlMode.ACCELERATION: translate("LivePlot", "acceleration")}.get(
+                axis.mode) if axis.mode is not None else None
+    if axis.boolean:
+        return translate("LivePlot", "{what} (on/off)").format(
+            what=what or translate("LivePlot", "value"))
+    form = []
+    if not what:  # nothing names it: the control mode is the quantity
+        what = mode or translate("LivePlot", "value")
+    elif axis.mode in (ControlMode.VELOCITY, ControlMode.ACCELERATION) and mode:
+        form.append(mode)
+    kind = {DataType.UNSIGNED: translate("LivePlot", "unsigned"),
+            DataType.SIGNED: translate("LivePlot", "signed"),
+            DataType.FLOAT: translate("LivePlot", "float")}.get(
+                axis.data_type) if axis.data_type is not None else None
+    if kind:
+        form.append(kind)
+    if axis.lo is not None and axis.hi is not None:
+        form.append(f"{axis.lo:g}–{axis.hi:g}".replace("-", "−"))  # a minus, not a hyphen
+    return f"{what} ({', '.join(form)})" if form else what
+
+
 class Series:
     """One signal: its values (raw), how to show them, and whether it follows the selection."""
 
@@ -133,16 +175,20 @@ class Series:
                  color: str, follows: bool) -> None:
         self.ref, self.label, self.quantity = ref, label, quantity
         self.hint, self.boolean, self.color, self.follows = hint, boolean, color, follows
+        #: The range and form its channel type gives (``model/value_axis.py``).
+        self.axis: ValueAxis = value_axis(None)
+        #: What the channel carries, by its one name ("Flexor EMG envelope").
+        self.what = ""
+        #: The part and the parts it feeds ("EMG flexor site → Control unit").
+        self.owner = ""
         self.ts = array("d")
         self.vs = array("d")
 
     @property
     def unit(self) -> str:
-        """The value axis's name: what the values are ("position (raw)"; no physical unit
-        is known, so none is claimed)."""
-        if self.boolean:
-            return translate("LivePlot", "on/off")
-        return translate("LivePlot", "{quantity} (raw)").format(quantity=self.quantity)
+        """The value axis's name: what the values are and the form and range the channel
+        type gives ("Flexor EMG envelope (unsigned, 0–4095)")."""
+        return axis_words(self.what, self.axis)
 
     @property
     def hint_text(self) -> str:
@@ -153,9 +199,19 @@ class Series:
 
     @property
     def title(self) -> str:
-        """The lane's title: the signal, what its values are, and the hint."""
-        text = f"{self.label} — {self.unit}"
+        """The lane's title: what its values are (the axis's name), the part and what it
+        feeds, and the hint."""
+        text = f"{self.unit} — {self.owner or self.label}"
         return f"{text}, {self.hint_text}" if self.hint_text else text
+
+    def value_range(self) -> tuple[float, float] | None:
+        """The range the value axis spans: the type's (None: a float or an unknown type,
+        scaled to the values seen)."""
+        if self.boolean:
+            return 0.0, 1.0
+        if self.axis.lo is None or self.axis.hi is None:
+            return None
+        return self.axis.lo, self.axis.hi
 
     def trim(self, keep_s: float) -> None:
         if not self.ts:
@@ -329,8 +385,15 @@ class PlotCanvas(QWidget):
         ts = all_ts[first:].copy()  # the window only (the arrays stay resizable)
         vs = np.frombuffer(s.vs, dtype=np.float64)[first:].copy()  # raw values
         del all_ts
+        bounds = s.value_range()
         if s.boolean:
             lo, hi = -0.2, 1.2
+        elif bounds is not None:  # the type's range, a little room at each end
+            lo, hi = bounds
+            if len(vs):  # a value outside it (a type changed under way) still shows
+                lo, hi = min(lo, float(vs.min())), max(hi, float(vs.max()))
+            pad = (hi - lo) * 0.04
+            lo, hi = lo - pad, hi + pad
         elif len(vs):
             lo, hi = float(vs.min()), float(vs.max())
             if hi - lo < 1e-9:
@@ -344,6 +407,8 @@ class PlotCanvas(QWidget):
         ticks = [0.0, 1.0] if s.boolean else nice_ticks(
             lo, hi, max(2, int(body.height() // (m.height() * 2))))
         step = ticks[1] - ticks[0] if len(ticks) > 1 else 1.0
+        if bounds is not None and not s.boolean:
+            ticks = bounded_ticks(ticks, bounds, step)
         for v in ticks:
             y = body.bottom() - (v - lo) / (hi - lo) * body.height()
             _hline(p, body.left(), body.right(), y, grid)
@@ -395,6 +460,9 @@ class LivePlot(QWidget):
         self.window_s = float(window_s)
         self.series: list[Series] = []
         self.system: Any = None
+        #: ``profile_name(code) -> str``: what a profile carries, by the profile tree's
+        #: names (the window sets the document's); a channel without a descriptor is named so.
+        self.profile_name: Callable[[int], str] | None = None
         self.hold = False
         self._hold_at: float | None = None
         self.cursor_a: float | None = None
@@ -474,28 +542,62 @@ class LivePlot(QWidget):
         self.system = system
         for s in self.series:
             s.label = self.name_of(s.ref) if not s.label or "/" in s.label else s.label
-            s.quantity, s.hint, s.boolean = channel_axis(self._type_of(s.ref))
+            self._describe(s)
         self.canvas.update()
+
+    def _describe(self, s: Series) -> None:
+        """``s``'s value axis (range and form from its channel type), what it carries and
+        whose it is, by the one names (``model/names.py``)."""
+        ctype = self._type_of(s.ref)
+        s.quantity, s.hint, s.boolean = channel_axis(ctype)
+        s.axis = value_axis(ctype)
+        s.what, s.owner = self._what(s.ref), self._owner(s.ref)
+
+    def _profile_words(self, ref: Any) -> str:
+        ch = None if self.system is None else self.system.channel(ref)
+        if ch is None or self.profile_name is None or not ch.profile:
+            return ""
+        name = self.profile_name(ch.profile)
+        return "" if name.startswith("0x") else name
+
+    def _what(self, ref: Any) -> str:
+        """What the channel carries: its descriptor, else its profile's name ("" when only
+        its number would say it)."""
+        if self.system is None or ref is None:
+            return ""
+        from pdcp_studio.app.words.part_names import names, tr
+        from pdcp_studio.model.names import CHANNEL_NUMBER
+
+        what = names(self.system).channel_only(ref, self._profile_words(ref))
+        return "" if what == tr(CHANNEL_NUMBER).format(n=ref.index) else what
+
+    def _owner(self, ref: Any) -> str:
+        """``EMG flexor site → Control unit``: the part and the parts it feeds."""
+        if self.system is None or ref is None:
+            return ""
+        from pdcp_studio.app.words.part_names import part_name
+
+        fed = sorted({part_name(self.system, r.device)
+                      for r in self.system.inputs_fed_by(ref)})
+        owner = part_name(self.system, ref.device)
+        return f"{owner} → {', '.join(fed)}" if fed else owner
 
     def _type_of(self, ref: Any) -> int | None:
         ch = None if self.system is None or ref is None else self.system.channel(ref)
         return None if ch is None else ch.type
 
     def name_of(self, ref: Any) -> str:
-        """A readable title: device name, channel and what it feeds."""
+        """A readable name: the channel's one name (``model/names.py``) and the parts it
+        feeds ("EMG flexor site, Flexor EMG envelope → Control unit")."""
         system = self.system
         if system is None:
             return str(ref)
-        device = system.device(ref.device)
-        ch = system.channel(ref)
-        owner = device.label if device is not None else str(ref.device)
-        name = self.tr("{device} output {index}").format(device=owner, index=ref.index)
-        if ch is not None and ch.descriptor:
-            name += f" ({ch.descriptor})"
-        fed = [system.device(r.device) for r in system.inputs_fed_by(ref)]
-        names = sorted({d.label for d in fed if d is not None})
-        if names:
-            name += " → " + ", ".join(names)
+        from pdcp_studio.app.words.part_names import channel_name, part_name
+
+        name = channel_name(system, ref, self._profile_words(ref))
+        fed = sorted({part_name(system, r.device) for r in system.inputs_fed_by(ref)})
+        if fed:
+            name += " → " + ", ".join(fed)
         return name
 
     def set_link(self, link: Any, label: str = "") -> None:
@@ -536,6 +638,7 @@ class LivePlot(QWidget):
         quantity, hint, boolean = channel_axis(self._type_of(ref))
         title = label if label and self.system is None else self.name_of(ref)
         s = Series(ref, title, quantity, hint, boolean, color, follows)
+        self._describe(s)
         if first:
             self.series.insert(0, s)
         else:
@@ -692,8 +795,14 @@ class LivePlot(QWidget):
         self.paint_count += 1
 
     def y_range(self) -> tuple[float, float]:
-        """The first signal's raw value range (0…1 when empty)."""
+        """The first signal's raw value range (0…1 when empty); the axis spans
+        :meth:`axis_range`."""
         if not self.series or not self.series[0].vs:
             return 0.0, 1.0
         vs = np.array(self.series[0].vs)
         return float(vs.min()), float(vs.max())
+
+    def axis_range(self) -> tuple[float, float] | None:
+        """The range the first signal's value axis spans by its channel type (before the
+        little room at each end); None for a float or an unknown type (its values')."""
+        return self.series[0].value_range() if self.series else None

@@ -365,8 +365,10 @@ class MonitorDock(QDockWidget):
     def set_system(self, system: Any) -> None:
         """Learn node names (devices and output channels) and which nodes send channel data,
         so a capture opened later names its links."""
-        for device in system.devices.values():
-            self.model.names[tuple(device.key)] = device.label
+        from pdcp_studio.app.words.part_names import part_names
+
+        for key, name in part_names(system).items():  # the one name of every part
+            self.model.names[(key.vid, key.pid, key.serial)] = name
         for ref, ch in system.channels():
             if ch.is_output and ch.node_id is not None:
                 self.feed.learn_output(ch.node_id, (ref, tuple(system.inputs_fed_by(ref))))

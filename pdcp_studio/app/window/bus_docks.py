@@ -241,6 +241,7 @@ class BusDocks(QObject):
                 bridge.frameSeen.connect(monitor.add_frames)
         if "plot" not in self.leaf_docks:
             plot = live_plot.LivePlot()
+            plot.profile_name = self.doc.profile_name  # a channel named as the graph does
             dock = add_dock(self.host, _t("Live plot"), "LivePlotDock", plot,
                             Qt.DockWidgetArea.BottomDockWidgetArea)
             self._tab_beside_plan("plot", dock, events, made)

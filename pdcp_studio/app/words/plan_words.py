@@ -101,10 +101,12 @@ def device_words(system: System | None, key: DeviceKey) -> str:
 
 
 def channel_words(system: System | None, ref: ChannelRef, profile_name: str = "") -> str:
-    """``Multi-grip hand, channel 2 (Grip force)``: device, channel and what it carries."""
-    text = tr("{device}, channel {n}").format(device=device_words(system, ref.device),
-                                              n=ref.index)
-    return f"{text} ({profile_name})" if profile_name else text
+    """``Multi-grip hand with wrist rotator, Power grip``: the channel's one name
+    (``model/names.py``: its part, and its descriptor, else what it carries
+    (``profile_name``), else "channel N")."""
+    from pdcp_studio.app.words.part_names import channel_name
+
+    return channel_name(system, ref, profile_name)
 
 
 def link_words(system: System | None, output: ChannelRef, input_: ChannelRef,
