@@ -8,6 +8,7 @@ removes nothing, and says which links stay. Pure: the system as read in, a plan 
 
 from __future__ import annotations
 
+import re
 from collections.abc import Callable
 from dataclasses import dataclass, field
 
@@ -18,6 +19,29 @@ from pdcp_studio.model.system import Link, System
 
 #: Names a channel for the words (the app and the CLI may pass their own part names).
 NameFn = Callable[[ChannelRef], str]
+#: Puts a headline with ``%n`` in the reader's language for ``n`` things (-1: no count).
+SayFn = Callable[[str, int], str]
+
+
+#: The headline of :func:`kept_words` (``%n`` and ``(s)`` as Qt's plurals: the app translates
+#: it with the same text).
+KEPT = ("Every link stays as it is (%n link(s)); from now on unconnected hand, wrist or elbow "
+        "channels stay unconnected until you link them:")
+NONE_KEPT = ("No link is removed (there are none); from now on unconnected hand, wrist or "
+             "elbow channels stay unconnected until you link them.")
+
+
+def english(text: str, n: int) -> str:
+    """``%n link(s)`` → ``1 link`` / ``2 links``."""
+    return re.sub(r"\((s|es)\)", "" if n == 1 else r"\1", text.replace("%n", str(n)))
+
+
+def kept_words(kept: list[Link], name: NameFn = str, say: SayFn = english) -> list[str]:
+    """"Which links stay" when autoconfigure is turned off: all of them (nothing is removed),
+    one line each; ``say(text, n)`` puts the headline in the reader's language."""
+    if not kept:
+        return [say(NONE_KEPT, -1)]  # -1: no count (as Qt's translate takes it)
+    return [say(KEPT, len(kept)), *(f"  {name(lk.output)} → {name(lk.input)}" for lk in kept)]
 
 
 @dataclass(frozen=True)
@@ -43,7 +67,7 @@ class PolicySwitch:
 
 
 def policy_switch(system: System, before: bool, after: bool, *,
-                  name: NameFn = str) -> PolicySwitch:
+                  name: NameFn = str, say: SayFn = english) -> PolicySwitch:
     """What turning autoconfigure from ``before`` to ``after`` changes on ``system`` (the
     prosthesis as read). Turning it on plans the duty cycle with nothing gone since the last
     one (every present channel counts as previously present): only the autoconfiguration of
@@ -54,22 +78,9 @@ def policy_switch(system: System, before: bool, after: bool, *,
     plan = Plan("policy", links_before=list(system.links))
     if before and not after:
         kept = sorted(system.links)
-        return PolicySwitch(before, after, plan, kept, kept_words(kept, name))
+        return PolicySwitch(before, after, plan, kept, kept_words(kept, name, say))
     return PolicySwitch(before, after, plan)
 
 
-def kept_words(kept: list[Link], name: NameFn = str) -> list[str]:
-    """"Which links stay" when autoconfigure is turned off: all of them (nothing is removed);
-    only unconnected channels are no longer linked on their own."""
-    if not kept:
-        return ["No links are removed (there are none); from now on unconnected hand, wrist "
-                "or elbow channels are left unconnected until you link them."]
-    head = (f"All {len(kept)} links stay as they are; from now on unconnected hand, wrist "
-            "or elbow channels are left unconnected until you link them:"
-            if len(kept) != 1 else
-            "The one link stays as it is; from now on unconnected hand, wrist or elbow "
-            "channels are left unconnected until you link them:")
-    return [head, *(f"  {name(lk.output)} → {name(lk.input)}" for lk in kept)]
-
-
-__all__ = ["NameFn", "PolicySwitch", "kept_words", "policy_switch"]
+__all__ = ["KEPT", "NONE_KEPT", "NameFn", "PolicySwitch", "SayFn", "english", "kept_words",
+           "policy_switch"]

@@ -72,7 +72,7 @@ def test_on_sim_turning_autoconfigure_on_makes_the_links(tmp_path, capsys):
     argv_bus = ["--bus", "sim:thesis-test2", "--memory", str(tmp_path / "memory.bin")]
     assert main(["policy", "--autoconfigure", "off", "--yes", *argv_bus]) == 0
     out = capsys.readouterr().out
-    assert "All 3 links stay as they are" in out  # turning it off removes nothing
+    assert "Every link stays as it is (3 links)" in out  # turning it off removes nothing
     assert "2/2/5#3 → 2/2/6#1" in out
     assert main(["apply", "clear", "--yes", *argv_bus]) == 0  # (a fresh one has none)
     capsys.readouterr()
@@ -119,7 +119,7 @@ def test_over_the_host_link_turning_autoconfigure_on_makes_the_links(tmp_path, c
         assert len(_live_links(argv_bus, capsys)) == 3
         # And off again: nothing is removed, the words say which links stay.
         assert main(["policy", "--autoconfigure", "off", "--yes", *argv_bus]) == 0
-        assert "All 3 links stay as they are" in capsys.readouterr().out
+        assert "Every link stays as it is (3 links)" in capsys.readouterr().out
         assert set(arbitrator.system().links) == TEST2
 
 

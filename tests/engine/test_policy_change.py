@@ -38,7 +38,7 @@ def test_turning_it_off_removes_nothing_and_says_which_links_stay(systems_dir):
     assert switch.action == "policy autoconfigure off"
     assert switch.plan.actions == []
     assert switch.kept == sorted(full.links)
-    assert switch.words[0].startswith(f"All {len(full.links)} links stay as they are")
+    assert switch.words[0].startswith(f"Every link stays as it is ({len(full.links)} links)")
     for link in full.links:  # every link, named by the caller's part names
         assert f"  <{link.output}> → <{link.input}>" in switch.words
 
@@ -46,7 +46,7 @@ def test_turning_it_off_removes_nothing_and_says_which_links_stay(systems_dir):
 def test_turning_it_off_with_no_links_says_none_are_removed(systems_dir):
     bare = _unlinked(system_file.load_path(systems_dir / "appendix-d.json"))
     switch = policy_switch(bare, True, False)
-    assert switch.kept == [] and switch.words[0].startswith("No links are removed")
+    assert switch.kept == [] and switch.words[0].startswith("No link is removed")
 
 
 def test_no_switch_changes_no_link(systems_dir):
