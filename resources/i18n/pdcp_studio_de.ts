@@ -5028,6 +5028,16 @@ Die Prothese ist wie zuvor.</translation>
             <translation>{device} hat den Bus verlassen</translation>
         </message>
         <message>
+            <location filename="../../pdcp_studio/app/docks/events_panel.py" line="76" />
+            <source>{device} is replaced by {new}</source>
+            <translation>{device} ist ersetzt durch {new}</translation>
+        </message>
+        <message>
+            <location filename="../../pdcp_studio/app/docks/events_panel.py" line="78" />
+            <source>Its replacement's links are written and verified: it is no longer missing</source>
+            <translation>Die Verbindungen des Ersatzteils sind geschrieben und geprüft: es fehlt nicht mehr</translation>
+        </message>
+        <message>
             <source>Left unconnected: {names}</source>
             <translation>Nicht verbunden gelassen: {names}</translation>
         </message>
