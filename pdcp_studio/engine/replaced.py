@@ -1,11 +1,12 @@
 """Which absent parts have been replaced (issue 26 item 6): no longer missing, but "replaced by"
 the part that took their place.
 
-An absent device is replaced when no link reaches it any more and every role it had — each
-link it was an end of, on the bus or in the stored configuration, whose other end is on the
-bus — is now held by a present device in its place: the same other end linked to a channel
-of that device instead. The arbitrator asks after a verified transaction and forgets the
-parts this names (nothing needs them now); the fitting history records the pairs. Pure.
+An absent device is replaced when every role it had — each link it was an end of, on the
+bus or in the stored configuration, whose other end is on the bus — is now held by a present
+device in its place: the same other end linked to a channel of that device instead. Its own
+links left on the bus are dead (they carry nothing) and no longer needed then. The
+arbitrator asks after a verified transaction and forgets the parts this names (nothing needs
+them now); the fitting history records the pairs. Pure.
 """
 
 from __future__ import annotations
@@ -29,11 +30,10 @@ def replaced_parts(system: System, roles: Iterable[Link]) -> list[Replaced]:
     """The absent devices of ``system`` whose every role in ``roles`` (the links before the
     change: on the bus and stored) a present device now holds, each with the device that
     holds most of them (the lowest key on a tie)."""
-    roles = set(roles)
-    reached = {ref.device for lk in system.links for ref in (lk.output, lk.input)}
+    roles = set(roles) | set(system.links)
     out: list[Replaced] = []
     for key, device in sorted(system.devices.items()):
-        if device.present or key in reached:
+        if device.present:
             continue
         takers: Counter[DeviceKey] = Counter()
         taken = judged = 0

@@ -6,10 +6,8 @@ from __future__ import annotations
 
 import pytest
 
+from pdcp_studio.app.wizards import logic
 from pdcp_studio.bus.sim.rigs import HAND, SPARE_HAND
-from pdcp_studio.bus.transaction import Change
-from pdcp_studio.engine import configuration_from_system
-from pdcp_studio.model.configuration import ConfigCollection
 
 pytestmark = pytest.mark.gui
 
@@ -24,6 +22,7 @@ def test_after_the_replacement_is_written_the_old_hand_is_not_missing(make_windo
         window.connect_bus("sim:transradial")
     panel = window._leaf_docks["events"].widget()
     session = window.live.bridge.session
+    qtbot.waitUntil(lambda: len(session.system().links) == 5, timeout=15000)  # started up
     session.save_configuration()
     session.unplug(HAND)
     qtbot.waitUntil(lambda: _missing(window) == [HAND], timeout=10000)
@@ -33,11 +32,15 @@ def test_after_the_replacement_is_written_the_old_hand_is_not_missing(make_windo
     assert _missing(window) == [HAND]  # linked by the duty cycle, not yet a fitting
 
     window.flow.confirm = lambda _title, _preview: True
-    change = Change("replace a part", configuration=ConfigCollection(
-        [configuration_from_system(session.system())]))
+    # The Replace a part wizard's own change: the replacement plan's links and the stored
+    # configuration naming the new part.
+    system = session.system()
+    change = logic.replacement_change(system, logic.replacement_plan(
+        system, session.read_configuration(), [SPARE_HAND]))
     with qtbot.waitSignal(window.flow.finished, timeout=20000) as got:
         window.flow.run(change, "Replace a part")
     assert got.args[0].written, got.args[0].summary()
+    assert "replaced 2641/769/301 by 2641/769/302" in got.args[0].notes
     qtbot.waitUntil(lambda: HAND not in window.doc.system.devices, timeout=10000)
     assert _missing(window) == []
     qtbot.waitUntil(lambda: any("is replaced by" in w for w, _y, _s in panel.rows()),

@@ -33,6 +33,15 @@ def _missing(system):
     return [k for k, d in system.devices.items() if not d.present]
 
 
+def _stored_live(system):
+    """The configuration of the links whose both ends are on the bus (as the wizard stores)."""
+    live = system.copy()
+    for link in list(live.links):
+        if not (live.is_present(link.output) and live.is_present(link.input)):
+            live.remove_link(link)
+    return ConfigCollection([configuration_from_system(live)])
+
+
 def _swap(session):
     session.unplug(HAND)
     assert _until(lambda: not session.system().devices[HAND].present)
@@ -84,9 +93,23 @@ def test_the_replace_wizards_change_leaves_nothing_missing(heard):
         assert _until(lambda: sum(lk.input.device == SPARE_HAND
                                   for lk in session.system().links) == 3)
         assert _missing(session.system()) == [HAND]  # linked on its own: still missing
-        change = Change("replace a part", configuration=ConfigCollection(
-            [configuration_from_system(session.system())]))
+        change = Change("replace a part", configuration=_stored_live(session.system()))
         _replaced_and_recorded(session, session.transact(change), heard)
+
+
+def test_a_configuration_stored_naming_the_old_part_keeps_it_missing(heard):
+    with open_session("sim:transradial", frame_events=False) as session:
+        session.subscribe(heard.append)
+        assert session.save_configuration().configurations
+        stored = session.read_configuration()
+        _swap(session)
+        assert _until(lambda: sum(lk.input.device == SPARE_HAND
+                                  for lk in session.system().links) == 3)
+        both = ConfigCollection([*stored.configurations,
+                                 *_stored_live(session.system()).configurations])
+        assert session.transact(Change("store both", configuration=both)).written
+        assert _missing(session.system()) == [HAND]
+        assert not any(isinstance(e, ev.DeviceReplaced) for e in heard)
 
 
 def test_a_change_that_is_not_the_replacement_leaves_the_part_missing(heard):

@@ -46,10 +46,18 @@ def test_a_part_with_a_role_nobody_holds_is_still_missing(systems_dir):
     assert replaced_parts(system, roles) == []
 
 
-def test_a_part_a_link_still_reaches_is_not_replaced(systems_dir):
+def test_a_role_still_only_on_a_dead_link_is_not_held(systems_dir):
     system, roles = _swapped(systems_dir, move=2)
     assert any(lk.input.device == HAND for lk in system.links)
     assert replaced_parts(system, roles) == []
+
+
+def test_dead_links_left_beside_the_new_ones_do_not_keep_it_missing(systems_dir):
+    """The duty cycle may link the spare (autoconfigure) and leave the hand's dead links."""
+    system, roles = _swapped(systems_dir)
+    for link in sorted(lk for lk in roles if lk.input.device == HAND):
+        system.add_link(link, check=False)
+    assert replaced_parts(system, roles) == [Replaced(HAND, SPARE)]
 
 
 def test_a_part_without_roles_or_present_is_neither(systems_dir):

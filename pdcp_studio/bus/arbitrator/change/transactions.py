@@ -165,17 +165,21 @@ class Transactions:
         fitting history's ``replaced``) and said as :class:`~pdcp_studio.bus.events.
         DeviceReplaced`. Only a change that made the replacement's links or stored the
         configuration does so (not, say, a parameter written after the duty cycle linked
-        a spare on its own: the replacement was not part of that change)."""
+        a spare on its own: the replacement was not part of that change), and never a part
+        the configuration it stores still names (that keeps it in the fitting)."""
         from pdcp_studio.engine.replaced import replaced_parts
         from pdcp_studio.storage.history import replaced_note
 
         roles = set(result.links_before) | _stored_links(cfg_before)
+        kept = {ref.device for lk in _links_of(change.configuration)
+                for ref in (lk.output, lk.input)}
         with self._state.lock:
             pairs = [p for p in replaced_parts(self._state.system, roles)
-                     if change.configuration is not None or any(
+                     if (change.configuration is not None or any(
                          {a.link.output.device, a.link.input.device} & set(p)
-                         for a in change.links)]
-            for old, _new in pairs:
+                         for a in change.links))
+                     and p.old not in kept]
+            for old, _new in pairs:  # (with its dead links: they carried nothing)
                 self._state.system.remove_device(old)
         for old, new in pairs:
             log.info("%s: %s is replaced by %s: no longer missing", self._name, old, new)
@@ -347,8 +351,14 @@ def _stored_links(data: bytes | None) -> set[Link]:
     if data is None:
         return set()
     try:
-        collection = config_codec.loads(data)
+        return _links_of(config_codec.loads(data))
     except (PdcpError, ValueError):
+        return set()
+
+
+def _links_of(collection: ConfigCollection | None) -> set[Link]:
+    """The links of every configuration in ``collection`` (none for None)."""
+    if collection is None:
         return set()
     return {Link(sl.output.ref, sl.input.ref)
             for cfg in collection.configurations for sl in cfg.links}
