@@ -36,6 +36,17 @@ class DeviceLeft(Record):
 
 
 @dataclass(frozen=True, eq=False, repr=False)
+class DeviceReplaced(DeviceLeft):
+    """An absent device (``key``) is replaced by ``new``: a verified transaction left a present
+    device in every role it had, so the arbitrator forgets it (it is no longer missing).
+
+    A :class:`DeviceLeft` for good: a subscriber or transport that knows only that (the host
+    link) still learns the device is gone from the arbitrator's system."""
+
+    new: DeviceKey
+
+
+@dataclass(frozen=True, eq=False, repr=False)
 class LinkMade(Record):
     link: Link
 

@@ -4,7 +4,9 @@ profile-layer policy (issue 17, contracts §2).
 Shows whether start-up and the duty cycle may autoconfigure unconnected terminal channels on
 their own (``{"autoconfigure": true, …}``). Changing it is a transaction of the change road
 (reference §5): previewed, written only with ``--yes``, read back, recorded in the fitting
-history.
+history. Turning autoconfigure on makes, in that same transaction, the links the duty cycle
+would make now (else nothing links them until the next swap); turning it off removes nothing
+and says which links stay (``pdcp_studio.engine.policy_change``).
 """
 
 from __future__ import annotations
@@ -37,6 +39,7 @@ def run(args: argparse.Namespace) -> int:
     from pdcp_studio.bus.transaction import Change, Policy
     from pdcp_studio.cli.change_road import carry_out
     from pdcp_studio.cli.scan import open_bus_session
+    from pdcp_studio.engine.policy_change import policy_switch
 
     session = open_bus_session(args.bus, memory=args.memory)
     try:
@@ -47,12 +50,20 @@ def run(args: argparse.Namespace) -> int:
             else:
                 print(f"{args.bus}: autoconfigure: {'on' if current.autoconfigure else 'off'}")
             return 0
-        wanted = Policy(autoconfigure=args.autoconfigure == "on")
-        change = Change(f"policy autoconfigure {args.autoconfigure}", policy=wanted)
+        switch = policy_switch(session.system(), current.autoconfigure,
+                               args.autoconfigure == "on")
+        change = Change.from_plan(switch.plan, switch.action)
+        change.policy = Policy(autoconfigure=switch.after)
+        if switch.words and not args.json:
+            for line in switch.words:
+                print(line)
 
         def doc(_preview: ChangePreview, result: TransactionResult | None) -> dict[str, Any]:
             now = (result.policy_after if result is not None else None) or current
-            return {**now.to_json(), "bus": args.bus}
+            return {**now.to_json(), "bus": args.bus,
+                    "links_added": [a.to_json() for a in change.links if a.op == "add"],
+                    "links_kept": [lk.as_json() for lk in switch.kept],
+                    "kept_text": switch.words}
 
         return carry_out(session, change, args, json_doc=doc)
     finally:

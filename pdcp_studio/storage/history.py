@@ -38,6 +38,7 @@ import getpass
 import hashlib
 import json
 import os
+import re
 import sqlite3
 import time
 from dataclasses import dataclass
@@ -429,4 +430,28 @@ def entry_from_result(result: TransactionResult, change: Change, *, bus: str,
         "effect": effect.to_json() if effect is not None else None,
         "next_power_on": effect.power_on_json() if effect is not None else None,
         "parameters_after": parameters_after,
+        "replaced": replaced_from_notes(result.notes),
     }
+
+
+#: How the arbitrator notes a part it forgot as replaced (the note crosses every transport,
+#: the host link's result too): ``replaced 2641/769/301 by 2641/769/302``.
+_REPLACED_NOTE = re.compile(r"^replaced (\d+)/(\d+)/(\d+) by (\d+)/(\d+)/(\d+)$")
+
+
+def replaced_note(old: Any, new: Any) -> str:
+    """The result's note for ``old`` replaced by ``new`` (device keys)."""
+    return f"replaced {old.vid}/{old.pid}/{old.serial} by {new.vid}/{new.pid}/{new.serial}"
+
+
+def replaced_from_notes(notes: Any) -> list[dict[str, dict[str, int]]]:
+    """The entry's ``replaced`` field: ``[{"old": {vid, pid, serial}, "new": {…}}]`` — the
+    parts a verified transaction left replaced (issue 26 item 6), from the result's notes."""
+    out = []
+    for note in notes or ():
+        m = _REPLACED_NOTE.match(str(note))
+        if m:
+            n = [int(g) for g in m.groups()]
+            out.append({"old": {"vid": n[0], "pid": n[1], "serial": n[2]},
+                        "new": {"vid": n[3], "pid": n[4], "serial": n[5]}})
+    return out

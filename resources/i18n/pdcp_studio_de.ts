@@ -3107,6 +3107,24 @@ Den PDCP-Bus einer aktiven Prothese ansehen und einrichten.</translation>
             <source>Turn autoconfigure off</source>
             <translation>Autokonfiguration ausschalten</translation>
         </message>
+        <message>
+            <location filename="../../pdcp_studio/app/window/controllers/policy.py" line="133" />
+            <source>Read the policy</source>
+            <translation>Die Einstellung der Prothese lesen</translation>
+        </message>
+        <message numerus="yes">
+            <location filename="../../pdcp_studio/app/window/controllers/policy.py" line="148" />
+            <source>Every link stays as it is (%n link(s)); from now on unconnected hand, wrist or elbow channels stay unconnected until you link them:</source>
+            <translation>
+                <numerusform>Jede Verbindung bleibt, wie sie ist (%n Verbindung); ab jetzt bleiben nicht verbundene Kanäle von Hand, Handgelenk oder Ellbogen unverbunden, bis Sie sie verbinden:</numerusform>
+                <numerusform>Jede Verbindung bleibt, wie sie ist (%n Verbindungen); ab jetzt bleiben nicht verbundene Kanäle von Hand, Handgelenk oder Ellbogen unverbunden, bis Sie sie verbinden:</numerusform>
+            </translation>
+        </message>
+        <message>
+            <location filename="../../pdcp_studio/app/window/controllers/policy.py" line="151" />
+            <source>No link is removed (there are none); from now on unconnected hand, wrist or elbow channels stay unconnected until you link them.</source>
+            <translation>Keine Verbindung wird entfernt (es gibt keine); ab jetzt bleiben nicht verbundene Kanäle von Hand, Handgelenk oder Ellbogen unverbunden, bis Sie sie verbinden.</translation>
+        </message>
     </context>
     <context>
         <name>ProfileTreeDialog</name>
@@ -5024,6 +5042,16 @@ Die Prothese ist wie zuvor.</translation>
         <message>
             <source>{device} left the bus</source>
             <translation>{device} hat den Bus verlassen</translation>
+        </message>
+        <message>
+            <location filename="../../pdcp_studio/app/docks/events_panel.py" line="76" />
+            <source>{device} is replaced by {new}</source>
+            <translation>{device} ist ersetzt durch {new}</translation>
+        </message>
+        <message>
+            <location filename="../../pdcp_studio/app/docks/events_panel.py" line="78" />
+            <source>Its replacement's links are written and verified: it is no longer missing</source>
+            <translation>Die Verbindungen des Ersatzteils sind geschrieben und geprüft: es fehlt nicht mehr</translation>
         </message>
         <message>
             <source>Left unconnected: {names}</source>

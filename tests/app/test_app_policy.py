@@ -186,3 +186,71 @@ def test_the_policy_is_read_again_after_an_arbitrator_reset(live, qtbot):
     now = "on" if _bus_policy(live).autoconfigure else "off"
     qtbot.waitUntil(lambda: live.policy_label.text() == f"Autoconfigure: {now}", timeout=10000)
     assert live.act_autoconfigure.isChecked() == (now == "on")
+
+
+def test_turning_autoconfigure_on_previews_and_makes_the_links(live, qtbot):
+    """Issue 26 item 5: off says which links stay; on, with the terminal channels left
+    unconnected, previews the links the duty cycle would make and makes them in the
+    same transaction (verified, recorded)."""
+    from pdcp_studio.bus.transaction import Change
+
+    with qtbot.waitSignal(live.flow.finished, timeout=20000) as got:
+        live.act_autoconfigure.trigger()  # off
+    assert got.args[0].ok
+    notes = live.policy.last_switch.words  # the words for the effect (the lead's)
+    assert notes[0].startswith("Every link stays as it is (3 links)"), notes
+    assert len(notes) == 4 and all(" → " in n and "channel" in n for n in notes[1:]), notes
+    assert live.previews[-1][1].change.links == []  # nothing is removed
+    _idle(live, qtbot)
+    session = live.live.bridge.session
+    cleared = session.transact(Change.from_plan(session.preview("clear")))
+    assert cleared.written and session.system().links == []
+    live.live.refresh()
+    _idle(live, qtbot)
+    qtbot.waitUntil(lambda: live.policy_label.text() == "Autoconfigure: off", timeout=10000)
+
+    with qtbot.waitSignal(live.flow.finished, timeout=20000) as got:
+        live.act_autoconfigure.trigger()  # on
+    result = got.args[0]
+    assert result.written and result.verified, result.summary()
+    title, preview = live.previews[-1]
+    assert title == "Turn autoconfigure on"
+    assert preview.change.policy.autoconfigure is True
+    assert [a.op for a in preview.change.links] == ["add"] * 3
+    lines = preview.lines()
+    assert sum(line.startswith("  Link made: ") for line in lines) == 3, lines
+    assert live.policy.last_switch.words == []
+    assert len(session.system().links) == 3 and _bus_policy(live).autoconfigure is True
+    entry = History(live.history_path).entries()[-1]
+    assert entry["action"] == "policy autoconfigure on" and entry["verified"] is True
+    assert len(entry["links_after"]) == 3 and entry["links_before"] == []
+
+
+def test_the_kept_words_headlines_are_the_engines():
+    from pdcp_studio.app.window.controllers import policy
+    from pdcp_studio.engine import policy_change
+
+    assert policy.KEPT == policy_change.KEPT  # translated by the same text
+    assert policy.NONE_KEPT == policy_change.NONE_KEPT
+
+
+def test_the_kept_words_read_in_german():
+    from PySide6.QtWidgets import QApplication
+
+    from pdcp_studio.app import i18n
+    from pdcp_studio.app.window.controllers.policy import _CTX
+    from pdcp_studio.app.words.plural import count
+    from pdcp_studio.engine.policy_change import kept_words
+    from pdcp_studio.model.refs import ChannelRef
+    from pdcp_studio.model.system import Link
+
+    app = QApplication.instance() or QApplication([])
+    i18n.install(app, "de")
+    try:
+        link = Link(ChannelRef(2, 2, 4, 1), ChannelRef(2, 2, 5, 2))
+        words = kept_words([link, link], say=lambda text, n: count(_CTX, text, n))
+        assert words[0].startswith("Jede Verbindung bleibt, wie sie ist (2 Verbindungen)")
+        assert kept_words([], say=lambda text, n: count(_CTX, text, n))[0].startswith(
+            "Keine Verbindung wird entfernt")
+    finally:
+        i18n.uninstall(app)

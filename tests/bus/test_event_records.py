@@ -20,6 +20,7 @@ from tests.protocol.test_records import _reference
 REF = ChannelRef(2, 2, 4, 1)
 EVENTS = [
     ev.DeviceJoined(DeviceKey(2, 2, 4)), ev.DeviceLeft(DeviceKey(2, 2, 4)),
+    ev.DeviceReplaced(DeviceKey(2, 2, 4), DeviceKey(2, 2, 7)),
     ev.LinkMade(Link(REF, ChannelRef(2, 2, 5, 2))), ev.LinkRemoved(Link(REF, REF)),
     ev.FrameSeen(1.5, 0x123, b"\x01", "a frame"), ev.BusError("bad", "bad_frame"),
     ev.BusState("arbitrating", "ours"), ev.PlanApplied("a plan"),

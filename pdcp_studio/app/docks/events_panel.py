@@ -72,6 +72,11 @@ def describe_event(event: object, system: System | None,
     if isinstance(event, ev.DeviceJoined):
         return [EventRow(_t("{device} joined the bus").format(
             device=W.device_words(system, event.key)), detail=str(event.key))]
+    if isinstance(event, ev.DeviceReplaced):  # (a DeviceLeft for good: before that)
+        return [EventRow(_t("{device} is replaced by {new}").format(
+            device=W.device_words(system, event.key), new=W.device_words(system, event.new)),
+            _t("Its replacement's links are written and verified: it is no longer missing"),
+            detail=f"{event.key} → {event.new}")]
     if isinstance(event, ev.DeviceLeft):
         return [EventRow(_t("{device} left the bus").format(
             device=W.device_words(system, event.key)), detail=str(event.key))]

@@ -375,9 +375,18 @@ class LiveController(QObject):
     def _on_bus_event(self, event: Any) -> None:
         """Any other event that may change the bus (an arbitrator reset, a stored
         configuration implemented): look at the bus again."""
+        if type(event).__name__ == "DeviceReplaced":
+            # The arbitrator forgot a part that is replaced: no longer missing here either
+            # (once every panel has named it in this event's words).
+            QTimer.singleShot(0, self, lambda key=event.key: self._forget_replaced(key))
         if type(event).__name__ not in ("DeviceJoined", "DeviceLeft", "LinkMade",
                                         "LinkRemoved", "PlanApplied", "BusError"):
             self.refresh()
+
+    def _forget_replaced(self, key: Any) -> None:
+        device = self.doc.system.devices.get(key)
+        if device is not None and not device.present:
+            self.doc.remove_device(key)
 
     def _on_joined(self, key: Any) -> None:
         self.doc.set_present(key, True)

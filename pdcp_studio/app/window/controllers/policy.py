@@ -6,7 +6,9 @@ worker after connecting, after every transaction and after an arbitrator reset. 
 Autoconfigure on this prosthesis changes it through the one transaction road
 (:class:`~pdcp_studio.app.window.controllers.transaction_flow.TransactionFlow`: previewed,
 confirmed, recorded in the fitting history); the check mark always shows what the prosthesis
-has, never a wish.
+has, never a wish. What a switch changes is decided once, on the bridge's worker, from the
+prosthesis as read (``engine/policy_change.py``): turning it on makes the links the duty cycle
+would make in the same transaction, turning it off says which links stay.
 """
 
 from __future__ import annotations
@@ -19,8 +21,9 @@ from PySide6.QtGui import QAction
 from PySide6.QtWidgets import QLabel
 
 from pdcp_studio.app.documents.document import Document
-from pdcp_studio.app.i18n import translate
+from pdcp_studio.app.i18n import QT_TRANSLATE_NOOP, translate
 from pdcp_studio.app.live.live_bus import LiveController
+from pdcp_studio.app.words.plural import count
 
 if TYPE_CHECKING:
     from pdcp_studio.app.live.session_bridge import SessionBridge
@@ -35,7 +38,9 @@ def _t(text: str) -> str:
 class PolicyController:
     """Keeps ``label`` (status bar) and ``action`` (Bus menu, checkable) on what the
     connected prosthesis has; ``run_change(change, title)`` carries a change out as a
-    transaction."""
+    transaction. ``last_switch`` is the last policy switch decided
+    (:class:`~pdcp_studio.engine.policy_change.PolicySwitch`: its ``words`` say, in the
+    user's language, which links stay when autoconfigure is turned off)."""
 
     def __init__(self, doc: Document, live: LiveController, label: QLabel, action: QAction,
                  run_change: Callable[[Any, str], bool]) -> None:
@@ -44,6 +49,7 @@ class PolicyController:
         self.label = label
         self.action = action
         self._run_change = run_change
+        self.last_switch: Any = None
         label.setContentsMargins(6, 0, 6, 0)
         label.hide()
         doc.policyChanged.connect(lambda _p: self.show_policy())
@@ -110,11 +116,42 @@ class PolicyController:
         """Bus ▸ Autoconfigure on this prosthesis: change the policy as one transaction.
 
         The check mark goes back to what the prosthesis has until the transaction says
-        otherwise (a declined or failed change leaves it as it was)."""
+        otherwise (a declined or failed change leaves it as it was). The change is decided
+        on the worker from the prosthesis as it is now, then previewed and confirmed."""
+        self.show_policy()
+        bridge: SessionBridge | None = self.live.bridge
+        if bridge is None or self.doc.session is not bridge:
+            return False
+        session = bridge.session
+
+        def decide(_progress: Any, _cancel: Any) -> Any:
+            from pdcp_studio.app.words.plan_words import channel_words
+            from pdcp_studio.engine.policy_change import policy_switch
+
+            system = session.system()
+            return policy_switch(system, session.read_policy().autoconfigure, bool(on),
+                                 name=lambda ref: channel_words(system, ref),
+                                 say=lambda text, n: count(_CTX, text, n))
+
+        worker = bridge.run(decide, _t("Read the policy"), partial(self._decided, bridge))
+        return worker is not None
+
+    def _decided(self, bridge: SessionBridge, switch: Any) -> None:
         from pdcp_studio.bus.transaction import Change, Policy
 
-        self.show_policy()
-        word = "on" if on else "off"
-        change = Change(f"policy autoconfigure {word}", policy=Policy(autoconfigure=bool(on)))
-        title = _t("Turn autoconfigure on") if on else _t("Turn autoconfigure off")
-        return self._run_change(change, title)
+        if bridge is not self.live.bridge or self.doc.session is not bridge:
+            return
+        change = Change.from_plan(switch.plan, switch.action)
+        change.policy = Policy(autoconfigure=switch.after)
+        title = _t("Turn autoconfigure on") if switch.after else _t("Turn autoconfigure off")
+        self.last_switch = switch
+        self._run_change(change, title)
+
+
+# The headlines engine/policy_change.py says, for the translation files.
+KEPT = QT_TRANSLATE_NOOP(_CTX, "Every link stays as it is (%n link(s)); from now on "
+                               "unconnected hand, wrist or elbow channels stay unconnected "
+                               "until you link them:")
+NONE_KEPT = QT_TRANSLATE_NOOP(_CTX, "No link is removed (there are none); from now on "
+                                    "unconnected hand, wrist or elbow channels stay "
+                                    "unconnected until you link them.")

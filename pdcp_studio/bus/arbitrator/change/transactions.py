@@ -150,10 +150,41 @@ class Transactions:
             result.reason = f"device {err.key} did not suspend ({err.why}); nothing was written"
             result.interlock = describe_interlock([], refused=err.key)
             return result
+        if result.status is Status.APPLIED:
+            self._forget_replaced(change, result, cfg_before)
         result.links_after = self._state.snapshot().links
         result.config_crc_after = crc_of_bytes(self._memory.read_bytes())
         result.policy_after = self.read_policy()
         return result
+
+    def _forget_replaced(self, change: Change, result: TransactionResult,
+                         cfg_before: bytes | None) -> None:
+        """After a verified change: forget the absent parts whose every role (their links
+        on the bus and stored, before the change) a present part now holds — they are no
+        longer missing but replaced (``engine/replaced.py``); noted in the result (the
+        fitting history's ``replaced``) and said as :class:`~pdcp_studio.bus.events.
+        DeviceReplaced`. Only a change that made the replacement's links or stored the
+        configuration does so (not, say, a parameter written after the duty cycle linked
+        a spare on its own: the replacement was not part of that change), and never a part
+        the configuration it stores still names (that keeps it in the fitting)."""
+        from pdcp_studio.engine.replaced import replaced_parts
+        from pdcp_studio.storage.history import replaced_note
+
+        roles = set(result.links_before) | _stored_links(cfg_before)
+        kept = {ref.device for lk in _links_of(change.configuration)
+                for ref in (lk.output, lk.input)}
+        with self._state.lock:
+            pairs = [p for p in replaced_parts(self._state.system, roles)
+                     if (change.configuration is not None or any(
+                         {a.link.output.device, a.link.input.device} & set(p)
+                         for a in change.links))
+                     and p.old not in kept]
+            for old, _new in pairs:  # (with its dead links: they carried nothing)
+                self._state.system.remove_device(old)
+        for old, new in pairs:
+            log.info("%s: %s is replaced by %s: no longer missing", self._name, old, new)
+            result.notes.append(replaced_note(old, new))
+            self._emit(ev.DeviceReplaced(old, new))
 
     def _write_verify_restore(self, change: Change, after: list[Link], cfg_before: bytes | None,
                               policy_before: Policy, result: TransactionResult,
@@ -311,6 +342,26 @@ class Transactions:
             except (PdcpError, OSError) as err:
                 errors.append(f"the policy: {err}")
         return errors
+
+
+def _stored_links(data: bytes | None) -> set[Link]:
+    """The links of every stored configuration in the memory's bytes (none if unreadable)."""
+    from pdcp_studio.storage import config_codec
+
+    if data is None:
+        return set()
+    try:
+        return _links_of(config_codec.loads(data))
+    except (PdcpError, ValueError):
+        return set()
+
+
+def _links_of(collection: ConfigCollection | None) -> set[Link]:
+    """The links of every configuration in ``collection`` (none for None)."""
+    if collection is None:
+        return set()
+    return {Link(sl.output.ref, sl.input.ref)
+            for cfg in collection.configurations for sl in cfg.links}
 
 
 def _check_cancel(cancel: threading.Event | None, done: int, total: int) -> None:
