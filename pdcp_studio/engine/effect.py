@@ -90,6 +90,7 @@ T_STORED_ADD = "  stored from now on: {link}"
 T_STORED_DROP = "  no longer stored: {link}"
 T_POLICY = "Automatic set-up (autoconfigure): {old} → {new}."
 T_POLICY_OFF_STAY = "Turning automatic set-up off removes nothing: {links} stay as they are."
+T_POLICY_STAYS = "  stays: {link}"
 T_ONE_LINK = "{n} link"
 T_LINKS = "{n} links"
 T_HELD = "While the change is made, these parts are held still: {parts}."
@@ -266,6 +267,8 @@ class Effect:
         if not self.policy_after:
             out.append(tr(T_POLICY_OFF_STAY).format(
                 links=_links_count(len(self.links_after), tr)))
+            out += [tr(T_POLICY_STAYS).format(link=self.name(lk, tr))
+                    for lk in self.links_after]
         return out
 
     def power_on_lines(self, tr: Translate = _same) -> list[str]:

@@ -1310,6 +1310,10 @@ Das Öffnen von {1} beendet diese Verbindung.</translation>
             <translation>{n} Verbindung</translation>
         </message>
         <message>
+            <source>  stays: {link}</source>
+            <translation>  bleibt: {link}</translation>
+        </message>
+        <message>
             <source>{n} links</source>
             <translation>{n} Verbindungen</translation>
         </message>

@@ -143,3 +143,21 @@ def test_restore_help_says_after():
         main(["history", "restore", "--help"])
     assert "AFTER entry ID" in out.getvalue().replace("\n", " ") or \
         "after fitting history entry ID" in out.getvalue().replace("\n", " ")
+
+
+def test_apply_replacements_stores_even_when_the_links_are_already_there(tmp_path, capsys):
+    """The duty cycle may already have linked a spare: storing the links is what makes the
+    old part's configuration go (a replacement that writes nothing stores them)."""
+    from pdcp_studio.bus.session.change_road import preview_change
+    from pdcp_studio.bus.session.opening import open_session
+    from pdcp_studio.bus.transaction import Change
+
+    session = open_session("sim:transradial", memory=str(tmp_path / "m.bin"))
+    try:
+        plan = session.preview("replacements")
+        change = Change.from_plan(plan, "apply replacements")
+        change.store = True
+        preview = preview_change(session, change)
+        assert preview.change.configuration is not None
+    finally:
+        session.close()

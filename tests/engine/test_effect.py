@@ -156,3 +156,11 @@ def test_names_are_the_parts_and_channels_names():
     effect = effect_of(system, links_after=system.links[1:])
     ref = ChannelRef(*HAND, 1)
     assert effect.name(ref) == Names(system).channel(ref)
+
+
+def test_turning_autoconfigure_off_lists_the_links_that_stay():
+    system = linked()
+    effect = effect_of(system, links_after=system.links, policy_before=True,
+                       policy_after=False)
+    stays = [ln for ln in effect.lines() if ln.strip().startswith("stays:")]
+    assert len(stays) == len(system.links)

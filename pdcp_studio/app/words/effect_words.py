@@ -47,6 +47,7 @@ MARKED: tuple[str, ...] = (
     QT_TRANSLATE_NOOP("Effect", "Automatic set-up (autoconfigure): {old} → {new}."),
     QT_TRANSLATE_NOOP("Effect", "Turning automatic set-up off removes nothing: {links} stay "
                                 "as they are."),
+    QT_TRANSLATE_NOOP("Effect", "  stays: {link}"),
     QT_TRANSLATE_NOOP("Effect", "{n} link"),
     QT_TRANSLATE_NOOP("Effect", "{n} links"),
     QT_TRANSLATE_NOOP("Effect", "  is made: {link}"),

@@ -92,11 +92,14 @@ ConfirmFn = Callable[[ChangePreview], bool]
 
 def resolve_store(system: System, change: Change) -> Change:
     """``change`` with ``store`` carried out: the links (and parameters) after it become
-    the stored configuration it writes. A change that moves nothing stores nothing."""
+    the stored configuration it writes. A change that moves nothing stores nothing —
+    except a replacement, whose links the duty cycle may already have made: storing them
+    is what lets start-up forget the replaced part."""
     if not change.store:
         return change
     after = change.links_after(system.links)
-    if set(after) == set(system.links) and not change.parameters:
+    repairs = change.plan is not None and change.plan.mode == "replacements"
+    if set(after) == set(system.links) and not change.parameters and not repairs:
         return change
     written = system_after(system, after, change.parameters)
     resolved = copy.copy(change)
