@@ -65,11 +65,6 @@
             <translation>Konfiguration lesen: zuerst mit einem Bus verbinden</translation>
         </message>
         <message>
-            <location filename="../../pdcp_studio/app/window_bus.py" line="147" />
-            <source>Read the arbitrator's stored configuration: {n} configuration(s), {links} links — Find replacements and Start-up now use it</source>
-            <translation>Gespeicherte Konfiguration des Arbiters gelesen: {n} Konfiguration(en), {links} Verbindungen — Ersatz finden und Hochlauf verwenden sie jetzt</translation>
-        </message>
-        <message>
             <location filename="../../pdcp_studio/app/window_bus.py" line="156" />
             <source>Cancelling…</source>
             <translation>Wird abgebrochen…</translation>
@@ -87,10 +82,6 @@
         <message>
             <source>Scanning the bus…</source>
             <translation>Lese den Bus…</translation>
-        </message>
-        <message>
-            <source>Scan finished: {devices} device(s), {links} link(s)</source>
-            <translation>Lesen beendet: {devices} Gerät(e), {links} Verbindung(en)</translation>
         </message>
         <message>
             <source>Bus events</source>
@@ -128,6 +119,13 @@
     </context>
     <context>
         <name>BusScene</name>
+        <message numerus="yes">
+            <source>Removed %n link(s)</source>
+            <translation>
+                <numerusform>%n Verbindung entfernt</numerusform>
+                <numerusform>%n Verbindungen entfernt</numerusform>
+            </translation>
+        </message>
         <message>
             <source>Input {n} must be connected: a channel of this device that is in use needs it. Connect a source to it, or let Autoconfigure do it.</source>
             <translation>Eingang {n} muss verbunden sein: ein benutzter Kanal dieses Geräts braucht ihn. Verbinden Sie eine Quelle damit oder lassen Sie die Autokonfiguration das tun.</translation>
@@ -157,11 +155,6 @@
             <source>Pending removal (still on the prosthesis): {link}</source>
             <extracomment>A link counts as "live" this long after its output's last data frame. Ghosts of links on the prosthesis that the project removes (pending removals). The outcome of the last link drag: (link or None, refusal reason or "").</extracomment>
             <translation>Entfernen vorgemerkt (noch auf der Prothese): {link}</translation>
-        </message>
-        <message>
-            <location filename="../../pdcp_studio/app/graph/scene.py" line="354" />
-            <source>Removed {n} link{v1}</source>
-            <translation>{n} Verbindung(en) entfernt</translation>
         </message>
         <message>
             <location filename="../../pdcp_studio/app/graph/scene.py" line="365" />
@@ -378,11 +371,6 @@
             <location filename="../../pdcp_studio/app/compare_dialog.py" line="301" />
             <source>Status</source>
             <translation>Zustand</translation>
-        </message>
-        <message>
-            <location filename="../../pdcp_studio/app/compare_dialog.py" line="327" />
-            <source>{0} link(s): {1}</source>
-            <translation>{0} Verbindung(en): {1}</translation>
         </message>
         <message>
             <location filename="../../pdcp_studio/app/compare_dialog.py" line="328" />
@@ -661,29 +649,9 @@
             <translation> — PDCP Studio</translation>
         </message>
         <message>
-            <location filename="../../pdcp_studio/app/config_view.py" line="454" />
-            <source>Configuration %1 · %2 link(s)</source>
-            <translation>Konfiguration %1 · %2 Verbindung(en)</translation>
-        </message>
-        <message>
-            <location filename="../../pdcp_studio/app/config_view.py" line="459" />
-            <source>%1 problem(s) found</source>
-            <translation>%1 Problem(e) gefunden</translation>
-        </message>
-        <message>
-            <location filename="../../pdcp_studio/app/config_view.py" line="482" />
-            <source>%1 configuration(s)</source>
-            <translation>%1 Konfiguration(en)</translation>
-        </message>
-        <message>
             <location filename="../../pdcp_studio/app/config_view.py" line="484" />
             <source>%1 record(s) from newer firmware or tools kept as they are</source>
             <translation>%1 Datensätze aus neuerer Firmware oder neueren Werkzeugen unverändert übernommen</translation>
-        </message>
-        <message>
-            <location filename="../../pdcp_studio/app/config_view.py" line="490" />
-            <source>%1, channel %2</source>
-            <translation>%1, Kanal %2</translation>
         </message>
         <message>
             <location filename="../../pdcp_studio/app/config_view.py" line="495" />
@@ -716,11 +684,6 @@
 %4</source>
             <translation>Verbindung %1: %2 → %3
 %4</translation>
-        </message>
-        <message>
-            <location filename="../../pdcp_studio/app/config_view.py" line="569" />
-            <source>What start-up would do with this configuration (%1 step(s)):</source>
-            <translation>Was der Hochlauf mit dieser Konfiguration täte (%1 Schritt(e)):</translation>
         </message>
         <message>
             <location filename="../../pdcp_studio/app/config_view.py" line="575" />
@@ -1475,6 +1438,24 @@ Das Öffnen von {1} beendet diese Verbindung.</translation>
     </context>
     <context>
         <name>Commands</name>
+        <message numerus="yes">
+            <source>Apply the plan (%n step(s))</source>
+            <translation>
+                <numerusform>Plan ausführen (%n Schritt)</numerusform>
+                <numerusform>Plan ausführen (%n Schritte)</numerusform>
+            </translation>
+        </message>
+        <message numerus="yes">
+            <source>Move %n part(s)</source>
+            <translation>
+                <numerusform>%n Teil verschieben</numerusform>
+                <numerusform>%n Teile verschieben</numerusform>
+            </translation>
+        </message>
+        <message>
+            <source>Move {0}</source>
+            <translation>{0} verschieben</translation>
+        </message>
         <message>
             <source>{0}: {1} changed</source>
             <translation>{0}: {1} geändert</translation>
@@ -2230,26 +2211,9 @@ Den PDCP-Bus einer aktiven Prothese ansehen und einrichten.</translation>
             <translation>Anpassungs&amp;historie</translation>
         </message>
         <message>
-            <location filename="../../pdcp_studio/app/window_transactions.py" line="103" />
-            <source>Discard {0} pending change(s)</source>
-            <translation>{0} vorgemerkte Änderung(en) verwerfen</translation>
-        </message>
-        <message>
             <location filename="../../pdcp_studio/app/window_transactions.py" line="112" />
             <source>Links as on the prosthesis</source>
             <translation>Verbindungen wie auf der Prothese</translation>
-        </message>
-        <message>
-            <location filename="../../pdcp_studio/app/window_transactions.py" line="123" />
-            <source>Discarded {0} pending change(s): the project is as the prosthesis (Undo brings them back)</source>
-            <translation>{0} vorgemerkte Änderung(en) verworfen: Das Projekt entspricht der Prothese (Rückgängig holt sie zurück)</translation>
-        </message>
-        <message>
-            <location filename="../../pdcp_studio/app/window_transactions.py" line="147" />
-            <source>{0} change(s) were not written to the prosthesis. Leave it without them?
-(Write to prosthesis writes them; the document keeps them either way.)</source>
-            <translation>{0} Änderung(en) wurden nicht auf die Prothese geschrieben. Ohne sie trennen?
-(„Auf die Prothese schreiben“ schreibt sie; das Dokument behält sie in jedem Fall.)</translation>
         </message>
         <message>
             <location filename="../../pdcp_studio/app/window_transactions.py" line="207" />
@@ -2856,11 +2820,6 @@ Den PDCP-Bus einer aktiven Prothese ansehen und einrichten.</translation>
             <location filename="../../pdcp_studio/app/pending_panel.py" line="133" />
             <source>No pending changes: the project and the prosthesis on {0} agree.</source>
             <translation>Keine vorgemerkten Änderungen: Projekt und Prothese an {0} stimmen überein.</translation>
-        </message>
-        <message>
-            <location filename="../../pdcp_studio/app/pending_panel.py" line="138" />
-            <source>&lt;b&gt;{0} pending change(s)&lt;/b&gt; for the prosthesis on {1}: edits are staged here and reach the prosthesis only with Write to prosthesis.</source>
-            <translation>&lt;b&gt;{0} vorgemerkte Änderung(en)&lt;/b&gt; für die Prothese an {1}: Änderungen werden hier gesammelt und erreichen die Prothese erst mit „Auf die Prothese schreiben“.</translation>
         </message>
         <message>
             <location filename="../../pdcp_studio/app/pending_panel.py" line="145" />
@@ -3653,11 +3612,6 @@ Den PDCP-Bus einer aktiven Prothese ansehen und einrichten.</translation>
             <translation>Nichts zu schreiben: Projekt und Prothese stimmen überein</translation>
         </message>
         <message>
-            <location filename="../../pdcp_studio/app/transaction_flow.py" line="134" />
-            <source>Write to prosthesis ({0} change(s))</source>
-            <translation>Auf die Prothese schreiben ({0} Änderung(en))</translation>
-        </message>
-        <message>
             <location filename="../../pdcp_studio/app/transaction_flow.py" line="136" />
             <source>Write to prosthesis</source>
             <translation>Auf die Prothese schreiben</translation>
@@ -4133,10 +4087,6 @@ Die Prothese ist wie zuvor.</translation>
             <translation>Konfiguration speichern</translation>
         </message>
         <message>
-            <source>{0} link(s) already on the prosthesis stay as they are.</source>
-            <translation>{0} Verbindung(en), die die Prothese schon hat, bleiben, wie sie sind.</translation>
-        </message>
-        <message>
             <source>Connect</source>
             <translation>Verbinden</translation>
         </message>
@@ -4317,10 +4267,6 @@ Die Prothese ist wie zuvor.</translation>
             <translation>Eine andere Verbindung: {0}</translation>
         </message>
         <message>
-            <source>{0} part(s) found on the bus, {1} link(s) between them:</source>
-            <translation>{0} Teil(e) am Bus gefunden, {1} Verbindung(en) zwischen ihnen:</translation>
-        </message>
-        <message>
             <source>No problems found: every part is described and linked as it asks.</source>
             <translation>Keine Probleme gefunden: Jedes Teil ist beschrieben und verbunden, wie es das verlangt.</translation>
         </message>
@@ -4349,20 +4295,8 @@ Die Prothese ist wie zuvor.</translation>
             <translation>Eintrag {0}</translation>
         </message>
         <message>
-            <source>{0}: written and verified ({1}, {2} link(s) on the prosthesis)</source>
-            <translation>{0}: geschrieben und geprüft ({1}, {2} Verbindung(en) an der Prothese)</translation>
-        </message>
-        <message>
             <source>Saved the fitting report: {0}</source>
             <translation>Versorgungsbericht gespeichert: {0}</translation>
-        </message>
-        <message>
-            <source>{0} thing(s) to look at. The next step proposes links that fix what can be fixed automatically:</source>
-            <translation>{0} Punkt(e) zum Ansehen. Der nächste Schritt schlägt Verbindungen vor, die beheben, was sich automatisch beheben lässt:</translation>
-        </message>
-        <message>
-            <source>All {0} link(s) are on the prosthesis as planned.</source>
-            <translation>Alle {0} Verbindung(en) sind wie geplant an der Prothese.</translation>
         </message>
         <message>
             <source>Fitting history entry {0}: written and verified by the prosthesis.</source>
@@ -4485,14 +4419,6 @@ Die Prothese ist wie zuvor.</translation>
             <translation>{0} ist wieder am Bus: Es braucht keinen Ersatz.</translation>
         </message>
         <message>
-            <source>The prosthesis made {0} of these link(s) on its own when the part was plugged in; the write makes them part of the fitting.</source>
-            <translation>Die Prothese hat {0} dieser Verbindung(en) beim Anschließen selbst hergestellt; das Schreiben macht sie zum Teil der Versorgung.</translation>
-        </message>
-        <message>
-            <source>{0} is not on the bus; {1} link(s) lead to it.</source>
-            <translation>{0} ist nicht am Bus; {1} Verbindung(en) führen zu ihm.</translation>
-        </message>
-        <message>
             <source>Choose the configuration</source>
             <translation>Konfiguration wählen</translation>
         </message>
@@ -4557,20 +4483,12 @@ Die Prothese ist wie zuvor.</translation>
             <translation>Trennen: {0}</translation>
         </message>
         <message>
-            <source>{0}: {1} stored link(s).</source>
-            <translation>{0}: {1} gespeicherte Verbindung(en).</translation>
-        </message>
-        <message>
             <source>From the file {0}.</source>
             <translation>Aus der Datei {0}.</translation>
         </message>
         <message>
             <source>As the fitting of {0} left the prosthesis (fitting history entry {1}).</source>
             <translation>So, wie die Versorgung vom {0} die Prothese hinterließ (Eintrag {1} im Versorgungsprotokoll).</translation>
-        </message>
-        <message>
-            <source>Entry {0} — {1} — {2} ({3} link(s))</source>
-            <translation>Eintrag {0} — {1} — {2} ({3} Verbindung(en))</translation>
         </message>
         <message>
             <source>Cannot read {0}: {1}</source>
@@ -4619,10 +4537,6 @@ Die Prothese ist wie zuvor.</translation>
         <message>
             <source>Every link is cleared.</source>
             <translation>Alle Verbindungen werden gelöscht.</translation>
-        </message>
-        <message>
-            <source>{device}, channel {n}</source>
-            <translation>{device}, Kanal {n}</translation>
         </message>
         <message>
             <source>it does the same job</source>
@@ -4691,10 +4605,6 @@ Die Prothese ist wie zuvor.</translation>
         <message>
             <source>{0} works better with it.</source>
             <translation>{0} arbeitet mit ihr besser.</translation>
-        </message>
-        <message>
-            <source>{0} link(s) could not be made (the engineer's detail says why).</source>
-            <translation>{0} Verbindung(en) konnten nicht hergestellt werden (die technischen Einzelheiten nennen den Grund).</translation>
         </message>
         <message>
             <source>Will be stored: {0}</source>
@@ -4957,10 +4867,6 @@ Die Prothese ist wie zuvor.</translation>
         <message>
             <source>the device's description names a channel that is not an input</source>
             <translation>die Gerätebeschreibung nennt einen Kanal, der kein Eingang ist</translation>
-        </message>
-        <message>
-            <source>{device}, channel {n}</source>
-            <translation>{device}, Kanal {n}</translation>
         </message>
         <message>
             <source>the same part</source>
@@ -5341,10 +5247,6 @@ Die Prothese ist wie zuvor.</translation>
             <translation>ausgeführt, geprüft</translation>
         </message>
         <message>
-            <source>+{adds} / −{removes} link(s)</source>
-            <translation>+{adds} / −{removes} Verbindung(en)</translation>
-        </message>
-        <message>
             <source>, {n} parameter(s)</source>
             <translation>, {n} Parameter</translation>
         </message>
@@ -5527,14 +5429,6 @@ Die Prothese ist wie zuvor.</translation>
         <message>
             <source>Generated by PDCP Studio.</source>
             <translation>Erstellt mit PDCP Studio.</translation>
-        </message>
-        <message>
-            <source> (the {n} link(s) above, as they would be stored)</source>
-            <translation> (die {n} Verbindung(en) oben, wie sie gespeichert würden)</translation>
-        </message>
-        <message>
-            <source> (what the prosthesis stores: {n} link(s) in {c} set-up(s))</source>
-            <translation> (was die Prothese speichert: {n} Verbindung(en) in {c} Einrichtung(en))</translation>
         </message>
         <message>
             <source>{path}: cannot write the PDF</source>
