@@ -57,14 +57,12 @@ def part_words(system: System, key: DeviceKey) -> str:
     return names.part_name(system, key, _shown())
 
 
-def channel_phrase(system: System, ref: ChannelRef) -> str:
-    """``Multi-grip hand (serial 301), channel 1 (Power grip)``."""
-    text = _t("{device}, channel {n}").format(device=part_words(system, ref.device),
-                                             n=ref.index)
-    channel = system.channel(ref)
-    if channel is not None and channel.descriptor:
-        text += f" ({channel.descriptor})"
-    return text
+def channel_phrase(system: System, ref: ChannelRef, own: str = "") -> str:
+    """``Multi-grip hand (serial 301), Power grip``: the channel's one name (``model/
+    names.py``, as every panel says it: its part as :func:`part_words`, then its
+    descriptor, "channel N" only where it has none). ``own``: what names a channel no
+    longer in ``system`` (a missing part's, as the plan remembers it)."""
+    return names.names(system, _shown()).channel(ref, own)
 
 
 def link_words(system: System, link: Link) -> str:
@@ -113,12 +111,8 @@ def _cause_words(system: System, plan: Plan, cause: object) -> str:
     if isinstance(cause, Link):
         return link_words(system, cause)
     if isinstance(cause, ChannelRef):
-        text = _t("{device}, channel {n}").format(device=part_words(system, cause.device),
-                                                 n=cause.index)
         facts = plan.channels.get(cause)
-        if facts is not None and facts.descriptor:
-            text += f" ({facts.descriptor})"
-        return text
+        return channel_phrase(system, cause, facts.descriptor if facts is not None else "")
     return ""
 
 
