@@ -107,12 +107,22 @@ def _missing_profile(plan: Plan, action: Action) -> int:
     return 0
 
 
+def _plan_channel(system: System, plan: Plan, ref: ChannelRef) -> str:
+    """A channel of a plan by its one name; one no longer on the bus by what the plan
+    remembers of it (its descriptor)."""
+    facts = plan.channels.get(ref)
+    return channel_phrase(system, ref, facts.descriptor if facts is not None else "")
+
+
+def _plan_link(system: System, plan: Plan, link: Link) -> str:
+    return f"{_plan_channel(system, plan, link.output)} → {_plan_channel(system, plan, link.input)}"
+
+
 def _cause_words(system: System, plan: Plan, cause: object) -> str:
     if isinstance(cause, Link):
-        return link_words(system, cause)
+        return _plan_link(system, plan, cause)
     if isinstance(cause, ChannelRef):
-        facts = plan.channels.get(cause)
-        return channel_phrase(system, cause, facts.descriptor if facts is not None else "")
+        return _plan_channel(system, plan, cause)
     return ""
 
 
@@ -174,7 +184,8 @@ def plan_lines(system: System, plan: Plan) -> list[str]:
     out = []
     for action in plan.actions:
         verb = _t("Connect") if action.op.value == "add" else _t("Disconnect")
-        out.append(f"{verb} {link_words(system, action.link)}\n{why_words(system, plan, action)}")
+        out.append(f"{verb} {_plan_link(system, plan, action.link)}\n"
+                   f"{why_words(system, plan, action)}")
     if plan.rejections:
         out.append(count("%n link(s) could not be made (the engineer's detail says why).",
                          len(plan.rejections)))
