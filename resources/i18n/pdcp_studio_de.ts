@@ -226,10 +226,6 @@
             <translation>Keine CAN-Schnittstelle gefunden</translation>
         </message>
         <message>
-            <source>Found {n} CAN channel(s): {which}</source>
-            <translation>{n} CAN-Kanal/Kanäle gefunden: {which}</translation>
-        </message>
-        <message>
             <source>No CAN adapter found. Check that it is plugged in and its driver is installed, or type the interface and channel.</source>
             <translation>Kein CAN-Adapter gefunden. Prüfen Sie, ob er eingesteckt und sein Treiber installiert ist, oder geben Sie Schnittstelle und Kanal ein.</translation>
         </message>
@@ -647,11 +643,6 @@
             <location filename="../../pdcp_studio/app/config_view.py" line="434" />
             <source> — PDCP Studio</source>
             <translation> — PDCP Studio</translation>
-        </message>
-        <message>
-            <location filename="../../pdcp_studio/app/config_view.py" line="484" />
-            <source>%1 record(s) from newer firmware or tools kept as they are</source>
-            <translation>%1 Datensätze aus neuerer Firmware oder neueren Werkzeugen unverändert übernommen</translation>
         </message>
         <message>
             <location filename="../../pdcp_studio/app/config_view.py" line="495" />
@@ -3157,11 +3148,6 @@ Den PDCP-Bus einer aktiven Prothese ansehen und einrichten.</translation>
             <translation>Hinzufügen: {v0} hat keine freie Komponente</translation>
         </message>
         <message>
-            <location filename="../../pdcp_studio/app/profile_tree_editor.py" line="323" />
-            <source>{title} — {n_items} node(s)</source>
-            <translation>{title} — {n_items} Knoten</translation>
-        </message>
-        <message>
             <location filename="../../pdcp_studio/app/profile_tree_editor.py" line="354" />
             <source>Rename: a profile node needs a name</source>
             <translation>Umbenennen: Ein Profilknoten braucht einen Namen</translation>
@@ -3288,11 +3274,6 @@ Den PDCP-Bus einer aktiven Prothese ansehen und einrichten.</translation>
             <location filename="../../pdcp_studio/app/connect_dialog.py" line="293" />
             <source>Baud</source>
             <translation>Baud</translation>
-        </message>
-        <message>
-            <location filename="../../pdcp_studio/app/connect_dialog.py" line="307" />
-            <source>{n_ports} port(s) found</source>
-            <translation>{n_ports} Anschluss/Anschlüsse gefunden</translation>
         </message>
         <message>
             <location filename="../../pdcp_studio/app/connect_dialog.py" line="309" />
@@ -4893,10 +4874,6 @@ Die Prothese ist wie zuvor.</translation>
             <translation>ähnliches Signal ({depth} von {levels} Ebenen gleich)</translation>
         </message>
         <message>
-            <source>similar signal ({depth} level(s) alike)</source>
-            <translation>ähnliches Signal ({depth} Ebene(n) gleich)</translation>
-        </message>
-        <message>
             <source>another kind of signal</source>
             <translation>andere Art Signal</translation>
         </message>
@@ -4990,10 +4967,6 @@ Die Prothese ist wie zuvor.</translation>
         <message>
             <source>Clear</source>
             <translation>Leeren</translation>
-        </message>
-        <message>
-            <source>{n} event(s)</source>
-            <translation>{n} Ereignis(se)</translation>
         </message>
         <message>
             <source>No bus events yet: parts that come and go and the links the bus makes appear here</source>
@@ -5245,10 +5218,6 @@ Die Prothese ist wie zuvor.</translation>
         <message>
             <source>applied, verified</source>
             <translation>ausgeführt, geprüft</translation>
-        </message>
-        <message>
-            <source>, {n} parameter(s)</source>
-            <translation>, {n} Parameter</translation>
         </message>
         <message>
             <source>no change was made in this session</source>
@@ -6083,6 +6052,75 @@ Wählen Sie ein Profil aus dem Namensbaum oder geben Sie eines hexadezimal ein.<
         <message>
             <source>VID {vid} · PID {pid} · serial {serial}</source>
             <translation>VID {vid} · PID {pid} · Seriennummer {serial}</translation>
+        </message>
+    </context>
+    <context>
+        <name>TransactionOutcome</name>
+        <message>
+            <source>{what}: failed while {step}</source>
+            <translation>{what}: {step} fehlgeschlagen</translation>
+        </message>
+        <message>
+            <source>{what}: stopped while {step}; what was written is undone</source>
+            <translation>{what}: {step} abgebrochen; was geschrieben war, ist rückgängig gemacht</translation>
+        </message>
+        <message>
+            <source>{what}: not confirmed, nothing written</source>
+            <translation>{what}: nicht bestätigt, nichts geschrieben</translation>
+        </message>
+        <message>
+            <source>{what}: nothing to change on the prosthesis</source>
+            <translation>{what}: an der Prothese ist nichts zu ändern</translation>
+        </message>
+        <message numerus="yes">
+            <source>%n part(s) held still while writing</source>
+            <translation>
+                <numerusform>%n Teil während des Schreibens stillgehalten</numerusform>
+                <numerusform>%n Teile während des Schreibens stillgehalten</numerusform>
+            </translation>
+        </message>
+        <message numerus="yes">
+            <source>%n link(s) on the prosthesis</source>
+            <translation>
+                <numerusform>%n Verbindung an der Prothese</numerusform>
+                <numerusform>%n Verbindungen an der Prothese</numerusform>
+            </translation>
+        </message>
+        <message>
+            <source>{what}: written and verified — {links}</source>
+            <translation>{what}: geschrieben und geprüft — {links}</translation>
+        </message>
+        <message>
+            <source>recording in the fitting history</source>
+            <translation>beim Eintragen ins Versorgungsprotokoll</translation>
+        </message>
+        <message>
+            <source>releasing the parts</source>
+            <translation>beim Freigeben der Teile</translation>
+        </message>
+        <message>
+            <source>putting back</source>
+            <translation>beim Zurücksetzen</translation>
+        </message>
+        <message>
+            <source>reading back</source>
+            <translation>beim Zurücklesen</translation>
+        </message>
+        <message>
+            <source>writing</source>
+            <translation>beim Schreiben</translation>
+        </message>
+        <message>
+            <source>holding the parts still</source>
+            <translation>beim Stillhalten der Teile</translation>
+        </message>
+        <message>
+            <source>asking for confirmation</source>
+            <translation>bei der Bestätigung</translation>
+        </message>
+        <message>
+            <source>previewing</source>
+            <translation>bei der Vorschau</translation>
         </message>
     </context>
 </TS>
