@@ -3951,10 +3951,6 @@ Die Prothese ist wie zuvor.</translation>
             <source>{a} drives a part of the prosthesis but nothing feeds it, so that part will not move. Connect a matching output, or let Autoconfigure do it.</source>
             <translation>{a} steuert ein Teil der Prothese, bekommt aber keine Daten, daher bewegt sich dieses Teil nicht. Verbinden Sie einen passenden Ausgang oder lassen Sie die Autokonfiguration das tun.</translation>
         </message>
-        <message>
-            <source>{device}, channel {n}</source>
-            <translation>{device}, Kanal {n}</translation>
-        </message>
     </context>
     <context>
         <name>DeviceFinder</name>
@@ -5230,10 +5226,6 @@ Die Prothese ist wie zuvor.</translation>
         <message>
             <source>a kind of signal the profile tree does not name</source>
             <translation>eine Signalart, die der Profilbaum nicht nennt</translation>
-        </message>
-        <message>
-            <source>{device}, channel {n}</source>
-            <translation>{device}, Kanal {n}</translation>
         </message>
         <message>
             <source>type {type}, profile {profile}</source>

@@ -226,6 +226,31 @@ def test_the_configuration_window_names_stored_channels_by_the_one_naming():
     assert first != second and "(serial 4)" in first and "(serial 5)" in second
 
 
+def test_a_finding_names_its_channel_by_the_one_naming():
+    from pdcp_studio.app.words.finding_text import channel_words, plain_finding
+    from pdcp_studio.engine.checks import Finding, Severity
+
+    system = _bus()
+    ref = ChannelRef(*HAND, 2)
+    assert channel_words(system, ref) == plan_words.channel_words(system, ref)
+    assert channel_words(system, ref, {HAND: "Hand"}) == "Hand, Pinch grip"
+    finding = Finding(Severity.WARNING, "terminal-unconnected", "input 2641/769/301#2", (ref,))
+    text = plain_finding(finding, system)
+    assert text.startswith("Multi-grip hand with wrist rotator (serial 301), Pinch grip drives")
+    system.devices[HAND].channels[2].descriptor = ""
+    assert channel_words(system, ref).endswith(", channel 2")
+
+
+def test_the_report_names_a_link_end_by_the_one_naming():
+    from pdcp_studio.app.report import _end
+    from pdcp_studio.storage.profile_trees import load_profile_tree
+
+    system = _bus()
+    text = _end(system, load_profile_tree(user_dir=False), ChannelRef(*HAND, 1))
+    assert text.startswith("<b>Multi-grip hand with wrist rotator (serial 301)</b>, Power grip<br>")
+    assert "channel 1" not in text
+
+
 # -- the outcome of a change -------------------------------------------------------------
 def _result(status: Status, **kw) -> TransactionResult:
     return TransactionResult(status, "config write", **kw)

@@ -492,8 +492,10 @@ def test_checks_name_the_two_hands_apart(live, qtbot):
     _next(w, qtbot, w.scan_page, w.checks_page)
     _ready(w, qtbot, w.checks_page)
     text = _text(w.checks_page)
-    assert "Multi-grip hand with wrist rotator (serial 301), channel 1" in text
-    assert "Multi-grip hand with wrist rotator (serial 302), channel 1" in text
+    # Each channel by its one name (its descriptor), never "channel 1".
+    assert "Multi-grip hand with wrist rotator (serial 301), Power grip" in text
+    assert "Multi-grip hand with wrist rotator (serial 302), Power grip" in text
+    assert ", channel 1" not in text
     findings = [line for line in text.splitlines() if "nothing feeds it" in line]
     assert len(findings) == len(set(findings)) >= 2  # no two findings read alike
 
