@@ -61,7 +61,7 @@ def open_bus_session(url: str, *, memory: str | None = None, settle: float | Non
 
 
 def check_memory_path(path: str) -> None:
-    """``--memory FILE`` must be a readable file, or a new one in an existing folder.
+    """``--memory FILE`` must be a readable memory image, or a new file in an existing folder.
 
     Checked before the bus opens, so a wrong path is bad input (exit 2) instead of an
     arbitrator that cannot read its memory and never settles.
@@ -74,11 +74,11 @@ def check_memory_path(path: str) -> None:
     if memory.is_dir():
         raise BadInput(f"--memory {path}: is a directory, not a memory file")
     if memory.exists():
-        try:
-            with open(memory, "rb"):
-                pass
-        except OSError as err:
-            raise BadInput(f"--memory {path}: cannot read: {err.strerror or err}") from err
+        from pdcp_studio.bus.arbitrator.memory import memory_file_problem
+
+        problem = memory_file_problem(memory)  # a memory image only: never a .pdcfg, garbage
+        if problem is not None:
+            raise BadInput(f"--memory {path}: {problem}")
     elif not memory.parent.is_dir():
         raise BadInput(f"--memory {path}: no folder {memory.parent}")
 
