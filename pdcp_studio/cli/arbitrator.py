@@ -18,6 +18,7 @@ import time
 from typing import Any
 
 from pdcp_studio.cli import options
+from pdcp_studio.model.safe_text import shown
 
 
 def add_subparser(subparsers: argparse._SubParsersAction[argparse.ArgumentParser]) -> None:
@@ -104,7 +105,7 @@ def run(args: argparse.Namespace) -> int:
     def on_event(event: Any) -> None:  # arbitrator threads: only enqueue
         text = describe(event)
         if text is not None:
-            lines.put(text)
+            lines.put(shown(text, newlines=True))  # names from the bus: never raw escapes
 
     from pdcp_studio.bus.arbitrator.claim import LISTEN_S
 

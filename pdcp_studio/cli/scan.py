@@ -14,6 +14,7 @@ import sys
 from typing import TYPE_CHECKING, Any
 
 from pdcp_studio.cli import options
+from pdcp_studio.model.safe_text import shown
 
 if TYPE_CHECKING:
     from pdcp_studio.bus.session.base import BusSession, ProgressFn
@@ -139,5 +140,5 @@ def run(args: argparse.Namespace) -> int:
     if args.json:
         sys.stdout.write(system_file.dumps(system, node_ids=True))
     else:
-        print(format_system(system))
+        print(shown(format_system(system), newlines=True))
     return 0
