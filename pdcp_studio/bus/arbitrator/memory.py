@@ -67,18 +67,20 @@ def _blank(head: bytes) -> bool:
     return not head.strip(b"\0") or not head.strip(b"\xff")
 
 
-def memory_file_problem(path: str | os.PathLike[str], capacity: int = SLOT_CAPACITY
-                        ) -> str | None:
+def memory_file_problem(path: str | os.PathLike[str], capacity: int = SLOT_CAPACITY, *,
+                        content_only: bool = False) -> str | None:
     """Why ``path`` cannot be an arbitrator memory, in words; None when it can.
 
     A new path, an empty file, or slot A's header with the magic (or blank, as an erased or
     never-finished first write leaves it; slot B's magic then) is a memory. Read without
-    waiting: a FIFO or a device is refused by what it is.
+    waiting: a FIFO or a device is refused by what it is. ``content_only``: a path that
+    cannot be read (a folder, a FIFO, no permission) is no problem here — each read then
+    fails and the arbitrator reports its memory unreadable, as when it fails later.
     """
     try:
         mode = os.stat(path).st_mode
         if not stat.S_ISREG(mode):
-            return f"is {kind(mode)}, not a memory file"
+            return None if content_only else f"is {kind(mode)}, not a memory file"
         with open_regular(path) as handle:
             head = handle.read(HEADER_SIZE)
             if not head or head[:4] == MAGIC:
@@ -93,7 +95,7 @@ def memory_file_problem(path: str | os.PathLike[str], capacity: int = SLOT_CAPAC
     except FileNotFoundError:
         return None
     except OSError as err:
-        return f"cannot read: {err.strerror or err}"
+        return None if content_only else f"cannot read: {err.strerror or err}"
     from pdcp_studio.storage import config_codec
 
     try:
@@ -109,7 +111,7 @@ def memory_file_problem(path: str | os.PathLike[str], capacity: int = SLOT_CAPAC
 class _FileBackend:
     def __init__(self, path: Path, capacity: int) -> None:
         self.path = path
-        problem = memory_file_problem(path, capacity)
+        problem = memory_file_problem(path, capacity, content_only=True)
         if problem is not None:
             raise MemoryStoreError(f"memory {path}: {problem}")
         if not path.exists():
