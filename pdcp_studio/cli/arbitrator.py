@@ -17,6 +17,7 @@ import time
 from typing import Any
 
 from pdcp_studio.cli import options
+from pdcp_studio.model.safe_text import shown
 
 
 def add_subparser(subparsers: argparse._SubParsersAction[argparse.ArgumentParser]) -> None:
@@ -138,8 +139,8 @@ def run(args: argparse.Namespace) -> int:
             server = server_cls(arbitrator, args.host_serial)
             where = server.slave_path or args.host_serial
             print(f"host link on {where}", flush=True)
-        print(f"arbitrator on {spec.url}" + (f", memory {args.memory}" if args.memory else ""),
-              flush=True)
+        print(shown(f"arbitrator on {spec.url}"
+                    + (f", memory {args.memory}" if args.memory else "")), flush=True)
         if not arbitrator.read_policy().autoconfigure:
             print("policy: autoconfigure off (start-up and the duty cycle link nothing new)",
                   flush=True)
