@@ -18,6 +18,14 @@ SYSTEM = str(resources_dir() / "systems" / "transradial.json")
 CONFIG = str(resources_dir() / "configs" / "fig410.pdcfg")
 
 
+def _let_go(path) -> None:
+    """Open ``path`` for writing without waiting: a reader blocked on it gets its end."""
+    try:
+        os.close(os.open(path, os.O_WRONLY | os.O_NONBLOCK))
+    except OSError:
+        pass
+
+
 @pytest.fixture
 def fifo(tmp_path):
     """A named pipe (ending in .pdcfg, so ``gui`` reads it as a configuration too); a
@@ -28,10 +36,7 @@ def fifo(tmp_path):
 
     def rescue() -> None:
         while not done.wait(5):
-            try:
-                os.close(os.open(path, os.O_WRONLY | os.O_NONBLOCK))
-            except OSError:
-                pass
+            _let_go(path)
 
     thread = threading.Thread(target=rescue, daemon=True)
     thread.start()
@@ -77,8 +82,13 @@ def test_gui_refuses_a_fifo_before_any_window(capsys, tmp_path, monkeypatch, suf
     monkeypatch.setenv("QT_QPA_PLATFORM", "offscreen")
     path = tmp_path / f"pipe.{suffix}"
     os.mkfifo(path)
+    timer = threading.Timer(10.0, _let_go, (path,))  # a reader that waits fails, not hangs
+    timer.start()
     started = time.monotonic()
-    code = main(["gui", str(path), "--screenshot", str(tmp_path / "shot.png")])
+    try:
+        code = main(["gui", str(path), "--screenshot", str(tmp_path / "shot.png")])
+    finally:
+        timer.cancel()
     assert time.monotonic() - started < 5.0  # the app's imports, never a wait on the pipe
     err = capsys.readouterr().err
     assert code == 2, err
