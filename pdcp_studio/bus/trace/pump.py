@@ -21,9 +21,12 @@ from typing import Any
 from pdcp_studio.bus.trace.decoder import FrameDecoder
 from pdcp_studio.bus.trace.frames import CACHE_SIZE, CHANNEL_DATA, DecodedFrame
 from pdcp_studio.bus.trace.jsonout import (
+    BASE_KIND,
     JsonFrameWriter,
+    channel_json,
     frame_json,
     json_str,
+    kind_json,
     link_json,
     utf8_buffer,
 )
@@ -103,11 +106,12 @@ class TracePump:
         if self.flush_each_chunk:
             self.out.flush()
 
-    def close(self) -> None:
-        """Write the rest; a JSON list is ended (also after a failure: one document)."""
+    def close(self, summary: Any = None) -> None:
+        """Write the rest; a JSON document is ended with ``summary`` (also after a
+        failure: one document)."""
         self.flush()
         if self.json is not None:
-            self.json.close()
+            self.json.close(summary)
 
     # -- the loop ---------------------------------------------------------------------------
 
@@ -143,6 +147,7 @@ class TracePump:
             repeats.clear()
             self._version = decoder.version
         json_cache = self._json_cache
+        channels: dict[Any, str] = {}  # a frame's channel → its JSON
 
         def settle() -> None:
             nonlocal ids, payloads, fast, untracked
@@ -177,7 +182,7 @@ class TracePump:
                     continue
                 head = heads.get(arbitration_id)
                 if head is not None and not (msg.is_extended_id or msg.is_remote_frame
-                                             or msg.is_error_frame):
+                                             or msg.is_error_frame or msg.is_fd):
                     data = msg.data
                     if len(data) <= 8:
                         if recorder is not None:
@@ -213,16 +218,21 @@ class TracePump:
                                 short = fixed.rstrip("0")
                                 if short[-1] == "." or not 1e-4 <= t < 1e9:
                                     short = json_times(t)[1]
+                                channel = msg.channel
+                                cj = channels.get(channel)
+                                if cj is None:
+                                    cj = channels[channel] = channel_json(channel)
                                 append(f'{{"timestamp": {timestamp!r}, "time": {short}{j[0]}'
                                        f'{data.hex()}{j[1]}{upper}{j[2]}{fixed:>11}{j[3]}'
-                                       f'{upper}"}}')
+                                       f'{upper}"{BASE_KIND}{msg.dlc}, "channel": {cj}}}')
                             else:
                                 append(f"{t:11.6f}  {head[2]}{upper}")
                             if len(parts) >= CHUNK:
                                 self._chunk_full()
                         continue
                 key = frame = None
-                if not (msg.is_extended_id or msg.is_remote_frame or msg.is_error_frame):
+                if not (msg.is_extended_id or msg.is_remote_frame or msg.is_error_frame
+                        or msg.is_fd):
                     data = msg.data
                     key = (arbitration_id, bytes(data))
                     rep = repeats.get(key)
@@ -264,8 +274,13 @@ class TracePump:
                                 short = fixed.rstrip("0")
                                 if short[-1] == "." or not 1e-4 <= t < 1e9:
                                     short = json_times(t)[1]
+                                channel = msg.channel
+                                cj = channels.get(channel)
+                                if cj is None:
+                                    cj = channels[channel] = channel_json(channel)
                                 append(f'{{"timestamp": {timestamp!r}, "time": {short}{j[1]}'
-                                       f'{fixed:>11}{j[2]}"}}')
+                                       f'{fixed:>11}{j[2]}"{BASE_KIND}{msg.dlc}, '
+                                       f'"channel": {cj}}}')
                             elif as_bytes:
                                 append(b"%11.6f  %b" % (t, rep[6]))
                             else:
@@ -287,7 +302,7 @@ class TracePump:
                     cached_head = frame.head
                     if not cached_head:
                         if as_json:
-                            self.json.write_to(parts, frame)  # type: ignore[union-attr]
+                            self.json.write_to(parts, frame, msg)  # type: ignore[union-attr]
                         elif as_bytes:
                             append(frame.line.encode())
                         else:
@@ -300,7 +315,7 @@ class TracePump:
                             j = json_cache[id(cached_head)] = self._json_parts(frame)
                         fixed, short = json_times(frame.time)
                         append(f'{{"timestamp": {frame.timestamp!r}, "time": '
-                               f'{short}{j[1]}{fixed:>11}{j[2]}"}}')
+                               f'{short}{j[1]}{fixed:>11}{j[2]}"{kind_json(msg)}}}')
                     elif as_bytes:
                         append(b"%11.6f  %b" % (frame.time, cached_head.encode()))
                     else:

@@ -1,17 +1,144 @@
-"""Replay: a capture decoded frame by frame, as the monitor showed it live."""
+"""Replay: a capture opened for decoding as the monitor showed it live — the CLI's
+``monitor --replay`` and the app's trace read captures through ``CaptureReplay``.
+
+Opening a capture prepares its decoder before the first frame is decoded: the node map
+saved beside it (``nodemap.py``) when there is one, else what its first frames teach
+(``inference.py``: a capture from another tool, or one that starts mid-session); and
+whether it is PDCP's traffic at all (a foreign capture is shown as plain CAN, whatever its
+length). Then the frames come straight from the reader (``reader.py``), which says where
+a damaged capture was cut (``truncated``, ``damage``).
+"""
 
 from __future__ import annotations
 
+import itertools
 from collections.abc import Iterator
 from pathlib import Path
+from typing import Any
 
-from pdcp_studio.bus.trace.capture import read_capture
 from pdcp_studio.bus.trace.decoder import FrameDecoder
 from pdcp_studio.bus.trace.frames import DecodedFrame
 
+#: Frames read ahead to learn the node map and tell a PDCP capture from another bus's.
+PROBE_FRAMES = 2000
+
+
+def is_foreign(head: list[Any], decoder: FrameDecoder) -> bool:
+    """True when ``head`` (a capture's first frames) holds frames and none fits PDCP in
+    context for what ``decoder`` knows (its node map, its inferences)."""
+    if not head:
+        return False
+    probe = FrameDecoder(dict(decoder.links))
+    probe.meter_on = False
+    probe.context_checked = decoder.context_checked
+    probe.load_node_map(decoder.node_map())
+    probe.heard.update(decoder.heard)
+    for msg in head:
+        probe.decode_message(msg)
+    return probe.stats.in_context == 0
+
+
+def prepare(decoder: FrameDecoder, head: list[Any], *, learn: bool = True) -> None:
+    """Ready ``decoder`` for a capture whose first frames are ``head``: learn devices and
+    channels from them (``learn``: the capture has no saved node map), and show it as plain
+    CAN if it is not PDCP's."""
+    if learn:
+        decoder.learn_from_traffic(head)
+    decoder.foreign = is_foreign(head, decoder)
+    if decoder.foreign:
+        decoder.learner = None
+
+
+class CaptureReplay:
+    """A capture opened for decoding (CaptureError if it cannot be read).
+
+    ``frames``: the python-can frames to feed ``decoder`` (or iterate ``decoded()``);
+    ``reader``: its ``CaptureReader`` (``format``, ``truncated``, ``damage`` once read);
+    ``node_map_source``: the saved node map's path, or None (learned from the traffic).
+    """
+
+    def __init__(self, path: str | Path, decoder: FrameDecoder | None = None, *,
+                 plain_frames: bool = True) -> None:
+        from pdcp_studio.bus.trace.capture import CaptureError
+        from pdcp_studio.bus.trace.nodemap import NODE_MAP_SUFFIX, read_node_map
+        from pdcp_studio.bus.trace.reader import CaptureReader
+
+        self.decoder = decoder if decoder is not None else FrameDecoder()
+        self.decoder.context_checked = True  # a capture may hold another bus's frames
+        node_map = read_node_map(path)
+        self.node_map_source: str | None = None
+        if node_map is not None:
+            where = f"{path}{NODE_MAP_SUFFIX}"
+            try:
+                self.decoder.load_node_map(node_map, where)
+            except ValueError as err:
+                raise CaptureError(where, str(err).removeprefix(f"{where}: ")) from err
+            self.node_map_source = where
+        self.reader = CaptureReader(path, plain_frames=plain_frames)
+        rest = iter(self.reader)
+        try:
+            head = list(itertools.islice(rest, PROBE_FRAMES))
+            prepare(self.decoder, head, learn=node_map is None)
+        except BaseException:
+            self.reader.close()
+            raise
+        #: The rest straight from the reader: no generator between it and the caller.
+        self.frames: Iterator[Any] = itertools.chain(head, rest)
+
+    def decoded(self) -> Iterator[DecodedFrame]:
+        decode = self.decoder.decode_message
+        for msg in self.frames:
+            yield decode(msg)
+
+    def node_map_words(self) -> str | None:
+        return node_map_words(self.decoder, self.node_map_source)
+
+    def close(self) -> None:
+        self.reader.close()
+
+    def __enter__(self) -> CaptureReplay:
+        return self
+
+    def __exit__(self, *exc: object) -> None:
+        self.close()
+
 
 def replay(path: str | Path, decoder: FrameDecoder | None = None) -> Iterator[DecodedFrame]:
-    """Decode a capture frame by frame (pass a decoder to read its statistics afterwards)."""
-    decoder = decoder if decoder is not None else FrameDecoder()
-    for msg in read_capture(path, plain_frames=True):
-        yield decoder.decode_message(msg)
+    """Decode a capture frame by frame (pass a decoder to read its statistics afterwards);
+    a capture cut short gives its frames up to the cut, then CaptureError says where."""
+    from pdcp_studio.bus.trace.capture import CaptureError
+
+    with CaptureReplay(path, decoder) as opened:
+        yield from opened.decoded()
+        if opened.reader.damage is not None:
+            raise CaptureError(path, opened.reader.damage.split(": ", 1)[1])
+
+
+def node_map_words(decoder: FrameDecoder, source: str | None) -> str | None:
+    """Where the decoder's node map came from, as the summary says it ("node map: from
+    FILE.nodemap.json" / "from the capture's set-up: …" / "inferred from traffic: …");
+    None for a foreign capture or no frames."""
+    if decoder.foreign or not decoder.stats.frames:
+        return None
+    if source is not None:
+        return f"node map: from {source}"
+    from pdcp_studio.bus.trace.knowledge import INFERRED
+
+    devices = len(decoder.devices)
+    channels = sum(1 for owner in decoder.outputs.values() if owner != INFERRED)
+    learner = decoder.learner
+    if learner is not None and (learner.channels or learner.devices):
+        also = (f" (and from the capture's set-up: {_count(devices, 'device')}, "
+                f"{_count(channels, 'channel')})" if devices or channels else "")
+        return f"node map: inferred from traffic: {learner.summary()}{also}"
+    if devices or channels:
+        return (f"node map: from the capture's set-up: {_count(devices, 'device')}, "
+                f"{_count(channels, 'channel')}")
+    if decoder.links:
+        return "node map: from the system file"
+    return "node map: none (no set-up in the capture, nothing to infer from)"
+
+
+def _count(n: int, word: str) -> str:
+    return f"{n} {word}{'' if n == 1 else 's'}"
+
