@@ -5,8 +5,8 @@ A set-up teaches the node map exactly (bind answers, Channel Node Id and Source'
 writes: ``knowledge.py``). Without one, the traffic still tells devices from output
 channels (reference §1: one node-ID pool for both):
 
-- a **device** beacons (``0A`` from mode 0), asks to bind (``01`` at priority 3), or is
-  addressed by the arbitrator (mode 1 frames carry the target device's node ID);
+- a **device** beacons (``0A`` from mode 0) or asks to bind (``01`` at priority 3); a node
+  the arbitrator addresses (mode 1 frames carry the target device's node ID) is no channel;
 - an **output channel** sends mode-0 frames, repeatedly, that are none of those, and is
   never addressed: channel data (no function code).
 
@@ -99,11 +99,12 @@ class TrafficLearner:
 
     @property
     def devices(self) -> set[int]:
-        """Node IDs taken for devices."""
+        """Node IDs taken for devices: those that beacon or asked to bind. (A node the
+        arbitrator addresses is no channel, but a stray frame of another bus can look
+        like an address: that alone does not make a device.)"""
         if not self.evidence:
             return set()
-        channels = self.channels
-        return (set(self.beacons) | self.bound | self.addressed) - channels
+        return (set(self.beacons) | self.bound) - self.channels
 
     def summary(self) -> str:
         """"4 devices, 6 channels" (what the evidence line of a summary says)."""

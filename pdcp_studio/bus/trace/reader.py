@@ -22,6 +22,7 @@ python-can is imported inside the functions only.
 from __future__ import annotations
 
 import os
+import re
 import stat
 from collections.abc import Callable, Iterator
 from pathlib import Path
@@ -263,8 +264,8 @@ class CaptureReader:
                 stream = _Stream(head, inner)
             fmt = sniff(head)
             if fmt is None:
-                raise CaptureError(self.path, "not a capture in a format PDCP Studio reads "
-                                   "(" + ", ".join(v for k, v in FORMATS.items()
+                raise CaptureError(self.path, "not a readable capture: its content is in "
+                                   "none of the formats PDCP Studio reads (" + ", ".join(v for k, v in FORMATS.items()
                                                    if k != "empty") + ")")
             self.format = fmt
             self._stream = stream
@@ -403,7 +404,8 @@ class CaptureReader:
         except _Damage as err:
             self._damaged(err)
         except (can.io.blf.BLFParseError, struct.error, zlib.error, ValueError) as err:
-            self._damaged(_Damage(stream.offset, str(err) or type(err).__name__))
+            reason = re.sub(r" \(before byte \d+\)$", "", str(err)) or type(err).__name__
+            self._damaged(_Damage(stream.offset, f"damaged ({reason})"))
 
     def _damaged(self, err: _Damage) -> None:
         where = f"line {err.where}" if err.line else f"offset {err.where}"
