@@ -407,12 +407,14 @@ class FrameDecoder:
         if self.learner is None:
             self.learner = TrafficLearner()
         self.learner.observe_all(head)
+        self.learner.settle()
         self.adopt()
         return self.learner
 
     def adopt(self) -> None:
         """Take what the learner infers now: its channels as outputs known only by node ID
-        (a channel set up, bound or named by the caller wins), its devices as heard."""
+        (a channel set up, bound or named by the caller wins), the devices that announced
+        themselves (beacon, bind request) as heard."""
         learner = self.learner
         if learner is None:
             return

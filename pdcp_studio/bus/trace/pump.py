@@ -19,7 +19,7 @@ from collections.abc import Callable, Iterable
 from typing import Any
 
 from pdcp_studio.bus.trace.decoder import FrameDecoder
-from pdcp_studio.bus.trace.frames import CACHE_SIZE, CHANNEL_DATA, DecodedFrame
+from pdcp_studio.bus.trace.frames import CACHE_SIZE, CHANNEL_DATA, NOT_PDCP, DecodedFrame
 from pdcp_studio.bus.trace.jsonout import (
     BASE_KIND,
     JsonFrameWriter,
@@ -149,11 +149,17 @@ class TracePump:
         json_cache = self._json_cache
         channels: dict[Any, str] = {}  # a frame's channel → its JSON
 
+        # The frames of a known identifier counted here: channel data of a PDCP capture, or
+        # every classical data frame of a foreign one (shown as plain CAN).
+        foreign = decoder.foreign
+        fast_function = NOT_PDCP if foreign else _CHANNEL_DATA
+
         def settle() -> None:
             nonlocal ids, payloads, fast, untracked
             stats.frames += fast
-            stats.by_function[_CHANNEL_DATA] += fast
-            stats.in_context += fast
+            stats.by_function[fast_function] += fast
+            if not foreign:
+                stats.in_context += fast
             stats.other_ids += untracked
             if meter_on and ids:
                 meter = stats.meter
@@ -329,6 +335,8 @@ class TracePump:
                     t0 = decoder.t0 or 0.0
                 elif frame.direction == CHANNEL_DATA and frame.message is None:
                     heads[arbitration_id] = self._head(frame, shown)
+                elif foreign and key is not None and len(key[1]) <= 8:
+                    heads[arbitration_id] = self._plain_head(frame, shown)
                 elif key is not None and frame.head and frame.message is not None:
                     again = decoder.repeatable(*key)
                     if again is frame.message:
@@ -352,6 +360,23 @@ class TracePump:
         end = record.rindex('"text": "') + len('"text": "')
         assert record[end:end + len(time_text)] == time_text
         return frame.head, record[start:end], record[end + len(time_text):-2]
+
+    def _plain_head(self, frame: DecodedFrame, shown: bool) -> tuple[Any, ...]:
+        """What every frame of ``frame``'s identifier shares in a foreign capture (plain
+        CAN: ``_head``'s parts for a line ``P?  0x123 not PDCP  [123] <data>``)."""
+        arbitration_id = frame.arbitration_id
+        head = f"P?  0x{arbitration_id:03X} {NOT_PDCP}  [{arbitration_id:03X}] "
+        if not frame.text_head.startswith(head):  # pragma: no cover - the decoder's _raw
+            raise RuntimeError(f"unexpected plain line {frame.text_head!r}")
+        entry = self.decoder.stats.by_id.get(arbitration_id)
+        parts = None
+        if self.json is not None:
+            parts = (f', "arbitration_id": {arbitration_id}, "data": "',
+                     f'", "direction": "", "priority": null, "node_id": null, "function": '
+                     f'{json_str(NOT_PDCP)}, "fields": "[{arbitration_id:03X}] ',
+                     '", "response": null, "error": null, "link": null, "text": "',
+                     json_str("  " + head)[1:-1])
+        return entry, shown, head, parts, head.encode()
 
     def _head(self, frame: DecodedFrame, shown: bool) -> tuple[Any, ...]:
         """What every channel data frame of ``frame``'s identifier shares."""

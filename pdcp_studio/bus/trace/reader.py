@@ -21,6 +21,7 @@ python-can is imported inside the functions only.
 
 from __future__ import annotations
 
+import itertools
 import os
 import re
 import stat
@@ -269,7 +270,12 @@ class CaptureReader:
                                                    if k != "empty") + ")")
             self.format = fmt
             self._stream = stream
-            self._iter = self._frames(stream) if fmt != "empty" else iter(())
+            if fmt == "empty":
+                self._iter: Iterator[Any] = iter(())
+            elif fmt == "blf":  # a container's frames at a time, flattened in C
+                self._iter = itertools.chain.from_iterable(self._blf(stream))
+            else:
+                self._iter = self._frames(stream)
         except BaseException:
             raw.close()
             raise
@@ -331,9 +337,6 @@ class CaptureReader:
     # -- reading ----------------------------------------------------------------------------
 
     def _frames(self, stream: _Stream) -> Iterator[Any]:
-        if self.format == "blf":
-            yield from self._blf(stream)
-            return
         reader, lines = self._python_can_reader(stream)
         self._closers.append(reader.stop)
         try:
@@ -368,7 +371,8 @@ class CaptureReader:
                                       f"{FORMATS[self.format]} reader can read "
                                       f"({type(err).__name__}: {err})", line=True))
 
-    def _blf(self, stream: _Stream) -> Iterator[Any]:
+    def _blf(self, stream: _Stream) -> Iterator[list[Any]]:
+        """The frames of a BLF capture, a list per container."""
         import struct
         import zlib
 
@@ -385,15 +389,17 @@ class CaptureReader:
         self._closers.append(reader.stop)
         stream.strict = True
         try:
-            if COMPATIBLE and self._plain:
+            if COMPATIBLE:
                 for batch in reader.batches():
                     self.frames += len(batch)
-                    yield from batch
+                    if not self._plain:
+                        batch = [m.to_message() if hasattr(m, "to_message") else m
+                                 for m in batch]
+                    yield batch
             else:
                 for msg in reader:
-                    msg = msg.to_message() if hasattr(msg, "to_message") else msg
                     self.frames += 1
-                    yield msg
+                    yield [msg]
             tail = getattr(reader, "_tail", b"")
             if len(tail) >= 16:
                 raise _Damage(stream.offset, "the file ends inside an object (cut short)")

@@ -124,20 +124,22 @@ def node_map_words(decoder: FrameDecoder, source: str | None) -> str | None:
         return f"node map: from {source}"
     from pdcp_studio.bus.trace.knowledge import INFERRED
 
-    devices = len(decoder.devices)
-    channels = sum(1 for owner in decoder.outputs.values() if owner != INFERRED)
+    inferred = sum(1 for owner in decoder.outputs.values() if owner == INFERRED)
+    set_up = len(decoder.outputs) - inferred
     learner = decoder.learner
-    if learner is not None and (learner.channels or learner.devices):
-        also = (f" (and from the capture's set-up: {_count(devices, 'device')}, "
-                f"{_count(channels, 'channel')})" if devices or channels else "")
-        return f"node map: inferred from traffic: {learner.summary()}{also}"
-    if devices or channels:
-        return (f"node map: from the capture's set-up: {_count(devices, 'device')}, "
-                f"{_count(channels, 'channel')}")
+    if inferred and learner is not None:
+        devices = len(learner.devices | set(decoder.devices))
+        also = (f" ({_count(len(decoder.devices), 'device')} and "
+                f"{_count(set_up, 'channel')} from the capture's set-up)"
+                if decoder.devices or set_up else "")
+        return (f"node map: inferred from traffic: {_count(devices, 'device')}, "
+                f"{_count(inferred + set_up, 'channel')}{also}")
+    if decoder.devices or set_up:
+        return (f"node map: from the capture's set-up: "
+                f"{_count(len(decoder.devices), 'device')}, {_count(set_up, 'channel')}")
     if decoder.links:
         return "node map: from the system file"
     return "node map: none (no set-up in the capture, nothing to infer from)"
-
 
 def _count(n: int, word: str) -> str:
     return f"{n} {word}{'' if n == 1 else 's'}"
