@@ -336,13 +336,15 @@ class FrameDecoder:
         return node in self.devices or node in self.heard
 
     def _raw(self, arbitration_id: int, data: bytes, timestamp: float,
-             text: str | None = None) -> DecodedFrame:
+             text: str | None = None, who: str = "") -> DecodedFrame:
         """A frame of a bus that is not PDCP's: shown as it is (plain CAN: identifier,
-        kind, data), counted, not an error."""
+        kind, data), counted, not an error. ``who``: the sender column of an extended or
+        error frame (a standard identifier's is the default)."""
         self.stats.by_function[NOT_PDCP] += 1
+        fields = text or f"[{arbitration_id:03X}] {data.hex(' ').upper() or '(empty)'}"
         return DecodedFrame(timestamp, timestamp - (self._t0 or 0.0), arbitration_id, data,
-                            "", None, None, NOT_PDCP,
-                            text or f"[{arbitration_id:03X}] {data.hex(' ').upper() or '(empty)'}")
+                            "", None, None, NOT_PDCP, fields,
+                            head=f"P?  {who} {NOT_PDCP}  {fields}" if who else "")
 
     def _unattributed(self, base: dict[str, Any]) -> DecodedFrame:
         """A passive monitor's frame from a node it has not learned: likely channel data."""
@@ -362,8 +364,11 @@ class FrameDecoder:
                                timestamp, data)
         text = plain_can_text(arbitration_id, data, extended=extended, remote=remote,
                               error=error, fd=fd, dlc=dlc)
+        # The sender column: an error frame has no identifier, an extended one 8 digits.
+        who = ("error" if error else f"0x{arbitration_id:08X}" if extended
+               or not 0 <= arbitration_id <= 0x7FF else "")
         if self.foreign:
-            return self._raw(arbitration_id, data, timestamp, text)
+            return self._raw(arbitration_id, data, timestamp, text, who)
         reason = ("error frame" if error else
                   "extended 29-bit identifier (PDCP uses 11-bit base frames)" if extended
                   else "remote frame (PDCP sends none)" if remote
@@ -374,7 +379,11 @@ class FrameDecoder:
         if not (extended or error) and 0 <= arbitration_id <= 0x7FF \
                 and arbitration_id & 0xFF <= 254:
             base.update(priority=arbitration_id >> 9, node_id=arbitration_id & 0xFF)
-        return self._undecodable(base, reason, text)
+        frame = self._undecodable(base, reason, "" if error else text)
+        if who:
+            frame = frame._replace(head=f"P?  {who} {frame.function}"
+                                   + (f"  {frame.fields}" if frame.fields else ""))
+        return frame
 
     def _channel_data(self, arbitration_id: int, node: int, data: bytes,
                       timestamp: float) -> DecodedFrame:

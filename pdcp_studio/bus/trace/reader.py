@@ -91,6 +91,7 @@ class _Stream:
         self._head, self._raw, self.limit = head, raw, limit
         self.offset = 0  # bytes handed out
         self.strict = False
+        self._cut = False  # the gzip stream ended early while its head was read
 
     def read(self, n: int = -1) -> bytes:
         if n is None or n < 0:
@@ -102,14 +103,25 @@ class _Stream:
         if head:
             part, self._head = head[:n], head[n:]
             if len(part) < n:
-                part += self._raw.read(n - len(part))
+                try:
+                    part += self._read_raw(n - len(part))
+                except _Damage:
+                    self._cut = True  # what was read first comes now, the cut next
         else:
-            part = self._raw.read(n)
+            part = self._read_raw(n)
         if self.strict and 0 < len(part) < n and n >= 4:
             raise _Damage(self.offset + len(part), f"the file ends inside an object of "
                           f"{n:,} bytes (cut short)")
         self.offset += len(part)
         return part
+
+    def _read_raw(self, n: int) -> bytes:
+        if self._cut:
+            raise _Damage(self.offset, "the gzip stream ends early (cut short)")
+        try:
+            return bytes(self._raw.read(n))
+        except EOFError:
+            raise _Damage(self.offset, "the gzip stream ends early (cut short)") from None
 
     def tell(self) -> int:
         return self.offset
@@ -167,24 +179,24 @@ class _Lines:
             block = rest + chunk
             cut = block.rfind(b"\n") + 1
             rest = block[cut:]
-            if len(rest) > MAX_LINE:
-                raise _Damage(number + block.count(b"\n", 0, cut) + 1,
-                              f"a line longer than {MAX_LINE:,} bytes (no capture has one)",
-                              line=True)
-            if not cut:
-                continue
-            raw_lines = block[:cut - 1].split(b"\n")
-            if max(map(len, raw_lines)) > MAX_LINE:
+            raw_lines = block[:cut - 1].split(b"\n") if cut else []
+            long = None
+            if raw_lines and max(map(len, raw_lines)) > MAX_LINE:
                 long = next(k for k, x in enumerate(raw_lines) if len(x) > MAX_LINE)
-                raise _Damage(number + long + 1, f"a line longer than {MAX_LINE:,} bytes "
-                              "(no capture has one)", line=True)
-            lines = _decode(block[:cut - 1]).split("\n")
-            if first and self._fix is not None:
-                lines = [self._fix(x) for x in lines]
-            first = False
-            for self.line, text in enumerate(lines, number + 1):
-                yield text + "\n"
-            number += len(lines)
+                raw_lines = raw_lines[:long]
+            elif len(rest) > MAX_LINE:
+                long = len(raw_lines)
+            if raw_lines:
+                lines = _decode(b"\n".join(raw_lines)).split("\n")
+                if first and self._fix is not None:
+                    lines = [self._fix(x) for x in lines]
+                first = False
+                for self.line, text in enumerate(lines, number + 1):
+                    yield text + "\n"
+                number += len(lines)
+            if long is not None:  # the lines before it were read
+                raise _Damage(number + 1, f"a line longer than {MAX_LINE:,} bytes (no "
+                              "capture has one)", line=True)
         if rest:
             self.ended_mid_line = True
             self.line = number + 1
@@ -260,7 +272,7 @@ class CaptureReader:
                 inner = gzip.GzipFile(fileobj=fileobj)
                 try:
                     head = _read_head(inner)
-                except (OSError, EOFError) as err:
+                except OSError as err:
                     raise CaptureError(self.path, f"not a readable gzip file ({err})") from None
                 stream = _Stream(head, inner)
             fmt = sniff(head)
@@ -357,6 +369,8 @@ class CaptureReader:
                 raise _Damage(lines.line, "the file ends in the middle of a line (cut short?)",
                               line=True)
         except _Damage as err:
+            if not err.line and lines is not None:  # a gzip stream cut inside a line
+                err = _Damage(lines.line + 1, err.reason, line=True)
             self._damaged(err)
         except (EOFError, OSError) as err:  # a gzip stream cut short
             self._damaged(_Damage(lines.line if lines else 0, str(err), line=lines is not None))
@@ -452,13 +466,23 @@ class CaptureReader:
 
 
 def _read_head(raw: Any) -> bytes:
-    """Up to ``SNIFF_BYTES`` from the start (a pipe may hand them over in pieces)."""
+    """Up to ``SNIFF_BYTES`` from the start (a pipe may hand them over in pieces; a gzip
+    stream cut short gives what it holds, its next read says it was cut)."""
     parts: list[bytes] = []
     size = 0
     while size < SNIFF_BYTES:
-        part = raw.read(SNIFF_BYTES - size)
+        try:
+            part = raw.read(min(SNIFF_BYTES - size, 4096))
+        except EOFError:
+            raw.read = _cut_short
+            break
         if not part:
             break
         parts.append(part)
         size += len(part)
     return b"".join(parts)
+
+
+def _cut_short(n: int = -1) -> bytes:
+    """A gzip stream's ``read`` once it was found cut short."""
+    raise EOFError("Compressed file ended before the end-of-stream marker was reached")
