@@ -52,7 +52,7 @@ def test_the_capture_s_set_up_and_the_saved_node_map_are_named(tmp_path):
     shutil.copy(SIM, copy)
     first, _ = replayed(copy)
     (tmp_path / "sim.asc.nodemap.json").write_text(json.dumps(first.decoder.node_map()))
-    again, frames = replayed(copy)
+    again, _ = replayed(copy)
     assert again.node_map_words() == f"node map: from {copy}.nodemap.json"
     assert again.decoder.stats.undecodable == 0  # the inferred channels were saved (owner 0)
     assert sum(owner == INFERRED for owner in again.decoder.outputs.values()) == 5

@@ -84,7 +84,8 @@ def test_error_remote_and_extended_frames_in_a_pdcp_capture(tmp_path, capsys):
            " 3.300000 1  205             Rx   r 2"]
     text = path.read_text().replace("End TriggerBlock", "\n".join(odd) + "\nEnd TriggerBlock")
     path.write_text(text)
-    code, out, err = replay(capsys, path, "--json")
+    code, out, _ = replay(capsys, path, "--json")
+    assert code == 0
     frames = json.loads(out)["frames"]
     by_kind = {k: [f for f in frames if f[k] and (k == "is_error_frame"
                                                   or not f["is_error_frame"])]
@@ -125,6 +126,7 @@ def test_bus_load_never_above_what_the_bit_rate_allows(tmp_path, capsys):
     path.write_text("".join(f"(1700000000.{k:06d}) can0 123#0102030405060708\n"
                             for k in range(200)))  # 200 frames in 200 µs
     code, out, err = replay(capsys, path, "--json")
+    assert code == 0
     assert json.loads(out)["summary"]["bus_load"] is None
     assert "denser than the bit rate allows" in err and "%)" not in err.split("\n")[1]
 
@@ -135,7 +137,8 @@ def test_bus_load_from_the_real_span_of_every_frame(tmp_path, capsys):
     path.write_text("(1700000000.000000) can0 1ABCDEF0#01\n"
                     "(1700000000.000500) can0 123#0102\n"
                     "(1700000001.000000) can0 1ABCDEF0#01\n")
-    code, out, err = replay(capsys, path, "--json")
+    code, out, _ = replay(capsys, path, "--json")
+    assert code == 0
     summary = json.loads(out)["summary"]
     assert summary["span_s"] == pytest.approx(1.0) and summary["bus_load"] < 0.001
 

@@ -277,9 +277,9 @@ class CaptureReader:
                 stream = _Stream(head, inner)
             fmt = sniff(head)
             if fmt is None:
+                known = ", ".join(v for k, v in FORMATS.items() if k != "empty")
                 raise CaptureError(self.path, "not a readable capture: its content is in "
-                                   "none of the formats PDCP Studio reads (" + ", ".join(v for k, v in FORMATS.items()
-                                                   if k != "empty") + ")")
+                                   f"none of the formats PDCP Studio reads ({known})")
             self.format = fmt
             self._stream = stream
             if fmt == "empty":
