@@ -311,6 +311,8 @@ def run(args: argparse.Namespace) -> int:
             raise BadInput(str(err)) from err
         if spec.kind == "can":
             decoder.passive = True  # it joins a running bus and learns from what it hears
+            if not args.system:  # and infers devices and channels it never saw set up
+                decoder.learn_from_traffic()
             frames = _can_frames(spec, stop)
         else:
             frames = _session_frames(args.bus, stop, decoder)
@@ -324,7 +326,10 @@ def run(args: argparse.Namespace) -> int:
 
     counted = ChannelDataCounts()
     reader: Any = None
-    map_source: str | None = None
+    # Where the node map comes from, when not from the capture itself: the system file
+    # given, or a session's own system (sim:, serial:).
+    map_source: str | None = args.system or (
+        None if args.replay or args.bus.startswith("can:") else f"the session on {args.bus}")
     pump: TracePump | None = None
     cut_short = False  # Ctrl-C before --seconds had passed
     try:
@@ -333,7 +338,7 @@ def run(args: argparse.Namespace) -> int:
                 opened = _replay_frames(args.replay, decoder)
                 stack.callback(opened.close)
                 frames, reader = opened.frames, opened.reader
-                map_source = opened.node_map_source
+                map_source = opened.node_map_source or map_source
             else:
                 stack.enter_context(closing(frames))  # type: ignore[type-var]  # shuts a bus
             recorder = stack.enter_context(Recorder(

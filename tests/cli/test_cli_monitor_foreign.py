@@ -152,3 +152,27 @@ def test_conversion_says_which_frames_it_could_not_write(tmp_path, capsys):
     assert len(list(can.LogReader(str(out)))) == 120
     code, _, err = replay(capsys, DATA / "vector-car.blf", "--log", str(tmp_path / "y.asc"))
     assert code == 0 and "not written" not in err
+
+
+def test_listening_to_a_running_bus_infers_its_channels(capsys):
+    """Listen-only on a bus another arbitrator runs (no set-up seen): after beacons and a
+    channel's first 16 frames, its data reads as channel data, not as errors."""
+    import threading
+    import uuid
+
+    from tests.cli.test_cli_monitor_captures import _play
+
+    channel = f"listen-{uuid.uuid4().hex}"
+    frames = [(0x001, b"\x0a"), (0x002, b"\x0a")]
+    frames += [(0x206, bytes([t, 1])) for t in range(40)]
+    sender = threading.Thread(target=_play, args=(channel, frames, 400.0, 1))
+    sender.start()
+    try:
+        assert main(["monitor", "--bus", f"can:virtual:{channel}", "--seconds", "1.5"]) == 0
+    finally:
+        sender.join()
+    out, err = capsys.readouterr()
+    lines = out.splitlines()
+    assert len(lines) == len(frames) and "0 errors" in err
+    assert all("Channel data  channel node 6 →" in line for line in lines[-24:])
+    assert "node map: inferred from traffic: 2 devices, 1 channel" in err

@@ -138,7 +138,7 @@ def node_map_words(decoder: FrameDecoder, source: str | None) -> str | None:
         return (f"node map: from the capture's set-up: "
                 f"{_count(len(decoder.devices), 'device')}, {_count(set_up, 'channel')}")
     if decoder.links:
-        return "node map: from the system file"
+        return "node map: from the links given"
     return "node map: none (no set-up in the capture, nothing to infer from)"
 
 def _count(n: int, word: str) -> str:
