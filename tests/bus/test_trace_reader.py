@@ -245,3 +245,25 @@ def test_a_missing_file_and_a_folder(tmp_path):
         CaptureReader(tmp_path / "nothing.asc")
     with pytest.raises(CaptureError, match="is a folder"):
         CaptureReader(tmp_path)
+
+
+def test_a_blf_container_that_inflates_beyond_reason_is_refused(tmp_path):
+    """python-can would inflate it whole (a zip bomb's gigabytes); the reader stops."""
+    import struct
+    import zlib
+
+    from pdcp_studio.bus.trace.blf import MAX_CONTAINER
+
+    small = tmp_path / "small.blf"
+    with can.BLFWriter(str(small)) as writer:
+        writer.on_message_received(can.Message(arbitration_id=1, data=b"\x0a",
+                                               is_extended_id=False))
+    raw = small.read_bytes()
+    header = raw[:struct.unpack_from("<L", raw, 4)[0]]
+    payload = zlib.compress(bytes(MAX_CONTAINER + 1000), 9)
+    body = struct.pack("<4sHHLL", b"LOBJ", 16, 1, 16 + 16 + len(payload), 10)
+    body += struct.pack("<H6xL4x", 2, MAX_CONTAINER + 1000) + payload
+    path = tmp_path / "bomb.blf"
+    path.write_bytes(header + body + bytes(-len(body) % 4))
+    with pytest.raises(CaptureError, match="inflating to more than"):
+        read(path, plain_frames=True)
