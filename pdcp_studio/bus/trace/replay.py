@@ -25,7 +25,12 @@ PROBE_FRAMES = 2000
 
 def is_foreign(head: list[Any], decoder: FrameDecoder) -> bool:
     """True when ``head`` (a capture's first frames) holds frames and none fits PDCP in
-    context for what ``decoder`` knows (its node map, its inferences)."""
+    context for what ``decoder`` knows (its node map, its inferences). A short capture
+    (under ``NOT_PDCP_MIN_FRAMES``) has few chances to show context: there one frame shown
+    as a PDCP message (a device's beacon, a bind request) is enough."""
+    from pdcp_studio.bus.trace.frames import UNATTRIBUTED
+    from pdcp_studio.bus.trace.stats import NOT_PDCP_MIN_FRAMES
+
     if not head:
         return False
     probe = FrameDecoder(dict(decoder.links))
@@ -35,7 +40,11 @@ def is_foreign(head: list[Any], decoder: FrameDecoder) -> bool:
     probe.heard.update(decoder.heard)
     for msg in head:
         probe.decode_message(msg)
-    return probe.stats.in_context == 0
+    stats = probe.stats
+    if stats.in_context:
+        return False
+    shown_as_pdcp = stats.frames - stats.undecodable - stats.by_function[UNATTRIBUTED]
+    return len(head) >= NOT_PDCP_MIN_FRAMES or shown_as_pdcp == 0
 
 
 def prepare(decoder: FrameDecoder, head: list[Any], *, learn: bool = True) -> None:
