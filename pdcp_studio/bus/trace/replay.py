@@ -56,6 +56,14 @@ def prepare(decoder: FrameDecoder, head: list[Any], *, learn: bool = True) -> No
     decoder.foreign = is_foreign(head, decoder)
     if decoder.foreign:
         decoder.learner = None
+    elif learn:
+        from pdcp_studio.bus.trace.knowledge import INFERRED
+
+        inferred = any(owner == INFERRED for owner in decoder.outputs.values())
+        if not inferred and len(decoder.outputs):
+            # The capture's set-up explains its channels: a late node is more likely a
+            # stray frame than a channel set up unseen — nothing more is inferred.
+            decoder.learner = None
 
 
 class CaptureReplay:
