@@ -478,9 +478,10 @@ def replay_kind(kind: str, count: int, args: argparse.Namespace, cache: Path) ->
                     match = re.search(r"\((\d+) undecodable", err)
                     bad = int(match.group(1)) if match else n
                     beyond = max(0, bad - garbage)
-                    print(f"    {bad:,} undecodable, {garbage:,} of them made garbage on "
-                          f"purpose: {beyond:,} more = {100 * beyond / n:.2f} % of the "
-                          f"frames (target ≤ 1 %) — {'ok' if beyond <= n / 100 else 'MISSES'}")
+                    print(f"    {bad:,} undecodable; the traffic holds {garbage:,} frames of "
+                          f"garbage made on purpose; undecodable beyond them: {beyond:,} = "
+                          f"{100 * beyond / n:.2f} % of the frames (target ≤ 1 %) — "
+                          f"{'ok' if beyond <= n / 100 else 'MISSES TARGET'}")
                 if kind == "foreign" and "verdict: not-pdcp" not in err:
                     raise SystemExit(f"[{tag}] a car's bus not called not-pdcp: {err[:500]}")
             if exact_checked:
