@@ -27,6 +27,12 @@ def channel_json(channel: Any) -> str:
     return json_str(str(channel))
 
 
+def base_kind(dlc: int, channel: Any) -> str:
+    """The end of a classical base data frame's record: the text's closing quote, its kind
+    fields, the record's closing brace (what ``kind_json`` adds, for such a frame)."""
+    return f'"{BASE_KIND}{int(dlc)}, "channel": {channel_json(channel)}}}'
+
+
 def kind_json(msg: Any) -> str:
     """python-can's frame-kind fields of ``msg``, as the end of a JSON record ("" when
     there is no message)."""

@@ -21,9 +21,8 @@ from typing import Any
 from pdcp_studio.bus.trace.decoder import FrameDecoder
 from pdcp_studio.bus.trace.frames import CACHE_SIZE, CHANNEL_DATA, NOT_PDCP, DecodedFrame
 from pdcp_studio.bus.trace.jsonout import (
-    BASE_KIND,
     JsonFrameWriter,
-    channel_json,
+    base_kind,
     frame_json,
     json_str,
     kind_json,
@@ -147,7 +146,8 @@ class TracePump:
             repeats.clear()
             self._version = decoder.version
         json_cache = self._json_cache
-        channels: dict[Any, str] = {}  # a frame's channel → its JSON
+        # (DLC, channel) → the end of a classical data frame's JSON record (its kind fields)
+        kinds: dict[tuple[int, Any], str] = {}
 
         # The frames of a known identifier counted here: channel data of a PDCP capture, or
         # every classical data frame of a foreign one (shown as plain CAN).
@@ -224,13 +224,13 @@ class TracePump:
                                 short = fixed.rstrip("0")
                                 if short[-1] == "." or not 1e-4 <= t < 1e9:
                                     short = json_times(t)[1]
-                                channel = msg.channel
-                                cj = channels.get(channel)
-                                if cj is None:
-                                    cj = channels[channel] = channel_json(channel)
+                                kind_key = (msg.dlc, msg.channel)
+                                kind = kinds.get(kind_key)
+                                if kind is None:
+                                    kind = kinds[kind_key] = base_kind(*kind_key)
                                 append(f'{{"timestamp": {timestamp!r}, "time": {short}{j[0]}'
                                        f'{data.hex()}{j[1]}{upper}{j[2]}{fixed:>11}{j[3]}'
-                                       f'{upper}"{BASE_KIND}{msg.dlc}, "channel": {cj}}}')
+                                       f'{upper}{kind}')
                             else:
                                 append(f"{t:11.6f}  {head[2]}{upper}")
                             if len(parts) >= CHUNK:
@@ -280,13 +280,12 @@ class TracePump:
                                 short = fixed.rstrip("0")
                                 if short[-1] == "." or not 1e-4 <= t < 1e9:
                                     short = json_times(t)[1]
-                                channel = msg.channel
-                                cj = channels.get(channel)
-                                if cj is None:
-                                    cj = channels[channel] = channel_json(channel)
+                                kind_key = (msg.dlc, msg.channel)
+                                kind = kinds.get(kind_key)
+                                if kind is None:
+                                    kind = kinds[kind_key] = base_kind(*kind_key)
                                 append(f'{{"timestamp": {timestamp!r}, "time": {short}{j[1]}'
-                                       f'{fixed:>11}{j[2]}"{BASE_KIND}{msg.dlc}, '
-                                       f'"channel": {cj}}}')
+                                       f'{fixed:>11}{j[2]}{kind}')
                             elif as_bytes:
                                 append(b"%11.6f  %b" % (t, rep[6]))
                             else:
@@ -306,7 +305,9 @@ class TracePump:
                 shown = show is None or show(frame)
                 if shown:
                     cached_head = frame.head
-                    if not cached_head:
+                    # A line composed for one frame only (a foreign capture's extended or
+                    # error frame) is not worth caching the JSON record of.
+                    if not cached_head or (as_json and foreign):
                         if as_json:
                             self.json.write_to(parts, frame, msg)  # type: ignore[union-attr]
                         elif as_bytes:
