@@ -23,16 +23,8 @@ from pdcp_studio.bus.trace.frames import DecodedFrame
 PROBE_FRAMES = 2000
 
 
-def is_foreign(head: list[Any], decoder: FrameDecoder) -> bool:
-    """True when ``head`` (a capture's first frames) holds frames and none fits PDCP in
-    context for what ``decoder`` knows (its node map, its inferences). A short capture
-    (under ``NOT_PDCP_MIN_FRAMES``) has few chances to show context: there one frame shown
-    as a PDCP message (a device's beacon, a bind request) is enough."""
-    from pdcp_studio.bus.trace.frames import UNATTRIBUTED
-    from pdcp_studio.bus.trace.stats import NOT_PDCP_MIN_FRAMES
-
-    if not head:
-        return False
+def _probe(head: list[Any], decoder: FrameDecoder) -> FrameDecoder:
+    """A copy of what ``decoder`` knows, having decoded ``head``."""
     probe = FrameDecoder(dict(decoder.links))
     probe.meter_on = False
     probe.context_checked = decoder.context_checked
@@ -40,30 +32,49 @@ def is_foreign(head: list[Any], decoder: FrameDecoder) -> bool:
     probe.heard.update(decoder.heard)
     for msg in head:
         probe.decode_message(msg)
+    return probe
+
+
+def _foreign(probe: FrameDecoder, count: int) -> bool:
+    from pdcp_studio.bus.trace.frames import UNATTRIBUTED
+    from pdcp_studio.bus.trace.stats import NOT_PDCP_MIN_FRAMES
+
     stats = probe.stats
-    if stats.in_context:
+    if not count or stats.in_context:
         return False
     shown_as_pdcp = stats.frames - stats.undecodable - stats.by_function[UNATTRIBUTED]
-    return len(head) >= NOT_PDCP_MIN_FRAMES or shown_as_pdcp == 0
+    return count >= NOT_PDCP_MIN_FRAMES or shown_as_pdcp == 0
+
+
+def is_foreign(head: list[Any], decoder: FrameDecoder) -> bool:
+    """True when ``head`` (a capture's first frames) holds frames and none fits PDCP in
+    context for what ``decoder`` knows (its node map, its inferences). A short capture
+    (under ``NOT_PDCP_MIN_FRAMES``) has few chances to show context: there one frame shown
+    as a PDCP message (a device's beacon, a bind request) is enough."""
+    return bool(head) and _foreign(_probe(head, decoder), len(head))
 
 
 def prepare(decoder: FrameDecoder, head: list[Any], *, learn: bool = True) -> None:
     """Ready ``decoder`` for a capture whose first frames are ``head``: learn devices and
     channels from them (``learn``: the capture has no saved node map), and show it as plain
     CAN if it is not PDCP's."""
+    from pdcp_studio.bus.trace.knowledge import INFERRED
+
     if learn:
         decoder.learn_from_traffic(head)
-    decoder.foreign = is_foreign(head, decoder)
+    probe = _probe(head, decoder) if head else None
+    decoder.foreign = probe is not None and _foreign(probe, len(head))
     if decoder.foreign:
         decoder.learner = None
-    elif learn:
-        from pdcp_studio.bus.trace.knowledge import INFERRED
-
-        inferred = any(owner == INFERRED for owner in decoder.outputs.values())
-        if not inferred and len(decoder.outputs):
-            # The capture's set-up explains its channels: a late node is more likely a
-            # stray frame than a channel set up unseen — nothing more is inferred.
-            decoder.learner = None
+    elif learn and probe is not None and probe.outputs and INFERRED not in \
+            probe.outputs.values():
+        # The capture's set-up explains every channel its first frames show (it writes
+        # their Channel Node Ids before they stream): the decoder learns them from it, and
+        # a node heard later is more likely a stray frame than a channel set up unseen.
+        decoder.learner = None
+        for node in [n for n, owner in decoder.outputs.items() if owner == INFERRED]:
+            del decoder.outputs[node]
+        decoder.relearn()
 
 
 class CaptureReplay:
