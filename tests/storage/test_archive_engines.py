@@ -11,7 +11,7 @@ import pytest
 
 from pdcp_studio.storage.archive import EntryFilter, HistoryError, NotAllowedError, open_archive
 from pdcp_studio.storage.archive.transfer import export_lines, import_entries, read_lines
-from tests.pg_cluster import FITTER, FITTER_NAME, READER, archive_url, pg_cluster, pg_db  # noqa: F401
+from tests.pg_cluster import FITTER, FITTER_NAME, READER
 
 HAND = {"vid": 2641, "pid": 769, "serial": 301}
 ELBOW = {"vid": 2641, "pid": 1025, "serial": 401}

@@ -98,6 +98,8 @@ class Archive(abc.ABC):
     def check_can_record(self) -> None:
         """Raise :class:`NotAllowedError`, in words, when the signed-in operator may not
         record changes (a reader); nothing on an engine without sign-in."""
+        if self.signed_in() is not None:
+            raise NotImplementedError("an engine with sign-in says who may record")
 
     def stamp(self, body: Entry) -> Entry:
         """``body`` as this archive records it: the workstation, and the operator when the
