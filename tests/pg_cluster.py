@@ -29,6 +29,8 @@ import pytest
 ADMIN = "postgres"
 FITTER, FITTER_NAME = "anna", "Anna Berg"
 READER = "rita"
+#: A fitter who must give a password (``PASSWORD``): the sign-in tests.
+PASSWORD_ROLE, PASSWORD = "pia", "correct horse"
 _numbers = itertools.count(1)
 
 
@@ -65,6 +67,11 @@ class Cluster:
         os.chmod(self.base, 0o755)
         self._run("initdb", "-D", str(self.data), "-U", ADMIN, "--auth=trust",
                   "--encoding=UTF8", "--no-sync")
+        # Loopback only; one login signs in with a password (the app's sign-in dialog).
+        hba = self.data / "pg_hba.conf"
+        hba.write_text("local all all trust\n"
+                       f"host all {PASSWORD_ROLE} 127.0.0.1/32 scram-sha-256\n"
+                       "host all all 127.0.0.1/32 trust\n")
         self.start()
 
     def _run(self, tool: str, *args: str) -> None:
@@ -133,6 +140,7 @@ def pg_cluster():
             cluster.sql(f"DO $$ BEGIN IF NOT EXISTS (SELECT FROM pg_roles WHERE rolname = "
                         f"'{group}') THEN CREATE ROLE {group} NOLOGIN; END IF; END $$")
             cluster.sql(f"CREATE ROLE {role} LOGIN IN ROLE {group}")
+        cluster.sql(f"CREATE ROLE {PASSWORD_ROLE} LOGIN PASSWORD '{PASSWORD}' IN ROLE pdcp_fitter")
         yield cluster
     finally:
         cluster.remove()

@@ -1758,6 +1758,26 @@ Ihr Name (wird einmal erfragt):</translation>
             <source>Technical detail</source>
             <translation>Technische Einzelheiten</translation>
         </message>
+        <message>
+            <source>Patient reference</source>
+            <translation>Patientenreferenz</translation>
+        </message>
+        <message>
+            <source>Show only the changes of the patients whose reference contains this text</source>
+            <translation>Nur die Änderungen der Patienten zeigen, deren Referenz diesen Text enthält</translation>
+        </message>
+        <message>
+            <source>Patient:</source>
+            <translation>Patient:</translation>
+        </message>
+        <message>
+            <source>Workstation: {0}</source>
+            <translation>Arbeitsplatz: {0}</translation>
+        </message>
+        <message>
+            <source>Imported from {0}, where it was entry #{1}</source>
+            <translation>Übernommen aus {0}, dort Eintrag #{1}</translation>
+        </message>
     </context>
     <context>
         <name>Inspector</name>
@@ -6145,6 +6165,37 @@ Wählen Sie ein Profil aus dem Namensbaum oder geben Sie eines hexadezimal ein.<
         <message>
             <source>previewing</source>
             <translation>bei der Vorschau</translation>
+        </message>
+    </context>
+    <context>
+        <name>SignIn</name>
+        <message>
+            <source>Fitting history: not signed in</source>
+            <translation>Anpassungshistorie: nicht angemeldet</translation>
+        </message>
+        <message>
+            <source>Fitting history: this computer</source>
+            <translation>Anpassungshistorie: dieser Computer</translation>
+        </message>
+        <message>
+            <source>Fitting history: signed in as {0}, read only</source>
+            <translation>Anpassungshistorie: angemeldet als {0}, nur lesen</translation>
+        </message>
+        <message>
+            <source>Fitting history: signed in as {0}</source>
+            <translation>Anpassungshistorie: angemeldet als {0}</translation>
+        </message>
+        <message>
+            <source>Sign in to the fitting history</source>
+            <translation>An der Anpassungshistorie anmelden</translation>
+        </message>
+        <message>
+            <source>The clinic's fitting history at {0} asks for your password.
+{1}
+Password (kept only while PDCP Studio runs):</source>
+            <translation>Die Anpassungshistorie der Klinik unter {0} verlangt Ihr Passwort.
+{1}
+Passwort (nur aufbewahrt, solange PDCP Studio läuft):</translation>
         </message>
     </context>
 </TS>

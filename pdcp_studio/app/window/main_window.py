@@ -184,6 +184,9 @@ class MainWindow(QMainWindow):
         self.mode_label, self.progress = self.mode_line.label, self.mode_line.progress
         self.policy_label = QLabel()
         self.statusBar().addPermanentWidget(self.policy_label)
+        from pdcp_studio.app.window.controllers.archive import ArchiveStatus
+
+        self.archive_status = ArchiveStatus(self.statusBar(), self)
 
     def _build_controllers(self) -> None:
         """The controllers, each given what it needs (late-bound: tests answer for it)."""

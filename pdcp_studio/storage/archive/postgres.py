@@ -96,8 +96,10 @@ def connect(url: str, *, password: str | None = None) -> psycopg.Connection[Any]
     if secret is not None:
         extra["password"] = secret
     try:
-        return psycopg.connect(url, autocommit=True, connect_timeout=CONNECT_TIMEOUT_S,
-                               application_name="pdcp-studio", **extra)
+        db: psycopg.Connection[Any] = psycopg.connect(
+            url, autocommit=True, connect_timeout=CONNECT_TIMEOUT_S,
+            application_name="pdcp-studio", **extra)
+        return db
     except psycopg.OperationalError as err:
         raise ServerUnreachable(where, _first_line(err)) from err
     except psycopg.Error as err:
