@@ -33,6 +33,9 @@ def add_subparser(subparsers: argparse._SubParsersAction[argparse.ArgumentParser
                    help="window size, e.g. 1400x860 (for screenshots)")
     p.add_argument("--lang", metavar="LANG", default=argparse.SUPPRESS,
                    help="the app's language, e.g. de or en (default: the system's)")
+    from pdcp_studio.cli.change_road import add_archive_argument
+
+    add_archive_argument(p)
     p.set_defaults(func=run)
 
 
@@ -64,6 +67,10 @@ def run(args: argparse.Namespace) -> int:
         return 1
     if args.screenshot and qt_prereqs.needs_offscreen():
         os.environ["QT_QPA_PLATFORM"] = "offscreen"  # no window here: render off screen
+    if getattr(args, "archive", None):  # the app's archive for this session (sign_in.py)
+        from pdcp_studio.storage.archive.open import ENV_ARCHIVE
+
+        os.environ[ENV_ARCHIVE] = args.archive
     from pdcp_studio.app.application import run_app
 
     return run_app(args.file, args.bus, args.screenshot, size=size, started=_STARTED,

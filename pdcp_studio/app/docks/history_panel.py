@@ -3,8 +3,8 @@
 Reads the fitting history in use (:mod:`pdcp_studio.storage.archive`: the clinic's shared
 archive, or this computer's SQLite file) on a worker; one row per entry — time, operator,
 patient, bus, action, outcome — filtered by prosthesis and by patient reference (a clinic's
-view: every workstation's changes). One selected entry shows its details (the plan with its reasons, the
-interlock, the stored configuration's CRC before and after); two selected show the
+view: every workstation's changes). One selected entry shows its details (the plan with its
+reasons, the interlock, the stored configuration's CRC before and after); two selected show the
 difference between their links. Restore writes the selected entry's links (and stored
 configuration, when it was recorded) back as a new, previewed transaction; Report makes the
 fitting report for the entry's session. The chain is verified each time it is read.

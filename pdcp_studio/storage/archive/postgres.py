@@ -25,7 +25,7 @@ import json
 import os
 import uuid
 from collections.abc import Callable
-from typing import TYPE_CHECKING, Any, TypeVar
+from typing import TYPE_CHECKING, Any, TypeVar, cast
 
 from pdcp_studio.storage.archive import journal
 from pdcp_studio.storage.archive.base import (
@@ -89,22 +89,21 @@ def location_of(url: str) -> str:
 
 def connect(url: str, *, password: str | None = None) -> psycopg.Connection[Any]:
     """A connection to the clinic's server; HistoryError in words when there is none."""
-    psycopg = _psycopg()
+    pg = _psycopg()
     where = location_of(url)
     extra: dict[str, Any] = {}
     secret = password if password is not None else _passwords.get(where)
     if secret is not None:
         extra["password"] = secret
     try:
-        db: psycopg.Connection[Any] = psycopg.connect(
-            url, autocommit=True, connect_timeout=CONNECT_TIMEOUT_S,
-            application_name="pdcp-studio", **extra)
-        return db
-    except psycopg.OperationalError as err:
+        db = pg.connect(url, autocommit=True, connect_timeout=CONNECT_TIMEOUT_S,
+                        application_name="pdcp-studio", **extra)
+    except pg.OperationalError as err:
         raise ServerUnreachable(where, _first_line(err)) from err
-    except psycopg.Error as err:
+    except pg.Error as err:
         raise HistoryError(f"the fitting history at {where} cannot be opened: "
                            f"{_first_line(err)}") from err
+    return cast("psycopg.Connection[Any]", db)
 
 
 class ServerUnreachable(HistoryError):

@@ -11,7 +11,7 @@ from __future__ import annotations
 from PySide6.QtCore import QTimer
 from PySide6.QtWidgets import QLabel, QStatusBar, QWidget
 
-from pdcp_studio.app.documents import sign_in
+from pdcp_studio.app.documents import sign_in as signing
 
 
 class ArchiveStatus:
@@ -26,20 +26,20 @@ class ArchiveStatus:
 
         url = archive_url()
         if is_postgres(url):
-            existing = sign_in.current()  # once per session: a second window reuses it
+            existing = signing.current()  # once per session: a second window reuses it
             if existing is not None and existing.role and existing.location == describe(url):
                 self.show(existing)
             else:
                 QTimer.singleShot(0, self.sign_in)
         else:
-            self.show(sign_in.sign_in(parent))
+            self.show(signing.sign_in(parent))
 
-    def sign_in(self) -> sign_in.SignedIn:
-        state = sign_in.sign_in(self._parent)
+    def sign_in(self) -> signing.SignedIn:
+        state = signing.sign_in(self._parent)
         self.show(state)
         return state
 
-    def show(self, state: sign_in.SignedIn) -> None:
+    def show(self, state: signing.SignedIn) -> None:
         self.label.setText(state.status_text())
         self.label.setToolTip(state.tooltip())
         self.label.setStyleSheet("color: #b91c1c;" if state.error or not state.may_record
