@@ -55,8 +55,9 @@ def _free_port() -> int:
 class Cluster:
     """One running server; ``stop()``/``start()`` for the fault tests."""
 
-    def __init__(self, bindir: Path) -> None:
+    def __init__(self, bindir: Path, *, durable: bool = False) -> None:
         self.bindir = bindir
+        self.durable = durable  # fsync on (a benchmark's figures), off for the tests
         self.base = Path(tempfile.mkdtemp(prefix="pdcp-pg-"))
         self.data = self.base / "data"
         self.port = _free_port()
@@ -82,7 +83,8 @@ class Cluster:
 
     def start(self) -> None:
         options = (f"-c listen_addresses=127.0.0.1 -p {self.port} "
-                   f"-c unix_socket_directories={self.base} -c fsync=off")
+                   f"-c unix_socket_directories={self.base}"
+                   + ("" if self.durable else " -c fsync=off"))
         self._run("pg_ctl", "-D", str(self.data), "-l", str(self.base / "log"), "-o", options,
                   "-w", "-t", "60", "start")
 

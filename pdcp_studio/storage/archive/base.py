@@ -129,6 +129,11 @@ class Archive(abc.ABC):
     def append(self, body: Entry) -> int:
         """Append one entry (its fields without ``id``); returns its id."""
 
+    def append_many(self, bodies: list[Entry]) -> list[int]:
+        """Append several entries in one commit, all or none (``history import``); returns
+        their ids."""
+        return [self.append(b) for b in bodies]
+
     @abc.abstractmethod
     def begin(self, body: Entry) -> str:
         """Announce a change before it writes; ``body`` is its entry should it never finish

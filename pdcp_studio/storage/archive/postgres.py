@@ -240,6 +240,10 @@ class PostgresArchive(Archive):
         stamped = self.stamp(body)
         return self._write(lambda: self._append_locked(stamped))
 
+    def append_many(self, bodies: list[Entry]) -> list[int]:
+        stamped = [self.stamp(b) for b in bodies]
+        return self._write(lambda: [self._append_locked(b) for b in stamped])
+
     def begin(self, body: Entry) -> str:
         self.check_can_record()
         self._flush_journal()

@@ -5,7 +5,8 @@ and ``hash``: the file verifies on its own (:func:`chain.verify_export`). Import
 entry to the target archive as a new entry of its chain whose body is the original body plus
 ``origin`` — the workstation, archive, id and hashes it had — so the original still verifies
 (:func:`chain.origin_problem`, checked by ``verify`` too). An entry already imported (its
-original hash is there) is skipped, so importing a file twice adds nothing.
+original hash is there) is skipped, so importing a file twice adds nothing; the rest are
+appended in one commit, all or none.
 """
 
 from __future__ import annotations
@@ -56,7 +57,7 @@ def import_entries(archive: Archive, entries: Iterable[Entry], *, source: str) -
         raise HistoryError(f"{source}: not imported, the export does not verify: {problem}")
     archive.check_can_record()
     held = archive.origin_hashes()
-    imported: list[int] = []
+    bodies: list[Entry] = []
     skipped = 0
     for entry in entries:
         body = clean_body(entry)
@@ -69,6 +70,6 @@ def import_entries(archive: Archive, entries: Iterable[Entry], *, source: str) -
         if str(origin["hash"]) in held:
             skipped += 1
             continue
-        imported.append(archive.append({**body, "origin": origin}))
+        bodies.append({**body, "origin": origin})
         held.add(str(origin["hash"]))
-    return ImportReport(imported, skipped)
+    return ImportReport(archive.append_many(bodies), skipped)
