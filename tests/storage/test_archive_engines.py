@@ -219,3 +219,11 @@ def test_an_unreachable_server_is_said_in_words(pg_cluster):
 
     with pytest.raises(ServerUnreachable, match="cannot be reached"):
         open_archive("postgresql://anna@127.0.0.1:1/nowhere")
+
+
+def test_a_login_in_neither_group_is_told_so(pg_db):
+    pg_db.cluster.sql("DO $$ BEGIN IF NOT EXISTS (SELECT FROM pg_roles WHERE rolname = "
+                      "'stranger') THEN CREATE ROLE stranger LOGIN; END IF; END $$")
+    with pytest.raises(NotAllowedError, match="signed in as stranger, who may neither read "
+                                              "nor record.*pdcp_fitter or pdcp_reader"):
+        open_archive(pg_db.cluster.url("stranger", pg_db.name))

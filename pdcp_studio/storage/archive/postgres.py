@@ -147,12 +147,19 @@ class PostgresArchive(Archive):
         self._db = connect(url, password=password)
         try:
             row = self._db.execute(
-                f"SELECT session_user::text, to_regclass('{SCHEMA}.entries') IS NOT NULL"
+                f"SELECT session_user::text, to_regnamespace('{SCHEMA}') IS NOT NULL"
             ).fetchone()
             role, ready = (str(row[0]), bool(row[1])) if row else ("", False)
             if not ready:
                 raise HistoryError(f"{self._where} holds no fitting history yet: the clinic's "
                                    f"administrator runs: pdcp-studio archive init URL")
+            allowed = self._db.execute(
+                f"SELECT has_schema_privilege('{SCHEMA}', 'USAGE')").fetchone()
+            if not (allowed and allowed[0]):
+                raise NotAllowedError(f"signed in as {role}, who may neither read nor record "
+                                      f"the fitting history at {self._where}: the clinic's "
+                                      "administrator makes the login a member of pdcp_fitter "
+                                      "or pdcp_reader")
             named = self._db.execute(f"SELECT full_name FROM {SCHEMA}.operators WHERE role = %s",
                                      (role,)).fetchone()
         except self._psycopg.Error as err:
