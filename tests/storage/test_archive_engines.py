@@ -224,6 +224,22 @@ def test_an_unreachable_server_is_said_in_words(pg_cluster):
 def test_a_login_in_neither_group_is_told_so(pg_db):
     pg_db.cluster.sql("DO $$ BEGIN IF NOT EXISTS (SELECT FROM pg_roles WHERE rolname = "
                       "'stranger') THEN CREATE ROLE stranger LOGIN; END IF; END $$")
-    with pytest.raises(NotAllowedError, match="signed in as stranger, who may neither read "
-                                              "nor record.*pdcp_fitter or pdcp_reader"):
+    with pytest.raises(NotAllowedError, match=r"signed in as stranger, who may neither read "
+                                              r"nor record.*pdcp_fitter or pdcp_reader"):
         open_archive(pg_db.cluster.url("stranger", pg_db.name))
+
+
+def test_a_kept_outcome_is_recorded_under_its_own_operator_only(pg_db, tmp_path, monkeypatch):
+    """An outcome kept on this workstation while the server was away waits for the role
+    that made the change: another fitter signed in to the same archive does not record it
+    under their name; its own role does."""
+    from pdcp_studio.storage.archive import journal
+    from tests.pg_cluster import PASSWORD_ROLE
+
+    monkeypatch.setenv("XDG_DATA_HOME", str(tmp_path / "data"))
+    with open_archive(pg_db.fitter) as a:
+        theirs = journal.keep(a.location, "t1", {**body(1), "signed_in": PASSWORD_ROLE})
+        mine = journal.keep(a.location, "t2", a.stamp(body(2)))
+        assert a.recover() == [1]
+        assert a.get(1)["action"] == "apply clear 2" and a.get(1)["recorded_late"] is True
+    assert theirs.exists() and not mine.exists()

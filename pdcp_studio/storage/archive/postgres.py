@@ -253,7 +253,12 @@ class PostgresArchive(Archive):
 
     def begin(self, body: Entry) -> str:
         self.check_can_record()
-        self._flush_journal()
+        try:
+            self._flush_journal()
+        except ServerUnreachable:
+            raise
+        except HistoryError:  # a kept outcome the server refuses stays kept; this change
+            pass              # is announced as usual
         token = uuid.uuid4().hex
         text = json.dumps(self.stamp(body), ensure_ascii=False)
         self._write(lambda: self._db.execute(
@@ -285,10 +290,14 @@ class PostgresArchive(Archive):
             "when the archive can be reached again") from err
 
     def _flush_journal(self) -> list[int]:
-        """Record the outcomes this workstation kept while the server was away."""
+        """Record the outcomes this workstation kept while the server was away — those of
+        the role signed in now (another person's wait for them to sign in: an outcome is
+        never recorded under someone else's name)."""
         ids: list[int] = []
         for path, token, body in journal.waiting(self._where):
-            late = {**body, "recorded_late": True}
+            if body.get("signed_in") not in (None, self._role):
+                continue
+            late = {**self.stamp(body), "recorded_late": True}  # the full name as it is now
 
             def run(token: str = token, late: Entry = late) -> int:
                 self._db.execute(f"DELETE FROM {SCHEMA}.pending WHERE token = %s", (token,))
