@@ -13,6 +13,7 @@ from __future__ import annotations
 import argparse
 
 from pdcp_studio.cli.main import BadInput
+from pdcp_studio.model.safe_text import shown
 
 
 def add_subparser(subparsers: argparse._SubParsersAction[argparse.ArgumentParser]) -> None:
@@ -44,9 +45,9 @@ def run_init(args: argparse.Namespace) -> int:
     try:
         where = init_schema(args.url)
     except HistoryError as err:
-        print(f"pdcp-studio: {err}", file=sys.stderr)
+        print(f"pdcp-studio: {shown(str(err))}", file=sys.stderr)
         return 1
-    print(f"{where}: the fitting history is ready (schema pdcp; roles pdcp_fitter and "
+    print(f"{shown(where)}: the fitting history is ready (schema pdcp; roles pdcp_fitter and "
           "pdcp_reader). Make logins with: CREATE ROLE name LOGIN PASSWORD '…' IN ROLE "
           "pdcp_fitter")
     return 0

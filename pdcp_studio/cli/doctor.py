@@ -314,11 +314,18 @@ def _text(doc: dict[str, Any]) -> str:
         for s, f in doc["log_formats"].items()))
     lines.append(f"resources: {doc['resources'] or 'MISSING'}")
     lines.append(f"user data: {doc['user_data']}")
-    lines.append(f"fitting history: {_archive_text(doc['archive'], doc['history'])}")
+    # The operator's full name comes from the clinic's server: shown, never run.
+    lines.append("fitting history: " + _safe(_archive_text(doc["archive"], doc["history"])))
     lines += [f"device catalogue skipped: {p}" for p in doc["catalog_problems"]]
     shown = doc["display"]
     lines.append("display: " + ("a window can open" if shown["window"] else shown["why"]))
     return "\n".join(lines)
+
+
+def _safe(text: str) -> str:
+    from pdcp_studio.model.safe_text import shown
+
+    return shown(text)
 
 
 def _archive_text(a: dict[str, Any], path: str) -> str:

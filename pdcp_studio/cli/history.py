@@ -356,10 +356,10 @@ def run_import(args: argparse.Namespace) -> int:
             report = import_entries(archive, entries, source=Path(args.file).name)
             where = archive.location
     except HistoryError as err:
-        print(f"pdcp-studio: history import: {err}", file=sys.stderr)
+        print(f"pdcp-studio: history import: {shown(str(err))}", file=sys.stderr)
         return 1
     ids = report.imported
-    print(f"{len(ids)} entr{'y' if len(ids) == 1 else 'ies'} imported into {where}"
+    print(f"{len(ids)} entr{'y' if len(ids) == 1 else 'ies'} imported into {shown(where)}"
           + (f" as {ids[0]}…{ids[-1]}" if ids else "")
           + (f"; {report.skipped} already there" if report.skipped else ""))
     return 0

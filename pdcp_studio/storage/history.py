@@ -18,7 +18,6 @@ from __future__ import annotations
 
 import re
 from datetime import UTC, datetime
-from pathlib import Path
 from typing import TYPE_CHECKING, Any
 
 from pdcp_studio.storage.archive.base import (
@@ -31,8 +30,6 @@ from pdcp_studio.storage.archive.base import (
 )
 from pdcp_studio.storage.archive.chain import GENESIS, VerifyReport, canonical, entry_hash
 from pdcp_studio.storage.archive.open import ENV_ARCHIVE, ENV_PATH, default_path
-from pdcp_studio.storage.archive.open import open_archive as _open_archive
-from pdcp_studio.storage.archive.open import open_existing as _open_existing
 from pdcp_studio.storage.archive.sqlite import BUSY_TIMEOUT_S, WAL_RETRY_S, SqliteArchive
 
 if TYPE_CHECKING:
@@ -52,23 +49,14 @@ def utc_now() -> str:
     return datetime.now(UTC).strftime("%Y-%m-%dT%H:%M:%SZ")
 
 
-class History(SqliteArchive):
-    """One SQLite archive file (``History(path)``); ``History.open()`` is the archive in use,
-    whichever engine (contracts §2)."""
-
-    @classmethod
-    def open(cls, path: str | Path | None = None) -> Archive:
-        """The SQLite file at ``path``; without one, the archive in use (``--archive`` /
-        ``$PDCP_STUDIO_ARCHIVE``, else the default file)."""
-        return cls(path) if path is not None else _open_archive()
-
-    @classmethod
-    def open_existing(cls, path: str | Path | None = None) -> Archive | None:
-        """The archive to read, or None when it is an SQLite file not made yet: reading
-        never creates it (``history list`` on a new computer is an empty history)."""
-        if path is not None:
-            return cls(path) if Path(path).exists() else None
-        return _open_existing()
+if TYPE_CHECKING:
+    #: Every caller names the archive ``History``: to the type checker it is the interface,
+    #: whichever engine (``History.open()`` may give the clinic's PostgreSQL archive).
+    History = Archive
+else:
+    class History(SqliteArchive):
+        """One SQLite archive file (``History(path)``); ``History.open()`` is the archive in
+        use, whichever engine (contracts §2; :meth:`Archive.open`)."""
 
 
 def interrupted(body: dict[str, Any]) -> dict[str, Any]:

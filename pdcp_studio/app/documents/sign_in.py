@@ -16,6 +16,7 @@ from dataclasses import dataclass
 from PySide6.QtWidgets import QInputDialog, QLineEdit, QWidget
 
 from pdcp_studio.app.i18n import translate
+from pdcp_studio.model.safe_text import shown
 
 #: ``ask(parent, location, why) -> password or None`` (tests answer for the dialog).
 AskPassword = Callable[[QWidget | None, str, str], "str | None"]
@@ -41,7 +42,11 @@ class SignedIn:
     error: str = ""
 
     def status_text(self) -> str:
-        """The status bar's words."""
+        """The status bar's words (the operator's name as the server gives it: shown,
+        never run)."""
+        return shown(self._status_text())
+
+    def _status_text(self) -> str:
         if self.error:
             return _t("Fitting history: not signed in")
         if self.role is None:
@@ -55,7 +60,7 @@ class SignedIn:
         text = self.location
         if self.error:
             text += "\n" + self.error
-        return text
+        return shown(text, newlines=True)
 
 
 _current: SignedIn | None = None

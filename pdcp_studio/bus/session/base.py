@@ -38,7 +38,7 @@ from pdcp_studio.model.system import Link, System
 if TYPE_CHECKING:
     from pdcp_studio.bus.session.change_road import ConfirmFn
     from pdcp_studio.engine.plan import Plan
-    from pdcp_studio.storage.archive import Archive
+    from pdcp_studio.storage.history import History
 
 Subscriber = Callable[[object], None]
 #: ``progress(done, total, what)``: how far a long call (a scan, a transaction) has come.
@@ -171,7 +171,7 @@ class BusSession(abc.ABC):
     def transact(self, change: Change, *, operator: str | None = None,
                  patient: str | None = None, confirm: ConfirmFn | None = None,
                  progress: ProgressFn | None = None, cancel: threading.Event | None = None,
-                 history: Archive | None = None, record: bool = True) -> TransactionResult:
+                 history: History | None = None, record: bool = True) -> TransactionResult:
         """The whole change road (reference §5); see :func:`run_transaction` (imported
         here: opening a session, on the app's start-up path, needs none of it)."""
         from pdcp_studio.bus.session.change_road import run_transaction

@@ -37,7 +37,7 @@ Translate = Callable[[str], str]
 
 if TYPE_CHECKING:
     from pdcp_studio.bus.session.base import BusSession
-    from pdcp_studio.storage.archive import Archive
+    from pdcp_studio.storage.history import History
 
 __all__ = ["ChangePreview", "ConfirmFn", "ProgressFn", "names_for", "preview_change",
            "resolve_store", "run_transaction"]
@@ -141,7 +141,7 @@ def preview_change(session: BusSession, change: Change, *,
 def run_transaction(session: BusSession, change: Change, *, operator: str | None = None,
                     patient: str | None = None, confirm: ConfirmFn | None = None,
                     progress: ProgressFn | None = None, cancel: threading.Event | None = None,
-                    history: Archive | None = None, record: bool = True) -> TransactionResult:
+                    history: History | None = None, record: bool = True) -> TransactionResult:
     """The change road's PC half around ``session.carry_out``: preview → confirm → (the
     arbitrator's interlock, write, verify, restore, release) → record.
 

@@ -19,6 +19,7 @@ import getpass
 import os
 import socket
 from dataclasses import dataclass
+from pathlib import Path
 from typing import Any
 
 from pdcp_studio.errors import PdcpError
@@ -113,6 +114,26 @@ class Archive(abc.ABC):
         if not out.get("operator"):
             out["operator"] = self.operator()
         return out
+
+    @classmethod
+    def open(cls, path: str | Path | None = None) -> Archive:
+        """The SQLite file at ``path``; without one, the archive in use (``--archive`` /
+        ``$PDCP_STUDIO_ARCHIVE``, else the default file), whichever engine."""
+        from pdcp_studio.storage.archive.open import open_archive
+        from pdcp_studio.storage.archive.sqlite import SqliteArchive
+
+        return SqliteArchive(path) if path is not None else open_archive()
+
+    @classmethod
+    def open_existing(cls, path: str | Path | None = None) -> Archive | None:
+        """The archive to read, or None when it is an SQLite file not made yet: reading
+        never creates it (``history list`` on a new computer is an empty history)."""
+        from pdcp_studio.storage.archive.open import open_existing
+        from pdcp_studio.storage.archive.sqlite import SqliteArchive
+
+        if path is not None:
+            return SqliteArchive(path) if Path(path).exists() else None
+        return open_existing()
 
     def __enter__(self) -> Archive:
         return self
