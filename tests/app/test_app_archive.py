@@ -116,3 +116,13 @@ def test_the_history_panel_filters_by_patient_and_names_the_workstation(make_win
     assert f"Workstation: {socket.gethostname()}" in panel.details.toPlainText()
     panel.patient_filter.clear()
     assert len(panel.shown) == 2
+
+
+def test_a_full_name_from_the_server_is_shown_not_run(pg_db):
+    from pdcp_studio.app.documents import sign_in
+
+    pg_db.cluster.sql(f"UPDATE pdcp.operators SET full_name = E'Anna\\x1b[2J' "
+                      f"WHERE role = '{FITTER}'", pg_db.name)
+    state = sign_in.sign_in(url=pg_db.fitter)
+    assert state.operator == "Anna\x1b[2J"  # recorded as the clinic wrote it
+    assert "\x1b" not in state.status_text() and "Anna\\x1b[2J" in state.status_text()
