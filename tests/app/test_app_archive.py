@@ -36,6 +36,7 @@ def test_the_status_bar_says_who_is_signed_in_and_the_operator_follows(
     assert label.text() == f"Fitting history: signed in as {FITTER_NAME} ({FITTER})"
     assert pg_db.cluster.url(FITTER).split("@")[1].split("/")[0] in label.toolTip()
     assert fitting.stored_operator() == FITTER_NAME  # not $PDCP_STUDIO_OPERATOR
+    assert window.pending_panel.operator.text() == f"Operator: {FITTER_NAME}"
 
 
 def test_a_reader_is_said_to_be_read_only(make_window, qtbot, pg_db, monkeypatch):

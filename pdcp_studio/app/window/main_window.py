@@ -186,7 +186,8 @@ class MainWindow(QMainWindow):
         self.statusBar().addPermanentWidget(self.policy_label)
         from pdcp_studio.app.window.controllers.archive import ArchiveStatus
 
-        self.archive_status = ArchiveStatus(self.statusBar(), self)
+        self.archive_status = ArchiveStatus(self.statusBar(), self,
+                                            lambda: self.pending_panel.refresh())
 
     def _build_controllers(self) -> None:
         """The controllers, each given what it needs (late-bound: tests answer for it)."""

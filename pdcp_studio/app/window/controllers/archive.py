@@ -8,6 +8,8 @@ signed in, with why in its tooltip) for the rest of the session.
 
 from __future__ import annotations
 
+from collections.abc import Callable
+
 from PySide6.QtCore import QTimer
 from PySide6.QtWidgets import QLabel, QStatusBar, QWidget
 
@@ -17,8 +19,10 @@ from pdcp_studio.app.documents import sign_in as signing
 class ArchiveStatus:
     """The archive's label in ``bar``; :meth:`sign_in` (run once, soon after start)."""
 
-    def __init__(self, bar: QStatusBar, parent: QWidget) -> None:
+    def __init__(self, bar: QStatusBar, parent: QWidget,
+                 signed_in: Callable[[], None] | None = None) -> None:
         self._parent = parent
+        self._signed_in = signed_in  # who else shows the operator (the pending panel)
         self.label = QLabel()
         bar.addPermanentWidget(self.label)
         from pdcp_studio.storage.archive import archive_url, describe
@@ -37,6 +41,8 @@ class ArchiveStatus:
     def sign_in(self) -> signing.SignedIn:
         state = signing.sign_in(self._parent)
         self.show(state)
+        if self._signed_in is not None:
+            self._signed_in()
         return state
 
     def show(self, state: signing.SignedIn) -> None:
