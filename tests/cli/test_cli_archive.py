@@ -112,3 +112,29 @@ def test_doctor_names_the_archive_and_who_is_signed_in(pg_db, capsys):
     main(["doctor", "--archive", pg_db.reader])
     out = capsys.readouterr().out
     assert f"signed in as {READER}" in out and "may read the fitting history but not" in out
+
+
+def test_archive_init_by_a_clinic_administrator_who_is_no_superuser(pg_cluster, capsys,
+                                                                    monkeypatch, tmp_path):
+    """docs/clinic-archive.md's set-up as written: an administrator role with CREATEROLE
+    owning the database runs archive init and makes a fitter's login, who then records."""
+    import psycopg
+
+    monkeypatch.setenv("XDG_DATA_HOME", str(tmp_path / "data"))
+    pg_cluster.sql("DO $$ BEGIN IF NOT EXISTS (SELECT FROM pg_roles WHERE rolname = "
+                   "'pdcp_admin') THEN CREATE ROLE pdcp_admin LOGIN CREATEROLE; END IF; END $$")
+    pg_cluster.sql("CREATE DATABASE clinic_doc OWNER pdcp_admin")
+    try:
+        admin = pg_cluster.url("pdcp_admin", "clinic_doc")
+        assert main(["archive", "init", admin]) == 0, capsys.readouterr().err
+        with psycopg.connect(admin, autocommit=True) as db:
+            db.execute("DO $$ BEGIN IF NOT EXISTS (SELECT FROM pg_roles WHERE rolname = "
+                       "'bea') THEN CREATE ROLE bea LOGIN IN ROLE pdcp_fitter; END IF; END $$")
+            db.execute("INSERT INTO pdcp.operators VALUES ('bea', 'Bea Lund')")
+        fitter = pg_cluster.url("bea", "clinic_doc")
+        assert _apply(fitter, "P-7", capsys) == 0
+        assert main(["history", "list", "--json", "--archive", fitter]) == 0
+        entries = json.loads(capsys.readouterr().out)["entries"]
+        assert [e["operator"] for e in entries] == ["Bea Lund"]
+    finally:
+        pg_cluster.sql("DROP DATABASE clinic_doc WITH (FORCE)")
