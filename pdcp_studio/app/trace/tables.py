@@ -10,7 +10,7 @@ from pdcp_studio.app.i18n import translate
 from pdcp_studio.app.trace.model import StatsModel, TraceModel, TraceView
 
 #: Widths of the frame table's columns but the last (which stretches).
-FRAME_COLUMNS = (92, 52, 70, 150, 170)
+FRAME_COLUMNS = (92, 84, 70, 150, 170)  # the ID's: an extended one's 10 characters
 #: The widest text of each statistics column but the last.
 STATS_SAMPLES = ("0x000", "BA→#00 ", "000,000", "0000.000", "0000.000", "00 00 00 00 ")
 

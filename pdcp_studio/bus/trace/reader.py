@@ -27,7 +27,7 @@ import re
 import stat
 from collections.abc import Callable, Iterator
 from pathlib import Path
-from typing import IO, Any
+from typing import IO, Any, Protocol
 
 from pdcp_studio.bus.trace.capture import PARTIAL_SUFFIX, CaptureError
 
@@ -129,6 +129,37 @@ class _Stream:
     @property
     def closed(self) -> bool:
         return bool(getattr(self._raw, "closed", False))
+
+    def close(self) -> None:
+        self._raw.close()
+
+
+class ReadCancelled(BaseException):
+    """The caller's ``cancel`` was set while the capture was read (a BaseException, as
+    KeyboardInterrupt: python-can's readers turn any ``Exception`` into damage)."""
+
+
+class _Event(Protocol):
+    def is_set(self) -> bool: ...
+
+
+class _Cancellable:
+    """A file whose every read first checks the caller's ``cancel`` (a stop button): a
+    capture of a few frames among gigabytes of other lines stops as soon as it is asked to,
+    not at the next frame."""
+
+    def __init__(self, raw: Any, cancel: _Event) -> None:
+        self._raw, self._cancel = raw, cancel
+
+    def read(self, n: int = -1) -> bytes:
+        if self._cancel.is_set():
+            raise ReadCancelled()
+        data: bytes = self._raw.read(n)
+        return data
+
+    @property
+    def closed(self) -> bool:
+        return bool(self._raw.closed)
 
     def close(self) -> None:
         self._raw.close()
@@ -252,7 +283,8 @@ class CaptureReader:
     ``damage`` says where and why, naming the file. ``frames``: how many were yielded.
     """
 
-    def __init__(self, path: str | Path, *, plain_frames: bool = False) -> None:
+    def __init__(self, path: str | Path, *, plain_frames: bool = False,
+                 cancel: _Event | None = None) -> None:
         self.path = Path(path)
         self.name = str(path)
         self.truncated = False
@@ -260,7 +292,9 @@ class CaptureReader:
         self.frames = 0
         self._plain = plain_frames
         self._closers: list[Callable[[], None]] = []
-        raw = self._open()
+        raw: Any = self._open()
+        if cancel is not None:
+            raw = _Cancellable(raw, cancel)
         try:
             head = _read_head(raw)
             self.gzipped = head.startswith(_GZIP)
