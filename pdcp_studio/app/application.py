@@ -12,6 +12,7 @@ from __future__ import annotations
 import os
 import sys
 import time
+from collections.abc import Callable
 from pathlib import Path
 from typing import TYPE_CHECKING
 
@@ -170,7 +171,14 @@ def _run_app(path: str | Path | None, bus: str | None, screenshot: str | Path | 
             QTimer.singleShot(0, probe)
         if screenshot is not None:
             png = screenshot
-            QTimer.singleShot(SETTLE_MS, lambda: finish_screenshot(png))
+            QTimer.singleShot(SETTLE_MS, lambda: after_capture(lambda: finish_screenshot(png)))
+
+    def after_capture(then: Callable[[], None]) -> None:
+        """``then`` once the capture asked for is read (its rows and banner in the picture)."""
+        if capture is not None and window.bus_docks.monitor_dock().loading.worker is not None:
+            QTimer.singleShot(50, lambda: after_capture(then))
+        else:
+            then()
 
     def probe() -> None:
         app.processEvents()

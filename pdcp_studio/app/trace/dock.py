@@ -74,7 +74,7 @@ from pdcp_studio.app.trace.store import (
     TraceFilter,
     line_head,
 )
-from pdcp_studio.app.trace.tables import frame_table, stats_table
+from pdcp_studio.app.trace.tables import frame_table, show_plain, stats_table
 from pdcp_studio.app.trace.verdict import problem_text, verdict_text
 from pdcp_studio.app.workers import Worker
 
@@ -688,9 +688,10 @@ class MonitorDock(QDockWidget):
         """The banner, the columns (plain CAN for a foreign capture) and the page shown."""
         self.verdict, self.problem = verdict, problem
         plain = verdict is not None and verdict.verdict == "not-pdcp"
+        if plain != self.model.plain:
+            show_plain(self.view, plain)
         self.model.set_plain(plain)
         self.stats_model.plain = plain
-        self.view.setColumnHidden(5, plain)  # plain CAN has no meaning column
         for box in (self.bar.function_filter, self.bar.node_filter):
             box.setEnabled(not plain)  # PDCP's functions and nodes: none here
         if problem is not None:

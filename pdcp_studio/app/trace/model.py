@@ -385,7 +385,8 @@ class StatsModel(QAbstractTableModel):
 
     def cell(self, s: IdStat, col: int) -> str:
         if col == 0:
-            return (f"0x{s.arbitration_id:08X}" if s.arbitration_id > 0x7FF
+            return ("—" if s.flags & F_ERROR else f"0x{s.arbitration_id:08X}"
+                    if s.flags & F_EXTENDED or s.arbitration_id > 0x7FF
                     else f"0x{s.arbitration_id:03X}")
         if col == 1:
             if self.plain:

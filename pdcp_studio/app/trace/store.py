@@ -48,6 +48,8 @@ F_PLAIN = 64  # not PDCP's (a foreign capture's frame): shown as plain CAN, no P
 #: Frames that are no PDCP message whatever the bus: shown as the kind of frame they are.
 ODD_KINDS = F_EXTENDED | F_REMOTE | F_ERROR | F_FD
 _MODE_BIT = 0x100
+#: The kinds that key an identifier's statistics apart (bits above its 32).
+_KIND_KEY = F_EXTENDED | F_ERROR
 
 
 class Interner:
@@ -473,6 +475,7 @@ class IdStat(NamedTuple):
     last_data: bytes
     function: str
     text: str
+    flags: int = 0  # the last frame's F_* (extended, error: told apart from standard IDs)
 
 
 class IdStats:
@@ -505,7 +508,12 @@ class IdStats:
         if chunk is None or not len(chunk):
             return
         # Vectorised per chunk (a stable sort groups each identifier's frames in order).
-        aids = chunk.aid
+        # Extended and error frames are keyed apart from the standard identifier they share
+        # a number with (``_KIND_KEY``): 0x123 and 0x00000123 are two rows.
+        aids = chunk.aid.astype(np.int64)
+        kinds = chunk.flags & _KIND_KEY
+        if kinds.any():
+            aids |= kinds.astype(np.int64) << 32
         n = len(aids)
         order = np.argsort(aids, kind="stable")
         grouped = aids[order]
@@ -562,13 +570,14 @@ class IdStats:
     def row(self, aid: int) -> IdStat:
         """The statistics of identifier ``aid`` (KeyError if it was not seen)."""
         count, first, last, prev, data, text, func, flags = self.entries[aid]
+        aid &= 0xFFFFFFFF
         head = self.tables.texts[text]
         if flags & F_HEX:
             hexed = data.hex(" ").upper()
             head = f"{head}  {hexed}" if head else hexed
         return IdStat(aid, count, (last - first) / (count - 1) if count > 1 else None,
                       None if prev is None else last - prev, last, data,
-                      self.tables.functions[func], head)
+                      self.tables.functions[func], head, flags)
 
     def view(self) -> StatRows:
         """The rows by identifier, each made when asked for (see the class doc)."""

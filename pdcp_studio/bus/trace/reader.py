@@ -35,6 +35,9 @@ from pdcp_studio.bus.trace.capture import PARTIAL_SUFFIX, CaptureError
 SNIFF_BYTES = 1 << 16
 #: Text is read this much at a time.
 CHUNK_BYTES = 1 << 20
+#: … and this much when the caller may cancel: a chunk of short lines (comments, blank
+#: lines) takes python-can ~5 µs a line, so a Stop is seen within ~0.1 s.
+CANCELLABLE_CHUNK_BYTES = 1 << 16
 #: No line of a capture is longer (an ASC CAN FD frame with 64 bytes is about 300).
 MAX_LINE = 1 << 16
 #: No BLF object is larger (python-can and Vector write containers of about 128 KiB).
@@ -192,8 +195,9 @@ class _Lines:
     """A text file as python-can's text readers read it (``for line in file``,
     ``readline()``), a chunk at a time, each line numbered (``line``) and bounded."""
 
-    def __init__(self, stream: _Stream, fix: Callable[[str], str] | None = None) -> None:
-        self._stream, self._fix = stream, fix
+    def __init__(self, stream: _Stream, fix: Callable[[str], str] | None = None,
+                 chunk: int = CHUNK_BYTES) -> None:
+        self._stream, self._fix, self._chunk = stream, fix, chunk
         self.line = 0  # the number of the line handed out last
         self.ended_mid_line = False
         self._lines = self._generate()
@@ -204,7 +208,7 @@ class _Lines:
         number = 0
         first = True
         while True:
-            chunk = read(CHUNK_BYTES)
+            chunk = read(self._chunk)
             if not chunk:
                 break
             block = rest + chunk
@@ -292,6 +296,7 @@ class CaptureReader:
         self.frames = 0
         self._plain = plain_frames
         self._closers: list[Callable[[], None]] = []
+        self._cancel = cancel
         raw: Any = self._open()
         if cancel is not None:
             raw = _Cancellable(raw, cancel)
@@ -354,7 +359,8 @@ class CaptureReader:
 
         fmt = self.format
         if fmt in _TEXT_FORMATS:
-            lines = _Lines(stream, _trc_version_fix if fmt == "trc" else None)
+            lines = _Lines(stream, _trc_version_fix if fmt == "trc" else None,
+                           CHUNK_BYTES if self._cancel is None else CANCELLABLE_CHUNK_BYTES)
             file: Any = lines  # a text file as python-can reads one
             if fmt == "asc":
                 return can.ASCReader(file, relative_timestamp=False), lines
