@@ -30,6 +30,8 @@ def node_map_text(note: NodeMapNote) -> str:
 
 def verdict_text(verdict: CaptureVerdict, *, reading: bool = False) -> str:
     """The banner's text for ``verdict`` (``reading``: the capture is still being read)."""
+    if verdict.cancelled and not verdict.frames:
+        return translate(_C, "Stopped before the first frames were read")
     if verdict.verdict == "empty" and not reading:
         head = translate(_C, "Empty capture: no frames")
     elif verdict.verdict == "not-pdcp":
