@@ -259,3 +259,20 @@ def test_stop_keeps_the_frames_read(qtbot, tmp_path):
     shown = dock.model.rowCount()
     assert 0 < shown < 160_000
     assert dock.banner.text().endswith(f"Stopped: the first {shown:,} frames are shown")
+
+
+def test_the_banner_and_plain_columns_speak_german(qtbot, qapp):
+    from pdcp_studio.app import i18n
+
+    i18n.install(qapp, "de")
+    try:
+        dock = _dock(qtbot)
+        _open(qtbot, dock, CAPTURES / "candump-car.log")
+        assert dock.banner.text() == "Kein PDCP: als einfache CAN-Nachrichten gezeigt · candump log"
+        assert dock.model.headerData(2, Qt.Orientation.Horizontal) == "Art"
+        assert dock.model.row_texts(0)[2] == "Datennachricht"
+        _open(qtbot, dock, MIDSESSION)
+        assert dock.banner.text().startswith(
+            "PDCP-Mitschnitt · Knotenzuordnung aus dem Verkehr erschlossen: 4 Geräte, 5 Kanäle")
+    finally:
+        i18n.uninstall(qapp)
