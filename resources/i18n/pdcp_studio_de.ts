@@ -6267,4 +6267,15 @@ Wählen Sie ein Profil aus dem Namensbaum oder geben Sie eines hexadezimal ein.<
             <translation>bei der Vorschau</translation>
         </message>
     </context>
+    <context>
+        <name>HeardBus</name>
+        <message>
+            <source>Device at node {node}</source>
+            <translation>Gerät an Knoten {node}</translation>
+        </message>
+        <message>
+            <source>Channel node {node}</source>
+            <translation>Kanalknoten {node}</translation>
+        </message>
+    </context>
 </TS>

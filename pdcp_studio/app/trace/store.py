@@ -48,6 +48,19 @@ F_PLAIN = 64  # not PDCP's (a foreign capture's frame): shown as plain CAN, no P
 #: Frames that are no PDCP message whatever the bus: shown as the kind of frame they are.
 ODD_KINDS = F_EXTENDED | F_REMOTE | F_ERROR | F_FD
 _MODE_BIT = 0x100
+#: A decoded line that names no PDCP message says one of these after its sender
+#: (``bus.trace.frames``): its Function column says so too, never its first byte's name.
+_NOT_MESSAGES = ("undecodable", "unattributed", "not PDCP")
+
+
+def _no_message(head: str) -> str | None:
+    """Which of ``_NOT_MESSAGES`` a decoded line (without its time) is, if any."""
+    lead = head[:40]  # priority, sender and function; not the fields
+    for word in _NOT_MESSAGES:
+        if word in lead:
+            return word
+    return None
+
 #: The kinds that key an identifier's statistics apart (bits above its 32).
 _KIND_KEY = F_EXTENDED | F_ERROR
 
@@ -232,6 +245,8 @@ class ChunkBuilder:
             pass  # named above
         elif function is not None:
             func = self.tables.functions.add(function)
+        elif (word := _no_message(head)) is not None:  # never its first byte's name
+            func = self.tables.functions.add(word)
         elif data:
             func = self.tables.function_by_byte[data[0]]
         else:
