@@ -2,14 +2,17 @@
 (magic bytes, header lines), never by the extension; python-can's readers where they serve;
 damage read up to the cut and said; bounded memory whatever the input.
 
-``CaptureReader(path)`` opens a capture (a file, a FIFO read as a stream, gzipped or not)
-and iterates its frames (``can.Message``; BLF's classical 11-bit data frames as
+``CaptureReader(path, cancel=None)`` opens a capture (a file, a FIFO read as a stream,
+gzipped or not) and iterates its frames (``can.Message``; BLF's classical 11-bit data frames as
 ``blf.PlainFrame`` when ``plain_frames``). It never raises once it has started yielding:
 damage after the first frame ends the iteration, sets ``truncated`` and says where in
 ``damage`` ("FILE: line N: …" for text formats, "FILE: offset N: …" for binary ones). What
 cannot be read at all (no known format, damage before any frame, a missing extra) raises
 ``CaptureError`` with the same words. An empty file (or a capture with no frame) has the
 format ``empty``.
+
+``cancel`` (an event, the app's Stop button) makes the next read of the file raise
+``ReadCancelled``; text is then read in smaller chunks, so a Stop is heard within ~0.1 s.
 
 Bounds: text is read a chunk at a time, a line longer than ``MAX_LINE`` (no capture format
 writes one) is damage; a BLF object larger than ``MAX_OBJECT`` is damage; so a 2 GB file
