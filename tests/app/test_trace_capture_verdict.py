@@ -276,3 +276,41 @@ def test_the_banner_and_plain_columns_speak_german(qtbot, qapp):
             "PDCP-Mitschnitt · Knotenzuordnung aus dem Verkehr erschlossen: 4 Geräte, 5 Kanäle")
     finally:
         i18n.uninstall(qapp)
+
+
+def test_saving_an_opened_capture_keeps_each_frames_kind_and_its_own_node_map(qtbot, tmp_path):
+    from pdcp_studio.bus.trace.capture import read_capture
+    from pdcp_studio.bus.trace.nodemap import read_node_map
+
+    dock = _dock(qtbot)
+    dock.feed.learn_output(1, (ChannelRef(1, 10, 4, 1), ()))  # the live session's map
+    _open(qtbot, dock, CAPTURES / "canalyzer-car-cp1252.asc")
+    out = tmp_path / "car.asc"
+    with qtbot.waitSignal(dock.error, timeout=20_000) as said:
+        dock.save(out)
+    assert said.args[0] == (
+        f"Saving {out}: the file was written without some frames: 1 CAN FD frames longer "
+        "than 8 bytes not written: the trace keeps 8 data bytes a frame (save from the "
+        "capture file itself)")
+    back = list(read_capture(out))
+    original = [m for m in read_capture(CAPTURES / "canalyzer-car-cp1252.asc")
+                if not (m.is_fd and m.dlc > 8)]
+    assert [(m.arbitration_id, m.is_extended_id, m.is_remote_frame, m.is_error_frame,
+             m.dlc if not m.is_error_frame else 0) for m in back] == \
+        [(m.arbitration_id, m.is_extended_id, m.is_remote_frame, m.is_error_frame,
+          m.dlc if not m.is_error_frame else 0) for m in original]
+    assert read_node_map(out) is None  # a foreign capture has no node map to keep
+    trc = tmp_path / "car.trc"
+    with qtbot.waitSignal(dock.error, timeout=20_000) as said:
+        dock.save(trc)
+    assert "python-can's TRC writer cannot keep 1 remote frames, 1 error frames" in said.args[0]
+
+    _open(qtbot, dock, MIDSESSION)
+    mine = tmp_path / "mid.blf"
+    with qtbot.waitSignal(dock.saved, timeout=20_000):
+        dock.save(mine)
+    saved = read_node_map(mine)
+    assert saved is not None and "1/10/4" not in str(saved)  # not the live session's map
+    _open(qtbot, dock, mine)
+    assert dock.banner.text() == "PDCP capture · node map from mid.blf.nodemap.json · Vector BLF"
+    assert next(r for r in _cells(dock) if r[1] == "0x001")[3] == "Device Beacon"

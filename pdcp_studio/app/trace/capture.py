@@ -18,12 +18,15 @@ import os
 import threading
 import time
 from collections.abc import Callable
-from dataclasses import dataclass
+from dataclasses import dataclass, field
 from pathlib import Path
 from typing import Any
 
 from pdcp_studio.app.trace.store import (
     CHUNK_ROWS,
+    F_ERROR,
+    F_EXTENDED,
+    F_FD,
     F_PLAIN,
     F_REMOTE,
     FIRST_CHUNK_ROWS,
@@ -34,6 +37,7 @@ from pdcp_studio.app.trace.store import (
     message_kind,
     who,
 )
+from pdcp_studio.errors import PdcpError
 
 Progress = Callable[[int, int, str], None]
 _YIELD_EVERY = 256
@@ -99,6 +103,9 @@ class CaptureVerdict:
     frames: int = 0
     damage: str | None = None
     cancelled: bool = False
+    #: The node map the capture was decoded with (``FrameDecoder.node_map()``; None for a
+    #: foreign capture): saved beside it when it is saved again.
+    node_map_json: Any = field(default=None, compare=False, repr=False)
 
 
 class LoadState:
@@ -221,14 +228,25 @@ def load_capture(store: FrameStore, stats: IdStats, path: str | Path, progress: 
     state.verdict = CaptureVerdict(verdict, reader.format_name,
                                    node_map_note(decoder, source) if count else None,
                                    count, reader.damage if reader.truncated else None,
-                                   cancelled)
+                                   cancelled, None if foreign else decoder.node_map())
     return state.verdict
 
 
-def save_store(path: str | Path, store: FrameStore, links: dict[int, Any] | None = None) -> int:
+class PartlySaved(PdcpError):
+    """A capture was written without some of its frames (a kind its format cannot keep, or
+    CAN FD data beyond the 8 bytes the trace keeps): how many and why."""
+
+
+def save_store(path: str | Path, store: FrameStore, links: dict[int, Any] | None = None, *,
+               node_map: Any = None) -> int:
     """Write every frame of ``store``: a python-can capture chosen by extension (.asc, .blf,
     .log, .csv, .trc — the bus monitor's Recorder, replaced only once complete, with the
-    node map of ``links`` saved beside it), or decoded text for ``.txt``. Returns the count."""
+    node map saved beside it: ``node_map`` (an opened capture's own, JSON) or that of
+    ``links`` (the live session's); neither: none), or decoded text for ``.txt``. Each
+    frame keeps its kind (extended, remote, error, FD). Returns the count; raises
+    ``PartlySaved`` once the file is written when some frames could not be (the format
+    cannot keep their kind, or an FD frame's data is longer than the 8 bytes the trace
+    keeps)."""
     from pdcp_studio.app.trace.model import decoded_fields
 
     path = Path(path)
@@ -243,20 +261,43 @@ def save_store(path: str | Path, store: FrameStore, links: dict[int, Any] | None
                           f"{f.data.hex(' ').upper():23}  {f.function}  "
                           f"{decoded_fields(store.text(f))}".rstrip() + "\n")
         return count
+    import can
+
     from pdcp_studio.bus.trace.decoder import FrameDecoder
     from pdcp_studio.bus.trace.recorder import Recorder  # python-can loads only here
 
-    node_map = FrameDecoder(dict(links or {})).node_map
-    written = 0
-    with Recorder(path, node_map=node_map) as recorder:
+    saved_map = ((lambda: node_map) if node_map is not None
+                 else None if links is None else FrameDecoder(dict(links)).node_map)
+    written = cut = 0
+    kinds = F_EXTENDED | F_REMOTE | F_ERROR | F_FD
+    with Recorder(path, node_map=saved_map) as recorder:
         for _first, chunk in store.iter_chunks(first, first + count):
             ts, aid, dlc = chunk.ts.tolist(), chunk.aid.tolist(), chunk.dlc.tolist()
+            flags = chunk.flags.tolist()
             data = chunk.data
             for k in range(len(ts)):
-                recorder.write(aid[k], data[k, :min(dlc[k], 8)].tobytes(), ts[k])
+                f = flags[k]
+                if not f & kinds:
+                    recorder.write(aid[k], data[k, :min(dlc[k], 8)].tobytes(), ts[k])
+                elif f & F_FD and dlc[k] > 8:
+                    cut += 1  # its data beyond 8 bytes is not in the trace
+                else:
+                    remote = bool(f & F_REMOTE)
+                    recorder.write_message(can.Message(
+                        timestamp=ts[k], arbitration_id=aid[k],
+                        is_extended_id=bool(f & F_EXTENDED), is_remote_frame=remote,
+                        is_error_frame=bool(f & F_ERROR), is_fd=bool(f & F_FD), dlc=dlc[k],
+                        data=b"" if remote else data[k, :min(dlc[k], 8)].tobytes()))
             written += len(ts)
         if written != count:  # an opened capture closed meanwhile: keep the old file
             raise OSError(f"only {written:,} of {count:,} frames could be read back")
+    missing = recorder.not_written()
+    if cut:
+        words = (f"{cut:,} CAN FD frames longer than 8 bytes not written: the trace keeps "
+                 "8 data bytes a frame (save from the capture file itself)")
+        missing = f"{missing}; {words}" if missing else words
+    if missing:
+        raise PartlySaved(f"the file was written without some frames: {missing}")
     return count
 
 

@@ -578,6 +578,10 @@ class MonitorDock(QDockWidget):
     def save(self, path: str | Path) -> Worker:
         """Save every frame of what is shown on a worker; ``saved(path)`` or ``error``."""
         self.flush()
+        if self.capture_store is not None:  # its own node map, never the live session's
+            verdict = self.verdict
+            return self.saving.save(path, self.store.snapshot(), None,
+                                    None if verdict is None else verdict.node_map_json)
         return self.saving.save(path, self.store.snapshot(), dict(self.feed.links))
 
     def load_capture(self, path: str | Path) -> Worker | None:

@@ -34,6 +34,7 @@ from pdcp_studio.app.trace.store import (
     F_ERROR,
     F_EXTENDED,
     F_PLAIN,
+    F_REMOTE,
     FrameStore,
     IdStat,
     TraceFilter,
@@ -279,12 +280,14 @@ class TraceModel(QAbstractTableModel):
         aid, flags = frame.arbitration_id, frame.flags
         ident = "—" if flags & F_ERROR else f"0x{aid:08X}" if flags & F_EXTENDED \
             else f"0x{aid:03X}"
+        data = frame.data.hex(" ").upper()
+        if frame.dlc > 8 and not flags & F_REMOTE:
+            data += " …"  # CAN FD: the trace keeps the first 8 data bytes
         if flags & F_PLAIN:  # a foreign capture's frame: plain CAN, no PDCP names
             return (self.time_text(row, frame.timestamp), ident,
-                    translate("TraceModel", kind_word(flags)), str(frame.dlc),
-                    frame.data.hex(" ").upper(), "")
+                    translate("TraceModel", kind_word(flags)), str(frame.dlc), data, "")
         return (self.time_text(row, frame.timestamp), ident,
-                who(aid, flags), frame.function, frame.data.hex(" ").upper(),
+                who(aid, flags), frame.function, data,
                 with_names(decoded_fields(self.store.text(frame)), self.names))
 
     def time_text(self, row: int, t: float) -> str:
