@@ -142,6 +142,9 @@ def test_odd_frames_in_a_pdcp_capture_are_shown_as_what_they_are(qtbot, tmp_path
     assert by_kind["remote frame"][1:3] == ("0x3C2", "")
     assert by_kind["remote frame"][5] == "DLC 8"
     assert by_kind["extended frame"][1:3] == ("0x00000123", "")
+    stats = {row[0]: row for row in (dock.stats_model.row_texts(i)
+                                     for i in range(dock.stats_model.rowCount()))}
+    assert stats["0x00000123"][1] == "" and stats["—"][1] == ""  # no PDCP sender
     assert not any("undecodable" in " ".join(r) for r in by_kind.values())
     assert sum(r[3].startswith("undecodable") for r in rows) <= 1  # as without them (0x209)
 

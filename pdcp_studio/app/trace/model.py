@@ -31,6 +31,7 @@ from PySide6.QtWidgets import QTableView
 
 from pdcp_studio.app.i18n import translate
 from pdcp_studio.app.trace.store import (
+    F_CHANNEL,
     F_ERROR,
     F_EXTENDED,
     F_PLAIN,
@@ -394,7 +395,8 @@ class StatsModel(QAbstractTableModel):
         if col == 1:
             if self.plain:
                 return ""
-            return who(s.arbitration_id, 2 if s.function == "Channel data" else 0)
+            return who(s.arbitration_id, s.flags | (F_CHANNEL if s.function == "Channel data"
+                                                    else 0))
         if col == 2:
             return f"{s.count:,}"
         if col == 3:
