@@ -4847,6 +4847,17 @@ Die Prothese ist wie zuvor.</translation>
         </message>
     </context>
     <context>
+        <name>HeardBus</name>
+        <message>
+            <source>Device at node {node}</source>
+            <translation>Gerät an Knoten {node}</translation>
+        </message>
+        <message>
+            <source>Channel node {node}</source>
+            <translation>Kanalknoten {node}</translation>
+        </message>
+    </context>
+    <context>
         <name>ArbitratorFound</name>
         <message>
             <source>{url}: another bus arbitrator is running this bus — PDCP Studio sent nothing</source>
@@ -6265,17 +6276,6 @@ Wählen Sie ein Profil aus dem Namensbaum oder geben Sie eines hexadezimal ein.<
         <message>
             <source>previewing</source>
             <translation>bei der Vorschau</translation>
-        </message>
-    </context>
-    <context>
-        <name>HeardBus</name>
-        <message>
-            <source>Device at node {node}</source>
-            <translation>Gerät an Knoten {node}</translation>
-        </message>
-        <message>
-            <source>Channel node {node}</source>
-            <translation>Kanalknoten {node}</translation>
         </message>
     </context>
 </TS>
