@@ -1037,6 +1037,10 @@
             <source>The devices of the bus and the links between their channels</source>
             <translation>Die Geräte des Busses und die Verbindungen zwischen ihren Kanälen</translation>
         </message>
+        <message>
+            <source>Opened capture {name}</source>
+            <translation>Mitschnitt {name} geöffnet</translation>
+        </message>
     </context>
     <context>
         <name>DeviceTree</name>
@@ -2747,6 +2751,102 @@ Den PDCP-Bus einer aktiven Prothese ansehen und einrichten.</translation>
         <message>
             <source>frames</source>
             <translation>Frames</translation>
+        </message>
+        <message>
+            <source>Kind</source>
+            <translation>Art</translation>
+        </message>
+        <message>
+            <source>DLC</source>
+            <translation>DLC</translation>
+        </message>
+        <message>
+            <source>not read</source>
+            <translation>nicht gelesen</translation>
+        </message>
+        <message>
+            <source>{path}: a pipe or a device, not a capture file (the app opens files; read a pipe with pdcp-studio monitor --replay)</source>
+            <translation>{path}: eine Pipe oder ein Gerät, keine Mitschnittdatei (die App öffnet Dateien; eine Pipe liest pdcp-studio monitor --replay)</translation>
+        </message>
+        <message>
+            <source>Captures ({globs})</source>
+            <translation>Mitschnitte ({globs})</translation>
+        </message>
+        <message>
+            <source>ASAM MDF4 (*.mf4)</source>
+            <translation>ASAM MDF4 (*.mf4)</translation>
+        </message>
+        <message>
+            <source>ASAM MDF4, needs python-can's mf4 extra, not installed (*.mf4)</source>
+            <translation>ASAM MDF4, braucht das mf4-Extra von python-can, nicht installiert (*.mf4)</translation>
+        </message>
+        <message>
+            <source>All files (*)</source>
+            <translation>Alle Dateien (*)</translation>
+        </message>
+        <message>
+            <source>node map from {name}</source>
+            <translation>Knotenzuordnung aus {name}</translation>
+        </message>
+        <message>
+            <source>node map from the capture's set-up: {devices}, {channels}</source>
+            <translation>Knotenzuordnung aus der Einrichtung im Mitschnitt: {devices}, {channels}</translation>
+        </message>
+        <message>
+            <source>node map inferred from traffic: {devices}, {channels}</source>
+            <translation>Knotenzuordnung aus dem Verkehr erschlossen: {devices}, {channels}</translation>
+        </message>
+        <message>
+            <source>no node map (no set-up in the capture, nothing to infer from)</source>
+            <translation>keine Knotenzuordnung (keine Einrichtung im Mitschnitt, nichts zu erschließen)</translation>
+        </message>
+        <message>
+            <source>Empty capture: no frames</source>
+            <translation>Leerer Mitschnitt: keine Nachrichten</translation>
+        </message>
+        <message>
+            <source>Not PDCP: shown as plain CAN frames</source>
+            <translation>Kein PDCP: als einfache CAN-Nachrichten gezeigt</translation>
+        </message>
+        <message>
+            <source>Reading…</source>
+            <translation>Wird gelesen…</translation>
+        </message>
+        <message>
+            <source>PDCP capture</source>
+            <translation>PDCP-Mitschnitt</translation>
+        </message>
+        <message>
+            <source>Cut short: {damage} — the {frames} frames before it are shown</source>
+            <translation>Abgebrochen: {damage} — die {frames} Nachrichten davor werden gezeigt</translation>
+        </message>
+        <message>
+            <source>Stopped: the first {frames} frames are shown</source>
+            <translation>Angehalten: die ersten {frames} Nachrichten werden gezeigt</translation>
+        </message>
+        <message>
+            <source>Stopped before the first frames were read</source>
+            <translation>Angehalten, bevor die ersten Nachrichten gelesen waren</translation>
+        </message>
+        <message>
+            <source>This capture could not be read:
+{message}</source>
+            <translation>Dieser Mitschnitt konnte nicht gelesen werden:
+{message}</translation>
+        </message>
+        <message numerus="yes">
+            <source>%n device(s)</source>
+            <translation>
+                <numerusform>%n Gerät</numerusform>
+                <numerusform>%n Geräte</numerusform>
+            </translation>
+        </message>
+        <message numerus="yes">
+            <source>%n channel(s)</source>
+            <translation>
+                <numerusform>%n Kanal</numerusform>
+                <numerusform>%n Kanäle</numerusform>
+            </translation>
         </message>
     </context>
     <context>
@@ -4767,6 +4867,17 @@ Die Prothese ist wie zuvor.</translation>
         </message>
     </context>
     <context>
+        <name>HeardBus</name>
+        <message>
+            <source>Device at node {node}</source>
+            <translation>Gerät an Knoten {node}</translation>
+        </message>
+        <message>
+            <source>Channel node {node}</source>
+            <translation>Kanalknoten {node}</translation>
+        </message>
+    </context>
+    <context>
         <name>ArbitratorFound</name>
         <message>
             <source>{url}: another bus arbitrator is running this bus — PDCP Studio sent nothing</source>
@@ -5053,6 +5164,26 @@ Die Prothese ist wie zuvor.</translation>
         <message>
             <source>Δ marker</source>
             <translation>Δ Markierung</translation>
+        </message>
+        <message>
+            <source>data frame</source>
+            <translation>Datennachricht</translation>
+        </message>
+        <message>
+            <source>remote frame</source>
+            <translation>Remote-Nachricht</translation>
+        </message>
+        <message>
+            <source>error frame</source>
+            <translation>Fehlernachricht</translation>
+        </message>
+        <message>
+            <source>FD frame</source>
+            <translation>FD-Nachricht</translation>
+        </message>
+        <message>
+            <source>extended frame</source>
+            <translation>Nachricht mit erweiterter ID</translation>
         </message>
     </context>
     <context>

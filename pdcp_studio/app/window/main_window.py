@@ -123,7 +123,8 @@ class MainWindow(QMainWindow):
             scan_finished=lambda system: self._scan_finished(system))
         self.other_arbitrator = OtherArbitrator(
             self, self.statusBar(), lambda text, ms: self.show_message(text, ms),
-            lambda url: self.connect_bus(url), lambda: self.bus_docks.monitor_dock())
+            lambda url: self.connect_bus(url), lambda: self.bus_docks.monitor_dock(),
+            show_heard=lambda system, at: self.doc.set_system(system, positions=at))
         self._connect()
         self._update_title()
         self.crash_recovery = RecoveryController(self.doc, recovery, self.status_line, self,
