@@ -18,7 +18,7 @@ from collections.abc import Callable
 from typing import TYPE_CHECKING, Protocol, cast
 
 from pdcp_studio.bus import events as ev
-from pdcp_studio.bus.arbitrator.claim import Decision
+from pdcp_studio.bus.arbitrator.claim import Decision, Stray
 from pdcp_studio.bus.arbitrator.common import (
     DEFAULT_BEACON_INTERVAL_S,
     TICK_S,
@@ -27,6 +27,7 @@ from pdcp_studio.bus.arbitrator.common import (
 )
 from pdcp_studio.bus.arbitrator.nodes import BindDecision
 from pdcp_studio.bus.arbitrator.state import Emit, ReportError, SendFrame, SystemState
+from pdcp_studio.bus.log_limit import RepeatLimiter
 from pdcp_studio.bus.sim.signals import decode_sample
 from pdcp_studio.errors import FrameError
 from pdcp_studio.model.refs import ChannelRef, DeviceKey
@@ -128,6 +129,8 @@ class Dispatcher:
         self.disconnected = False  # the adapter was pulled (a ReopeningBus says so)
         self.bus_message = ""  # the last BusState line (why it arbitrates or not)
         self._hold_until = 0.0  # after a stall: frames may still wait in the driver till then
+        #: Stray mode-1 frames: the first told, then one a second and a summary (log_limit).
+        self._strays = RepeatLimiter(burst=1)
 
     def run(self) -> None:
         """The thread: frames as they come, the claim's and presence's tick every TICK_S."""
@@ -150,6 +153,7 @@ class Dispatcher:
                 last = now
                 if now >= next_tick and self._claim_tick(now):
                     next_tick = now + TICK_S
+                    self._flush_strays(now)
                     self._flush_errors()
                     # Presence is judged only when every frame received so far is handled:
                     # a backlog (a busy machine) must not pass for silent devices.
@@ -185,6 +189,8 @@ class Dispatcher:
         node_id = aid & 0xFF
         if not self._hear_claim(aid, data, now):
             return  # another arbitrator is on the bus: nothing here is ours to answer
+        if aid >> 8 & 1:
+            return  # a mode-1 frame is never ours to handle (the claim has judged it)
         if self._nodes.is_foreign(aid):
             self._foreign_frame(node_id, aid, data, now)
             return
@@ -197,7 +203,7 @@ class Dispatcher:
             self._on_data(message, msg.timestamp or time.time())
             return
         if message.mode is Mode.ARBITRATOR:
-            return  # (the claim has already yielded)
+            return  # (never reached: the claim has judged it)
         if isinstance(message, BindRequest):
             self._on_bind(message, now)
             return
@@ -371,9 +377,26 @@ class Dispatcher:
         """Feed a received frame to the claim; False once another arbitrator is on the bus
         (then nothing received is ours to handle)."""
         decision = self._claim.heard(arbitration_id, data, now)
-        if decision is not None:
+        if isinstance(decision, Decision):
             self._claim_yielded(decision)
+        elif isinstance(decision, Stray):
+            self._stray(decision, now)
         return not self._claim.yielded
+
+    def _stray(self, stray: Stray, now: float) -> None:
+        """A stray arbitrator-mode frame: told (rate-limited), then ignored."""
+        told, summary = self._strays.admit("stray_frame", stray.message, now)
+        if summary is not None:
+            self._error(summary.text("stray arbitrator-mode frames, ignored"), "stray_frame")
+        if told:
+            self._error(stray.message, "stray_frame")
+
+    def _flush_strays(self, now: float) -> None:
+        lone = self._claim.lone_beacon(now)
+        if lone is not None:
+            self._stray(lone, now)
+        for summary in self._strays.due(now):
+            self._error(summary.text("stray arbitrator-mode frames, ignored"), "stray_frame")
 
     def _claim_tick(self, now: float) -> bool:
         """End the listening when it is due, beacon when due; True while arbitrating (and
@@ -381,7 +404,7 @@ class Dispatcher:
         request asks it first: one handled after the listening ended but before the loop's
         next tick would be granted while every write is still refused, and the set-up of
         the device it binds would fail on its first request."""
-        decision = self._claim.tick(now)
+        decision = self._claim.tick(now, self._caught_up(now))
         if decision is not None:
             self.claim_started(decision)
         if self._claim.beacon_due(now):
@@ -389,13 +412,23 @@ class Dispatcher:
         return bool(self._claim.may_write) and not self.disconnected
 
     def claim_started(self, decision: Decision | None) -> None:
-        """The bus is ours: the start-up reset (a replaced arbitrator's devices bind again)."""
+        """The bus is ours: the start-up reset (a replaced arbitrator's devices bind again).
+        Taken back after another arbitrator's beacons were gone: no reset (the prosthesis
+        keeps working); every device gets its beacon intervals to be heard again, the links
+        are read back and re-made where they differ, and devices the other bound are reset
+        one by one when they beacon (strangers)."""
         if decision is not None:
             self.bus_message = decision.message
             log.info("%s: %s", self._name, decision.message)
             self._emit(ev.BusState("arbitrating", decision.message))
             with self._state.lock:
                 self._presence.claimed()
+                if decision.taken_back:
+                    self._nodes.heard_all(time.monotonic())
+            if decision.taken_back:
+                self._links.reread()
+                self._wake()
+                return
         if self._reset_on_claim or (decision is not None and decision.takeover):
             self._send(Reset(0))
 
