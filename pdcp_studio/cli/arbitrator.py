@@ -58,8 +58,8 @@ def describe(event: Any) -> str | None:
 
     if isinstance(event, ev.DeviceJoined):
         return f"joined {event.key}"
-    if isinstance(event, ev.DeviceLeft):
-        return f"left {event.key}"
+    if isinstance(event, ev.DeviceLeft):  # why on a line of its own (the first is the event)
+        return f"left {event.key}" + (f"\n  why: {event.why}" if event.why else "")
     if isinstance(event, ev.LinkMade):
         return f"link made {event.link}"
     if isinstance(event, ev.LinkRemoved):

@@ -5040,6 +5040,10 @@ Die Prothese ist wie zuvor.</translation>
     <context>
         <name>EventsPanel</name>
         <message>
+            <source>No beacon for {seconds} s: {intervals} beacon intervals of {ms} ms</source>
+            <translation>Kein Beacon seit {seconds} s: {intervals} Beacon-Intervalle zu {ms} ms</translation>
+        </message>
+        <message>
             <source>{device} joined the bus</source>
             <translation>{device} ist dem Bus beigetreten</translation>
         </message>

@@ -15,6 +15,8 @@ from pdcp_studio.bus.arbitrator.common import (
     MISSED_BEACONS,
     PRESENCE_GRACE,
     RESET_GRACE_S,
+    SILENT_BUS_FACTOR,
+    SILENT_BUS_S,
     UNKNOWN_RESET_S,
     _Node,
 )
@@ -117,7 +119,41 @@ def test_a_device_is_gone_after_its_missed_beacons_at_now():
     node = _Node(K4, 7, last_seen=10.0, beacon_interval=0.1)
     limit = 0.1 * (MISSED_BEACONS + PRESENCE_GRACE)
     assert presence.absent([node], 10.0 + limit - 0.01) == []
-    assert presence.absent([node], 10.0 + limit + 0.01) == [node]
+    assert [g.node for g in presence.absent([node], 10.0 + limit + 0.01)] == [node]
+
+
+def _beaconing(last_seen: float, last_bus: float, interval: float = 0.5) -> _Node:
+    return _Node(K4, 7, last_seen=last_seen, beacon_interval=interval, last_bus=last_bus)
+
+
+def test_presence_is_judged_by_the_bus_not_by_a_starved_clock():
+    """Issue 28 item 6: a part leaves only after missed beacons measured against frames
+    actually received (their bus times), never because the checker or the reader was not
+    scheduled."""
+    presence = PresenceTracker()
+    limit = 0.5 * (MISSED_BEACONS + PRESENCE_GRACE)  # 1.75 s
+    # The process was starved for 3 s: by the clock the node is long silent, but nothing was
+    # received from anyone since its last beacon (bus time 1000.0): not gone.
+    node = _beaconing(last_seen=10.0, last_bus=1000.0)
+    assert presence.absent([node], 13.0, bus_now=1000.2, smooth_s=0.5) == []
+    # A backlog being handled late: others' frames up to 1.0 s after its beacon (bus time),
+    # handled 3 s after it (clock): still not gone — its next beacon is in the backlog.
+    assert presence.absent([node], 13.0, bus_now=1001.0, smooth_s=10.0) == []
+    # The bus carried others' frames stamped past its limit: gone, and it says why.
+    gone = presence.absent([node], 13.0, bus_now=1000.0 + limit + 0.1, smooth_s=0.5)
+    assert [g.node for g in gone] == [node]
+    assert gone[0].why.startswith("no beacon for 1.9 s, 3 beacon intervals")
+    assert "others' frames" in gone[0].why and gone[0].silent_s == pytest.approx(1.85)
+
+
+def test_a_bus_gone_quiet_still_loses_its_parts_after_a_long_silence_of_a_running_checker():
+    presence = PresenceTracker()
+    node = _beaconing(last_seen=10.0, last_bus=1000.0)
+    quiet = max(SILENT_BUS_FACTOR * 0.5 * (MISSED_BEACONS + PRESENCE_GRACE), SILENT_BUS_S)
+    assert presence.absent([node], 10.0 + quiet - 0.1, bus_now=1000.0, smooth_s=60.0) == []
+    assert presence.absent([node], 10.0 + quiet + 0.1, bus_now=1000.0, smooth_s=1.0) == []
+    gone = presence.absent([node], 10.0 + quiet + 0.1, bus_now=1000.0, smooth_s=60.0)
+    assert [g.node for g in gone] == [node] and "no frame from anyone" in gone[0].why
 
 
 def test_twins_beacon_twice_as_often():

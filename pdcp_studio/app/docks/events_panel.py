@@ -79,7 +79,8 @@ def describe_event(event: object, system: System | None,
             detail=f"{event.key} → {event.new}")]
     if isinstance(event, ev.DeviceLeft):
         return [EventRow(_t("{device} left the bus").format(
-            device=W.device_words(system, event.key)), detail=str(event.key))]
+            device=W.device_words(system, event.key)), _left_why(event),
+            detail="\n".join(t for t in (str(event.key), event.why) if t))]
     if isinstance(event, ev.PlanApplied):
         return _plan_rows(event.plan, system, profile_name)
     if isinstance(event, ev.TerminalsUnconnected):
@@ -91,6 +92,17 @@ def describe_event(event: object, system: System | None,
     if isinstance(event, ev.BusError) and event.kind in _ERROR_KINDS:
         return [EventRow(_t("Bus problem"), event.message, detail=event.kind)]
     return []
+
+
+def _left_why(event: ev.DeviceLeft) -> str:
+    """Why a part left, as the arbitrator measured it on the bus (empty when the transport
+    does not say): "No beacon for 1.9 s: 3 beacon intervals"."""
+    if event.silent_s <= 0 or event.interval_s <= 0:
+        return ""
+    intervals = int(event.silent_s / event.interval_s)
+    return _t("No beacon for {seconds} s: {intervals} beacon intervals of {ms} ms").format(
+        seconds=f"{event.silent_s:.1f}", intervals=intervals,
+        ms=f"{event.interval_s * 1000:.0f}")
 
 
 def mentions_unknown(event: object, system: System | None) -> bool:

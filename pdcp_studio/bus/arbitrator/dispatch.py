@@ -129,6 +129,11 @@ class Dispatcher:
         self.disconnected = False  # the adapter was pulled (a ReopeningBus says so)
         self.bus_message = ""  # the last BusState line (why it arbitrates or not)
         self._hold_until = 0.0  # after a stall: frames may still wait in the driver till then
+        self._last_stall = float("-inf")  # when this loop last found it had not run
+        #: The bus time (the frame's own timestamp) of the newest frame received from anyone,
+        #: and when it was handled: presence is judged by the bus's clock (issue 28 item 6).
+        self._bus_now = 0.0
+        self._bus_now_at = 0.0
         #: Stray mode-1 frames: the first told, then one a second and a summary (log_limit).
         self._strays = RepeatLimiter(burst=1)
 
@@ -150,6 +155,7 @@ class Dispatcher:
                 now = time.monotonic()
                 if now - last > STALL_S:  # this process did not run (a loaded PC, a pause):
                     self._hold_until = now + STALL_GRACE_S  # frames may still wait in the driver
+                    self._last_stall = now
                 last = now
                 if now >= next_tick and self._claim_tick(now):
                     next_tick = now + TICK_S
@@ -175,8 +181,11 @@ class Dispatcher:
         now = time.monotonic()
         if self._claim.is_own_echo(msg.arbitration_id, data, now):
             return  # our own frame, handed back by the bus (late or not)
+        stamp = msg.timestamp or time.time()
+        if stamp >= self._bus_now:
+            self._bus_now, self._bus_now_at = stamp, now
         if self._show_frame is not None:
-            self._show_frame(msg.arbitration_id, data, msg.timestamp or time.time())
+            self._show_frame(msg.arbitration_id, data, stamp)
         if msg.is_error_frame:
             self.error_frames += 1
             self._error(f"error frame #{self.error_frames} on the bus", "error_frame")
@@ -208,7 +217,8 @@ class Dispatcher:
             self._on_bind(message, now)
             return
         with self._state.lock:
-            node = self._nodes.heard(node_id, now, beacon=isinstance(message, Beacon))
+            node = self._nodes.heard(node_id, now, beacon=isinstance(message, Beacon),
+                                     bus_time=stamp)
         if node is None:  # node 0, or a device that left a moment ago
             return
         if isinstance(message, Beacon):
@@ -285,22 +295,30 @@ class Dispatcher:
         interval = (max(device.beacon_interval, 1) / 1000.0 if device is not None
                     else max(DEFAULT_BEACON_INTERVAL_S, UNREAD_BEACON_INTERVAL_S))
         node, old = self._nodes.install(key, node_id, now, interval)
+        node.last_bus = self._bus_estimate(now)
         if old is not None and old != node_id:
             self._requests.abort(old, "the device bound again with another node ID")
         self._profile.note_change(now)
         return self._setup.start(node)
 
     # -- presence (the presence tracker decides) ------------------------------------------
+    def _bus_estimate(self, now: float) -> float:
+        """The bus's clock now: the newest frame's bus time plus the time since it was
+        handled (a node given a fresh start is stamped with it)."""
+        return self._bus_now + max(0.0, now - self._bus_now_at) if self._bus_now_at else 0.0
+
     def _tick(self, now: float, caught_up: bool = True) -> None:
-        """Presence, held and foreign node IDs, deferred binds."""
+        """Presence (judged by the bus's clock, see the presence tracker), held and foreign
+        node IDs, deferred binds."""
         with self._state.lock:
-            gone = self._presence.absent(list(self._nodes.by_id.values()), now) \
+            gone = self._presence.absent(list(self._nodes.by_id.values()), now,
+                                         self._bus_now, now - self._last_stall) \
                 if caught_up else []
             self._nodes.expire(now)
             resolved = self._nodes.resolve_deferred(now, self._presence.duplicates) \
                 if caught_up else []
-        for node in gone:
-            self._depart(node, now)
+        for node, why, silent_s in gone:
+            self._depart(node, now, why, silent_s)
         for req, twin in resolved:
             key = DeviceKey(req.vid, req.pid, req.serial)
             if twin:
@@ -316,7 +334,7 @@ class Dispatcher:
             line = self._presence.report(key, why)
         self._error(line, "duplicate_device")
 
-    def _depart(self, node: _Node, now: float) -> None:
+    def _depart(self, node: _Node, now: float, why: str = "", silent_s: float = 0.0) -> None:
         key = node.key
         with self._state.lock:
             if not self._nodes.remove(node):
@@ -338,8 +356,10 @@ class Dispatcher:
         self._requests.abort(node.node_id, "the device left the bus")
         if not was_present:
             return
-        log.info("%s: device %s left (node %d)", self._name, key, node.node_id)
-        self._emit(ev.DeviceLeft(key))
+        log.info("%s: device %s left (node %d)%s", self._name, key, node.node_id,
+                 f": {why}" if why else "")
+        self._emit(ev.DeviceLeft(key, why=why, silent_s=silent_s,
+                                 interval_s=node.beacon_interval))
         self._links.silence_inputs(fed)
         self._wake()
 
@@ -424,7 +444,8 @@ class Dispatcher:
             with self._state.lock:
                 self._presence.claimed()
                 if decision.taken_back:
-                    self._nodes.heard_all(time.monotonic())
+                    now = time.monotonic()
+                    self._nodes.heard_all(now, self._bus_estimate(now))
             if decision.taken_back:
                 self._links.reread()
                 self._wake()
@@ -458,7 +479,7 @@ class Dispatcher:
         with self._state.lock:
             self.disconnected = state == "disconnected"
             if not self.disconnected:
-                self._nodes.heard_all(now)
+                self._nodes.heard_all(now, self._bus_estimate(now))
         self._emit(ev.BusState(state, line))
         if not self.disconnected:
             self._links.reread()

@@ -1,7 +1,13 @@
 """The presence tracker: who is on the bus at time ``now``, twins on one node ID, strangers.
 
 - A bound device is gone after ``MISSED_BEACONS`` beacon intervals (and ``PRESENCE_GRACE``)
-  without a frame (reference §1 Decision).
+  without a frame (reference §1 Decision), measured against the frames actually received, not
+  the PC's clock alone (issue 28 item 6): the bus must have carried others' frames stamped
+  that long after its last one (the frames' own timestamps: a backlog handled late is still
+  judged in bus time). When nothing at all came from anyone — a starved process whose reader
+  did not run, or a bus gone quiet — it is gone only after a much longer silence
+  (``SILENT_BUS_FACTOR`` × its limit, at least ``SILENT_BUS_S``) during which the checker
+  itself ran without a stall. Each departure says why, in words.
 - Twins bound together (one answer binds both) are caught by their echoed responses (two
   identical answers to one request) or by their doubled beacon rate.
 - A node nobody bound here (an earlier arbitrator's device) that beacons is reset so that it
@@ -15,7 +21,7 @@ the arbitrator (holding its lock) carries it out.
 from __future__ import annotations
 
 from collections.abc import Iterable
-from typing import Literal
+from typing import Literal, NamedTuple
 
 from pdcp_studio.bus.arbitrator.common import (
     BEACON_WINDOW,
@@ -23,6 +29,8 @@ from pdcp_studio.bus.arbitrator.common import (
     MISSED_BEACONS,
     PRESENCE_GRACE,
     RESET_GRACE_S,
+    SILENT_BUS_FACTOR,
+    SILENT_BUS_S,
     TWIN_BEACON_RATIO,
     UNKNOWN_RESET_S,
     _Node,
@@ -36,6 +44,22 @@ def duplicate_message(key: DeviceKey, why: str) -> str:
             f"bus ({why}); only one can be bound")
 
 
+class Gone(NamedTuple):
+    """A node that left: why in words, and how long it was silent (seconds)."""
+
+    node: _Node
+    why: str
+    silent_s: float
+
+
+def _gone(node: _Node, seconds: float, tail: str) -> Gone:
+    """Why a device is gone: "no beacon for 1.5 s, 3 beacon intervals" (and ``tail``)."""
+    interval = node.beacon_interval
+    intervals = int(seconds / interval) if interval > 0 else 0
+    return Gone(node, f"no beacon for {seconds:.1f} s, {intervals} beacon intervals{tail}",
+                seconds)
+
+
 class PresenceTracker:
     """Presence, twins and strangers; ``duplicates`` are the devices reported as twins."""
 
@@ -47,11 +71,32 @@ class PresenceTracker:
         self.stale_until = 0.0
         self.stale_data_frames = 0
 
-    def absent(self, nodes: Iterable[_Node], now: float) -> list[_Node]:
-        """The nodes not heard for their missed-beacon limit at ``now``."""
-        return [node for node in nodes
-                if now - node.last_seen > node.beacon_interval * (MISSED_BEACONS
-                                                                  + PRESENCE_GRACE)]
+    def absent(self, nodes: Iterable[_Node], now: float, bus_now: float | None = None,
+               smooth_s: float = float("inf")) -> list[Gone]:
+        """The nodes gone at ``now``, each with why in words.
+
+        ``bus_now``: the bus time of the newest frame received from anyone (None: judge by
+        the clock alone, as a caller that has no bus times); ``smooth_s``: how long the
+        checker has run without a stall. A node is gone when it has not been heard for its
+        limit by the clock *and* either the bus carried frames stamped past its limit, or
+        nothing came from anyone and the silence is long (see the module doc)."""
+        gone = []
+        for node in nodes:
+            limit = node.beacon_interval * (MISSED_BEACONS + PRESENCE_GRACE)
+            wall = now - node.last_seen
+            if wall <= limit:
+                continue
+            if bus_now is None:
+                gone.append(_gone(node, wall, ""))
+                continue
+            on_bus = bus_now - node.last_bus
+            if on_bus > limit:
+                gone.append(_gone(node, on_bus, " while the bus carried others' frames"))
+                continue
+            quiet = max(SILENT_BUS_FACTOR * limit, SILENT_BUS_S)
+            if wall > quiet and smooth_s >= quiet:
+                gone.append(_gone(node, wall, ", and no frame from anyone either"))
+        return gone
 
     def beacon(self, node: _Node, now: float, caught_up: bool = True) -> str:
         """A beacon from ``node``; why it has a twin ('' when it has none, or is known).
@@ -140,4 +185,4 @@ class PresenceTracker:
         self.foreign_shown.clear()
 
 
-__all__ = ["PresenceTracker", "duplicate_message"]
+__all__ = ["Gone", "PresenceTracker", "duplicate_message"]
