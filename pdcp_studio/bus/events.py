@@ -111,9 +111,16 @@ BUS_STATE_TEXT = {"listening": "listening for another arbitrator",
 
 @dataclass(frozen=True, eq=False, repr=False)
 class PlanApplied(Record):
-    """The arbitrator applied a profile-layer plan (start-up, duty cycle or by request)."""
+    """The arbitrator applied a profile-layer plan (start-up, duty cycle or by request).
+
+    ``own``: the arbitrator changed the prosthesis on its own (start-up, the duty cycle), not
+    because someone asked; ``result``: the ``TransactionResult`` (bus/transaction.py) — whom
+    the motion interlock held (``held``), whether the links read back as written
+    (``verified``), notes. Each action of the plan carries its reason. Not compared."""
 
     plan: Any
+    own: bool = field(default=False, compare=False, kw_only=True)
+    result: Any = field(default=None, compare=False, kw_only=True)
 
 
 @dataclass(frozen=True, eq=False, repr=False)

@@ -77,6 +77,11 @@ def describe(event: Any) -> str | None:
         lines = [f"plan {plan.mode}: {len(plan.added)} added, {len(plan.removed)} removed, "
                  f"{len(plan.final_links)} links"]
         lines += [f"  {a.op.value} {a.link} ({a.reason})" for a in plan.actions]
+        result = getattr(event, "result", None)
+        if event.own and result is not None and plan.actions:  # what held it, and verified
+            held = ", ".join(str(k) for k in result.held) or "nobody (no part moves)"
+            lines.append(f"  on its own: held {held}; read back "
+                         + ("verified" if result.verified else "NOT as written"))
         return "\n".join(lines)
     return None
 

@@ -274,7 +274,8 @@ class Arbitrator:
             ProfilePorts(state, add_link=self.links.add, remove_link=self.links.remove,
                          interlock=interlock, read_memory=lambda: self.read_memory(),
                          read_policy=lambda: self.read_policy(), error=self._error,
-                         emit=self._emit, closed=lambda: self._closed, name=name),
+                         emit=self._emit, closed=lambda: self._closed, name=name,
+                         verify_inputs=lambda refs: self.transactions.verify_inputs(refs)),
             now, quiet_s=startup_quiet_s, duty_quiet_s=duty_quiet_s,
             max_wait_s=startup_max_wait_s, listen_until=listen_until)
         self.setup = DeviceSetup(state, self.nodes, self.requests, run=self._jobs.run,
