@@ -102,6 +102,15 @@ def test_beacons_further_apart_than_three_intervals_are_strays():
     assert claim.may_write
 
 
+def test_lone_beacons_far_apart_on_the_bus_handled_together_are_still_strays():
+    """A busy PC handles a backlog late: two beacons 5 s apart on the bus (their own time
+    stamps) handled 10 ms apart are not two beacons within three intervals."""
+    claim = BusClaim(0.0, listen_s=0.0)
+    assert claim.heard(*BEACON_BA, 20.00, bus_time=1000.0) is None
+    assert claim.heard(*BEACON_BA, 20.01, bus_time=1005.0) is None
+    assert claim.may_write
+
+
 def test_one_beacon_and_an_answer_nobody_here_asked_for_is_an_arbitrator():
     claim = BusClaim(0.0, listen_s=1.1)
     claim.heard(*frame(Beacon(7)), 0.05)  # a device beacons on node 7

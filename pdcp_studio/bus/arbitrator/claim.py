@@ -53,8 +53,9 @@ HEAR_BEACONS = 2
 HEAR_WINDOW_INTERVALS = 3
 #: The bus is taken back when the other's beacons have been gone this many intervals.
 TAKE_BACK_INTERVALS = 5
-#: A device's answer is ours when we sent that device (or everyone) a request this recently.
-OUR_REQUEST_S = 2.0
+#: A device's answer is ours when we sent that device (or everyone) a request this recently
+#: (by when it was handled: generous, so a backlog on a busy PC is not taken for strangers').
+OUR_REQUEST_S = 10.0
 _BINDING_PRIORITY = 3
 #: A copy of one of our own frames later than this is not waited for any more.
 OWN_ECHO_S = 30.0
@@ -162,32 +163,39 @@ class BusClaim:
     def yielded(self) -> bool:
         return self.phase is Phase.YIELDED
 
-    def heard(self, arbitration_id: int, data: bytes, now: float) -> Decision | Stray | None:
-        """A frame from the bus (never our own: ask :meth:`is_own_echo` first): a Decision
-        when another arbitrator is heard now, a :class:`Stray` for a mode-1 frame that does
-        not make one, else None."""
+    def heard(self, arbitration_id: int, data: bytes, now: float,
+              bus_time: float | None = None) -> Decision | Stray | None:
+        """A frame from the bus (never our own: ask :meth:`is_own_echo` first), handled at
+        ``now`` and stamped ``bus_time`` by the bus: a Decision when another arbitrator is
+        heard now, a :class:`Stray` for a mode-1 frame that does not make one, else None.
+
+        Which frames are "within three beacon intervals" of each other is judged by their bus
+        times (a backlog handled late must not crowd two lone beacons together); when the
+        other's beacons stopped, by when they were handled (``now``: taking the bus back
+        waits for a backlog to be handled)."""
         data = bytes(data)
+        at = now if bus_time is None else bus_time
         node_id = arbitration_id & 0xFF
         code = data[0] if data else -1
         if arbitration_id >> 8 & 1:  # mode 1: an arbitrator's frame, or a stray one
             if _is_arbitrator_beacon(arbitration_id, data):
-                self._other_beacons.append(now)
+                self._other_beacons.append(at)
                 self.last_other_beacon = now
             elif self.phase is Phase.YIELDED:
                 return None  # the other arbitrator at work: nothing of ours
             elif code >= 0 and code & 0x80:  # an arbitrator's answer to a device: not ours
-                self._foreign_answer = now
+                self._foreign_answer = at
             else:
                 return self._stray(arbitration_id, data)
-            return self._judge(arbitration_id, data, now)
+            return self._judge(arbitration_id, data, at, now)
         if code == FunctionCode.BEACON and arbitration_id >> 9 != _BINDING_PRIORITY \
                 and 0 < node_id <= NODE_ID_MAX:
             self._devices[node_id] = now
             if self.phase is Phase.LISTENING:
                 self._beaconing.add(node_id)
         elif code >= 0 and code & 0x80 and self._foreign_device_answer(node_id, now):
-            self._foreign_answer = now  # evidence beside a beacon; alone it is nothing
-            decision = self._judge(arbitration_id, data, now)
+            self._foreign_answer = at  # evidence beside a beacon; alone it is nothing
+            decision = self._judge(arbitration_id, data, at, now)
             return decision if isinstance(decision, Decision) else None
         return None
 
@@ -207,12 +215,14 @@ class BusClaim:
                      "another arbitrator is known by its beacons, never by one frame "
                      "(reference §5)")
 
-    def _judge(self, arbitration_id: int, data: bytes, now: float) -> Decision | Stray | None:
-        """Another arbitrator's frame: is it heard now (its beacons, reference §5)?"""
+    def _judge(self, arbitration_id: int, data: bytes, at: float, now: float
+               ) -> Decision | Stray | None:
+        """Another arbitrator's frame (bus time ``at``, handled at ``now``): is it heard now
+        (its beacons, reference §5)?"""
         window = self.hear_window_s
-        beacons = [t for t in self._other_beacons if now - t <= window]
+        beacons = [t for t in self._other_beacons if abs(at - t) <= window]
         heard = len(beacons) >= HEAR_BEACONS or (
-            bool(beacons) and now - self._foreign_answer <= window)
+            bool(beacons) and abs(at - self._foreign_answer) <= window)
         if self.phase is Phase.YIELDED:
             return None  # (said once; its beacons keep the bus from being taken back)
         if not heard:  # one frame: not (yet) another arbitrator

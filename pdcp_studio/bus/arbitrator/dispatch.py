@@ -196,7 +196,7 @@ class Dispatcher:
             return
         aid = msg.arbitration_id
         node_id = aid & 0xFF
-        if not self._hear_claim(aid, data, now):
+        if not self._hear_claim(aid, data, now, stamp):
             return  # another arbitrator is on the bus: nothing here is ours to answer
         if aid >> 8 & 1:
             return  # a mode-1 frame is never ours to handle (the claim has judged it)
@@ -393,10 +393,11 @@ class Dispatcher:
                                                  message.channel))
 
     # -- one arbitrator per bus (reference §5; the claim decides) -------------------------
-    def _hear_claim(self, arbitration_id: int, data: bytes, now: float) -> bool:
+    def _hear_claim(self, arbitration_id: int, data: bytes, now: float,
+                    bus_time: float | None = None) -> bool:
         """Feed a received frame to the claim; False once another arbitrator is on the bus
         (then nothing received is ours to handle)."""
-        decision = self._claim.heard(arbitration_id, data, now)
+        decision = self._claim.heard(arbitration_id, data, now, bus_time)
         if isinstance(decision, Decision):
             self._claim_yielded(decision)
         elif isinstance(decision, Stray):
