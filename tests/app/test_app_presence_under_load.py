@@ -33,7 +33,7 @@ def _left(panel) -> list[tuple[str, str, str]]:
 def test_a_part_that_leaves_says_why_in_bus_events(live, qtbot):
     window, panel = live
     session = window.live.bridge.session
-    session.host.call(lambda: time.sleep(3.0), timeout=30.0)  # the devices' side starved
+    session.host.call(lambda: time.sleep(2.0), timeout=30.0)  # the devices' side starved
     qtbot.wait(500)
     assert _left(panel) == []
     window.live.bridge.unplug(HAND)

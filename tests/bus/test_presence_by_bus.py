@@ -42,9 +42,9 @@ def transradial():
 def test_a_frozen_device_side_is_nobody_leaving_and_a_part_unplugged_leaves_saying_why():
     with transradial() as (session, left):
         arb = session.arbitrator
-        # The devices' side does not run for 3 s (a starved process): not a frame from anyone
+        # The devices' side does not run for 2 s (a starved process): not a frame from anyone
         # — by the clock every part missed its beacons many times over, by the bus none did.
-        session.host.call(lambda: time.sleep(3.0), timeout=30.0)
+        session.host.call(lambda: time.sleep(2.0), timeout=30.0)
         time.sleep(1.0)
         assert left == [] and len(arb.devices_present()) == 4
         session.host.unplug(HAND)  # the others keep beaconing: it is missed on the bus

@@ -23,9 +23,9 @@ MISSED_BEACONS = 3
 PRESENCE_GRACE = 0.5
 #: When nothing at all was received from anyone past a device's deadline (a starved process,
 #: or a bus gone quiet), it is gone only after this many times its limit …
-SILENT_BUS_FACTOR = 3.0
+SILENT_BUS_FACTOR = 2.0
 #: … and never before this many seconds of silence, the checker running throughout.
-SILENT_BUS_S = 5.0
+SILENT_BUS_S = 3.0
 #: A present device asking to bind again: wait this many beacon intervals for a twin's beacon.
 DUPLICATE_WINDOW = 1.5
 #: Beacons are counted over this many intervals; more than TWIN_BEACON_RATIO times the
