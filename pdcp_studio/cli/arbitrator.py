@@ -10,7 +10,8 @@ One arbitrator per bus (reference §5): another arbitrator heard while listening
 never one frame) keeps this one off the bus — one line on stderr, exit 1. One that appears
 later makes it stop writing at once and say so; it stays up, serves its host link read-only
 (writes and transactions refused in words) and takes the bus back when the other's beacons
-have been gone for five beacon intervals (2.5 s), saying that too.
+have been gone for five beacon intervals (2.5 s) and a random wait of up to as many again,
+saying that too.
 """
 
 from __future__ import annotations

@@ -138,7 +138,7 @@ def test_an_arbitrator_appearing_later_stops_the_writing():
 
 
 def test_taken_back_when_the_others_beacons_are_gone_five_intervals():
-    claim = BusClaim(0.0, listen_s=0.0, take_back=True)
+    claim = BusClaim(0.0, listen_s=0.0, take_back=True, jitter=lambda: 0.0)
     claim.heard(*BEACON_BA, 3.0)
     decision = claim.heard(*BEACON_BA, 3.5)
     assert decision.later and "read-only" in decision.message and "2.5 s" in decision.message
@@ -149,6 +149,27 @@ def test_taken_back_when_the_others_beacons_are_gone_five_intervals():
     back = claim.tick(7.6)
     assert back.phase is Phase.ARBITRATING and back.taken_back and claim.may_write
     assert "2.6 s" in back.message and claim.beacon_due(7.6)
+
+
+def test_two_arbitrators_that_stepped_aside_for_each_other_do_not_come_back_together():
+    """Buses joined: each heard the other and stepped aside; their random waits differ, so
+    one takes the bus back first, beacons, and the other stays aside."""
+    waits = iter([0.1, 0.9])
+    a, b = (BusClaim(0.0, listen_s=0.0, take_back=True, jitter=lambda: next(waits))
+            for _ in range(2))
+    for claim in (a, b):
+        claim.heard(*BEACON_BA, 1.0)
+        assert claim.heard(*BEACON_BA, 1.5).later
+    assert 2.5 <= a.take_back_wait_s < b.take_back_wait_s <= 5.0
+    t = 1.5
+    while not a.may_write:
+        t += 0.01
+        a.tick(t)
+        assert b.tick(t) is None
+    assert t - 1.5 == pytest.approx(a.take_back_wait_s, abs=0.02)
+    for step in range(10):  # a beacons; b hears it and stays aside
+        now = t + 0.5 * step
+        assert b.heard(*BEACON_BA, now) is None and b.tick(now) is None and b.yielded
 
 
 def test_every_single_mode_1_frame_is_a_stray_never_a_reason_to_leave():

@@ -13,8 +13,10 @@ could otherwise take the prosthesis's arbitrator away.
 Heard while listening, the other arbitrator keeps this one off the bus (no answers, resets
 or writes). Heard later, this one stops writing at once; with ``take_back`` (the headless
 arbitrator, which stays up and serves its host link read-only) it takes the bus back when
-the other's beacons have been gone for ``TAKE_BACK_INTERVALS`` beacon intervals, judged only
-while every frame received so far is handled (a starved process must not mistake its own
+the other's beacons have been gone for ``TAKE_BACK_INTERVALS`` beacon intervals and a random
+wait of up to as many again (two arbitrators on buses joined, each stepping aside for the
+other, must not take the bus back together for ever), judged only while every frame received
+so far is handled (a starved process must not mistake its own
 backlog for silence). Devices beaconing with node IDs nobody here gave, while no arbitrator
 is heard, are a replaced arbitrator's bus (thesis test 5): they may be reset so that they
 bind again. While arbitrating it beacons (``0x0A``, mode 1, node ID 0) every beacon interval
@@ -35,6 +37,8 @@ from __future__ import annotations
 
 import collections
 import enum
+import random
+from collections.abc import Callable
 from dataclasses import dataclass
 
 from pdcp_studio.bus.connection import EchoFilter
@@ -51,8 +55,11 @@ LISTEN_S = LISTEN_INTERVALS * ARBITRATOR_BEACON_S
 HEAR_BEACONS = 2
 #: … within this many beacon intervals (or one beacon and a foreign answer within them).
 HEAR_WINDOW_INTERVALS = 3
-#: The bus is taken back when the other's beacons have been gone this many intervals.
+#: The bus is taken back when the other's beacons have been gone this many intervals …
 TAKE_BACK_INTERVALS = 5
+#: … plus a random part of as many again: two arbitrators that heard each other (two buses
+#: joined) and both stepped aside must not both take the bus back at the same moment, forever.
+TAKE_BACK_JITTER = 1.0
 #: A device's answer is ours when we sent that device (or everyone) a request this recently
 #: (by when it was handled: generous, so a backlog on a busy PC is not taken for strangers').
 OUR_REQUEST_S = 10.0
@@ -113,8 +120,12 @@ class BusClaim:
 
     def __init__(self, now: float, listen_s: float = LISTEN_S,
                  beacon_interval_s: float = ARBITRATOR_BEACON_S, *,
-                 own_echoes: bool = False, take_back: bool = False) -> None:
+                 own_echoes: bool = False, take_back: bool = False,
+                 jitter: Callable[[], float] = random.random) -> None:
         self.listen_s = max(0.0, listen_s)
+        self._jitter = jitter  # 0…1: where in its random part a take-back falls
+        #: How long the other's beacons must be gone, chosen when this one stepped aside.
+        self.take_back_wait_s = 0.0
         self.beacon_interval_s = beacon_interval_s
         self.take_back = take_back
         self.phase = Phase.LISTENING if self.listen_s > 0 else Phase.ARBITRATING
@@ -240,10 +251,14 @@ class BusClaim:
                if len(beacons) >= HEAR_BEACONS else
                "its beacon and an answer to a request PDCP Studio did not send")
         if later and self.take_back:
+            jitter = min(max(self._jitter(), 0.0), 1.0)
+            self.take_back_wait_s = self.take_back_s * (1.0 + TAKE_BACK_JITTER * jitter)
             text = (f"another bus arbitrator appeared on this bus ({why}): PDCP Studio stopped "
                     "writing to it at once and serves its host link read-only; it takes the "
                     f"bus back when the other's beacons have been gone for {self.take_back_s:g} "
-                    f"s ({TAKE_BACK_INTERVALS} beacon intervals; reference §5)")
+                    f"s ({TAKE_BACK_INTERVALS} beacon intervals) and a random "
+                    f"{self.take_back_wait_s - self.take_back_s:.1f} s more "
+                    f"({self.take_back_wait_s:.1f} s; reference §5)")
         elif later:
             text = (f"another bus arbitrator appeared on this bus ({why}): PDCP Studio "
                     "stopped writing to it at once; one arbitrator per bus (reference §5)")
@@ -286,15 +301,17 @@ class BusClaim:
         return Decision(Phase.ARBITRATING, text, takeover=takeover)
 
     def _take_back(self, now: float) -> Decision | None:
-        if not (self.take_back and self.later) or now - self.last_other_beacon < self.take_back_s:
+        if not (self.take_back and self.later) \
+                or now - self.last_other_beacon < self.take_back_wait_s:
             return None
         self.phase = Phase.ARBITRATING
         self._next_beacon = now
         self._other_beacons.clear()
         gone = now - self.last_other_beacon
         text = (f"the other bus arbitrator's beacons have been gone for {gone:.1f} s (at least "
-                f"{TAKE_BACK_INTERVALS} beacon intervals, {self.take_back_s:g} s): PDCP Studio "
-                "takes the bus back and writes again (reference §5)")
+                f"{TAKE_BACK_INTERVALS} beacon intervals, {self.take_back_s:g} s, and the "
+                "random wait chosen when it appeared): PDCP Studio takes the bus back and "
+                "writes again (reference §5)")
         return Decision(Phase.ARBITRATING, text, taken_back=True)
 
     def beacon_due(self, now: float) -> bool:

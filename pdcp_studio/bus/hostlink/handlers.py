@@ -170,7 +170,8 @@ class Handlers:
         claim = getattr(self.arb, "claim", None)
         if getattr(self.arb, "read_only", False) and claim is not None:
             until = (f"until the other's beacons have been gone for {claim.take_back_s:g} s "
-                     "(then this arbitrator takes the bus back)")
+                     f"and a random wait ({claim.take_back_wait_s:.1f} s in all; then this "
+                     "arbitrator takes the bus back)")
         else:
             until = "for good"
         return (f"{request.name}: another bus arbitrator is on this bus: this arbitrator is "
