@@ -180,3 +180,30 @@ def test_the_headless_arbitrator_outlives_the_issues_frame_and_takes_the_bus_bac
     assert run.returncode == 0, err
     assert out.lines[-1] == "arbitrator stopped"
     assert "another bus arbitrator" not in err  # no error line: it never left
+
+
+def test_the_prosthesis_is_kept_while_read_only_and_after_the_bus_is_taken_back(devices):
+    """No reset on taking back: the parts stay bound and linked through it all."""
+    channel, system = devices
+    arb = Arbitrator(open_can_bus("virtual", channel), name="ours", listen_s=0.6,
+                     startup_quiet_s=0.2, take_back=True)
+    left: list[object] = []
+    arb.subscribe(lambda e: left.append(e) if isinstance(e, ev.DeviceLeft) else None)
+    other = BeaconingArbitrator(channel)
+    try:
+        assert arb.wait_claimed(10) and arb.wait_settled(20)
+        links = sorted(arb.system().links)
+        assert links
+        other.start()
+        assert arb.wait_for(lambda: arb.yielded, 10.0)
+        time.sleep(TAKE_BACK_S)
+        other.stop()
+        assert arb.wait_for(lambda: not arb.yielded, 2 * TAKE_BACK_S + 20.0)
+        time.sleep(3 * ARBITRATOR_BEACON_S)  # presence judged again, links read back
+        assert arb.wait_settled(20)
+        assert left == [] and len(arb.devices_present()) == len(
+            [d for d in system.devices.values() if d.present])
+        assert sorted(arb.system().links) == links
+    finally:
+        other.close()
+        arb.close()
