@@ -147,7 +147,7 @@ def test_the_headless_arbitrator_outlives_the_issues_frame_and_takes_the_bus_bac
 
     from pdcp_studio.bus.session.urls import open_spec, parse_bus_url
 
-    url = multicast_url("239.74.163.28", 47000)
+    url = multicast_url("239.74.163.28", 44000)
     run = subprocess.Popen(
         [sys.executable, "-m", "pdcp_studio", "arbitrator", "--bus", url, "--memory",
          str(tmp_path / "memory.json"), "--seconds", "120"],

@@ -107,3 +107,5 @@ class _Node:
     window_start: float | None = None  # the open beacon-count window's start (None: none)
     window_beacons: int = 0
     last_bus: float = 0.0  # the bus time (the frame's own timestamp) of its last frame
+    prev_beacon_bus: float = float("-inf")  # the bus times of its two latest beacons
+    last_beacon_bus: float = float("-inf")

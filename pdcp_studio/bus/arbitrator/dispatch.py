@@ -311,9 +311,8 @@ class Dispatcher:
         """Presence (judged by the bus's clock, see the presence tracker), held and foreign
         node IDs, deferred binds."""
         with self._state.lock:
-            gone = self._presence.absent(list(self._nodes.by_id.values()), now,
-                                         self._bus_now, now - self._last_stall) \
-                if caught_up else []
+            gone = self._presence.absent(self._nodes.by_id.values(), now,
+                                         now - self._last_stall) if caught_up else []
             self._nodes.expire(now)
             resolved = self._nodes.resolve_deferred(now, self._presence.duplicates) \
                 if caught_up else []

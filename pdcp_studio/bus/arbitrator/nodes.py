@@ -190,6 +190,8 @@ class NodeTable:
                 node.last_bus = bus_time
             if beacon:
                 node.last_beacon = now
+                if bus_time is not None:
+                    node.prev_beacon_bus, node.last_beacon_bus = node.last_beacon_bus, bus_time
         return node
 
     def heard_all(self, now: float, bus_time: float | None = None) -> None:

@@ -2,12 +2,13 @@
 
 - A bound device is gone after ``MISSED_BEACONS`` beacon intervals (and ``PRESENCE_GRACE``)
   without a frame (reference §1 Decision), measured against the frames actually received, not
-  the PC's clock alone (issue 28 item 6): the bus must have carried others' frames stamped
-  that long after its last one (the frames' own timestamps: a backlog handled late is still
-  judged in bus time). When nothing at all came from anyone — a starved process whose reader
-  did not run, or a bus gone quiet — it is gone only after a much longer silence
-  (``SILENT_BUS_FACTOR`` × its limit, at least ``SILENT_BUS_S``) during which the checker
-  itself ran without a stall. Each departure says why, in words.
+  the PC's clock alone (issue 28 item 6): another part must have beaconed twice after its
+  deadline, in bus time (the frames' own timestamps: a backlog handled late is still judged
+  in bus time, and a simulated prosthesis starved mid-burst, sending one overdue beacon of
+  another part before this one's, is not misread). When no other part beaconed — a starved
+  process whose reader or devices did not run, or a bus gone quiet — it is gone only after a
+  much longer silence (``SILENT_BUS_FACTOR`` × its limit, at least ``SILENT_BUS_S``) during
+  which the checker itself ran without a stall. Each departure says why, in words.
 - Twins bound together (one answer binds both) are caught by their echoed responses (two
   identical answers to one request) or by their doubled beacon rate.
 - A node nobody bound here (an earlier arbitrator's device) that beacons is reset so that it
@@ -71,31 +72,38 @@ class PresenceTracker:
         self.stale_until = 0.0
         self.stale_data_frames = 0
 
-    def absent(self, nodes: Iterable[_Node], now: float, bus_now: float | None = None,
-               smooth_s: float = float("inf")) -> list[Gone]:
+    def absent(self, nodes: Iterable[_Node], now: float, smooth_s: float = float("inf"),
+               *, by_bus: bool = True) -> list[Gone]:
         """The nodes gone at ``now``, each with why in words.
 
-        ``bus_now``: the bus time of the newest frame received from anyone (None: judge by
-        the clock alone, as a caller that has no bus times); ``smooth_s``: how long the
-        checker has run without a stall. A node is gone when it has not been heard for its
-        limit by the clock *and* either the bus carried frames stamped past its limit, or
-        nothing came from anyone and the silence is long (see the module doc)."""
+        ``smooth_s``: how long the checker has run without a stall. A node is gone when it
+        has not been heard for its limit by the clock *and* either another part beaconed
+        twice after its deadline in bus time (the frames' own timestamps: "the bus moved
+        on"), or no other part did and its silence is long (see the module doc).
+        ``by_bus=False``: by the clock alone."""
+        nodes = list(nodes)
+        # The two latest "beaconed twice since": a part whose previous beacon is past a
+        # node's deadline beaconed twice after it. (Once is not enough: a sender starved in
+        # the middle of a burst sends one overdue beacon of another part first.)
+        twice = sorted(((n.prev_beacon_bus, n.node_id) for n in nodes), reverse=True)[:2]
         gone = []
         for node in nodes:
             limit = node.beacon_interval * (MISSED_BEACONS + PRESENCE_GRACE)
             wall = now - node.last_seen
             if wall <= limit:
                 continue
-            if bus_now is None:
+            if not by_bus:
                 gone.append(_gone(node, wall, ""))
                 continue
-            on_bus = bus_now - node.last_bus
-            if on_bus > limit:
-                gone.append(_gone(node, on_bus, " while the bus carried others' frames"))
+            others = next((t for t, node_id in twice if node_id != node.node_id), None)
+            if others is not None and others - node.last_bus > limit:
+                gone.append(_gone(node, others - node.last_bus,
+                                  " while the other parts beaconed on"))
                 continue
             quiet = max(SILENT_BUS_FACTOR * limit, SILENT_BUS_S)
             if wall > quiet and smooth_s >= quiet:
-                gone.append(_gone(node, wall, ", and no frame from anyone either"))
+                gone.append(_gone(node, wall, ", measured by the clock: no other part "
+                                              "beaconed meanwhile"))
         return gone
 
     def beacon(self, node: _Node, now: float, caught_up: bool = True) -> str:
