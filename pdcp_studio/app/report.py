@@ -144,13 +144,18 @@ def _device_name(system: System, key: DeviceKey) -> str:
 
 
 def _end(system: System, tree: ProfileTree, ref: ChannelRef) -> str:
-    """One end of a link: the part and channel by name, then what the channel carries."""
+    """One end of a link: the part and the channel by their one names (``model/names.py``:
+    the descriptor, "channel N" only where there is none), then what the channel carries."""
+    from pdcp_studio.app.words import part_names
+    from pdcp_studio.model import names as model_names
+
     ch = system.channel(ref)
     name = _device_name(system, ref.device)
-    desc = f" — {ch.descriptor}" if ch and ch.descriptor else ""
+    channel = part_names.names(system).channel_only(ref)
     profile = _profile(tree, ch.profile) if ch else "?"
-    end = _t("{device}, channel {n}").format(device=f"<b>{_e(name)}</b>", n=ref.index)
-    return f"{end}{_e(desc)}<br>{profile}"
+    end = part_names.tr(model_names.CHANNEL).format(part=f"<b>{_e(name)}</b>",
+                                                    channel=_e(channel))
+    return f"{end}<br>{profile}"
 
 
 def _ref_codes(system: System, ref: ChannelRef) -> str:

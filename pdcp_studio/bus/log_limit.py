@@ -8,8 +8,11 @@ one summary line per kind and interval ("1,234 more undecodable frames in the la
 Every occurrence is still counted by its owner (``bad_frames`` and the like); only the telling
 is limited.
 
-:class:`LimitedLog` puts it in front of a ``logging.Logger``. The decisions are pure (the
-clock is passed in), so they are tested without threads or sleeping. Thread-safe.
+:class:`LimitedLog` puts it in front of a ``logging.Logger``. :class:`LineBudget` bounds a
+whole log, all kinds together: at most so many lines in any second, the rest told as one
+summary line a second (the headless arbitrator's output: at most 5 lines a second under any
+traffic). The decisions are pure (the clock is passed in), so they are tested without threads
+or sleeping. Thread-safe.
 """
 
 from __future__ import annotations
@@ -17,6 +20,7 @@ from __future__ import annotations
 import logging
 import threading
 import time
+from collections import deque
 from collections.abc import Callable
 from dataclasses import dataclass
 
@@ -148,3 +152,53 @@ class LimitedLog:
     def _tell_summary(self, summary: Summary) -> None:
         level = self._levels.get(summary.kind, logging.WARNING)
         self.logger.log(level, "%s%s", self.prefix, summary.text())
+
+
+class LineBudget:
+    """At most ``lines`` lines told in any ``window_s`` seconds, whatever their kind; the
+    others are counted and told as one summary at most once a window — so never more than
+    ``lines + 1`` lines in any window."""
+
+    def __init__(self, lines: int = 4, window_s: float = SUMMARY_INTERVAL_S,
+                 clock: Callable[[], float] = time.monotonic) -> None:
+        self.lines = max(1, lines)
+        self.window_s = window_s
+        self.clock = clock
+        self._told: deque[float] = deque()
+        self._suppressed = 0
+        self._since = 0.0
+        self._last = ""
+        self._summarised = float("-inf")
+        self._lock = threading.Lock()
+        #: Lines not told in full since the start.
+        self.suppressed_total = 0
+
+    def admit(self, text: str, now: float | None = None) -> bool:
+        """Whether this line is told now (else it is counted for the next summary)."""
+        now = self.clock() if now is None else now
+        with self._lock:
+            while self._told and self._told[0] <= now - self.window_s:
+                self._told.popleft()
+            if len(self._told) < self.lines:
+                self._told.append(now)
+                return True
+            if self._suppressed == 0:
+                self._since = now
+            self._suppressed += 1
+            self._last = text
+            self.suppressed_total += 1
+            return False
+
+    def summary(self, now: float | None = None, *, final: bool = False) -> Summary | None:
+        """The summary of what was held back, when one is due (at most one a window;
+        ``final``: whatever is pending, as the log ends)."""
+        now = self.clock() if now is None else now
+        with self._lock:
+            if not self._suppressed:
+                return None
+            if not final and (now - self._summarised < self.window_s
+                              or now - self._since < self.window_s):
+                return None
+            out = Summary("lines", self._suppressed, now - self._since, self._last)
+            self._suppressed, self._summarised = 0, now
+            return out

@@ -21,6 +21,7 @@ from pdcp_studio.cli import options
 from pdcp_studio.cli.change_road import add_road_arguments
 from pdcp_studio.cli.main import BadInput
 from pdcp_studio.cli.plan import CONFIG_MODES, add_mode_arguments, load_config, load_tree, make_plan
+from pdcp_studio.model.safe_text import shown
 
 
 def add_subparser(subparsers: argparse._SubParsersAction[argparse.ArgumentParser]) -> None:
@@ -70,7 +71,7 @@ def run_file(args: argparse.Namespace) -> int:
     if args.json:
         print(json.dumps(plan.to_json(), indent=2))
     else:
-        print(summary(plan.to_text(tree)), end="")
+        print(shown(summary(plan.to_text(tree)), newlines=True), end="")
         print(f"wrote {args.output}: {len(system.links)} link(s)")
     return 0
 

@@ -17,7 +17,6 @@ saying that too.
 from __future__ import annotations
 
 import argparse
-import queue
 import signal
 import sys
 import threading
@@ -25,6 +24,7 @@ import time
 from typing import Any
 
 from pdcp_studio.cli import options
+from pdcp_studio.model.safe_text import shown
 
 
 def add_subparser(subparsers: argparse._SubParsersAction[argparse.ArgumentParser]) -> None:
@@ -110,13 +110,10 @@ def run(args: argparse.Namespace) -> int:
         server_cls = HostLinkServer
 
     from pdcp_studio.bus.arbitrator.core import Arbitrator
+    from pdcp_studio.cli.arbitrator_log import ArbitratorLog
 
-    lines: queue.SimpleQueue[str] = queue.SimpleQueue()
-
-    def on_event(event: Any) -> None:  # arbitrator threads: only enqueue
-        text = describe(event)
-        if text is not None:
-            lines.put(text)
+    # One line per event (names escaped), each said once, errors at most 5 lines a second.
+    log = ArbitratorLog(describe)
 
     from pdcp_studio.bus.arbitrator.claim import LISTEN_S
 
@@ -134,22 +131,28 @@ def run(args: argparse.Namespace) -> int:
     previous = signal.signal(signal.SIGTERM, lambda *_: stop.set()) if main_thread else None
     from pdcp_studio.bus.reopen import open_reopening
 
-    bus = open_reopening(spec)  # a pulled adapter is reopened; the outage is said once
+    log.install()  # warnings: said once (not again beside their event), rate-bounded
+    try:
+        bus = open_reopening(spec)  # a pulled adapter is reopened; the outage is said once
+    except BaseException:
+        log.uninstall()
+        raise
     try:
         arbitrator = Arbitrator(bus, **options)
     except BaseException:
         bus.shutdown()
+        log.uninstall()
         raise
     server = None
     code = 0
     try:
-        arbitrator.subscribe(on_event)
+        arbitrator.subscribe(log.on_event)
         if server_cls is not None:
             server = server_cls(arbitrator, args.host_serial)
             where = server.slave_path or args.host_serial
             print(f"host link on {where}", flush=True)
-        print(f"arbitrator on {spec.url}" + (f", memory {args.memory}" if args.memory else ""),
-              flush=True)
+        print(shown(f"arbitrator on {spec.url}"
+                    + (f", memory {args.memory}" if args.memory else "")), flush=True)
         if not arbitrator.read_policy().autoconfigure:
             print("policy: autoconfigure off (start-up and the duty cycle link nothing new)",
                   flush=True)
@@ -160,10 +163,7 @@ def run(args: argparse.Namespace) -> int:
                 break
             if deadline is not None and time.monotonic() >= deadline:
                 break
-            try:
-                print(lines.get(timeout=0.1), flush=True)
-            except queue.Empty:
-                continue
+            log.pump(0.1)
     except KeyboardInterrupt:
         pass
     finally:
@@ -172,11 +172,8 @@ def run(args: argparse.Namespace) -> int:
         arbitrator.close()
         if main_thread:
             signal.signal(signal.SIGTERM, previous)
-        while True:
-            try:
-                print(lines.get_nowait(), flush=True)
-            except queue.Empty:
-                break
+        log.pump(0, final=True)
+        log.uninstall()
     if code:
         print(f"pdcp-studio: error: {spec.url}: {arbitrator.bus_message}", file=sys.stderr)
     print("arbitrator stopped", flush=True)

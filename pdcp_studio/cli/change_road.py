@@ -16,6 +16,8 @@ import sys
 from collections.abc import Callable
 from typing import TYPE_CHECKING, Any
 
+from pdcp_studio.model.safe_text import shown
+
 if TYPE_CHECKING:
     from pdcp_studio.bus.session.base import BusSession
     from pdcp_studio.bus.session.change_road import ChangePreview
@@ -81,7 +83,7 @@ def carry_out(session: BusSession, change: Change, args: argparse.Namespace, *,
     change = preview.change
     if not want_json:
         for line in preview.lines():
-            print(line)
+            print(shown(line))
     if preview.empty:
         if want_json:
             print(json.dumps(_doc(json_doc, preview, None), indent=2))
@@ -99,14 +101,15 @@ def carry_out(session: BusSession, change: Change, args: argparse.Namespace, *,
     if want_json:
         print(json.dumps(_doc(json_doc, preview, result), indent=2))
     else:
-        print(result.summary())
+        print(shown(result.summary(), newlines=True))
         if result.history_id is not None:
             print(f"recorded as fitting history entry {result.history_id}")
         for note in result.notes:
-            print(f"note: {note}")
+            print(shown(f"note: {note}"))
     if not result.ok:
         if not want_json:
-            print(f"pdcp-studio: error: {result.summary()}", file=sys.stderr)
+            print(f"pdcp-studio: error: {shown(result.summary(), newlines=True)}",
+                  file=sys.stderr)
         return EXIT_FAILED
     return EXIT_OK
 

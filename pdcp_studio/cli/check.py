@@ -11,6 +11,8 @@ from __future__ import annotations
 import argparse
 import json
 
+from pdcp_studio.model.safe_text import shown
+
 EPILOG = (
     "exit status: 0 when no finding is an error (warnings and notes may remain), "
     "1 when at least one error is found, 2 when FILE cannot be read or is not a valid "
@@ -40,7 +42,7 @@ def run(args: argparse.Namespace) -> int:
         print(json.dumps(doc, indent=2))
     else:
         for f in findings:
-            print(f)
-        print(f"{args.system}: {counts['error']} error(s), {counts['warning']} warning(s), "
+            print(shown(str(f), newlines=True))
+        print(f"{shown(args.system)}: {counts['error']} error(s), {counts['warning']} warning(s), "
               f"{counts['info']} note(s)")
     return 1 if counts["error"] else 0

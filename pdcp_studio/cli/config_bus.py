@@ -19,6 +19,7 @@ if TYPE_CHECKING:
     from pdcp_studio.model.configuration import ConfigCollection
 
 from pdcp_studio.cli import options
+from pdcp_studio.model.safe_text import shown
 
 
 def add_bus_commands(actions: argparse._SubParsersAction[argparse.ArgumentParser]) -> None:
@@ -95,7 +96,7 @@ def run_read(args: argparse.Namespace) -> int:
 
 def _print_change(current: ConfigCollection, new: ConfigCollection) -> None:
     for line in describe_change(current, new):
-        print(line)
+        print(shown(line))
 
 
 def run_write(args: argparse.Namespace) -> int:

@@ -20,6 +20,7 @@ import argparse
 from typing import Any
 
 from pdcp_studio.cli import options
+from pdcp_studio.model.safe_text import shown
 
 #: The JSON ``config encode`` reads holds at most this many bytes: the largest collection the
 #: codec accepts (16,384 links), as ``decode --json`` prints it, fits with room to spare.
@@ -126,12 +127,12 @@ def run_diff(args: argparse.Namespace) -> int:
     if args.json:
         print(json.dumps(diff.to_json(), indent=2))
     elif diff.equal:
-        print(f"{args.a} and {b_name} store the same configurations "
-              f"({len(a.configurations)} configuration(s), "
-              f"{sum(len(c.links) for c in a.configurations)} link(s))")
+        print(shown(f"{args.a} and {b_name} store the same configurations "
+                    f"({len(a.configurations)} configuration(s), "
+                    f"{sum(len(c.links) for c in a.configurations)} link(s))"))
     else:
         for line in diff.lines(args.a, b_name):
-            print(line)
+            print(shown(line))
     return 0 if diff.equal else DIFFER
 
 
@@ -153,7 +154,7 @@ def run_decode(args: argparse.Namespace) -> int:
     if args.json:
         print(json.dumps(config_codec.to_json(decoded.collection), indent=2))
     else:
-        print("\n".join(format_listing(args.file, decoded)))
+        print("\n".join(shown(line) for line in format_listing(args.file, decoded)))
     return 0
 
 

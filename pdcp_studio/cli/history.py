@@ -15,6 +15,7 @@ from pathlib import Path
 from typing import TYPE_CHECKING, Any
 
 from pdcp_studio.cli.main import BadInput
+from pdcp_studio.model.safe_text import shown
 
 if TYPE_CHECKING:
     from pdcp_studio.model.refs import DeviceKey
@@ -117,7 +118,7 @@ def _words(e: Entry) -> str:
 
 def _line(e: Entry) -> str:
     outcome = (e.get("outcome") or {}).get("status", "")
-    return (f"{e['id']:>4}  {e['time']}  {e['operator']}  {_words(e)}  on {e['bus']}  "
+    return shown(f"{e['id']:>4}  {e['time']}  {e['operator']}  {_words(e)}  on {e['bus']}  "
             f"{len(e['links_before'])}→"
             f"{'?' if e['links_after'] is None else len(e['links_after'])} link(s)  "
             f"{'verified' if e['verified'] else 'not verified'}  {outcome}  "
@@ -156,17 +157,18 @@ def run_show(args: argparse.Namespace) -> int:
     effect, power_on = e.get("effect"), e.get("next_power_on")
     if effect:
         print("  what it did:")
-        print("\n".join(f"    {ln}" for ln in effect.get("text", [])))
+        print("\n".join(f"    {shown(ln)}" for ln in effect.get("text", [])))
     if power_on:
-        print("\n".join(f"  {ln}" for ln in power_on.get("text", [])))
+        print("\n".join(f"  {shown(ln)}" for ln in power_on.get("text", [])))
     if not effect:
         print("  (recorded before PDCP Studio kept a change's effect in words)")
     print("  technical detail:")
-    print(f"    action: {e['action']}")
+    print(f"    action: {shown(str(e['action']))}")
     for ln in (effect or {}).get("technical", []):
-        print(f"    {ln}")
-    print(f"  outcome: {outcome.get('status', '')}"
-          + (f" at step {outcome['step']}: {outcome['reason']}" if outcome.get("reason") else ""))
+        print(f"    {shown(ln)}")
+    print(shown(f"  outcome: {outcome.get('status', '')}"
+                + (f" at step {outcome['step']}: {outcome['reason']}" if outcome.get("reason")
+                   else "")))
     print("  devices: " + ", ".join(f"{d['vid']}/{d['pid']}/{d['serial']}"
                                     for d in e["devices"]))
     print("  stored configuration CRC: "
@@ -181,7 +183,7 @@ def run_show(args: argparse.Namespace) -> int:
         print("  plan:")
         for a in actions:
             lk = {"output": a["output"], "input": a["input"]}
-            print(f"    {a['op']}{_links_text([lk])[0][3:]}  ({a.get('reason', '')})")
+            print(shown(f"    {a['op']}{_links_text([lk])[0][3:]}  ({a.get('reason', '')})"))
     print(f"  hash: {e['hash']}")
     return 0
 

@@ -13,6 +13,7 @@ import argparse
 
 from pdcp_studio.errors import ModelError
 from pdcp_studio.model.refs import ChannelRef
+from pdcp_studio.model.safe_text import shown
 from pdcp_studio.model.system import Channel, Device, Link, System
 
 
@@ -189,10 +190,10 @@ def _linked(system: System, ref: ChannelRef) -> Channel:
 
 
 def run_print(args: argparse.Namespace) -> int:
-    print(format_long(_load(args)), end="")
+    print(shown(format_long(_load(args)), newlines=True), end="")
     return 0
 
 
 def run_info(args: argparse.Namespace) -> int:
-    print(format_short(_load(args)), end="")
+    print(shown(format_short(_load(args)), newlines=True), end="")
     return 0

@@ -23,6 +23,7 @@ from collections.abc import Sequence
 from pdcp_studio import __version__
 from pdcp_studio.bus.session.urls import BusUrlError
 from pdcp_studio.errors import ConfigFormatError, PdcpError, SystemFileError
+from pdcp_studio.model.safe_text import shown
 
 # Order = order in --help.
 COMMAND_MODULES = (
@@ -118,16 +119,17 @@ def main(argv: Sequence[str] | None = None) -> int:
     except BrokenPipeError:
         return _reader_gone()
     except (BadInput, BusUrlError, ConfigFormatError, SystemFileError) as err:
-        print(f"pdcp-studio: {err}", file=sys.stderr)
+        print(f"pdcp-studio: {shown(str(err), newlines=True)}", file=sys.stderr)
         return EXIT_BAD_INPUT
     except PdcpError as err:
-        print(f"pdcp-studio: error: {err}", file=sys.stderr)
+        print(f"pdcp-studio: error: {shown(str(err), newlines=True)}", file=sys.stderr)
         return EXIT_FAILURE
     except KeyboardInterrupt:
         print("pdcp-studio: interrupted", file=sys.stderr)
         return 130
     except OSError as err:
-        print(f"pdcp-studio: error: {os_error_text(err)}", file=sys.stderr)
+        print(f"pdcp-studio: error: {shown(os_error_text(err), newlines=True)}",
+              file=sys.stderr)
         return EXIT_FAILURE
 
 

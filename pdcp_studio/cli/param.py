@@ -17,6 +17,7 @@ import re
 from typing import TYPE_CHECKING, Any
 
 from pdcp_studio.cli.main import BadInput
+from pdcp_studio.model.safe_text import shown
 
 if TYPE_CHECKING:
     from pdcp_studio.model.refs import DeviceKey
@@ -108,10 +109,10 @@ def run_get(args: argparse.Namespace) -> int:
         names = Names(system)
         title = names.part(device.key) if channel is None else names.channel(
             device.ref(channel))
-        print(f"{title} [{args.part.strip()}] on {args.bus}:")
+        print(shown(f"{title} [{args.part.strip()}] on {args.bus}:"))
         width = max((len(k) for k in values), default=0)
         for name, value in values.items():
-            print(f"  {name:<{width}}  {value}")
+            print(shown(f"  {name:<{width}}  {value}"))
         return 0
     finally:
         session.close()

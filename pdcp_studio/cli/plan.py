@@ -19,6 +19,7 @@ import json
 from typing import TYPE_CHECKING
 
 from pdcp_studio.cli.main import BadInput
+from pdcp_studio.model.safe_text import shown
 
 if TYPE_CHECKING:
     from pdcp_studio.engine.plan import Plan
@@ -143,5 +144,5 @@ def run(args: argparse.Namespace) -> int:
     else:
         from pdcp_studio.cli.naming import names_for
 
-        print(plan.to_text(tree, names_for(system, tree)), end="")
+        print(shown(plan.to_text(tree, names_for(system, tree)), newlines=True), end="")
     return 0

@@ -14,6 +14,7 @@ import sys
 from typing import TYPE_CHECKING, Any
 
 from pdcp_studio.cli import options
+from pdcp_studio.model.safe_text import shown
 
 if TYPE_CHECKING:
     from pdcp_studio.bus.session.base import BusSession, ProgressFn
@@ -61,7 +62,7 @@ def open_bus_session(url: str, *, memory: str | None = None, settle: float | Non
 
 
 def check_memory_path(path: str) -> None:
-    """``--memory FILE`` must be a readable file, or a new one in an existing folder.
+    """``--memory FILE`` must be a readable memory image, or a new file in an existing folder.
 
     Checked before the bus opens, so a wrong path is bad input (exit 2) instead of an
     arbitrator that cannot read its memory and never settles.
@@ -74,11 +75,11 @@ def check_memory_path(path: str) -> None:
     if memory.is_dir():
         raise BadInput(f"--memory {path}: is a directory, not a memory file")
     if memory.exists():
-        try:
-            with open(memory, "rb"):
-                pass
-        except OSError as err:
-            raise BadInput(f"--memory {path}: cannot read: {err.strerror or err}") from err
+        from pdcp_studio.bus.arbitrator.memory import memory_file_problem
+
+        problem = memory_file_problem(memory)  # a memory image only: never a .pdcfg, garbage
+        if problem is not None:
+            raise BadInput(f"--memory {path}: {problem}")
     elif not memory.parent.is_dir():
         raise BadInput(f"--memory {path}: no folder {memory.parent}")
 
@@ -139,5 +140,5 @@ def run(args: argparse.Namespace) -> int:
     if args.json:
         sys.stdout.write(system_file.dumps(system, node_ids=True))
     else:
-        print(format_system(system))
+        print(shown(format_system(system), newlines=True))
     return 0

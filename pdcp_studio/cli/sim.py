@@ -15,6 +15,7 @@ import sys
 import time
 
 from pdcp_studio.cli import options
+from pdcp_studio.model.safe_text import shown
 
 
 def add_subparser(subparsers: argparse._SubParsersAction[argparse.ArgumentParser]) -> None:
@@ -87,7 +88,7 @@ def run_replay(args: argparse.Namespace) -> int:
         print(f"{args.name} · {script.name}: {script.description}")
         for step, links in result.trace:
             print(f"  {step}: {len(links)} link(s)")
-        print(format_system(system))
+        print(shown(format_system(system), newlines=True))
     if not result.ok:
         print(f"pdcp-studio: error: {args.name} {script.name} did not end in the expected "
               f"links: {result.mismatch()}", file=sys.stderr)

@@ -147,6 +147,9 @@ def load_catalog(folders: Iterable[Path]) -> tuple[Catalog, list[str]]:
         if not folder.is_dir():
             continue
         for path in sorted(folder.glob("*.json")):
+            if not path.is_file():  # a FIFO or a device would be waited on: never opened
+                problems.append(f"{path}: cannot be read (not a regular file)")
+                continue
             try:
                 catalog = catalog.add(parse_catalog(path.read_text(encoding="utf-8"),
                                                     str(path)))

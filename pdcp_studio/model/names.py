@@ -37,6 +37,7 @@ from dataclasses import dataclass, field
 from pdcp_studio.model.catalog import Catalog, default_catalog, unknown_device_label
 from pdcp_studio.model.profile_tree import ProfileTree
 from pdcp_studio.model.refs import ChannelRef, DeviceKey
+from pdcp_studio.model.safe_text import shown
 from pdcp_studio.model.system import Channel, Device, Link, System
 
 Translate = Callable[[str], str]
@@ -60,8 +61,8 @@ def _same(text: str) -> str:
 def own_name(device: Device, catalog: Catalog) -> str:
     """What a part is called before any serial number is added (rules 1–4 above)."""
     for text in (device.name, device.descriptor):
-        if text and text.strip():
-            return " ".join(text.split())
+        if text and text.strip():  # from a file or the bus: shown, never executed
+            return shown(" ".join(text.split()))
     return catalog.product_name(device.key) or unknown_device_label(device.key)
 
 
@@ -165,7 +166,7 @@ class Names:
         return self.tr(NUMBERS).format(vid=key.vid, pid=key.pid, serial=key.serial)
 
     def _own_channel(self, ch: Channel) -> str:
-        own = " ".join((ch.descriptor or "").split())
+        own = shown(" ".join((ch.descriptor or "").split()))
         if own:
             return own
         if self.profiles is not None and ch.profile and self.profiles.names_exactly(ch.profile):

@@ -16,6 +16,9 @@ Decisions:
   it is ours beyond doubt: our name pattern, and its writer process is gone (or it has not been
   touched for ``STALE_TEMP_S``). Another program's files, and a live writer's, are left alone.
 - A symlink target is followed: the file it points to is replaced, the link is kept.
+- Only a regular file (or a new path) is replaced: a device node (``-o /dev/null``), a FIFO,
+  a socket or a folder is refused in words (``NotARegularFile`` / ``IsADirectoryError``), so
+  a write as root cannot turn ``/dev/null`` into a file; a symlink loop is refused too.
 - An existing file's permission bits are kept; a new file gets the usual ``0o666 & ~umask``.
 - Text is written exactly as given (no newline translation), encoded as UTF-8 by default.
 """
@@ -30,6 +33,8 @@ import secrets
 import stat
 import time
 from pathlib import Path
+
+from pdcp_studio.storage.regular_file import refusal
 
 # Temporary names: ".<target name>.<pid>.<8 hex digits>.tmp", hidden on POSIX.
 _TEMP_SUFFIX = ".tmp"
@@ -125,8 +130,16 @@ def atomic_write_bytes(path: str | os.PathLike[str], data: bytes) -> None:
     An OSError names ``path`` as given, whatever step failed; the previous file is untouched.
     """
     target = Path(os.path.realpath(path))
-    if target.is_dir():  # else the error would name the temporary file, not the target
-        raise IsADirectoryError(errno.EISDIR, os.strerror(errno.EISDIR), os.fspath(path))
+    try:
+        mode: int | None = os.stat(target).st_mode
+    except FileNotFoundError:
+        mode = None  # a new file (or a link to one not made yet)
+    except OSError as err:  # a symlink loop, a folder we may not look into
+        raise _naming(err, path) from None
+    if mode is not None and not stat.S_ISREG(mode):
+        # A folder (else the error would name the temporary file), a device node such as
+        # /dev/null, a FIFO, a socket: never replaced by a regular file.
+        raise refusal(path, mode, "replace")
     directory = target.parent
     remove_stale_temps(target)
     try:

@@ -1,12 +1,14 @@
 """Reading untrusted files within stated limits: bytes read, nesting depth, duplicate keys.
 
-A file's size on disk says nothing for devices, pipes and standard input (``st_size`` is 0
-for ``/dev/zero``), so a reader asks for at most ``limit + 1`` bytes and refuses the file when
-it got more: what is counted is what was read. JSON nested deeper than a stated depth is
-refused before it is parsed (Python's parser would recurse), and an object that gives a key
-twice is refused naming the key's JSON path (``devices[2].channels[0].profile``) instead of
-letting the last one win silently. ``NaN`` and ``Infinity`` are not JSON and are refused too,
-as are numbers of more than 40 digits or beyond a float's range.
+A file's size on disk says nothing for standard input (a pipe has no size), so a reader asks
+for at most ``limit + 1`` bytes and refuses the file when it got more: what is counted is what
+was read. A path must name a regular file (``storage/regular_file.py``): a FIFO or a device
+is refused in words, never waited on; standard input is ``-``. JSON nested deeper than a
+stated depth is refused before it is parsed (Python's parser would recurse), and an object
+that gives a key twice is refused naming the key's JSON path
+(``devices[2].channels[0].profile``) instead of letting the last one win silently. ``NaN``
+and ``Infinity`` are not JSON and are refused too, as are numbers of more than 40 digits or
+beyond a float's range.
 
 Errors are :class:`InputError` (a ``ValueError``) with ``reason`` and ``path``; each loader
 turns them into its own error type and adds the file's name.
@@ -22,6 +24,8 @@ import os
 import re
 import sys
 from typing import Any, BinaryIO
+
+from pdcp_studio.storage.regular_file import open_regular
 
 #: Standard input, as a file argument.
 STDIN = "-"
@@ -47,14 +51,17 @@ class InputError(ValueError):
 
 
 def read_prefix(source: str | os.PathLike[str] | BinaryIO, size: int) -> bytes:
-    """The first ``size`` bytes at most of a file (``"-"``: standard input), whatever it is."""
+    """The first ``size`` bytes at most of a file (``"-"``: standard input).
+
+    A path that is not a regular file raises ``NotARegularFile`` (an OSError) at once.
+    """
     if isinstance(source, (str, os.PathLike)):
         if os.fspath(source) == STDIN:
             stdin = getattr(sys.stdin, "buffer", None)
             if stdin is None:  # no console, or a host that replaced it
                 raise OSError(errno.EBADF, "standard input is not available", STDIN)
             return read_prefix(stdin, size)
-        with open(source, "rb") as handle:
+        with open_regular(source) as handle:
             return read_prefix(handle, size)
     return source.read(size)
 
@@ -63,7 +70,7 @@ def read_capped(source: str | os.PathLike[str] | BinaryIO, limit: int,
                 what: str = "this kind of file") -> bytes:
     """At most ``limit`` bytes of a file (``"-"``: standard input), else InputError.
 
-    Reads ``limit + 1`` bytes at most, whatever the file is; OSError passes through.
+    Reads ``limit + 1`` bytes at most; OSError (``NotARegularFile`` too) passes through.
     """
     data = read_prefix(source, limit + 1)
     if len(data) > limit:

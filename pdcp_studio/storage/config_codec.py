@@ -323,8 +323,10 @@ def load(fileobj: BinaryIO) -> ConfigCollection:
 
 
 def load_path(path: str | Path) -> ConfigCollection:
-    """Decode a ``.pdcfg`` file."""
-    with open(path, "rb") as handle:
+    """Decode a ``.pdcfg`` file; a FIFO or a device is refused (``NotARegularFile``)."""
+    from pdcp_studio.storage.regular_file import open_regular
+
+    with open_regular(path) as handle:
         return load(handle)
 
 

@@ -5,7 +5,6 @@ Pure file reading (no Qt), so the command line names profiles exactly as the app
 
 from __future__ import annotations
 
-import json
 import logging
 from collections.abc import Iterable
 from pathlib import Path
@@ -19,6 +18,19 @@ log = logging.getLogger(__name__)
 #: Profile trees shipped in resources/profiles: the prosthetic tree, then the thesis test
 #: tree. Each stands alone (their values overlap): a system is named by the one that fits it.
 BUILTIN_TREES = ("prosthesis.json", "thesis-tests.json")
+#: A profile-tree file holds at most this many bytes and this many levels of nesting (as
+#: ``plan --profiles`` reads it).
+MAX_TREE_BYTES = 1024 * 1024
+MAX_TREE_DEPTH = 64
+
+
+def read_tree_json(path: str | Path) -> object:
+    """A profile-tree file's JSON, bounded; a FIFO or a device is refused, never waited on
+    (``NotARegularFile``, an OSError). InputError (a ValueError) for bad JSON."""
+    from pdcp_studio.storage.bounded_input import loads_json, read_capped
+
+    return loads_json(read_capped(path, MAX_TREE_BYTES, "a profile tree"),
+                      max_depth=MAX_TREE_DEPTH)
 
 
 def user_profiles_dir() -> Path | None:
@@ -43,7 +55,7 @@ def load_profile_trees(extra: Iterable[Path] = (), *,
     trees: list[ProfileTree] = []
     for path in files:
         try:
-            tree = ProfileTree.from_json(json.loads(Path(path).read_text("utf-8")), str(path))
+            tree = ProfileTree.from_json(read_tree_json(path), str(path))
         except (OSError, ValueError, ProfileError) as err:
             log.warning("profile tree %s skipped: %s", path, err)
             continue

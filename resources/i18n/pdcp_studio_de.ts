@@ -65,11 +65,6 @@
             <translation>Konfiguration lesen: zuerst mit einem Bus verbinden</translation>
         </message>
         <message>
-            <location filename="../../pdcp_studio/app/window_bus.py" line="147" />
-            <source>Read the arbitrator's stored configuration: {n} configuration(s), {links} links — Find replacements and Start-up now use it</source>
-            <translation>Gespeicherte Konfiguration des Arbiters gelesen: {n} Konfiguration(en), {links} Verbindungen — Ersatz finden und Hochlauf verwenden sie jetzt</translation>
-        </message>
-        <message>
             <location filename="../../pdcp_studio/app/window_bus.py" line="156" />
             <source>Cancelling…</source>
             <translation>Wird abgebrochen…</translation>
@@ -87,10 +82,6 @@
         <message>
             <source>Scanning the bus…</source>
             <translation>Lese den Bus…</translation>
-        </message>
-        <message>
-            <source>Scan finished: {devices} device(s), {links} link(s)</source>
-            <translation>Lesen beendet: {devices} Gerät(e), {links} Verbindung(en)</translation>
         </message>
         <message>
             <source>Bus events</source>
@@ -128,6 +119,13 @@
     </context>
     <context>
         <name>BusScene</name>
+        <message numerus="yes">
+            <source>Removed %n link(s)</source>
+            <translation>
+                <numerusform>%n Verbindung entfernt</numerusform>
+                <numerusform>%n Verbindungen entfernt</numerusform>
+            </translation>
+        </message>
         <message>
             <source>Input {n} must be connected: a channel of this device that is in use needs it. Connect a source to it, or let Autoconfigure do it.</source>
             <translation>Eingang {n} muss verbunden sein: ein benutzter Kanal dieses Geräts braucht ihn. Verbinden Sie eine Quelle damit oder lassen Sie die Autokonfiguration das tun.</translation>
@@ -157,11 +155,6 @@
             <source>Pending removal (still on the prosthesis): {link}</source>
             <extracomment>A link counts as "live" this long after its output's last data frame. Ghosts of links on the prosthesis that the project removes (pending removals). The outcome of the last link drag: (link or None, refusal reason or "").</extracomment>
             <translation>Entfernen vorgemerkt (noch auf der Prothese): {link}</translation>
-        </message>
-        <message>
-            <location filename="../../pdcp_studio/app/graph/scene.py" line="354" />
-            <source>Removed {n} link{v1}</source>
-            <translation>{n} Verbindung(en) entfernt</translation>
         </message>
         <message>
             <location filename="../../pdcp_studio/app/graph/scene.py" line="365" />
@@ -231,10 +224,6 @@
             <location filename="../../pdcp_studio/app/connect_dialog.py" line="235" />
             <source>No CAN interface found</source>
             <translation>Keine CAN-Schnittstelle gefunden</translation>
-        </message>
-        <message>
-            <source>Found {n} CAN channel(s): {which}</source>
-            <translation>{n} CAN-Kanal/Kanäle gefunden: {which}</translation>
         </message>
         <message>
             <source>No CAN adapter found. Check that it is plugged in and its driver is installed, or type the interface and channel.</source>
@@ -378,11 +367,6 @@
             <location filename="../../pdcp_studio/app/compare_dialog.py" line="301" />
             <source>Status</source>
             <translation>Zustand</translation>
-        </message>
-        <message>
-            <location filename="../../pdcp_studio/app/compare_dialog.py" line="327" />
-            <source>{0} link(s): {1}</source>
-            <translation>{0} Verbindung(en): {1}</translation>
         </message>
         <message>
             <location filename="../../pdcp_studio/app/compare_dialog.py" line="328" />
@@ -661,31 +645,6 @@
             <translation> — PDCP Studio</translation>
         </message>
         <message>
-            <location filename="../../pdcp_studio/app/config_view.py" line="454" />
-            <source>Configuration %1 · %2 link(s)</source>
-            <translation>Konfiguration %1 · %2 Verbindung(en)</translation>
-        </message>
-        <message>
-            <location filename="../../pdcp_studio/app/config_view.py" line="459" />
-            <source>%1 problem(s) found</source>
-            <translation>%1 Problem(e) gefunden</translation>
-        </message>
-        <message>
-            <location filename="../../pdcp_studio/app/config_view.py" line="482" />
-            <source>%1 configuration(s)</source>
-            <translation>%1 Konfiguration(en)</translation>
-        </message>
-        <message>
-            <location filename="../../pdcp_studio/app/config_view.py" line="484" />
-            <source>%1 record(s) from newer firmware or tools kept as they are</source>
-            <translation>%1 Datensätze aus neuerer Firmware oder neueren Werkzeugen unverändert übernommen</translation>
-        </message>
-        <message>
-            <location filename="../../pdcp_studio/app/config_view.py" line="490" />
-            <source>%1, channel %2</source>
-            <translation>%1, Kanal %2</translation>
-        </message>
-        <message>
             <location filename="../../pdcp_studio/app/config_view.py" line="495" />
             <source>not stored</source>
             <translation>nicht gespeichert</translation>
@@ -716,11 +675,6 @@
 %4</source>
             <translation>Verbindung %1: %2 → %3
 %4</translation>
-        </message>
-        <message>
-            <location filename="../../pdcp_studio/app/config_view.py" line="569" />
-            <source>What start-up would do with this configuration (%1 step(s)):</source>
-            <translation>Was der Hochlauf mit dieser Konfiguration täte (%1 Schritt(e)):</translation>
         </message>
         <message>
             <location filename="../../pdcp_studio/app/config_view.py" line="575" />
@@ -1479,6 +1433,24 @@ Das Öffnen von {1} beendet diese Verbindung.</translation>
     </context>
     <context>
         <name>Commands</name>
+        <message numerus="yes">
+            <source>Apply the plan (%n step(s))</source>
+            <translation>
+                <numerusform>Plan ausführen (%n Schritt)</numerusform>
+                <numerusform>Plan ausführen (%n Schritte)</numerusform>
+            </translation>
+        </message>
+        <message numerus="yes">
+            <source>Move %n part(s)</source>
+            <translation>
+                <numerusform>%n Teil verschieben</numerusform>
+                <numerusform>%n Teile verschieben</numerusform>
+            </translation>
+        </message>
+        <message>
+            <source>Move {0}</source>
+            <translation>{0} verschieben</translation>
+        </message>
         <message>
             <source>{0}: {1} changed</source>
             <translation>{0}: {1} geändert</translation>
@@ -2234,26 +2206,9 @@ Den PDCP-Bus einer aktiven Prothese ansehen und einrichten.</translation>
             <translation>Anpassungs&amp;historie</translation>
         </message>
         <message>
-            <location filename="../../pdcp_studio/app/window_transactions.py" line="103" />
-            <source>Discard {0} pending change(s)</source>
-            <translation>{0} vorgemerkte Änderung(en) verwerfen</translation>
-        </message>
-        <message>
             <location filename="../../pdcp_studio/app/window_transactions.py" line="112" />
             <source>Links as on the prosthesis</source>
             <translation>Verbindungen wie auf der Prothese</translation>
-        </message>
-        <message>
-            <location filename="../../pdcp_studio/app/window_transactions.py" line="123" />
-            <source>Discarded {0} pending change(s): the project is as the prosthesis (Undo brings them back)</source>
-            <translation>{0} vorgemerkte Änderung(en) verworfen: Das Projekt entspricht der Prothese (Rückgängig holt sie zurück)</translation>
-        </message>
-        <message>
-            <location filename="../../pdcp_studio/app/window_transactions.py" line="147" />
-            <source>{0} change(s) were not written to the prosthesis. Leave it without them?
-(Write to prosthesis writes them; the document keeps them either way.)</source>
-            <translation>{0} Änderung(en) wurden nicht auf die Prothese geschrieben. Ohne sie trennen?
-(„Auf die Prothese schreiben“ schreibt sie; das Dokument behält sie in jedem Fall.)</translation>
         </message>
         <message>
             <location filename="../../pdcp_studio/app/window_transactions.py" line="207" />
@@ -2862,11 +2817,6 @@ Den PDCP-Bus einer aktiven Prothese ansehen und einrichten.</translation>
             <translation>Keine vorgemerkten Änderungen: Projekt und Prothese an {0} stimmen überein.</translation>
         </message>
         <message>
-            <location filename="../../pdcp_studio/app/pending_panel.py" line="138" />
-            <source>&lt;b&gt;{0} pending change(s)&lt;/b&gt; for the prosthesis on {1}: edits are staged here and reach the prosthesis only with Write to prosthesis.</source>
-            <translation>&lt;b&gt;{0} vorgemerkte Änderung(en)&lt;/b&gt; für die Prothese an {1}: Änderungen werden hier gesammelt und erreichen die Prothese erst mit „Auf die Prothese schreiben“.</translation>
-        </message>
-        <message>
             <location filename="../../pdcp_studio/app/pending_panel.py" line="145" />
             <source>Operator: {0}</source>
             <translation>Bearbeiter: {0}</translation>
@@ -3220,11 +3170,6 @@ Den PDCP-Bus einer aktiven Prothese ansehen und einrichten.</translation>
             <translation>Hinzufügen: {v0} hat keine freie Komponente</translation>
         </message>
         <message>
-            <location filename="../../pdcp_studio/app/profile_tree_editor.py" line="323" />
-            <source>{title} — {n_items} node(s)</source>
-            <translation>{title} — {n_items} Knoten</translation>
-        </message>
-        <message>
             <location filename="../../pdcp_studio/app/profile_tree_editor.py" line="354" />
             <source>Rename: a profile node needs a name</source>
             <translation>Umbenennen: Ein Profilknoten braucht einen Namen</translation>
@@ -3351,11 +3296,6 @@ Den PDCP-Bus einer aktiven Prothese ansehen und einrichten.</translation>
             <location filename="../../pdcp_studio/app/connect_dialog.py" line="293" />
             <source>Baud</source>
             <translation>Baud</translation>
-        </message>
-        <message>
-            <location filename="../../pdcp_studio/app/connect_dialog.py" line="307" />
-            <source>{n_ports} port(s) found</source>
-            <translation>{n_ports} Anschluss/Anschlüsse gefunden</translation>
         </message>
         <message>
             <location filename="../../pdcp_studio/app/connect_dialog.py" line="309" />
@@ -3673,11 +3613,6 @@ Den PDCP-Bus einer aktiven Prothese ansehen und einrichten.</translation>
             <source>Nothing to write: the project and the prosthesis agree</source>
             <extracomment>Set to cancel the running transaction (the progress dialog's Cancel does). ``confirm(title, preview) -&gt; bool`` replaces the dialog (tests).</extracomment>
             <translation>Nichts zu schreiben: Projekt und Prothese stimmen überein</translation>
-        </message>
-        <message>
-            <location filename="../../pdcp_studio/app/transaction_flow.py" line="134" />
-            <source>Write to prosthesis ({0} change(s))</source>
-            <translation>Auf die Prothese schreiben ({0} Änderung(en))</translation>
         </message>
         <message>
             <location filename="../../pdcp_studio/app/transaction_flow.py" line="136" />
@@ -4038,10 +3973,6 @@ Die Prothese ist wie zuvor.</translation>
             <source>{a} drives a part of the prosthesis but nothing feeds it, so that part will not move. Connect a matching output, or let Autoconfigure do it.</source>
             <translation>{a} steuert ein Teil der Prothese, bekommt aber keine Daten, daher bewegt sich dieses Teil nicht. Verbinden Sie einen passenden Ausgang oder lassen Sie die Autokonfiguration das tun.</translation>
         </message>
-        <message>
-            <source>{device}, channel {n}</source>
-            <translation>{device}, Kanal {n}</translation>
-        </message>
     </context>
     <context>
         <name>DeviceFinder</name>
@@ -4153,10 +4084,6 @@ Die Prothese ist wie zuvor.</translation>
         <message>
             <source>Store configuration</source>
             <translation>Konfiguration speichern</translation>
-        </message>
-        <message>
-            <source>{0} link(s) already on the prosthesis stay as they are.</source>
-            <translation>{0} Verbindung(en), die die Prothese schon hat, bleiben, wie sie sind.</translation>
         </message>
         <message>
             <source>Connect</source>
@@ -4339,10 +4266,6 @@ Die Prothese ist wie zuvor.</translation>
             <translation>Eine andere Verbindung: {0}</translation>
         </message>
         <message>
-            <source>{0} part(s) found on the bus, {1} link(s) between them:</source>
-            <translation>{0} Teil(e) am Bus gefunden, {1} Verbindung(en) zwischen ihnen:</translation>
-        </message>
-        <message>
             <source>No problems found: every part is described and linked as it asks.</source>
             <translation>Keine Probleme gefunden: Jedes Teil ist beschrieben und verbunden, wie es das verlangt.</translation>
         </message>
@@ -4371,20 +4294,8 @@ Die Prothese ist wie zuvor.</translation>
             <translation>Eintrag {0}</translation>
         </message>
         <message>
-            <source>{0}: written and verified ({1}, {2} link(s) on the prosthesis)</source>
-            <translation>{0}: geschrieben und geprüft ({1}, {2} Verbindung(en) an der Prothese)</translation>
-        </message>
-        <message>
             <source>Saved the fitting report: {0}</source>
             <translation>Versorgungsbericht gespeichert: {0}</translation>
-        </message>
-        <message>
-            <source>{0} thing(s) to look at. The next step proposes links that fix what can be fixed automatically:</source>
-            <translation>{0} Punkt(e) zum Ansehen. Der nächste Schritt schlägt Verbindungen vor, die beheben, was sich automatisch beheben lässt:</translation>
-        </message>
-        <message>
-            <source>All {0} link(s) are on the prosthesis as planned.</source>
-            <translation>Alle {0} Verbindung(en) sind wie geplant an der Prothese.</translation>
         </message>
         <message>
             <source>Fitting history entry {0}: written and verified by the prosthesis.</source>
@@ -4507,14 +4418,6 @@ Die Prothese ist wie zuvor.</translation>
             <translation>{0} ist wieder am Bus: Es braucht keinen Ersatz.</translation>
         </message>
         <message>
-            <source>The prosthesis made {0} of these link(s) on its own when the part was plugged in; the write makes them part of the fitting.</source>
-            <translation>Die Prothese hat {0} dieser Verbindung(en) beim Anschließen selbst hergestellt; das Schreiben macht sie zum Teil der Versorgung.</translation>
-        </message>
-        <message>
-            <source>{0} is not on the bus; {1} link(s) lead to it.</source>
-            <translation>{0} ist nicht am Bus; {1} Verbindung(en) führen zu ihm.</translation>
-        </message>
-        <message>
             <source>Choose the configuration</source>
             <translation>Konfiguration wählen</translation>
         </message>
@@ -4579,20 +4482,12 @@ Die Prothese ist wie zuvor.</translation>
             <translation>Trennen: {0}</translation>
         </message>
         <message>
-            <source>{0}: {1} stored link(s).</source>
-            <translation>{0}: {1} gespeicherte Verbindung(en).</translation>
-        </message>
-        <message>
             <source>From the file {0}.</source>
             <translation>Aus der Datei {0}.</translation>
         </message>
         <message>
             <source>As the fitting of {0} left the prosthesis (fitting history entry {1}).</source>
             <translation>So, wie die Versorgung vom {0} die Prothese hinterließ (Eintrag {1} im Versorgungsprotokoll).</translation>
-        </message>
-        <message>
-            <source>Entry {0} — {1} — {2} ({3} link(s))</source>
-            <translation>Eintrag {0} — {1} — {2} ({3} Verbindung(en))</translation>
         </message>
         <message>
             <source>Cannot read {0}: {1}</source>
@@ -4641,10 +4536,6 @@ Die Prothese ist wie zuvor.</translation>
         <message>
             <source>Every link is cleared.</source>
             <translation>Alle Verbindungen werden gelöscht.</translation>
-        </message>
-        <message>
-            <source>{device}, channel {n}</source>
-            <translation>{device}, Kanal {n}</translation>
         </message>
         <message>
             <source>it does the same job</source>
@@ -4713,10 +4604,6 @@ Die Prothese ist wie zuvor.</translation>
         <message>
             <source>{0} works better with it.</source>
             <translation>{0} arbeitet mit ihr besser.</translation>
-        </message>
-        <message>
-            <source>{0} link(s) could not be made (the engineer's detail says why).</source>
-            <translation>{0} Verbindung(en) konnten nicht hergestellt werden (die technischen Einzelheiten nennen den Grund).</translation>
         </message>
         <message>
             <source>Will be stored: {0}</source>
@@ -4981,10 +4868,6 @@ Die Prothese ist wie zuvor.</translation>
             <translation>die Gerätebeschreibung nennt einen Kanal, der kein Eingang ist</translation>
         </message>
         <message>
-            <source>{device}, channel {n}</source>
-            <translation>{device}, Kanal {n}</translation>
-        </message>
-        <message>
             <source>the same part</source>
             <translation>dasselbe Teil</translation>
         </message>
@@ -5007,10 +4890,6 @@ Die Prothese ist wie zuvor.</translation>
         <message>
             <source>similar signal ({depth} of {levels} levels alike)</source>
             <translation>ähnliches Signal ({depth} von {levels} Ebenen gleich)</translation>
-        </message>
-        <message>
-            <source>similar signal ({depth} level(s) alike)</source>
-            <translation>ähnliches Signal ({depth} Ebene(n) gleich)</translation>
         </message>
         <message>
             <source>another kind of signal</source>
@@ -5140,10 +5019,6 @@ Die Prothese ist wie zuvor.</translation>
         <message>
             <source>Clear</source>
             <translation>Leeren</translation>
-        </message>
-        <message>
-            <source>{n} event(s)</source>
-            <translation>{n} Ereignis(se)</translation>
         </message>
         <message>
             <source>No bus events yet: parts that come and go and the links the bus makes appear here</source>
@@ -5397,14 +5272,6 @@ Die Prothese ist wie zuvor.</translation>
             <translation>ausgeführt, geprüft</translation>
         </message>
         <message>
-            <source>+{adds} / −{removes} link(s)</source>
-            <translation>+{adds} / −{removes} Verbindung(en)</translation>
-        </message>
-        <message>
-            <source>, {n} parameter(s)</source>
-            <translation>, {n} Parameter</translation>
-        </message>
-        <message>
             <source>no change was made in this session</source>
             <translation>in dieser Sitzung wurde nichts geändert</translation>
         </message>
@@ -5415,10 +5282,6 @@ Die Prothese ist wie zuvor.</translation>
         <message>
             <source>a kind of signal the profile tree does not name</source>
             <translation>eine Signalart, die der Profilbaum nicht nennt</translation>
-        </message>
-        <message>
-            <source>{device}, channel {n}</source>
-            <translation>{device}, Kanal {n}</translation>
         </message>
         <message>
             <source>type {type}, profile {profile}</source>
@@ -5583,14 +5446,6 @@ Die Prothese ist wie zuvor.</translation>
         <message>
             <source>Generated by PDCP Studio.</source>
             <translation>Erstellt mit PDCP Studio.</translation>
-        </message>
-        <message>
-            <source> (the {n} link(s) above, as they would be stored)</source>
-            <translation> (die {n} Verbindung(en) oben, wie sie gespeichert würden)</translation>
-        </message>
-        <message>
-            <source> (what the prosthesis stores: {n} link(s) in {c} set-up(s))</source>
-            <translation> (was die Prothese speichert: {n} Verbindung(en) in {c} Einrichtung(en))</translation>
         </message>
         <message>
             <source>{path}: cannot write the PDF</source>
@@ -6245,6 +6100,75 @@ Wählen Sie ein Profil aus dem Namensbaum oder geben Sie eines hexadezimal ein.<
         <message>
             <source>VID {vid} · PID {pid} · serial {serial}</source>
             <translation>VID {vid} · PID {pid} · Seriennummer {serial}</translation>
+        </message>
+    </context>
+    <context>
+        <name>TransactionOutcome</name>
+        <message>
+            <source>{what}: failed while {step}</source>
+            <translation>{what}: {step} fehlgeschlagen</translation>
+        </message>
+        <message>
+            <source>{what}: stopped while {step}; what was written is undone</source>
+            <translation>{what}: {step} abgebrochen; was geschrieben war, ist rückgängig gemacht</translation>
+        </message>
+        <message>
+            <source>{what}: not confirmed, nothing written</source>
+            <translation>{what}: nicht bestätigt, nichts geschrieben</translation>
+        </message>
+        <message>
+            <source>{what}: nothing to change on the prosthesis</source>
+            <translation>{what}: an der Prothese ist nichts zu ändern</translation>
+        </message>
+        <message numerus="yes">
+            <source>%n part(s) held still while writing</source>
+            <translation>
+                <numerusform>%n Teil während des Schreibens stillgehalten</numerusform>
+                <numerusform>%n Teile während des Schreibens stillgehalten</numerusform>
+            </translation>
+        </message>
+        <message numerus="yes">
+            <source>%n link(s) on the prosthesis</source>
+            <translation>
+                <numerusform>%n Verbindung an der Prothese</numerusform>
+                <numerusform>%n Verbindungen an der Prothese</numerusform>
+            </translation>
+        </message>
+        <message>
+            <source>{what}: written and verified — {links}</source>
+            <translation>{what}: geschrieben und geprüft — {links}</translation>
+        </message>
+        <message>
+            <source>recording in the fitting history</source>
+            <translation>beim Eintragen ins Versorgungsprotokoll</translation>
+        </message>
+        <message>
+            <source>releasing the parts</source>
+            <translation>beim Freigeben der Teile</translation>
+        </message>
+        <message>
+            <source>putting back</source>
+            <translation>beim Zurücksetzen</translation>
+        </message>
+        <message>
+            <source>reading back</source>
+            <translation>beim Zurücklesen</translation>
+        </message>
+        <message>
+            <source>writing</source>
+            <translation>beim Schreiben</translation>
+        </message>
+        <message>
+            <source>holding the parts still</source>
+            <translation>beim Stillhalten der Teile</translation>
+        </message>
+        <message>
+            <source>asking for confirmation</source>
+            <translation>bei der Bestätigung</translation>
+        </message>
+        <message>
+            <source>previewing</source>
+            <translation>bei der Vorschau</translation>
         </message>
     </context>
 </TS>

@@ -105,7 +105,12 @@ def test_checks_list_speaks_plainly_and_keeps_the_detail(qtbot):
     import re
     from html import escape
 
-    from pdcp_studio.app.words.finding_text import _TEXTS, finding_detail, plain_finding
+    from pdcp_studio.app.words.finding_text import (
+        _TEXTS,
+        channel_words,
+        finding_detail,
+        plain_finding,
+    )
     from pdcp_studio.engine import checks
 
     source = Path(checks.__file__)
@@ -119,7 +124,8 @@ def test_checks_list_speaks_plainly_and_keeps_the_detail(qtbot):
             text = plain_finding(finding, system)
             assert "`" not in text and "plan " not in text, (name, text)
             assert finding.code not in text and not re.search(r"\d+/\d+/\d+#", text), text
-            assert ", channel " in text
+            # each channel by its one name (its descriptor, else "channel N")
+            assert all(channel_words(system, r) in text for r in finding.refs[:2]), text
             detail = finding_detail(finding)
             assert escape(finding.message) in detail and finding.code in detail
     assert {"terminal-unconnected", "missing-end"} <= seen

@@ -76,7 +76,7 @@ def test_the_replacement_plan_moves_every_link_to_the_spare_with_its_similarity(
         assert SPARE_HAND in stored_inputs and HAND not in stored_inputs
     lines = words.plan_lines(swapped, plan)
     assert any("It takes the place of Multi-grip hand with wrist rotator (serial 301), "
-               "channel 1 (Power grip)"
+               "Power grip"
                in line and "Exact match" in line for line in lines)
     assert not any("0x" in line for line in lines)
 
@@ -136,7 +136,7 @@ def test_parts_are_named_from_the_catalogue_and_kept_apart_by_serial(fitted):
     assert words.part_words(bus, CONTROL) == "Pattern-recognition control unit"
     assert words.part_words(bus, DeviceKey(9, 9, 9)) == "unknown device (9/9/9)"
     assert words.channel_phrase(bus, ChannelRef(*HAND, 3)) == \
-        "Multi-grip hand with wrist rotator (serial 301), channel 3 (Wrist rotation)"
+        "Multi-grip hand with wrist rotator (serial 301), Wrist rotation"
     bus.devices[CONTROL].descriptor = ""
     assert words.part_words(bus, CONTROL) == "Control unit"
 

@@ -234,10 +234,11 @@ def test_replace_a_part_unplug_the_hand_plug_the_spare(live, qtbot, tmp_path):
     _next(w, qtbot, w.plug_page, w.plan_page)
     _ready(w, qtbot, w.plan_page)
     text = _text(w.plan_page)
-    # "(Power grip)" follows while the bus still remembers the gone hand's channels, "which
-    # is gone" once it forgot them: how long after the unplug the plan is read decides.
-    assert "It takes the place of Multi-grip hand with wrist rotator (serial 301), channel 1" \
-        in text, text
+    # The gone hand's channel by its one name whether or not the bus still remembers it
+    # (the plan does): never "channel 1".
+    assert "It takes the place of Multi-grip hand with wrist rotator (serial 301), Power " \
+           "grip, which is gone" in text, text
+    assert ", channel 1" not in text
     assert "Exact match: it does the same job and sends its data the same way (31 of 31 " \
            "points)" in text
     assert "(23 of 23 points)" in text  # the wrist rotation: a two-level profile
@@ -491,8 +492,10 @@ def test_checks_name_the_two_hands_apart(live, qtbot):
     _next(w, qtbot, w.scan_page, w.checks_page)
     _ready(w, qtbot, w.checks_page)
     text = _text(w.checks_page)
-    assert "Multi-grip hand with wrist rotator (serial 301), channel 1" in text
-    assert "Multi-grip hand with wrist rotator (serial 302), channel 1" in text
+    # Each channel by its one name (its descriptor), never "channel 1".
+    assert "Multi-grip hand with wrist rotator (serial 301), Power grip" in text
+    assert "Multi-grip hand with wrist rotator (serial 302), Power grip" in text
+    assert ", channel 1" not in text
     findings = [line for line in text.splitlines() if "nothing feeds it" in line]
     assert len(findings) == len(set(findings)) >= 2  # no two findings read alike
 

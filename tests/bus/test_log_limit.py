@@ -66,3 +66,35 @@ def test_a_failing_simulated_device_is_logged_once_then_summarised(caplog):
     records = [r for r in caplog.records if r.name == "pdcp_studio.bus.sim.device_host"]
     assert 1 <= len(records) <= 3, [r.getMessage() for r in records]
     assert records[0].exc_info is not None  # the first one with its traceback
+
+
+def test_a_line_budget_tells_at_most_its_lines_and_one_summary_in_any_window():
+    """All kinds together (issue 28): at most 4 lines and 1 summary in any second."""
+    from pdcp_studio.bus.log_limit import LineBudget
+
+    budget = LineBudget(lines=4, window_s=1.0)
+    told: list[float] = []
+    for i in range(20_000):  # 20,000 lines over 10 s
+        now = i / 2000
+        if budget.admit(f"line {i}", now=now):
+            told.append(now)
+        if budget.summary(now=now) is not None:
+            told.append(now)
+    assert told
+    assert max(sum(1 for t in told if start <= t < start + 1.0)
+               for start in (x / 100 for x in range(1000))) <= 5
+    assert budget.suppressed_total > 19_000
+    final = budget.summary(now=10.0, final=True)
+    assert final is None or final.count < 4000
+
+
+def test_a_line_budget_summary_counts_and_names_the_latest():
+    from pdcp_studio.bus.log_limit import LineBudget
+
+    budget = LineBudget(lines=2, window_s=1.0)
+    assert [budget.admit(str(i), now=0.1 * i) for i in range(5)] == [True, True, False,
+                                                                     False, False]
+    assert budget.summary(now=0.5) is None  # not a window since the first held back
+    summary = budget.summary(now=1.3)
+    assert summary is not None and (summary.count, summary.last) == (3, "4")
+    assert budget.summary(now=1.4) is None and budget.summary(now=5.0, final=True) is None

@@ -3,9 +3,12 @@
 from __future__ import annotations
 
 import logging
+import os
 import subprocess
 import sys
 import textwrap
+import threading
+import time
 from pathlib import Path
 
 import pytest
@@ -119,30 +122,68 @@ def test_both_slots_damaged_reads_as_nothing_stored_with_warnings(tmp_path, capl
     assert caplog.text.count("is damaged") == 2
 
 
-def test_a_plain_pdcfg_file_is_read_and_converted_safely(tmp_path):
+def test_a_plain_pdcfg_file_is_refused_as_a_configuration_never_converted(tmp_path):
+    """``--memory fig410.pdcfg`` once turned the configuration into a 1 MiB memory image."""
     path = tmp_path / "thesis.pdcfg"
     config_codec.save_path(collection(5), path)
-    store = MemoryStore(path, capacity=2048)
-    assert store.read() == collection(5)
-    assert store.write(collection(6)) == 2
-    assert MemoryStore(path, capacity=2048).read() == collection(6)
-    # The converted file still holds the plain one as the older generation.
-    raw = bytearray(path.read_bytes())
-    raw[2048 + HEADER_SIZE + 2 * HEADER_SIZE] ^= 0xFF  # damage the new slot
-    path.write_bytes(bytes(raw))
-    assert MemoryStore(path, capacity=2048).read() == collection(5)
+    before = path.read_bytes()
+    with pytest.raises(MemoryStoreError, match=r"is a stored-configuration file \(\.pdcfg\), "
+                                               "not a memory image"):
+        MemoryStore(path, capacity=2048)
+    assert path.read_bytes() == before
 
 
-def test_a_file_that_is_not_a_memory_is_never_overwritten(tmp_path, caplog):
+def test_a_file_that_is_not_a_memory_is_refused_and_never_overwritten(tmp_path):
     path = tmp_path / "notes.txt"
     path.write_bytes(b"shopping list: milk, eggs, a CAN adapter" * 3)
-    store = MemoryStore(path)
-    with caplog.at_level(logging.WARNING):
-        assert store.read() == ConfigCollection()
-    assert "no slot header" in caplog.text
-    with pytest.raises(MemoryStoreError, match="refusing to overwrite"):
-        store.write(collection(1))
+    with pytest.raises(MemoryStoreError, match="is not a memory image"):
+        MemoryStore(path)
     assert path.read_bytes().startswith(b"shopping list")
+
+
+@pytest.mark.parametrize("make", ["empty", "written", "slot A erased", "first write cut"])
+def test_a_memory_image_in_any_state_it_can_be_in_opens(tmp_path, make):
+    """An empty file, a written one, one whose slot A header is blank (slot B holds the
+    configuration) and one whose first write was cut before its header: all memories."""
+    path = tmp_path / "m.mem"
+    if make == "empty":
+        path.write_bytes(b"")
+    else:
+        store = MemoryStore(path, capacity=512)
+        store.write(collection(1))
+        if make == "slot A erased":
+            store.write(collection(2))
+            store.write(collection(3))  # generation 3 in slot A, 2 in slot B
+            raw = bytearray(path.read_bytes())
+            raw[:HEADER_SIZE] = bytes(HEADER_SIZE)
+            path.write_bytes(bytes(raw))
+        elif make == "first write cut":
+            path.write_bytes(bytes(HEADER_SIZE) + config_codec.dumps(collection(1)))
+    assert M.memory_file_problem(path, 512) is None
+    MemoryStore(path, capacity=512).read()
+
+
+def test_a_fifo_or_a_device_as_the_memory_is_refused_at_once(tmp_path):
+    fifo = tmp_path / "m.fifo"
+    os.mkfifo(fifo)
+    assert M.memory_file_problem(fifo) == "is a FIFO (named pipe), not a memory file"
+    assert M.memory_file_problem("/dev/zero") == "is a character device, not a memory file"
+    # The store itself reports such a memory unreadable at each read, never waits on it.
+    def let_go() -> None:  # a reader that waits on the pipe fails the test, not hangs it
+        try:
+            os.close(os.open(fifo, os.O_WRONLY | os.O_NONBLOCK))
+        except OSError:
+            pass
+
+    timer = threading.Timer(5.0, let_go)
+    timer.start()
+    started = time.monotonic()
+    try:
+        with pytest.raises(OSError, match="FIFO"):
+            MemoryStore(fifo).read()
+    finally:
+        timer.cancel()
+    assert time.monotonic() - started < 1.0
 
 
 def test_a_configuration_too_large_for_the_slot_is_refused(tmp_path):

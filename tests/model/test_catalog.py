@@ -90,3 +90,29 @@ def test_configuration_names_fall_back_on_the_catalogue():
     assert names.label(DeviceKey(2641, 770, 302)) == "Electric hook (serial 302)"
     assert names.label(DeviceKey(2641, 999, 302)) == "unknown device (2641/999/302)"
     assert seen.label(DeviceKey(2641, 769, 301)) == "unknown device (2641/769/301)"
+
+
+def test_a_fifo_among_the_users_catalogues_is_skipped_never_opened(tmp_path):
+    """A named pipe called ``*.json`` would hang every start-up (issue 28)."""
+    import contextlib
+    import os
+    import threading
+    import time
+
+    user = tmp_path / "catalogs"
+    user.mkdir()
+    os.mkfifo(user / "pipe.json")
+
+    def rescue() -> None:  # a reader that waits on the pipe is let go: the test fails, not hangs
+        with contextlib.suppress(OSError):
+            os.close(os.open(user / "pipe.json", os.O_WRONLY | os.O_NONBLOCK))
+
+    timer = threading.Timer(5.0, rescue)
+    timer.start()
+    started = time.monotonic()
+    try:
+        _, problems = load_catalog([paths.catalogs_dir(), user])
+    finally:
+        timer.cancel()
+    assert time.monotonic() - started < 1.0
+    assert problems == [f"{user / 'pipe.json'}: cannot be read (not a regular file)"]

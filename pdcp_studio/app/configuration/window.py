@@ -18,7 +18,7 @@ words (:mod:`.config_words`) and dialogs (:mod:`.config_dialogs`).
 
 from __future__ import annotations
 
-from collections.abc import Callable
+from collections.abc import Callable, Iterable
 from pathlib import Path
 from typing import Any
 
@@ -43,13 +43,13 @@ from pdcp_studio.app.configuration.list_panel import ConfigListPanel
 from pdcp_studio.app.configuration.words import ConfigWords
 from pdcp_studio.app.documents.config_document import ConfigDocument
 from pdcp_studio.app.i18n import translate
+from pdcp_studio.app.words import part_names
 from pdcp_studio.app.words.plural import count
 from pdcp_studio.engine.config_checks import ConfigFinding, check_configuration
 from pdcp_studio.errors import PdcpError
-from pdcp_studio.model.catalog import default_catalog
 from pdcp_studio.model.config_edit import channels_of
 from pdcp_studio.model.configuration import StoredChannel, StoredConfiguration
-from pdcp_studio.model.device_names import DeviceCatalogue
+from pdcp_studio.model.names import Names
 from pdcp_studio.model.refs import Direction
 from pdcp_studio.model.system import Channel, Device, Link, System
 
@@ -59,11 +59,22 @@ ProsthesisSource = Callable[[], tuple[System | None, str]]
 SEVERITY_WORDS = {"error": "Error", "warning": "Warning", "info": "Note"}
 
 
-def system_for_configuration(cfg: StoredConfiguration | None,
-                             catalogue: DeviceCatalogue) -> System:
+def configuration_names(system: System | None,
+                        configurations: Iterable[StoredConfiguration]) -> Names:
+    """The one naming (``model/names.py``) of the parts a stored configuration names: a
+    part on the prosthesis fitted to (``system``) as every panel calls it, any other by its
+    catalogue product; the configurations' parts are named together, so two alike get
+    their serial numbers (a stored configuration knows only VID, PID and serial)."""
+    keys = {ref.device for cfg in configurations for ref in channels_of(cfg)}
+    among = [Device(k.vid, k.pid, k.serial) for k in sorted(keys)]
+    return part_names.names(system, among)
+
+
+def system_for_configuration(cfg: StoredConfiguration | None, names: Names) -> System:
     """The devices and links one configuration names, for drawing only.
 
-    Each device is named from ``catalogue`` (or "unknown device (VID/PID/serial)"); each
+    Each device is named by ``names`` (the one naming: the prosthesis's name, else the
+    catalogue's product, the serial number only for twins); each
     channel carries the stored type and profile; a link whose ends cannot coexist (a
     channel stored as both an output and an input) is left out of the drawing, and the
     checks name it.
@@ -76,7 +87,7 @@ def system_for_configuration(cfg: StoredConfiguration | None,
         device = system.devices.get(key)
         if device is None:
             device = system.add_device(Device(key.vid, key.pid, key.serial,
-                                              name=catalogue.label(key)))
+                                              name=names.part(key)))
         if ref.index not in device.channels:
             device.add_channel(Channel(ref.index, Direction(direction), type=ch.type,
                                        profile=ch.profile))
@@ -104,14 +115,14 @@ class ConfigWindow(QMainWindow):
         self._prosthesis_source: ProsthesisSource | None = prosthesis
         self._file_system: tuple[System, str] | None = None
         self.findings: list[ConfigFinding] = []
-        self.catalogue = DeviceCatalogue()
+        self.names: Names = part_names.names(None)
         self.resize(1500, 920)
 
         self.graph_doc = Document()
         self.scene = BusScene(self.graph_doc, self)
         self.view = GraphView(self.scene, self)
         self.view.setInteractive(False)  # edits go through the link list, one undo step each
-        self.words = ConfigWords(lambda: self.catalogue, lambda: self.graph_doc.tree)
+        self.words = ConfigWords(lambda: self.names, lambda: self.graph_doc.tree)
 
         left = ConfigListPanel(doc)
         self.config_list = left.config_list
@@ -255,14 +266,13 @@ class ConfigWindow(QMainWindow):
         """Bring every part up to date with the document (after any change)."""
         doc = self.doc
         system, _name = self.prosthesis()
-        self.catalogue = (DeviceCatalogue.from_system(system) if system is not None
-                          else DeviceCatalogue()).with_catalog(default_catalog())
+        self.names = configuration_names(system, doc.collection.configurations)
         self.config_panel.fill()
         cfg = doc.configuration()
         self.links_panel.fill(cfg)
         self.findings = check_configuration(cfg) if cfg is not None else []
         self._fill_checks()
-        self.graph_doc.set_system(system_for_configuration(cfg, self.catalogue), None, None,
+        self.graph_doc.set_system(system_for_configuration(cfg, self.names), None, None,
                                   positions={})
         self.view.fit_all()
         self._update_title()

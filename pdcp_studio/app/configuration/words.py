@@ -13,9 +13,9 @@ from PySide6.QtCore import QCoreApplication
 from pdcp_studio.engine.config_checks import ConfigFinding
 from pdcp_studio.model import profile as prof
 from pdcp_studio.model.configuration import StoredChannel
-from pdcp_studio.model.device_names import DeviceCatalogue
+from pdcp_studio.model.names import Names
 from pdcp_studio.model.profile_tree import ProfileNames
-from pdcp_studio.model.refs import DeviceKey
+from pdcp_studio.model.refs import ChannelRef
 from pdcp_studio.model.system import System
 
 
@@ -24,22 +24,21 @@ def _tr(text: str) -> str:
 
 
 class ConfigWords:
-    """Words for one window: parts named by ``catalogue()``, profiles by ``tree()`` (both
-    change with the prosthesis fitted to)."""
+    """Words for one window: parts and channels named by ``names()`` (the one naming),
+    profiles by ``tree()`` (both change with the prosthesis fitted to)."""
 
-    def __init__(self, catalogue: Callable[[], DeviceCatalogue],
-                 tree: Callable[[], ProfileNames]) -> None:
-        self._catalogue = catalogue
+    def __init__(self, names: Callable[[], Names], tree: Callable[[], ProfileNames]) -> None:
+        self._names = names
         self._tree = tree
 
     def channel_text(self, ch: StoredChannel) -> str:
-        key = DeviceKey(ch.vid, ch.pid, ch.serial)
-        return _tr("%1, channel %2").replace("%1", self._catalogue().label(key)) \
-            .replace("%2", str(ch.index))
+        return self.ref_words(ch.ref)
 
-    def ref_words(self, ref: Any) -> str:
-        return _tr("%1, channel %2").replace("%1", self._catalogue().label(ref.device)) \
-            .replace("%2", str(ref.index))
+    def ref_words(self, ref: ChannelRef) -> str:
+        """``Multi-grip hand, Power grip``: the one name (``model/names.py``); "channel N"
+        only where no descriptor is known (a stored configuration names VID, PID, serial
+        and index, nothing more)."""
+        return self._names().channel(ref)
 
     def profile_text(self, profile: int) -> str:
         """What a channel carries, by the profile tree's names (the code is the tooltip)."""

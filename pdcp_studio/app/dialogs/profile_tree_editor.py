@@ -55,6 +55,7 @@ from pdcp_studio.errors import ProfileError
 from pdcp_studio.model import profile as prof
 from pdcp_studio.model.profile_tree import ProfileNode, ProfileTree
 from pdcp_studio.storage.atomic import atomic_write_text
+from pdcp_studio.storage.profile_trees import read_tree_json
 
 COL_NAME, COL_COMPONENT, COL_PROFILE, COL_NOTE = range(4)
 VENDOR = "vendor-reserved"
@@ -64,7 +65,7 @@ PROFILE_ROLE = Qt.ItemDataRole.UserRole
 def load_tree(path: str | Path) -> ProfileTree:
     """Read a ``pdcp-profile-tree/1`` file; ProfileError names the file and the bad node."""
     try:
-        doc = json.loads(Path(path).read_text("utf-8"))
+        doc = read_tree_json(path)  # bounded; a FIFO or a device is refused
     except (OSError, ValueError) as err:
         raise ProfileError(f"{path}: cannot read a profile tree: {err}") from err
     return ProfileTree.from_json(doc, str(path))

@@ -53,6 +53,7 @@ from pdcp_studio.app.words.history_words import (
 )
 from pdcp_studio.app.workers import ProgressFn, Worker
 from pdcp_studio.model.refs import ChannelRef, DeviceKey
+from pdcp_studio.model.safe_text import shown
 from pdcp_studio.model.system import Link
 
 if TYPE_CHECKING:
@@ -197,7 +198,7 @@ def entry_details(entry: Entry, say: LinkWords = str) -> list[str]:
         )
     for note in outcome.get("notes", ()):
         out.append(f"  note: {note}")
-    return out
+    return [shown(line) for line in out]  # operator, patient, reasons: shown, never run
 
 
 #: What reading the archive gives: every entry, the chain's verification, the archive's path.
@@ -384,6 +385,7 @@ class HistoryPanel(QWidget):
                      e.get("patient") or "", f"{before} → {after}", e.get("bus") or ""]
             failed = (e.get("outcome") or {}).get("status") in ("failed", "rolled_back")
             for col, text in enumerate(cells):
+                text = shown(text)  # the operator and the patient as typed: never raw escapes
                 item = QTableWidgetItem(text)
                 item.setToolTip(summary_tip(e) if col == ACTION_COLUMN else text)
                 if failed:

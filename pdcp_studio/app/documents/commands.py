@@ -22,6 +22,8 @@ from pdcp_studio.app.documents import live_sync, pending
 from pdcp_studio.app.documents.document import Document, Position
 from pdcp_studio.app.i18n import translate
 from pdcp_studio.app.words.effect_words import app_names, effect_tr
+from pdcp_studio.app.words.part_names import part_name
+from pdcp_studio.app.words.plural import count
 from pdcp_studio.errors import PdcpError
 from pdcp_studio.model.names import Names
 from pdcp_studio.model.refs import ChannelRef, DeviceKey
@@ -161,8 +163,7 @@ class MoveDeviceCommand(QUndoCommand):
 
     def __init__(self, doc: Document, key: DeviceKey, old: Position | None, new: Position,
                  drag_id: int = 0, parent: QUndoCommand | None = None) -> None:
-        super().__init__(f"Move {doc.system.devices[key].label}" if key in doc.system.devices
-                         else f"Move {key}", parent)
+        super().__init__(_tr("Move {0}").format(part_name(doc.system, key)), parent)
         self.doc, self.key, self.old, self.new, self.drag_id = doc, key, old, new, drag_id
 
     def id(self) -> int:
@@ -190,7 +191,7 @@ class MoveDevicesCommand(QUndoCommand):
     def __init__(self, doc: Document, moves: dict[DeviceKey, tuple[Position, Position]],
                  parent: QUndoCommand | None = None) -> None:
         n = len(moves)
-        super().__init__(f"Move {n} device{'s' if n != 1 else ''}", parent)
+        super().__init__(count("Commands", "Move %n part(s)", n), parent)
         self.doc, self.moves = doc, dict(moves)
 
     def redo(self) -> None:
@@ -251,7 +252,7 @@ def push_plan(doc: Document, plan: Any, text: str = "") -> bool:
     if not actions:
         return False
     mode = getattr(plan, "mode", "plan")
-    n = len(actions)
     doc.undo_stack.push(LinksCommand(
-        doc, actions, text or f"Apply {mode} ({n} action{'s' * (n != 1)})", mode=mode))
+        doc, actions, text or count("Commands", "Apply the plan (%n step(s))", len(actions)),
+        mode=mode))
     return True

@@ -36,9 +36,12 @@ def load_config_file(path: str | Path) -> ConfigCollection:
     """Read a ``.pdcfg`` file; the error names the file (ConfigFormatError, OSError)."""
     from pdcp_studio.errors import ConfigFormatError
     from pdcp_studio.storage import config_codec
+    from pdcp_studio.storage.regular_file import NotARegularFile
 
     try:
         return config_codec.load_path(path)
+    except NotARegularFile as err:  # a FIFO or a device: bad input, like a bad file
+        raise ConfigFormatError(f"{path}: cannot read: {err.strerror}") from None
     except ConfigFormatError as err:
         named = ConfigFormatError(f"{path}: {err}")
         named.offset, named.reason = err.offset, err.reason

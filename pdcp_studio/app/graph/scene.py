@@ -35,6 +35,7 @@ from pdcp_studio.app.graph.link_drag import LinkDrag
 from pdcp_studio.app.graph.links import LinkItem
 from pdcp_studio.app.graph.live_flow import LiveFlow
 from pdcp_studio.app.graph.scene_words import SceneWords
+from pdcp_studio.app.words.plural import count
 from pdcp_studio.model.refs import ChannelRef, DeviceKey
 from pdcp_studio.model.system import Channel, Device, Link
 
@@ -458,7 +459,7 @@ class BusScene(QGraphicsScene):
             links.append(self.doc.selection)
         n = commands.push_remove_links(self.doc, links)
         if n:
-            self.statusMessage.emit(self.tr("Removed {n} link{v1}").format(n=n, v1='s' * (n != 1)))
+            self.statusMessage.emit(count("BusScene", "Removed %n link(s)", n))
         return n
 
     # -- gestures: drawing a link (the scene's, as in Qt's diagramscene) -------------

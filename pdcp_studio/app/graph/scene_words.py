@@ -15,6 +15,7 @@ from pdcp_studio.app.i18n import translate
 from pdcp_studio.model import profile as prof
 from pdcp_studio.model.catalog import default_catalog
 from pdcp_studio.model.refs import ChannelRef, DeviceKey
+from pdcp_studio.model.safe_text import shown
 from pdcp_studio.model.system import Channel, Device, Link
 
 
@@ -118,7 +119,7 @@ class SceneWords:
         head = (_tr("Input {n}") if row.is_input else _tr("Output {n}")).format(n=row.index)
         lines = [f"<b>{escape(head)}</b> — {escape(what)}"]
         if row.descriptor:
-            lines.append(f"“{escape(row.descriptor)}”")
+            lines.append(f"“{escape(shown(row.descriptor))}”")
         if row.is_input:
             src = system.source_of(ref)
             lines.append(escape(_tr("Fed by {0}").format(self.describe(src)) if src

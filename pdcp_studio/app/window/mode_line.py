@@ -9,6 +9,7 @@ from PySide6.QtWidgets import QLabel, QProgressBar, QStatusBar
 from pdcp_studio.app.i18n import translate
 from pdcp_studio.app.live import live_bus
 from pdcp_studio.app.live.live_bus import LiveController
+from pdcp_studio.model.safe_text import shown
 
 _CTX = "MainWindow"  # the texts the window has always shown under its own name
 
@@ -29,7 +30,7 @@ def window_title(live: LiveController, title: str, bus_is_document: bool) -> str
     if bus_is_document:
         return _t("{v0}{v1}[*] — PDCP Studio").format(v0=state[:1].upper(), v1=state[1:])
     where = "" if live.state == live_bus.OFFLINE else f" — {state}"
-    return _t("{title}[*]{where} — PDCP Studio").format(title=title, where=where)
+    return _t("{title}[*]{where} — PDCP Studio").format(title=shown(title), where=where)
 
 
 class ModeLine(QObject):

@@ -11,6 +11,8 @@ from pathlib import Path
 from PySide6.QtCore import QSettings
 from PySide6.QtWidgets import QMenu, QWidget
 
+from pdcp_studio.model.safe_text import shown
+
 KEY = "recentFiles"
 LIMIT = 10
 
@@ -57,10 +59,11 @@ class RecentMenu(QMenu):
         self.clear()
         paths = self.recent.paths()
         for n, path in enumerate(paths, 1):
-            label = f"&{n} {path.name}" if n < 10 else path.name
+            name = shown(path.name)
+            label = f"&{n} {name}" if n < 10 else name
             action = self.addAction(label)
-            action.setToolTip(str(path))
-            action.setStatusTip(str(path))
+            action.setToolTip(shown(str(path)))
+            action.setStatusTip(shown(str(path)))
             action.triggered.connect(lambda _c=False, p=path: self.open_fn(p))
         if not paths:
             none = self.addAction(self.tr("No recent files"))

@@ -30,6 +30,7 @@ from PySide6.QtWidgets import (
 
 from pdcp_studio.app.i18n import translate
 from pdcp_studio.app.window.actions import TASKS
+from pdcp_studio.model.safe_text import shown
 
 _CTX = "StartView"
 
@@ -164,9 +165,9 @@ class StartView(QScrollArea):
         self.recent_buttons = []
         paths = self.offers.recent_paths()[:RECENT_SHOWN]
         for path in paths:
-            button = _link(path.name, folder_words(path.parent),
+            button = _link(shown(path.name), shown(folder_words(path.parent)),
                            partial(self.offers.open_recent, path))
-            button.setToolTip(str(path))
+            button.setToolTip(shown(str(path)))
             button.setMaximumWidth(MAX_WIDTH // 2)  # a column like the tasks', not a bar
             self.recent_box.addWidget(button)
             self.recent_buttons.append(button)

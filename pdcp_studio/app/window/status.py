@@ -10,6 +10,8 @@ from collections.abc import Callable
 
 from PySide6.QtWidgets import QMessageBox, QWidget
 
+from pdcp_studio.model.safe_text import shown
+
 log = logging.getLogger("pdcp_studio.app.window.main_window")  # the name it always logged under
 
 
@@ -24,11 +26,12 @@ class StatusLine:
         self._quiet = quiet
 
     def say(self, text: str, timeout_ms: int = 8000) -> None:
-        self._show(text, timeout_ms)
+        self._show(shown(text), timeout_ms)  # file and part names: shown, never run
 
     def error(self, title: str, text: str) -> None:
         """Tell the user; in the status bar too, so scripted runs leave a trace."""
         log.warning("%s: %s", title, text)
+        text = shown(text, newlines=True)
         self._show(f"{title}: {text}", 0)
         if not self._quiet():
             QMessageBox.warning(self._parent, title, text)

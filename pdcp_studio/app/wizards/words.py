@@ -57,14 +57,12 @@ def part_words(system: System, key: DeviceKey) -> str:
     return names.part_name(system, key, _shown())
 
 
-def channel_phrase(system: System, ref: ChannelRef) -> str:
-    """``Multi-grip hand (serial 301), channel 1 (Power grip)``."""
-    text = _t("{device}, channel {n}").format(device=part_words(system, ref.device),
-                                             n=ref.index)
-    channel = system.channel(ref)
-    if channel is not None and channel.descriptor:
-        text += f" ({channel.descriptor})"
-    return text
+def channel_phrase(system: System, ref: ChannelRef, own: str = "") -> str:
+    """``Multi-grip hand (serial 301), Power grip``: the channel's one name (``model/
+    names.py``, as every panel says it: its part as :func:`part_words`, then its
+    descriptor, "channel N" only where it has none). ``own``: what names a channel no
+    longer in ``system`` (a missing part's, as the plan remembers it)."""
+    return names.names(system, _shown()).channel(ref, own)
 
 
 def link_words(system: System, link: Link) -> str:
@@ -109,16 +107,22 @@ def _missing_profile(plan: Plan, action: Action) -> int:
     return 0
 
 
+def _plan_channel(system: System, plan: Plan, ref: ChannelRef) -> str:
+    """A channel of a plan by its one name; one no longer on the bus by what the plan
+    remembers of it (its descriptor)."""
+    facts = plan.channels.get(ref)
+    return channel_phrase(system, ref, facts.descriptor if facts is not None else "")
+
+
+def _plan_link(system: System, plan: Plan, link: Link) -> str:
+    return f"{_plan_channel(system, plan, link.output)} → {_plan_channel(system, plan, link.input)}"
+
+
 def _cause_words(system: System, plan: Plan, cause: object) -> str:
     if isinstance(cause, Link):
-        return link_words(system, cause)
+        return _plan_link(system, plan, cause)
     if isinstance(cause, ChannelRef):
-        text = _t("{device}, channel {n}").format(device=part_words(system, cause.device),
-                                                 n=cause.index)
-        facts = plan.channels.get(cause)
-        if facts is not None and facts.descriptor:
-            text += f" ({facts.descriptor})"
-        return text
+        return _plan_channel(system, plan, cause)
     return ""
 
 
@@ -180,7 +184,8 @@ def plan_lines(system: System, plan: Plan) -> list[str]:
     out = []
     for action in plan.actions:
         verb = _t("Connect") if action.op.value == "add" else _t("Disconnect")
-        out.append(f"{verb} {link_words(system, action.link)}\n{why_words(system, plan, action)}")
+        out.append(f"{verb} {_plan_link(system, plan, action.link)}\n"
+                   f"{why_words(system, plan, action)}")
     if plan.rejections:
         out.append(count("%n link(s) could not be made (the engineer's detail says why).",
                          len(plan.rejections)))

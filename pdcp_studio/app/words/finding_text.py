@@ -55,14 +55,17 @@ _TERMINAL_OFF = ("{a} drives a part of the prosthesis but nothing feeds it, so t
 
 def channel_words(system: System, ref: ChannelRef,
                   names: Mapping[DeviceKey, str] | None = None) -> str:
-    """``Multi-grip hand (serial 301), channel 2``: the device's name and the channel;
-    ``names`` (device → name) when the caller names the parts itself."""
+    """``Multi-grip hand (serial 301), Pinch grip``: the channel's one name (``model/
+    names.py``: its descriptor, "channel N" only where it has none); ``names`` (device →
+    name) when the caller names the parts itself."""
+    from pdcp_studio.app.words import part_names
+    from pdcp_studio.model import names as model_names
+
     name = names.get(ref.device) if names else None
     if name is None:
-        from pdcp_studio.app.words.part_names import part_name
-
-        name = part_name(system, ref.device)
-    return translate(_CTX, "{device}, channel {n}").format(device=name, n=ref.index)
+        return part_names.channel_name(system, ref)
+    channel = part_names.names(system).channel_only(ref)
+    return part_names.tr(model_names.CHANNEL).format(part=name, channel=channel)
 
 
 def plain_finding(finding: Finding, system: System, autoconfigure: bool = True,

@@ -12,15 +12,19 @@ payload first, fsync, header last, fsync. Until the new header is whole, that sl
 CRC and the reader takes the other slot — the previous configuration, never a mix.
 
 Reading takes the valid slot with the highest generation; a damaged slot (magic present but
-a bad length or checksum) is reported with a warning, and the other one is used. A file that
-is a plain ``.pdcfg`` (no slots) is read as generation 0 and converted on the first write by
-an atomic replace, so even that first write cannot lose it.
+a bad length or checksum) is reported with a warning, and the other one is used.
+
+A memory file is a memory image (or a new path, which starts empty): anything else is refused
+when the store opens (:func:`memory_file_problem`), in words — a FIFO or a device, a stored-
+configuration file (``--memory fig410.pdcfg``: never silently turned into a 1 MiB image; write
+it with ``config write``) or a file PDCP Studio did not write.
 """
 
 from __future__ import annotations
 
 import logging
 import os
+import stat
 import struct
 import threading
 import zlib
@@ -30,6 +34,7 @@ from pathlib import Path
 from pdcp_studio.errors import ConfigFormatError, PdcpError
 from pdcp_studio.model.configuration import ConfigCollection
 from pdcp_studio.storage.atomic import atomic_write_bytes
+from pdcp_studio.storage.regular_file import kind, open_regular
 
 log = logging.getLogger(__name__)
 
@@ -47,6 +52,9 @@ SLOT_CAPACITY = 1 << 20
 #: Payload bytes per write call (the step hook runs between them).
 CHUNK = 512
 
+#: Open flags that never wait on a FIFO swapped in for the file (no effect on a regular file).
+_NO_WAIT = getattr(os, "O_BINARY", 0) | getattr(os, "O_NONBLOCK", 0) | getattr(os, "O_NOCTTY", 0)
+
 #: ``step_hook(step)`` is called between the writes of one save (tests cut the power there).
 StepHook = Callable[[str], None]
 
@@ -55,22 +63,67 @@ class MemoryStoreError(PdcpError):
     """The memory cannot hold or store a configuration."""
 
 
+def _blank(head: bytes) -> bool:
+    return not head.strip(b"\0") or not head.strip(b"\xff")
+
+
+def memory_file_problem(path: str | os.PathLike[str], capacity: int = SLOT_CAPACITY, *,
+                        content_only: bool = False) -> str | None:
+    """Why ``path`` cannot be an arbitrator memory, in words; None when it can.
+
+    A new path, an empty file, or slot A's header with the magic (or blank, as an erased or
+    never-finished first write leaves it; slot B's magic then) is a memory. Read without
+    waiting: a FIFO or a device is refused by what it is. ``content_only``: a path that
+    cannot be read (a folder, a FIFO, no permission) is no problem here — each read then
+    fails and the arbitrator reports its memory unreadable, as when it fails later.
+    """
+    try:
+        mode = os.stat(path).st_mode
+        if not stat.S_ISREG(mode):
+            return None if content_only else f"is {kind(mode)}, not a memory file"
+        with open_regular(path) as handle:
+            head = handle.read(HEADER_SIZE)
+            if not head or head[:4] == MAGIC:
+                return None
+            if _blank(head):
+                handle.seek(HEADER_SIZE + capacity)
+                other = handle.read(HEADER_SIZE)
+                return None if not other or other[:4] == MAGIC or _blank(other) else \
+                    "slot B holds no memory header"
+            handle.seek(0)
+            whole = handle.read(SLOT_CAPACITY + 1)
+    except FileNotFoundError:
+        return None
+    except OSError as err:
+        return None if content_only else f"cannot read: {err.strerror or err}"
+    from pdcp_studio.storage import config_codec
+
+    try:
+        config_codec.loads(whole)
+    except ConfigFormatError:
+        return ("is not a memory image (no PDCM header): not a file PDCP Studio's arbitrator "
+                "wrote; give a memory file, or a new path to start an empty memory")
+    return ("is a stored-configuration file (.pdcfg), not a memory image; give a memory "
+            "file (or a new path), then write the configuration with "
+            "`config write FILE --bus URL --yes`")
+
+
 class _FileBackend:
-    def __init__(self, path: Path) -> None:
+    def __init__(self, path: Path, capacity: int) -> None:
         self.path = path
+        problem = memory_file_problem(path, capacity, content_only=True)
+        if problem is not None:
+            raise MemoryStoreError(f"memory {path}: {problem}")
         if not path.exists():
             atomic_write_bytes(path, b"")  # a new, empty memory: both slots blank
 
     def read(self, offset: int, size: int) -> bytes:
-        with open(self.path, "rb") as handle:
+        with open_regular(self.path) as handle:
             handle.seek(offset)
             return handle.read(size)
 
-    def size(self) -> int:
-        return self.path.stat().st_size
-
     def write(self, offset: int, data: bytes) -> None:
-        fd = os.open(self.path, os.O_WRONLY | getattr(os, "O_BINARY", 0))
+        fd = os.open(self.path, os.O_WRONLY | _NO_WAIT)
         try:
             os.lseek(fd, offset, os.SEEK_SET)
             view = memoryview(data)
@@ -80,14 +133,11 @@ class _FileBackend:
             os.close(fd)
 
     def sync(self) -> None:
-        fd = os.open(self.path, os.O_RDONLY | getattr(os, "O_BINARY", 0))
+        fd = os.open(self.path, os.O_RDONLY | _NO_WAIT)
         try:
             os.fsync(fd)
         finally:
             os.close(fd)
-
-    def replace(self, image: bytes) -> None:
-        atomic_write_bytes(self.path, image)
 
 
 class _RamBackend:
@@ -99,9 +149,6 @@ class _RamBackend:
     def read(self, offset: int, size: int) -> bytes:
         return bytes(self.image[offset:offset + size])
 
-    def size(self) -> int:
-        return len(self.image)
-
     def write(self, offset: int, data: bytes) -> None:
         if len(self.image) < offset + len(data):
             self.image.extend(bytes(offset + len(data) - len(self.image)))
@@ -109,9 +156,6 @@ class _RamBackend:
 
     def sync(self) -> None:
         pass
-
-    def replace(self, image: bytes) -> None:
-        self.image = bytearray(image)
 
 
 def _crc(generation: int, payload: bytes, flags: int = 0) -> int:
@@ -132,7 +176,8 @@ class MemoryStore:
         self.step_hook = step_hook
         self.warnings: list[str] = []
         self._lock = threading.Lock()
-        self._backend = _FileBackend(self.path) if self.path is not None else _RamBackend()
+        self._backend = (_FileBackend(self.path, capacity) if self.path is not None
+                         else _RamBackend())
 
     # -- layout ---------------------------------------------------------------------------
     def _offset(self, slot: int) -> int:
@@ -151,8 +196,7 @@ class MemoryStore:
         """(generation, payload, flags) if valid; None if blank; a reason if damaged."""
         head = self._backend.read(self._offset(slot), HEADER_SIZE)
         if len(head) < HEADER_SIZE or head[:4] != MAGIC:
-            blank = not head.strip(b"\0") or not head.strip(b"\xff")
-            return None if blank else "no slot header"
+            return None if _blank(head) else "no slot header"
         _, version, flags, generation, length, crc = _HEADER.unpack(head)
         if version != FORMAT_VERSION:
             return f"unknown format version {version}"
@@ -181,20 +225,6 @@ class MemoryStore:
                 best = (slot, got[0], got[1])
         return best[0], best[1], best[2], notes
 
-    def _legacy(self) -> bytes | None:
-        """A plain stored-configuration file in place of the slots, if that is what we have."""
-        size = self._backend.size()
-        if not size or size > SLOT_CAPACITY:
-            return None
-        data = self._backend.read(0, size)
-        from pdcp_studio.storage import config_codec
-
-        try:
-            config_codec.loads(data)
-        except ConfigFormatError:
-            return None
-        return data
-
     def _warn(self, notes: list[str], used: str) -> None:
         for note in notes:
             text = f"memory {self.path or '(RAM)'}: {note}; {used}"
@@ -216,9 +246,6 @@ class MemoryStore:
                 if notes:
                     self._warn(notes, f"using slot {'AB'[slot or 0]} (generation {generation})")
                 return payload
-            legacy = self._legacy()
-            if legacy is not None:
-                return legacy
             if notes:
                 self._warn(notes, "no valid configuration is stored")
             return None
@@ -260,7 +287,7 @@ class MemoryStore:
                 flags |= FLAG_NO_AUTOCONFIGURE
             _, _, payload, _ = self._scan()
             if payload is None:
-                payload = self._legacy() or config_codec.dumps(ConfigCollection())
+                payload = config_codec.dumps(ConfigCollection())
             return self._write_locked(payload, flags)
 
     def _flags(self) -> int:
@@ -274,13 +301,6 @@ class MemoryStore:
             flags = self._flags()
         new_generation = generation + 1 if generation >= 0 else 1
         if slot is None:
-            legacy = self._legacy()
-            if legacy is not None:  # convert atomically: the plain file becomes slot A
-                image = self._image(1, legacy) + self._image_pad(legacy)
-                image += self._image(2, payload, flags)
-                self._backend.replace(image)
-                self._check(1, 2, payload)
-                return 2
             if self._slot(0) == "no slot header":  # not ours: never write over it
                 raise MemoryStoreError(f"{self.path} is neither an arbitrator memory nor a "
                                        "stored configuration; refusing to overwrite it")
@@ -307,13 +327,6 @@ class MemoryStore:
         return self.write(ConfigCollection())
 
     # -- helpers --------------------------------------------------------------------------
-    def _image(self, generation: int, payload: bytes, flags: int = 0) -> bytes:
-        return _HEADER.pack(MAGIC, FORMAT_VERSION, flags, generation, len(payload),
-                            _crc(generation, payload, flags)) + payload
-
-    def _image_pad(self, payload: bytes) -> bytes:
-        return bytes(self.capacity - len(payload))
-
     def _check(self, slot: int, generation: int, payload: bytes) -> None:
         got = self._slot(slot)
         if not isinstance(got, tuple) or got != (generation, payload):

@@ -13,6 +13,11 @@ length-prefixed texts, so a firmware parses it with a cursor and no allocation::
             interlock (str8) | links before, after: u16 × link | held, devices: u8 × key |
             notes u8 × str16
 
+A change has a size limit, :data:`MAX_CHANGE` bytes (the arbitrator stages it in its memory's
+spare slot): :func:`size_problem` says, before anything is sent or recorded, that a change is
+beyond it — in words naming its size and the limit — and a count or a length beyond its field
+is :class:`ChangeTooLarge`, never a ``struct.error``.
+
 Pure apart from the model types it builds.
 """
 
@@ -35,6 +40,35 @@ from pdcp_studio.model.system import Link
 from pdcp_studio.protocol import hostlink_messages as hm
 
 _STATUSES = list(Status)
+
+#: The largest change (its stored configuration included) an arbitrator takes over the host
+#: link: TRANSACT_BEGIN answers TOO_LARGE above it (``handlers.py``), so the PC refuses such a
+#: change itself, before sending it and before the fitting history announces it.
+MAX_CHANGE = 16384
+
+
+class ChangeTooLarge(ValueError):
+    """A change whose counts or lengths do not fit the fields of its encoding."""
+
+
+def size_problem(change: Change, limit: int = MAX_CHANGE) -> str | None:
+    """Why the host link cannot carry ``change``, in words naming its size and the limit;
+    None when it fits."""
+    from pdcp_studio.storage import config_codec
+
+    config = (len(config_codec.dumps(change.configuration))
+              if change.configuration is not None else 0)
+    try:
+        size = len(encode_change(change))
+    except ChangeTooLarge:
+        size = None
+    if size is not None and size <= limit:
+        return None
+    took = f"{size:,} bytes" if size is not None else "more than 65,535 bytes"
+    if config:
+        took += f" (its stored configuration {config:,} bytes)"
+    return (f"the change takes {took}; the host link carries at most {limit:,} bytes per "
+            "change, so nothing was sent to the arbitrator")
 
 
 class _Reader:
@@ -89,6 +123,15 @@ def _crc(text: str | None) -> bytes:
 
 
 def encode_change(change: Change) -> bytes:
+    """The change's bytes; ChangeTooLarge when a count or a length does not fit its field."""
+    try:
+        return _encode_change(change)
+    except (struct.error, ValueError) as err:  # a u16 length of 70,000, 300 parameters …
+        raise ChangeTooLarge(f"the change does not fit the host link's encoding ({err})") \
+            from None
+
+
+def _encode_change(change: Change) -> bytes:
     from pdcp_studio.storage import config_codec
 
     out = bytearray(_str8(change.action))

@@ -41,7 +41,9 @@ from pdcp_studio.protocol.crc import crc16_ccitt_false
 from pdcp_studio.protocol.hostlink_messages import Event, Req, Status
 
 if TYPE_CHECKING:
+    from pdcp_studio.bus.session.change_road import ConfirmFn
     from pdcp_studio.bus.trace.decoder import FrameDecoder
+    from pdcp_studio.storage.history import History
 
 log = logging.getLogger(__name__)
 
@@ -447,6 +449,38 @@ class HostLinkSession(BusSession):
         self.request(Req.CONFIG_WRITE_COMMIT)
 
     # -- the change road ----------------------------------------------------------------
+    def transact(self, change: Change, *, operator: str | None = None,
+                 patient: str | None = None, confirm: ConfirmFn | None = None,
+                 progress: ProgressFn | None = None, cancel: threading.Event | None = None,
+                 history: History | None = None, record: bool = True) -> TransactionResult:
+        """The change road, after checking that the host link can carry the change: one
+        beyond the limit is refused here, in words naming its size and the limit, before
+        anything is sent and before the fitting history announces it (a false
+        "interrupted" entry)."""
+        refused = self._too_large(change, resolve=True)
+        if refused is not None:
+            return refused
+        return super().transact(change, operator=operator, patient=patient, confirm=confirm,
+                                progress=progress, cancel=cancel, history=history,
+                                record=record)
+
+    def _too_large(self, change: Change, *, resolve: bool = False) -> TransactionResult | None:
+        """A FAILED result at the preview when the host link cannot carry ``change`` (with
+        its stored configuration resolved from the live links when ``resolve``)."""
+        from pdcp_studio.bus.hostlink.change import size_problem
+
+        try:
+            if resolve and change.store:
+                from pdcp_studio.bus.session.change_road import resolve_store
+
+                change = resolve_store(self.system(), change)
+            why = size_problem(change)
+        except PdcpError:  # a bus that does not answer, a configuration that does not
+            return None    # encode: the road's own steps say so, as before
+        if why is None:
+            return None
+        return TransactionResult(TxnStatus.FAILED, change.action, "preview", why)
+
     def carry_out(self, change: Change, progress: ProgressFn | None = None,
                   cancel: threading.Event | None = None) -> TransactionResult:
         """The arbitrator carries ``change`` out as one transaction (interlock, write, read
@@ -455,6 +489,9 @@ class HostLinkSession(BusSession):
 
         if cancel is not None and cancel.is_set():
             return TransactionResult(TxnStatus.DECLINED, change.action, "confirm", "cancelled")
+        refused = self._too_large(change)
+        if refused is not None:
+            return refused
         data = encode_change(change)
         chunks = range(0, len(data), hm.CHUNK)
         try:

@@ -27,6 +27,7 @@ from typing import TYPE_CHECKING, Any, Protocol
 from pdcp_studio import __version__
 from pdcp_studio.bus import events as ev
 from pdcp_studio.bus.hostlink import records as hr
+from pdcp_studio.bus.hostlink.change import MAX_CHANGE as _MAX_CHANGE
 from pdcp_studio.errors import (
     BusTimeoutError,
     ConfigFormatError,
@@ -60,8 +61,9 @@ class ServerState(Protocol):
 MAX_VALUE = 512
 #: Largest stored configuration accepted (the memory's slot).
 MAX_CONFIG = 8192
-#: Largest change accepted by TRANSACT (links, parameters, a configuration).
-MAX_CHANGE = 16384
+#: Largest change accepted by TRANSACT (links, parameters, a configuration): the PC refuses a
+#: larger one before sending it (``change.size_problem``).
+MAX_CHANGE = _MAX_CHANGE
 BUS_ERROR_KINDS = ("", "bad_frame", "error_frame", "duplicate_device", "node_ids_exhausted",
                    "setup", "plan", "transport", "other_arbitrator")
 CAPABILITIES = hm.CAP_MONITOR | hm.CAP_TRANSACTIONS | hm.CAP_POLICY | hm.CAP_PARAM_BULK

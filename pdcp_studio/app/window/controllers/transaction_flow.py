@@ -32,6 +32,7 @@ from pdcp_studio.app.documents import fitting, pending
 from pdcp_studio.app.documents.document import Document
 from pdcp_studio.app.live.live_bus import LiveController
 from pdcp_studio.app.window.status import StatusLine
+from pdcp_studio.app.words.outcome_words import outcome_words
 from pdcp_studio.app.words.plural import count
 from pdcp_studio.model.system import System
 
@@ -346,14 +347,14 @@ class TransactionFlow(QObject):
             on_result(result)
         status = getattr(result.status, "value", str(result.status))
         if result.ok:
-            self.status.say(result.summary())
+            self.status.say(outcome_words(result, title))
         elif status == "declined":
             self.status.error(title, self.tr(
                 "The prosthesis changed after the preview, so nothing was written. "
                 "Look at the pending changes again and write them."))
         else:
             self.status.error(title, self.tr("{0}\nThe prosthesis is as it was before.")
-                                  .format(result.summary()))
+                                  .format(outcome_words(result, title)))
         for note in getattr(result, "notes", ()):
             log.info("%s: %s", title, note)
         # The prosthesis and its stored configuration as they are now (previews use them).
