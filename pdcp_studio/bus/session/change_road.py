@@ -178,10 +178,22 @@ def run_transaction(session: BusSession, change: Change, *, operator: str | None
         if not result.devices:
             result.devices = preview.devices
         return result
-    from pdcp_studio.storage.history import History, entry_from_result, interrupted
+    from pdcp_studio.storage.history import (
+        History,
+        NotAllowedError,
+        entry_from_result,
+        interrupted,
+    )
 
     bus = session.url
-    archive = history if history is not None else History.open()
+    try:
+        archive = history if history is not None else History.open()
+    except Exception as err:  # the archive in use cannot be opened (a server down)
+        return TransactionResult(Status.FAILED, change.action, "record",
+                                 f"the fitting history cannot be written ({err}); "
+                                 "nothing was written to the prosthesis",
+                                 preview.links_before, preview.links_before,
+                                 devices=preview.devices)
     try:
         announced = TransactionResult(
             Status.FAILED, change.action, links_before=preview.links_before,
@@ -190,6 +202,11 @@ def run_transaction(session: BusSession, change: Change, *, operator: str | None
         try:
             token = archive.begin(interrupted(entry_from_result(
                 announced, change, bus=bus, operator=operator, patient=patient)))
+        except NotAllowedError as err:  # a reader: refused before any frame, in words
+            return TransactionResult(Status.FAILED, change.action, "record",
+                                     f"refused: {err}; nothing was written to the prosthesis",
+                                     preview.links_before, preview.links_before,
+                                     devices=preview.devices)
         except Exception as err:  # no record, no change: a clinic must be able to say
             return TransactionResult(Status.FAILED, change.action, "record",
                                      f"the fitting history cannot be written ({err}); "

@@ -83,10 +83,12 @@ class CaptureReplay:
     ``frames``: the python-can frames to feed ``decoder`` (or iterate ``decoded()``);
     ``reader``: its ``CaptureReader`` (``format``, ``truncated``, ``damage`` once read);
     ``node_map_source``: the saved node map's path, or None (learned from the traffic).
+    ``cancel`` (a ``threading.Event``): once set, the next read raises
+    ``reader.ReadCancelled`` (the app's Stop button).
     """
 
     def __init__(self, path: str | Path, decoder: FrameDecoder | None = None, *,
-                 plain_frames: bool = True) -> None:
+                 plain_frames: bool = True, cancel: Any = None) -> None:
         from pdcp_studio.bus.trace.capture import CaptureError
         from pdcp_studio.bus.trace.nodemap import NODE_MAP_SUFFIX, read_node_map
         from pdcp_studio.bus.trace.reader import CaptureReader
@@ -102,7 +104,7 @@ class CaptureReplay:
             except ValueError as err:
                 raise CaptureError(where, str(err).removeprefix(f"{where}: ")) from err
             self.node_map_source = where
-        self.reader = CaptureReader(path, plain_frames=plain_frames)
+        self.reader = CaptureReader(path, plain_frames=plain_frames, cancel=cancel)
         rest = iter(self.reader)
         try:
             head = list(itertools.islice(rest, PROBE_FRAMES))
