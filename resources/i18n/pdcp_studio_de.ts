@@ -5050,6 +5050,30 @@ Die Prothese ist wie zuvor.</translation>
     <context>
         <name>EventsPanel</name>
         <message>
+            <source>The arbitrator changed links on its own: {why}</source>
+            <translation>Der Arbiter hat selbst Verbindungen geändert: {why}</translation>
+        </message>
+        <message>
+            <source>they read back as written</source>
+            <translation>sie lesen sich zurück wie geschrieben</translation>
+        </message>
+        <message>
+            <source>they did not all read back as written</source>
+            <translation>nicht alle lesen sich zurück wie geschrieben</translation>
+        </message>
+        <message>
+            <source>It held {parts} still while it wrote, read the links back and let go: {outcome}</source>
+            <translation>Er hielt {parts} still, während er schrieb, las die Verbindungen zurück und gab sie frei: {outcome}</translation>
+        </message>
+        <message>
+            <source>No part that moves the prosthesis needed holding; read back: {outcome}</source>
+            <translation>Kein Teil, das die Prothese bewegt, musste angehalten werden; zurückgelesen: {outcome}</translation>
+        </message>
+        <message>
+            <source>No beacon for {seconds} s: {intervals} beacon intervals of {ms} ms</source>
+            <translation>Kein Beacon seit {seconds} s: {intervals} Beacon-Intervalle zu {ms} ms</translation>
+        </message>
+        <message>
             <source>{device} joined the bus</source>
             <translation>{device} ist dem Bus beigetreten</translation>
         </message>

@@ -9,6 +9,12 @@ greeted, one parameter value in transfer, one configuration being written (stage
 only whole with a matching CRC, by the memory's atomic double-buffered write), one change being
 sent for TRANSACT_RUN (carried out by the arbitrator's own transaction: interlock, write, read
 back, restore, release) and the last transaction's result for RESULT_READ.
+
+While another arbitrator is heard on the bus (reference §5) the link is read-only: what the
+tables hold (status, devices, links, the stored configuration, results) is answered, and every
+request that would put a frame on the bus or change the prosthesis — parameters, links,
+suspend, release, reset, a configuration commit, a transaction — is refused with status
+OTHER_ARBITRATOR and the words why and until when.
 """
 
 from __future__ import annotations
@@ -61,6 +67,10 @@ MAX_CHANGE = _MAX_CHANGE
 BUS_ERROR_KINDS = ("", "bad_frame", "error_frame", "duplicate_device", "node_ids_exhausted",
                    "setup", "plan", "transport", "other_arbitrator")
 CAPABILITIES = hm.CAP_MONITOR | hm.CAP_TRANSACTIONS | hm.CAP_POLICY | hm.CAP_PARAM_BULK
+#: Requests that put frames on the bus or change the prosthesis: refused while another
+#: arbitrator is heard (the link is read-only then).
+_WRITES = frozenset({Req.GET_PARAM, Req.SET_PARAM, Req.ADD_LINK, Req.REMOVE_LINK, Req.SUSPEND,
+                     Req.RELEASE, Req.RESET_DEVICE, Req.CONFIG_WRITE_COMMIT, Req.TRANSACT_RUN})
 
 
 class Refused(Exception):
@@ -131,6 +141,12 @@ class Handlers:
             return self._fail(code, Status.UNKNOWN_REQUEST, f"unknown request 0x{code:02X}")
         if request is not Req.HELLO and not self.greeted:
             return self._fail(code, Status.NOT_GREETED, "send HELLO first")
+        if request in _WRITES and getattr(self.arb, "yielded", False):
+            if request is Req.CONFIG_WRITE_COMMIT:
+                self._staged = None
+            elif request is Req.TRANSACT_RUN:
+                self._change = None
+            return self._fail(code, Status.OTHER_ARBITRATOR, self._read_only(request))
         try:
             out = self._table[request](body)
         except Refused as err:
@@ -150,6 +166,18 @@ class Handlers:
     @staticmethod
     def _fail(code: int, status: Status, reason: str) -> bytes:
         return bytes([hm.reply_code(code), status]) + hm.short_text(reason, 200)
+
+    def _read_only(self, request: Req) -> str:
+        """Why ``request`` is refused while another arbitrator is heard, and until when."""
+        claim = getattr(self.arb, "claim", None)
+        if getattr(self.arb, "read_only", False) and claim is not None:
+            until = (f"until the other's beacons have been gone for {claim.take_back_s:g} s "
+                     f"and a random wait ({claim.take_back_wait_s:.1f} s in all; then this "
+                     "arbitrator takes the bus back)")
+        else:
+            until = "for good"
+        return (f"{request.name}: another bus arbitrator is on this bus: this arbitrator is "
+                f"read-only {until}; nothing was sent or changed (reference §5)")
 
     def forget_host(self) -> None:
         """The PC is gone: what it was sending is dropped (a transaction already running
@@ -465,6 +493,8 @@ class Handlers:
                 return None  # the monitor counts these; too chatty for the line
             kind = BUS_ERROR_KINDS.index(event.kind) if event.kind in BUS_ERROR_KINDS else 0
             return bytes([hm.Event.BUS_ERROR, kind]) + hm.short_text(event.message, 200)
+        if isinstance(event, ev.BusState) and event.state == "yielded":
+            return bytes([hm.Event.OTHER_ARBITRATOR]) + hm.short_text(event.message, 200)
         if isinstance(event, ev.TransactionDone):
             from pdcp_studio.bus.hostlink.change import encode_result
 

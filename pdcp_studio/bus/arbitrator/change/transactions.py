@@ -279,6 +279,12 @@ class Transactions:
             problems.append("the policy does not read back as written")
         return problems
 
+    def verify_inputs(self, refs: list[ChannelRef]) -> list[str]:
+        """Read each input of ``refs`` back from its device (the profile layer's own plans
+        verify so before they release the devices they held)."""
+        system = self._state.snapshot()
+        return [problem for ref in refs for problem in self._verify_input(system, ref)]
+
     def _verify_input(self, system: System, ref: ChannelRef) -> list[str]:
         """Read an input's Data Transfer Enabled and Source's Node Ids from the device."""
         if not system.is_present(ref):
