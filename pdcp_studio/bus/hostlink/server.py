@@ -57,6 +57,7 @@ class HostLinkServer:
         self.events_lost = 0
         self.changes = 0
         self._lost_pending = False
+        self._reset_dropped = 0
         self._io = threading.Lock()
         self._requests: queue.SimpleQueue[bytes | None] = queue.SimpleQueue()
         self._events: queue.SimpleQueue[bytes] = queue.SimpleQueue()
@@ -148,6 +149,7 @@ class HostLinkServer:
                 self.link.poll(now)
                 if self.link.take_failed():
                     self.lost_host()
+                self._count_reset_drops()
                 self._push_events(now)
                 self._flush()
             for message in delivered:
@@ -157,6 +159,15 @@ class HostLinkServer:
                         self.post(reply)
                 else:
                     self._requests.put(message)
+
+    def _count_reset_drops(self) -> None:
+        """A RESET dropped what was queued: counted as events lost, so the PC (told by
+        EVENTS_LOST once greeted) reads its tables again rather than trusting them."""
+        dropped = self.link.stats.reset_dropped
+        if dropped > self._reset_dropped and self.handlers.greeted:
+            self.events_lost = (self.events_lost + dropped - self._reset_dropped) & 0xFFFF
+            self._lost_pending = True
+        self._reset_dropped = dropped
 
     def _push_events(self, now: float) -> None:
         greeted = self.handlers.greeted
@@ -195,6 +206,7 @@ class HostLinkServer:
     def _reopened(self) -> None:
         with self._io:
             self.link = LinkEndpoint(host=False)
+            self._reset_dropped = 0
 
     # -- the request thread --------------------
     def _run_requests(self) -> None:
