@@ -88,6 +88,8 @@ class LinkEndpoint:
         self._failed: list[bytes] = []
         self._out_of_order_run = 0
         self._resynced = False
+        #: What the last reset dropped (the owner may count lost events from it).
+        self.reset_dropped: list[bytes] = []
 
     # -- the application's side -----------------------------------------------------------
     def send(self, payload: bytes, now: float) -> bool:
@@ -99,17 +101,22 @@ class LinkEndpoint:
         self._pump(now)
         return True
 
-    def reset(self, now: float) -> None:
-        """Start both directions again at 0 and drop what is queued; the host tells the peer."""
+    def reset(self, now: float, *, discard_partial: bool = False) -> None:
+        """Start both directions again at 0 and drop what is queued; the host tells the peer.
+        ``discard_partial`` also forgets a frame half read (when the owner resets between
+        reads, never while a read's frames are handled: the next frame may be half read)."""
         self._tx_seq = self._rx_expected = 0
-        self.stats.reset_dropped += len(self._outbox) + (self._inflight is not None)
+        dropped = ([self._inflight.payload] if self._inflight else []) + list(self._outbox)
+        self.stats.reset_dropped += len(dropped)
+        self.reset_dropped = dropped[-self.outbox_limit:]
         self._out_of_order_run = 0
         self._resynced = True
         self._outbox.clear()
         self._inflight = None
         self._control.clear()
         self._wire.clear()
-        self._reader.discard()  # a frame broken off before the reset is not worth a NAK
+        if discard_partial:
+            self._reader.discard()  # a frame broken off before the reset is not worth a NAK
         if self.host:
             # 0x00 first ends whatever the peer has half-read, so the RESET itself is whole
             self._control.append(b"\x00" + Frame(Kind.RESET, 0).encode())

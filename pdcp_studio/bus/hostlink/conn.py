@@ -141,7 +141,7 @@ class HostLinkConnection:
     def _greet_locked(self) -> None:
         for attempt in range(2):
             with self._io:
-                self.link.reset(time.monotonic())
+                self.link.reset(time.monotonic(), discard_partial=True)
                 self.link.take_resynced()  # our own reset: nothing waits on it
                 self._flush()
             try:

@@ -133,8 +133,9 @@ class Handlers:
         if not message:
             return None
         code, body = message[0], bytes(message[1:])
-        if code & hm.REPLY or 0x40 <= code < 0x80:
-            return None  # replies and events go the other way
+        if code & hm.REPLY or 0x40 <= code < 0x80:  # an event's or reply's code, from the PC
+            return self._fail(code, Status.UNKNOWN_REQUEST,
+                              f"0x{code:02X} is not a request code (requests are 0x01-0x3F)")
         try:
             request = Req(code)
         except ValueError:

@@ -57,7 +57,6 @@ class HostLinkServer:
         self.events_lost = 0
         self.changes = 0
         self._lost_pending = False
-        self._reset_dropped = 0
         self._io = threading.Lock()
         self._requests: queue.SimpleQueue[bytes | None] = queue.SimpleQueue()
         self._events: queue.SimpleQueue[bytes] = queue.SimpleQueue()
@@ -161,13 +160,15 @@ class HostLinkServer:
                     self._requests.put(message)
 
     def _count_reset_drops(self) -> None:
-        """A RESET dropped what was queued: counted as events lost, so the PC (told by
-        EVENTS_LOST once greeted) reads its tables again rather than trusting them."""
-        dropped = self.link.stats.reset_dropped
-        if dropped > self._reset_dropped and self.handlers.greeted:
-            self.events_lost = (self.events_lost + dropped - self._reset_dropped) & 0xFFFF
+        """A RESET dropped queued events: counted as lost, so the PC (told by EVENTS_LOST,
+        the session being still greeted) reads its tables again rather than trusting them."""
+        if not self.link.take_resynced():
+            return
+        events = [m for m in self.link.reset_dropped if m and 0x40 <= m[0] < hm.REPLY
+                  and m[0] not in (hm.Event.FRAMES, hm.Event.CHANNEL_COUNTS)]
+        if events and self.handlers.greeted:
+            self.events_lost = (self.events_lost + len(events)) & 0xFFFF
             self._lost_pending = True
-        self._reset_dropped = dropped
 
     def _push_events(self, now: float) -> None:
         greeted = self.handlers.greeted
@@ -206,7 +207,6 @@ class HostLinkServer:
     def _reopened(self) -> None:
         with self._io:
             self.link = LinkEndpoint(host=False)
-            self._reset_dropped = 0
 
     # -- the request thread --------------------
     def _run_requests(self) -> None:
