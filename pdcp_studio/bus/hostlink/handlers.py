@@ -66,7 +66,7 @@ MAX_CONFIG = 8192
 MAX_CHANGE = _MAX_CHANGE
 BUS_ERROR_KINDS = ("", "bad_frame", "error_frame", "duplicate_device", "node_ids_exhausted",
                    "setup", "plan", "transport", "other_arbitrator")
-CAPABILITIES = hm.CAP_MONITOR | hm.CAP_TRANSACTIONS | hm.CAP_POLICY | hm.CAP_PARAM_BULK
+CAPABILITIES = hm.CAP_FULL
 #: Requests that put frames on the bus or change the prosthesis: refused while another
 #: arbitrator is heard (the link is read-only then).
 _WRITES = frozenset({Req.GET_PARAM, Req.SET_PARAM, Req.ADD_LINK, Req.REMOVE_LINK, Req.SUSPEND,
@@ -213,6 +213,7 @@ class Handlers:
         return hm.HELLO.pack(hm.VERSION, CAPABILITIES, MAX_PAYLOAD) + name
 
     def status(self, body: bytes) -> bytes:
+        self._exact(body, 0, "STATUS")
         system = self.arb.system()
         flags = ((1 if self.arb.wait_settled(0) else 0) | (2 if self.arb.startup_done else 0)
                  | (4 if getattr(self.arb, "yielded", False) else 0))
@@ -406,6 +407,7 @@ class Handlers:
     def transact_run(self, body: bytes) -> bytes:
         """Carry the staged change out as one transaction; the reply is the result's size and
         CRC (RESULT_READ reads it)."""
+        self._exact(body, 0, "TRANSACT_RUN")
         from pdcp_studio.bus.hostlink.change import decode_change, encode_result
 
         self._exact(body, 0, "TRANSACT_RUN")

@@ -453,6 +453,10 @@ class Suite:
         self.link.hello()
         expect(*self.link.request(Req.GET_DEVICE, b"\x01\x02\x03"), Status.BAD_LENGTH,
                "GET_DEVICE with 3 bytes")
+        for code in (Req.STATUS, Req.LIST_DEVICES, Req.CONFIG_INFO):  # one byte too many
+            body = b"\x00\x00\x00" if code is Req.LIST_DEVICES else b"\x00"
+            expect(*self.link.request(code, body), Status.BAD_LENGTH,
+                   f"{code.name} with {len(body)} bytes")
 
     def case_unknown_device(self) -> None:
         self.link.hello()
@@ -539,7 +543,7 @@ class Suite:
         """300 requests: both directions' numbers wrap past 255."""
         self.link.hello()
         for i in range(300):
-            status, body = self.link.request(Req.STATUS)
+            status, _ = self.link.request(Req.STATUS)
             if status is not Status.OK:
                 raise CaseFailed(f"request {i} (seq {(i + 1) & 0xFF}): {status.name}")
 
