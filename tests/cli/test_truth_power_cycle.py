@@ -137,3 +137,28 @@ def test_a_control_mode_set_stored_or_not_powers_on_as_predicted(rig, store):
     # The control mode is the part's own (non-volatile): it survives the power cycle.
     code, got = cli_json("param", "get", "--bus", rig.url, "2641/769/301#1")
     assert code == 0 and got["parameters"]["type"] == "0x9700"
+
+
+@pytest.mark.parametrize("store", [True, False])
+def test_a_second_sole_access_input_on_one_output_goes_at_power_on_as_predicted(
+        tmp_path, multicast_url, store):
+    """thesis-test1: the arbitrator makes a link start-up would not make from nothing (the
+    LED terminal's sole-access Y input on the joystick that already feeds its X input); the
+    prediction must say it goes, stored or not (engine/effect.py predict_power_on)."""
+    from pdcp_studio.bus.session.change_road import preview_change
+    from pdcp_studio.bus.transaction import Change, LinkAction
+
+    extra = Link(ChannelRef(2, 2, 4, 1), ChannelRef(2, 2, 5, 2))
+    url = multicast_url("239.74.163.27", 45000)
+    with TruthRig.running(url, tmp_path / "memory.bin", "thesis-test1", count=2) as rig:
+        before = rig.links()
+        assert extra not in before
+        with rig.session() as session:
+            edit = Change("add a link", links=[LinkAction("add", extra, "test")], store=store)
+            preview = preview_change(session, edit)
+            assert preview.effect is not None
+            doc = {"effect": preview.effect.to_json(),
+                   "next_power_on": preview.effect.power_on_json()}
+            assert session.transact(preview.change).written
+        assert links_of(doc["next_power_on"]["links_removed"]) == {extra}
+        assert check_power_cycle(rig, doc) == before
