@@ -19,6 +19,7 @@ Steps, in order (``TransactionResult.step`` names the one that failed)::
 
 from __future__ import annotations
 
+import functools
 from collections.abc import Sequence
 from dataclasses import dataclass, field
 from enum import StrEnum
@@ -290,10 +291,20 @@ def config_crc(collection: ConfigCollection | None) -> str | None:
 
 
 def crc_of_bytes(data: bytes | None) -> str | None:
-    """The CRC-16 in a stored configuration's checksum record (the one before End)."""
-    if data is None or len(data) < 6:
+    """The CRC-16 in a stored configuration's checksum record (the one before End); None
+    when nothing is stored — no bytes, or a collection with no configuration (what the
+    memory holds once only the policy was written): the preview's "nothing stored" and the
+    arbitrator's must read alike."""
+    if data is None or len(data) < 6 or data == _empty_collection():
         return None
     return f"0x{int.from_bytes(data[-5:-3], 'little'):04X}"
+
+
+@functools.cache
+def _empty_collection() -> bytes:
+    from pdcp_studio.storage import config_codec
+
+    return config_codec.dumps(ConfigCollection([]))
 
 
 def interlocked_devices(system: System, before: list[Link], after: list[Link],
