@@ -192,6 +192,10 @@ def test_the_effect_shown_is_the_difference_read_back(rig: str, data: st.DataObj
 
         assert result.status is Status.APPLIED and result.verified
         assert result.history_id is not None, result.notes
+        # The parts held still and the stored configuration's CRC, as shown.
+        assert sorted(result.held) == effect.held
+        assert result.config_crc_after == effect.crc_after
+        assert result.config_crc_before == effect.crc_before
         # Links: made and removed, exactly as shown.
         before, after = set(system.links), set(now.links)
         assert sorted(after - before) == effect.links_added
