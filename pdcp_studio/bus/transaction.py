@@ -384,6 +384,7 @@ def restore_change(entry: dict[str, Any], system: System) -> Change:
     configuration read after it and its policy after (one restore for the CLI and app).
     NotRestorable for an interrupted entry, or when a part it needs is absent (before
     anything is written)."""
+    from pdcp_studio.engine.effect import system_after
     from pdcp_studio.storage import config_codec
 
     if entry.get("links_after") is None:
@@ -397,7 +398,10 @@ def restore_change(entry: dict[str, Any], system: System) -> Change:
     after = [link_from_json(d) for d in entry["links_after"]]
     change = Change.links_to(list(system.links), after, f"history restore {entry['id']}",
                              reason=f"as after fitting history entry {entry['id']}")
-    change.parameters = restore_writes(entry.get("parameters_after") or {}, system)
+    # The values are compared on the system as the link actions leave it: a link made or
+    # removed turns its ends' data transfer on or off, which the recorded values may undo.
+    linked = system_after(system, after, [])
+    change.parameters = restore_writes(entry.get("parameters_after") or {}, linked)
     cfg = entry.get("configuration_after")
     if cfg is not None:
         change.configuration = config_codec.from_json(cfg)
