@@ -27,14 +27,24 @@ from hypothesis import strategies as st
 
 from pdcp_studio.bus.session.change_road import preview_change
 from pdcp_studio.bus.session.opening import open_session
-from pdcp_studio.bus.transaction import Change, LinkAction, ParameterWrite, Policy, Status
+from pdcp_studio.bus.transaction import (
+    Change,
+    LinkAction,
+    ParameterWrite,
+    Policy,
+    Status,
+    link_from_json,
+    restore_change,
+)
 from pdcp_studio.engine.effect import system_after
 from pdcp_studio.engine.procedures import resolve_configuration
 from pdcp_studio.errors import ModelError
 from pdcp_studio.model import param_names as N
 from pdcp_studio.model.channel_type import CONTROL_MODE_MASK
 from pdcp_studio.model.configuration import ConfigCollection
+from pdcp_studio.model.param_names import snapshot
 from pdcp_studio.model.system import Channel, Device, Link, System
+from pdcp_studio.storage.history import History
 
 RIGS = ("thesis-test1", "thesis-test2", "thesis-test3", "thesis-test4", "thesis-test5",
         "transradial")
@@ -244,3 +254,25 @@ def test_the_effect_shown_is_the_difference_read_back(rig: str, data: st.DataObj
         assert sorted(powered.links) == sorted(predicted_links), (
             f"predicted {sorted(map(str, predicted_links))}, "
             f"after power-on {sorted(map(str, powered.links))}")
+        # The fitting history keeps what was read back, and restoring the entry afterwards
+        # puts all of it back: links, parameter values, stored configuration, policy.
+        archive = History.open()
+        try:
+            entry = archive.get(result.history_id)
+        finally:
+            archive.close()
+        assert entry is not None
+        assert {link_from_json(d) for d in entry["links_after"]} == after
+        assert entry["effect"]["parameters"] == effect.to_json()["parameters"]
+        assert entry["next_power_on"]["links_added"] == effect.power_on_json()["links_added"]
+        assert entry["next_power_on"]["links_removed"] == \
+            effect.power_on_json()["links_removed"]
+        recorded = entry["parameters_after"]
+        assert recorded == snapshot(d for d in now.devices.values() if d.present)
+        back = session.transact(restore_change(entry, powered))
+        assert back.ok, back.summary()
+        restored = settled(session)
+        assert set(restored.links) == after
+        assert snapshot(d for d in restored.devices.values() if d.present) == recorded
+        assert session.read_configuration() == config_after
+        assert session.read_policy() == policy_after
