@@ -130,6 +130,8 @@ class TruthRig:
         """Run the devices of a built-in prosthesis or a system file (stopping any before)."""
         if self.devices is not None:
             self.devices.stop()
+            if self.arbitrator is not None:
+                self.wait_all_left()
         self.count = count
         self.devices = Child(["sim", "devices", what, "--bus", self.bus])
         line = self.devices.until(lambda s: s.startswith("simulating "))
@@ -169,6 +171,17 @@ class TruthRig:
                 assert left > 0, (f"{len(present)} of {self.count} device(s) present, not "
                                   "settled:\n" + (self.arbitrator.text() if self.arbitrator
                                                   else ""))
+                time.sleep(0.1)  # a poll interval, not a synchronisation
+
+    def wait_all_left(self, timeout: float = SETTLE_S) -> None:
+        """Until the arbitrator has noticed that every device of the stopped process is gone
+        (their beacons stopped), so the next devices join a bus it sees as empty."""
+        from pdcp_studio.bus.session.opening import open_session
+
+        deadline = time.monotonic() + timeout
+        with open_session(self.url) as session:
+            while any(d.present for d in session.system().devices.values()):
+                assert time.monotonic() < deadline, "the stopped devices did not leave"
                 time.sleep(0.1)  # a poll interval, not a synchronisation
 
     def close(self) -> None:
