@@ -162,3 +162,19 @@ def test_a_second_sole_access_input_on_one_output_goes_at_power_on_as_predicted(
             assert session.transact(preview.change).written
         assert links_of(doc["next_power_on"]["links_removed"]) == {extra}
         assert check_power_cycle(rig, doc) == before
+
+
+def test_a_history_restore_not_stored_is_undone_at_power_on(rig):
+    """Links put back by ``history restore --no-store`` over a stored empty configuration,
+    autoconfigure off: start-up makes none of them again, as predicted."""
+    links = store_links_and_policy(rig, autoconfigure=False)
+    code, doc = cli_json("history", "list")
+    assert code == 0
+    [saved] = [e for e in doc["entries"] if e["action"] == "config save"]
+    change("apply", "clear", "--bus", rig.url, "--store")
+    assert rig.links() == set()
+    doc = change("history", "restore", str(saved["id"]), "--bus", rig.url, "--no-store")
+    assert links_of(doc["effect"]["links_added"]) == links
+    assert not doc["effect"]["stored_configuration"]["changed"]
+    assert links_of(doc["next_power_on"]["links_removed"]) == links
+    assert check_power_cycle(rig, doc) == set()
