@@ -29,11 +29,14 @@ from typing import Any
 
 from pdcp_studio.bus.transaction import link_from_json
 from pdcp_studio.cli.main import main
+from pdcp_studio.errors import BusTimeoutError
 from pdcp_studio.model.system import Link
 
 #: Seconds a process gets to say it is up, and the arbitrator to bind and start up.
 UP_S = 60.0
 SETTLE_S = 60.0
+#: Seconds the test's own host-link requests wait for a reply (the CLI keeps its own).
+REPLY_S = 30.0
 #: ``python -m pdcp_studio`` that SIGINT/SIGTERM stops even when the test run inherited
 #: SIGINT ignored (a background ``pytest &``).
 _STOPPABLE = ("import signal, sys; signal.signal(signal.SIGINT, signal.default_int_handler); "
@@ -43,22 +46,35 @@ _STOPPABLE = ("import signal, sys; signal.signal(signal.SIGINT, signal.default_i
 class Child:
     """A ``pdcp-studio`` child process whose output is read line by line in a thread."""
 
-    def __init__(self, args: list[str]) -> None:
+    def __init__(self, args: list[str], *, stderr_lines: bool = False) -> None:
         env = dict(os.environ)
         env["PYTHONPATH"] = os.pathsep.join(
             [str(Path(__file__).resolve().parents[2]), env.get("PYTHONPATH", "")])
+        # stderr on a pipe of its own: warnings written between the pieces of a stdout line
+        # would otherwise land inside it ("host link on /dev/pts/4arbitrator: …").
         self.proc = subprocess.Popen([sys.executable, "-c", _STOPPABLE, *args],
-                                     stdout=subprocess.PIPE, stderr=subprocess.STDOUT,
+                                     stdout=subprocess.PIPE, stderr=subprocess.PIPE,
                                      text=True, env=env)
+        self._stderr_lines = stderr_lines
         self.lines: list[str] = []
+        self.errors: list[str] = []
         self._q: queue.SimpleQueue[str] = queue.SimpleQueue()
         self._reader = threading.Thread(target=self._read, daemon=True)
         self._reader.start()
+        self._err_reader = threading.Thread(target=self._read_errors, daemon=True)
+        self._err_reader.start()
 
     def _read(self) -> None:
         assert self.proc.stdout is not None
         for line in self.proc.stdout:
             self._q.put(line.rstrip("\n"))
+
+    def _read_errors(self) -> None:
+        assert self.proc.stderr is not None
+        for line in self.proc.stderr:
+            self.errors.append(line.rstrip("\n"))
+            if self._stderr_lines:  # what it says on stderr is waited for too
+                self._q.put(line.rstrip("\n"))
 
     def until(self, predicate: Any, timeout: float = UP_S) -> str | None:
         """The first line (from now on, or already read) for which ``predicate`` holds."""
@@ -92,15 +108,18 @@ class Child:
             except subprocess.TimeoutExpired:
                 self.kill()
         self._reader.join(5)
-        if self.proc.stdout is not None:
-            self.proc.stdout.close()
+        self._err_reader.join(5)
+        for pipe in (self.proc.stdout, self.proc.stderr):
+            if pipe is not None:
+                pipe.close()
 
     def text(self) -> str:
+        """Everything it said so far: stdout, then stderr."""
         while True:
             try:
                 self.lines.append(self._q.get_nowait())
             except queue.Empty:
-                return "\n".join(self.lines)
+                return "\n".join([*self.lines, "-- stderr:", *self.errors])
 
 
 class TruthRig:
@@ -133,7 +152,7 @@ class TruthRig:
             if self.arbitrator is not None:
                 self.wait_all_left()
         self.count = count
-        self.devices = Child(["sim", "devices", what, "--bus", self.bus])
+        self.devices = Child(["sim", "devices", what, "--bus", self.bus], stderr_lines=True)
         line = self.devices.until(lambda s: s.startswith("simulating "))
         assert line is not None and f"simulating {count} device(s)" in line, \
             self.devices.text()
@@ -156,30 +175,30 @@ class TruthRig:
 
     def wait_set_up(self, timeout: float = SETTLE_S) -> None:
         """Until the arbitrator says it is settled (start-up done) with ``count`` devices
-        present, asked over the host link."""
-        from pdcp_studio.bus.session.opening import open_session
-
+        present, asked over the host link (a slow reply on a busy machine is asked again)."""
         deadline = time.monotonic() + timeout
-        with open_session(self.url) as session:
-            while True:
-                left = deadline - time.monotonic()
-                present = [d for d in session.system().devices.values() if d.present]
-                if len(present) == self.count and session.wait_settled(max(left, 0.1)) \
-                        and len([d for d in session.system().devices.values()
-                                 if d.present]) == self.count:
-                    return
-                assert left > 0, (f"{len(present)} of {self.count} device(s) present, not "
-                                  "settled:\n" + (self.arbitrator.text() if self.arbitrator
-                                                  else ""))
-                time.sleep(0.1)  # a poll interval, not a synchronisation
+        present: list[Any] = []
+        while True:
+            left = deadline - time.monotonic()
+            try:
+                with self.session() as session:
+                    present = [d for d in session.system().devices.values() if d.present]
+                    if len(present) == self.count and session.wait_settled(max(left, 0.1)) \
+                            and len([d for d in session.system().devices.values()
+                                     if d.present]) == self.count:
+                        return
+            except BusTimeoutError:
+                pass
+            assert left > 0, (f"{len(present)} of {self.count} device(s) present, not "
+                              "settled:\n" + (self.arbitrator.text() if self.arbitrator
+                                              else ""))
+            time.sleep(0.1)  # a poll interval, not a synchronisation
 
     def wait_all_left(self, timeout: float = SETTLE_S) -> None:
         """Until the arbitrator has noticed that every device of the stopped process is gone
         (their beacons stopped), so the next devices join a bus it sees as empty."""
-        from pdcp_studio.bus.session.opening import open_session
-
         deadline = time.monotonic() + timeout
-        with open_session(self.url) as session:
+        with self.session() as session:
             while any(d.present for d in session.system().devices.values()):
                 assert time.monotonic() < deadline, "the stopped devices did not leave"
                 time.sleep(0.1)  # a poll interval, not a synchronisation
@@ -192,16 +211,15 @@ class TruthRig:
     # -- reading it -----------------------------------------------------------------------
     def links(self) -> set[Link]:
         """The links as the arbitrator has them now (settled first)."""
-        from pdcp_studio.bus.session.opening import open_session
-
-        with open_session(self.url) as session:
+        with self.session() as session:
             assert session.wait_settled(SETTLE_S)
             return set(session.system().links)
 
     def session(self) -> Any:
+        """A session over the current host link, patient with a busy machine."""
         from pdcp_studio.bus.session.opening import open_session
 
-        return open_session(self.url)
+        return open_session(self.url, reply_timeout=REPLY_S)
 
 
 def cli(*args: str) -> tuple[int, str, str]:
