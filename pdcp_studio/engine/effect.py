@@ -413,9 +413,17 @@ def _crc(crc: Callable[[ConfigCollection | None], str | None] | None,
 
 def predict_power_on(system: System, stored: ConfigCollection, *, autoconfigure: bool
                      ) -> PowerOn:
-    """The engine's start-up on ``system`` as it is and ``stored`` (reference §2): the links
-    it would make and remove."""
-    plan = plan_on_bus("startup", system, stored, autoconfigure=autoconfigure)
+    """The engine's start-up on ``system`` and ``stored`` (reference §2): the links it would
+    make and remove, relative to ``system``'s links.
+
+    Start-up runs on the parts as they power on: unlinked (enabled flags and source node IDs
+    are bus-session values every part clears), each input keeping its stored source fields.
+    So the plan starts from no links, as the arbitrator's does: a link kept on the live bus
+    that start-up would not make again from nothing (a second sole-access input on one
+    output, say) is predicted to go."""
+    powered = system.copy()
+    powered.clear_links()  # the inputs' source fields stay: "retrieved" reads them
+    plan = plan_on_bus("startup", powered, stored, autoconfigure=autoconfigure)
     now = set(system.links)
     final = set(plan.final_links)
     source = "stored" if stored.configurations and plan.configuration_source == "stored" \
