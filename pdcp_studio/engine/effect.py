@@ -91,6 +91,8 @@ T_STORED_DROP = "  no longer stored: {link}"
 T_POLICY = "Automatic set-up (autoconfigure): {old} → {new}."
 T_POLICY_OFF_STAY = "Turning automatic set-up off removes nothing: {links} stay as they are."
 T_POLICY_STAYS = "  stays: {link}"
+T_MUTED = ("This link stays but carries no data while data transfer is off at one of its "
+           "ends: {link}")
 T_ONE_LINK = "{n} link"
 T_LINKS = "{n} links"
 T_HELD = "While the change is made, these parts are held still: {parts}."
@@ -234,12 +236,20 @@ class Effect:
         out += [tr(T_LINK_REMOVED).format(link=self.name(lk, tr)) + why(lk)
                 for lk in self.links_removed]
         out += [self.parameter_text(p, tr) for p in self.parameters]
+        out += self.muted_lines(tr)
         out += self.stored_lines(tr)
         out += self.policy_lines(tr)
         if not self.empty and (self.links_added or self.links_removed or self.parameters):
             out.append(tr(T_HELD).format(parts=", ".join(self.name(k, tr) for k in self.held))
                        if self.held else tr(T_HELD_NONE))
         return out
+
+    def muted_lines(self, tr: Translate = _same) -> list[str]:
+        """Links the change leaves listed but silent (data transfer turned off at an end)."""
+        off = {p.where for p in self.parameters
+               if p.name == "data-transfer" and p.after == "off" and p.channel is not None}
+        return [tr(T_MUTED).format(link=self.name(lk, tr)) for lk in self.links_after
+                if lk.output in off or lk.input in off]
 
     def stored_lines(self, tr: Translate = _same) -> list[str]:
         if not self.stored_changed:
