@@ -1272,6 +1272,10 @@ Das Öffnen von {1} beendet diese Verbindung.</translation>
             <translation>  bleibt: {link}</translation>
         </message>
         <message>
+            <source>This link stays but carries no data while data transfer is off at one of its ends: {link}</source>
+            <translation>Diese Verbindung bleibt, überträgt aber keine Daten, solange die Datenübertragung an einem ihrer Enden aus ist: {link}</translation>
+        </message>
+        <message>
             <source>{n} links</source>
             <translation>{n} Verbindungen</translation>
         </message>

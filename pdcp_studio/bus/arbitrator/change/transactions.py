@@ -36,6 +36,7 @@ from pdcp_studio.bus.arbitrator.change.interlock import HoldRefused, Interlock, 
 from pdcp_studio.bus.arbitrator.state import Emit, SystemState
 from pdcp_studio.bus.transaction import (
     Change,
+    ParameterWrite,
     Policy,
     Status,
     TransactionResult,
@@ -196,6 +197,10 @@ class Transactions:
         try:
             for p in change.parameters:  # read what is there first, to restore it
                 old_params.append((p, bytes(self._get(p.device, p.param, p.channel))))
+            # The ends' Data Transfer Enabled too: taking a link out again on a rollback
+            # turns an output off when it feeds no present input, though it was sending
+            # before (it fed a part that is missing now).
+            old_params[:0] = self._end_flags(change)
             for n, action in enumerate(change.links):
                 _check_cancel(cancel, n, total)
                 if progress is not None:
@@ -306,6 +311,14 @@ class Transactions:
             out.append(f"input {ref} listens to node IDs {bytes(ids[:2]).hex()}, "
                        f"not {source} ({want.hex()})")
         return out
+
+    def _end_flags(self, change: Change) -> list[tuple[Any, bytes]]:
+        """(write, value) pairs holding the present link ends' Data Transfer Enabled now."""
+        system = self._state.snapshot()
+        ends = sorted({ref for a in change.links for ref in (a.link.output, a.link.input)
+                       if system.is_present(ref)})
+        return [(ParameterWrite(ref.device, P.CH_DATA_ENABLED, ref.index, b""),
+                 bytes(self._get(ref.device, P.CH_DATA_ENABLED, ref.index))) for ref in ends]
 
     def _restore(self, links_before: list[Link], cfg_before: bytes | None,
                  old_params: list[tuple[Any, bytes]], policy_before: Policy,
