@@ -36,7 +36,7 @@ DEVICE_DESCRIPTOR = 7
 DEVICE_NODE_ID = 8
 DEVICE_BEACON_INTERVAL = 10
 #: Seconds to wait for a frame the arbitrator must send.
-WAIT_S = 1.0
+WAIT_S = 2.0
 #: Seconds within which the arbitrator must have given up an unacknowledged reply
 #: (8 sends, 0.25 s apart, and slack).
 GIVE_UP_S = 4.0
