@@ -208,12 +208,8 @@ def _change_rows(system: System, changes: list[dict[str, Any]]) -> str:
         what = _e(entries.change_words(e, changes[:i]))
         what += _lines_html(entries.replaced_lines(system, e, changes[:i])
                             + entries.effect_lines(e))
-        power_on = entries.power_on_lines(e)
-        if entries.has_prediction(e):
-            what += "<br><i>" + _e(_t("At the next power-on: {0}").format(" ".join(power_on)))
-        else:
-            what += "<br><i>" + _e(" ".join(power_on))
-        what += "</i>"
+        # The prediction's own sentences ("At the next power-on …"), a line each.
+        what += "<i>" + _lines_html(entries.power_on_lines(e)) + "</i>"
         rows.append(f"<tr><td>{_e(e.get('id', ''))}</td>"
                     f"<td>{_e(str(e.get('time', '')).replace('T', ' ').rstrip('Z'))}</td>"
                     f"<td>{_e(entries.action_words(str(e.get('action', ''))))}</td>"
@@ -233,10 +229,7 @@ def _power_on_html(changes: list[dict[str, Any]]) -> str:
     last = written[-1]
     lines = entries.power_on_lines(last)
     head = _t("After entry {0}, the last change written:").format(last.get("id", ""))
-    if entries.has_prediction(last):
-        body = _e(_t("At the next power-on: {0}").format(" ".join(lines)))
-    else:
-        body = _e(" ".join(lines))
+    body = "<br>".join(_e(line) for line in lines)
     return f"<p>{_e(head)}<br><b>{body}</b></p>"
 
 
