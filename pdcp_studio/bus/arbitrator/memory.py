@@ -225,7 +225,8 @@ class MemoryStore:
         from pdcp_studio.storage import config_codec
 
         try:
-            config_codec.loads(payload)
+            if payload or not anchor:  # an anchor alone: no configuration stored yet
+                config_codec.loads(payload)
         except ConfigFormatError as err:
             return f"configuration does not decode: {err}"
         if anchor:
@@ -267,7 +268,7 @@ class MemoryStore:
             if payload is not None:
                 if notes:
                     self._warn(notes, f"using slot {'AB'[slot or 0]} (generation {generation})")
-                return payload
+                return payload or None  # a slot that holds only the anchor: nothing stored
             if notes:
                 self._warn(notes, "no valid configuration is stored")
             return None
@@ -325,14 +326,12 @@ class MemoryStore:
     def write_anchor(self, anchor: Anchor) -> int:
         """Store ``anchor`` with the current configuration and policy (a safe two-slot
         write); returns the new generation."""
-        from pdcp_studio.storage import config_codec
-
         data = pack_anchor(anchor)
         with self._lock:
             _, _, payload, _ = self._scan()
-            if payload is None:
-                payload = config_codec.dumps(ConfigCollection())
-            return self._write_locked(payload, None, data)
+            # no configuration stored yet: the slot holds the anchor alone (length 0), so a
+            # read still says "none stored" as before
+            return self._write_locked(payload or b"", None, data)
 
     def _current(self) -> tuple[int, bytes, int, bytes] | str | None:
         slot, _, _, _ = self._scan()
