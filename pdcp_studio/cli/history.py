@@ -9,8 +9,9 @@ clinic's view: one patient's or one part's changes, from every workstation. ``re
 configuration and the policy that entry ID left on the prosthesis; it is written only with
 ``--yes``. ``verify`` exits 0 when the hash chain is intact and 1 naming the first entry that
 is not; ``verify --bus URL`` also compares the archive with the anchor the prosthesis keeps
-(reference §5 Decision). A damaged entry is exit 1 naming it, an ID no entry can have exit 2. ``export`` writes the archive as JSON lines (hashes included); ``import FILE`` appends
-such a file to the archive, each entry keeping its origin.
+(reference §5 Decision). A damaged entry is exit 1 naming it, an ID no entry can have exit 2.
+``export`` writes the archive as JSON lines (hashes included); ``import FILE`` appends such a
+file to the archive, each entry keeping its origin.
 """
 
 from __future__ import annotations

@@ -258,7 +258,7 @@ def test_anchor_problem_allows_only_the_announced_entry():
     assert anchor_problem(entries, Anchor(1, "a", "t"), set()) is None
     assert "entry 2" in anchor_problem(entries, Anchor(1, "a", "u"), set())
     assert "entry 2" in anchor_problem(entries, Anchor(1, "a"), set())
-    assert anchor_problem(entries + [{"id": 3, "hash": "c", "devices": [HAND],
+    assert anchor_problem([*entries, {"id": 3, "hash": "c", "devices": [HAND],
                                       "announcement": "t"}], Anchor(1, "a", "t"), set())
 
 

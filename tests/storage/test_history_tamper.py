@@ -137,7 +137,7 @@ def test_damage_is_exit_1_naming_the_entry_never_a_traceback(archive, capsys, na
     assert f"entry {bad}" in err and "Traceback" not in err
     for argv in COMMANDS:
         code = main(argv)  # a traceback here fails the test
-        out, err = capsys.readouterr()
+        _out, err = capsys.readouterr()
         assert code in (0, 1, 2), (argv, code)
         if code == 1:
             assert "entry" in err, (argv, err)
