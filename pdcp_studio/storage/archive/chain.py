@@ -146,9 +146,12 @@ def _row_problem(row: object, expected_id: int) -> Row | VerifyReport:
     """``row`` as (id, previous hash, hash, body text), or why it cannot be walked (a row an
     editor broke: wrong column types, a huge id), naming the entry."""
     try:
-        entry_id, prev, digest, body = row  # type: ignore[misc]
-    except (TypeError, ValueError):
+        columns: tuple[Any, ...] = tuple(row)  # type: ignore[arg-type]
+    except TypeError:
+        columns = ()
+    if len(columns) != 4:
         return VerifyReport(False, 0, expected_id, f"entry {expected_id}: the row is damaged")
+    entry_id, prev, digest, body = columns
     if not _small_int(entry_id):
         return VerifyReport(False, 0, expected_id,
                             f"entry {expected_id}: the next row's id {str(entry_id)[:30]!r} "

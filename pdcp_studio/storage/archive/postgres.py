@@ -376,7 +376,7 @@ class PostgresArchive(Archive):
         rows = [tuple(r) for r in self._select()]
         head = self._run(lambda: self._db.execute(
             f"SELECT last_id, last_hash FROM {SCHEMA}.head").fetchone(), "read")
-        return verify_rows(rows, (head[0], head[1]) if head else None)  # type: ignore[arg-type]
+        return verify_rows(rows, (head[0], head[1]) if head else None)
 
     def origin_hashes(self) -> set[str]:
         rows = self._run(lambda: self._db.execute(
