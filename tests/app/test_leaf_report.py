@@ -369,23 +369,3 @@ def test_a_live_swap_report_is_a4_numbered_with_patient_operator_and_whole_words
             subprocess.run(["pdftoppm", "-png", "-r", "60", str(out),
                             os.path.join(os.environ["PDCP_REPORT_SHOTS"], f"report-{lang}")],
                            check=True)
-
-
-def test_the_report_prints_the_fitting_history_anchor_in_its_technical_detail(systems_dir):
-    """Issue 28: the anchor the last change wrote to the prosthesis (entry and hash) is in
-    the technical detail, not the body; without a recorded change there is none."""
-    from pdcp_studio.app.report import FittingInfo, report_html
-    from pdcp_studio.storage.profile_trees import load_profile_trees, tree_for
-
-    system = system_file.load_path(systems_dir / "transradial.json")
-    tree = tree_for(load_profile_trees(user_dir=False), system)
-    digest = "ab" * 32
-    info = FittingInfo("P-1", "A. Prosthetist", None, "sim:transradial",
-                       [{"id": 11, "action": "apply clear", "hash": "cd" * 32},
-                        {"id": 12, "action": "apply clear", "hash": digest}])
-    html = report_html(system, tree, fitting=info, checksum=0x1234)
-    body, _, detail = html.partition("Technical detail")
-    assert f"entry 12, hash {digest}" in detail and digest not in body
-    assert "Fitting history anchor in the prosthesis" in detail
-    bare = report_html(system, tree, fitting=FittingInfo("P-1"), checksum=0x1234)
-    assert "Fitting history anchor" not in bare
