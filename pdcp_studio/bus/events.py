@@ -142,7 +142,8 @@ class TransactionDone(Record):
 
 @dataclass(frozen=True, eq=False, repr=False)
 class ChannelValue(Record):
-    """A data frame on a link: the output ``ref`` sent ``value`` (decoded by its type)."""
+    """A data frame on a link: the output ``ref`` sent ``value``, in its type's own numbers
+    (``bus/sim/signals.decode_raw``: an unsigned 12-bit envelope reads 0–4095)."""
 
     ref: ChannelRef
     value: float

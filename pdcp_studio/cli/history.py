@@ -8,8 +8,10 @@ clinic's view: one patient's or one part's changes, from every workstation. ``re
 --bus URL`` is a new, previewed transaction that puts back the links, the stored
 configuration and the policy that entry ID left on the prosthesis; it is written only with
 ``--yes``. ``verify`` exits 0 when the hash chain is intact and 1 naming the first entry that
-is not. ``export`` writes the archive as JSON lines (hashes included); ``import FILE`` appends
-such a file to the archive, each entry keeping its origin.
+is not; ``verify --bus URL`` also compares the archive with the anchor the prosthesis keeps
+(reference §5 Decision). A damaged entry is exit 1 naming it, an ID no entry can have exit 2.
+``export`` writes the archive as JSON lines (hashes included); ``import FILE`` appends such a
+file to the archive, each entry keeping its origin.
 """
 
 from __future__ import annotations
@@ -46,7 +48,7 @@ def add_subparser(subparsers: argparse._SubParsersAction[argparse.ArgumentParser
     add_archive_argument(lst)
     lst.set_defaults(func=run_list)
     show = actions.add_parser("show", help="one entry in full")
-    show.add_argument("id", type=int, metavar="ID")
+    show.add_argument("id", type=_entry_id, metavar="ID")
     show.add_argument("--json", action="store_true", help="print the entry as JSON")
     add_archive_argument(show)
     show.set_defaults(func=run_show)
@@ -60,13 +62,24 @@ def add_subparser(subparsers: argparse._SubParsersAction[argparse.ArgumentParser
                     "written (exit 1) when a part it needs is not on the bus. By default the "
                     "stored configuration recorded with the entry is put back; --store stores "
                     "the restored links instead, --no-store leaves it as it is.")
-    restore.add_argument("id", type=int, metavar="ID")
+    restore.add_argument("id", type=_entry_id, metavar="ID")
     restore.add_argument("--bus", required=True, metavar="URL", help="the prosthesis")
     restore.add_argument("--memory", metavar="FILE",
                          help="PDCP Studio's own arbitrator memory (sim: and can: buses)")
     add_road_arguments(restore)
     restore.set_defaults(func=run_restore)
-    verify = actions.add_parser("verify", help="check the hash chain (exit 1 if broken)")
+    verify = actions.add_parser(
+        "verify", help="check the hash chain (exit 1 if broken); with --bus, against the "
+                       "prosthesis's anchor",
+        description="Walks the hash chain: exit 0 when every entry is intact, 1 naming the "
+                    "first that is not. With --bus, also compares the archive with the "
+                    "anchor the prosthesis keeps in its arbitrator's memory (the entry that "
+                    "recorded its last change and that entry's hash): an archive whose last "
+                    "entry for that prosthesis is not the anchored one fails (exit 1), "
+                    "saying what differs.")
+    verify.add_argument("--bus", metavar="URL", help="the prosthesis whose anchor to compare")
+    verify.add_argument("--memory", metavar="FILE",
+                        help="PDCP Studio's own arbitrator memory (sim: and can: buses)")
     add_archive_argument(verify)
     verify.set_defaults(func=run_verify)
     export = actions.add_parser("export", help="the archive as JSON lines, hashes included")
@@ -79,6 +92,21 @@ def add_subparser(subparsers: argparse._SubParsersAction[argparse.ArgumentParser
     imp.add_argument("file", metavar="FILE", help="a file `history export` wrote")
     add_archive_argument(imp)
     imp.set_defaults(func=run_import)
+
+
+def _entry_id(text: str) -> int:
+    """An entry ID as typed: a whole number an archive can hold (1 … 2⁶³−1); else exit 2."""
+    from pdcp_studio.storage.archive.rows import MAX_ID
+
+    try:
+        value = int(text, 10)
+    except ValueError:
+        raise argparse.ArgumentTypeError(f"{text[:40]!r}: an entry ID is a whole number, "
+                                         "e.g. 12 (see `history list`)") from None
+    if not 1 <= value <= MAX_ID:
+        raise argparse.ArgumentTypeError(f"{text[:40]}: no entry can have this ID (IDs run "
+                                         f"from 1 to {MAX_ID})")
+    return value
 
 
 def _part(text: str) -> tuple[int, int, int]:
@@ -123,8 +151,10 @@ def _entries(args: argparse.Namespace) -> list[Entry]:
         return []
     where = EntryFilter(patient=getattr(args, "patient", None),
                         device=getattr(args, "prosthesis", None))
+    from pdcp_studio.storage.archive.rows import check_entry
+
     with history:
-        return history.entries(where)
+        return [check_entry(e) for e in history.entries(where)]
 
 
 def _entry(args: argparse.Namespace, entry_id: int) -> Entry:
@@ -136,7 +166,9 @@ def _entry(args: argparse.Namespace, entry_id: int) -> Entry:
         entry = history.get(entry_id)
     if entry is None:
         raise BadInput(f"history: no entry {entry_id} in {history.location}")
-    return entry
+    from pdcp_studio.storage.archive.rows import check_entry
+
+    return check_entry(entry)  # a damaged entry is exit 1 naming it, never a traceback
 
 
 def _crc_text(before: str | None, after: str | None) -> str:
@@ -293,20 +325,62 @@ def _refuse_missing(entry: Entry, system: System, missing: list[DeviceKey], bus:
 
 
 def run_verify(args: argparse.Namespace) -> int:
+    import sys
+
     history = _open(args)
+    anchor, parts = _prosthesis_anchor(args) if getattr(args, "bus", None) else (None, set())
     if history is None:
+        if anchor is not None and (anchor.entry or anchor.announced):
+            print(f"pdcp-studio: {_where(args)}: there is no fitting history, but the "
+                  f"prosthesis on {shown(args.bus)} remembers {anchor.text()}: this is not "
+                  "the archive that recorded its changes (or it was removed)", file=sys.stderr)
+            return 1
         print(f"{_where(args)}: no fitting history yet (0 entries), nothing to check")
         return 0
+    from pdcp_studio.storage.archive.anchor import anchor_problem
+    from pdcp_studio.storage.archive.base import HistoryError
+
     with history:
         report = history.verify()
         path = history.location
-    if report.ok:
-        print(f"{path}: {report.entries} entr{'y' if report.entries == 1 else 'ies'}, "
-              "the chain is intact")
-        return 0
-    print(f"pdcp-studio: {path}: entry {report.first_bad} is not intact: {report.reason}",
-          file=__import__("sys").stderr)
-    return 1
+        problem = None
+        if report.ok and args.bus:
+            try:
+                problem = anchor_problem(history.entries(), anchor, parts)
+            except HistoryError as err:
+                problem = str(err)
+    if not report.ok:
+        print(f"pdcp-studio: {shown(path)}: entry {report.first_bad} is not intact: "
+              f"{shown(report.reason)}", file=sys.stderr)
+        return 1
+    if problem:
+        print(f"pdcp-studio: {shown(path)} does not match the prosthesis on "
+              f"{shown(args.bus)}: {shown(problem)}", file=sys.stderr)
+        return 1
+    print(f"{shown(path)}: {report.entries} entr{'y' if report.entries == 1 else 'ies'}, "
+          "the chain is intact")
+    if args.bus:
+        print(f"the prosthesis on {shown(args.bus)} remembers "
+              + (anchor.text() if anchor is not None else
+                 "no fitting history anchor (its arbitrator keeps none)")
+              + (": it is the archive's last entry for it" if anchor and anchor.entry else ""))
+    return 0
+
+
+def _prosthesis_anchor(args: argparse.Namespace) -> tuple[Any, set[tuple[int, int, int]]]:
+    """The anchor the prosthesis on ``--bus`` keeps, and its parts (VID, PID, serial)."""
+    from pdcp_studio.bus.session.urls import check_bus_url
+    from pdcp_studio.cli.scan import open_bus_session
+
+    check_bus_url(args.bus)
+    session = open_bus_session(args.bus, memory=args.memory)
+    try:
+        anchor = session.read_anchor()
+        parts = {(k.vid, k.pid, k.serial) for k, d in session.system().devices.items()
+                 if d.present}
+    finally:
+        session.close()
+    return anchor, parts
 
 
 def run_export(args: argparse.Namespace) -> int:

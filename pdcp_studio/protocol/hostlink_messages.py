@@ -53,6 +53,8 @@ class Req(IntEnum):
     TRANSACT_RUN = 0x16
     MONITOR = 0x17
     RESULT_READ = 0x18
+    ANCHOR_READ = 0x19
+    ANCHOR_WRITE = 0x1A
 
 
 class Event(IntEnum):

@@ -5661,6 +5661,14 @@ Die Prothese ist wie zuvor.</translation>
             <translation>Prüfnummer: CRC-16/CCITT-FALSE des gespeicherten Konfigurationsdatensatzes</translation>
         </message>
         <message>
+            <source>Fitting history anchor in the prosthesis</source>
+            <translation>Anker der Versorgungshistorie in der Prothese</translation>
+        </message>
+        <message>
+            <source>entry {id}, hash {hash}</source>
+            <translation>Eintrag {id}, Hash {hash}</translation>
+        </message>
+        <message>
             <source>VID {vid} PID {pid} serial {serial}</source>
             <translation>VID {vid} PID {pid} Seriennummer {serial}</translation>
         </message>

@@ -55,6 +55,13 @@ def _config() -> bytes:
                                                                                     1)])]))
 
 
+def _anchor() -> bytes:
+    """Entry 12's anchor, its hash 0x11 0x22 … (as the arbitrator's memory keeps it)."""
+    from pdcp_studio.storage.archive.chain import Anchor, pack_anchor
+
+    return pack_anchor(Anchor(12, "1122" * 16))
+
+
 def _ok(code: int, body: bytes = b"") -> bytes:
     return bytes([hm.reply_code(code), Status.OK]) + body
 
@@ -156,6 +163,10 @@ def messages() -> list[tuple[str, bytes]]:
         ("GET_POLICY reply", _ok(Req.GET_POLICY, b"\x01")),
         ("MONITOR request", bytes([Req.MONITOR, 0x03, 10])),
         ("MONITOR reply", _ok(Req.MONITOR, hm.MONITOR_REPLY.pack(6400))),
+        ("ANCHOR_READ request", bytes([Req.ANCHOR_READ])),
+        ("ANCHOR_READ reply", _ok(Req.ANCHOR_READ, _anchor())),
+        ("ANCHOR_WRITE request", bytes([Req.ANCHOR_WRITE]) + _anchor()),
+        ("ANCHOR_WRITE reply", _ok(Req.ANCHOR_WRITE, _anchor())),
         ("unknown request", _real(bytes([0x3E]))),
         ("event code as request", _real(bytes([0x41]))),
         ("STATUS too long", _real(bytes([Req.STATUS, 0]))),

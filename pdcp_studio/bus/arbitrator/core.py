@@ -135,6 +135,7 @@ if TYPE_CHECKING:
 
     from pdcp_studio.bus.trace.decoder import FrameDecoder
     from pdcp_studio.engine.plan import Plan
+    from pdcp_studio.storage.archive.chain import Anchor
 
 log = logging.getLogger(__name__)
 
@@ -580,6 +581,14 @@ class Arbitrator:
         """The profile-layer policy kept in memory beside the stored configuration; an
         unreadable memory gives the thesis's default (autoconfigure on)."""
         return self.transactions.read_policy()
+
+    def read_anchor(self) -> Anchor | None:
+        """The fitting history's anchor kept in memory (issue 28); None when none is kept."""
+        return self.transactions.read_anchor()
+
+    def write_anchor(self, anchor: Anchor) -> Anchor | None:
+        """Store the fitting history's anchor beside the configuration; returns it read back."""
+        return self.transactions.write_anchor(anchor)
 
     def transact(self, change: Change, progress: Callable[[int, int, str], Any] | None = None,
                  cancel: threading.Event | None = None) -> TransactionResult:

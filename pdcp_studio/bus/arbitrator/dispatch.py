@@ -28,7 +28,7 @@ from pdcp_studio.bus.arbitrator.common import (
 from pdcp_studio.bus.arbitrator.nodes import BindDecision
 from pdcp_studio.bus.arbitrator.state import Emit, ReportError, SendFrame, SystemState
 from pdcp_studio.bus.log_limit import RepeatLimiter
-from pdcp_studio.bus.sim.signals import decode_sample
+from pdcp_studio.bus.sim.signals import decode_raw
 from pdcp_studio.errors import FrameError
 from pdcp_studio.model.refs import ChannelRef, DeviceKey
 from pdcp_studio.model.system import Link
@@ -245,7 +245,7 @@ class Dispatcher:
             ch = self._state.system.channel(ref) if ref else None
             kind = ch.type if ch else 0
         if ref is not None:
-            self._emit(ev.ChannelValue(ref, decode_sample(kind, message.data), timestamp))
+            self._emit(ev.ChannelValue(ref, decode_raw(kind, message.data), timestamp))
 
     # -- binding (the node table decides) -------------------------------------------------
     def _on_bind(self, req: BindRequest, now: float) -> None:

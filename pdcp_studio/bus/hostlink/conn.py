@@ -40,7 +40,7 @@ V1_PROBE_S = 1.0
 #: Requests that change nothing: sent again after the link was reset under them.
 READ_ONLY = frozenset({Req.HELLO, Req.STATUS, Req.LIST_DEVICES, Req.GET_DEVICE,
                        Req.GET_CHANNELS, Req.LIST_LINKS, Req.CONFIG_INFO, Req.CONFIG_READ,
-                       Req.RESULT_READ, Req.GET_POLICY})
+                       Req.RESULT_READ, Req.GET_POLICY, Req.ANCHOR_READ})
 _V2_REFUSAL = f"speaks host-link version {hm.VERSION}, not version 1".encode()
 
 

@@ -125,6 +125,7 @@ class Handlers:
             Req.TRANSACT_BEGIN: self.transact_begin, Req.TRANSACT_CHUNK: self.transact_chunk,
             Req.TRANSACT_RUN: self.transact_run, Req.RESULT_READ: self.result_read,
             Req.GET_POLICY: self.get_policy, Req.MONITOR: self.monitor,
+            Req.ANCHOR_READ: self.anchor_read, Req.ANCHOR_WRITE: self.anchor_write,
         }
 
     # -- dispatch --------------------
@@ -469,6 +470,15 @@ class Handlers:
         if read is not None:
             return bool(read().autoconfigure)
         return bool(getattr(self.arb, "profile_layer", True))
+
+    # -- the fitting history's anchor (issue 28) --------------------
+    def anchor_read(self, body: bytes) -> bytes:
+        self._exact(body, 0, "ANCHOR_READ")
+        return hr.pack_anchor(self.arb.read_anchor())
+
+    def anchor_write(self, body: bytes) -> bytes:
+        self._exact(body, hr.ANCHOR_SIZE, "ANCHOR_WRITE")
+        return hr.pack_anchor(self.arb.write_anchor(hr.unpack_anchor(body)))
 
     def monitor(self, body: bytes) -> bytes:
         self._exact(body, 2, "MONITOR")

@@ -37,6 +37,8 @@ from pdcp_studio.storage.archive.base import (
     workstation,
 )
 from pdcp_studio.storage.archive.chain import VerifyReport, next_link, verify_rows
+from pdcp_studio.storage.archive.rows import entry_id as checked_id
+from pdcp_studio.storage.archive.rows import entry_of, pending_body
 from pdcp_studio.storage.archive.schema_pg import APPEND_LOCK, INIT_SQL, SCHEMA
 
 if TYPE_CHECKING:
@@ -326,12 +328,16 @@ class PostgresArchive(Archive):
             elif connected or float(age) < OTHER_HOST_GRACE_S:
                 continue
 
-            def run(token: str = token, body: str = body) -> int | None:
+            recovered = pending_body(token, body)
+            if recovered is None:
+                continue  # damaged or not an announcement: never chained in (issue 28)
+
+            def run(token: str = token, recovered: Entry = recovered) -> int | None:
                 gone = self._db.execute(f"DELETE FROM {SCHEMA}.pending WHERE token = %s",
                                         (token,))
                 if gone.rowcount != 1:  # another workstation recovered it just now
                     return None
-                return self._append_locked(self.stamp(json.loads(body)))
+                return self._append_locked(self.stamp(recovered))
 
             new = self._write(run)
             if new is not None:
@@ -345,9 +351,7 @@ class PostgresArchive(Archive):
 
     @staticmethod
     def _entry(row: Any) -> Entry:
-        entry_id, previous, digest, body = row
-        doc = json.loads(body)
-        return {"id": int(entry_id), **doc, "previous_hash": previous, "hash": digest}
+        return entry_of(row)  # damage is DamagedEntry naming the entry, never a traceback
 
     def entries(self, where: EntryFilter | None = None) -> list[Entry]:
         clauses: list[str] = []
@@ -363,14 +367,16 @@ class PostgresArchive(Archive):
         return [self._entry(r) for r in self._select(sql, tuple(params))]
 
     def get(self, entry_id: int) -> Entry | None:
+        if checked_id(entry_id) is None:
+            return None  # no row can have it (beyond a bigint)
         rows = self._select("WHERE id = %s", (entry_id,))
         return self._entry(rows[0]) if rows else None
 
     def verify(self) -> VerifyReport:
-        rows = [(int(r[0]), str(r[1]), str(r[2]), str(r[3])) for r in self._select()]
+        rows = [tuple(r) for r in self._select()]
         head = self._run(lambda: self._db.execute(
             f"SELECT last_id, last_hash FROM {SCHEMA}.head").fetchone(), "read")
-        return verify_rows(rows, (int(head[0]), str(head[1])) if head else None)
+        return verify_rows(rows, (head[0], head[1]) if head else None)
 
     def origin_hashes(self) -> set[str]:
         rows = self._run(lambda: self._db.execute(

@@ -29,6 +29,8 @@ from typing import Any, TypeVar
 
 from pdcp_studio.storage.archive.base import Archive, Entry, EntryFilter, HistoryError, workstation
 from pdcp_studio.storage.archive.chain import Row, VerifyReport, next_link, verify_rows
+from pdcp_studio.storage.archive.rows import entry_id as checked_id
+from pdcp_studio.storage.archive.rows import entry_of, pending_body
 
 T = TypeVar("T")
 
@@ -146,10 +148,13 @@ class SqliteArchive(Archive):
             rows = self._db.execute(
                 "SELECT token, pid, host, body FROM pending ORDER BY rowid").fetchall()
             for token, pid, where, body in rows:
-                if where == host and alive(pid):
+                if where == host and isinstance(pid, int) and alive(pid):
                     continue
+                recovered = pending_body(token, body)
+                if recovered is None:
+                    continue  # damaged or not an announcement: never chained in (issue 28)
                 self._db.execute("DELETE FROM pending WHERE token = ?", (token,))
-                ids.append(self._append_locked(json.loads(body)))
+                ids.append(self._append_locked(recovered))
             return ids
 
         return self._write(run)
@@ -163,9 +168,7 @@ class SqliteArchive(Archive):
 
     @staticmethod
     def _entry(row: Row) -> Entry:
-        entry_id, previous, digest, body = row
-        doc = json.loads(body)
-        return {"id": entry_id, **doc, "previous_hash": previous, "hash": digest}
+        return entry_of(row)  # damage is DamagedEntry naming the entry, never a traceback
 
     def entries(self, where: EntryFilter | None = None) -> list[Entry]:
         clauses: list[str] = []
@@ -182,6 +185,8 @@ class SqliteArchive(Archive):
         return [self._entry(r) for r in self._read(sql + " ORDER BY id", tuple(params))]
 
     def get(self, entry_id: int) -> Entry | None:
+        if checked_id(entry_id) is None:
+            return None  # no row can have it (beyond SQLite's 64-bit integer)
         rows = self._read("SELECT id, previous_hash, hash, body FROM entries WHERE id = ?",
                           (entry_id,))
         return self._entry(rows[0]) if rows else None
@@ -235,7 +240,13 @@ def _make_tables(db: sqlite3.Connection) -> None:
     db.execute("BEGIN IMMEDIATE")
     try:
         for statement in _SCHEMA:
-            db.execute(statement)
+            try:
+                db.execute(statement)
+            except sqlite3.OperationalError as err:
+                if "JSON" not in str(err) or "INDEX" not in statement:
+                    raise
+                # a body an editor left malformed: no index, and each reader names the entry
+                # (storage/archive/rows.py) instead of the archive failing to open
         db.execute("COMMIT")
     except BaseException:
         if db.in_transaction:

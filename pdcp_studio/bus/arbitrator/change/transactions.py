@@ -53,6 +53,7 @@ from pdcp_studio.model.system import Link, System
 if TYPE_CHECKING:
     from pdcp_studio.bus.arbitrator.links import LinkWriter
     from pdcp_studio.bus.arbitrator.memory import MemoryStore
+    from pdcp_studio.storage.archive.chain import Anchor
 
 log = logging.getLogger("pdcp_studio.bus.arbitrator.core")
 
@@ -110,6 +111,20 @@ class Transactions:
             log.warning("%s: policy unreadable (%s): autoconfigure on", self._name, err)
             return Policy()
         return Policy(autoconfigure=stored.get("autoconfigure", True))
+
+    # -- the fitting history's anchor (reference §5 Decision, issue 28) -----------------
+    def read_anchor(self) -> Anchor | None:
+        """The anchor kept in memory beside the stored configuration (None: none kept)."""
+        return self._memory.read_anchor()
+
+    def write_anchor(self, anchor: Anchor) -> Anchor | None:
+        """Store ``anchor`` beside the configuration and policy (the memory's two-slot
+        write: a cut leaves the old anchor or the new); returns it as read back."""
+        self._memory.write_anchor(anchor)
+        stored = self._memory.read_anchor()
+        log.info("%s: fitting history anchor: %s", self._name,
+                 stored.text() if stored else "none")
+        return stored
 
     # -- transactions ------------------------------------------------------------------
     def transact(self, change: Change, progress: ProgressFn | None = None,
