@@ -110,10 +110,9 @@ def resolve_store(system: System, change: Change) -> Change:
 
 def names_for(system: System, tr: Translate | None = None) -> Names:
     """The names every text of a change uses (the profile names from the named trees)."""
-    from pdcp_studio.storage.profile_trees import load_profile_trees, tree_for
+    from pdcp_studio.storage.profile_trees import system_names
 
-    return Names(system, profiles=tree_for(load_profile_trees(), system),
-                 tr=tr or (lambda text: text))
+    return system_names(system, tr=tr)
 
 
 def preview_change(session: BusSession, change: Change, *,

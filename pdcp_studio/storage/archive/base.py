@@ -18,12 +18,15 @@ import abc
 import getpass
 import os
 import socket
+from collections.abc import Callable
 from dataclasses import dataclass
 from pathlib import Path
-from typing import Any
+from typing import Any, TypeVar
 
 from pdcp_studio.errors import PdcpError
 from pdcp_studio.storage.archive.chain import VerifyReport
+
+T = TypeVar("T")
 
 ENV_OPERATOR = "PDCP_STUDIO_OPERATOR"
 
@@ -146,14 +149,24 @@ class Archive(abc.ABC):
         """Let the archive go."""
 
     # -- writing ------------------------------------------------------------------------
-    @abc.abstractmethod
     def append(self, body: Entry) -> int:
         """Append one entry (its fields without ``id``); returns its id."""
+        stamped = self.stamp(body)
+        return self._write(lambda: self._append_locked(stamped))
 
     def append_many(self, bodies: list[Entry]) -> list[int]:
         """Append several entries in one commit, all or none (``history import``); returns
         their ids."""
-        return [self.append(b) for b in bodies]
+        stamped = [self.stamp(b) for b in bodies]
+        return self._write(lambda: [self._append_locked(b) for b in stamped])
+
+    @abc.abstractmethod
+    def _append_locked(self, body: Entry) -> int:
+        """Append a stamped entry inside an open write transaction; returns its id."""
+
+    @abc.abstractmethod
+    def _write(self, fn: Callable[[], T]) -> T:
+        """Run ``fn`` as one serialised write transaction (committed, or rolled back)."""
 
     @abc.abstractmethod
     def begin(self, body: Entry) -> str:

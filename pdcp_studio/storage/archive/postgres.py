@@ -245,14 +245,6 @@ class PostgresArchive(Archive):
         return self._run(run, "write")
 
     # -- writing ------------------------------------------------------------------------
-    def append(self, body: Entry) -> int:
-        stamped = self.stamp(body)
-        return self._write(lambda: self._append_locked(stamped))
-
-    def append_many(self, bodies: list[Entry]) -> list[int]:
-        stamped = [self.stamp(b) for b in bodies]
-        return self._write(lambda: [self._append_locked(b) for b in stamped])
-
     def begin(self, body: Entry) -> str:
         self.check_can_record()
         try:

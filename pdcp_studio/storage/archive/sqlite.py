@@ -92,14 +92,6 @@ class SqliteArchive(Archive):
             pass
 
     # -- writing ------------------------------------------------------------------------
-    def append(self, body: Entry) -> int:
-        stamped = self.stamp(body)
-        return self._write(lambda: self._append_locked(stamped))
-
-    def append_many(self, bodies: list[Entry]) -> list[int]:
-        stamped = [self.stamp(b) for b in bodies]
-        return self._write(lambda: [self._append_locked(b) for b in stamped])
-
     def _append_locked(self, body: Entry) -> int:
         """Append inside an open write transaction; returns the new id."""
         row = self._db.execute("SELECT id, hash FROM entries ORDER BY id DESC LIMIT 1").fetchone()
