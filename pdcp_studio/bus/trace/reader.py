@@ -366,7 +366,9 @@ class CaptureReader:
                            CHUNK_BYTES if self._cancel is None else CANCELLABLE_CHUNK_BYTES)
             file: Any = lines  # a text file as python-can reads one
             if fmt == "asc":
-                return can.ASCReader(file, relative_timestamp=False), lines
+                from pdcp_studio.bus.trace.asc import QuickASCReader
+
+                return QuickASCReader(file, relative_timestamp=False), lines
             if fmt == "trc":
                 return _trc_reader(lines), lines
             if fmt == "csv":
