@@ -58,3 +58,17 @@ def test_the_details_word_the_links_and_keep_the_numbers_in_the_tooltip(make_win
     text = panel.details.toPlainText()
     assert f"only after #2: {words}" in text and not RAW.search(text), text
     window.live.disconnect_bus()
+
+
+def test_a_read_overtaken_by_a_newer_one_is_not_shown(make_window, qtbot):
+    """Two reads in a row: only the newer is shown (an older read that ends later held the
+    archive as it was before, and showed an empty history on a loaded machine)."""
+    window = make_window()
+    panel = window.history_panel
+    loads: list[int] = []
+    panel.loaded.connect(lambda: loads.append(len(panel.all_entries())))
+    older, newer = panel.refresh(), panel.refresh()
+    qtbot.waitUntil(lambda: not older.is_running and not newer.is_running and bool(loads),
+                    timeout=T)
+    qtbot.wait(200)  # the older one's result, had it been let through, comes now
+    assert len(loads) == 1

@@ -41,6 +41,8 @@ def test_the_trace_comes_after_the_window_with_every_frame_since_the_session(mak
     monitor = window._leaf_docks["monitor"]
     monitor.flush()
     assert len(monitor.all_rows) == sum(counted)
+    # (the tab bar is rebuilt when the layout next runs: on a loaded machine, a moment later)
+    qtbot.waitUntil(lambda: any("Bus monitor" in t for t in _tabs(window)), timeout=5000)
     bottom = next(t for t in _tabs(window) if "Plan" in t)
     assert bottom[-3:] == ["Bus monitor", "Live plot", "Bus events"]
     entries = [a.text() for a in window.view_menu.actions()]

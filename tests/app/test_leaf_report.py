@@ -351,7 +351,10 @@ def test_a_live_swap_report_is_a4_numbered_with_patient_operator_and_whole_words
     assert _a4_portrait(out)
     word = "Page {0} of {1}" if lang == "en" else "Seite {0} von {1}"
     for p in range(pages):
-        assert word.format(p + 1, pages) in " ".join(pdf.getAllText(p).text().split())
+        # (PDFium's text extraction may split a page's words into letters, depending on
+        # the glyph spacing of what else is on it: compare without spaces)
+        assert "".join(word.format(p + 1, pages).split()) in \
+            "".join(pdf.getAllText(p).text().split())
     text = " ".join(_pdf_text(qtbot, out)[1].split())
     assert "P-2026-042" in text and info.prosthetist in text
     swap = ("3 links added, 3 removed" if lang == "en"

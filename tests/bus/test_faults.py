@@ -94,9 +94,17 @@ def test_unplugging_a_device_mid_bulk_aborts_only_that_transfer():
                 results[name] = err
 
         slow = threading.Thread(target=read, args=("slow", key(4), P.CH_DESCRIPTOR, 1))
+        watch = rig.bus()  # the unplug comes a few bulk packets (0x0E) in, however loaded
         started = time.monotonic()
         slow.start()
-        time.sleep(0.15)  # a few packets in
+        packets, deadline = 0, time.monotonic() + 10
+        while packets < 3 and time.monotonic() < deadline:
+            msg = watch.recv(0.1)
+            if msg is not None and msg.data[:1] == b"\x0e":
+                packets += 1
+        watch.shutdown()
+        assert packets == 3, "the transfer never started"
+        started = time.monotonic()
         other = threading.Thread(target=read, args=("other", key(5), P.DEVICE_DESCRIPTOR, 0))
         other.start()
         rig.host.unplug(key(4))

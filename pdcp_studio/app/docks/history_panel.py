@@ -374,8 +374,12 @@ class HistoryPanel(QWidget):
     def refresh(self) -> Worker:
         """Read the archive again (on a worker); ``loaded`` follows."""
         worker = Worker(read_history, "Read the fitting history")
-        worker.finished.connect(self._read)
-        worker.failed.connect(self._read_failed)
+        # Only the latest read is shown: an earlier one that ends later (a loaded machine)
+        # read the archive before the entries that followed, and would show it as it was.
+        worker.finished.connect(lambda result: self._read(result) if worker is self._worker
+                                else None)
+        worker.failed.connect(lambda message: self._read_failed(message)
+                              if worker is self._worker else None)
         self._worker = worker
         return worker.start()
 

@@ -64,6 +64,10 @@ class _Lost:
         self.resynced = resynced
 
 
+#: HELLO is said again at most this many times when the arbitrator resets the link under it.
+GREET_RESETS = 3
+
+
 class LinkResynced(TransportError):
     """The link was reset while a request waited: it may or may not have been carried out."""
 
@@ -139,7 +143,8 @@ class HostLinkConnection:
             self._greet_locked()
 
     def _greet_locked(self) -> None:
-        for attempt in range(2):
+        resets = probes = 0
+        while True:
             with self._io:
                 self.link.reset(time.monotonic(), discard_partial=True)
                 self.link.take_resynced()  # our own reset: nothing waits on it
@@ -148,11 +153,18 @@ class HostLinkConnection:
                 status, body = self._exchange(Req.HELLO, bytes([hm.VERSION, 0xFF, 0xFF]),
                                               self.reply_timeout)
                 break
+            except LinkResynced:
+                # The arbitrator asked to renumber while HELLO was on its way (it still
+                # counted an earlier session's frames): HELLO only reads, so say it again.
+                resets += 1
+                if resets > GREET_RESETS:
+                    raise
             except TransportError:
                 # A version-2 arbitrator refusing the version-1 PING is there, only slow
                 # (a loaded PC or arbitrator): greet it once more rather than give up.
-                if not self._probe_v1() or attempt:
+                if not self._probe_v1() or probes:
                     raise
+                probes += 1
         if status is Status.VERSION:
             raise VersionRefused(f"{self.where}: the arbitrator refuses host-link version "
                                  f"{hm.VERSION}: {hm.text(body)}", status)
