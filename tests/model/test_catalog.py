@@ -116,3 +116,15 @@ def test_a_fifo_among_the_users_catalogues_is_skipped_never_opened(tmp_path):
         timer.cancel()
     assert time.monotonic() - started < 1.0
     assert problems == [f"{user / 'pipe.json'}: cannot be read (not a regular file)"]
+
+
+def test_the_users_data_folder_follows_its_environment_though_looked_up_once(monkeypatch,
+                                                                             tmp_path):
+    """user_data_dir is cached (start-up asks ~30 times), per value of what platformdirs
+    reads: a changed XDG_DATA_HOME (a test's, a user's) is a new folder."""
+    monkeypatch.setenv("XDG_DATA_HOME", str(tmp_path / "one"))
+    first = paths.user_data_dir()
+    assert paths.user_data_dir() is first  # looked up once
+    monkeypatch.setenv("XDG_DATA_HOME", str(tmp_path / "two"))
+    assert paths.user_data_dir().parent == tmp_path / "two"
+    assert paths.user_catalogs_dir() == tmp_path / "two" / "pdcp-studio" / "catalogs"
