@@ -41,6 +41,7 @@ COMMAND_MODULES = (
     "arbitrator",
     "monitor",
     "hostlink_test",
+    "can_bridge",
     "doctor",
 )
 
