@@ -1,0 +1,166 @@
+"""The reference firmware on QEMU, simulated devices and a host-link session, for the tests.
+
+``Firmware`` starts ``firmware/run-qemu.sh --bus URL --memory FILE`` (QEMU's lm3s6965evb, its
+CAN side bridged to a udp_multicast bus) and reads its ``host link on /dev/pts/N`` line;
+``Devices`` hosts a prosthesis's simulated devices in this process on the same bus, so a test
+can unplug and plug them; ``run_script`` carries out a simulator script's steps (settle,
+save, unplug, plug, await, reset) against the firmware, as ``sim replay`` does against PDCP
+Studio's own arbitrator.
+"""
+
+from __future__ import annotations
+
+import os
+import shutil
+import subprocess
+import sys
+import time
+from pathlib import Path
+from typing import Any
+
+ROOT = Path(__file__).resolve().parents[2]
+RUN_QEMU = ROOT / "firmware" / "run-qemu.sh"
+TOOLS = ("qemu-system-arm", "arm-none-eabi-gcc", "make")
+
+
+def missing_tools() -> str | None:
+    """Why the firmware cannot run here (None when it can)."""
+    gone = [t for t in TOOLS if shutil.which(t) is None]
+    if gone:
+        return (f"needs {', '.join(gone)} (Debian: apt-get install gcc-arm-none-eabi "
+                "libnewlib-arm-none-eabi qemu-system-arm make)")
+    if not hasattr(os, "openpty"):
+        return "needs POSIX pseudo-terminals"
+    return None
+
+
+class Firmware:
+    """The firmware on QEMU; ``serial_url`` reaches its host link."""
+
+    def __init__(self, bus_url: str, memory: Path) -> None:
+        env = dict(os.environ, PDCP_STUDIO=f"{sys.executable} -m pdcp_studio",
+                   PYTHONPATH=str(ROOT) + os.pathsep + os.environ.get("PYTHONPATH", ""))
+        self.proc = subprocess.Popen([str(RUN_QEMU), "--bus", bus_url, "--memory", str(memory)],
+                                     stdout=subprocess.PIPE, stderr=subprocess.PIPE, text=True,
+                                     env=env, cwd=ROOT)
+        assert self.proc.stdout is not None
+        line = self.proc.stdout.readline()
+        if not line.startswith("host link on /dev/"):
+            self.stop()
+            raise AssertionError(f"run-qemu.sh did not start: {line!r} {self.stderr}")
+        self.serial_url = "serial:" + line.split(" on ", 1)[1].strip()
+        self.stderr = ""
+
+    def stop(self) -> None:
+        if self.proc.poll() is None:
+            self.proc.terminate()
+        try:
+            _, self.stderr = self.proc.communicate(timeout=15)
+        except subprocess.TimeoutExpired:
+            self.proc.kill()
+            _, self.stderr = self.proc.communicate()
+
+
+class Devices:
+    """A prosthesis's simulated devices on ``bus_url``, plugged as its system says."""
+
+    def __init__(self, name: str, bus_url: str) -> None:
+        from pdcp_studio.bus.session.urls import check_bus_url, open_spec
+        from pdcp_studio.bus.sim.device import SimulatedDevice
+        from pdcp_studio.bus.sim.device_host import DeviceHost
+        from pdcp_studio.bus.sim.rigs import load_prosthesis
+
+        self.system = load_prosthesis(name)
+        devices = [SimulatedDevice(d) for d in self.system.devices.values()]
+        self.host = DeviceHost(open_spec(check_bus_url(bus_url)), devices,
+                               name=f"{name} devices", plugged=False)
+        for key, device in self.system.devices.items():
+            if device.present:
+                self.host.plug(key)
+
+    def close(self) -> None:
+        self.host.close()
+
+
+def open_session(serial_url: str) -> Any:
+    from pdcp_studio.bus.hostlink.client import open_hostlink_session
+    from pdcp_studio.bus.session.urls import check_bus_url
+
+    return open_hostlink_session(check_bus_url(serial_url), monitor=False)
+
+
+def wait_for(predicate: Any, timeout: float, what: str) -> None:
+    deadline = time.monotonic() + timeout
+    while not predicate():
+        if time.monotonic() > deadline:
+            raise AssertionError(f"timed out waiting for {what}")
+        time.sleep(0.2)
+
+
+def settle(session: Any, timeout: float = 30.0) -> None:
+    """Start-up done and nothing in progress (twice in a row, a second apart: a device that
+    was just plugged needs a moment to bind)."""
+    wait_for(lambda: session.wait_settled(1.0), timeout, "the firmware to settle")
+    time.sleep(1.0)
+    wait_for(lambda: session.wait_settled(1.0), timeout, "the firmware to settle")
+
+
+def present(session: Any, key: Any) -> bool:
+    device = session.system().device(key)
+    return device is not None and device.present
+
+
+class Run:
+    """A script's run against the firmware: the firmware (restarted by ``reset``), the devices
+    and a session on its host link."""
+
+    def __init__(self, name: str, bus_url: str, memory: Path) -> None:
+        self.bus_url = bus_url
+        self.memory = memory
+        self.devices = Devices(name, bus_url)
+        self.firmware = Firmware(bus_url, memory)
+        self.session = open_session(self.firmware.serial_url)
+
+    def restart(self, keep_memory: bool) -> None:
+        self.session.close()
+        self.firmware.stop()
+        if not keep_memory and self.memory.exists():
+            self.memory.unlink()
+        self.firmware = Firmware(self.bus_url, self.memory)
+        self.session = open_session(self.firmware.serial_url)
+
+    def close(self) -> None:
+        try:
+            self.session.close()
+        finally:
+            try:
+                self.firmware.stop()
+            finally:
+                self.devices.close()
+
+    def step(self, step: Any) -> None:
+        from pdcp_studio.engine import configuration_from_system
+        from pdcp_studio.model.configuration import ConfigCollection
+        from pdcp_studio.storage import config_codec
+
+        op = step.op
+        if op == "settle":
+            settle(self.session)
+        elif op == "save":
+            collection = ConfigCollection([configuration_from_system(self.session.system())])
+            self.session.write_configuration_bytes(config_codec.dumps(collection))
+        elif op == "unplug":
+            self.devices.host.unplug(step.key)
+        elif op == "plug":
+            self.devices.host.plug(step.key)
+        elif op == "await_left":
+            wait_for(lambda: not present(self.session, step.key), 15, f"{step.key} to leave")
+        elif op == "await_joined":
+            wait_for(lambda: present(self.session, step.key), 15, f"{step.key} to join")
+        elif op == "reset":
+            self.restart(step.keep_memory)
+        else:
+            raise AssertionError(f"script step {op} is not supported here")
+
+    def links(self) -> list[Any]:
+        return sorted(self.session.system().links)
