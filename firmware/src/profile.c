@@ -6,6 +6,8 @@
  * and the calls under it made), then written on the bus with the motion interlock holding the
  * devices whose outputs feed a terminal channel before or after the plan.
  *
+ * The duty cycle also repairs dead links left by an earlier cycle (see profile_duty_cycle).
+ *
  * Present: the device is on the bus (an output also needs a node ID).  Dead link: an end not
  * present; it carries no data, does not count as a source nor towards sole access, and is
  * removed (superseded) when its input gets a new source.
@@ -573,6 +575,11 @@ void profile_duty_cycle(void)   /* listing 4.2 */
     fill_from_links();
     for (int c = 0; c < MAX_CHANNELS; c++)
         if ((was_present[c / 8] & (1 << (c % 8))) && !(g_ch[c].used && ch_present(c))) gone = 1;
+    /* A channel that left stays owed a replacement while a dead link still names it, so the
+     * result does not depend on whether a replacement joins before or after the duty cycle
+     * that followed the departure (PDCP Studio's arbitrator gets the same links when the two
+     * fall into one cycle, as in `sim replay thesis-test1 --script hot-swap`). */
+    for (uint16_t i = 0; i < g_nlinks && !gone; i++) gone = !live(&g_links[i]);
     if (gone) find_replacements();
     terminals_or_autoconfigure();
     apply_plan("duty-cycle");
