@@ -13,22 +13,28 @@
 
 #ifdef __AVR__
 #  ifndef MAX_DEVICES
-#    define MAX_DEVICES 12
+#    define MAX_DEVICES 10
 #  endif
 #  ifndef MAX_CHANNELS
-#    define MAX_CHANNELS 48
+#    define MAX_CHANNELS 40
 #  endif
 #  ifndef MAX_LINKS
-#    define MAX_LINKS 32
+#    define MAX_LINKS 24
 #  endif
 #  ifndef DESC_MAX
-#    define DESC_MAX 24
+#    define DESC_MAX 20
 #  endif
 #  ifndef CH_DESC_MAX
 #    define CH_DESC_MAX 12
 #  endif
 #  ifndef VALUE_MAX
-#    define VALUE_MAX 256
+#    define VALUE_MAX 128
+#  endif
+#  ifndef MAX_VISIT
+#    define MAX_VISIT 24
+#  endif
+#  ifndef MAX_CH_PER_DEVICE
+#    define MAX_CH_PER_DEVICE 16
 #  endif
 #  ifndef MEM_CAPACITY
 #    define MEM_CAPACITY 1000u
@@ -59,7 +65,12 @@
 #ifndef MAX_ACTIONS
 #  define MAX_ACTIONS (MAX_LINKS + MAX_LINKS / 2)
 #endif
-#define MAX_CH_PER_DEVICE 32   /* required/desired bitmaps are 32 bits: channels 0..31 */
+#ifndef MAX_CH_PER_DEVICE
+#  define MAX_CH_PER_DEVICE 32 /* required/desired bitmaps are 32 bits: channels 0..31 */
+#endif
+#ifndef MAX_VISIT
+#  define MAX_VISIT 128        /* inputs tried in one intelligently_connect */
+#endif
 #define NODE_ID_MIN 1
 #define NODE_ID_MAX 254        /* node IDs shared by devices and output channels */
 
@@ -146,6 +157,13 @@ uint32_t get32(const uint8_t *p);
 int put_ref(uint8_t *p, const ch_ref_t *r);   /* 7 bytes */
 void get_ref(const uint8_t *p, ch_ref_t *r);
 int fmt_text(char *out, int room, const char *fmt, ...); /* %s %u %x(04) %r (ref) %k (key) */
+#ifdef __AVR__
+/* On the AVR the format strings stay in flash (string literals would be copied to RAM). */
+#  include <avr/pgmspace.h>
+int fmt_text_P(char *out, int room, const char *fmt, ...);
+#  define fmt_text(out, room, fmt, ...) fmt_text_P(out, room, PSTR(fmt), ##__VA_ARGS__)
+#  define FMT_BYTE(p) pgm_read_byte(p)
+#endif
 
 /* -- tables.c (devices, channels, links, node IDs) -------------------------------------- */
 int dev_find(const dev_key_t *k);                 /* slot or -1 */

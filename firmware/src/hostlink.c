@@ -273,11 +273,8 @@ static uint8_t *body;         /* reply + 2 */
 static uint16_t blen;
 static char why[200];
 
-static int refuse(int status, const char *text)
-{
-    if (text != why) fmt_text(why, sizeof why, "%s", text);
-    return status;
-}
+/* A refusal with a fixed reason (a literal, no '%' in it: it is the format). */
+#define refuse(status, text) (fmt_text(why, sizeof why, text), (status))
 
 static int exact(uint16_t n, uint16_t want, const char *name)
 {
@@ -742,24 +739,18 @@ void hl_poll(void)
         }
     }
     if (mailbox_len && !reply_len && !handling && is_table_request(mailbox[0])) {
-        uint8_t msg[MAX_PAYLOAD];
-        uint16_t n = mailbox_len;
-        memcpy(msg, mailbox, n);
+        answer(mailbox, mailbox_len);     /* no CAN traffic: nothing arrives meanwhile */
         mailbox_len = 0;
-        answer(msg, n);
     }
     pump_out();
 }
 
 void hl_service(void)
 {
-    if (!mailbox_len || reply_len) return;
-    static uint8_t msg[MAX_PAYLOAD];
-    uint16_t n = mailbox_len;
-    memcpy(msg, mailbox, n);
+    if (!mailbox_len || reply_len || handling) return;
+    handling = 1;                 /* the mailbox stays taken while the request runs */
+    answer(mailbox, mailbox_len);
     mailbox_len = 0;
-    handling = 1;
-    answer(msg, n);
     handling = 0;
 }
 

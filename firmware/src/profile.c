@@ -137,7 +137,7 @@ static void l_remove(const link_t *l)
 {
     int i = l_find(l);
     if (i < 0) return;
-    for (int j = i; j + 1 < nL; j++) L[j] = L[j + 1];
+    for (int j = i; j + 1 < (int)nL; j++) L[j] = L[j + 1];
     nL--;
     record(OP_REMOVE, l);
 }
@@ -149,7 +149,7 @@ static void rollback(uint16_t mark)
         link_t l = act[nact].link;
         if (act[nact].op == OP_ADD) {
             int i = l_find(&l);
-            if (i >= 0) { for (int j = i; j + 1 < nL; j++) L[j] = L[j + 1]; nL--; }
+            if (i >= 0) { for (int j = i; j + 1 < (int)nL; j++) L[j] = L[j + 1]; nL--; }
         } else if (nL < MAX_LINKS) {
             L[nL++] = l;
         }
@@ -181,7 +181,7 @@ static int connect(const link_t *l)
 }
 
 /* -- listing 4.5 ------------------------------------------------------------------------- */
-static ch_ref_t visited[MAX_CH_PER_DEVICE * 4];
+static ch_ref_t visited[MAX_VISIT];
 static uint16_t nvisited;
 
 static int was_visited(const ch_ref_t *r)

@@ -22,7 +22,9 @@ uint16_t g_nlinks;
 static uint8_t own_kind[NODE_ID_MAX + 1];
 static uint8_t own_dev[NODE_ID_MAX + 1];
 static uint8_t own_idx[NODE_ID_MAX + 1];
-static uint32_t own_since[NODE_ID_MAX + 1];   /* held: when suggested; foreign: last heard */
+static uint16_t own_since[NODE_ID_MAX + 1];   /* held: when suggested; foreign: last heard
+                                                * (in units of 16 ms, compared modulo 2^16) */
+#define T16(now) ((uint16_t)((now) >> 4))
 static uint8_t exhausted_told[(MAX_DEVICES + 7) / 8];
 
 int dev_find(const dev_key_t *k)
@@ -113,9 +115,9 @@ int link_add(const link_t *l)
 
 void link_del(int i)
 {
-    if (i < 0 || i >= g_nlinks) return;
+    if (i < 0 || i >= (int)g_nlinks) return;
     g_nlinks--;
-    for (int j = i; j < g_nlinks; j++) g_links[j] = g_links[j + 1];
+    for (int j = i; j < (int)g_nlinks; j++) g_links[j] = g_links[j + 1];
 }
 
 int link_source_of(const ch_ref_t *in, int live_only)
@@ -196,7 +198,7 @@ void nodes_hear_foreign(uint8_t id, uint32_t now)
 {
     if (id < NODE_ID_MIN || id > NODE_ID_MAX) return;
     if (own_kind[id] == OWN_FREE) own_kind[id] = OWN_FOREIGN;
-    if (own_kind[id] == OWN_FOREIGN) own_since[id] = now;
+    if (own_kind[id] == OWN_FOREIGN) own_since[id] = T16(now);
 }
 
 int nodes_exhausted_reported(int dev)
@@ -231,16 +233,16 @@ int nodes_bind(const dev_key_t *k, uint8_t asked, uint32_t now, uint8_t *grant)
         return 1;
     }
     own_kind[g] = OWN_HELD;
-    own_since[g] = now;
+    own_since[g] = T16(now);
     return 2;
 }
 
 void nodes_expire(uint32_t now)
 {
     for (int id = NODE_ID_MIN; id <= NODE_ID_MAX; id++) {
-        if (own_kind[id] == OWN_FOREIGN && now - own_since[id] > FOREIGN_HOLD_MS)
+        if (own_kind[id] == OWN_FOREIGN && (uint16_t)(T16(now) - own_since[id]) > FOREIGN_HOLD_MS / 16)
             own_kind[id] = OWN_FREE;
-        else if (own_kind[id] == OWN_HELD && now - own_since[id] > BIND_HOLD_MS)
+        else if (own_kind[id] == OWN_HELD && (uint16_t)(T16(now) - own_since[id]) > BIND_HOLD_MS / 16)
             own_kind[id] = OWN_FREE;
     }
 }

@@ -15,8 +15,13 @@
 #include "arb.h"
 #include "port.h"
 
-#define MAX_TXN_LINKS 64
-#define MAX_TXN_PARAMS 16
+#ifdef __AVR__
+#  define MAX_TXN_LINKS 16
+#  define MAX_TXN_PARAMS 4
+#else
+#  define MAX_TXN_LINKS 64
+#  define MAX_TXN_PARAMS 16
+#endif
 
 static link_t before[MAX_LINKS], after[MAX_LINKS];
 static uint16_t nbefore, nafter;

@@ -93,29 +93,37 @@ static int emit_u(char *out, int room, int n, uint32_t v, int width, int base)
 
 /* %s text, %u unsigned, %x four hex digits, %k device key (a dev_key_t *), %r channel
  * reference (a ch_ref_t *), as PDCP Studio prints them: 2641/257/101 and 2641/257/101.1. */
+#ifdef __AVR__
+#  undef fmt_text
+#  define fmt_text fmt_text_P
+#else
+#  define FMT_BYTE(p) (*(p))
+#endif
 int fmt_text(char *out, int room, const char *fmt, ...)
 {
     va_list ap;
     int n = 0;
     va_start(ap, fmt);
-    for (; *fmt; fmt++) {
-        if (*fmt != '%') { n = emit(out, room, n, *fmt); continue; }
+    for (; FMT_BYTE(fmt); fmt++) {
+        char f = (char)FMT_BYTE(fmt);
+        if (f != '%') { n = emit(out, room, n, f); continue; }
         fmt++;
-        if (*fmt == 's') {
+        f = (char)FMT_BYTE(fmt);
+        if (f == 's') {
             const char *s = va_arg(ap, const char *);
             while (*s) n = emit(out, room, n, *s++);
-        } else if (*fmt == 'u') {
+        } else if (f == 'u') {
             n = emit_u(out, room, n, va_arg(ap, unsigned), 0, 10);
-        } else if (*fmt == 'x') {
+        } else if (f == 'x') {
             n = emit_u(out, room, n, va_arg(ap, unsigned), 4, 16);
-        } else if (*fmt == 'k' || *fmt == 'r') {
+        } else if (f == 'k' || f == 'r') {
             const ch_ref_t *r = va_arg(ap, const ch_ref_t *);
             n = emit_u(out, room, n, r->vid, 0, 10); n = emit(out, room, n, '/');
             n = emit_u(out, room, n, r->pid, 0, 10); n = emit(out, room, n, '/');
             n = emit_u(out, room, n, r->serial, 0, 10);
-            if (*fmt == 'r') { n = emit(out, room, n, '.'); n = emit_u(out, room, n, r->index, 0, 10); }
+            if (f == 'r') { n = emit(out, room, n, '.'); n = emit_u(out, room, n, r->index, 0, 10); }
         } else {
-            n = emit(out, room, n, *fmt);
+            n = emit(out, room, n, f);
         }
     }
     va_end(ap);
