@@ -164,6 +164,9 @@ static void reset_foreign(uint8_t node, uint32_t now)
 static int on_frame(uint16_t id, const uint8_t *d, uint8_t len, uint32_t now)
 {
     uint8_t mode = (uint8_t)(id >> 8 & 1), node = (uint8_t)id, prio = (uint8_t)(id >> 9);
+#if MONITOR
+    mon_frame(id, d, len);
+#endif
     if (mode) {
         if (node == 0 && len == 1 && d[0] == 0x0A) other_beacon(now);
         return 0;   /* any other mode-1 frame: a stray frame, never a reason to leave */

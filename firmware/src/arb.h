@@ -266,6 +266,19 @@ void hl_event_device(uint8_t code, int dev);
 void hl_event_link(uint8_t code, const link_t *l);
 void hl_event_error(uint8_t kind, const char *text);
 
+/* -- monitor.c: FRAMES and CHANNEL_COUNTS (MONITOR 0 leaves it out) -------------------- */
+#ifndef MONITOR
+#  ifdef __AVR__
+#    define MONITOR 0
+#  else
+#    define MONITOR 1
+#  endif
+#endif
+uint16_t mon_configure(uint8_t flags, uint8_t period);
+void mon_stop(void);
+void mon_frame(uint16_t id, const uint8_t *data, uint8_t len);
+int mon_take(uint8_t *msg);
+
 /* -- txn.c: TRANSACT_RUN ---------------------------------------------------------------- */
 int txn_run(uint32_t len, uint32_t *result_len, uint16_t *result_crc, char *why, int room);
 

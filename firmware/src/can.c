@@ -23,6 +23,9 @@ static struct {
 
 void can_send(uint16_t id, const uint8_t *data, uint8_t len)
 {
+#if MONITOR
+    mon_frame(id, data, len);
+#endif
     port_can_write(id, data, len);
 }
 

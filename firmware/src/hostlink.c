@@ -12,7 +12,8 @@
  * Requests served: HELLO, STATUS, LIST_DEVICES, GET_DEVICE, GET_CHANNELS, LIST_LINKS,
  * GET_PARAM, SET_PARAM, ADD_LINK, REMOVE_LINK, SUSPEND, RELEASE, RESET_DEVICE, CONFIG_INFO,
  * CONFIG_READ, CONFIG_WRITE_BEGIN/_CHUNK/_COMMIT, TRANSACT_BEGIN/_CHUNK/_RUN, RESULT_READ,
- * GET_POLICY.  MONITOR answers UNSUPPORTED (capability bit 0 is not declared).  Version-1
+ * GET_POLICY, MONITOR (when built with the monitor, src/monitor.c; else UNSUPPORTED and
+ * capability bit 0 not declared).  Version-1
  * frames are not recognised (docs/host-link.md §4 allows leaving that out).
  */
 #include <string.h>
@@ -34,7 +35,8 @@
 #  define EVENT_QUEUE 16
 #  define EVENT_MAX 64
 #endif
-#define CAPABILITIES 0x000E           /* transactions, policy, parameters longer than a frame */
+/* transactions, policy, parameters longer than a frame; and the monitor when built */
+#define CAPABILITIES (0x000E | (MONITOR ? 1 : 0))
 
 enum { ST_OK = 0, ST_UNKNOWN_REQUEST, ST_BAD_LENGTH, ST_NOT_GREETED, ST_VERSION,
        ST_UNKNOWN_DEVICE, ST_DEVICE_ABSENT, ST_DEVICE_REFUSED, ST_DEVICE_TIMEOUT, ST_MANAGED,
@@ -143,6 +145,9 @@ static void send_data(const uint8_t *msg, uint16_t len)
 
 static void forget_host(void)
 {
+#if MONITOR
+    mon_stop();
+#endif
     greeted = 0;
     ev_count = 0; lost_pending = 0;
     reply_len = 0;
@@ -166,6 +171,13 @@ static void pump_out(void)
         lost_pending = 0;
         send_data(m, 3);
     }
+#if MONITOR
+    else if (greeted && !mailbox_len) {
+        static uint8_t m[MAX_PAYLOAD];
+        int n = mon_take(m);
+        if (n) send_data(m, (uint16_t)n);
+    }
+#endif
 }
 
 static void on_frame(uint8_t *raw, uint16_t n)
@@ -459,6 +471,9 @@ static int handle(uint8_t code, const uint8_t *b, uint16_t n)
             return ST_VERSION;
         }
         greeted = 1;
+#if MONITOR
+        mon_stop();                       /* a new session starts without the monitor */
+#endif
         static const char name[] = "pdcp-fw 0.1 reference arbitrator";
         body[0] = 2; put16(body + 1, CAPABILITIES); body[3] = MAX_PAYLOAD;
         memcpy(body + 4, name, sizeof name - 1);
@@ -690,7 +705,14 @@ static int handle(uint8_t code, const uint8_t *b, uint16_t n)
         blen = 1;
         return 0;
     case 0x17:     /* MONITOR */
+#if MONITOR
+        if ((st = exact(n, 2, "MONITOR"))) return st;
+        put16(body, mon_configure(b[0], b[1]));
+        blen = 2;
+        return 0;
+#else
         return refuse(ST_UNSUPPORTED, "this arbitrator has no monitor (capability bit 0)");
+#endif
     default:
         fmt_text(why, sizeof why, "unknown request 0x%x", code);
         /* "0x003E" → "0x3E", as PDCP Studio words it */
@@ -699,7 +721,7 @@ static int handle(uint8_t code, const uint8_t *b, uint16_t n)
     }
 }
 
-static int is_table_request(uint8_t code)
+static int is_table_request(uint8_t code)   /* answered without CAN traffic */
 {
     return code == 0x01 || code == 0x02 || code == 0x03 || code == 0x04 || code == 0x05 ||
            code == 0x06 || code == 0x0E || code == 0x0F || code == 0x15 || code == 0x18 ||

@@ -70,15 +70,24 @@ def test_scan_reads_the_firmware_and_its_autoconfigured_links(thesis2, capsys):
 
 
 def test_the_firmware_passes_the_host_link_conformance_suite(thesis2, capsys):
+    with open_session(thesis2.serial_url) as session:  # no joins pushed during the cases
+        settle(session)
     capsys.readouterr()
     status = main(["hostlink-test", "--bus", thesis2.serial_url, "--json"])
     doc = json.loads(capsys.readouterr().out)
-    # MONITOR is not declared in the firmware's HELLO (capability bit 0): the tester skips it,
-    # or (a tester older than issue 24's) reports it failed.
-    failed = [c for c in doc["failed"] if c != "monitor"]
-    assert failed == [], doc.get("why")
-    assert len(doc["passed"]) >= 34
-    assert status == (0 if not doc["failed"] else 1)
+    assert doc["failed"] == [], doc.get("why")
+    assert len(doc["passed"]) >= 35
+    assert status == 0
+
+
+def test_monitor_shows_protocol_frames_and_counts_channel_data(thesis2, capsys):
+    with open_session(thesis2.serial_url) as session:
+        settle(session)
+    capsys.readouterr()
+    assert main(["monitor", "--bus", thesis2.serial_url, "--seconds", "3"]) == 0
+    out, err = capsys.readouterr()
+    assert "channel data counted by the arbitrator over" in out, out[-2000:]
+    assert "channel data frame(s) counted by the arbitrator" in err, err
 
 
 def test_config_write_and_read_back_through_the_firmware(thesis2, tmp_path):
