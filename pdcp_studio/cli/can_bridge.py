@@ -1,4 +1,4 @@
-"""``can-bridge --serial PORT --bus can:…``: carry CAN frames between an SLCAN serial line and a bus.
+"""``can-bridge --serial PORT --bus can:…``: CAN frames between an SLCAN line and a bus.
 
 The reference arbitrator firmware (``firmware/``) runs on QEMU's lm3s6965evb with its CAN
 side on a UART speaking SLCAN text (``t1230A..\\r``); this command joins that UART (a
@@ -39,7 +39,7 @@ def _pump(source: object, sink: object, stop: threading.Event, counter: list[int
     while not stop.is_set():
         try:
             msg = source.recv(0.1)  # type: ignore[attr-defined]
-        except Exception:  # noqa: BLE001 — a closed port ends the bridge
+        except Exception:  # a closed port ends the bridge
             stop.set()
             return
         if msg is None or msg.is_error_frame or msg.is_remote_frame or msg.is_extended_id:
@@ -52,7 +52,7 @@ def _pump(source: object, sink: object, stop: threading.Event, counter: list[int
                 sent.sent(key, time.monotonic())
             sink.send(msg)  # type: ignore[attr-defined]
             counter[0] += 1
-        except Exception:  # noqa: BLE001 — a full or closed bus drops the frame, as CAN would
+        except Exception:  # a full or closed bus drops the frame, as CAN would
             continue
 
 
@@ -71,7 +71,7 @@ def run(args: argparse.Namespace) -> int:
     try:
         line = can.Bus(interface="slcan", channel=args.serial, sleep_after_open=0,
                        bitrate=1_000_000)
-    except Exception as err:  # noqa: BLE001 — python-can raises several kinds here
+    except Exception as err:  # python-can raises several kinds here
         print(f"pdcp-studio: cannot open {args.serial} as SLCAN: {err}", file=sys.stderr)
         return 1
     bus = open_spec(spec)
@@ -100,7 +100,7 @@ def run(args: argparse.Namespace) -> int:
         for end in (line, bus):
             try:
                 end.shutdown()
-            except Exception:  # noqa: BLE001, S110 — closing what may already be gone
+            except Exception:  # closing what may already be gone
                 pass
     print(f"bridged {counts[0][0]} frame(s) to the bus and {counts[1][0]} to {args.serial}",
           file=sys.stderr)
