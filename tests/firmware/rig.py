@@ -82,11 +82,22 @@ class Devices:
         self.host.close()
 
 
-def open_session(serial_url: str) -> Any:
+def open_session(serial_url: str, attempts: int = 3) -> Any:
+    """A host-link session; greeted again when the first HELLO goes unacknowledged: QEMU's
+    pty backend notices a newly opened pseudo-terminal only at its next 1 s poll, and on a
+    loaded machine the PC's 8 sends over 2 s can all fall before it."""
     from pdcp_studio.bus.hostlink.client import open_hostlink_session
     from pdcp_studio.bus.session.urls import check_bus_url
+    from pdcp_studio.errors import TransportError
 
-    return open_hostlink_session(check_bus_url(serial_url), monitor=False)
+    for attempt in range(attempts):
+        try:
+            return open_hostlink_session(check_bus_url(serial_url), monitor=False)
+        except TransportError:
+            if attempt == attempts - 1:
+                raise
+            time.sleep(0.5)
+    raise AssertionError("unreachable")
 
 
 def wait_for(predicate: Any, timeout: float, what: str) -> None:
@@ -118,10 +129,20 @@ class Run:
         self.bus_url = bus_url
         self.memory = memory
         self.devices = Devices(name, bus_url)
-        self.firmware = Firmware(bus_url, memory)
-        self.session = open_session(self.firmware.serial_url)
+        try:
+            self.firmware = Firmware(bus_url, memory)
+        except BaseException:
+            self.devices.close()
+            raise
+        try:
+            self.session = open_session(self.firmware.serial_url)
+        except BaseException:
+            self.firmware.stop()
+            self.devices.close()
+            raise
 
     def restart(self, keep_memory: bool) -> None:
+        """A power cycle of the arbitrator (``keep_memory`` False: a new, empty memory)."""
         self.session.close()
         self.firmware.stop()
         if not keep_memory and self.memory.exists():
@@ -131,7 +152,8 @@ class Run:
 
     def close(self) -> None:
         try:
-            self.session.close()
+            if getattr(self, "session", None) is not None:
+                self.session.close()
         finally:
             try:
                 self.firmware.stop()
