@@ -2,7 +2,8 @@
  *
  * UART0: the host link (a pty on the host).  UART1: CAN frames as SLCAN text, bridged to a
  * python-can bus by `pdcp-studio can-bridge`.  SysTick: the millisecond tick (QEMU runs the
- * board at 12 MHz out of reset: reload 12000).  Non-volatile memory: a file on the host through
+ * board at 12 MHz out of reset: reload 12000) as a fallback; the host's clock through
+ * semihosting SYS_ELAPSED first (see port_millis).  Non-volatile memory: a file on the host through
  * ARM semihosting (QEMU -semihosting-config enable=on,target=native,arg=pdcp-fw,arg=FILE),
  * laid out as PDCP Studio's memory file (slot A at 0, slot B at 24 + 1 MiB, as
  * bus/arbitrator/memory.py) so `--memory FILE` images move between the two; the transaction
@@ -82,7 +83,29 @@ void port_init(void)
     memset(ram_nvm, 0xFF, sizeof ram_nvm);
 }
 
-uint32_t port_millis(void) { return ticks; }
+/* Milliseconds from the host's clock (semihosting SYS_ELAPSED, microsecond ticks in QEMU):
+ * QEMU's SysTick drops periods when the host is loaded, so a guest clock counted from it runs
+ * slow and the link's 250 ms timeouts stretch. SysTick is the fallback. */
+static int elapsed_ok = 1;
+static uint32_t tick_hz;
+
+uint32_t port_millis(void)
+{
+    if (elapsed_ok) {
+        uint32_t t[2];
+        if (!tick_hz) {
+            int hz = semi(0x31, 0);               /* SYS_TICKFREQ */
+            if (hz <= 0) { elapsed_ok = 0; return ticks; }
+            tick_hz = (uint32_t)hz;
+        }
+        if (semi(0x30, t) == 0) {                 /* SYS_ELAPSED: 64-bit tick count */
+            uint64_t n = ((uint64_t)t[1] << 32) | t[0];
+            return (uint32_t)(n / (tick_hz / 1000u));
+        }
+        elapsed_ok = 0;
+    }
+    return ticks;
+}
 
 int port_host_read(uint8_t *buf, int max)
 {
