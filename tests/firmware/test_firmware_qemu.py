@@ -93,6 +93,7 @@ def test_monitor_shows_protocol_frames_and_counts_channel_data(thesis2, capsys):
 def test_config_write_and_read_back_through_the_firmware(thesis2, tmp_path):
     import os
 
+    from pdcp_studio.bus.arbitrator.memory import MemoryStore
     from pdcp_studio.storage import config_codec
 
     good = tmp_path / "fig410.pdcfg"
@@ -103,6 +104,37 @@ def test_config_write_and_read_back_through_the_firmware(thesis2, tmp_path):
     out = tmp_path / "back.pdcfg"
     assert main(["config", "read", "--bus", thesis2.serial_url, "-o", str(out)]) == 0
     assert out.read_bytes() == good.read_bytes()
+    # the firmware's memory image is PDCP Studio's: its own arbitrator reads it
+    assert MemoryStore(tmp_path / "memory.bin").read_bytes() == good.read_bytes()
+
+
+def test_a_memory_written_by_pdcp_studio_starts_the_firmware(bus_url, tmp_path, capsys):
+    from pdcp_studio.bus.arbitrator.memory import MemoryStore
+    from pdcp_studio.engine import configuration_from_system
+    from pdcp_studio.model.configuration import ConfigCollection
+    from pdcp_studio.storage import config_codec
+    from tests.engine.engine_builders import L
+
+    # thesis test 3's rig with a stored configuration that is not what autoconfigure gives
+    devices = Devices("thesis-test3", bus_url)
+    system = devices.system.copy()
+    system.clear_links()
+    system.add_link(L(4, 1, 5, 2))
+    store = MemoryStore(tmp_path / "memory.bin")
+    store.write(ConfigCollection([configuration_from_system(system)]))
+    store.write_policy({"autoconfigure": False})
+    firmware = Firmware(bus_url, tmp_path / "memory.bin")
+    try:
+        with open_session(firmware.serial_url) as session:
+            settle(session)
+            assert session.read_policy().autoconfigure is False
+            assert session.read_configuration_bytes() == store.read_bytes()
+            links = sorted(session.system().links)
+    finally:
+        firmware.stop()
+        devices.close()
+    assert links == [L(4, 1, 5, 2)]
+    assert config_codec.loads(store.read_bytes()).configurations
 
 
 @pytest.mark.parametrize("name", ["thesis-test1", "thesis-test2", "thesis-test3",
