@@ -3,8 +3,8 @@
  * Frames: COBS( kind | seq | len | payload | CRC-16 BE ) 0x00.  Stop-and-wait per direction:
  * one DATA frame in flight (resent on NAK or after ACK_TIMEOUT_MS, given up after
  * MAX_ATTEMPTS sends, and with it the PC: it must greet again), ACK/NAK written at once.
- * Requests arrive in a one-message mailbox; those answered from the tables (no CAN traffic)
- * are answered inside pump(), the others by hl_service() from the main loop.  Events wait in
+ * Requests arrive in a one-message mailbox; those answered from the tables and the memory (no
+ * CAN traffic) are answered inside pump(), the others by hl_service() from the main loop.  Events wait in
  * a queue of EVENT_QUEUE messages of at most EVENT_MAX bytes each (texts are cut to fit, on
  * a byte boundary); one that does not fit is counted and EVENTS_LOST is sent when there is
  * room again.
@@ -193,7 +193,9 @@ static void on_frame(uint8_t *raw, uint16_t n)
         if (seq == rx_expected) {
             control(2, seq);
             rx_expected++;
-            if (raw[2] && !mailbox_len) {
+            /* A request waiting while the PC sent another: the PC gave the first up (its reply
+             * timed out), so the new one takes its place — unless the first is running. */
+            if (raw[2] && (!mailbox_len || !handling)) {
                 memcpy(mailbox, raw + 3, raw[2]);
                 mailbox_len = raw[2];
             }
@@ -721,11 +723,16 @@ static int handle(uint8_t code, const uint8_t *b, uint16_t n)
     }
 }
 
-static int is_table_request(uint8_t code)   /* answered without CAN traffic */
+/* Answered without CAN traffic (from the tables and the memory), so inside pump(): they do not
+ * wait for a set-up or a plan the main loop is running. */
+static int is_table_request(uint8_t code)
 {
-    return code == 0x01 || code == 0x02 || code == 0x03 || code == 0x04 || code == 0x05 ||
-           code == 0x06 || code == 0x0E || code == 0x0F || code == 0x15 || code == 0x18 ||
-           code == 0x17 || code > 0x18;
+    switch (code) {
+    case 0x07: case 0x08: case 0x09: case 0x0A: case 0x0B: case 0x0C: case 0x0D: case 0x16:
+        return 0;
+    default:
+        return 1;
+    }
 }
 
 static void answer(const uint8_t *msg, uint16_t n)
