@@ -633,7 +633,9 @@ void arb_step(void)
         device_t *d = &g_dev[i];
         if (!d->used || !d->node_id) continue;
         uint32_t interval = d->set_up && d->beacon_ms ? d->beacon_ms : UNREAD_BEACON_MS;
-        if (now - d->last_seen > interval * MISSED_BEACONS_X2 / 2) {
+        uint32_t silence = interval * MISSED_BEACONS_X2 / 2;
+        if (silence < PRESENCE_MIN_MS) silence = PRESENCE_MIN_MS;
+        if (now - d->last_seen > silence) {
             leave(i);
             return;
         }
