@@ -108,12 +108,22 @@ def wait_for(predicate: Any, timeout: float, what: str) -> None:
         time.sleep(0.2)
 
 
-def settle(session: Any, timeout: float = 30.0) -> None:
+def settle(session: Any, timeout: float = 30.0, devices: Devices | None = None) -> None:
     """Start-up done and nothing in progress (twice in a row, a second apart: a device that
-    was just plugged needs a moment to bind)."""
-    wait_for(lambda: session.wait_settled(1.0), timeout, "the firmware to settle")
+    was just plugged needs a moment to bind), with every plugged device of ``devices`` on
+    the bus."""
+    def done() -> bool:
+        if not session.wait_settled(1.0):
+            return False
+        if devices is None:
+            return True
+        system = session.system()
+        return all((d := system.device(k)) is not None and d.present
+                   for k in devices.host.keys() if devices.host.is_plugged(k))
+
+    wait_for(done, timeout, "the firmware to settle")
     time.sleep(1.0)
-    wait_for(lambda: session.wait_settled(1.0), timeout, "the firmware to settle")
+    wait_for(done, timeout, "the firmware to settle")
 
 
 def present(session: Any, key: Any) -> bool:
@@ -167,7 +177,7 @@ class Run:
 
         op = step.op
         if op == "settle":
-            settle(self.session)
+            settle(self.session, devices=self.devices)
         elif op == "save":
             collection = ConfigCollection([configuration_from_system(self.session.system())])
             self.session.write_configuration_bytes(config_codec.dumps(collection))

@@ -29,6 +29,7 @@ def bus_url(multicast_url):
 def thesis2(bus_url, tmp_path):
     devices = Devices("thesis-test2", bus_url)
     firmware = Firmware(bus_url, tmp_path / "memory.bin")
+    firmware.devices = devices  # type: ignore[attr-defined]
     try:
         yield firmware
     finally:
@@ -52,7 +53,7 @@ def _json_links(links) -> list[dict]:
 
 def test_scan_reads_the_firmware_and_its_autoconfigured_links(thesis2, capsys):
     with open_session(thesis2.serial_url) as session:
-        settle(session)
+        settle(session, devices=thesis2.devices)
     capsys.readouterr()
     assert main(["scan", "--bus", thesis2.serial_url, "--json", "--settle", "10"]) == 0
     doc = json.loads(capsys.readouterr().out)
@@ -71,7 +72,7 @@ def test_scan_reads_the_firmware_and_its_autoconfigured_links(thesis2, capsys):
 
 def test_the_firmware_passes_the_host_link_conformance_suite(thesis2, capsys):
     with open_session(thesis2.serial_url) as session:  # no joins pushed during the cases
-        settle(session)
+        settle(session, devices=thesis2.devices)
     capsys.readouterr()
     status = main(["hostlink-test", "--bus", thesis2.serial_url, "--json"])
     doc = json.loads(capsys.readouterr().out)
@@ -82,7 +83,7 @@ def test_the_firmware_passes_the_host_link_conformance_suite(thesis2, capsys):
 
 def test_monitor_shows_protocol_frames_and_counts_channel_data(thesis2, capsys):
     with open_session(thesis2.serial_url) as session:
-        settle(session)
+        settle(session, devices=thesis2.devices)
     capsys.readouterr()
     assert main(["monitor", "--bus", thesis2.serial_url, "--seconds", "3"]) == 0
     out, err = capsys.readouterr()
@@ -126,7 +127,7 @@ def test_a_memory_written_by_pdcp_studio_starts_the_firmware(bus_url, tmp_path, 
     firmware = Firmware(bus_url, tmp_path / "memory.bin")
     try:
         with open_session(firmware.serial_url) as session:
-            settle(session)
+            settle(session, devices=devices)
             assert session.read_policy().autoconfigure is False
             assert session.read_configuration_bytes() == store.read_bytes()
             links = sorted(session.system().links)
