@@ -9,7 +9,7 @@
 # the bridge. FILE is the arbitrator's non-volatile memory (PDCP Studio's memory-file layout,
 # through semihosting; created if missing); without it a temporary file is used and removed.
 # PDCP_STUDIO names the command that runs PDCP Studio (default: pdcp-studio if on PATH, else
-# "python3 -m pdcp_studio").
+# "python3 -m pdcp_studio"); PDCP_FW_LOG a file for QEMU's output and the firmware's log lines.
 set -u
 here=$(cd "$(dirname "$0")" && pwd)
 bus=""
@@ -18,7 +18,7 @@ while [ $# -gt 0 ]; do
     case "$1" in
         --bus) bus="${2:-}"; shift 2 ;;
         --memory) memory="${2:-}"; shift 2 ;;
-        -h|--help) sed -n '2,13p' "$0" | sed 's/^# \{0,1\}//'; exit 0 ;;
+        -h|--help) sed -n '2,14p' "$0" | sed 's/^# \{0,1\}//'; exit 0 ;;
         *) echo "run-qemu.sh: unknown argument $1 (usage: run-qemu.sh --bus URL [--memory FILE])" >&2; exit 2 ;;
     esac
 done
@@ -57,20 +57,20 @@ trap cleanup EXIT
 qemu-system-arm -M lm3s6965evb -display none -monitor none \
     -chardev pty,id=host -chardev pty,id=can -serial chardev:host -serial chardev:can \
     -semihosting-config enable=on,target=native,arg=pdcp-fw,arg="$memory" \
-    -kernel "$here/build/arm/pdcp-fw.elf" >"$work/qemu.log" 2>&1 &
+    -kernel "$here/build/arm/pdcp-fw.elf" >"${PDCP_FW_LOG:-$work/qemu.log}" 2>&1 &
 qemu_pid=$!
 
 host=""; can=""
 tries=0
 while [ $tries -lt 100 ]; do
-    host=$(sed -n 's/.*redirected to \(\/dev\/[^ ]*\) (label host).*/\1/p' "$work/qemu.log")
-    can=$(sed -n 's/.*redirected to \(\/dev\/[^ ]*\) (label can).*/\1/p' "$work/qemu.log")
+    host=$(sed -n 's/.*redirected to \(\/dev\/[^ ]*\) (label host).*/\1/p' "${PDCP_FW_LOG:-$work/qemu.log}")
+    can=$(sed -n 's/.*redirected to \(\/dev\/[^ ]*\) (label can).*/\1/p' "${PDCP_FW_LOG:-$work/qemu.log}")
     [ -n "$host" ] && [ -n "$can" ] && break
     kill -0 "$qemu_pid" 2>/dev/null || break
     sleep 0.05; tries=$((tries + 1))
 done
 if [ -z "$host" ] || [ -z "$can" ]; then
-    echo "run-qemu.sh: QEMU did not start:" >&2; cat "$work/qemu.log" >&2; exit 1
+    echo "run-qemu.sh: QEMU did not start:" >&2; cat "${PDCP_FW_LOG:-$work/qemu.log}" >&2; exit 1
 fi
 
 $PDCP_STUDIO can-bridge --serial "$can" --bus "$bus" 2>"$work/bridge.log" &
@@ -98,7 +98,7 @@ sys.exit(0 if ok else 1)
 EOF
 then
     echo "run-qemu.sh: the firmware's host link did not answer on $host" >&2
-    cat "$work/qemu.log" "$work/bridge.log" >&2
+    cat "${PDCP_FW_LOG:-$work/qemu.log}" "$work/bridge.log" >&2
     exit 1
 fi
 echo "host link on $host"

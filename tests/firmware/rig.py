@@ -37,8 +37,14 @@ def missing_tools() -> str | None:
 class Firmware:
     """The firmware on QEMU; ``serial_url`` reaches its host link."""
 
+    starts = 0
+
     def __init__(self, bus_url: str, memory: Path) -> None:
+        Firmware.starts += 1
+        #: QEMU's output and the firmware's log lines (kept in the test's folder)
+        self.log = memory.with_name(f"firmware-{Firmware.starts}.log")
         env = dict(os.environ, PDCP_STUDIO=f"{sys.executable} -m pdcp_studio",
+                   PDCP_FW_LOG=str(self.log),
                    PYTHONPATH=str(ROOT) + os.pathsep + os.environ.get("PYTHONPATH", ""))
         self.proc = subprocess.Popen([str(RUN_QEMU), "--bus", bus_url, "--memory", str(memory)],
                                      stdout=subprocess.PIPE, stderr=subprocess.PIPE, text=True,
