@@ -5,7 +5,8 @@
  * request waits; arb_step() is the main loop's work (set-ups, departures, start-up and the
  * duty cycle), which issues requests.
  *
- * - Listening: for LISTEN_MS (two arbitrator beacon intervals) nothing is written.  An
+ * - Listening: for LISTEN_MS (two arbitrator beacon intervals) from when the CAN side is on
+ *   the bus (port_can_ready) nothing is written.  An
  *   arbitrator is heard by its beacons: two mode-1 Device Beacons (node 0) within three
  *   intervals (reference §5).  Heard: no writes at all (no bind answers, no beacons), the host
  *   link serves read-only; the bus is taken back (a fresh start) RECLAIM_MS after the other's
@@ -38,10 +39,11 @@ static void note_change(int duty)
     if (duty) duty_needed = 1;
 }
 
+static uint8_t can_up;
+
 void arb_init(void)
 {
     started = port_millis();
-    listen_until = started + LISTEN_MS;
     last_bind = last_change = started;
     g_may_write = 0;
 }
@@ -76,6 +78,9 @@ void arb_reset_all(void)
 
 static void other_beacon(uint32_t now)
 {
+#ifdef PDCP_DEBUG
+    { char t[40]; fmt_text(t, sizeof t, "beacon heard at %u", (unsigned)now); port_log(t); }
+#endif
     uint32_t first = other_beacons[1];
     other_beacons[0] = other_beacons[1];
     other_beacons[1] = now | 1;
@@ -94,8 +99,14 @@ static void other_beacon(uint32_t now)
 
 static void claim_tick(uint32_t now)
 {
+    if (!can_up) {              /* listening starts when the CAN side is on the bus */
+        if (!port_can_ready()) return;
+        can_up = 1;
+        listen_until = now + LISTEN_MS;
+        started = last_bind = last_change = now;
+    }
     if (g_other_heard) {
-        if (now - other_beacons[1] > RECLAIM_MS) {
+        if ((int32_t)(now - other_beacons[1]) > (int32_t)RECLAIM_MS) {
             g_other_heard = 0;
             other_beacons[0] = other_beacons[1] = 0;
             port_log("the other arbitrator's beacons are gone: taking the bus back");
@@ -634,7 +645,9 @@ void arb_step(void)
         if (!d->used || !d->node_id) continue;
         uint32_t interval = d->set_up && d->beacon_ms ? d->beacon_ms : UNREAD_BEACON_MS;
         uint32_t silence = interval * MISSED_BEACONS_X2 / 2;
+#if PRESENCE_MIN_MS
         if (silence < PRESENCE_MIN_MS) silence = PRESENCE_MIN_MS;
+#endif
         if (now - d->last_seen > silence) {
             leave(i);
             return;

@@ -24,6 +24,10 @@ void port_host_write(const uint8_t *buf, int len);
  * error frames are not delivered (a port drops them). */
 int port_can_read(uint16_t *id, uint8_t *data, uint8_t *len);
 void port_can_write(uint16_t id, const uint8_t *data, uint8_t len);
+/* 1 once the CAN side is on the bus (a CAN controller: at once; the SLCAN ports: when the
+ * line is opened with "O", i.e. when the bridge has joined the bus).  Listening for another
+ * arbitrator starts then. */
+int port_can_ready(void);
 
 /* Non-volatile memory: NVM_AREAS areas of up to nvm_capacity(area) bytes.  Areas 0 and 1 are
  * the stored configuration's two slots (header + payload, memory.py's layout), area 2 holds a

@@ -68,13 +68,16 @@ def run(args: argparse.Namespace) -> int:
         raise BadInput(f"--bus {args.bus}: can-bridge joins a can: bus (can:INTERFACE:CHANNEL)")
     if args.seconds is not None and args.seconds <= 0:
         raise BadInput(f"--seconds {args.seconds}: must be positive")
+    # The bus first: the firmware starts listening for another arbitrator when its SLCAN line
+    # is opened ("O"), so the bus must be heard by then.
+    bus = open_spec(spec)
     try:
         line = can.Bus(interface="slcan", channel=args.serial, sleep_after_open=0,
                        bitrate=1_000_000)
     except Exception as err:  # python-can raises several kinds here
+        bus.shutdown()
         print(f"pdcp-studio: cannot open {args.serial} as SLCAN: {err}", file=sys.stderr)
         return 1
-    bus = open_spec(spec)
     stop = threading.Event()
     counts = ([0], [0])
     own = EchoFilter() if type(bus).__name__ in _ECHOING else None

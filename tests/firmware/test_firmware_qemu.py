@@ -10,11 +10,20 @@ libnewlib-arm-none-eabi and qemu-system-arm).
 from __future__ import annotations
 
 import json
+import time
 
 import pytest
 
 from pdcp_studio.cli.main import main
-from tests.firmware.rig import Devices, Firmware, Run, missing_tools, open_session, settle
+from tests.firmware.rig import (
+    Devices,
+    Firmware,
+    Run,
+    missing_tools,
+    open_session,
+    settle,
+    wait_for,
+)
 
 pytestmark = [pytest.mark.slow,
               pytest.mark.skipif(missing_tools() is not None, reason=missing_tools() or "")]
@@ -30,6 +39,7 @@ def thesis2(bus_url, tmp_path):
     devices = Devices("thesis-test2", bus_url)
     firmware = Firmware(bus_url, tmp_path / "memory.bin")
     firmware.devices = devices  # type: ignore[attr-defined]
+    firmware.bus_url = bus_url  # type: ignore[attr-defined]
     try:
         yield firmware
     finally:
@@ -191,3 +201,51 @@ def test_the_transradial_rig_survives_a_hot_swap(bus_url, tmp_path, capsys):
     assert all(d.present for d in system.devices.values() if d.key in {
         lk.output.device for lk in after} | {lk.input.device for lk in after})
     assert _json_links(after) == _engine_links("transradial", "unplug-replug", capsys)
+
+
+def test_pdcp_studios_arbitrator_yields_to_the_firmware(thesis2):
+    """One arbitrator per bus (reference §5): the firmware's beacons keep a second one off."""
+    import subprocess
+    import sys
+
+    with open_session(thesis2.serial_url) as session:
+        settle(session, devices=thesis2.devices)
+        links = sorted(session.system().links)
+        other = subprocess.run([sys.executable, "-m", "pdcp_studio", "arbitrator", "--bus",
+                                thesis2.bus_url, "--seconds", "20"],
+                               capture_output=True, text=True, timeout=60)
+        assert other.returncode == 1, other.stdout + other.stderr
+        assert "arbitrator" in other.stderr
+        assert not session.status()["other_arbitrator"]
+        assert sorted(session.system().links) == links
+
+
+def test_the_firmware_writes_nothing_on_a_bus_another_arbitrator_holds(bus_url, tmp_path):
+    import subprocess
+    import sys
+
+    devices = Devices("thesis-test2", bus_url)
+    other = subprocess.Popen([sys.executable, "-m", "pdcp_studio", "arbitrator", "--bus", bus_url,
+                              "--seconds", "60"], stdout=subprocess.PIPE, text=True)
+    firmware = None
+    try:
+        assert other.stdout is not None
+        assert "arbitrator on" in other.stdout.readline()
+        time.sleep(3)  # it has bound and linked the devices
+        firmware = Firmware(bus_url, tmp_path / "memory.bin")
+        with open_session(firmware.serial_url) as session:
+            wait_for(lambda: session.status()["other_arbitrator"], 10,
+                     "the firmware to hear the other arbitrator")
+            time.sleep(2)
+            status = session.status()
+            assert status["devices"] == 0 and status["links"] == 0
+            assert not session.system().devices
+        assert other.poll() is None  # the other one was not disturbed
+    finally:
+        if firmware is not None:
+            firmware.stop()
+        other.terminate()
+        other.wait(15)
+        if other.stdout is not None:
+            other.stdout.close()
+        devices.close()

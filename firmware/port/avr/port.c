@@ -60,6 +60,8 @@ void port_host_write(const uint8_t *buf, int len)
 
 static slcan_rx_t can_rx;
 
+int port_can_ready(void) { return 1; }   /* a board's CAN side is up at reset */
+
 static void can_out(const char *s, int n)
 {
     for (int i = 0; i < n; i++) { while (!(UCSR1A & _BV(UDRE1))) {} UDR1 = (uint8_t)s[i]; }
@@ -70,7 +72,7 @@ int port_can_read(uint16_t *id, uint8_t *data, uint8_t *len)
     while (UCSR1A & _BV(RXC1)) {
         int r = slcan_feed(&can_rx, (char)UDR1, id, data, len);
         if (r == 1) return 1;
-        if (r == 2) can_out("\r", 1);
+        if (r >= 2) can_out("\r", 1);
     }
     return 0;
 }

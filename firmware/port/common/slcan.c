@@ -20,6 +20,7 @@ int slcan_feed(slcan_rx_t *rx, char c, uint16_t *id, uint8_t *data, uint8_t *len
     rx->overflow = 0;
     if (!n || bad) return 0;
     const char *s = rx->line;
+    if (s[0] == 'O' || s[0] == 'L') return 3;
     if (s[0] != 't') return s[0] == 'T' || s[0] == 'r' || s[0] == 'R' ? 0 : 2;
     if (n < 5) return 0;
     int v = 0;

@@ -125,6 +125,14 @@ static void uart_write(uint32_t base, const uint8_t *buf, int len)
 void port_host_write(const uint8_t *buf, int len) { uart_write(UART0, buf, len); }
 
 static slcan_rx_t can_rx;
+static int can_open;
+
+int port_can_ready(void)
+{
+    uint16_t id; uint8_t d[8], n;
+    while (!can_open && port_can_read(&id, d, &n)) {}   /* frames before "O": not ours */
+    return can_open;
+}
 
 int port_can_read(uint16_t *id, uint8_t *data, uint8_t *len)
 {
@@ -132,7 +140,8 @@ int port_can_read(uint16_t *id, uint8_t *data, uint8_t *len)
         char c = (char)REG(UART1 + UART_DR);
         int r = slcan_feed(&can_rx, c, id, data, len);
         if (r == 1) return 1;
-        if (r == 2) uart_write(UART1, (const uint8_t *)"\r", 1);
+        if (r >= 2) uart_write(UART1, (const uint8_t *)"\r", 1);
+        if (r == 3) can_open = 1;
     }
     return 0;
 }

@@ -74,6 +74,14 @@ static void write_all(int fd, const void *buf, size_t len)
 void port_host_write(const uint8_t *buf, int len) { write_all(host_fd, buf, (size_t)len); }
 
 static slcan_rx_t can_rx;
+static int can_open;
+
+int port_can_ready(void)
+{
+    uint16_t id; uint8_t d[8], n;
+    while (!can_open && port_can_read(&id, d, &n)) {}   /* frames before "O": not ours */
+    return can_open;
+}
 
 int port_can_read(uint16_t *id, uint8_t *data, uint8_t *len)
 {
@@ -81,7 +89,8 @@ int port_can_read(uint16_t *id, uint8_t *data, uint8_t *len)
     while (read(can_fd, &c, 1) == 1) {
         int r = slcan_feed(&can_rx, c, id, data, len);
         if (r == 1) return 1;
-        if (r == 2) write_all(can_fd, "\r", 1);
+        if (r >= 2) write_all(can_fd, "\r", 1);
+        if (r == 3) can_open = 1;
     }
     return 0;
 }
