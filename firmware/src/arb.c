@@ -260,6 +260,7 @@ static void setup_failed(int dev, const char *what)
     device_t *d = &g_dev[dev];
     char t[120];
     d->setup_failures++;
+    d->setup_failed_at = port_millis();
     int again = d->setup_failures < SETUP_ATTEMPTS;
     fmt_text(t, sizeof t, "set-up of device %k (node %u) failed: %s%s", &d->key, d->node_id,
              what, again ? "; resetting it to try again" : "");
@@ -655,7 +656,15 @@ void arb_step(void)
     }
     if (!g_may_write) return;
     for (int i = 0; i < MAX_DEVICES; i++) {
-        if (g_dev[i].used && g_dev[i].node_id && g_dev[i].needs_setup) {
+        device_t *d = &g_dev[i];
+        /* every attempt failed, yet it beacons on: try once more now and then (a bus that was
+         * too slow for a while must not leave a device unusable until it is replugged) */
+        if (d->used && d->node_id && !d->set_up && !d->needs_setup &&
+            d->setup_failures >= SETUP_ATTEMPTS && now - d->setup_failed_at >= SETUP_RETRY_MS) {
+            d->setup_failures = SETUP_ATTEMPTS - 1;
+            d->needs_setup = 1;
+        }
+        if (d->used && d->node_id && d->needs_setup) {
             do_setup(i);
             return;
         }

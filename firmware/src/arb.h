@@ -75,7 +75,9 @@
 #define NODE_ID_MAX 254        /* node IDs shared by devices and output channels */
 
 /* Timing (milliseconds), PDCP Studio's constants (bus/arbitrator/common.py, claim.py). */
-#define RESPONSE_TIMEOUT_MS 150
+#ifndef RESPONSE_TIMEOUT_MS
+#  define RESPONSE_TIMEOUT_MS 150  /* one attempt (the QEMU build: 300) */
+#endif
 #define REQUEST_RETRIES 4
 #define ARB_BEACON_MS 500          /* reference §5: mode-1 Device Beacon, node 0 */
 #define LISTEN_MS (2 * ARB_BEACON_MS)
@@ -94,6 +96,7 @@
 #define STARTUP_MAX_WAIT_MS 10000
 #define DUTY_QUIET_MS 50
 #define SETUP_ATTEMPTS 3
+#define SETUP_RETRY_MS 5000       /* a device whose set-ups all failed is tried again after */
 #define INTERLOCK_MS 2000
 
 typedef struct { uint16_t vid, pid, serial; } dev_key_t;
@@ -109,6 +112,7 @@ typedef struct {
     uint8_t set_up;        /* the current binding has been read and installed */
     uint8_t needs_setup;
     uint8_t setup_failures;
+    uint32_t setup_failed_at;  /* when its last set-up attempt failed */
     uint8_t nch;           /* Number of Data Channels */
     uint16_t fw, hw, dtype, dprofile, beacon_ms, ack_ms, bind_ms;
     uint32_t ean_lo, ean_hi;
