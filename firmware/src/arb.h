@@ -85,7 +85,7 @@
 #define UNREAD_BEACON_MS 1000
 #define MISSED_BEACONS_X2 7        /* gone after 3.5 beacon intervals (3 missed + grace) */
 #ifndef PRESENCE_MIN_MS
-#  define PRESENCE_MIN_MS 0        /* but never sooner than this (the QEMU build: 1000 ms) */
+#  define PRESENCE_MIN_MS 0        /* but never sooner than this (the QEMU build: 1500 ms) */
 #endif
 #define BIND_HOLD_MS 2000
 #define FOREIGN_HOLD_MS 1000

@@ -84,8 +84,44 @@ class Devices:
             if device.present:
                 self.host.plug(key)
 
+    def plugged(self) -> list[Any]:
+        return [k for k in self.host.keys() if self.host.is_plugged(k)]
+
     def close(self) -> None:
         self.host.close()
+
+
+class DeviceProcess:
+    """A prosthesis's simulated devices in a process of their own (``sim devices``): their
+    beacons do not wait for this process's GIL while it runs a CLI command or the tester."""
+
+    def __init__(self, name: str, bus_url: str) -> None:
+        from pdcp_studio.bus.sim.rigs import load_prosthesis
+
+        self.keys = [k for k, d in load_prosthesis(name).devices.items() if d.present]
+        env = dict(os.environ,
+                   PYTHONPATH=str(ROOT) + os.pathsep + os.environ.get("PYTHONPATH", ""))
+        self.proc = subprocess.Popen([sys.executable, "-m", "pdcp_studio", "sim", "devices", name,
+                                      "--bus", bus_url, "--seconds", "300"],
+                                     stderr=subprocess.PIPE, text=True, env=env)
+        assert self.proc.stderr is not None
+        line = self.proc.stderr.readline()
+        if "simulating" not in line:
+            self.close()
+            raise AssertionError(f"sim devices did not start: {line!r}")
+
+    def plugged(self) -> list[Any]:
+        return list(self.keys)
+
+    def close(self) -> None:
+        self.proc.terminate()
+        try:
+            self.proc.wait(15)
+        except subprocess.TimeoutExpired:
+            self.proc.kill()
+            self.proc.wait()
+        if self.proc.stderr is not None:
+            self.proc.stderr.close()
 
 
 def open_session(serial_url: str, attempts: int = 3) -> Any:
@@ -114,7 +150,8 @@ def wait_for(predicate: Any, timeout: float, what: str) -> None:
         time.sleep(0.2)
 
 
-def settle(session: Any, timeout: float = 30.0, devices: Devices | None = None) -> None:
+def settle(session: Any, timeout: float = 30.0,
+           devices: Devices | DeviceProcess | None = None) -> None:
     """Start-up done and nothing in progress (twice in a row, a second apart: a device that
     was just plugged needs a moment to bind), with every plugged device of ``devices`` on
     the bus."""
@@ -125,7 +162,7 @@ def settle(session: Any, timeout: float = 30.0, devices: Devices | None = None) 
             return True
         system = session.system()
         return all((d := system.device(k)) is not None and d.present
-                   for k in devices.host.keys() if devices.host.is_plugged(k))
+                   for k in devices.plugged())
 
     wait_for(done, timeout, "the firmware to settle")
     time.sleep(1.0)

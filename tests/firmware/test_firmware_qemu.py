@@ -16,6 +16,7 @@ import pytest
 
 from pdcp_studio.cli.main import main
 from tests.firmware.rig import (
+    DeviceProcess,
     Devices,
     Firmware,
     Run,
@@ -36,7 +37,7 @@ def bus_url(multicast_url):
 
 @pytest.fixture
 def thesis2(bus_url, tmp_path):
-    devices = Devices("thesis-test2", bus_url)
+    devices = DeviceProcess("thesis-test2", bus_url)
     firmware = Firmware(bus_url, tmp_path / "memory.bin")
     firmware.devices = devices  # type: ignore[attr-defined]
     firmware.bus_url = bus_url  # type: ignore[attr-defined]
