@@ -18,7 +18,7 @@ while [ $# -gt 0 ]; do
     case "$1" in
         --bus) bus="${2:-}"; shift 2 ;;
         --memory) memory="${2:-}"; shift 2 ;;
-        -h|--help) sed -n '2,14p' "$0" | sed 's/^# \{0,1\}//'; exit 0 ;;
+        -h|--help) awk 'NR > 1 && !/^#/ { exit } NR > 1 { sub(/^# ?/, ""); print }' "$0"; exit 0 ;;
         *) echo "run-qemu.sh: unknown argument $1 (usage: run-qemu.sh --bus URL [--memory FILE])" >&2; exit 2 ;;
     esac
 done
