@@ -76,11 +76,12 @@ int mon_take(uint8_t *msg)
         for (int id = NODE_ID_MIN; id <= NODE_ID_MAX && n + 3 <= 255; id++) {
             if (!counts[id]) continue;
             msg[n] = (uint8_t)id; put16(msg + n + 1, counts[id]);
-            counts[id] = 0;
             n += 3;
         }
+        if (!spend((uint16_t)n)) return 0;   /* the counts wait (and keep counting) */
+        for (int i = 3; i < n; i += 3) counts[msg[i]] = 0;
         period_start = now;
-        if (spend((uint16_t)n)) return n;
+        return n;
     }
     if (frames_on && (count || dropped)) {
         int n = 3;
@@ -94,12 +95,14 @@ int mon_take(uint8_t *msg)
             count--;
         }
         put16(msg + 1, dropped);
-        if (!spend((uint16_t)n)) {           /* over budget: these frames are dropped */
+        /* frames leave room in the bucket for the next counts (they come first) */
+        if (!spend((uint16_t)(n + (counts_on ? 64 : 0)))) {           /* over budget: these frames are dropped */
             uint16_t lost = 0;
             for (int i = 3; i < n; i += 7 + msg[i + 6]) lost++;
             dropped = (uint16_t)(dropped + lost);
             return 0;
         }
+        if (counts_on) tokens += 64;
         dropped = 0;
         return n;
     }

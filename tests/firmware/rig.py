@@ -142,6 +142,31 @@ def open_session(serial_url: str, attempts: int = 3) -> Any:
     raise AssertionError("unreachable")
 
 
+class Awake:
+    """Hold the host link's pseudo-terminal open around a command that opens it itself.
+
+    QEMU's pty backend stops serving a pseudo-terminal when its last user closes it and looks
+    again only once a second; a PC that opens it meanwhile waits up to a second for its first
+    reply — longer than the conformance suite's 1 s. Opened (and drained) here first, the pty
+    stays served while the command opens and uses it; nothing is read here after that."""
+
+    def __init__(self, serial_url: str) -> None:
+        self.path = serial_url.split(":", 1)[1]
+
+    def __enter__(self) -> Awake:
+        self.fd = os.open(self.path, os.O_RDWR | os.O_NOCTTY | os.O_NONBLOCK)
+        end = time.monotonic() + 1.3
+        while time.monotonic() < end:  # QEMU notices the open within a second
+            try:
+                os.read(self.fd, 4096)  # (what the firmware sent to nobody)
+            except BlockingIOError:
+                time.sleep(0.05)
+        return self
+
+    def __exit__(self, *exc: object) -> None:
+        os.close(self.fd)
+
+
 def wait_for(predicate: Any, timeout: float, what: str) -> None:
     deadline = time.monotonic() + timeout
     while not predicate():

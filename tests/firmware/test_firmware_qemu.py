@@ -16,6 +16,7 @@ import pytest
 
 from pdcp_studio.cli.main import main
 from tests.firmware.rig import (
+    Awake,
     DeviceProcess,
     Devices,
     Firmware,
@@ -66,7 +67,8 @@ def test_scan_reads_the_firmware_and_its_autoconfigured_links(thesis2, capsys):
     with open_session(thesis2.serial_url) as session:
         settle(session, devices=thesis2.devices)
     capsys.readouterr()
-    assert main(["scan", "--bus", thesis2.serial_url, "--json", "--settle", "10"]) == 0
+    with Awake(thesis2.serial_url):
+        assert main(["scan", "--bus", thesis2.serial_url, "--json", "--settle", "10"]) == 0
     doc = json.loads(capsys.readouterr().out)
     assert doc["format"] == "pdcp-system/1"
     assert sorted(d["serial"] for d in doc["devices"]) == [4, 5, 6]
@@ -85,7 +87,8 @@ def test_the_firmware_passes_the_host_link_conformance_suite(thesis2, capsys):
     with open_session(thesis2.serial_url) as session:  # no joins pushed during the cases
         settle(session, devices=thesis2.devices)
     capsys.readouterr()
-    status = main(["hostlink-test", "--bus", thesis2.serial_url, "--json"])
+    with Awake(thesis2.serial_url):
+        status = main(["hostlink-test", "--bus", thesis2.serial_url, "--json"])
     doc = json.loads(capsys.readouterr().out)
     assert doc["failed"] == [], doc.get("why")
     assert len(doc["passed"]) >= 35
@@ -96,7 +99,8 @@ def test_monitor_shows_protocol_frames_and_counts_channel_data(thesis2, capsys):
     with open_session(thesis2.serial_url) as session:
         settle(session, devices=thesis2.devices)
     capsys.readouterr()
-    assert main(["monitor", "--bus", thesis2.serial_url, "--seconds", "3"]) == 0
+    with Awake(thesis2.serial_url):
+        assert main(["monitor", "--bus", thesis2.serial_url, "--seconds", "4"]) == 0
     out, err = capsys.readouterr()
     assert "channel data counted by the arbitrator over" in out, out[-2000:]
     assert "channel data frame(s) counted by the arbitrator" in err, err
@@ -112,9 +116,11 @@ def test_config_write_and_read_back_through_the_firmware(thesis2, tmp_path):
     src = os.path.join(os.path.dirname(__file__), "..", "..", "resources", "configs",
                        "fig410.pdcfg")
     config_codec.save_path(config_codec.load_path(src), good)
-    assert main(["config", "write", str(good), "--bus", thesis2.serial_url, "--yes"]) == 0
+    with Awake(thesis2.serial_url):
+        assert main(["config", "write", str(good), "--bus", thesis2.serial_url, "--yes"]) == 0
     out = tmp_path / "back.pdcfg"
-    assert main(["config", "read", "--bus", thesis2.serial_url, "-o", str(out)]) == 0
+    with Awake(thesis2.serial_url):
+        assert main(["config", "read", "--bus", thesis2.serial_url, "-o", str(out)]) == 0
     assert out.read_bytes() == good.read_bytes()
     # the firmware's memory image is PDCP Studio's: its own arbitrator reads it
     assert MemoryStore(tmp_path / "memory.bin").read_bytes() == good.read_bytes()
