@@ -5,8 +5,9 @@
  * request waits; arb_step() is the main loop's work (set-ups, departures, start-up and the
  * duty cycle), which issues requests.
  *
- * - Listening: for LISTEN_MS (two arbitrator beacon intervals) from when the CAN side is on
- *   the bus (port_can_ready) nothing is written.  An
+ * - Listening: for LISTEN_MS (2.2 arbitrator beacon intervals, as claim.py) from when the CAN
+ *   side is on the bus (port_can_ready) nothing is written; one beacon heard by then extends
+ *   it by two intervals, for the second.  An
  *   arbitrator is heard by its beacons: two mode-1 Device Beacons (node 0) within three
  *   intervals (reference §5).  Heard: no writes at all (no bind answers, no beacons), the host
  *   link serves read-only; the bus is taken back (a fresh start) RECLAIM_MS after the other's
@@ -116,6 +117,13 @@ static void claim_tick(uint32_t now)
         return;
     }
     if (!g_may_write) {
+        static uint8_t extended;
+        if ((int32_t)(now - listen_until) >= 0 && other_beacons[1] && !extended) {
+            /* one beacon heard while listening: wait for its second (a late beacon) */
+            extended = 1;
+            listen_until = now + 2 * ARB_BEACON_MS;
+            return;
+        }
         if ((int32_t)(now - listen_until) >= 0) {
             port_log("no other bus arbitrator heard: arbitrating");
             claim_bus();
