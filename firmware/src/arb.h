@@ -80,7 +80,9 @@
 #endif
 #define REQUEST_RETRIES 4
 #define ARB_BEACON_MS 500          /* reference §5: mode-1 Device Beacon, node 0 */
-#define LISTEN_MS (22 * ARB_BEACON_MS / 10)   /* two intervals and a margin (claim.py) */
+#ifndef LISTEN_MS
+#  define LISTEN_MS (22 * ARB_BEACON_MS / 10) /* two intervals and a margin (claim.py); QEMU: 3 s */
+#endif
 #define RECLAIM_MS (5 * ARB_BEACON_MS)
 #define UNREAD_BEACON_MS 1000
 #define MISSED_BEACONS_X2 7        /* gone after 3.5 beacon intervals (3 missed + grace) */

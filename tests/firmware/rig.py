@@ -175,7 +175,7 @@ def wait_for(predicate: Any, timeout: float, what: str) -> None:
         time.sleep(0.2)
 
 
-def settle(session: Any, timeout: float = 30.0,
+def settle(session: Any, timeout: float = 60.0,
            devices: Devices | DeviceProcess | None = None) -> None:
     """Start-up done and nothing in progress (twice in a row, a second apart: a device that
     was just plugged needs a moment to bind), with every plugged device of ``devices`` on
