@@ -261,7 +261,9 @@ int txn_run(uint32_t len, uint32_t *result_len, uint16_t *result_crc, char *why,
     int cfg_written = 0, policy_written = 0;
 
     if (!g_may_write) {
-        step = 0; fmt_text(reason, sizeof reason, "another arbitrator is on the bus: nothing was written");
+        step = 0;
+        if (g_other_heard) fmt_text(reason, sizeof reason, "another arbitrator is on the bus: nothing was written");
+        else fmt_text(reason, sizeof reason, "the arbitrator is still listening for another one on the bus: nothing was written");
     } else if (check_change()) {
         step = 0;
     } else {

@@ -116,6 +116,8 @@ def test_config_write_and_read_back_through_the_firmware(thesis2, tmp_path):
     src = os.path.join(os.path.dirname(__file__), "..", "..", "resources", "configs",
                        "fig410.pdcfg")
     config_codec.save_path(config_codec.load_path(src), good)
+    with open_session(thesis2.serial_url) as session:
+        settle(session, devices=thesis2.devices)
     with Awake(thesis2.serial_url):
         assert main(["config", "write", str(good), "--bus", thesis2.serial_url, "--yes"]) == 0
     out = tmp_path / "back.pdcfg"
