@@ -23,7 +23,13 @@ cross-process bus (python-can's udp_multicast on loopback, paced), counted by ``
 and by an independent python-can counter in a third process; prints both counts, the frames
 sent, and the monitor's CPU while the traffic ran as a share of one core (target ≤ 30 %).
 
-Run: ``python benchmarks/trace.py [--frames N] [--formats asc,blf] [--live-seconds S]``
+Three captures (``--kinds``): ``mixed`` (the above, with its set-up, ``--frames``),
+``midsession`` (the same session recorded by another tool after its set-up: no bind, no
+Channel Node Id write, no node map beside it, so the decoder infers the node map from the
+traffic; ≤ 1 % undecodable) and ``foreign`` (a car's bus with extended identifiers: the
+verdict must be not-pdcp), the last two of ``--other-frames`` (400,000).
+
+Run: ``python benchmarks/trace.py [--frames N] [--formats asc,blf] [--kinds K,…] [--live-seconds S]``
 (``--formats ""`` for the live case alone, ``--live-seconds 0`` to skip it).
 """
 
@@ -79,8 +85,15 @@ def node_map() -> tuple[list[DeviceRow], list[OutputRow]]:
     return devices, outputs
 
 
-def traffic(n: int, seed: int = 16) -> list[Frame]:
-    """``n`` frames (arbitration_id, data, is_extended) of a session on the node map."""
+#: Frames of the last ``traffic()`` made undecodable on purpose (module-specific codes, random
+#: base frames, extended identifiers): what a replay may call undecodable.
+GARBAGE = [0]
+
+
+def traffic(n: int, seed: int = 16, setup_frames: bool = True) -> list[Frame]:
+    """``n`` frames (arbitration_id, data, is_extended) of a session on the node map
+    (``setup_frames``: starting with its binds and set-up); ``GARBAGE[0]`` counts the
+    garbage in them."""
     from pdcp_studio.model import parameters as P
     from pdcp_studio.protocol import messages as M
     from pdcp_studio.protocol.codes import ResponseCode
@@ -106,13 +119,14 @@ def traffic(n: int, seed: int = 16) -> list[Frame]:
                                          bytes([dev, chan_node])),
                   M.SetParameter(dev, P.CH_DATA_ENABLED, index, b"\x01"),
                   M.SetParameterResponse(dev, ok, P.CH_DATA_ENABLED, index, b"\x01")]
-    frames: list[Frame] = [(*m.encode(), False) for m in setup]
+    frames: list[Frame] = [(*m.encode(), False) for m in setup] if setup_frames else []
     reads = [(P.DEVICE_VID_PID, 0), (P.DEVICE_SERIAL, 0), (P.CH_TRANSFER_TYPE, 1),
              (P.DEVICE_BEACON_INTERVAL, 0)]
     phase = [rng.random() * 6.28 for _ in outputs]
     import math
 
     t = 0
+    GARBAGE[0] = 0
     while len(frames) < n:
         t += 1
         roll = rng.random()
@@ -136,13 +150,41 @@ def traffic(n: int, seed: int = 16) -> list[Frame]:
             frames.append((*M.GetParameterResponse(node, ok, param, chan, value).encode(),
                            False))
         elif roll < 0.99:  # a module-specific function code
+            GARBAGE[0] += len(frames) < n
             node = devices[t % len(devices)][0]
             frames.append((0x200 | node, bytes([0x50, t & 0xFF]), False))
         elif roll < 0.995:  # random base frame
+            GARBAGE[0] += len(frames) < n
             frames.append((rng.randrange(0x800), rng.randbytes(rng.randint(0, 8)), False))
         else:  # a 29-bit identifier
+            GARBAGE[0] += len(frames) < n
             frames.append((rng.randrange(1 << 29), rng.randbytes(8), True))
     return frames[:n]
+
+
+def midsession(n: int, seed: int = 27) -> list[Frame]:
+    """``n`` frames of the same session recorded by another tool after its set-up: no bind,
+    no Channel Node Id write, no node map beside it (the decoder infers the node map)."""
+    return traffic(n, seed, setup_frames=False)
+
+
+def foreign(n: int, seed: int = 27) -> list[Frame]:
+    """``n`` frames of a car-like bus: 60 identifiers (a tenth extended) at fixed lengths,
+    counters and sensor bytes; nothing of PDCP's."""
+    rng = random.Random(seed)
+    ids = [(rng.randrange(0x080, 0x7F0), rng.choice((2, 4, 6, 8)), False) for _ in range(54)]
+    ids += [(rng.randrange(1 << 29), 8, True) for _ in range(6)]
+    frames: list[Frame] = []
+    for i in range(n):
+        arbitration_id, dlc, extended = ids[i % len(ids)]
+        frames.append((arbitration_id, bytes([(i // len(ids)) & 0xFF]) + rng.randbytes(dlc - 1),
+                       extended))
+    return frames
+
+
+#: The capture kinds: how to make them, and whether their bus time is checked bit by bit.
+KINDS = {"mixed": (lambda n: traffic(n), True), "midsession": (midsession, False),
+         "foreign": (foreign, False)}
 
 
 def make_data_id(chan_node: int) -> int:
@@ -370,48 +412,46 @@ def live(seconds: float, rate: int) -> None:
           "2 s wait for the end")
 
 
-def main() -> None:
-    parser = argparse.ArgumentParser(description=__doc__.split("\n")[0])
-    parser.add_argument("--frames", type=int, default=FRAMES)
-    parser.add_argument("--formats", default="asc,blf")
-    parser.add_argument("--live-seconds", type=float, default=10.0,
-                        help="length of the live case (0: skip it)")
-    parser.add_argument("--live-rate", type=int, default=RATE_HZ)
-    parser.add_argument("--repeat", type=int, default=1,
-                        help="runs of the reader and of each replay case; the best is shown "
-                             "(steadier ratios on a loaded machine)")
-    args = parser.parse_args()
-    cache = Path(tempfile.gettempdir()) / "pdcp-trace-bench"
-    cache.mkdir(exist_ok=True)
+def replay_kind(kind: str, count: int, args: argparse.Namespace, cache: Path) -> None:
+    """The replay cases for one capture kind, in every format asked for."""
+    make, exact_checked = KINDS[kind]
     t0 = time.perf_counter()
-    frames = traffic(args.frames)
-    exact_file = cache / f"mixed-{args.frames}-v1.bits"
-    if exact_file.exists():
-        exact = int(exact_file.read_text())
-    else:
-        exact = exact_bus_bits(frames)
-        exact_file.write_text(str(exact))
-    print(f"{len(frames):,} frames of mixed PDCP traffic at {RATE_HZ:,} frames/s of capture "
-          f"time; exact bus time {exact / 1000:.3f} ms (bit by bit, {time.perf_counter() - t0:.1f} s"
-          f"); bus bound {BUS_BOUND_8:,} 8-byte / {BUS_BOUND_4:,} 4-byte frames/s at 1 Mbit/s")
+    frames = make(count)
+    garbage = GARBAGE[0]
+    exact = 0
+    if exact_checked:
+        exact_file = cache / f"{kind}-{count}-v1.bits"
+        if exact_file.exists():
+            exact = int(exact_file.read_text())
+        else:
+            exact = exact_bus_bits(frames)
+            exact_file.write_text(str(exact))
+    what = {"mixed": "mixed PDCP traffic with its set-up",
+            "midsession": "PDCP traffic recorded after its set-up, no node map",
+            "foreign": "a car's bus (not PDCP)"}[kind]
+    print(f"[{kind}] {len(frames):,} frames of {what} at {RATE_HZ:,} frames/s of capture time"
+          + (f"; exact bus time {exact / 1000:.3f} ms (bit by bit, "
+             f"{time.perf_counter() - t0:.1f} s)" if exact_checked else "")
+          + f"; bus bound {BUS_BOUND_8:,} 8-byte / {BUS_BOUND_4:,} 4-byte frames/s at 1 Mbit/s")
     python = sys.executable
     n = len(frames)
     for fmt in filter(None, args.formats.split(",")):
-        path = cache / f"mixed-{args.frames}-v1.{fmt}"
+        tag = f"{kind} {fmt}"
+        path = cache / f"{kind}-{count}-v1.{fmt}"
         if not path.exists():
             t1 = time.perf_counter()
             partial = path.with_name(path.name + ".tmp." + fmt)
             write_capture(partial, frames)
             partial.replace(path)
-            print(f"[{fmt}] wrote {path} in {time.perf_counter() - t1:.1f} s")
+            print(f"[{tag}] wrote {path} in {time.perf_counter() - t1:.1f} s")
         size = path.stat().st_size / 1e6
         wall, rss, _, cpu = best_of(args.repeat, [python, "-c", READER, str(path)])
         anchor, anchor_cpu = wall, cpu
-        print(f"[{fmt}] {size:.0f} MB — python-can reader alone: {wall:.2f} s ({cpu:.2f} s CPU), "
-              f"{len(frames) / wall:,.0f} frames/s, peak RSS {rss:.0f} MB")
+        print(f"[{tag}] {size:.0f} MB — python-can reader alone: {wall:.2f} s ({cpu:.2f} s "
+              f"CPU), {n / wall:,.0f} frames/s, peak RSS {rss:.0f} MB")
         if fmt == "blf":
             wall, rss, _, cpu = best_of(args.repeat, [python, "-c", OWN_BLF_READER, str(path)])
-            print(f"[{fmt}] the monitor's BLF reader alone (bus/trace/blf.py): {wall:.2f} s "
+            print(f"[{tag}] the monitor's BLF reader alone (bus/trace/blf.py): {wall:.2f} s "
                   f"({cpu:.2f} s CPU), {n / wall:,.0f} frames/s, {cpu / anchor_cpu:.2f}× "
                   f"python-can's CPU time, peak RSS {rss:.0f} MB")
         monitor = [python, "-m", "pdcp_studio", "monitor", "--replay", str(path)]
@@ -423,19 +463,58 @@ def main() -> None:
             ratio, cpu_ratio = wall / anchor, cpu / anchor_cpu
             verdict = ("ok" if min(ratio, cpu_ratio) <= TARGET_RATIO and rss < TARGET_RSS_MB
                        else "MISSES TARGET")
-            print(f"[{fmt}] {label}: {wall:.2f} s ({cpu:.2f} s CPU), {n / wall:,.0f} frames/s "
+            print(f"[{tag}] {label}: {wall:.2f} s ({cpu:.2f} s CPU), {n / wall:,.0f} frames/s "
                   f"({n / wall / BUS_BOUND_8:.1f}× a saturated bus), "
                   f"{ratio:.2f}× the reader's wall time, {cpu_ratio:.2f}× its CPU time (target "
                   f"≤ {TARGET_RATIO}×), peak RSS {rss:.0f} MB (target < {TARGET_RSS_MB} MB) — "
                   f"{verdict}")
             if label == "monitor --replay":
-                print("    summary: " + "\n    ".join(err.strip().splitlines()[:4]))
-            match = re.search(r"bus time ([\d.]+) ms", err)
-            if match is None or abs(float(match.group(1)) * 1000 - exact) > 0.5:
-                raise SystemExit(f"[{fmt}] bus time {match and match.group(1)} ms ≠ exact "
-                                 f"{exact / 1000:.3f} ms")
-        print(f"[{fmt}] bus time of the capture equals the exact bit-by-bit figure "
-              f"({exact / 1000:.3f} ms)")
+                shown = [x for x in err.strip().splitlines()
+                         if not x.startswith("  ")][:3]
+                shown += [x for x in err.splitlines()
+                          if x.startswith(("verdict:", "node map:"))]
+                print("    summary: " + "\n    ".join(dict.fromkeys(shown)))
+                if kind == "midsession":
+                    match = re.search(r"\((\d+) undecodable", err)
+                    bad = int(match.group(1)) if match else n
+                    beyond = max(0, bad - garbage)
+                    print(f"    {bad:,} undecodable; the traffic holds {garbage:,} frames of "
+                          f"garbage made on purpose; undecodable beyond them: {beyond:,} = "
+                          f"{100 * beyond / n:.2f} % of the frames (target ≤ 1 %) — "
+                          f"{'ok' if beyond <= n / 100 else 'MISSES TARGET'}")
+                if kind == "foreign" and "verdict: not-pdcp" not in err:
+                    raise SystemExit(f"[{tag}] a car's bus not called not-pdcp: {err[:500]}")
+            if exact_checked:
+                match = re.search(r"bus time ([\d.]+) ms", err)
+                if match is None or abs(float(match.group(1)) * 1000 - exact) > 0.5:
+                    raise SystemExit(f"[{tag}] bus time {match and match.group(1)} ms ≠ exact "
+                                     f"{exact / 1000:.3f} ms")
+        if exact_checked:
+            print(f"[{tag}] bus time of the capture equals the exact bit-by-bit figure "
+                  f"({exact / 1000:.3f} ms)")
+
+
+def main() -> None:
+    parser = argparse.ArgumentParser(description=__doc__.split("\n")[0])
+    parser.add_argument("--frames", type=int, default=FRAMES)
+    parser.add_argument("--formats", default="asc,blf")
+    parser.add_argument("--kinds", default=",".join(KINDS),
+                        help="captures: mixed (PDCP with its set-up, --frames), midsession "
+                             "(PDCP without set-up or node map) and foreign (a car's bus), "
+                             "the last two of --other-frames")
+    parser.add_argument("--other-frames", type=int, default=400_000)
+    parser.add_argument("--live-seconds", type=float, default=10.0,
+                        help="length of the live case (0: skip it)")
+    parser.add_argument("--live-rate", type=int, default=RATE_HZ)
+    parser.add_argument("--repeat", type=int, default=1,
+                        help="runs of the reader and of each replay case; the best is shown "
+                             "(steadier ratios on a loaded machine)")
+    args = parser.parse_args()
+    cache = Path(tempfile.gettempdir()) / "pdcp-trace-bench"
+    cache.mkdir(exist_ok=True)
+    for kind in filter(None, args.kinds.split(",")):
+        n = args.frames if kind == "mixed" else args.other_frames
+        replay_kind(kind, n, args, cache)
     if args.live_seconds:
         live(args.live_seconds, args.live_rate)
 

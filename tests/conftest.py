@@ -129,3 +129,8 @@ def _private_fitting_history(tmp_path_factory, monkeypatch):
     path = tmp_path_factory.mktemp("history") / "history.sqlite3"
     monkeypatch.setenv("PDCP_STUDIO_HISTORY", str(path))
     monkeypatch.setenv("PDCP_STUDIO_OPERATOR", "test prosthetist")
+
+
+# The clinic archive's throw-away PostgreSQL server and its engine-parametrised fixtures
+# (archive_url runs a test on SQLite and on PostgreSQL): tests/pg_cluster.py.
+from tests.pg_cluster import archive_url, pg_cluster, pg_db  # noqa: E402, F401

@@ -1,10 +1,10 @@
 #!/bin/bash
 # Retakes every picture the README, docs/ and the user manual show, under one X server:
 #   docs/screenshots/shoot_all.sh
-# (it starts xvfb-run itself; needs xvfb, xdotool and ImageMagick). PDCP_STUDIO names the
-# program (default: pdcp-studio); its Python runs the Python scripts. Each script is run in
-# turn; a failing one is named at the end and the others still run. About 2 minutes on a
-# quiet 2-core machine.
+# (it starts xvfb-run itself; needs xvfb, xdotool, ImageMagick and poppler-utils' pdftoppm).
+# PDCP_STUDIO names the program (default: pdcp-studio); its Python runs the Python scripts.
+# Each script is run in turn; a failing one is named at the end and the others still run.
+# About 3 minutes on a quiet 2-core machine.
 set -u
 HERE=$(cd "$(dirname "$0")" && pwd)
 if [ -z "${DISPLAY:-}" ] || [ "${1:-}" != "--inside" ]; then
@@ -33,10 +33,11 @@ QT_QPA_PLATFORM=offscreen run "$PY" "$HERE/manual_pictures.py"                 #
 QT_QPA_PLATFORM=offscreen run "$PY" "$HERE/manual_pictures.py" --lang de "$DE/wizards"
 run "$PY" "$HERE/shoot_manual.py"          # manual-images.png
 run "$PY" "$HERE/shoot_manual.py" --lang de  # manual-images-de.png
-run "$PY" "$HERE/shoot_change_road.py"     # pending-changes.png, history.png
-run "$PY" "$HERE/shoot_trace.py"           # trace.png, plot.png
+run "$PY" "$HERE/shoot_change_road.py"     # pending-changes.png, confirm-change.png, history.png,
+                                           # restore-preview.png, report-1.png … (pdftoppm)
+run "$PY" "$HERE/shoot_trace.py"           # trace.png, plot.png, trace-capture.png
 run bash "$HERE/shoot_start.sh"            # start.png
-run bash "$HERE/shoot_german.sh"           # main-window-de.png, manual-de.png
+run bash "$HERE/shoot_german.sh"           # main-window-de.png
 run bash "$HERE/configuration-document.sh" # configuration-document.png
 run bash "$HERE/shoot_rigs.sh"             # large-fitted.png, full-rig.png, bus-events-hot-swap.png
 rm -rf "$DE"

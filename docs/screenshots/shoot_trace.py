@@ -6,8 +6,10 @@ Run from the repository root, under a real X server:
 
 It connects to the simulated prosthesis ``sim:transradial``, lets the bus run, marks two
 frames in the bus monitor (times counted since the newest marker) and saves ``trace.png``;
-then plots two outputs with cursors in the live plot and saves ``plot.png``. Both are grabs
-of the whole main window.
+then plots two outputs with cursors in the live plot and saves ``plot.png``; last it opens a
+saved capture (``tests/data/captures/pcan-prosthesis-3.0.trc``) in the bus monitor, whose
+banner says what it is, and saves ``trace-capture.png``. All are grabs of the whole main
+window.
 """
 
 from __future__ import annotations
@@ -16,14 +18,16 @@ import sys
 from pathlib import Path
 
 HERE = Path(__file__).resolve().parent
+#: A PCAN-View trace of a prosthesis session, kept with the tests.
+CAPTURE = HERE.parents[1] / "tests" / "data" / "captures" / "pcan-prosthesis-3.0.trc"
 
 
 def main() -> int:
     from PySide6.QtCore import Qt, QTimer
     from PySide6.QtWidgets import QApplication
 
+    from pdcp_studio.app.trace.model import TIME_MARKER, TIME_START
     from pdcp_studio.app.window.main_window import MainWindow
-    from pdcp_studio.app.trace.model import TIME_MARKER
 
     app = QApplication(sys.argv)
     window = MainWindow()
@@ -72,7 +76,17 @@ def main() -> int:
         plot_widget = window._leaf_docks["plot"].widget()
         plot_widget.set_hold(True)
         plot_widget.set_cursors(3.2, 1.1)
-        QTimer.singleShot(500, lambda: (shoot("plot.png"), app.quit()))
+        QTimer.singleShot(500, lambda: (shoot("plot.png"), capture()))
+
+    def capture() -> None:
+        dock = window._leaf_docks["monitor"]
+        dock.show()
+        dock.raise_()
+        window.resizeDocks([dock], [600], Qt.Orientation.Vertical)
+        dock.set_time_mode(TIME_START)  # the capture has no markers
+        dock.loaded.connect(lambda _path: QTimer.singleShot(
+            800, lambda: (shoot("trace-capture.png"), app.quit())))
+        dock.load_capture(CAPTURE)
 
     def ready() -> None:
         QTimer.singleShot(4000, trace)

@@ -111,6 +111,11 @@ def main() -> int:
         wizard.move(280, 120)
         return wizard
 
+    def present(key) -> bool:
+        """On the bus now (a replaced part that nothing links to leaves the graph)."""
+        device = window.doc.system.devices.get(key)
+        return device is not None and device.present
+
     def script() -> Script:
         yield lambda: window.is_ready and window.doc.config is not None
         session = window.live.bridge.session
@@ -177,10 +182,10 @@ def main() -> int:
         # Restore a configuration: the original hand is back from repair.
         panel.select(spare)
         panel.unplug_selected()
-        yield lambda: not window.doc.system.devices[spare].present
+        yield lambda: not present(spare)
         panel.select(hand)
         panel.plug_selected()
-        yield lambda: window.doc.system.devices[hand].present
+        yield lambda: present(hand)
         w = opened("restore")
         page = w.source_page
         yield lambda: len(page.history) >= 2

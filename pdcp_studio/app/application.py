@@ -12,6 +12,7 @@ from __future__ import annotations
 import os
 import sys
 import time
+from collections.abc import Callable
 from pathlib import Path
 from typing import TYPE_CHECKING
 
@@ -59,22 +60,27 @@ class StartUpPhases:
 
 def run_app(path: str | Path | None = None, bus: str | None = None,
             screenshot: str | Path | None = None, *, size: tuple[int, int] | None = None,
-            started: float | None = None, lang: str | None = None) -> int:
+            started: float | None = None, lang: str | None = None,
+            capture: str | Path | None = None) -> int:
     """Run the app until its window closes; returns the exit status.
 
     ``path`` is opened before the window appears so a bad file fails like any CLI input
-    (``SystemFileError`` / ``ConfigFormatError`` → exit 2 in the CLI).
+    (``SystemFileError`` / ``ConfigFormatError`` → exit 2 in the CLI). ``capture`` opens in
+    the trace once the window is up (the start page under it); one that cannot be read
+    says why there.
     """
     started = time.perf_counter() if started is None else started
     start_up_quietly()  # until the window is live (start_up_over, connected in _run_app)
     try:
-        return _run_app(path, bus, screenshot, size=size, started=started, lang=lang)
+        return _run_app(path, bus, screenshot, size=size, started=started, lang=lang,
+                        capture=capture)
     finally:
         start_up_over()  # however it ended (a bad file, a window never ready)
 
 
 def _run_app(path: str | Path | None, bus: str | None, screenshot: str | Path | None, *,
-             size: tuple[int, int] | None, started: float, lang: str | None) -> int:
+             size: tuple[int, int] | None, started: float, lang: str | None,
+             capture: str | Path | None = None) -> int:
     from pdcp_studio.app.pyside_import_scan import spare_source_scan
 
     spare_source_scan()  # before the app's imports: PySide6 would read each one's source
@@ -165,7 +171,14 @@ def _run_app(path: str | Path | None, bus: str | None, screenshot: str | Path | 
             QTimer.singleShot(0, probe)
         if screenshot is not None:
             png = screenshot
-            QTimer.singleShot(SETTLE_MS, lambda: finish_screenshot(png))
+            QTimer.singleShot(SETTLE_MS, lambda: after_capture(lambda: finish_screenshot(png)))
+
+    def after_capture(then: Callable[[], None]) -> None:
+        """``then`` once the capture asked for is read (its rows and banner in the picture)."""
+        if capture is not None and window.bus_docks.monitor_dock().loading.worker is not None:
+            QTimer.singleShot(50, lambda: after_capture(then))
+        else:
+            then()
 
     def probe() -> None:
         app.processEvents()
@@ -215,6 +228,8 @@ def _run_app(path: str | Path | None, bus: str | None, screenshot: str | Path | 
             # The graph's layout needs networkx (~0.3 s to import): load it while the bus
             # connects on its worker, not after the bus has answered.
             QTimer.singleShot(0, _preload_layout)
+    if capture is not None:
+        window.desktop.open_capture(Path(capture))
     if screenshot is not None or os.environ.get(PROBE_ENV) or smoke_report:
         QTimer.singleShot(SCREENSHOT_TIMEOUT_MS, give_up)
     phases.end("shown")

@@ -228,9 +228,28 @@ def replaced_lines(system: System, entry: dict[str, Any],
     return out
 
 
+def _effect(entry: dict[str, Any]) -> Any:
+    """The entry's recorded effect, read back (None when it has none or it does not read)."""
+    from pdcp_studio.engine.effect import Effect
+
+    doc, power_on = entry.get("effect"), entry.get("next_power_on")
+    if not isinstance(doc, dict) or "links_before" not in doc:  # only words were kept
+        return None
+    try:
+        return Effect.from_json(doc, power_on if isinstance(power_on, dict) else None)
+    except (KeyError, TypeError, ValueError):
+        return None
+
+
 def effect_lines(entry: dict[str, Any]) -> list[str]:
-    """What the change did, in words (the change road's effect); empty when not recorded."""
-    return _lines(entry.get("effect"), "text")
+    """What the change did, in words in the user's language (the change road's effect, read
+    back from the entry); empty when not recorded."""
+    from pdcp_studio.app.words.effect_words import effect_tr
+
+    effect = _effect(entry)
+    if effect is None:
+        return _lines(entry.get("effect"), "text")
+    return [ln.strip() for ln in effect.lines(effect_tr)]
 
 
 def technical_lines(entry: dict[str, Any]) -> list[str]:
@@ -250,6 +269,11 @@ def power_on_lines(entry: dict[str, Any]) -> list[str]:
                    "power-on, so the report cannot say what the prosthesis does at its next "
                    "start-up.")]
     doc = entry["next_power_on"]
+    effect = _effect(entry)
+    if effect is not None:
+        from pdcp_studio.app.words.effect_words import effect_tr
+
+        return [ln.strip() for ln in effect.power_on_lines(effect_tr)]
     lines = _lines(doc, "text")
     if lines:
         return lines

@@ -11,7 +11,7 @@ from __future__ import annotations
 import logging
 import threading
 from collections.abc import Callable
-from dataclasses import dataclass
+from dataclasses import dataclass, field
 from typing import Any
 
 from pdcp_studio.model.refs import ChannelRef, DeviceKey
@@ -30,9 +30,16 @@ class DeviceJoined(Record):
 
 @dataclass(frozen=True, eq=False, repr=False)
 class DeviceLeft(Record):
-    """A device stopped beaconing (3 missed intervals) or was unplugged."""
+    """A device stopped beaconing (3 missed intervals) or was unplugged.
+
+    ``why``: the arbitrator's words ("no beacon for 1.5 s, 3 beacon intervals …"; empty when
+    a transport does not say); ``silent_s`` and ``interval_s``: how long it was not heard and
+    its beacon interval, for a window's own words (0 when unknown). Not compared."""
 
     key: DeviceKey
+    why: str = field(default="", compare=False, kw_only=True)
+    silent_s: float = field(default=0.0, compare=False, kw_only=True)
+    interval_s: float = field(default=0.0, compare=False, kw_only=True)
 
 
 @dataclass(frozen=True, eq=False, repr=False)
@@ -104,9 +111,16 @@ BUS_STATE_TEXT = {"listening": "listening for another arbitrator",
 
 @dataclass(frozen=True, eq=False, repr=False)
 class PlanApplied(Record):
-    """The arbitrator applied a profile-layer plan (start-up, duty cycle or by request)."""
+    """The arbitrator applied a profile-layer plan (start-up, duty cycle or by request).
+
+    ``own``: the arbitrator changed the prosthesis on its own (start-up, the duty cycle), not
+    because someone asked; ``result``: the ``TransactionResult`` (bus/transaction.py) — whom
+    the motion interlock held (``held``), whether the links read back as written
+    (``verified``), notes. Each action of the plan carries its reason. Not compared."""
 
     plan: Any
+    own: bool = field(default=False, compare=False, kw_only=True)
+    result: Any = field(default=None, compare=False, kw_only=True)
 
 
 @dataclass(frozen=True, eq=False, repr=False)
@@ -128,7 +142,8 @@ class TransactionDone(Record):
 
 @dataclass(frozen=True, eq=False, repr=False)
 class ChannelValue(Record):
-    """A data frame on a link: the output ``ref`` sent ``value`` (decoded by its type)."""
+    """A data frame on a link: the output ``ref`` sent ``value``, in its type's own numbers
+    (``bus/sim/signals.decode_raw``: an unsigned 12-bit envelope reads 0–4095)."""
 
     ref: ChannelRef
     value: float

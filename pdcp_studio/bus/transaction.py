@@ -19,6 +19,7 @@ Steps, in order (``TransactionResult.step`` names the one that failed)::
 
 from __future__ import annotations
 
+import functools
 from collections.abc import Sequence
 from dataclasses import dataclass, field
 from enum import StrEnum
@@ -290,10 +291,20 @@ def config_crc(collection: ConfigCollection | None) -> str | None:
 
 
 def crc_of_bytes(data: bytes | None) -> str | None:
-    """The CRC-16 in a stored configuration's checksum record (the one before End)."""
-    if data is None or len(data) < 6:
+    """The CRC-16 in a stored configuration's checksum record (the one before End); None
+    when nothing is stored — no bytes, or a collection with no configuration (what the
+    memory holds once only the policy was written): the preview's "nothing stored" and the
+    arbitrator's must read alike."""
+    if data is None or len(data) < 6 or data == _empty_collection():
         return None
     return f"0x{int.from_bytes(data[-5:-3], 'little'):04X}"
+
+
+@functools.cache
+def _empty_collection() -> bytes:
+    from pdcp_studio.storage import config_codec
+
+    return config_codec.dumps(ConfigCollection([]))
 
 
 def interlocked_devices(system: System, before: list[Link], after: list[Link],
@@ -373,6 +384,7 @@ def restore_change(entry: dict[str, Any], system: System) -> Change:
     configuration read after it and its policy after (one restore for the CLI and app).
     NotRestorable for an interrupted entry, or when a part it needs is absent (before
     anything is written)."""
+    from pdcp_studio.engine.effect import system_after
     from pdcp_studio.storage import config_codec
 
     if entry.get("links_after") is None:
@@ -386,7 +398,10 @@ def restore_change(entry: dict[str, Any], system: System) -> Change:
     after = [link_from_json(d) for d in entry["links_after"]]
     change = Change.links_to(list(system.links), after, f"history restore {entry['id']}",
                              reason=f"as after fitting history entry {entry['id']}")
-    change.parameters = restore_writes(entry.get("parameters_after") or {}, system)
+    # The values are compared on the system as the link actions leave it: a link made or
+    # removed turns its ends' data transfer on or off, which the recorded values may undo.
+    linked = system_after(system, after, [])
+    change.parameters = restore_writes(entry.get("parameters_after") or {}, linked)
     cfg = entry.get("configuration_after")
     if cfg is not None:
         change.configuration = config_codec.from_json(cfg)

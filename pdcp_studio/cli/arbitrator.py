@@ -5,6 +5,13 @@ A headless bus arbitrator for a real (or a multicast) bus: it binds and sets up 
 runs start-up with its memory and the hot-swap duty cycle, and logs joins, leaves, links and
 plans to stdout, one line each, until Ctrl-C (or ``--seconds``). With ``--host-serial`` it
 also serves the host link on that serial port, so a PC can reach it as ``serial:PORT``.
+
+One arbitrator per bus (reference §5): another arbitrator heard while listening (its beacons,
+never one frame) keeps this one off the bus — one line on stderr, exit 1. One that appears
+later makes it stop writing at once and say so; it stays up, serves its host link read-only
+(writes and transactions refused in words) and takes the bus back when the other's beacons
+have been gone for five beacon intervals (2.5 s) and a random wait of up to as many again,
+saying that too.
 """
 
 from __future__ import annotations
@@ -52,16 +59,16 @@ def describe(event: Any) -> str | None:
 
     if isinstance(event, ev.DeviceJoined):
         return f"joined {event.key}"
-    if isinstance(event, ev.DeviceLeft):
-        return f"left {event.key}"
+    if isinstance(event, ev.DeviceLeft):  # why on a line of its own (the first is the event)
+        return f"left {event.key}" + (f"\n  why: {event.why}" if event.why else "")
     if isinstance(event, ev.LinkMade):
         return f"link made {event.link}"
     if isinstance(event, ev.LinkRemoved):
         return f"link removed {event.link}"
     if isinstance(event, ev.BusError):
         return f"error {event.message}"
-    if isinstance(event, ev.BusState):  # a yield is the error line on stderr instead
-        if event.state == "yielded":
+    if isinstance(event, ev.BusState):  # a yield on start is the error line on stderr
+        if event.state == "yielded" and "read-only" not in event.message:
             return None
         return f"{ev.BUS_STATE_TEXT.get(event.state, event.state)}: {event.message}"
     if isinstance(event, ev.TerminalsUnconnected):
@@ -71,6 +78,11 @@ def describe(event: Any) -> str | None:
         lines = [f"plan {plan.mode}: {len(plan.added)} added, {len(plan.removed)} removed, "
                  f"{len(plan.final_links)} links"]
         lines += [f"  {a.op.value} {a.link} ({a.reason})" for a in plan.actions]
+        result = getattr(event, "result", None)
+        if event.own and result is not None and plan.actions:  # what held it, and verified
+            held = ", ".join(str(k) for k in result.held) or "nobody (no part moves)"
+            lines.append(f"  on its own: held {held}; read back "
+                         + ("verified" if result.verified else "NOT as written"))
         return "\n".join(lines)
     return None
 
@@ -107,7 +119,7 @@ def run(args: argparse.Namespace) -> int:
 
     options: dict[str, Any] = {"memory": args.memory, "name": "arbitrator",
                                "profile_layer": not args.no_profile_layer,
-                               "listen_s": LISTEN_S}
+                               "listen_s": LISTEN_S, "take_back": True}
     if args.no_autoconfigure:
         options["autoconfigure"] = False
     if args.host_serial:
@@ -146,8 +158,8 @@ def run(args: argparse.Namespace) -> int:
                   flush=True)
         deadline = None if args.seconds is None else time.monotonic() + args.seconds
         while not stop.is_set():
-            if arbitrator.yielded:  # another arbitrator is on the bus (reference §5)
-                code = EXIT_FAILURE
+            if arbitrator.yielded and not arbitrator.read_only:  # another arbitrator was on
+                code = EXIT_FAILURE  # the bus before this one wrote (reference §5)
                 break
             if deadline is not None and time.monotonic() >= deadline:
                 break

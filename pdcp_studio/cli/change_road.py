@@ -30,10 +30,19 @@ EXIT_OK = 0
 EXIT_FAILED = 1
 
 
+def add_archive_argument(p: argparse.ArgumentParser) -> None:
+    """``--archive URL``: the fitting history a command records in or reads (contracts §2)."""
+    p.add_argument("--archive", metavar="URL",
+                   help="the fitting history: sqlite:///PATH or "
+                        "postgresql://USER@HOST[:PORT]/DB (default: $PDCP_STUDIO_ARCHIVE, "
+                        "else the file in your data folder)")
+
+
 def add_road_arguments(p: argparse.ArgumentParser, *, json_flag: bool = True,
                        store: bool = True) -> None:
-    """``--yes``, ``--patient``, (optionally) ``--store``/``--no-store`` and ``--json`` for a
-    command that changes a prosthesis."""
+    """``--yes``, ``--patient``, ``--archive``, (optionally) ``--store``/``--no-store`` and
+    ``--json`` for a command that changes a prosthesis."""
+    add_archive_argument(p)
     p.add_argument("--yes", action="store_true",
                    help="carry the change out (without it, only the preview is printed)")
     if store:
@@ -97,7 +106,7 @@ def carry_out(session: BusSession, change: Change, args: argparse.Namespace, *,
         else:
             print(f"not written to {session.url}: add --yes to carry it out", file=sys.stderr)
         return EXIT_OK
-    result = session.transact(change, patient=getattr(args, "patient", None))
+    result = _transact(session, change, args, preview)
     if want_json:
         print(json.dumps(_doc(json_doc, preview, result), indent=2))
     else:
@@ -112,6 +121,27 @@ def carry_out(session: BusSession, change: Change, args: argparse.Namespace, *,
                   file=sys.stderr)
         return EXIT_FAILED
     return EXIT_OK
+
+
+def _transact(session: BusSession, change: Change, args: argparse.Namespace,
+              preview: ChangePreview) -> TransactionResult:
+    """The transaction, recorded in the archive ``--archive`` names (else the default); an
+    archive that cannot be opened (a server down, a wrong URL) refuses the change before
+    anything is written, in words."""
+    from pdcp_studio.bus.transaction import Status, TransactionResult
+    from pdcp_studio.storage.archive import HistoryError, open_archive
+
+    try:
+        archive = open_archive(getattr(args, "archive", None))
+    except HistoryError as err:
+        return TransactionResult(Status.FAILED, change.action, "record",
+                                 f"the fitting history cannot be written ({err}); nothing "
+                                 "was written to the prosthesis",
+                                 preview.links_before, preview.links_before,
+                                 devices=preview.devices)
+    with archive:
+        return session.transact(change, patient=getattr(args, "patient", None),
+                                history=archive)
 
 
 def _doc(json_doc: JsonDoc | None, preview: ChangePreview,

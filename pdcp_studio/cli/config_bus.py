@@ -25,7 +25,7 @@ from pdcp_studio.model.safe_text import shown
 def add_bus_commands(actions: argparse._SubParsersAction[argparse.ArgumentParser]) -> None:
     """Register ``read``, ``write`` and ``save`` under ``config`` (called by
     cli/config_cmd.py)."""
-    from pdcp_studio.cli.change_road import add_road_arguments
+    from pdcp_studio.cli.change_road import add_archive_argument, add_road_arguments
 
     read = actions.add_parser("read", help="save an arbitrator's stored configuration")
     read.add_argument("--bus", required=True, metavar="URL", help="the bus (contracts §3)")
@@ -42,6 +42,7 @@ def add_bus_commands(actions: argparse._SubParsersAction[argparse.ArgumentParser
     write.add_argument("--memory", metavar="FILE", help="PDCP Studio's own arbitrator memory")
     write.add_argument("--patient", metavar="REF",
                        help="the patient reference to record with the change (free text)")
+    add_archive_argument(write)
     write.set_defaults(func=run_write)
 
     save = actions.add_parser("save", help="store the live links as the arbitrator's "

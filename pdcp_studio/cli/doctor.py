@@ -26,7 +26,7 @@ from typing import Any
 
 #: Packages whose versions the report gives (distribution names).
 VERSIONED = ("pdcp-studio", "PySide6-Essentials", "PySide6", "shiboken6", "python-can",
-             "pyserial", "networkx", "platformdirs", "msgpack")
+             "pyserial", "networkx", "platformdirs", "msgpack", "psycopg")
 
 
 def add_subparser(subparsers: argparse._SubParsersAction[argparse.ArgumentParser]) -> None:
@@ -35,6 +35,9 @@ def add_subparser(subparsers: argparse._SubParsersAction[argparse.ArgumentParser
         description="Versions, modules, CAN interfaces and their drivers, serial ports, "
                     "capture formats, resources, fitting history and display.")
     p.add_argument("--json", action="store_true", help="print one JSON document")
+    from pdcp_studio.cli.change_road import add_archive_argument
+
+    add_archive_argument(p)
     p.set_defaults(func=run)
 
 
@@ -225,7 +228,37 @@ def display() -> dict[str, Any]:
             "screenshot": qt_prereqs.problem(screenshot=True) is None}
 
 
-def report() -> dict[str, Any]:
+def archive(url: str | None = None) -> dict[str, Any]:
+    """The fitting history in use: its engine and place, and who a change made now is
+    recorded as (on PostgreSQL the signed-in role, asked of the server); an SQLite file is
+    not made by asking."""
+    from pdcp_studio.storage.archive import HistoryError, archive_url, describe, open_existing
+    from pdcp_studio.storage.archive.base import default_operator
+
+    doc: dict[str, Any] = {"engine": None, "location": None, "operator": None,
+                           "signed_in": None, "may_record": None, "why": None}
+    try:
+        chosen = archive_url(url)
+        doc["engine"] = "postgresql" if chosen.startswith("postgres") else "sqlite"
+        doc["location"] = describe(chosen)
+        opened = open_existing(chosen)
+    except HistoryError as err:
+        doc["why"] = str(err)
+        return doc
+    if opened is None:  # an SQLite archive not made yet
+        doc["operator"], doc["may_record"] = default_operator(), True
+        return doc
+    with opened:
+        try:
+            opened.check_can_record()
+            doc["may_record"] = True
+        except HistoryError as err:
+            doc["may_record"], doc["why"] = False, str(err)
+        doc["operator"], doc["signed_in"] = opened.operator(), opened.signed_in()
+    return doc
+
+
+def report(archive_in_use: str | None = None) -> dict[str, Any]:
     from pdcp_studio import paths
 
     mods, failures = modules()
@@ -247,6 +280,7 @@ def report() -> dict[str, Any]:
         "resources": resources,
         "user_data": str(paths.user_data_dir()),
         "history": str(paths.history_path()),
+        "archive": archive(archive_in_use),
         "display": display(),
         "catalog_problems": _catalog_problems(),
     }
@@ -280,15 +314,34 @@ def _text(doc: dict[str, Any]) -> str:
         for s, f in doc["log_formats"].items()))
     lines.append(f"resources: {doc['resources'] or 'MISSING'}")
     lines.append(f"user data: {doc['user_data']}")
-    lines.append(f"fitting history: {doc['history']}")
+    # The operator's full name comes from the clinic's server: shown, never run.
+    lines.append("fitting history: " + _safe(_archive_text(doc["archive"], doc["history"])))
     lines += [f"device catalogue skipped: {p}" for p in doc["catalog_problems"]]
     shown = doc["display"]
     lines.append("display: " + ("a window can open" if shown["window"] else shown["why"]))
     return "\n".join(lines)
 
 
+def _safe(text: str) -> str:
+    from pdcp_studio.model.safe_text import shown
+
+    return shown(text)
+
+
+def _archive_text(a: dict[str, Any], path: str) -> str:
+    if a["location"] is None:
+        return f"{path} — {a['why']}"
+    text = f"{a['location']} ({a['engine']})"
+    if a["operator"] is None:
+        return f"{text} — {a['why']}"
+    who = (f"signed in as {a['signed_in']}" + (f" ({a['operator']})"
+                                               if a["operator"] != a["signed_in"] else "")
+           if a["signed_in"] else f"operator {a['operator']}")
+    return f"{text}, {who}" + ("" if a["may_record"] else f" — {a['why']}")
+
+
 def run(args: argparse.Namespace) -> int:
-    doc = report()
+    doc = report(getattr(args, "archive", None))
     if args.json:
         print(json.dumps(doc, indent=2))
     else:

@@ -2,9 +2,10 @@
 
 Runs every case of ``bus/hostlink/testing/conformance.py`` against the arbitrator on PORT — a
 firmware under development, or PDCP Studio's own (``arbitrator --host-serial``) — and prints one
-line per case (``--json``: ``{"passed": [...], "failed": [...], "why": {case: reason}}``). Exit
-0 only when every case passes, 1 when one fails or the port cannot be opened, 2 for a bus URL
-that is not ``serial:``.
+line per case (``--json``: ``{"passed": [...], "failed": [...], "skipped": [...], "why":
+{case: reason}}``). A case for a capability the arbitrator's HELLO does not declare is skipped,
+not failed. Exit 0 only when no case fails, 1 when one fails or the port cannot be opened, 2 for
+a bus URL that is not ``serial:``.
 """
 
 from __future__ import annotations
@@ -46,8 +47,8 @@ def run(args: argparse.Namespace) -> int:
 
     def report(name: str, why: str | None) -> None:
         if not args.json:
-            print(f"{'pass' if why is None else 'FAIL'}  {name}" + (f": {why}" if why else ""),
-                  flush=True)
+            word = "pass" if why is None else "skip" if why.startswith("skipped: ") else "FAIL"
+            print(f"{word}  {name}" + (f": {why}" if why else ""), flush=True)
 
     try:
         result = run_suite(port, report)
@@ -56,5 +57,6 @@ def run(args: argparse.Namespace) -> int:
     if args.json:
         print(json.dumps(result.to_json(), indent=2))
     else:
-        print(f"{len(result.passed)} passed, {len(result.failed)} failed")
+        print(f"{len(result.passed)} passed, {len(result.failed)} failed, "
+              f"{len(result.skipped)} skipped")
     return 0 if result.ok else 1

@@ -34,6 +34,7 @@ COMMAND_MODULES = (
     "apply",
     "policy",
     "history",
+    "archive",
     "param",
     "check",
     "scan",

@@ -30,8 +30,6 @@ FILTER_HELP = (
     "function=TEXT (part of the name) or function=0xNN, direction=to-ba|from-ba|data, errors"
 )
 ROTATE_MB = options.number(low=0.0, high=1e6, low_open=True, what="size (MB)")
-#: Frames a replay reads ahead to tell a PDCP capture from another bus's.
-PROBE_FRAMES = 2000
 _DIRECTIONS = {"to-ba": "device→BA", "from-ba": "BA→device", "data": "channel data"}
 #: The time column, as the help and the closing lines say it.
 TIME_BASE = "Times are seconds since the first frame"
@@ -60,7 +58,8 @@ def add_subparser(subparsers: argparse._SubParsersAction[argparse.ArgumentParser
     source = p.add_mutually_exclusive_group(required=True)
     source.add_argument("--bus", metavar="URL", help="sim:NAME, can:INTERFACE:CHANNEL[@BITRATE] …")
     source.add_argument("--replay", metavar="FILE",
-                        help="a capture (.asc .blf .csv .log .trc .db, optionally .gz)")
+                        help="a capture (ASC, BLF, TRC, CSV, candump log, SQLite, gzipped "
+                             "or not; MF4 with python-can's mf4 extra), read by its content")
     p.add_argument("--log", metavar="FILE", type=options.file_name,
                    help="also write every frame to this capture (replaced only once complete; "
                         "its node map is saved beside it)")
@@ -263,44 +262,12 @@ def _session_frames(url: str, stop: Callable[[], bool],
         session.close()
 
 
-def _probe_foreign(head: list[Any], decoder: Any) -> bool:
-    """True when the first frames of a capture hold nothing that fits PDCP in context."""
-    from pdcp_studio.bus.trace.decoder import FrameDecoder
-    from pdcp_studio.bus.trace.stats import NOT_PDCP_MIN_FRAMES
+def _replay_frames(path: str, decoder: Any) -> Any:
+    """A capture opened for decoding (``CaptureReplay``: its frames, its reader, where its
+    node map came from); CaptureError if it is unreadable."""
+    from pdcp_studio.bus.trace.replay import CaptureReplay
 
-    probe = FrameDecoder(dict(decoder.links))
-    probe.meter_on = False
-    probe.load_node_map(decoder.node_map())
-    for msg in head:
-        probe.decode(msg.arbitration_id, msg.data, msg.timestamp or 0.0,
-                     is_extended_id=msg.is_extended_id, is_remote_frame=msg.is_remote_frame,
-                     is_error_frame=msg.is_error_frame)
-    return len(head) >= NOT_PDCP_MIN_FRAMES and probe.stats.in_context == 0
-
-
-def _replay_frames(path: str, decoder: Any) -> tuple[Iterator[Any], Callable[[], None]]:
-    """A capture's frames and how to close it; its saved node map loaded, and foreign
-    traffic recognised (CaptureError if it is unreadable)."""
-    import itertools
-
-    from pdcp_studio.bus.trace.capture import open_capture
-    from pdcp_studio.bus.trace.nodemap import read_node_map
-
-    node_map = read_node_map(path)
-    if node_map is not None:
-        try:
-            decoder.load_node_map(node_map, f"{path}.nodemap.json")
-        except ValueError as err:
-            raise BadInput(str(err)) from err
-    frames, close = open_capture(path, plain_frames=True)
-    try:
-        head = list(itertools.islice(frames, PROBE_FRAMES))
-    except BaseException:
-        close()
-        raise
-    decoder.foreign = _probe_foreign(head, decoder)
-    # The rest straight from the reader: no generator of ours between it and the loop.
-    return itertools.chain(head, frames), close
+    return CaptureReplay(path, decoder)
 
 
 def _load_system_links(links: dict[int, Any], path: str) -> None:
@@ -344,6 +311,8 @@ def run(args: argparse.Namespace) -> int:
             raise BadInput(str(err)) from err
         if spec.kind == "can":
             decoder.passive = True  # it joins a running bus and learns from what it hears
+            if not args.system:  # and infers devices and channels it never saw set up
+                decoder.learn_from_traffic()
             frames = _can_frames(spec, stop)
         else:
             frames = _session_frames(args.bus, stop, decoder)
@@ -356,13 +325,20 @@ def run(args: argparse.Namespace) -> int:
         reports = ChannelCounts
 
     counted = ChannelDataCounts()
+    reader: Any = None
+    # Where the node map comes from, when not from the capture itself: the system file
+    # given, or a session's own system (sim:, serial:).
+    map_source: str | None = args.system or (
+        None if args.replay or args.bus.startswith("can:") else f"the session on {args.bus}")
     pump: TracePump | None = None
     cut_short = False  # Ctrl-C before --seconds had passed
     try:
         with ExitStack() as stack:
             if frames is None:
-                frames, close = _replay_frames(args.replay, decoder)
-                stack.callback(close)
+                opened = _replay_frames(args.replay, decoder)
+                stack.callback(opened.close)
+                frames, reader = opened.frames, opened.reader
+                map_source = opened.node_map_source or map_source
             else:
                 stack.enter_context(closing(frames))  # type: ignore[type-var]  # shuts a bus
             recorder = stack.enter_context(Recorder(
@@ -401,17 +377,20 @@ def run(args: argparse.Namespace) -> int:
         if pump is not None:
             pump.flush()  # the frames read before the fault
             if pump.json is not None and pump.json.count:
-                pump.close()  # stdout stays one JSON document
+                pump.close(_summary_json(decoder, None, reader, map_source, None))
         if isinstance(err, CaptureWriteError):
             raise  # a failure (exit 1) naming the capture, not bad input
         raise BadInput(str(err)) from err
+    elapsed = None if args.replay else time.monotonic() - clock["started"]
     if pump is not None:
-        pump.close()
+        pump.close(_summary_json(decoder, elapsed, reader, map_source,
+                                 recorder.not_written() if recorder is not None else None))
     out.flush()
     if limiter is not None:
         limiter.tick(final=True)
-    elapsed = None if args.replay else time.monotonic() - clock["started"]
     print(decoder.stats.summary(elapsed), file=sys.stderr)
+    for line in _closing_lines(decoder, reader, map_source):
+        print(line, file=sys.stderr)
     base = None if args.json else time_base_line(decoder.t0)
     if base is not None:
         print(base, file=sys.stderr)
@@ -424,9 +403,45 @@ def run(args: argparse.Namespace) -> int:
                 f"{args.log}{PARTIAL_SUFFIX}" if args.log else "")
         print(f"pdcp-studio: monitor interrupted {when}{kept}", file=sys.stderr)
         return 1
+    lost = recorder.not_written() if recorder is not None else None
     if args.log:
-        print(f"wrote {args.log}", file=sys.stderr)
-    return 0
+        print(f"wrote {args.log}" + (f", but {lost}" if lost else ""), file=sys.stderr)
+    if reader is not None and reader.truncated:
+        print(f"pdcp-studio: {reader.damage} (read up to there: {reader.frames:,} frames)",
+              file=sys.stderr)
+        return 2
+    return 1 if lost else 0
+
+
+def _closing_lines(decoder: Any, reader: Any, map_source: str | None) -> list[str]:
+    stats = decoder.stats
+    verdict = stats.verdict_word()
+    lines = [f"verdict: {verdict}"]
+    from pdcp_studio.bus.trace.replay import node_map_words
+
+    words = node_map_words(decoder, map_source)
+    if words:
+        lines.append(words)
+    if reader is not None:
+        lines.append(f"capture: {reader.name}, {reader.format_name}"
+                     + (f", truncated: {reader.damage}" if reader.truncated else ""))
+    return lines
+
+
+def _summary_json(decoder: Any, elapsed: float | None, reader: Any, map_source: str | None,
+                  not_written: str | None) -> dict[str, Any]:
+    """The ``summary`` of ``--json`` (contracts §2)."""
+    from pdcp_studio.bus.trace.replay import node_map_words
+
+    summary: dict[str, Any] = decoder.stats.as_json(elapsed)
+    summary["node_map"] = node_map_words(decoder, map_source)
+    if reader is not None:
+        summary.update(format=reader.format, truncated=reader.truncated, damage=reader.damage)
+    else:
+        summary.update(truncated=False, damage=None)
+    if not_written:
+        summary["not_written"] = not_written
+    return summary
 
 
 class ChannelDataCounts:

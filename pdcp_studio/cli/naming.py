@@ -17,8 +17,6 @@ if TYPE_CHECKING:
 def names_for(system: System, tree: ProfileTree | None = None) -> Names:
     """``system``'s names; channels without a descriptor by ``tree``'s profile names, else
     by the profile tree the app would choose for ``system``."""
-    if tree is None:
-        from pdcp_studio.storage.profile_trees import load_profile_trees, tree_for
+    from pdcp_studio.storage.profile_trees import system_names
 
-        tree = tree_for(load_profile_trees(), system)
-    return Names(system, profiles=tree)
+    return system_names(system, tree)

@@ -91,6 +91,8 @@ T_STORED_DROP = "  no longer stored: {link}"
 T_POLICY = "Automatic set-up (autoconfigure): {old} → {new}."
 T_POLICY_OFF_STAY = "Turning automatic set-up off removes nothing: {links} stay as they are."
 T_POLICY_STAYS = "  stays: {link}"
+T_MUTED = ("This link stays but carries no data while data transfer is off at one of its "
+           "ends: {link}")
 T_ONE_LINK = "{n} link"
 T_LINKS = "{n} links"
 T_HELD = "While the change is made, these parts are held still: {parts}."
@@ -234,12 +236,20 @@ class Effect:
         out += [tr(T_LINK_REMOVED).format(link=self.name(lk, tr)) + why(lk)
                 for lk in self.links_removed]
         out += [self.parameter_text(p, tr) for p in self.parameters]
+        out += self.muted_lines(tr)
         out += self.stored_lines(tr)
         out += self.policy_lines(tr)
         if not self.empty and (self.links_added or self.links_removed or self.parameters):
             out.append(tr(T_HELD).format(parts=", ".join(self.name(k, tr) for k in self.held))
                        if self.held else tr(T_HELD_NONE))
         return out
+
+    def muted_lines(self, tr: Translate = _same) -> list[str]:
+        """Links the change leaves listed but silent (data transfer turned off at an end)."""
+        off = {p.where for p in self.parameters
+               if p.name == "data-transfer" and p.after == "off" and p.channel is not None}
+        return [tr(T_MUTED).format(link=self.name(lk, tr)) for lk in self.links_after
+                if lk.output in off or lk.input in off]
 
     def stored_lines(self, tr: Translate = _same) -> list[str]:
         if not self.stored_changed:
@@ -413,9 +423,17 @@ def _crc(crc: Callable[[ConfigCollection | None], str | None] | None,
 
 def predict_power_on(system: System, stored: ConfigCollection, *, autoconfigure: bool
                      ) -> PowerOn:
-    """The engine's start-up on ``system`` as it is and ``stored`` (reference §2): the links
-    it would make and remove."""
-    plan = plan_on_bus("startup", system, stored, autoconfigure=autoconfigure)
+    """The engine's start-up on ``system`` and ``stored`` (reference §2): the links it would
+    make and remove, relative to ``system``'s links.
+
+    Start-up runs on the parts as they power on: unlinked (enabled flags and source node IDs
+    are bus-session values every part clears), each input keeping its stored source fields.
+    So the plan starts from no links, as the arbitrator's does: a link kept on the live bus
+    that start-up would not make again from nothing (a second sole-access input on one
+    output, say) is predicted to go."""
+    powered = system.copy()
+    powered.clear_links()  # the inputs' source fields stay: "retrieved" reads them
+    plan = plan_on_bus("startup", powered, stored, autoconfigure=autoconfigure)
     now = set(system.links)
     final = set(plan.final_links)
     source = "stored" if stored.configurations and plan.configuration_source == "stored" \

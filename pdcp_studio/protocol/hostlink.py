@@ -135,6 +135,11 @@ class FrameReader:
         self.errors = 0
         self.last_error = ""
 
+    def discard(self) -> None:
+        """Forget a frame begun but not ended (the link was reset)."""
+        self._buf.clear()
+        self._overflow = False
+
     def feed(self, data: bytes) -> list[Frame | FrameError]:
         """Whole frames in ``data`` (with what came before); a dropped one as its FrameError."""
         out: list[Frame | FrameError] = []

@@ -13,8 +13,12 @@ sent again and the retransmit buffer is one frame. The receiver:
 The sender, on ACK(inflight) or NAK(inflight + 1) (the peer has it), sends the next frame; on
 NAK(inflight) or after ``ack_timeout`` it sends the same frame again, at most
 ``max_attempts`` times in all, then gives the message up and reports it. A NAK naming any
-other seq means the two ends disagree (the peer restarted, or a RESET was lost): the host
-sends RESET and renumbers from 0; the arbitrator ignores it.
+other seq means the two ends disagree (the peer restarted, a RESET was lost, or the peer gave
+up a frame and moved on): the host sends RESET and renumbers from 0; the arbitrator cannot
+renumber alone, so it sends RESET to ask the host to (a frame given up while the line was cut
+would otherwise leave the host NAKing a number the arbitrator never sends again, for ever).
+The host also resets after ``RESYNC_AFTER`` out-of-sequence DATA frames in a row. RESET drops
+the frame in flight and everything queued, at both ends; ``take_resynced`` tells the owner.
 
 Pure: the caller passes the time (``now``, seconds) and moves the bytes.
 """
@@ -34,6 +38,9 @@ ACK_TIMEOUT_S = 0.25
 MAX_ATTEMPTS = 8
 #: Messages waiting behind the one in flight (the arbitrator's event queue is this deep).
 OUTBOX_LIMIT = 64
+#: Out-of-sequence DATA frames in a row after which the host resets the link (one can be a
+#: stray retransmission; a run means the two ends count differently).
+RESYNC_AFTER = 3
 
 
 @dataclass
@@ -55,6 +62,8 @@ class LinkStats:
     resets: int = 0
     given_up: int = 0
     dropped: int = 0  # outbox overflow
+    reset_dropped: int = 0  # messages dropped by a RESET (in flight or queued)
+    resync_asked: int = 0  # RESETs the arbitrator sent to ask the host to renumber
     last_error: str = ""
     errors: list[str] = field(default_factory=list)
 
@@ -77,6 +86,10 @@ class LinkEndpoint:
         self._control: list[bytes] = []  # ACK/NAK/RESET, sent before any DATA
         self._wire = bytearray()
         self._failed: list[bytes] = []
+        self._out_of_order_run = 0
+        self._resynced = False
+        #: What the last reset dropped (the owner may count lost events from it).
+        self.reset_dropped: list[bytes] = []
 
     # -- the application's side -----------------------------------------------------------
     def send(self, payload: bytes, now: float) -> bool:
@@ -88,15 +101,25 @@ class LinkEndpoint:
         self._pump(now)
         return True
 
-    def reset(self, now: float) -> None:
-        """Start both directions again at 0 and drop what is queued; the host tells the peer."""
+    def reset(self, now: float, *, discard_partial: bool = False) -> None:
+        """Start both directions again at 0 and drop what is queued; the host tells the peer.
+        ``discard_partial`` also forgets a frame half read (when the owner resets between
+        reads, never while a read's frames are handled: the next frame may be half read)."""
         self._tx_seq = self._rx_expected = 0
+        dropped = ([self._inflight.payload] if self._inflight else []) + list(self._outbox)
+        self.stats.reset_dropped += len(dropped)
+        self.reset_dropped = dropped[-self.outbox_limit:]
+        self._out_of_order_run = 0
+        self._resynced = True
         self._outbox.clear()
         self._inflight = None
         self._control.clear()
         self._wire.clear()
+        if discard_partial:
+            self._reader.discard()  # a frame broken off before the reset is not worth a NAK
         if self.host:
-            self._control.append(Frame(Kind.RESET, 0).encode())
+            # 0x00 first ends whatever the peer has half-read, so the RESET itself is whole
+            self._control.append(b"\x00" + Frame(Kind.RESET, 0).encode())
             self.stats.resets += 1
 
     @property
@@ -113,6 +136,12 @@ class LinkEndpoint:
         """Messages given up since the last call (the peer never acknowledged them)."""
         failed, self._failed = self._failed, []
         return failed
+
+    def take_resynced(self) -> bool:
+        """True once after the link was reset (by us or the peer): what was in flight or
+        queued is gone, and the owner decides what to send again."""
+        resynced, self._resynced = self._resynced, False
+        return resynced
 
     def next_deadline(self) -> float | None:
         return self._inflight.deadline if self._inflight and self._inflight.attempts else None
@@ -156,6 +185,7 @@ class LinkEndpoint:
     def _on_frame(self, frame: Frame, now: float, delivered: list[bytes]) -> None:
         if frame.kind is Kind.DATA:
             if frame.seq == self._rx_expected:
+                self._out_of_order_run = 0
                 self._rx_expected = (self._rx_expected + 1) & 0xFF
                 self._control.append(Frame(Kind.ACK, frame.seq).encode())
                 delivered.append(frame.payload)
@@ -164,19 +194,28 @@ class LinkEndpoint:
                 self._control.append(Frame(Kind.ACK, frame.seq).encode())
             else:
                 self.stats.out_of_order += 1
-                self._nak()
+                self._out_of_order_run += 1
+                if self.host and self._out_of_order_run >= RESYNC_AFTER:
+                    self.reset(now)
+                else:
+                    self._nak()
         elif frame.kind is Kind.ACK:
             if self._inflight is not None and frame.seq == self._inflight.seq:
                 self._inflight = None
         elif frame.kind is Kind.NAK:
             self._on_nak(frame.seq, now)
-        elif frame.kind is Kind.RESET and not self.host:
-            self.stats.resets += 1
-            self.reset(now)
+        elif frame.kind is Kind.RESET:
+            if self.host:
+                self.reset(now)  # the arbitrator asks us to renumber: RESET back
+            else:
+                self.stats.resets += 1
+                self.reset(now)
 
     def _on_nak(self, seq: int, now: float) -> None:
         flight = self._inflight
         if flight is None:
+            if seq != self._tx_seq and not self.host:
+                self._ask_reset()  # the host waits for a frame we gave up
             return
         if seq == flight.seq:
             if flight.attempts >= self.max_attempts:
@@ -191,6 +230,14 @@ class LinkEndpoint:
             queued = list(self._outbox)
             self.reset(now)
             self._outbox.extend([payload, *queued])
+            self._resynced = False  # nothing lost: all of it is sent again
+        else:
+            self._ask_reset()
+
+    def _ask_reset(self) -> None:
+        """The arbitrator's answer to a NAK naming a frame it will not send again."""
+        self.stats.resync_asked += 1
+        self._control.append(Frame(Kind.RESET, 0).encode())
 
     def _nak(self) -> None:
         self.stats.naks_sent += 1

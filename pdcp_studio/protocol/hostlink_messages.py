@@ -53,6 +53,8 @@ class Req(IntEnum):
     TRANSACT_RUN = 0x16
     MONITOR = 0x17
     RESULT_READ = 0x18
+    ANCHOR_READ = 0x19
+    ANCHOR_WRITE = 0x1A
 
 
 class Event(IntEnum):
@@ -101,6 +103,11 @@ CAP_MONITOR = 0x0001
 CAP_TRANSACTIONS = 0x0002
 CAP_POLICY = 0x0004
 CAP_PARAM_BULK = 0x0008
+#: The two profiles of docs/host-link.md §7, as HELLO declares them: the full one has every
+#: capability; the lean one (an 8-bit MCU with 2 KB of RAM) none that costs RAM (it may add
+#: CAP_POLICY, which costs nothing).
+CAP_FULL = CAP_MONITOR | CAP_TRANSACTIONS | CAP_POLICY | CAP_PARAM_BULK
+CAP_LEAN = 0x0000
 
 # -- structs (little-endian; fields in order) ---------------------------------------------------
 # device key: vid, pid, serial

@@ -6,10 +6,11 @@ Pure file reading (no Qt), so the command line names profiles exactly as the app
 from __future__ import annotations
 
 import logging
-from collections.abc import Iterable
+from collections.abc import Callable, Iterable
 from pathlib import Path
 
 from pdcp_studio.errors import ProfileError
+from pdcp_studio.model.names import Names
 from pdcp_studio.model.profile_tree import ProfileNames, ProfileTree
 from pdcp_studio.model.system import System
 
@@ -82,3 +83,12 @@ def tree_for(trees: list[ProfileTree], system: System | None) -> ProfileNames:
         [p for ch in device.channels.values() for p in (ch.profile, ch.terminal_profile)]
         for device in system.devices.values()]
     return ProfileNames(trees, devices)
+
+
+def system_names(system: System, tree: ProfileTree | None = None,
+                 tr: Callable[[str], str] | None = None) -> Names:
+    """The one naming of ``system``'s parts and channels (``model/names.py``), its profiles
+    named by ``tree`` or else by the named trees that fit ``system`` — what the change
+    road, the CLI and the app all name a prosthesis with."""
+    profiles = tree if tree is not None else tree_for(load_profile_trees(), system)
+    return Names(system, profiles=profiles, tr=tr or (lambda text: text))

@@ -1037,6 +1037,10 @@
             <source>The devices of the bus and the links between their channels</source>
             <translation>Die Geräte des Busses und die Verbindungen zwischen ihren Kanälen</translation>
         </message>
+        <message>
+            <source>Opened capture {name}</source>
+            <translation>Mitschnitt {name} geöffnet</translation>
+        </message>
     </context>
     <context>
         <name>DeviceTree</name>
@@ -1266,6 +1270,10 @@ Das Öffnen von {1} beendet diese Verbindung.</translation>
         <message>
             <source>  stays: {link}</source>
             <translation>  bleibt: {link}</translation>
+        </message>
+        <message>
+            <source>This link stays but carries no data while data transfer is off at one of its ends: {link}</source>
+            <translation>Diese Verbindung bleibt, überträgt aber keine Daten, solange die Datenübertragung an einem ihrer Enden aus ist: {link}</translation>
         </message>
         <message>
             <source>{n} links</source>
@@ -1757,6 +1765,26 @@ Ihr Name (wird einmal erfragt):</translation>
         <message>
             <source>Technical detail</source>
             <translation>Technische Einzelheiten</translation>
+        </message>
+        <message>
+            <source>Patient reference</source>
+            <translation>Patientenreferenz</translation>
+        </message>
+        <message>
+            <source>Show only the changes of the patients whose reference contains this text</source>
+            <translation>Nur die Änderungen der Patienten zeigen, deren Referenz diesen Text enthält</translation>
+        </message>
+        <message>
+            <source>Patient:</source>
+            <translation>Patient:</translation>
+        </message>
+        <message>
+            <source>Workstation: {0}</source>
+            <translation>Arbeitsplatz: {0}</translation>
+        </message>
+        <message>
+            <source>Imported from {0}, where it was entry #{1}</source>
+            <translation>Übernommen aus {0}, dort Eintrag #{1}</translation>
         </message>
     </context>
     <context>
@@ -2727,6 +2755,102 @@ Den PDCP-Bus einer aktiven Prothese ansehen und einrichten.</translation>
         <message>
             <source>frames</source>
             <translation>Frames</translation>
+        </message>
+        <message>
+            <source>Kind</source>
+            <translation>Art</translation>
+        </message>
+        <message>
+            <source>DLC</source>
+            <translation>DLC</translation>
+        </message>
+        <message>
+            <source>not read</source>
+            <translation>nicht gelesen</translation>
+        </message>
+        <message>
+            <source>{path}: a pipe or a device, not a capture file (the app opens files; read a pipe with pdcp-studio monitor --replay)</source>
+            <translation>{path}: eine Pipe oder ein Gerät, keine Mitschnittdatei (die App öffnet Dateien; eine Pipe liest pdcp-studio monitor --replay)</translation>
+        </message>
+        <message>
+            <source>Captures ({globs})</source>
+            <translation>Mitschnitte ({globs})</translation>
+        </message>
+        <message>
+            <source>ASAM MDF4 (*.mf4)</source>
+            <translation>ASAM MDF4 (*.mf4)</translation>
+        </message>
+        <message>
+            <source>ASAM MDF4, needs python-can's mf4 extra, not installed (*.mf4)</source>
+            <translation>ASAM MDF4, braucht das mf4-Extra von python-can, nicht installiert (*.mf4)</translation>
+        </message>
+        <message>
+            <source>All files (*)</source>
+            <translation>Alle Dateien (*)</translation>
+        </message>
+        <message>
+            <source>node map from {name}</source>
+            <translation>Knotenzuordnung aus {name}</translation>
+        </message>
+        <message>
+            <source>node map from the capture's set-up: {devices}, {channels}</source>
+            <translation>Knotenzuordnung aus der Einrichtung im Mitschnitt: {devices}, {channels}</translation>
+        </message>
+        <message>
+            <source>node map inferred from traffic: {devices}, {channels}</source>
+            <translation>Knotenzuordnung aus dem Verkehr erschlossen: {devices}, {channels}</translation>
+        </message>
+        <message>
+            <source>no node map (no set-up in the capture, nothing to infer from)</source>
+            <translation>keine Knotenzuordnung (keine Einrichtung im Mitschnitt, nichts zu erschließen)</translation>
+        </message>
+        <message>
+            <source>Empty capture: no frames</source>
+            <translation>Leerer Mitschnitt: keine Nachrichten</translation>
+        </message>
+        <message>
+            <source>Not PDCP: shown as plain CAN frames</source>
+            <translation>Kein PDCP: als einfache CAN-Nachrichten gezeigt</translation>
+        </message>
+        <message>
+            <source>Reading…</source>
+            <translation>Wird gelesen…</translation>
+        </message>
+        <message>
+            <source>PDCP capture</source>
+            <translation>PDCP-Mitschnitt</translation>
+        </message>
+        <message>
+            <source>Cut short: {damage} — the {frames} frames before it are shown</source>
+            <translation>Abgebrochen: {damage} — die {frames} Nachrichten davor werden gezeigt</translation>
+        </message>
+        <message>
+            <source>Stopped: the first {frames} frames are shown</source>
+            <translation>Angehalten: die ersten {frames} Nachrichten werden gezeigt</translation>
+        </message>
+        <message>
+            <source>Stopped before the first frames were read</source>
+            <translation>Angehalten, bevor die ersten Nachrichten gelesen waren</translation>
+        </message>
+        <message>
+            <source>This capture could not be read:
+{message}</source>
+            <translation>Dieser Mitschnitt konnte nicht gelesen werden:
+{message}</translation>
+        </message>
+        <message numerus="yes">
+            <source>%n device(s)</source>
+            <translation>
+                <numerusform>%n Gerät</numerusform>
+                <numerusform>%n Geräte</numerusform>
+            </translation>
+        </message>
+        <message numerus="yes">
+            <source>%n channel(s)</source>
+            <translation>
+                <numerusform>%n Kanal</numerusform>
+                <numerusform>%n Kanäle</numerusform>
+            </translation>
         </message>
     </context>
     <context>
@@ -4747,6 +4871,17 @@ Die Prothese ist wie zuvor.</translation>
         </message>
     </context>
     <context>
+        <name>HeardBus</name>
+        <message>
+            <source>Device at node {node}</source>
+            <translation>Gerät an Knoten {node}</translation>
+        </message>
+        <message>
+            <source>Channel node {node}</source>
+            <translation>Kanalknoten {node}</translation>
+        </message>
+    </context>
+    <context>
         <name>ArbitratorFound</name>
         <message>
             <source>{url}: another bus arbitrator is running this bus — PDCP Studio sent nothing</source>
@@ -4919,6 +5054,30 @@ Die Prothese ist wie zuvor.</translation>
     <context>
         <name>EventsPanel</name>
         <message>
+            <source>The arbitrator changed links on its own: {why}</source>
+            <translation>Der Arbiter hat selbst Verbindungen geändert: {why}</translation>
+        </message>
+        <message>
+            <source>they read back as written</source>
+            <translation>sie lesen sich zurück wie geschrieben</translation>
+        </message>
+        <message>
+            <source>they did not all read back as written</source>
+            <translation>nicht alle lesen sich zurück wie geschrieben</translation>
+        </message>
+        <message>
+            <source>It held {parts} still while it wrote, read the links back and let go: {outcome}</source>
+            <translation>Er hielt {parts} still, während er schrieb, las die Verbindungen zurück und gab sie frei: {outcome}</translation>
+        </message>
+        <message>
+            <source>No part that moves the prosthesis needed holding; read back: {outcome}</source>
+            <translation>Kein Teil, das die Prothese bewegt, musste angehalten werden; zurückgelesen: {outcome}</translation>
+        </message>
+        <message>
+            <source>No beacon for {seconds} s: {intervals} beacon intervals of {ms} ms</source>
+            <translation>Kein Beacon seit {seconds} s: {intervals} Beacon-Intervalle zu {ms} ms</translation>
+        </message>
+        <message>
             <source>{device} joined the bus</source>
             <translation>{device} ist dem Bus beigetreten</translation>
         </message>
@@ -5033,6 +5192,26 @@ Die Prothese ist wie zuvor.</translation>
         <message>
             <source>Δ marker</source>
             <translation>Δ Markierung</translation>
+        </message>
+        <message>
+            <source>data frame</source>
+            <translation>Datennachricht</translation>
+        </message>
+        <message>
+            <source>remote frame</source>
+            <translation>Remote-Nachricht</translation>
+        </message>
+        <message>
+            <source>error frame</source>
+            <translation>Fehlernachricht</translation>
+        </message>
+        <message>
+            <source>FD frame</source>
+            <translation>FD-Nachricht</translation>
+        </message>
+        <message>
+            <source>extended frame</source>
+            <translation>Nachricht mit erweiterter ID</translation>
         </message>
     </context>
     <context>
@@ -5480,6 +5659,14 @@ Die Prothese ist wie zuvor.</translation>
         <message>
             <source>Check number: CRC-16/CCITT-FALSE of the stored configuration record</source>
             <translation>Prüfnummer: CRC-16/CCITT-FALSE des gespeicherten Konfigurationsdatensatzes</translation>
+        </message>
+        <message>
+            <source>Fitting history anchor in the prosthesis</source>
+            <translation>Anker der Versorgungshistorie in der Prothese</translation>
+        </message>
+        <message>
+            <source>entry {id}, hash {hash}</source>
+            <translation>Eintrag {id}, Hash {hash}</translation>
         </message>
         <message>
             <source>VID {vid} PID {pid} serial {serial}</source>
@@ -6145,6 +6332,37 @@ Wählen Sie ein Profil aus dem Namensbaum oder geben Sie eines hexadezimal ein.<
         <message>
             <source>previewing</source>
             <translation>bei der Vorschau</translation>
+        </message>
+    </context>
+    <context>
+        <name>SignIn</name>
+        <message>
+            <source>Fitting history: not signed in</source>
+            <translation>Anpassungshistorie: nicht angemeldet</translation>
+        </message>
+        <message>
+            <source>Fitting history: this computer</source>
+            <translation>Anpassungshistorie: dieser Computer</translation>
+        </message>
+        <message>
+            <source>Fitting history: signed in as {0}, read only</source>
+            <translation>Anpassungshistorie: angemeldet als {0}, nur lesen</translation>
+        </message>
+        <message>
+            <source>Fitting history: signed in as {0}</source>
+            <translation>Anpassungshistorie: angemeldet als {0}</translation>
+        </message>
+        <message>
+            <source>Sign in to the fitting history</source>
+            <translation>An der Anpassungshistorie anmelden</translation>
+        </message>
+        <message>
+            <source>The clinic's fitting history at {0} asks for your password.
+{1}
+Password (kept only while PDCP Studio runs):</source>
+            <translation>Die Anpassungshistorie der Klinik unter {0} verlangt Ihr Passwort.
+{1}
+Passwort (nur aufbewahrt, solange PDCP Studio läuft):</translation>
         </message>
     </context>
 </TS>

@@ -14,6 +14,7 @@ import pytest
 
 from pdcp_studio.bus.session.sim import open_sim_session
 from pdcp_studio.bus.session.urls import open_can_bus, unique_virtual_channel
+from tests.bus.stray_frames import BeaconingArbitrator
 
 
 class Tap:
@@ -123,14 +124,22 @@ def test_an_arbitrator_appearing_later_is_said_and_the_same_offer_made(make_wind
     host = DeviceHost(open_can_bus("virtual", channel),
                       [SimulatedDevice(d) for d in system.devices.values()], name="devices")
     other = can.Bus(interface="virtual", channel=channel)
+    beacons = BeaconingArbitrator(channel)
     try:
         window = make_window()
         with qtbot.waitSignal(window.ready, timeout=30000):
             window.connect_bus(f"can:virtual:{channel}")
         assert window.live.is_live
+        # One stray arbitrator-mode frame (the issue's, then a lone beacon) is no arbitrator:
+        # the app stays connected (issue 28 item 1).
+        other.send(can.Message(arbitration_id=0x3AC, data=b"\x0e\x00", is_extended_id=False))
         other.send(can.Message(arbitration_id=0x100, data=b"\x0a", is_extended_id=False))
+        qtbot.wait(2500)  # longer than three beacon intervals: the two are never heard together
+        assert window.live.is_live
+        assert getattr(window, "arbitrator_found_dialog", None) is None
+        beacons.start()  # a real arbitrator: its beacons every 500 ms
         qtbot.waitUntil(lambda: getattr(window, "arbitrator_found_dialog", None) is not None,
-                        timeout=10000)
+                        timeout=15000)
         dialog = window.arbitrator_found_dialog
         assert dialog.isVisible() and "Another arbitrator started" in dialog.text.text()
         assert "stopped sending at once" in dialog.text.text()
@@ -138,5 +147,6 @@ def test_an_arbitrator_appearing_later_is_said_and_the_same_offer_made(make_wind
         assert not window.live.is_live  # nothing left that could write
         dialog.reject()
     finally:
+        beacons.close()
         other.shutdown()
         host.close()

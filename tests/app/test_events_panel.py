@@ -109,3 +109,27 @@ def test_the_list_keeps_a_bounded_number_of_rows(qtbot, monkeypatch):
     assert "(1/1/7)" in panel.rows()[-1][0]
     panel.clear()
     assert not panel.rows() and "No bus events" in panel.count_label.text()
+
+
+def test_what_the_arbitrator_changed_on_its_own_is_said_with_whom_it_held(make_window, qtbot):
+    """Issue 28 item 8: a hot-swap repair is the arbitrator's own change; Bus events says so,
+    why, whom it held still while it wrote, and that the links read back as written."""
+    window = make_window()
+    with qtbot.waitSignal(window.ready, timeout=20000):
+        window.connect_bus("sim:thesis-test4")
+    bridge = window.live.bridge
+    panel = window._leaf_docks["events"].widget()
+    with qtbot.waitSignal(bridge.scriptFinished, timeout=30000):
+        bridge.run_script("hot-swap")
+
+    def own() -> list[tuple[str, str, str]]:
+        return [r for r in panel.rows() if r[0].startswith("The arbitrator changed links on "
+                                                           "its own")]
+
+    qtbot.waitUntil(lambda: bool(own()), timeout=15000)
+    what, why, _similar = own()[-1]
+    assert "replaced while the prosthesis was running" in what
+    assert why.startswith("It held ") and "read back as written" in why, why
+    assert "did not all" not in why
+    for text in (what, why):
+        assert not RAW.search(text), text

@@ -285,7 +285,8 @@ def test_effect_and_next_power_on_are_shown_and_an_old_entry_says_it_predates_th
     body, _, detail = html.partition("Technical detail")
     text = html_mod.unescape(" ".join(re.sub(r"<[^>]+>", " ", body).split()))
     assert "Hand, channel 1: control mode position → speed" in text
-    assert "At the next power-on: the control unit links the hand's power grip again." in text
+    assert "the control unit links the hand's power grip again." in text
+    assert "At the next power-on: At the next power-on" not in text
     assert "This entry was recorded before PDCP Studio predicted the next power-on" in text
     assert "Hand replaced by Multi-grip hand" in text  # no twin here: no serial number
     assert "(serial 302)" not in text
@@ -369,3 +370,29 @@ def test_a_live_swap_report_is_a4_numbered_with_patient_operator_and_whole_words
             subprocess.run(["pdftoppm", "-png", "-r", "60", str(out),
                             os.path.join(os.environ["PDCP_REPORT_SHOTS"], f"report-{lang}")],
                            check=True)
+
+
+def test_a_recorded_effect_reads_in_the_reports_language_once_and_line_by_line(qapp):
+    """The screenshot trial: the report said "At the next power-on: At the next power-on, …"
+    and ran the prediction's lines together. A recorded effect is read back and said in the
+    user's language, each line its own."""
+    from pdcp_studio.app import i18n
+    from pdcp_studio.app import report_entries as entries
+    from pdcp_studio.engine.effect import effect_of
+    from pdcp_studio.engine.modes import plan_autoconfigure
+    from pdcp_studio.paths import resources_dir
+    from pdcp_studio.storage.system_file import load_path
+
+    system = load_path(resources_dir() / "systems" / "transradial.json")
+    plan_autoconfigure(system).apply(system)
+    effect = effect_of(system, links_after=system.links[1:])
+    entry = {"id": 1, "effect": effect.to_json(), "next_power_on": effect.power_on_json()}
+    lines = entries.power_on_lines(entry)
+    assert sum(ln.startswith("At the next power-on") for ln in lines) == 1 and len(lines) >= 2
+    i18n.install(qapp, "de")
+    try:
+        german = entries.power_on_lines(entry) + entries.effect_lines(entry)
+    finally:
+        i18n.uninstall(qapp)
+    assert any(ln.startswith("Beim nächsten Einschalten") for ln in german), german
+    assert any(ln.startswith("Verbindung entfernt") for ln in german), german

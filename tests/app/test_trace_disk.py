@@ -112,8 +112,8 @@ def test_a_capture_file_opens_into_the_disk_store_and_saves_back(tmp_path):
     store = FileFrameStore(str(tmp_path))
     stats = IdStats(store.tables)
     seen: list[int] = []
-    count = load_capture(store, stats, path, None, lambda done, _p, _t: seen.append(done),
-                         threading.Event())
+    count = load_capture(store, stats, path, lambda done, _p, _t: seen.append(done),
+                         threading.Event()).frames
     assert count == len(store) == 20_000 and seen[0] == 500
     assert store.frame(0).function == "Bind Device Request"
     assert store.select(TraceFilter(text="de ad be ef")).tolist() == [19_999]

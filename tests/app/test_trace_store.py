@@ -115,9 +115,9 @@ def test_every_python_can_format_loads_and_saves_back(tmp_path, suffix):
     store = FrameStore()
     stats = IdStats(store.tables)
     seen: list[tuple[int, int]] = []
-    count = load_capture(store, stats, path, None,
+    count = load_capture(store, stats, path,
                          lambda done, permille, _t: seen.append((done, permille)),
-                         threading.Event())
+                         threading.Event()).frames
     assert count == len(store) == 3000
     assert seen[0][0] == 500 and seen[-1] == (3000, 1000)  # a small first chunk, then all
     assert store.frame(0).function == "Bind Device Request"

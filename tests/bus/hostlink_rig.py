@@ -25,15 +25,16 @@ def wait_for(predicate, timeout: float = 5.0) -> bool:
 
 
 @contextmanager
-def arbitrator_rig(system_path, memory, *, profile_layer: bool = False):
-    """(arbitrator, server): the devices of ``system_path`` bound and set up."""
+def arbitrator_rig(system_path, memory, *, profile_layer: bool = False, **options):
+    """(arbitrator, server): the devices of ``system_path`` bound and set up (``options``:
+    more of the arbitrator's, e.g. ``take_back``)."""
     system = system_file.load_path(system_path)
     channel = unique_virtual_channel("hostlink")
     arb_bus = can.Bus(interface="virtual", channel=channel)
     dev_bus = can.Bus(interface="virtual", channel=channel)
     host = DeviceHost(dev_bus, [SimulatedDevice(d) for d in system.devices.values()])
     arbitrator = Arbitrator(arb_bus, memory=memory, profile_layer=profile_layer,
-                            frame_events=True, startup_quiet_s=0.2)
+                            frame_events=True, startup_quiet_s=0.2, **options)
     server = None
     try:
         assert wait_for(lambda: len(arbitrator.system().devices) == len(system.devices), 10.0)

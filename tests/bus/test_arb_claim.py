@@ -12,7 +12,14 @@ import can
 import pytest
 
 from pdcp_studio.bus import events as ev
-from pdcp_studio.bus.arbitrator.claim import ARBITRATOR_BEACON_S, LISTEN_S, BusClaim, Phase
+from pdcp_studio.bus.arbitrator.claim import (
+    ARBITRATOR_BEACON_S,
+    LISTEN_S,
+    BusClaim,
+    Decision,
+    Phase,
+    Stray,
+)
 from pdcp_studio.bus.arbitrator.core import Arbitrator
 from pdcp_studio.bus.session.in_process import OtherArbitratorError, open_can_session
 from pdcp_studio.bus.session.sim import open_sim_session
@@ -21,7 +28,20 @@ from pdcp_studio.bus.sim.device import SimulatedDevice
 from pdcp_studio.bus.sim.device_host import DeviceHost
 from pdcp_studio.bus.sim.rigs import TEST2_LINKS, load_prosthesis
 from pdcp_studio.cli.main import main
-from pdcp_studio.protocol import Beacon, BindRequest, GetParameter, Mode, Reset
+from pdcp_studio.protocol import (
+    Beacon,
+    BindRequest,
+    GetParameter,
+    GetParameterResponse,
+    Mode,
+    Reset,
+    ResponseCode,
+)
+from tests.bus.stray_frames import (
+    BeaconingArbitrator,
+    is_arbitrator_beacon,
+    single_mode_1_frames,
+)
 
 
 def frame(message):
@@ -40,21 +60,129 @@ def test_listening_then_arbitrating_when_nobody_else_is_heard():
     assert claim.may_write and claim.tick(102.0) is None
 
 
-def test_any_mode_1_frame_while_listening_means_never_arbitrate():
+BEACON_BA = frame(Beacon(0, mode=Mode.ARBITRATOR))
+
+
+def test_one_mode_1_frame_while_listening_is_a_stray_frame_not_an_arbitrator():
     claim = BusClaim(0.0, listen_s=1.0)
-    aid, data = frame(GetParameter(7, 9, 0))  # a request from someone else's arbitrator
-    decision = claim.heard(aid, data, 0.3)
+    aid, data = frame(GetParameter(7, 9, 0))  # one request, from nobody known
+    stray = claim.heard(aid, data, 0.3)
+    assert isinstance(stray, Stray) and "ignored" in stray.message
+    assert "0x307 [03 09 00]" in stray.message
+    assert claim.tick(1.0).phase is Phase.ARBITRATING and claim.may_write
+
+
+def test_two_arbitrator_beacons_while_listening_mean_never_arbitrate():
+    claim = BusClaim(0.0, listen_s=1.1)
+    assert claim.heard(*BEACON_BA, 0.1) is None  # one beacon alone: not yet
+    decision = claim.heard(*BEACON_BA, 0.6)
     assert decision.phase is Phase.YIELDED and not decision.later
-    assert "another bus arbitrator" in decision.message and "0x03" in decision.message
+    assert "another bus arbitrator" in decision.message and "beacons" in decision.message
     assert claim.tick(5.0) is None and not claim.may_write and not claim.beacon_due(5.0)
-    assert claim.heard(*frame(Beacon(0, mode=Mode.ARBITRATOR)), 6.0) is None  # said once
+    assert claim.heard(*BEACON_BA, 6.0) is None  # said once
+    assert claim.tick(60.0) is None  # heard on start: never taken back
+
+
+def test_one_beacon_heard_while_listening_keeps_it_listening_for_a_second():
+    claim = BusClaim(0.0, listen_s=1.1)
+    assert claim.heard(*BEACON_BA, 1.0) is None
+    assert claim.tick(1.2) is None and claim.phase is Phase.LISTENING  # a second is due
+    assert claim.tick(2.4) is None
+    assert claim.tick(2.6).phase is Phase.ARBITRATING  # none came within 3 intervals
+
+
+def test_beacons_further_apart_than_three_intervals_are_strays():
+    claim = BusClaim(0.0, listen_s=0.0)
+    for t in (1.0, 2.6, 4.2, 5.8):  # 1.6 s apart: more than 3 × 500 ms
+        assert claim.heard(*BEACON_BA, t) is None
+        assert claim.lone_beacon(t + 1.4) is None  # its second may still come …
+        stray = claim.lone_beacon(t + 1.55)  # … it did not: a stray frame, told once
+        assert isinstance(stray, Stray) and "0x100 [0A]" in stray.message
+        assert claim.lone_beacon(t + 1.56) is None
+    assert claim.may_write
+
+
+def test_lone_beacons_far_apart_on_the_bus_handled_together_are_still_strays():
+    """A busy PC handles a backlog late: two beacons 5 s apart on the bus (their own time
+    stamps) handled 10 ms apart are not two beacons within three intervals."""
+    claim = BusClaim(0.0, listen_s=0.0)
+    assert claim.heard(*BEACON_BA, 20.00, bus_time=1000.0) is None
+    assert claim.heard(*BEACON_BA, 20.01, bus_time=1005.0) is None
+    assert claim.may_write
+
+
+def test_one_beacon_and_an_answer_nobody_here_asked_for_is_an_arbitrator():
+    claim = BusClaim(0.0, listen_s=1.1)
+    claim.heard(*frame(Beacon(7)), 0.05)  # a device beacons on node 7
+    answer = frame(GetParameterResponse(7, ResponseCode.SUCCESS, 9, 0, b"\x01\x00"))
+    assert claim.heard(*answer, 0.1) is None  # an answer alone: nothing said
+    decision = claim.heard(*BEACON_BA, 0.3)
+    assert decision.phase is Phase.YIELDED and "did not send" in decision.message
+
+
+def test_an_answer_to_our_own_request_is_no_evidence():
+    claim = BusClaim(0.0, listen_s=0.0)
+    claim.heard(*frame(Beacon(7)), 0.05)
+    claim.sent(*frame(GetParameter(7, 9, 0)), 0.1)
+    claim.heard(*frame(GetParameterResponse(7, ResponseCode.SUCCESS, 9, 0, b"\x01\x00")), 0.2)
+    assert claim.heard(*BEACON_BA, 0.3) is None and claim.may_write
 
 
 def test_an_arbitrator_appearing_later_stops_the_writing():
     claim = BusClaim(0.0, listen_s=0.0)
     assert claim.may_write and claim.beacon_due(0.0)
-    decision = claim.heard(*frame(Beacon(0, mode=Mode.ARBITRATOR)), 3.0)
+    assert claim.heard(*BEACON_BA, 3.0) is None and claim.may_write
+    decision = claim.heard(*BEACON_BA, 3.5)
     assert decision.later and "stopped writing" in decision.message and not claim.may_write
+    assert claim.tick(60.0) is None and not claim.may_write  # without take_back: for good
+
+
+def test_taken_back_when_the_others_beacons_are_gone_five_intervals():
+    claim = BusClaim(0.0, listen_s=0.0, take_back=True, jitter=lambda: 0.0)
+    claim.heard(*BEACON_BA, 3.0)
+    decision = claim.heard(*BEACON_BA, 3.5)
+    assert decision.later and "read-only" in decision.message and "2.5 s" in decision.message
+    for t in (4.0, 4.5, 5.0):  # it keeps beaconing: the bus stays its
+        assert claim.heard(*BEACON_BA, t) is None and claim.tick(t + 0.4) is None
+    assert claim.tick(7.4) is None  # 2.4 s since its last beacon
+    assert claim.tick(7.6, caught_up=False) is None  # frames still waiting: not judged
+    back = claim.tick(7.6)
+    assert back.phase is Phase.ARBITRATING and back.taken_back and claim.may_write
+    assert "2.6 s" in back.message and claim.beacon_due(7.6)
+
+
+def test_two_arbitrators_that_stepped_aside_for_each_other_do_not_come_back_together():
+    """Buses joined: each heard the other and stepped aside; their random waits differ, so
+    one takes the bus back first, beacons, and the other stays aside."""
+    waits = iter([0.1, 0.9])
+    a, b = (BusClaim(0.0, listen_s=0.0, take_back=True, jitter=lambda: next(waits))
+            for _ in range(2))
+    for claim in (a, b):
+        claim.heard(*BEACON_BA, 1.0)
+        assert claim.heard(*BEACON_BA, 1.5).later
+    assert 2.5 <= a.take_back_wait_s < b.take_back_wait_s <= 5.0
+    t = 1.5
+    while not a.may_write:
+        t += 0.01
+        a.tick(t)
+        assert b.tick(t) is None
+    assert t - 1.5 == pytest.approx(a.take_back_wait_s, abs=0.02)
+    for step in range(10):  # a beacons; b hears it and stays aside
+        now = t + 0.5 * step
+        assert b.heard(*BEACON_BA, now) is None and b.tick(now) is None and b.yielded
+
+
+def test_every_single_mode_1_frame_is_a_stray_never_a_reason_to_leave():
+    claim = BusClaim(0.0, listen_s=0.0, take_back=True)
+    t = 0.0
+    for aid, data in single_mode_1_frames():
+        t += 2.0  # one at a time: never two beacons within three intervals
+        decision = claim.heard(aid, data, t)
+        if is_arbitrator_beacon(aid, data):  # told once no second came in time
+            assert decision is None and isinstance(claim.lone_beacon(t + 1.6), Stray)
+        else:
+            assert isinstance(decision, Stray), (hex(aid), data.hex())
+        assert claim.may_write and claim.tick(t) is None
 
 
 def test_devices_beaconing_unheard_of_nodes_are_a_replaced_arbitrators_bus():
@@ -163,15 +291,13 @@ def test_an_arbitrator_appearing_later_stops_ours_writing_at_once():
                       startup_quiet_s=0.2)
     states: list[ev.BusState] = []
     ours.subscribe(lambda e: states.append(e) if isinstance(e, ev.BusState) else None)
-    other = can.Bus(interface="virtual", channel=channel)
+    other = BeaconingArbitrator(channel)
     try:
         assert ours.wait_claimed(3) and ours.wait_settled(10)
         assert sorted(ours.system().links) == sorted(TEST2_LINKS)
-        other.send(can.Message(arbitration_id=0x100, data=b"\x0a", is_extended_id=False))
-        deadline = time.monotonic() + 1
-        while not ours.yielded and time.monotonic() < deadline:
-            time.sleep(0.005)
-        assert ours.yielded
+        other.start()  # it beacons every 500 ms: heard at its second beacon
+        assert ours.wait_for(lambda: ours.yielded, 10.0)
+        assert other.sent >= 2
         sent = ours.conn.sent
         with pytest.raises(Exception, match="not writing"):
             ours.reset_device(next(iter(ours.devices_present())))
@@ -180,7 +306,7 @@ def test_an_arbitrator_appearing_later_stops_ours_writing_at_once():
         assert [s.state for s in states] == ["arbitrating", "yielded"]
         assert "stopped writing" in states[-1].message
     finally:
-        other.shutdown()
+        other.close()
         ours.close()
         host.close()
 
@@ -224,8 +350,9 @@ def test_the_copy_of_our_own_frame_is_ours_however_late():
     assert claim.is_own_echo(*frame(Reset(0)), 9.0)
     assert claim.is_own_echo(*beacon, 9.1)
     assert not claim.is_own_echo(*beacon, 9.2)  # a fourth copy of three beacons:
-    decision = claim.heard(*beacon, 9.2)  # someone else's
-    assert decision is not None and decision.later and not claim.may_write
+    assert claim.heard(*beacon, 9.2) is None  # someone else's: one beacon …
+    decision = claim.heard(*beacon, 9.7)  # … and its next: another arbitrator
+    assert isinstance(decision, Decision) and decision.later and not claim.may_write
 
 
 def test_without_echoes_every_mode_1_frame_is_anothers():

@@ -15,6 +15,8 @@ from pdcp_studio.bus.arbitrator.common import (
     MISSED_BEACONS,
     PRESENCE_GRACE,
     RESET_GRACE_S,
+    SILENT_BUS_FACTOR,
+    SILENT_BUS_S,
     UNKNOWN_RESET_S,
     _Node,
 )
@@ -116,8 +118,53 @@ def test_a_device_is_gone_after_its_missed_beacons_at_now():
     presence = PresenceTracker()
     node = _Node(K4, 7, last_seen=10.0, beacon_interval=0.1)
     limit = 0.1 * (MISSED_BEACONS + PRESENCE_GRACE)
-    assert presence.absent([node], 10.0 + limit - 0.01) == []
-    assert presence.absent([node], 10.0 + limit + 0.01) == [node]
+    assert presence.absent([node], 10.0 + limit - 0.01, by_bus=False) == []
+    assert [g.node for g in presence.absent([node], 10.0 + limit + 0.01, by_bus=False)] \
+        == [node]
+
+
+def _part(node_id: int, last_seen: float, last_bus: float, beacons: tuple[float, float] = (),
+          interval: float = 0.5) -> _Node:
+    node = _Node(DeviceKey(2, 2, node_id), node_id, last_seen=last_seen,
+                 beacon_interval=interval, last_bus=last_bus)
+    if beacons:
+        node.prev_beacon_bus, node.last_beacon_bus = beacons
+    return node
+
+
+def test_presence_is_judged_by_the_bus_not_by_a_starved_clock():
+    """Issue 28 item 6: a part leaves only after missed beacons measured against frames
+    actually received (their bus times), never because the checker or the reader was not
+    scheduled."""
+    presence = PresenceTracker()
+    limit = 0.5 * (MISSED_BEACONS + PRESENCE_GRACE)  # 1.75 s
+    # The process was starved for 3 s: by the clock the part is long silent, but no other
+    # part beaconed since its last beacon (bus time 1000.0): not gone.
+    node = _part(7, last_seen=10.0, last_bus=1000.0, beacons=(999.5, 1000.0))
+    other = _part(8, last_seen=13.0, last_bus=1000.2, beacons=(999.7, 1000.2))
+    assert presence.absent([node, other], 13.0, smooth_s=0.5) == []
+    # A backlog handled late, or a sender starved mid-burst: the other beaconed once past
+    # the deadline (one overdue beacon sent first) — not yet evidence.
+    other = _part(8, last_seen=13.0, last_bus=1002.0, beacons=(1000.2, 1002.0))
+    assert presence.absent([node, other], 13.0, smooth_s=0.5) == []
+    # The other beaconed twice past its deadline: the bus moved on; gone, saying why.
+    other = _part(8, last_seen=13.0, last_bus=1002.4, beacons=(1001.9, 1002.4))
+    gone = presence.absent([node, other], 13.0, smooth_s=0.5)
+    assert [g.node for g in gone] == [node]
+    assert gone[0].why.startswith("no beacon for 1.9 s, 3 beacon intervals"), gone[0].why
+    assert "other parts beaconed on" in gone[0].why
+    assert gone[0].silent_s == pytest.approx(1.9)
+    assert limit < gone[0].silent_s
+
+
+def test_a_bus_gone_quiet_still_loses_its_parts_after_a_long_silence_of_a_running_checker():
+    presence = PresenceTracker()
+    node = _part(7, last_seen=10.0, last_bus=1000.0, beacons=(999.5, 1000.0))
+    quiet = max(SILENT_BUS_FACTOR * 0.5 * (MISSED_BEACONS + PRESENCE_GRACE), SILENT_BUS_S)
+    assert presence.absent([node], 10.0 + quiet - 0.1, smooth_s=60.0) == []
+    assert presence.absent([node], 10.0 + quiet + 0.1, smooth_s=1.0) == []  # it stalled
+    gone = presence.absent([node], 10.0 + quiet + 0.1, smooth_s=60.0)
+    assert [g.node for g in gone] == [node] and "no other part beaconed" in gone[0].why
 
 
 def test_twins_beacon_twice_as_often():

@@ -146,3 +146,15 @@ def test_meter_batches_equal_bit_by_bit_over_many_random_frames():
     with pytest.raises(ValueError):
         meter.add(0x800, b"")
     assert meter.frames == len(frames)  # a refused frame is not counted
+
+
+def test_frames_no_base_frame_can_be_are_counted_never_indexed():
+    """A Vector test capture holds a 29-bit ID marked standard (0x4444444): the fast path
+    must count it at its worst case, not index the base-frame tables with it."""
+    from pdcp_studio.bus.trace.bustime import BusTimeMeter, worst_case_bits
+
+    meter = BusTimeMeter()
+    meter.add_base(0x4444444, bytes(8), 0.0)
+    meter.add_base(0x123, bytes(2), 0.001)
+    assert meter.frames == 2
+    assert meter.bits >= worst_case_bits(8) + 20

@@ -17,7 +17,7 @@ from pdcp_studio.bus.session.api import open_session
 from pdcp_studio.bus.session.urls import unique_virtual_channel
 from pdcp_studio.bus.transaction import INTERLOCK_MS
 from pdcp_studio.model import parameters as P
-from pdcp_studio.protocol import Release, SetParameter, Suspend
+from pdcp_studio.protocol import GetParameter, Release, SetParameter, Suspend
 from tests.road_rigs import FrameRecorder
 
 
@@ -127,3 +127,77 @@ def test_a_plan_cut_off_by_closing_the_session_is_no_error(caplog):
     assert result.status.value == "failed"
     assert "the bus was closed after 0 of" in result.reason
     assert not [r for r in caplog.records if r.levelno >= logging.WARNING], caplog.text
+
+
+# -- issue 28 item 8: read back before release, renewed, and said in Bus events -----------------
+def _read_back_then_released(msgs, writes):
+    """After the last link write and before the held devices are let go, the inputs are read
+    back (Source's Node Ids, Data Transfer Enabled): released after verify."""
+    last_write = max(writes)
+    releases = [i for i, m in enumerate(msgs) if isinstance(m, Release) and i > last_write]
+    assert releases, "nothing released after the last write"
+    reads = [i for i, m in enumerate(msgs[last_write:releases[0]], last_write)
+             if isinstance(m, GetParameter)
+             and m.param in (P.IN_SOURCE_NODE_IDS, P.CH_DATA_ENABLED)]
+    assert reads, "the held devices were let go without reading the links back"
+
+
+def _renewed(msgs):
+    """A held device got its bounded suspension again before it was released."""
+    counts: dict[int, int] = {}
+    for m in msgs:
+        if isinstance(m, Suspend):
+            counts[m.node_id] = counts.get(m.node_id, 0) + 1
+    return any(n >= 2 for n in counts.values())
+
+
+def _own_plans(events):
+    return [e for e in events if isinstance(e, ev.PlanApplied) and e.own]
+
+
+def test_start_up_after_a_power_on_is_held_renewed_read_back_then_released_and_said(
+        monkeypatch):
+    from pdcp_studio.bus.arbitrator.core import Arbitrator
+
+    monkeypatch.setattr(Arbitrator, "interlock_renew_s", 0.005)  # renewals show in a short plan
+    with recorded("sim:thesis-test2") as (session, recorder):
+        arb = session.arbitrator
+        assert arb.wait_settled(20)
+        events: list[object] = []
+        arb.subscribe(events.append)
+        recorder.caught_up()
+        start = len(recorder.messages())
+        arb.reset()  # every device resets and binds again: start-up as after a power-on
+        assert arb.wait_for(lambda: bool(_own_plans(events)), 30.0)
+        assert arb.wait_settled(20)
+        recorder.caught_up()
+        msgs = recorder.messages()[start:]
+        writes = _link_writes(msgs)
+        assert writes
+        held, released = _held_around(msgs, writes)
+        assert held <= released
+        _read_back_then_released(msgs, writes)
+        assert _renewed(msgs), "the suspension was never renewed"
+        plan_event = next(e for e in _own_plans(events) if e.plan.mode == "startup")
+        result = plan_event.result
+        assert plan_event.plan.mode == "startup" and result.held and result.verified
+        assert all(a.reason for a in plan_event.plan.actions)
+
+
+def test_a_hot_swap_repair_is_read_back_before_release_and_said_in_bus_events():
+    with recorded("sim:thesis-test4") as (session, recorder):
+        events: list[object] = []
+        session.arbitrator.subscribe(events.append)
+        recorder.caught_up()
+        start = len(recorder.messages())
+        assert session.run_script("hot-swap").ok
+        assert session.arbitrator.wait_for(lambda: bool(_own_plans(events)), 20.0)
+        recorder.caught_up()
+        msgs = recorder.messages()[start:]
+        writes = _link_writes(msgs)
+        assert writes, "the duty cycle made no link"
+        _held_around(msgs, writes)
+        _read_back_then_released(msgs, writes)
+        plan_event = _own_plans(events)[-1]
+        assert plan_event.plan.mode == "duty-cycle"
+        assert plan_event.result.held and plan_event.result.verified

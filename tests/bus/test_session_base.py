@@ -25,7 +25,11 @@ def test_every_transport_is_a_bus_session_that_fills_in_only_the_transport():
         assert issubclass(cls, BusSession)
         assert not inspect.isabstract(cls), cls
         for name in shared:
-            assert name not in vars(cls) or cls is SimSession, (cls, name)
+            # The host link refuses a change too large for the line before the shared
+            # ``transact`` announces it in the fitting history (issue 28): it checks, then
+            # calls the base.
+            allowed = cls is SimSession or (cls is HostLinkSession and name == "transact")
+            assert name not in vars(cls) or allowed, (cls, name)
 
 
 def test_only_the_simulator_has_simulator_controls():

@@ -45,11 +45,12 @@ def one_by_one(msgs, *, as_json: bool, show=None, checked: bool = False) -> tupl
     for msg in msgs:
         frame = decoder.decode_message(msg)
         if show is None or show(frame):
-            shown.append(frame)
+            shown.append((frame, msg))
     if as_json:
-        text = ("[\n" + ",\n".join(frame_json(f) for f in shown) + "\n]\n") if shown else "[]\n"
+        text = (('{"frames": [\n' + ",\n".join(frame_json(f, None, m) for f, m in shown)
+                 + '\n], "summary": {}}\n') if shown else '{"frames": [], "summary": {}}\n')
     else:
-        text = "".join(f.line + "\n" for f in shown)
+        text = "".join(f.line + "\n" for f, _ in shown)
     return text, decoder.stats.as_json()
 
 
@@ -128,7 +129,7 @@ def test_most_frames_of_a_busy_bus_take_the_short_ways():
 def test_the_json_is_one_document_of_the_records():
     msgs = messages(relearning_traffic(0))
     text, _ = pumped(msgs, as_json=True)
-    records = json.loads(text)
+    records = json.loads(text)["frames"]
     assert len(records) == len(msgs)
     assert [r["text"] for r in records] == one_by_one(msgs, as_json=False)[0].splitlines()
 

@@ -303,3 +303,23 @@ def test_single_edits_are_transactions_too(rig):
         session.add_link(Link(ChannelRef(2, 2, 4, 1), ChannelRef(9, 9, 9, 1)))
     session.add_link(JOY)
     assert JOY in session.system().links
+
+
+def test_a_rollback_beside_a_missing_part_leaves_every_output_sending_as_before(rig,
+                                                                                monkeypatch):
+    """The joystick still sends to the missing control unit; a change that links it to the
+    LED board fails and is rolled back: taking that link out again must not turn the
+    joystick's output off (it was on before the change)."""
+    session, _ = rig
+    arb = session.arbitrator
+    session.host.call(lambda: session.host.unplug(D2))
+    assert arb.wait_for(lambda: D2 not in arb.devices_present(), 20.0)
+    assert session.get_parameter(D1, P.CH_DATA_ENABLED, 1) == b"\x01"
+    new = Link(ChannelRef(2, 2, 4, 1), ChannelRef(2, 2, 6, 1))
+    tx = arb.transactions
+    monkeypatch.setattr(tx, "_verify", lambda change, after: ["injected mismatch"])
+    result = session.transact(Change("add", links=[LinkAction("add", new)]), record=False)
+    monkeypatch.undo()
+    assert result.status is Status.ROLLED_BACK, result.summary()
+    assert new not in session.system().links
+    assert session.get_parameter(D1, P.CH_DATA_ENABLED, 1) == b"\x01"

@@ -37,10 +37,13 @@ def test_replay_prints_decoded_lines_and_statistics(capsys):
     assert err.startswith(f"{FRAMES_IN_CAPTURE} frames, 2 errors (1 undecodable")
 
 
-def test_replay_json_is_one_list_of_frames(capsys):
+def test_replay_json_is_one_document_of_frames_and_summary(capsys):
     assert main(["monitor", "--replay", str(CAPTURE), "--json"]) == 0
-    frames = json.loads(capsys.readouterr().out)
+    doc = json.loads(capsys.readouterr().out)
+    frames, summary = doc["frames"], doc["summary"]
     assert isinstance(frames, list) and len(frames) == FRAMES_IN_CAPTURE
+    assert summary["verdict"] == "pdcp" and summary["frames"] == FRAMES_IN_CAPTURE
+    assert summary["truncated"] is False and summary["undecodable"] == 1
     first = frames[0]
     assert first["function"] == "Bind Device Request" and first["direction"] == "device→BA"
     assert first["arbitration_id"] == 0x601 and first["data"] == "0101000a000400"
@@ -64,7 +67,7 @@ def test_filters(capsys, filters, count, check):
     for spec in filters:
         args += ["--filter", spec]
     assert main(args) == 0
-    frames = json.loads(capsys.readouterr().out)
+    frames = json.loads(capsys.readouterr().out)["frames"]
     assert len(frames) == count
     assert all(check in f["text"] for f in frames)
 
@@ -78,9 +81,9 @@ def test_bad_filter_exits_2(capsys, spec):
 def test_replay_with_log_converts_the_capture(tmp_path, capsys):
     out = tmp_path / "converted.blf"
     assert main(["monitor", "--replay", str(CAPTURE), "--log", str(out), "--json"]) == 0
-    original = json.loads(capsys.readouterr().out)
+    original = json.loads(capsys.readouterr().out)["frames"]
     assert main(["monitor", "--replay", str(out), "--json"]) == 0
-    again = json.loads(capsys.readouterr().out)
+    again = json.loads(capsys.readouterr().out)["frames"]
     assert [(f["arbitration_id"], f["data"], f["fields"]) for f in again] == \
         [(f["arbitration_id"], f["data"], f["fields"]) for f in original]
 
@@ -88,7 +91,7 @@ def test_replay_with_log_converts_the_capture(tmp_path, capsys):
 @pytest.mark.parametrize("name, content, reason", [
     ("broken.blf", b"\x00\x01\x02 not a BLF file", "not a readable capture"),
     ("broken.trc", b"\xff\xfe binary junk", "not a readable capture"),
-    ("capture.xyz", b"some text", "unknown log format"),
+    ("capture.xyz", b"some text", "not a readable capture"),
 ])
 def test_bad_capture_exits_2_naming_file_and_reason(tmp_path, capsys, name, content, reason):
     path = tmp_path / name
@@ -178,7 +181,7 @@ def test_sim_url_names_the_links_of_channel_data(capsys, tmp_path):
     assert main(["monitor", "--bus", "sim:transradial", "--seconds", "1.0", "--json",
                  "--log", str(log)]) == 0
     out, err = capsys.readouterr()
-    shown = json.loads(out)
+    shown = json.loads(out)["frames"]
     data = [f for f in shown if f["function"] == "Channel data"]
     assert data, "transradial streams EMG and set points at 20 Hz"
     assert all(f["link"] and f["link"]["inputs"] and f["error"] is None for f in data)

@@ -101,7 +101,7 @@ def test_json_streams_one_document_with_flat_memory(tmp_path):
         proc.stderr.read()
     assert proc.returncode == 0
     assert peak_mb < 120, f"peak RSS {peak_mb:.0f} MB"
-    records = json.loads(out.read_text())
+    records = json.loads(out.read_text())["frames"]
     assert len(records) == len(frames)
     assert records[-1]["arbitration_id"] == frames[-1][0]
     assert sum(r["function"] == "Channel data" for r in records) > 95_000
@@ -204,7 +204,7 @@ def test_own_capture_replays_with_no_undecodable_frame(tmp_path, suffix, capsys)
     assert Path(str(log) + ".nodemap.json").is_file()
     assert main(["monitor", "--replay", str(log), "--json"]) == 0
     out, err = capsys.readouterr()
-    frames = json.loads(out)
+    frames = json.loads(out)["frames"]
     assert frames and any(f["function"] == "Channel data" for f in frames)
     assert " 0 undecodable" in err or "0 errors" in err, err
     assert all(f["error"] is None for f in frames)
@@ -229,7 +229,9 @@ def test_a_car_log_is_not_pdcp(tmp_path, suffix, capsys):
     write_capture(path, car_frames(5000), rate=2000.0)
     assert main(["monitor", "--replay", str(path), "--json"]) == 0
     out, err = capsys.readouterr()
-    frames = json.loads(out)
+    doc = json.loads(out)
+    frames = doc["frames"]
+    assert doc["summary"]["verdict"] == "not-pdcp"
     assert len(frames) == 5000
     assert "not PDCP" in err.splitlines()[0] and "undecodable" not in err.splitlines()[0]
     assert {f["function"] for f in frames} == {"not PDCP"}

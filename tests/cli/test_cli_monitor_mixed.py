@@ -81,7 +81,7 @@ def replay_json(tmp_path, frames, capsys, name="mixed.asc"):
     write_capture(path, frames)
     assert main(["monitor", "--replay", str(path), "--json"]) == 0
     out, err = capsys.readouterr()
-    return json.loads(out), err
+    return json.loads(out)["frames"], err
 
 
 @pytest.mark.parametrize("seed", [0, 1, 2])

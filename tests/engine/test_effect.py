@@ -164,3 +164,13 @@ def test_turning_autoconfigure_off_lists_the_links_that_stay():
                        policy_after=False)
     stays = [ln for ln in effect.lines() if ln.strip().startswith("stays:")]
     assert len(stays) == len(system.links)
+
+
+def test_data_transfer_off_at_a_linked_channel_says_the_link_goes_silent():
+    """The truth trial: a linked input with data transfer off stays listed as a link but
+    carries nothing; the effect says so."""
+    system = linked()
+    writes = _writes(system, HAND, 1, data_transfer="off")
+    effect = effect_of(system, links_after=system.links, parameters=writes)
+    muted = [ln for ln in effect.lines() if "carries no data" in ln]
+    assert len(muted) == 1 and "Power grip" in muted[0]

@@ -55,12 +55,33 @@ def _config() -> bytes:
                                                                                     1)])]))
 
 
+def _anchor() -> bytes:
+    """Entry 12's anchor, its hash 0x11 0x22 … (as the arbitrator's memory keeps it)."""
+    from pdcp_studio.storage.archive.chain import Anchor, pack_anchor
+
+    return pack_anchor(Anchor(12, "1122" * 16))
+
+
 def _ok(code: int, body: bytes = b"") -> bytes:
     return bytes([hm.reply_code(code), Status.OK]) + body
 
 
 def _fail(code: int, status: Status, why: str) -> bytes:
     return bytes([hm.reply_code(code), status]) + why.encode()
+
+
+def _real(*requests: bytes) -> bytes:
+    """The reply of PDCP Studio's arbitrator-side handlers to the last of ``requests`` (after
+    HELLO): the exact bytes and reason text on the line. Only requests answered without the
+    CAN bus (no arbitrator is needed for them)."""
+    from pdcp_studio.bus.hostlink.handlers import Handlers
+
+    handlers = Handlers(None, None)  # type: ignore[arg-type]  # these requests touch neither
+    reply = handlers.handle(bytes([Req.HELLO, hm.VERSION, 0xFF, 0xFF]))
+    for request in requests:
+        reply = handlers.handle(request)
+    assert reply is not None
+    return reply
 
 
 def messages() -> list[tuple[str, bytes]]:
@@ -79,7 +100,7 @@ def messages() -> list[tuple[str, bytes]]:
     return [
         ("HELLO request", bytes([Req.HELLO, hm.VERSION]) + b"\xff\xff"),
         ("HELLO reply", _ok(Req.HELLO, hm.HELLO.pack(2, 0x000F, 255) + b"arb 1.0")),
-        ("HELLO refused", _fail(Req.HELLO, Status.VERSION, "speaks version 2, not 1")),
+        ("HELLO refused", _real(bytes([Req.HELLO, 1, 0xFF, 0xFF]))),
         ("STATUS request", bytes([Req.STATUS])),
         ("STATUS reply", _ok(Req.STATUS, hm.STATUS.pack(0x03, 4, 5, 17, 0))),
         ("LIST_DEVICES request", bytes([Req.LIST_DEVICES]) + struct.pack("<H", 0)),
@@ -123,8 +144,10 @@ def messages() -> list[tuple[str, bytes]]:
         ("CONFIG_WRITE_COMMIT request", bytes([Req.CONFIG_WRITE_COMMIT])),
         ("CONFIG_WRITE_COMMIT reply", _ok(Req.CONFIG_WRITE_COMMIT, hm.CONFIG_INFO.pack(
             len(cfg), crc16_ccitt_false(cfg)))),
-        ("CONFIG_WRITE_COMMIT bad", _fail(Req.CONFIG_WRITE_COMMIT, Status.CHECKSUM,
-                                          "CRC mismatch")),
+        ("CONFIG_WRITE_COMMIT bad", _real(
+            bytes([Req.CONFIG_WRITE_BEGIN]) + hm.CONFIG_INFO.pack(len(cfg), 0x1234),
+            bytes([Req.CONFIG_WRITE_CHUNK]) + b"\x00\x00" + cfg,
+            bytes([Req.CONFIG_WRITE_COMMIT]))),
         ("TRANSACT_BEGIN request", bytes([Req.TRANSACT_BEGIN]) + hm.CONFIG_INFO.pack(
             len(change), crc16_ccitt_false(change))),
         ("TRANSACT_BEGIN reply", _ok(Req.TRANSACT_BEGIN)),
@@ -140,7 +163,13 @@ def messages() -> list[tuple[str, bytes]]:
         ("GET_POLICY reply", _ok(Req.GET_POLICY, b"\x01")),
         ("MONITOR request", bytes([Req.MONITOR, 0x03, 10])),
         ("MONITOR reply", _ok(Req.MONITOR, hm.MONITOR_REPLY.pack(6400))),
-        ("unknown request", _fail(0x3E, Status.UNKNOWN_REQUEST, "unknown request 0x3E")),
+        ("ANCHOR_READ request", bytes([Req.ANCHOR_READ])),
+        ("ANCHOR_READ reply", _ok(Req.ANCHOR_READ, _anchor())),
+        ("ANCHOR_WRITE request", bytes([Req.ANCHOR_WRITE]) + _anchor()),
+        ("ANCHOR_WRITE reply", _ok(Req.ANCHOR_WRITE, _anchor())),
+        ("unknown request", _real(bytes([0x3E]))),
+        ("event code as request", _real(bytes([0x41]))),
+        ("STATUS too long", _real(bytes([Req.STATUS, 0]))),
         ("DEVICE_JOINED event", bytes([Event.DEVICE_JOINED]) + key + b"\x01"),
         ("DEVICE_LEFT event", bytes([Event.DEVICE_LEFT]) + key),
         ("LINK_MADE event", bytes([Event.LINK_MADE]) + hr.pack_link_event(LINK, 5)),

@@ -41,3 +41,44 @@ def test_every_request_event_and_status_is_documented_with_an_example():
         assert re.search(rf"\| 0x{req.value:02X} \| {req.name} \|", text), req.name
     for event in Event:
         assert re.search(rf"\| 0x{event.value:02X} \| {event.name} \|", text), event.name
+
+
+def _section(title: str) -> str:
+    text = DOC.read_text(encoding="utf-8")
+    return text.split(title, 1)[1].split("\n## ", 1)[0]
+
+
+def test_the_ram_budget_rows_add_up_to_the_totals():
+    rows = [line.split("|") for line in _section("## 7. What the arbitrator needs").splitlines()
+            if line.startswith("| ") and not line.startswith("| buffer")]
+    sums = [0, 0]
+    totals = None
+    for cells in rows:
+        values = []
+        for cell in cells[2:4]:
+            cell = cell.strip().strip("*").replace(",", "")
+            if "=" in cell:
+                cell = cell.split("=")[-1].strip()
+            values.append(int(cell) if cell.isdigit() else 0)
+        if "total" in cells[1]:
+            totals = values
+        else:
+            sums = [a + b for a, b in zip(sums, values, strict=True)]
+    assert totals == sums == [2744, 1580]
+
+
+def test_the_recovery_reset_frame_in_the_text_is_the_implementations():
+    from pdcp_studio.protocol.hostlink import Frame, Kind
+
+    wire = " ".join(f"{b:02x}" for b in Frame(Kind.RESET, 0).encode())
+    assert f"`{wire}`" in _section("## 3. The link layer")
+
+
+def test_the_profiles_are_named_as_capabilities():
+    from pdcp_studio.bus.hostlink.handlers import CAPABILITIES
+    from pdcp_studio.protocol import hostlink_messages as hm
+
+    assert CAPABILITIES == hm.CAP_FULL == 0x000F
+    assert hm.CAP_LEAN == 0
+    hello = _section("## 4. Greeting")
+    assert "declares `0x000F`" in hello and "`0x0000`" in hello

@@ -79,9 +79,13 @@ def describe_event(event: object, system: System | None,
             detail=f"{event.key} → {event.new}")]
     if isinstance(event, ev.DeviceLeft):
         return [EventRow(_t("{device} left the bus").format(
-            device=W.device_words(system, event.key)), detail=str(event.key))]
+            device=W.device_words(system, event.key)), _left_why(event),
+            detail="\n".join(t for t in (str(event.key), event.why) if t))]
     if isinstance(event, ev.PlanApplied):
-        return _plan_rows(event.plan, system, profile_name)
+        rows = _plan_rows(event.plan, system, profile_name)
+        if event.own and event.plan.actions:
+            rows.insert(0, _own_change_row(event, system))
+        return rows
     if isinstance(event, ev.TerminalsUnconnected):
         names = ", ".join(W.channel_words(system, r) for r in event.refs)
         return [EventRow(_t("Left unconnected: {names}").format(names=names), event.why,
@@ -91,6 +95,17 @@ def describe_event(event: object, system: System | None,
     if isinstance(event, ev.BusError) and event.kind in _ERROR_KINDS:
         return [EventRow(_t("Bus problem"), event.message, detail=event.kind)]
     return []
+
+
+def _left_why(event: ev.DeviceLeft) -> str:
+    """Why a part left, as the arbitrator measured it on the bus (empty when the transport
+    does not say): "No beacon for 1.9 s: 3 beacon intervals"."""
+    if event.silent_s <= 0 or event.interval_s <= 0:
+        return ""
+    intervals = int(event.silent_s / event.interval_s)
+    return _t("No beacon for {seconds} s: {intervals} beacon intervals of {ms} ms").format(
+        seconds=f"{event.silent_s:.1f}", intervals=intervals,
+        ms=f"{event.interval_s * 1000:.0f}")
 
 
 def mentions_unknown(event: object, system: System | None) -> bool:
@@ -113,6 +128,29 @@ def _bus_state_words(state: str) -> str:
         "disconnected": _t("The adapter is gone: reconnecting"),
         "reconnected": _t("The adapter is back: reading the bus again"),
     }.get(state, state)
+
+
+def _own_change_row(event: ev.PlanApplied, system: System | None) -> EventRow:
+    """The arbitrator changed the prosthesis on its own (start-up, a hot-swap repair): what,
+    why, whom it held still while it wrote and whether the links read back as written."""
+    plan, result = event.plan, event.result
+    why_plan = W.mode_words(plan.mode)
+    what = _t("The arbitrator changed links on its own: {why}").format(why=why_plan)
+    held = list(getattr(result, "held", []) or [])
+    verified = bool(getattr(result, "verified", False))
+    outcome = _t("they read back as written") if verified else _t(
+        "they did not all read back as written")
+    if held:
+        names = ", ".join(W.device_words(system, k) for k in held)
+        why = _t("It held {parts} still while it wrote, read the links back and let go: "
+                 "{outcome}").format(parts=names, outcome=outcome)
+    else:
+        why = _t("No part that moves the prosthesis needed holding; read back: "
+                 "{outcome}").format(outcome=outcome)
+    notes = list(getattr(result, "notes", []) or [])
+    detail = "\n".join([f"{plan.mode}: {len(plan.added)} added, {len(plan.removed)} removed",
+                        f"interlock: {getattr(result, 'interlock', '')}", *notes])
+    return EventRow(what, why, detail=detail)
 
 
 def _plan_rows(plan: Plan, system: System | None,

@@ -1,9 +1,10 @@
 """The History view: every change recorded for the connected prosthesis (or all of them).
 
-Reads the fitting history (:mod:`pdcp_studio.storage.history`, ``$PDCP_STUDIO_HISTORY`` or
-the user's data folder) on a worker; one row per entry — time, operator, patient, bus,
-action, outcome. One selected entry shows its details (the plan with its reasons, the
-interlock, the stored configuration's CRC before and after); two selected show the
+Reads the fitting history in use (:mod:`pdcp_studio.storage.archive`: the clinic's shared
+archive, or this computer's SQLite file) on a worker; one row per entry — time, operator,
+patient, bus, action, outcome — filtered by prosthesis and by patient reference (a clinic's
+view: every workstation's changes). One selected entry shows its details (the plan with its
+reasons, the interlock, the stored configuration's CRC before and after); two selected show the
 difference between their links. Restore writes the selected entry's links (and stored
 configuration, when it was recorded) back as a new, previewed transaction; Report makes the
 fitting report for the entry's session. The chain is verified each time it is read.
@@ -31,6 +32,7 @@ from PySide6.QtWidgets import (
     QHBoxLayout,
     QHeaderView,
     QLabel,
+    QLineEdit,
     QMessageBox,
     QPlainTextEdit,
     QPushButton,
@@ -159,6 +161,26 @@ def entries_difference(a: Entry, b: Entry, say: LinkWords = str) -> list[str]:
     return out
 
 
+def workstation_lines(entry: Entry) -> list[str]:
+    """Where the change was made (the clinic's archive is shared by every workstation) and,
+    for an entry moved in from another archive, where it came from."""
+    out = []
+    origin = entry.get("origin") if isinstance(entry.get("origin"), dict) else None
+    where = entry.get("workstation") or (origin or {}).get("workstation")
+    if where:
+        out.append(translate("HistoryPanel", "Workstation: {0}").format(where))
+    if origin is not None:
+        out.append(translate("HistoryPanel", "Imported from {0}, where it was entry #{1}").format(
+            origin.get("archive") or "—", origin.get("id")))
+    return out
+
+
+def matches_patient(entry: Entry, text: str) -> bool:
+    """The patient filter: the reference contains ``text`` (any case); empty matches all."""
+    wanted = text.strip().casefold()
+    return not wanted or wanted in str(entry.get("patient") or "").casefold()
+
+
 def entry_details(entry: Entry, say: LinkWords = str) -> list[str]:
     """One entry in plain words: who, when, what, why, and how it ended (``say`` words
     each link of its plan; the lines are the same, one for one, whatever it says)."""
@@ -169,6 +191,7 @@ def entry_details(entry: Entry, say: LinkWords = str) -> list[str]:
            translate("HistoryPanel", "Operator: {0}    Patient: {1}    Bus: {2}").format(
                entry.get("operator") or "—", entry.get("patient") or "—",
                entry.get("bus") or "—"),
+           *workstation_lines(entry),
            translate("HistoryPanel", "Outcome: {0}{1}").format(outcome.get("status", ""),
                                           f" at {outcome['step']}: {outcome['reason']}"
                                           if outcome.get("reason") else ""),
@@ -207,11 +230,12 @@ HistoryRead = tuple[list[Entry], "VerifyReport", str]
 
 def read_history(_progress: ProgressFn | None = None,
                  _cancel: threading.Event | None = None) -> HistoryRead:
-    """Every entry and the chain's verification (a worker's job: file I/O)."""
+    """Every entry and the chain's verification (a worker's job: file or server I/O), from
+    the archive in use (``$PDCP_STUDIO_ARCHIVE``, the clinic's, or this computer's)."""
     from pdcp_studio.storage.history import History
 
     with History.open() as archive:
-        return archive.entries(), archive.verify(), str(archive.path)
+        return archive.entries(), archive.verify(), archive.location
 
 
 class DetailsView(QPlainTextEdit):
@@ -258,6 +282,12 @@ class HistoryPanel(QWidget):
         self.scope.addItem(self.tr("This prosthesis"), THIS)
         self.scope.addItem(self.tr("All prostheses"), ALL)
         self.scope.currentIndexChanged.connect(lambda _i: self._fill())
+        self.patient_filter = QLineEdit()
+        self.patient_filter.setPlaceholderText(self.tr("Patient reference"))
+        self.patient_filter.setClearButtonEnabled(True)
+        self.patient_filter.setToolTip(self.tr("Show only the changes of the patients whose "
+                                               "reference contains this text"))
+        self.patient_filter.textChanged.connect(lambda _t: self._fill())
         self.chain = QLabel()
         self.refresh_button = QPushButton(self.tr("Refresh"))
         self.refresh_button.clicked.connect(self.refresh)
@@ -304,6 +334,8 @@ class HistoryPanel(QWidget):
         bar = QHBoxLayout()
         bar.addWidget(QLabel(self.tr("Show:")))
         bar.addWidget(self.scope)
+        bar.addWidget(QLabel(self.tr("Patient:")))
+        bar.addWidget(self.patient_filter)
         bar.addWidget(self.chain, 1)
         bar.addWidget(self.refresh_button)
         buttons = QHBoxLayout()
@@ -376,6 +408,8 @@ class HistoryPanel(QWidget):
         scope = self.scope.currentData()
         entries = self._entries if scope == ALL or not devices else for_prosthesis(
             self._entries, devices)
+        text = self.patient_filter.text()
+        entries = [e for e in entries if matches_patient(e, text)]
         self.shown = list(reversed(entries))  # newest first
         self.table.setRowCount(len(self.shown))
         for row, e in enumerate(self.shown):

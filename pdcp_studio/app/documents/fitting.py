@@ -1,7 +1,8 @@
 """Who fits which prosthesis: the operator's name and the patient reference.
 
-The operator (the prosthetist) is ``$PDCP_STUDIO_OPERATOR`` when set; otherwise the name
-asked once and remembered in QSettings (the login name is offered). The patient reference is
+The operator (the prosthetist) is, on the clinic's archive, the signed-in role
+(``sign_in.py``); else ``$PDCP_STUDIO_OPERATOR`` when set; otherwise the name asked once and
+remembered in QSettings (the login name is offered). The patient reference is
 free text — no more than the clinic chooses — that belongs to the prosthesis: remembered per
 prosthesis (its devices' VID/PID/serials), else the one last recorded in the fitting history
 for it. Both go into every history entry and the fitting report.
@@ -44,7 +45,13 @@ def login_name() -> str:
 
 
 def stored_operator(settings: QSettings | None = None) -> str:
-    """The operator without asking: the environment, else the remembered name ("" if none)."""
+    """The operator without asking: the role signed in to the clinic's archive, else the
+    environment, else the remembered name ("" if none)."""
+    from pdcp_studio.app.documents.sign_in import signed_in_operator
+
+    signed = signed_in_operator()
+    if signed:  # the clinic's archive records the signed-in role, whatever else says
+        return signed
     env = os.environ.get(ENV_OPERATOR, "").strip()
     if env:
         return env

@@ -4,11 +4,14 @@ When connecting finds another bus arbitrator (the prosthesis's own control unit)
 must not arbitrate; it may still show the traffic. :class:`PassiveMonitor` opens the
 python-can bus in the interface's listen-only mode where it has one (as ``monitor --bus``
 does), wraps it so that a send is impossible, decodes every frame off the GUI thread with a
-passive :class:`~pdcp_studio.bus.trace.decoder.FrameDecoder` (it learns the node map from what it
-hears) and hands batches of ``FrameSeen`` to the monitor dock.
+passive :class:`~pdcp_studio.bus.trace.decoder.FrameDecoder` that learns the node map from what it
+hears (the set-up it sees, and what the traffic proves: ``bus/trace/inference.py``) and
+hands batches of ``FrameSeen`` to the monitor dock, and the parts and links that learning
+proves (``heard_bus.py``) to the graph.
 
-Signals: ``frames(list[FrameSeen])`` (one batch per ``BATCH_S``), ``stopped(str)`` (the
-reason, '' when stopped on purpose).
+Signals: ``frames(list[FrameSeen])`` (one batch per ``BATCH_S``), ``heard(System,
+positions)`` (what the traffic proves, when it changed, at most once per ``HEARD_S``),
+``stopped(str)`` (the reason, '' when stopped on purpose).
 """
 
 from __future__ import annotations
@@ -24,6 +27,8 @@ log = logging.getLogger(__name__)
 
 #: Frames are handed to the GUI at most this often.
 BATCH_S = 0.05
+#: What the traffic proves is handed to the graph at most this often.
+HEARD_S = 1.0
 _POLL_S = 0.05
 
 
@@ -59,10 +64,36 @@ def open_listen_only(url: str) -> Any:
     return _NoSend(open_spec(spec, **listen_only_options(spec)))
 
 
+class _Proof:
+    """Hands on what the listening proves about the bus when it changed (``HEARD_S``
+    apart at most): the ``System`` and its cards' places, both made on the listening
+    thread (the layout walks the whole bus)."""
+
+    def __init__(self, emit: Any) -> None:
+        self._emit = emit
+        self._version = -1
+        self._shown: Any = None
+        self._due = 0.0
+
+    def check(self, decoder: Any, now: float) -> None:
+        if decoder.version == self._version or now < self._due:
+            return
+        from pdcp_studio.app.graph import layout
+        from pdcp_studio.app.live.heard_bus import heard_system, signature
+
+        self._version, self._due = decoder.version, now + HEARD_S
+        system = heard_system(decoder)
+        shown = signature(system)
+        if shown != self._shown and system.devices:
+            self._shown = shown
+            self._emit(system, layout.place(system, {}, 1.0))
+
+
 class PassiveMonitor(QObject):
     """A listen-only view of one ``can:`` bus; ``start()`` opens it on a thread."""
 
     frames = Signal(list)
+    heard = Signal(object, object)
     stopped = Signal(str)
 
     def __init__(self, url: str, parent: QObject | None = None) -> None:
@@ -105,8 +136,10 @@ class PassiveMonitor(QObject):
             return
         self._opened.set()
         decoder = FrameDecoder(passive=True)
+        decoder.learn_from_traffic([])  # devices and channels placed as their frames come
         batch: list[Any] = []
         due = time.monotonic() + BATCH_S
+        proves = _Proof(self.heard.emit)
         reason = ""
         try:
             while not self._stop.is_set():
@@ -121,6 +154,7 @@ class PassiveMonitor(QObject):
                     self.frames.emit(batch)
                     batch = []
                     due = now + BATCH_S
+                    proves.check(decoder, now)
         except Exception as err:
             log.warning("passive monitor on %s", self.url, exc_info=True)
             reason = str(err) or type(err).__name__

@@ -25,7 +25,7 @@ from itertools import pairwise
 
 import numpy as np
 
-from pdcp_studio.app.trace.store import Chunk, Frame, FrameStore, Tables
+from pdcp_studio.app.trace.store import F_REMOTE, Chunk, Frame, FrameStore, Tables
 
 #: One frame on disk (packed, 28 bytes), the fields of ``store.Chunk``.
 RECORD = np.dtype([("ts", "<f8"), ("aid", "<u4"), ("dlc", "u1"), ("data", "u1", (8,)),
@@ -291,10 +291,11 @@ class FileFrameStore(FrameStore):
 
     def frame(self, index: int) -> Frame:
         r = self._record(index)
-        data = r["data"][:min(int(r["dlc"]), 8)].tobytes()
+        n, flags = int(r["dlc"]), int(r["flags"])
+        data = b"" if flags & F_REMOTE else r["data"][:min(n, 8)].tobytes()
         return Frame(index, float(r["ts"]), int(r["aid"]), data,
                      self.tables.functions[int(r["func"])], self.tables.texts[int(r["text"])],
-                     int(r["flags"]))
+                     flags, n)
 
     def timestamp(self, index: int) -> float:
         return float(self._record(index)["ts"])

@@ -43,7 +43,9 @@ from PySide6.QtCore import Qt, QTimer, Signal
 from PySide6.QtWidgets import (
     QDockWidget,
     QFileDialog,
+    QLabel,
     QSplitter,
+    QStackedWidget,
     QTableView,
     QVBoxLayout,
     QWidget,
@@ -51,7 +53,7 @@ from PySide6.QtWidgets import (
 
 from pdcp_studio.app.i18n import translate
 from pdcp_studio.app.trace.bar import ANY, TraceBar
-from pdcp_studio.app.trace.capture import stored_rows
+from pdcp_studio.app.trace.capture import CaptureVerdict, stored_rows
 from pdcp_studio.app.trace.disk import FileFrameStore
 from pdcp_studio.app.trace.feed import LiveFeed
 from pdcp_studio.app.trace.filtering import BackgroundFilter
@@ -72,7 +74,8 @@ from pdcp_studio.app.trace.store import (
     TraceFilter,
     line_head,
 )
-from pdcp_studio.app.trace.tables import frame_table, stats_table
+from pdcp_studio.app.trace.tables import frame_table, show_plain, stats_table
+from pdcp_studio.app.trace.verdict import problem_text, verdict_text
 from pdcp_studio.app.workers import Worker
 
 __all__ = ["CHANNEL_DATA", "FrameFilter", "MonitorDock", "Row", "_decoded", "make_row"]
@@ -199,7 +202,12 @@ class MonitorDock(QDockWidget):
                                        self.saved.emit, self.error.emit)
         self.saving = FrameSaving(self, self.bar.save_button, self.saved.emit, self.error.emit)
         self.loading = CaptureLoading(self, self.bar, self._capture_progress,
-                                      self._capture_loaded, self.flush, self.error.emit)
+                                      self._show_verdict, self._capture_loaded, self.flush,
+                                      self._load_failed)
+        #: What the opened capture is (None: live frames, or not known yet).
+        self.verdict: CaptureVerdict | None = None
+        #: Why the opened capture could not be read (shown where its rows would be).
+        self.problem: str | None = None
         self.filtering = BackgroundFilter(self._filtered, self.error.emit)
         self.finder = FrameFinder(self.model, self.view, self._select_row, self.found.emit,
                                   self.error.emit)
@@ -260,12 +268,33 @@ class MonitorDock(QDockWidget):
         self.splitter.setStretchFactor(1, 2)
         self.splitter.setSizes([620, 380])
         self.splitter.setChildrenCollapsible(True)
+        # What an opened capture is (its verdict, node map, damage): over its rows.
+        self.banner = QLabel()
+        self.banner.setObjectName("TraceBanner")
+        self.banner.setWordWrap(True)
+        self.banner.setTextFormat(Qt.TextFormat.PlainText)
+        self.banner.setTextInteractionFlags(Qt.TextInteractionFlag.TextSelectableByMouse)
+        self.banner.setStyleSheet("#TraceBanner { background: palette(alternate-base); "
+                                  "border: 1px solid palette(mid); padding: 3px; }")
+        self.banner.setVisible(False)
+        # A capture that cannot be read says why where its rows would be.
+        self.problem_label = QLabel()
+        self.problem_label.setObjectName("TraceProblem")
+        self.problem_label.setWordWrap(True)
+        self.problem_label.setTextFormat(Qt.TextFormat.PlainText)
+        self.problem_label.setTextInteractionFlags(Qt.TextInteractionFlag.TextSelectableByMouse)
+        self.problem_label.setAlignment(Qt.AlignmentFlag.AlignTop | Qt.AlignmentFlag.AlignLeft)
+        self.problem_label.setMargin(12)
+        self.pages = QStackedWidget()
+        self.pages.addWidget(self.splitter)
+        self.pages.addWidget(self.problem_label)
         body = QWidget()
         layout = QVBoxLayout(body)
         layout.setContentsMargins(2, 2, 2, 2)
         for row in bar.rows:
             layout.addLayout(row)
-        layout.addWidget(self.splitter)
+        layout.addWidget(self.banner)
+        layout.addWidget(self.pages)
         self.setWidget(body)
 
     # -- what is shown -------------------------------------------------------------------
@@ -520,6 +549,8 @@ class MonitorDock(QDockWidget):
                                                                  total=f"{seen:,}")
                     if self._filter or seen != shown
                     else self.tr("{total} frames").format(total=f"{seen:,}"))
+        if self.problem is not None:
+            text = self.tr("not read")
         recorder = self.recording.recorder
         if recorder is not None:
             text += self.tr(" · recording to {name}").format(name=recorder.path.name)
@@ -538,32 +569,48 @@ class MonitorDock(QDockWidget):
             self.save(path)
 
     def _ask_open(self) -> None:
-        path, _ = QFileDialog.getOpenFileName(
-            self, self.tr("Open capture"), "",
-            self.tr("python-can logs (*.asc *.blf *.log *.csv *.trc *.db *.gz);;All files (*)"))
+        from pdcp_studio.app.trace.formats import open_filter
+
+        path, _ = QFileDialog.getOpenFileName(self, self.tr("Open capture"), "", open_filter())
         if path:
             self.load_capture(path)
 
     def save(self, path: str | Path) -> Worker:
         """Save every frame of what is shown on a worker; ``saved(path)`` or ``error``."""
         self.flush()
+        if self.capture_store is not None:  # its own node map, never the live session's
+            verdict = self.verdict
+            return self.saving.save(path, self.store.snapshot(), None,
+                                    None if verdict is None else verdict.node_map_json)
         return self.saving.save(path, self.store.snapshot(), dict(self.feed.links))
 
-    def load_capture(self, path: str | Path) -> Worker:
-        """Show a capture (any python-can log format) apart from the live frames.
+    def load_capture(self, path: str | Path) -> Worker | None:
+        """Show a capture (any format the reader knows, by content) apart from the live
+        frames.
 
-        Decoded on a worker into a store of its own (with the node map saved beside the
-        capture when there is one): the first rows show at once, the rest as they are read,
-        with ``loadProgress(frames)``, a progress bar and ``cancel_load()``. Live frames keep
-        being recorded and come back with ``show_live()``. ``loaded(path)`` or ``error``.
-        """
+        Decoded on a worker into a store of its own with the capture's own node map (saved
+        beside it, or learned from its traffic; never the live session's): the first rows
+        show at once, the rest as they are read, with ``loadProgress(frames)``, a progress
+        bar and ``cancel_load()``; the banner says what it is (``verdict``). Live frames keep
+        being recorded and come back with ``show_live()``. ``loaded(path)``, or ``error``
+        with the reason also shown where the rows would be (a pipe is refused at once:
+        None is returned)."""
+        from pdcp_studio.app.trace.capture import refuse_stream
+        from pdcp_studio.bus.trace.capture import CaptureError
+
         self.cancel_load()
         _spare_the_collector()
-        links = dict(self.feed.links)  # a capture may start after the set-up that names them
         store = FileFrameStore()  # on disk: memory stays flat however long the capture
         stats = IdStats(store.tables)
         self._enter_capture(str(path), store, stats)
-        return self.loading.start(path, store, stats, links)
+        try:
+            refuse_stream(path)  # opening a FIFO would wait for a writer, beyond any Stop
+        except CaptureError:
+            self._load_failed(self.tr(
+                "{path}: a pipe or a device, not a capture file (the app opens files; read "
+                "a pipe with pdcp-studio monitor --replay)").format(path=path))
+            return None
+        return self.loading.start(path, store, stats)
 
     def show_frames(self, store: FrameStore, stats: IdStats | None = None,
                     title: str = "") -> None:
@@ -590,6 +637,7 @@ class MonitorDock(QDockWidget):
         self.capture_store = self.capture_stats = None
         self.bar.live_button.setVisible(False)
         self.loading.hide_progress()
+        self._set_verdict(None, None)
         self.setWindowTitle(self.tr("Bus monitor"))
         self._reset_view()
 
@@ -599,6 +647,7 @@ class MonitorDock(QDockWidget):
         self.capture_path = path
         self.capture_total = 0
         self.capture_store, self.capture_stats = store, stats
+        self._set_verdict(None, None)
         self.bar.live_button.setVisible(True)
         self.setWindowTitle(self.tr("Bus monitor — capture %1").replace("%1", Path(path).name))
         self._reset_view()
@@ -618,9 +667,41 @@ class MonitorDock(QDockWidget):
         if self.model.rowCount() == 0:
             self._tick()  # the first rows at once
 
-    def _capture_loaded(self, total: int, path: str) -> None:
+    def _capture_loaded(self, verdict: CaptureVerdict, path: str) -> None:
         if self.capture_store is None:
             return
-        self.capture_total = total
+        self.capture_total = verdict.frames
+        self._set_verdict(verdict, None)
         self.flush()
         self.loaded.emit(path)
+
+    def _show_verdict(self, verdict: CaptureVerdict) -> None:
+        """What the opened capture is, once its first frames (or its end) say so."""
+        if self.capture_store is not None:
+            self._set_verdict(verdict, None, reading=True)
+
+    def _load_failed(self, message: str) -> None:
+        """The capture could not be read at all: why, where its rows would be."""
+        if self.capture_store is not None:
+            self._set_verdict(None, message)
+        self._count()
+        self.error.emit(message)
+
+    def _set_verdict(self, verdict: CaptureVerdict | None, problem: str | None, *,
+                     reading: bool = False) -> None:
+        """The banner, the columns (plain CAN for a foreign capture) and the page shown."""
+        self.verdict, self.problem = verdict, problem
+        plain = verdict is not None and verdict.verdict == "not-pdcp"
+        if plain != self.model.plain:
+            show_plain(self.view, plain)
+        self.model.set_plain(plain)
+        self.stats_model.plain = plain
+        for box in (self.bar.function_filter, self.bar.node_filter):
+            box.setEnabled(not plain)  # PDCP's functions and nodes: none here
+        if problem is not None:
+            self.problem_label.setText(problem_text(problem))
+            self.pages.setCurrentWidget(self.problem_label)
+        else:
+            self.pages.setCurrentWidget(self.splitter)
+        self.banner.setText("" if verdict is None else verdict_text(verdict, reading=reading))
+        self.banner.setVisible(verdict is not None)

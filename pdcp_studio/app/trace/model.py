@@ -30,7 +30,18 @@ from PySide6.QtGui import QBrush, QColor, QFontMetricsF, QPainter
 from PySide6.QtWidgets import QTableView
 
 from pdcp_studio.app.i18n import translate
-from pdcp_studio.app.trace.store import FrameStore, IdStat, TraceFilter, who
+from pdcp_studio.app.trace.store import (
+    F_CHANNEL,
+    F_ERROR,
+    F_EXTENDED,
+    F_PLAIN,
+    F_REMOTE,
+    FrameStore,
+    IdStat,
+    TraceFilter,
+    kind_word,
+    who,
+)
 
 _ROOT = QModelIndex()
 _NO_FILTER = TraceFilter()
@@ -40,6 +51,17 @@ COLUMNS = (QT_TRANSLATE_NOOP("MonitorDock", "Time"), QT_TRANSLATE_NOOP("MonitorD
            QT_TRANSLATE_NOOP("MonitorDock", "Node"),
            QT_TRANSLATE_NOOP("MonitorDock", "Function"),
            QT_TRANSLATE_NOOP("MonitorDock", "Data"), QT_TRANSLATE_NOOP("MonitorDock", "Decoded"))
+
+#: A capture that is not PDCP's: its frames as plain CAN (no node, no function, no meaning).
+PLAIN_COLUMNS = (QT_TRANSLATE_NOOP("MonitorDock", "Time"), QT_TRANSLATE_NOOP("MonitorDock", "ID"),
+                 QT_TRANSLATE_NOOP("MonitorDock", "Kind"), QT_TRANSLATE_NOOP("MonitorDock", "DLC"),
+                 QT_TRANSLATE_NOOP("MonitorDock", "Data"), "")
+#: The kinds of frame as the Kind column shows them (``store.kind_word``).
+KIND_WORDS = (QT_TRANSLATE_NOOP("TraceModel", "data frame"),
+              QT_TRANSLATE_NOOP("TraceModel", "remote frame"),
+              QT_TRANSLATE_NOOP("TraceModel", "error frame"),
+              QT_TRANSLATE_NOOP("TraceModel", "FD frame"),
+              QT_TRANSLATE_NOOP("TraceModel", "extended frame"))
 
 TIME_START, TIME_CLOCK, TIME_PREVIOUS, TIME_MARKER = range(4)
 TIME_MODES = (QT_TRANSLATE_NOOP("TraceModel", "Time since start"),
@@ -92,6 +114,14 @@ class TraceModel(QAbstractTableModel):
         self.markers: dict[int, str] = {}
         #: Device names by (VID, PID, serial): channel references are shown with them.
         self.names: dict[tuple[int, int, int], str] = {}
+        #: The store is a capture that is not PDCP's: the columns are plain CAN's.
+        self.plain = False
+
+    def set_plain(self, plain: bool) -> None:
+        """Show plain CAN's columns (Kind, DLC) or PDCP's (Node, Function, Decoded)."""
+        if plain != self.plain:
+            self.plain = plain
+            self.headerDataChanged.emit(Qt.Orientation.Horizontal, 0, len(COLUMNS) - 1)
 
     # -- what is shown ---------------------------------------------------------------
     def show(self, store: FrameStore, flt: TraceFilter = _NO_FILTER,
@@ -201,7 +231,8 @@ class TraceModel(QAbstractTableModel):
         if section == 0 and self.time_mode != TIME_START:
             return translate("TraceModel", ("", "Clock time", "Δ previous", "Δ marker")
                              [self.time_mode])
-        return translate("MonitorDock", str(COLUMNS[section]))
+        names = PLAIN_COLUMNS if self.plain else COLUMNS
+        return translate("MonitorDock", str(names[section])) if names[section] else ""
 
     def data(self, index: QModelIndex | QPersistentModelIndex,
              role: int = Qt.ItemDataRole.DisplayRole) -> Any:
@@ -247,10 +278,17 @@ class TraceModel(QAbstractTableModel):
     def row_texts(self, row: int) -> tuple[str, ...]:
         """The six cells of table row ``row`` (IndexError if the store no longer has it)."""
         frame = self.store.frame(self.absolute(row))
-        aid = frame.arbitration_id
-        return (self.time_text(row, frame.timestamp),
-                f"0x{aid:08X}" if aid > 0x7FF else f"0x{aid:03X}",
-                who(aid, frame.flags), frame.function, frame.data.hex(" ").upper(),
+        aid, flags = frame.arbitration_id, frame.flags
+        ident = "—" if flags & F_ERROR else f"0x{aid:08X}" if flags & F_EXTENDED \
+            else f"0x{aid:03X}"
+        data = frame.data.hex(" ").upper()
+        if frame.dlc > 8 and not flags & F_REMOTE:
+            data += " …"  # CAN FD: the trace keeps the first 8 data bytes
+        if flags & F_PLAIN:  # a foreign capture's frame: plain CAN, no PDCP names
+            return (self.time_text(row, frame.timestamp), ident,
+                    translate("TraceModel", kind_word(flags)), str(frame.dlc), data, "")
+        return (self.time_text(row, frame.timestamp), ident,
+                who(aid, flags), frame.function, data,
                 with_names(decoded_fields(self.store.text(frame)), self.names))
 
     def time_text(self, row: int, t: float) -> str:
@@ -291,6 +329,8 @@ class StatsModel(QAbstractTableModel):
         super().__init__(parent)
         self.stats: Sequence[IdStat] = []
         self.names: dict[tuple[int, int, int], str] = {}
+        #: A capture that is not PDCP's: no node, the meaning is the kind of frame.
+        self.plain = False
 
     def refresh(self, stats: Sequence[IdStat]) -> None:
         if _ids(stats) == _ids(self.stats):
@@ -349,10 +389,14 @@ class StatsModel(QAbstractTableModel):
 
     def cell(self, s: IdStat, col: int) -> str:
         if col == 0:
-            return (f"0x{s.arbitration_id:08X}" if s.arbitration_id > 0x7FF
+            return ("—" if s.flags & F_ERROR else f"0x{s.arbitration_id:08X}"
+                    if s.flags & F_EXTENDED or s.arbitration_id > 0x7FF
                     else f"0x{s.arbitration_id:03X}")
         if col == 1:
-            return who(s.arbitration_id, 2 if s.function == "Channel data" else 0)
+            if self.plain:
+                return ""
+            return who(s.arbitration_id, s.flags | (F_CHANNEL if s.function == "Channel data"
+                                                    else 0))
         if col == 2:
             return f"{s.count:,}"
         if col == 3:
@@ -361,6 +405,8 @@ class StatsModel(QAbstractTableModel):
             return "" if s.last_period_s is None else f"{s.last_period_s * 1000:.3f}"
         if col == 5:
             return s.last_data.hex(" ").upper()
+        if self.plain:
+            return translate("TraceModel", s.function)
         fields = with_names(decoded_fields(s.text), self.names)
         if s.function == "Channel data" or not fields or fields == s.text:
             return fields or s.function

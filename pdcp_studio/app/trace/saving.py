@@ -30,12 +30,14 @@ class FrameSaving(QObject):
         self._worker: Worker | None = None
         self._path = ""
 
-    def save(self, path: str | Path, store: FrameStore, links: dict[int, Any]) -> Worker:
-        """Save ``store`` (a snapshot: live frames keep coming) to ``path``."""
+    def save(self, path: str | Path, store: FrameStore, links: dict[int, Any] | None,
+             node_map: Any = None) -> Worker:
+        """Save ``store`` (a snapshot: live frames keep coming) to ``path``, with the node
+        map of ``links`` (the live frames') or ``node_map`` (an opened capture's own)."""
         self._button.setEnabled(False)
 
         def work(_progress: Any, _cancel: threading.Event) -> int:
-            return save_store(path, store, links)
+            return save_store(path, store, links, node_map=node_map)
 
         worker = Worker(work, "Save frames")
         self._path = str(path)

@@ -41,7 +41,28 @@ TEXT_LIMIT = 1 << 20
 F_HEX = 1  # the decoded text goes on with the data bytes in hex
 F_CHANNEL = 2  # channel data of an output
 F_EXTENDED = 4
+F_REMOTE = 8  # a remote frame: its DLC is in the length column, it carries no data
+F_ERROR = 16
+F_FD = 32
+F_PLAIN = 64  # not PDCP's (a foreign capture's frame): shown as plain CAN, no PDCP names
+#: Frames that are no PDCP message whatever the bus: shown as the kind of frame they are.
+ODD_KINDS = F_EXTENDED | F_REMOTE | F_ERROR | F_FD
 _MODE_BIT = 0x100
+#: A decoded line that names no PDCP message says one of these after its sender
+#: (``bus.trace.frames``): its Function column says so too, never its first byte's name.
+_NOT_MESSAGES = ("undecodable", "unattributed", "not PDCP")
+
+
+def _no_message(head: str) -> str | None:
+    """Which of ``_NOT_MESSAGES`` a decoded line (without its time) is, if any."""
+    lead = head[:40]  # priority, sender and function; not the fields
+    for word in _NOT_MESSAGES:
+        if word in lead:
+            return word
+    return None
+
+#: The kinds that key an identifier's statistics apart (bits above its 32).
+_KIND_KEY = F_EXTENDED | F_ERROR
 
 
 class Interner:
@@ -127,6 +148,7 @@ class Frame(NamedTuple):
     function: str
     text: str  # the decoded line without its time
     flags: int
+    dlc: int = 0  # the frame's DLC (a remote frame's, though it carries no data)
 
     @property
     def node(self) -> int:
@@ -138,13 +160,35 @@ class Frame(NamedTuple):
 
 
 def who(aid: int, flags: int) -> str:
-    """Who sent the frame to whom, as the trace's Node column shows it."""
+    """Who sent the frame to whom, as the trace's Node column shows it (nobody PDCP knows
+    for a plain CAN frame, an extended, error, remote or FD one)."""
+    if flags & (F_PLAIN | ODD_KINDS) or aid > 0x7FF:
+        return ""
     node = aid & 0xFF
     if flags & F_CHANNEL:
         return f"#{node} data"
     if aid & _MODE_BIT:
         return f"BA→#{node}" if node else "BA→all"
     return f"#{node}→BA"
+
+
+#: The kinds of frame, as the Kind column and a plain frame's Function column name them.
+KIND_WORDS = {F_ERROR: "error frame", F_REMOTE: "remote frame", F_FD: "FD frame",
+              F_EXTENDED: "extended frame"}
+
+
+def kind_word(flags: int) -> str:
+    """What kind of CAN frame ``flags`` say ("data frame", "remote frame", …)."""
+    for bit, word in KIND_WORDS.items():
+        if flags & bit:
+            return word
+    return "data frame"
+
+
+def message_kind(msg: Any) -> int:
+    """The kind flags of a python-can frame (``can.Message`` or anything with its fields)."""
+    return ((F_EXTENDED if msg.is_extended_id else 0) | (F_REMOTE if msg.is_remote_frame else 0)
+            | (F_ERROR if msg.is_error_frame else 0) | (F_FD if msg.is_fd else 0))
 
 
 def line_head(line: str) -> str:
@@ -179,18 +223,30 @@ class ChunkBuilder:
         return len(self._ts)
 
     def add(self, timestamp: float, aid: int, data: bytes, head: str,
-            channel: bool | None = None) -> None:
+            channel: bool | None = None, *, function: str | None = None, kind: int = 0,
+            dlc: int | None = None) -> None:
         """One frame; ``head`` is its decoded line without the time; ``channel`` whether it
-        is channel data (None: from the known output nodes or the text)."""
+        is channel data (None: from the known output nodes or the text); ``function`` the
+        decoder's name for it (None: from its first byte); ``kind`` its ``F_*`` kind flags
+        (``message_kind``, ``F_PLAIN``); ``dlc`` a remote frame's DLC."""
         node = aid & 0xFF
-        flags = F_EXTENDED if aid > 0x7FF else 0
-        if channel is None:
+        flags = kind | (F_EXTENDED if aid > 0x7FF else 0)
+        if flags & (F_PLAIN | ODD_KINDS):
+            channel = False
+            func = self.tables.functions.add(function or kind_word(flags))
+        elif channel is None:
             channel = not aid & _MODE_BIT and (node in self.channel_nodes or CHANNEL_DATA in head)
         if channel:
             flags |= F_CHANNEL
             func = self.tables.channel_data
             if node not in self.channel_nodes:
                 self.channel_nodes.add(node)
+        elif flags & (F_PLAIN | ODD_KINDS):
+            pass  # named above
+        elif function is not None:
+            func = self.tables.functions.add(function)
+        elif (word := _no_message(head)) is not None:  # never its first byte's name
+            func = self.tables.functions.add(word)
         elif data:
             func = self.tables.function_by_byte[data[0]]
         else:
@@ -205,7 +261,7 @@ class ChunkBuilder:
                 flags |= F_HEX
         self._ts.append(timestamp)
         self._aid.append(aid)
-        self._dlc.append(min(n, 255))
+        self._dlc.append(min(n if dlc is None or not flags & F_REMOTE else dlc, 255))
         self._data += data.ljust(8, b"\0")
         self._func.append(func)
         self._text.append(self.tables.texts.add(head))
@@ -273,7 +329,7 @@ def _has_bytes(chunk: Chunk, needle: bytes) -> np.ndarray:
     if k > 8:
         return found
     for start in range(0, 9 - k):
-        hit = chunk.dlc >= start + k
+        hit = (chunk.dlc >= start + k) & (chunk.flags & F_REMOTE == 0)
         for j, b in enumerate(needle):
             hit &= chunk.data[:, start + j] == b
         found |= hit
@@ -347,11 +403,11 @@ class FrameStore:
 
     def frame(self, index: int) -> Frame:
         chunk, k = self._locate(index)
-        n = int(chunk.dlc[k])
-        data = chunk.data[k, :min(n, 8)].tobytes()
+        n, flags = int(chunk.dlc[k]), int(chunk.flags[k])
+        data = b"" if flags & F_REMOTE else chunk.data[k, :min(n, 8)].tobytes()
         return Frame(index, float(chunk.ts[k]), int(chunk.aid[k]), data,
                      self.tables.functions[int(chunk.func[k])],
-                     self.tables.texts[int(chunk.text[k])], int(chunk.flags[k]))
+                     self.tables.texts[int(chunk.text[k])], flags, n)
 
     def timestamp(self, index: int) -> float:
         chunk, k = self._locate(index)
@@ -434,6 +490,7 @@ class IdStat(NamedTuple):
     last_data: bytes
     function: str
     text: str
+    flags: int = 0  # the last frame's F_* (extended, error: told apart from standard IDs)
 
 
 class IdStats:
@@ -466,7 +523,12 @@ class IdStats:
         if chunk is None or not len(chunk):
             return
         # Vectorised per chunk (a stable sort groups each identifier's frames in order).
-        aids = chunk.aid
+        # Extended and error frames are keyed apart from the standard identifier they share
+        # a number with (``_KIND_KEY``): 0x123 and 0x00000123 are two rows.
+        aids = chunk.aid.astype(np.int64)
+        kinds = chunk.flags & _KIND_KEY
+        if kinds.any():
+            aids |= kinds.astype(np.int64) << 32
         n = len(aids)
         order = np.argsort(aids, kind="stable")
         grouped = aids[order]
@@ -490,7 +552,8 @@ class IdStats:
         others, new_ids = 0, False
         for j, (aid, c, t_first, t_last, t_prev) in enumerate(rows):
             e = entries.get(aid)
-            last_data = data[j, :min(dlc[j], 8)].tobytes()
+            last_data = (b"" if flags[j] & F_REMOTE
+                         else data[j, :min(dlc[j], 8)].tobytes())
             if e is None:
                 if len(entries) >= self.limit:
                     others += c
@@ -522,13 +585,14 @@ class IdStats:
     def row(self, aid: int) -> IdStat:
         """The statistics of identifier ``aid`` (KeyError if it was not seen)."""
         count, first, last, prev, data, text, func, flags = self.entries[aid]
+        aid &= 0xFFFFFFFF
         head = self.tables.texts[text]
         if flags & F_HEX:
             hexed = data.hex(" ").upper()
             head = f"{head}  {hexed}" if head else hexed
         return IdStat(aid, count, (last - first) / (count - 1) if count > 1 else None,
                       None if prev is None else last - prev, last, data,
-                      self.tables.functions[func], head)
+                      self.tables.functions[func], head, flags)
 
     def view(self) -> StatRows:
         """The rows by identifier, each made when asked for (see the class doc)."""

@@ -10,9 +10,11 @@ from pdcp_studio.app.i18n import translate
 from pdcp_studio.app.trace.model import StatsModel, TraceModel, TraceView
 
 #: Widths of the frame table's columns but the last (which stretches).
-FRAME_COLUMNS = (92, 52, 70, 150, 170)
+FRAME_COLUMNS = (92, 84, 70, 150, 170)  # the ID's: an extended one's 10 characters
+#: A foreign capture's Kind and DLC columns (in place of Node and Function).
+PLAIN_COLUMNS = {2: 120, 3: 44}
 #: The widest text of each statistics column but the last.
-STATS_SAMPLES = ("0x000", "BA→#00 ", "000,000", "0000.000", "0000.000", "00 00 00 00 ")
+STATS_SAMPLES = ("0x00000000", "BA→#00 ", "000,000", "0000.000", "0000.000", "00 00 00 00 ")
 
 
 def frame_table(model: TraceModel) -> TraceView:
@@ -32,6 +34,14 @@ def frame_table(model: TraceModel) -> TraceView:
         header.resizeSection(col, width)
     header.setSectionResizeMode(QHeaderView.ResizeMode.Interactive)
     return view
+
+
+def show_plain(view: QTableView, plain: bool) -> None:
+    """The frame table's columns for plain CAN (Kind, DLC; no meaning) or for PDCP."""
+    header = view.horizontalHeader()
+    for col, width in PLAIN_COLUMNS.items():
+        header.resizeSection(col, width if plain else FRAME_COLUMNS[col])
+    view.setColumnHidden(5, plain)
 
 
 def stats_table(model: StatsModel) -> TraceView:

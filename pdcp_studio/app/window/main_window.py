@@ -123,7 +123,8 @@ class MainWindow(QMainWindow):
             scan_finished=lambda system: self._scan_finished(system))
         self.other_arbitrator = OtherArbitrator(
             self, self.statusBar(), lambda text, ms: self.show_message(text, ms),
-            lambda url: self.connect_bus(url), lambda: self.bus_docks.monitor_dock())
+            lambda url: self.connect_bus(url), lambda: self.bus_docks.monitor_dock(),
+            show_heard=lambda system, at: self.doc.set_system(system, positions=at))
         self._connect()
         self._update_title()
         self.crash_recovery = RecoveryController(self.doc, recovery, self.status_line, self,
@@ -184,6 +185,10 @@ class MainWindow(QMainWindow):
         self.mode_label, self.progress = self.mode_line.label, self.mode_line.progress
         self.policy_label = QLabel()
         self.statusBar().addPermanentWidget(self.policy_label)
+        from pdcp_studio.app.window.controllers.archive import ArchiveStatus
+
+        self.archive_status = ArchiveStatus(self.statusBar(), self,
+                                            lambda: self.pending_panel.refresh())
 
     def _build_controllers(self) -> None:
         """The controllers, each given what it needs (late-bound: tests answer for it)."""

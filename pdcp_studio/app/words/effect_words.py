@@ -48,6 +48,8 @@ MARKED: tuple[str, ...] = (
     QT_TRANSLATE_NOOP("Effect", "Turning automatic set-up off removes nothing: {links} stay "
                                 "as they are."),
     QT_TRANSLATE_NOOP("Effect", "  stays: {link}"),
+    QT_TRANSLATE_NOOP("Effect", "This link stays but carries no data while data transfer is "
+                                "off at one of its ends: {link}"),
     QT_TRANSLATE_NOOP("Effect", "{n} link"),
     QT_TRANSLATE_NOOP("Effect", "{n} links"),
     QT_TRANSLATE_NOOP("Effect", "  is made: {link}"),

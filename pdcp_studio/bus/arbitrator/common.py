@@ -21,6 +21,11 @@ DEFAULT_BEACON_INTERVAL_S = 0.1
 MISSED_BEACONS = 3
 #: ... plus this fraction of an interval for scheduling jitter.
 PRESENCE_GRACE = 0.5
+#: When nothing at all was received from anyone past a device's deadline (a starved process,
+#: or a bus gone quiet), it is gone only after this many times its limit …
+SILENT_BUS_FACTOR = 2.0
+#: … and never before this many seconds of silence, the checker running throughout.
+SILENT_BUS_S = 3.0
 #: A present device asking to bind again: wait this many beacon intervals for a twin's beacon.
 DUPLICATE_WINDOW = 1.5
 #: Beacons are counted over this many intervals; more than TWIN_BEACON_RATIO times the
@@ -90,7 +95,7 @@ class _Node:
 
     key: DeviceKey
     node_id: int
-    last_seen: float
+    last_seen: float  # when its last frame was handled (monotonic)
     beacon_interval: float = DEFAULT_BEACON_INTERVAL_S
     last_beacon: float = 0.0
     generation: int = 0  # unique per binding: a set-up of an older one is discarded
@@ -101,3 +106,6 @@ class _Node:
     answers: int = 0
     window_start: float | None = None  # the open beacon-count window's start (None: none)
     window_beacons: int = 0
+    last_bus: float = 0.0  # the bus time (the frame's own timestamp) of its last frame
+    prev_beacon_bus: float = float("-inf")  # the bus times of its two latest beacons
+    last_beacon_bus: float = float("-inf")

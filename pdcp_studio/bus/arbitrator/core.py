@@ -135,6 +135,7 @@ if TYPE_CHECKING:
 
     from pdcp_studio.bus.trace.decoder import FrameDecoder
     from pdcp_studio.engine.plan import Plan
+    from pdcp_studio.storage.archive.chain import Anchor
 
 log = logging.getLogger(__name__)
 
@@ -202,7 +203,7 @@ class Arbitrator:
                  frame_events: bool = False, channel_events: bool = True,
                  reset_on_start: bool = True, autoconfigure: bool | None = None,
                  drop_own: bool | None = None, listen_s: float = 0.0,
-                 direct: bool = False) -> None:
+                 direct: bool = False, take_back: bool = False) -> None:
         self.name = name
         self.profile_layer = profile_layer
         self.retries = retries
@@ -227,9 +228,11 @@ class Arbitrator:
         self._news = threading.Event()
         now = time.monotonic()
         # One arbitrator per bus (reference §5, arb_claim): on a can: bus it first listens
-        # ``listen_s``; until then (and for good once another arbitrator is heard) it writes
-        # nothing, not even the start-up reset.
-        self.claim = BusClaim(now, listen_s, own_echoes=self.conn.drop_own)
+        # ``listen_s``; until then (and while another arbitrator is heard) it writes nothing,
+        # not even the start-up reset. ``take_back`` (the headless arbitrator): one that
+        # appeared later is waited out, and the bus taken back when its beacons are gone.
+        self.claim = BusClaim(now, listen_s, own_echoes=self.conn.drop_own,
+                              take_back=take_back)
         self.nodes = NodeTable(*node_ids)
         self.presence = PresenceTracker()
         self._wire(now, reset_on_start=reset_on_start, startup_quiet_s=startup_quiet_s,
@@ -272,7 +275,8 @@ class Arbitrator:
             ProfilePorts(state, add_link=self.links.add, remove_link=self.links.remove,
                          interlock=interlock, read_memory=lambda: self.read_memory(),
                          read_policy=lambda: self.read_policy(), error=self._error,
-                         emit=self._emit, closed=lambda: self._closed, name=name),
+                         emit=self._emit, closed=lambda: self._closed, name=name,
+                         verify_inputs=lambda refs: self.transactions.verify_inputs(refs)),
             now, quiet_s=startup_quiet_s, duty_quiet_s=duty_quiet_s,
             max_wait_s=startup_max_wait_s, listen_until=listen_until)
         self.setup = DeviceSetup(state, self.nodes, self.requests, run=self._jobs.run,
@@ -442,8 +446,15 @@ class Arbitrator:
 
     @property
     def yielded(self) -> bool:
-        """True once another arbitrator was heard: this one writes nothing any more."""
+        """True while another arbitrator is heard: this one writes nothing (with
+        ``take_back`` until the other's beacons are gone; else for good)."""
         return self.claim.phase is Phase.YIELDED
+
+    @property
+    def read_only(self) -> bool:
+        """Another arbitrator appeared after this one had started: it stays up, writes
+        nothing, and takes the bus back when the other's beacons are gone (``take_back``)."""
+        return self.yielded and self.claim.later and self.claim.take_back
 
     def wait_claimed(self, timeout: float) -> bool:
         """Wait until listening is over; True when this arbitrator arbitrates the bus."""
@@ -570,6 +581,14 @@ class Arbitrator:
         """The profile-layer policy kept in memory beside the stored configuration; an
         unreadable memory gives the thesis's default (autoconfigure on)."""
         return self.transactions.read_policy()
+
+    def read_anchor(self) -> Anchor | None:
+        """The fitting history's anchor kept in memory (issue 28); None when none is kept."""
+        return self.transactions.read_anchor()
+
+    def write_anchor(self, anchor: Anchor) -> Anchor | None:
+        """Store the fitting history's anchor beside the configuration; returns it read back."""
+        return self.transactions.write_anchor(anchor)
 
     def transact(self, change: Change, progress: Callable[[int, int, str], Any] | None = None,
                  cancel: threading.Event | None = None) -> TransactionResult:

@@ -18,7 +18,7 @@ from collections.abc import Callable
 from typing import TYPE_CHECKING, Protocol, cast
 
 from pdcp_studio.bus import events as ev
-from pdcp_studio.bus.arbitrator.claim import Decision
+from pdcp_studio.bus.arbitrator.claim import Decision, Stray
 from pdcp_studio.bus.arbitrator.common import (
     DEFAULT_BEACON_INTERVAL_S,
     TICK_S,
@@ -27,7 +27,8 @@ from pdcp_studio.bus.arbitrator.common import (
 )
 from pdcp_studio.bus.arbitrator.nodes import BindDecision
 from pdcp_studio.bus.arbitrator.state import Emit, ReportError, SendFrame, SystemState
-from pdcp_studio.bus.sim.signals import decode_sample
+from pdcp_studio.bus.log_limit import RepeatLimiter
+from pdcp_studio.bus.sim.signals import decode_raw
 from pdcp_studio.errors import FrameError
 from pdcp_studio.model.refs import ChannelRef, DeviceKey
 from pdcp_studio.model.system import Link
@@ -128,6 +129,13 @@ class Dispatcher:
         self.disconnected = False  # the adapter was pulled (a ReopeningBus says so)
         self.bus_message = ""  # the last BusState line (why it arbitrates or not)
         self._hold_until = 0.0  # after a stall: frames may still wait in the driver till then
+        self._last_stall = float("-inf")  # when this loop last found it had not run
+        #: The bus time (the frame's own timestamp) of the newest frame received from anyone,
+        #: and when it was handled: presence is judged by the bus's clock (issue 28 item 6).
+        self._bus_now = 0.0
+        self._bus_now_at = 0.0
+        #: Stray mode-1 frames: the first told, then one a second and a summary (log_limit).
+        self._strays = RepeatLimiter(burst=1)
 
     def run(self) -> None:
         """The thread: frames as they come, the claim's and presence's tick every TICK_S."""
@@ -147,9 +155,11 @@ class Dispatcher:
                 now = time.monotonic()
                 if now - last > STALL_S:  # this process did not run (a loaded PC, a pause):
                     self._hold_until = now + STALL_GRACE_S  # frames may still wait in the driver
+                    self._last_stall = now
                 last = now
                 if now >= next_tick and self._claim_tick(now):
                     next_tick = now + TICK_S
+                    self._flush_strays(now)
                     self._flush_errors()
                     # Presence is judged only when every frame received so far is handled:
                     # a backlog (a busy machine) must not pass for silent devices.
@@ -171,8 +181,11 @@ class Dispatcher:
         now = time.monotonic()
         if self._claim.is_own_echo(msg.arbitration_id, data, now):
             return  # our own frame, handed back by the bus (late or not)
+        stamp = msg.timestamp or time.time()
+        if stamp >= self._bus_now:
+            self._bus_now, self._bus_now_at = stamp, now
         if self._show_frame is not None:
-            self._show_frame(msg.arbitration_id, data, msg.timestamp or time.time())
+            self._show_frame(msg.arbitration_id, data, stamp)
         if msg.is_error_frame:
             self.error_frames += 1
             self._error(f"error frame #{self.error_frames} on the bus", "error_frame")
@@ -183,8 +196,10 @@ class Dispatcher:
             return
         aid = msg.arbitration_id
         node_id = aid & 0xFF
-        if not self._hear_claim(aid, data, now):
+        if not self._hear_claim(aid, data, now, stamp):
             return  # another arbitrator is on the bus: nothing here is ours to answer
+        if aid >> 8 & 1:
+            return  # a mode-1 frame is never ours to handle (the claim has judged it)
         if self._nodes.is_foreign(aid):
             self._foreign_frame(node_id, aid, data, now)
             return
@@ -197,12 +212,13 @@ class Dispatcher:
             self._on_data(message, msg.timestamp or time.time())
             return
         if message.mode is Mode.ARBITRATOR:
-            return  # (the claim has already yielded)
+            return  # (never reached: the claim has judged it)
         if isinstance(message, BindRequest):
             self._on_bind(message, now)
             return
         with self._state.lock:
-            node = self._nodes.heard(node_id, now, beacon=isinstance(message, Beacon))
+            node = self._nodes.heard(node_id, now, beacon=isinstance(message, Beacon),
+                                     bus_time=stamp)
         if node is None:  # node 0, or a device that left a moment ago
             return
         if isinstance(message, Beacon):
@@ -229,7 +245,7 @@ class Dispatcher:
             ch = self._state.system.channel(ref) if ref else None
             kind = ch.type if ch else 0
         if ref is not None:
-            self._emit(ev.ChannelValue(ref, decode_sample(kind, message.data), timestamp))
+            self._emit(ev.ChannelValue(ref, decode_raw(kind, message.data), timestamp))
 
     # -- binding (the node table decides) -------------------------------------------------
     def _on_bind(self, req: BindRequest, now: float) -> None:
@@ -279,22 +295,29 @@ class Dispatcher:
         interval = (max(device.beacon_interval, 1) / 1000.0 if device is not None
                     else max(DEFAULT_BEACON_INTERVAL_S, UNREAD_BEACON_INTERVAL_S))
         node, old = self._nodes.install(key, node_id, now, interval)
+        node.last_bus = self._bus_estimate(now)
         if old is not None and old != node_id:
             self._requests.abort(old, "the device bound again with another node ID")
         self._profile.note_change(now)
         return self._setup.start(node)
 
     # -- presence (the presence tracker decides) ------------------------------------------
+    def _bus_estimate(self, now: float) -> float:
+        """The bus's clock now: the newest frame's bus time plus the time since it was
+        handled (a node given a fresh start is stamped with it)."""
+        return self._bus_now + max(0.0, now - self._bus_now_at) if self._bus_now_at else 0.0
+
     def _tick(self, now: float, caught_up: bool = True) -> None:
-        """Presence, held and foreign node IDs, deferred binds."""
+        """Presence (judged by the bus's clock, see the presence tracker), held and foreign
+        node IDs, deferred binds."""
         with self._state.lock:
-            gone = self._presence.absent(list(self._nodes.by_id.values()), now) \
-                if caught_up else []
+            gone = self._presence.absent(self._nodes.by_id.values(), now,
+                                         now - self._last_stall) if caught_up else []
             self._nodes.expire(now)
             resolved = self._nodes.resolve_deferred(now, self._presence.duplicates) \
                 if caught_up else []
-        for node in gone:
-            self._depart(node, now)
+        for node, why, silent_s in gone:
+            self._depart(node, now, why, silent_s)
         for req, twin in resolved:
             key = DeviceKey(req.vid, req.pid, req.serial)
             if twin:
@@ -310,7 +333,7 @@ class Dispatcher:
             line = self._presence.report(key, why)
         self._error(line, "duplicate_device")
 
-    def _depart(self, node: _Node, now: float) -> None:
+    def _depart(self, node: _Node, now: float, why: str = "", silent_s: float = 0.0) -> None:
         key = node.key
         with self._state.lock:
             if not self._nodes.remove(node):
@@ -332,8 +355,10 @@ class Dispatcher:
         self._requests.abort(node.node_id, "the device left the bus")
         if not was_present:
             return
-        log.info("%s: device %s left (node %d)", self._name, key, node.node_id)
-        self._emit(ev.DeviceLeft(key))
+        log.info("%s: device %s left (node %d)%s", self._name, key, node.node_id,
+                 f": {why}" if why else "")
+        self._emit(ev.DeviceLeft(key, why=why, silent_s=silent_s,
+                                 interval_s=node.beacon_interval))
         self._links.silence_inputs(fed)
         self._wake()
 
@@ -367,13 +392,31 @@ class Dispatcher:
                                                  message.channel))
 
     # -- one arbitrator per bus (reference §5; the claim decides) -------------------------
-    def _hear_claim(self, arbitration_id: int, data: bytes, now: float) -> bool:
+    def _hear_claim(self, arbitration_id: int, data: bytes, now: float,
+                    bus_time: float | None = None) -> bool:
         """Feed a received frame to the claim; False once another arbitrator is on the bus
         (then nothing received is ours to handle)."""
-        decision = self._claim.heard(arbitration_id, data, now)
-        if decision is not None:
+        decision = self._claim.heard(arbitration_id, data, now, bus_time)
+        if isinstance(decision, Decision):
             self._claim_yielded(decision)
+        elif isinstance(decision, Stray):
+            self._stray(decision, now)
         return not self._claim.yielded
+
+    def _stray(self, stray: Stray, now: float) -> None:
+        """A stray arbitrator-mode frame: told (rate-limited), then ignored."""
+        told, summary = self._strays.admit("stray_frame", stray.message, now)
+        if summary is not None:
+            self._error(summary.text("stray arbitrator-mode frames, ignored"), "stray_frame")
+        if told:
+            self._error(stray.message, "stray_frame")
+
+    def _flush_strays(self, now: float) -> None:
+        lone = self._claim.lone_beacon(now)
+        if lone is not None:
+            self._stray(lone, now)
+        for summary in self._strays.due(now):
+            self._error(summary.text("stray arbitrator-mode frames, ignored"), "stray_frame")
 
     def _claim_tick(self, now: float) -> bool:
         """End the listening when it is due, beacon when due; True while arbitrating (and
@@ -381,7 +424,7 @@ class Dispatcher:
         request asks it first: one handled after the listening ended but before the loop's
         next tick would be granted while every write is still refused, and the set-up of
         the device it binds would fail on its first request."""
-        decision = self._claim.tick(now)
+        decision = self._claim.tick(now, self._caught_up(now))
         if decision is not None:
             self.claim_started(decision)
         if self._claim.beacon_due(now):
@@ -389,13 +432,24 @@ class Dispatcher:
         return bool(self._claim.may_write) and not self.disconnected
 
     def claim_started(self, decision: Decision | None) -> None:
-        """The bus is ours: the start-up reset (a replaced arbitrator's devices bind again)."""
+        """The bus is ours: the start-up reset (a replaced arbitrator's devices bind again).
+        Taken back after another arbitrator's beacons were gone: no reset (the prosthesis
+        keeps working); every device gets its beacon intervals to be heard again, the links
+        are read back and re-made where they differ, and devices the other bound are reset
+        one by one when they beacon (strangers)."""
         if decision is not None:
             self.bus_message = decision.message
             log.info("%s: %s", self._name, decision.message)
             self._emit(ev.BusState("arbitrating", decision.message))
             with self._state.lock:
                 self._presence.claimed()
+                if decision.taken_back:
+                    now = time.monotonic()
+                    self._nodes.heard_all(now, self._bus_estimate(now))
+            if decision.taken_back:
+                self._links.reread()
+                self._wake()
+                return
         if self._reset_on_claim or (decision is not None and decision.takeover):
             self._send(Reset(0))
 
@@ -425,7 +479,7 @@ class Dispatcher:
         with self._state.lock:
             self.disconnected = state == "disconnected"
             if not self.disconnected:
-                self._nodes.heard_all(now)
+                self._nodes.heard_all(now, self._bus_estimate(now))
         self._emit(ev.BusState(state, line))
         if not self.disconnected:
             self._links.reread()

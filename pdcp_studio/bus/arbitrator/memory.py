@@ -11,6 +11,11 @@ own CRC-16 record. A write goes to the slot *not* holding the newest valid gener
 payload first, fsync, header last, fsync. Until the new header is whole, that slot fails its
 CRC and the reader takes the other slot — the previous configuration, never a mix.
 
+A slot may also hold the fitting history's anchor (:data:`FLAG_ANCHOR`, issue 28): the entry
+that recorded the prosthesis's last change and its hash, right after the payload, under the
+same CRC — written by the same two-slot write, so a cut leaves the old anchor with the old
+configuration or the new with the new. A configuration or policy write keeps it.
+
 Reading takes the valid slot with the highest generation; a damaged slot (magic present but
 a bad length or checksum) is reported with a warning, and the other one is used.
 
@@ -33,6 +38,7 @@ from pathlib import Path
 
 from pdcp_studio.errors import ConfigFormatError, PdcpError
 from pdcp_studio.model.configuration import ConfigCollection
+from pdcp_studio.storage.archive.chain import ANCHOR_SIZE, Anchor, pack_anchor, unpack_anchor
 from pdcp_studio.storage.atomic import atomic_write_bytes
 from pdcp_studio.storage.regular_file import kind, open_regular
 
@@ -45,6 +51,9 @@ FORMAT_VERSION = 1
 _HEADER = struct.Struct("<4sHHQII")
 #: Policy flag: start-up and the duty cycle never autoconfigure (issue 17, ``--no-autoconfigure``).
 FLAG_NO_AUTOCONFIGURE = 0x0001
+#: The slot holds the fitting history's anchor (issue 28): its bytes follow the payload and the
+#: CRC covers them too. A slot without the flag (every image written before) reads as before.
+FLAG_ANCHOR = 0x0002
 HEADER_SIZE = _HEADER.size
 #: Room for the largest collection the codec accepts (``config_codec.MAX_INPUT_BYTES``, 1 MiB;
 #: not imported from it: an empty memory, as a simulated prosthesis opens with, needs no codec).
@@ -158,9 +167,9 @@ class _RamBackend:
         pass
 
 
-def _crc(generation: int, payload: bytes, flags: int = 0) -> int:
+def _crc(generation: int, payload: bytes, flags: int = 0, anchor: bytes = b"") -> int:
     extra = struct.pack("<H", flags) if flags else b""
-    return zlib.crc32(struct.pack("<QI", generation, len(payload)) + payload + extra)
+    return zlib.crc32(struct.pack("<QI", generation, len(payload)) + payload + extra + anchor)
 
 
 class MemoryStore:
@@ -192,8 +201,9 @@ class MemoryStore:
         got = self._slot_flags(slot)
         return got[:2] if isinstance(got, tuple) else got
 
-    def _slot_flags(self, slot: int) -> tuple[int, bytes, int] | str | None:
-        """(generation, payload, flags) if valid; None if blank; a reason if damaged."""
+    def _slot_flags(self, slot: int) -> tuple[int, bytes, int, bytes] | str | None:
+        """(generation, payload, flags, anchor bytes) if valid; None if blank; a reason if
+        damaged. The anchor's bytes (empty without :data:`FLAG_ANCHOR`) follow the payload."""
         head = self._backend.read(self._offset(slot), HEADER_SIZE)
         if len(head) < HEADER_SIZE or head[:4] != MAGIC:
             return None if _blank(head) else "no slot header"
@@ -203,15 +213,28 @@ class MemoryStore:
         if length > self.capacity:
             return f"length {length} exceeds the slot capacity {self.capacity}"
         payload = self._backend.read(self._offset(slot) + HEADER_SIZE, length)
-        if len(payload) != length or _crc(generation, payload, flags) != crc:
+        anchor = b""
+        if flags & FLAG_ANCHOR:
+            if length + ANCHOR_SIZE > self.capacity:
+                return f"length {length} leaves no room for the anchor"
+            anchor = self._backend.read(self._offset(slot) + HEADER_SIZE + length, ANCHOR_SIZE)
+            if len(anchor) != ANCHOR_SIZE:
+                return f"checksum mismatch (generation {generation})"
+        if len(payload) != length or _crc(generation, payload, flags, anchor) != crc:
             return f"checksum mismatch (generation {generation})"
         from pdcp_studio.storage import config_codec
 
         try:
-            config_codec.loads(payload)
+            if payload or not anchor:  # an anchor alone: no configuration stored yet
+                config_codec.loads(payload)
         except ConfigFormatError as err:
             return f"configuration does not decode: {err}"
-        return generation, payload, flags
+        if anchor:
+            try:
+                unpack_anchor(anchor)
+            except ValueError as err:
+                return f"anchor does not decode: {err}"
+        return generation, payload, flags, anchor
 
     def _scan(self) -> tuple[int | None, int, bytes | None, list[str]]:
         """(slot of the newest valid copy, its generation, its payload, damage notes)."""
@@ -245,7 +268,7 @@ class MemoryStore:
             if payload is not None:
                 if notes:
                     self._warn(notes, f"using slot {'AB'[slot or 0]} (generation {generation})")
-                return payload
+                return payload or None  # a slot that holds only the anchor: nothing stored
             if notes:
                 self._warn(notes, "no valid configuration is stored")
             return None
@@ -290,15 +313,47 @@ class MemoryStore:
                 payload = config_codec.dumps(ConfigCollection())
             return self._write_locked(payload, flags)
 
-    def _flags(self) -> int:
+    def read_anchor(self) -> Anchor | None:
+        """The fitting history's anchor stored beside the configuration (reference §5
+        Decision): the entry that recorded the last change and its hash; None when this
+        memory holds none (written before anchors, or never changed)."""
+        with self._lock:
+            got = self._current()
+        if not isinstance(got, tuple) or not got[3]:
+            return None
+        return unpack_anchor(got[3])
+
+    def write_anchor(self, anchor: Anchor) -> int:
+        """Store ``anchor`` with the current configuration and policy (a safe two-slot
+        write); returns the new generation."""
+        data = pack_anchor(anchor)
+        with self._lock:
+            _, _, payload, _ = self._scan()
+            # no configuration stored yet: the slot holds the anchor alone (length 0), so a
+            # read still says "none stored" as before
+            return self._write_locked(payload or b"", None, data)
+
+    def _current(self) -> tuple[int, bytes, int, bytes] | str | None:
         slot, _, _, _ = self._scan()
-        got = self._slot_flags(slot) if slot is not None else None
+        return self._slot_flags(slot) if slot is not None else None
+
+    def _flags(self) -> int:
+        got = self._current()
         return got[2] if isinstance(got, tuple) else 0
 
-    def _write_locked(self, payload: bytes, flags: int | None) -> int:
+    def _write_locked(self, payload: bytes, flags: int | None,
+                      anchor: bytes | None = None) -> int:
         slot, generation, _, _ = self._scan()
+        current = self._current()
         if flags is None:
-            flags = self._flags()
+            flags = current[2] if isinstance(current, tuple) else 0
+        if anchor is None:  # a configuration or policy write keeps the anchor
+            anchor = current[3] if isinstance(current, tuple) else b""
+        flags = (flags | FLAG_ANCHOR) if anchor else (flags & ~FLAG_ANCHOR)
+        if len(payload) + len(anchor) > self.capacity:
+            raise MemoryStoreError(f"the configuration takes {len(payload)} bytes; with the "
+                                   f"fitting history's anchor the memory holds "
+                                   f"{self.capacity - len(anchor)} per slot")
         new_generation = generation + 1 if generation >= 0 else 1
         if slot is None:
             if self._slot(0) == "no slot header":  # not ours: never write over it
@@ -309,10 +364,13 @@ class MemoryStore:
         for start in range(0, len(payload), CHUNK):
             self._backend.write(base + HEADER_SIZE + start, payload[start:start + CHUNK])
             self._step("payload")
+        if anchor:
+            self._backend.write(base + HEADER_SIZE + len(payload), anchor)
+            self._step("anchor")
         self._backend.sync()
         self._step("payload synced")
         head = _HEADER.pack(MAGIC, FORMAT_VERSION, flags, new_generation, len(payload),
-                            _crc(new_generation, payload, flags))
+                            _crc(new_generation, payload, flags, anchor))
         half = HEADER_SIZE // 2
         self._backend.write(base, head[:half])
         self._step("header half")

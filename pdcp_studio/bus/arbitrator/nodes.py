@@ -179,20 +179,28 @@ class NodeTable:
         return resolved
 
     # -- what is known of a bound node ----------------------------------------------------
-    def heard(self, node_id: int, now: float, *, beacon: bool = False) -> _Node | None:
-        """A frame (``beacon``: a beacon) from ``node_id`` at ``now``; its node, or None when
-        nobody holds that ID here."""
+    def heard(self, node_id: int, now: float, *, beacon: bool = False,
+              bus_time: float | None = None) -> _Node | None:
+        """A frame (``beacon``: a beacon) from ``node_id`` handled at ``now`` and stamped
+        ``bus_time`` by the bus; its node, or None when nobody holds that ID here."""
         node = self.by_id.get(node_id)
         if node is not None:
             node.last_seen = now
+            if bus_time is not None:
+                node.last_bus = bus_time
             if beacon:
                 node.last_beacon = now
+                if bus_time is not None:
+                    node.prev_beacon_bus, node.last_beacon_bus = node.last_beacon_bus, bus_time
         return node
 
-    def heard_all(self, now: float) -> None:
-        """The adapter is back: every node gets its beacon intervals to be heard again."""
+    def heard_all(self, now: float, bus_time: float | None = None) -> None:
+        """The adapter is back (or the bus taken back): every node gets its beacon intervals
+        to be heard again, by the clock and by the bus's (``bus_time``: the newest frame's)."""
         for node in self.by_id.values():
             node.last_seen = max(node.last_seen, now)
+            if bus_time is not None:
+                node.last_bus = max(node.last_bus, bus_time)
 
     def asked(self, node_id: int, now: float) -> None:
         """A request went to ``node_id`` at ``now`` (an echoed answer is judged by it)."""

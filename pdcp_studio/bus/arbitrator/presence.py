@@ -1,7 +1,14 @@
 """The presence tracker: who is on the bus at time ``now``, twins on one node ID, strangers.
 
 - A bound device is gone after ``MISSED_BEACONS`` beacon intervals (and ``PRESENCE_GRACE``)
-  without a frame (reference §1 Decision).
+  without a frame (reference §1 Decision), measured against the frames actually received, not
+  the PC's clock alone (issue 28 item 6): another part must have beaconed twice after its
+  deadline, in bus time (the frames' own timestamps: a backlog handled late is still judged
+  in bus time, and a simulated prosthesis starved mid-burst, sending one overdue beacon of
+  another part before this one's, is not misread). When no other part beaconed — a starved
+  process whose reader or devices did not run, or a bus gone quiet — it is gone only after a
+  much longer silence (``SILENT_BUS_FACTOR`` × its limit, at least ``SILENT_BUS_S``) during
+  which the checker itself ran without a stall. Each departure says why, in words.
 - Twins bound together (one answer binds both) are caught by their echoed responses (two
   identical answers to one request) or by their doubled beacon rate.
 - A node nobody bound here (an earlier arbitrator's device) that beacons is reset so that it
@@ -15,7 +22,7 @@ the arbitrator (holding its lock) carries it out.
 from __future__ import annotations
 
 from collections.abc import Iterable
-from typing import Literal
+from typing import Literal, NamedTuple
 
 from pdcp_studio.bus.arbitrator.common import (
     BEACON_WINDOW,
@@ -23,6 +30,8 @@ from pdcp_studio.bus.arbitrator.common import (
     MISSED_BEACONS,
     PRESENCE_GRACE,
     RESET_GRACE_S,
+    SILENT_BUS_FACTOR,
+    SILENT_BUS_S,
     TWIN_BEACON_RATIO,
     UNKNOWN_RESET_S,
     _Node,
@@ -36,6 +45,22 @@ def duplicate_message(key: DeviceKey, why: str) -> str:
             f"bus ({why}); only one can be bound")
 
 
+class Gone(NamedTuple):
+    """A node that left: why in words, and how long it was silent (seconds)."""
+
+    node: _Node
+    why: str
+    silent_s: float
+
+
+def _gone(node: _Node, seconds: float, tail: str) -> Gone:
+    """Why a device is gone: "no beacon for 1.5 s, 3 beacon intervals" (and ``tail``)."""
+    interval = node.beacon_interval
+    intervals = int(seconds / interval) if interval > 0 else 0
+    return Gone(node, f"no beacon for {seconds:.1f} s, {intervals} beacon intervals{tail}",
+                seconds)
+
+
 class PresenceTracker:
     """Presence, twins and strangers; ``duplicates`` are the devices reported as twins."""
 
@@ -47,11 +72,39 @@ class PresenceTracker:
         self.stale_until = 0.0
         self.stale_data_frames = 0
 
-    def absent(self, nodes: Iterable[_Node], now: float) -> list[_Node]:
-        """The nodes not heard for their missed-beacon limit at ``now``."""
-        return [node for node in nodes
-                if now - node.last_seen > node.beacon_interval * (MISSED_BEACONS
-                                                                  + PRESENCE_GRACE)]
+    def absent(self, nodes: Iterable[_Node], now: float, smooth_s: float = float("inf"),
+               *, by_bus: bool = True) -> list[Gone]:
+        """The nodes gone at ``now``, each with why in words.
+
+        ``smooth_s``: how long the checker has run without a stall. A node is gone when it
+        has not been heard for its limit by the clock *and* either another part beaconed
+        twice after its deadline in bus time (the frames' own timestamps: "the bus moved
+        on"), or no other part did and its silence is long (see the module doc).
+        ``by_bus=False``: by the clock alone."""
+        nodes = list(nodes)
+        # The two latest "beaconed twice since": a part whose previous beacon is past a
+        # node's deadline beaconed twice after it. (Once is not enough: a sender starved in
+        # the middle of a burst sends one overdue beacon of another part first.)
+        twice = sorted(((n.prev_beacon_bus, n.node_id) for n in nodes), reverse=True)[:2]
+        gone = []
+        for node in nodes:
+            limit = node.beacon_interval * (MISSED_BEACONS + PRESENCE_GRACE)
+            wall = now - node.last_seen
+            if wall <= limit:
+                continue
+            if not by_bus:
+                gone.append(_gone(node, wall, ""))
+                continue
+            others = next((t for t, node_id in twice if node_id != node.node_id), None)
+            if others is not None and others - node.last_bus > limit:
+                gone.append(_gone(node, others - node.last_bus,
+                                  " while the other parts beaconed on"))
+                continue
+            quiet = max(SILENT_BUS_FACTOR * limit, SILENT_BUS_S)
+            if wall > quiet and smooth_s >= quiet:
+                gone.append(_gone(node, wall, ", measured by the clock: no other part "
+                                              "beaconed meanwhile"))
+        return gone
 
     def beacon(self, node: _Node, now: float, caught_up: bool = True) -> str:
         """A beacon from ``node``; why it has a twin ('' when it has none, or is known).
@@ -140,4 +193,4 @@ class PresenceTracker:
         self.foreign_shown.clear()
 
 
-__all__ = ["PresenceTracker", "duplicate_message"]
+__all__ = ["Gone", "PresenceTracker", "duplicate_message"]

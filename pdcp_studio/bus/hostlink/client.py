@@ -43,6 +43,7 @@ from pdcp_studio.protocol.hostlink_messages import Event, Req, Status
 if TYPE_CHECKING:
     from pdcp_studio.bus.session.change_road import ConfirmFn
     from pdcp_studio.bus.trace.decoder import FrameDecoder
+    from pdcp_studio.storage.archive.chain import Anchor
     from pdcp_studio.storage.history import History
 
 log = logging.getLogger(__name__)
@@ -546,6 +547,27 @@ class HostLinkSession(BusSession):
     def read_policy(self) -> Policy:
         """The arbitrator's profile-layer policy (GET_POLICY)."""
         return Policy(autoconfigure=bool(self.request(Req.GET_POLICY)[0] & 1))
+
+    def read_anchor(self) -> Anchor | None:
+        """The fitting history's anchor in the arbitrator's memory (ANCHOR_READ); None when
+        it keeps none (or is a firmware from before anchors: UNKNOWN_REQUEST)."""
+        return self._anchor(Req.ANCHOR_READ, b"")
+
+    def write_anchor(self, anchor: Anchor) -> Anchor | None:
+        """Store the fitting history's anchor (ANCHOR_WRITE); returns it as read back."""
+        return self._anchor(Req.ANCHOR_WRITE, hr.pack_anchor(anchor))
+
+    def _anchor(self, code: Req, body: bytes) -> Anchor | None:
+        try:
+            reply = self.request(code, body)
+        except HostLinkError as err:
+            if err.status is Status.UNKNOWN_REQUEST:
+                return None
+            raise
+        try:
+            return hr.unpack_optional_anchor(reply)
+        except hm.MessageError as err:
+            raise TransportError(f"{self.url}: {code.name} reply: {err}") from None
 
 
 #: Options of other session kinds (memory, scan window, …) that mean nothing over a host link.

@@ -6,7 +6,10 @@ backoff (one calm BusError per outage, never one per attempt). ``request`` sends
 and waits: the link retransmits what is lost (bounded: ``MAX_ATTEMPTS`` sends), then the reply
 must come within the request's timeout — both ends of the wait are bounded and raise errors
 that say which. A greeting (RESET + HELLO, version check) happens on open and again whenever
-the arbitrator has forgotten the PC (it restarted, or gave the PC up).
+the arbitrator has forgotten the PC (it restarted, or gave the PC up), and before the next
+request after a reply timed out or the link was reset under a request (the two ends may count
+differently then: docs/host-link.md §3.4). A request that only reads the arbitrator's tables
+is sent once more after such a reset; any other fails, and the next one greets first.
 """
 
 from __future__ import annotations
@@ -34,6 +37,10 @@ REPLY_TIMEOUT_S = 6.0
 #: Seconds to wait for a version-1 arbitrator's answer to a version-1 PING.
 V1_PROBE_S = 1.0
 #: What a version-2 arbitrator's version-1 failure reply says (docs/host-link.md §4).
+#: Requests that change nothing: sent again after the link was reset under them.
+READ_ONLY = frozenset({Req.HELLO, Req.STATUS, Req.LIST_DEVICES, Req.GET_DEVICE,
+                       Req.GET_CHANNELS, Req.LIST_LINKS, Req.CONFIG_INFO, Req.CONFIG_READ,
+                       Req.RESULT_READ, Req.GET_POLICY, Req.ANCHOR_READ})
 _V2_REFUSAL = f"speaks host-link version {hm.VERSION}, not version 1".encode()
 
 
@@ -52,8 +59,13 @@ class VersionRefused(HostLinkError, TransportError):
 class _Lost:
     """Put in the reply queue when the request's frame was given up or the port failed."""
 
-    def __init__(self, why: str) -> None:
+    def __init__(self, why: str, *, resynced: bool = False) -> None:
         self.why = why
+        self.resynced = resynced
+
+
+class LinkResynced(TransportError):
+    """The link was reset while a request waited: it may or may not have been carried out."""
 
 
 class _LinkOptions(TypedDict, total=False):
@@ -129,7 +141,8 @@ class HostLinkConnection:
     def _greet_locked(self) -> None:
         for attempt in range(2):
             with self._io:
-                self.link.reset(time.monotonic())
+                self.link.reset(time.monotonic(), discard_partial=True)
+                self.link.take_resynced()  # our own reset: nothing waits on it
                 self._flush()
             try:
                 status, body = self._exchange(Req.HELLO, bytes([hm.VERSION, 0xFF, 0xFF]),
@@ -193,7 +206,17 @@ class HostLinkConnection:
         with self._request_lock:
             if not self._greeted:
                 self._greet_locked()
-            status, out = self._exchange(code, body, timeout)
+            try:
+                status, out = self._exchange(code, body, timeout)
+            except LinkResynced:
+                self._greeted = False
+                if code not in READ_ONLY:
+                    raise
+                self._greet_locked()
+                status, out = self._exchange(code, body, timeout)
+            except BusTimeoutError:
+                self._greeted = False  # the ends may count differently: RESET, HELLO next
+                raise
             if status is Status.NOT_GREETED:  # the arbitrator restarted or gave us up
                 self._greet_locked()
                 status, out = self._exchange(code, body, timeout)
@@ -241,6 +264,8 @@ class HostLinkConnection:
                     raise BusTimeoutError(f"{self.where}: no reply to {name} within "
                                           f"{timeout:g} s") from None
                 if isinstance(reply, _Lost):
+                    if reply.resynced:
+                        raise LinkResynced(f"{self.where}: {name} failed: {reply.why}")
                     raise TransportError(f"{self.where}: {name} failed: {reply.why}")
                 if len(reply) < 2:
                     continue
@@ -274,7 +299,12 @@ class HostLinkConnection:
                 delivered = self.link.receive(data, now) if data else []
                 self.link.poll(now)
                 failed = self.link.take_failed()
+                resynced = self.link.take_resynced()
                 self._flush()
+            if resynced and self._waiting is not None:
+                self._replies.put(_Lost("the link was reset (the two ends counted frames "
+                                        "differently); it may not have been carried out",
+                                        resynced=True))
             if failed and self._waiting is not None:
                 self._replies.put(_Lost(f"no acknowledgement after "
                                         f"{self.link.max_attempts} attempts (is the "

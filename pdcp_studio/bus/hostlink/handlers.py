@@ -9,6 +9,12 @@ greeted, one parameter value in transfer, one configuration being written (stage
 only whole with a matching CRC, by the memory's atomic double-buffered write), one change being
 sent for TRANSACT_RUN (carried out by the arbitrator's own transaction: interlock, write, read
 back, restore, release) and the last transaction's result for RESULT_READ.
+
+While another arbitrator is heard on the bus (reference §5) the link is read-only: what the
+tables hold (status, devices, links, the stored configuration, results) is answered, and every
+request that would put a frame on the bus or change the prosthesis — parameters, links,
+suspend, release, reset, a configuration commit, a transaction — is refused with status
+OTHER_ARBITRATOR and the words why and until when.
 """
 
 from __future__ import annotations
@@ -60,7 +66,11 @@ MAX_CONFIG = 8192
 MAX_CHANGE = _MAX_CHANGE
 BUS_ERROR_KINDS = ("", "bad_frame", "error_frame", "duplicate_device", "node_ids_exhausted",
                    "setup", "plan", "transport", "other_arbitrator")
-CAPABILITIES = hm.CAP_MONITOR | hm.CAP_TRANSACTIONS | hm.CAP_POLICY | hm.CAP_PARAM_BULK
+CAPABILITIES = hm.CAP_FULL
+#: Requests that put frames on the bus or change the prosthesis: refused while another
+#: arbitrator is heard (the link is read-only then).
+_WRITES = frozenset({Req.GET_PARAM, Req.SET_PARAM, Req.ADD_LINK, Req.REMOVE_LINK, Req.SUSPEND,
+                     Req.RELEASE, Req.RESET_DEVICE, Req.CONFIG_WRITE_COMMIT, Req.TRANSACT_RUN})
 
 
 class Refused(Exception):
@@ -115,6 +125,7 @@ class Handlers:
             Req.TRANSACT_BEGIN: self.transact_begin, Req.TRANSACT_CHUNK: self.transact_chunk,
             Req.TRANSACT_RUN: self.transact_run, Req.RESULT_READ: self.result_read,
             Req.GET_POLICY: self.get_policy, Req.MONITOR: self.monitor,
+            Req.ANCHOR_READ: self.anchor_read, Req.ANCHOR_WRITE: self.anchor_write,
         }
 
     # -- dispatch --------------------
@@ -123,14 +134,21 @@ class Handlers:
         if not message:
             return None
         code, body = message[0], bytes(message[1:])
-        if code & hm.REPLY or 0x40 <= code < 0x80:
-            return None  # replies and events go the other way
+        if code & hm.REPLY or 0x40 <= code < 0x80:  # an event's or reply's code, from the PC
+            return self._fail(code, Status.UNKNOWN_REQUEST,
+                              f"0x{code:02X} is not a request code (requests are 0x01-0x3F)")
         try:
             request = Req(code)
         except ValueError:
             return self._fail(code, Status.UNKNOWN_REQUEST, f"unknown request 0x{code:02X}")
         if request is not Req.HELLO and not self.greeted:
             return self._fail(code, Status.NOT_GREETED, "send HELLO first")
+        if request in _WRITES and getattr(self.arb, "yielded", False):
+            if request is Req.CONFIG_WRITE_COMMIT:
+                self._staged = None
+            elif request is Req.TRANSACT_RUN:
+                self._change = None
+            return self._fail(code, Status.OTHER_ARBITRATOR, self._read_only(request))
         try:
             out = self._table[request](body)
         except Refused as err:
@@ -150,6 +168,18 @@ class Handlers:
     @staticmethod
     def _fail(code: int, status: Status, reason: str) -> bytes:
         return bytes([hm.reply_code(code), status]) + hm.short_text(reason, 200)
+
+    def _read_only(self, request: Req) -> str:
+        """Why ``request`` is refused while another arbitrator is heard, and until when."""
+        claim = getattr(self.arb, "claim", None)
+        if getattr(self.arb, "read_only", False) and claim is not None:
+            until = (f"until the other's beacons have been gone for {claim.take_back_s:g} s "
+                     f"and a random wait ({claim.take_back_wait_s:.1f} s in all; then this "
+                     "arbitrator takes the bus back)")
+        else:
+            until = "for good"
+        return (f"{request.name}: another bus arbitrator is on this bus: this arbitrator is "
+                f"read-only {until}; nothing was sent or changed (reference §5)")
 
     def forget_host(self) -> None:
         """The PC is gone: what it was sending is dropped (a transaction already running
@@ -184,6 +214,7 @@ class Handlers:
         return hm.HELLO.pack(hm.VERSION, CAPABILITIES, MAX_PAYLOAD) + name
 
     def status(self, body: bytes) -> bytes:
+        self._exact(body, 0, "STATUS")
         system = self.arb.system()
         flags = ((1 if self.arb.wait_settled(0) else 0) | (2 if self.arb.startup_done else 0)
                  | (4 if getattr(self.arb, "yielded", False) else 0))
@@ -377,6 +408,7 @@ class Handlers:
     def transact_run(self, body: bytes) -> bytes:
         """Carry the staged change out as one transaction; the reply is the result's size and
         CRC (RESULT_READ reads it)."""
+        self._exact(body, 0, "TRANSACT_RUN")
         from pdcp_studio.bus.hostlink.change import decode_change, encode_result
 
         self._exact(body, 0, "TRANSACT_RUN")
@@ -439,6 +471,15 @@ class Handlers:
             return bool(read().autoconfigure)
         return bool(getattr(self.arb, "profile_layer", True))
 
+    # -- the fitting history's anchor (issue 28) --------------------
+    def anchor_read(self, body: bytes) -> bytes:
+        self._exact(body, 0, "ANCHOR_READ")
+        return hr.pack_anchor(self.arb.read_anchor())
+
+    def anchor_write(self, body: bytes) -> bytes:
+        self._exact(body, hr.ANCHOR_SIZE, "ANCHOR_WRITE")
+        return hr.pack_anchor(self.arb.write_anchor(hr.unpack_anchor(body)))
+
     def monitor(self, body: bytes) -> bytes:
         self._exact(body, 2, "MONITOR")
         flags, period = body[0], max(body[1], 1)
@@ -465,6 +506,8 @@ class Handlers:
                 return None  # the monitor counts these; too chatty for the line
             kind = BUS_ERROR_KINDS.index(event.kind) if event.kind in BUS_ERROR_KINDS else 0
             return bytes([hm.Event.BUS_ERROR, kind]) + hm.short_text(event.message, 200)
+        if isinstance(event, ev.BusState) and event.state == "yielded":
+            return bytes([hm.Event.OTHER_ARBITRATOR]) + hm.short_text(event.message, 200)
         if isinstance(event, ev.TransactionDone):
             from pdcp_studio.bus.hostlink.change import encode_result
 

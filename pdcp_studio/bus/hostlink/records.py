@@ -25,6 +25,10 @@ from pdcp_studio.protocol.hostlink_messages import (
     short_text,
     text,
 )
+from pdcp_studio.storage.archive.chain import ANCHOR_SIZE as _ANCHOR_SIZE
+from pdcp_studio.storage.archive.chain import Anchor
+from pdcp_studio.storage.archive.chain import pack_anchor as _pack_anchor
+from pdcp_studio.storage.archive.chain import unpack_anchor as _unpack_anchor
 
 
 def pack_key(key: DeviceKey) -> bytes:
@@ -185,3 +189,26 @@ def unpack_link_event(body: bytes) -> tuple[Link, int | None]:
     return Link(ChannelRef(*f[0:4]), ChannelRef(*f[4:8])), f[8] or None
 
 
+
+
+# -- the fitting history's anchor (ANCHOR_READ / ANCHOR_WRITE, issue 28) ------------------
+#: An anchor's bytes: entry id u64, SHA-256 (32 bytes), announced token (32 ASCII bytes).
+ANCHOR_SIZE = _ANCHOR_SIZE
+
+
+def pack_anchor(anchor: Anchor | None) -> bytes:
+    """The anchor as a reply's body; empty when the arbitrator keeps none."""
+    return b"" if anchor is None else _pack_anchor(anchor)
+
+
+def unpack_anchor(body: bytes) -> Anchor:
+    """The anchor in a request's or reply's body (MessageError when it is not one)."""
+    try:
+        return _unpack_anchor(body)
+    except ValueError as err:
+        raise MessageError(str(err)) from None
+
+
+def unpack_optional_anchor(body: bytes) -> Anchor | None:
+    """ANCHOR_READ's reply: None when empty (the arbitrator keeps none)."""
+    return None if not body else unpack_anchor(body)

@@ -148,6 +148,7 @@ class HostLinkServer:
                 self.link.poll(now)
                 if self.link.take_failed():
                     self.lost_host()
+                self._count_reset_drops()
                 self._push_events(now)
                 self._flush()
             for message in delivered:
@@ -157,6 +158,17 @@ class HostLinkServer:
                         self.post(reply)
                 else:
                     self._requests.put(message)
+
+    def _count_reset_drops(self) -> None:
+        """A RESET dropped queued events: counted as lost, so the PC (told by EVENTS_LOST,
+        the session being still greeted) reads its tables again rather than trusting them."""
+        if not self.link.take_resynced():
+            return
+        events = [m for m in self.link.reset_dropped if m and 0x40 <= m[0] < hm.REPLY
+                  and m[0] not in (hm.Event.FRAMES, hm.Event.CHANNEL_COUNTS)]
+        if events and self.handlers.greeted:
+            self.events_lost = (self.events_lost + len(events)) & 0xFFFF
+            self._lost_pending = True
 
     def _push_events(self, now: float) -> None:
         greeted = self.handlers.greeted

@@ -38,6 +38,7 @@ from pdcp_studio.model.system import Link, System
 if TYPE_CHECKING:
     from pdcp_studio.bus.session.change_road import ConfirmFn
     from pdcp_studio.engine.plan import Plan
+    from pdcp_studio.storage.archive.chain import Anchor
     from pdcp_studio.storage.history import History
 
 Subscriber = Callable[[object], None]
@@ -147,6 +148,17 @@ class BusSession(abc.ABC):
     @abc.abstractmethod
     def read_policy(self) -> Policy:
         """The arbitrator's profile-layer policy (autoconfigure on or off)."""
+
+    def read_anchor(self) -> Anchor | None:
+        """The fitting history's anchor the arbitrator keeps beside its stored configuration
+        (reference §5 Decision): the entry that recorded its last change and that entry's
+        hash; None when it keeps none. A transport that cannot say raises."""
+        return None
+
+    def write_anchor(self, anchor: Anchor) -> Anchor | None:
+        """Store ``anchor`` in the arbitrator's memory; returns it as read back (None: this
+        arbitrator keeps no anchor)."""
+        return None
 
     @abc.abstractmethod
     def carry_out(self, change: Change, progress: ProgressFn | None = None,

@@ -37,6 +37,7 @@ Translate = Callable[[str], str]
 
 if TYPE_CHECKING:
     from pdcp_studio.bus.session.base import BusSession
+    from pdcp_studio.storage.archive.chain import Anchor
     from pdcp_studio.storage.history import History
 
 __all__ = ["ChangePreview", "ConfirmFn", "ProgressFn", "names_for", "preview_change",
@@ -109,10 +110,9 @@ def resolve_store(system: System, change: Change) -> Change:
 
 def names_for(system: System, tr: Translate | None = None) -> Names:
     """The names every text of a change uses (the profile names from the named trees)."""
-    from pdcp_studio.storage.profile_trees import load_profile_trees, tree_for
+    from pdcp_studio.storage.profile_trees import system_names
 
-    return Names(system, profiles=tree_for(load_profile_trees(), system),
-                 tr=tr or (lambda text: text))
+    return system_names(system, tr=tr)
 
 
 def preview_change(session: BusSession, change: Change, *,
@@ -178,22 +178,56 @@ def run_transaction(session: BusSession, change: Change, *, operator: str | None
         if not result.devices:
             result.devices = preview.devices
         return result
-    from pdcp_studio.storage.history import History, entry_from_result, interrupted
+    from pdcp_studio.storage.history import (
+        History,
+        NotAllowedError,
+        entry_from_result,
+        interrupted,
+    )
 
     bus = session.url
-    archive = history if history is not None else History.open()
+    try:
+        archive = history if history is not None else History.open()
+    except Exception as err:  # the archive in use cannot be opened (a server down)
+        return TransactionResult(Status.FAILED, change.action, "record",
+                                 f"the fitting history cannot be written ({err}); "
+                                 "nothing was written to the prosthesis",
+                                 preview.links_before, preview.links_before,
+                                 devices=preview.devices)
     try:
         announced = TransactionResult(
             Status.FAILED, change.action, links_before=preview.links_before,
             config_crc_before=config_crc(preview.config_before), interlock="unknown",
             devices=preview.devices, policy_before=preview.policy_before)
+        refused = _unverified(session, archive, preview.devices)
+        if refused:
+            return TransactionResult(Status.FAILED, change.action, "record", refused,
+                                     preview.links_before, preview.links_before,
+                                     devices=preview.devices)
         try:
             token = archive.begin(interrupted(entry_from_result(
                 announced, change, bus=bus, operator=operator, patient=patient)))
+        except NotAllowedError as err:  # a reader: refused before any frame, in words
+            return TransactionResult(Status.FAILED, change.action, "record",
+                                     f"refused: {err}; nothing was written to the prosthesis",
+                                     preview.links_before, preview.links_before,
+                                     devices=preview.devices)
         except Exception as err:  # no record, no change: a clinic must be able to say
             return TransactionResult(Status.FAILED, change.action, "record",
                                      f"the fitting history cannot be written ({err}); "
                                      "nothing was written to the prosthesis",
+                                     preview.links_before, preview.links_before,
+                                     devices=preview.devices)
+        try:
+            anchor = _announce(session, archive, token)
+        except Exception as err:  # the memory cannot take the anchor: nor would it the change
+            reason = (f"the fitting history's anchor cannot be written to the prosthesis "
+                      f"({err}); nothing was written to the prosthesis")
+            archive.finish(token, {**entry_from_result(TransactionResult(
+                Status.FAILED, change.action, "record", reason, preview.links_before,
+                preview.links_before, devices=preview.devices), change, bus=bus,
+                operator=operator, patient=patient), "announcement": token})
+            return TransactionResult(Status.FAILED, change.action, "record", reason,
                                      preview.links_before, preview.links_before,
                                      devices=preview.devices)
         result = session.carry_out(change, progress, cancel)
@@ -212,7 +246,10 @@ def run_transaction(session: BusSession, change: Change, *, operator: str | None
                                       patient=patient, configuration_after=after,
                                       effect=preview.effect if result.written else None,
                                       parameters_after=values)
+            entry["announcement"] = token
             result.history_id = archive.finish(token, entry)
+            if anchor is not None:
+                _anchor(session, archive, result)
         except Exception as err:  # the change stands; its announcement is recovered later
             result.notes.append(f"not recorded in the fitting history: {err}")
             if result.ok:
@@ -221,3 +258,55 @@ def run_transaction(session: BusSession, change: Change, *, operator: str | None
         if history is None:
             archive.close()
     return result
+
+
+# -- the fitting history's anchor (reference §5 Decision, issue 28; docs/decisions.md) ------
+def _unverified(session: BusSession, archive: History, devices: list[DeviceKey]) -> str | None:
+    """Why a change must not append to ``archive`` (its chain is broken, or its last entry
+    for this prosthesis is not the one the prosthesis remembers), in words with the way on;
+    None when it may."""
+    from pdcp_studio.storage.archive.anchor import check
+
+    try:
+        anchor = session.read_anchor()
+        problem = check(archive, anchor, {(k.vid, k.pid, k.serial) for k in devices})
+    except Exception as err:  # an anchor or archive that cannot be read is not verified
+        problem = str(err)
+    if problem is None:
+        return None
+    return (f"refused: the fitting history {archive.location} does not verify against this "
+            f"prosthesis: {problem}. Nothing was written to the prosthesis. See what differs "
+            f"with `pdcp-studio history verify --bus {session.url}`; keep the evidence "
+            "(`pdcp-studio history export -o FILE`) and put back the archive that recorded "
+            "this prosthesis's changes (its backup, or a clinic's archive with --archive)")
+
+
+def _announce(session: BusSession, archive: History, token: str) -> Anchor | None:
+    """Tell the prosthesis, before the change writes, which announcement it is changed
+    under: the anchor keeps its entry and adds ``token``. An earlier announcement whose
+    entry was recorded but never anchored (the PC stopped) is anchored first, so one
+    unanchored entry at most ever follows the anchored one. None: it keeps no anchor."""
+    from pdcp_studio.storage.archive.chain import Anchor
+
+    current = session.read_anchor()
+    entry, digest = (current.entry, current.hash) if current is not None else (0, "")
+    if current is not None and current.announced:
+        for e in archive.entries():
+            if e.get("announcement") == current.announced:
+                entry, digest = int(e["id"]), str(e["hash"])
+    return session.write_anchor(Anchor(entry, digest, token))
+
+
+def _anchor(session: BusSession, archive: History, result: TransactionResult) -> None:
+    """Anchor the entry just recorded: its id (the archive's entry count then) and hash, in
+    the prosthesis's memory. A failure is said in the result; the announcement the memory
+    already holds still lets ``history verify --bus`` accept this one entry."""
+    from pdcp_studio.storage.archive.chain import Anchor
+
+    entry = archive.get(result.history_id) if result.history_id else None
+    try:
+        if entry is None:
+            raise ValueError(f"entry {result.history_id} cannot be read back")
+        session.write_anchor(Anchor(int(entry["id"]), str(entry["hash"])))
+    except Exception as err:
+        result.notes.append(f"the prosthesis's fitting history anchor was not updated: {err}")

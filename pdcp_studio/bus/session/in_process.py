@@ -27,6 +27,7 @@ from pdcp_studio.model.system import System
 
 if TYPE_CHECKING:
     from pdcp_studio.bus.arbitrator.core import Arbitrator
+    from pdcp_studio.storage.archive.chain import Anchor
 
 log = logging.getLogger(__name__)
 
@@ -90,6 +91,14 @@ class Session(BusSession):
     def read_policy(self) -> Policy:
         self._check_open()
         return self.arbitrator.read_policy()
+
+    def read_anchor(self) -> Anchor | None:
+        self._check_open()
+        return self.arbitrator.read_anchor()
+
+    def write_anchor(self, anchor: Anchor) -> Anchor | None:
+        self._check_open()
+        return self.arbitrator.write_anchor(anchor)
 
     def carry_out(self, change: Change, progress: ProgressFn | None = None,
                   cancel: threading.Event | None = None) -> TransactionResult:

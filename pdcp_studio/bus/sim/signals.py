@@ -59,6 +59,19 @@ def decode_sample(type_value: int, data: bytes) -> float:
     return raw / ((1 << bits) - 1)
 
 
+def decode_raw(type_value: int, data: bytes) -> float:
+    """A data frame's value in the type's own numbers (what the channel sent: unsigned
+    0…2^bits−1, signed two's complement, a half float, a flag 0/1) — what a person reads on
+    an axis that spans the type's range (``model/value_axis.py``)."""
+    ctype = ChannelType(type_value)
+    fraction = decode_sample(type_value, data)
+    if ctype.data_type is DataType.UNSIGNED:
+        return float(round(fraction * ((1 << ctype.bits) - 1)))
+    if ctype.data_type is DataType.SIGNED:
+        return float(round(fraction * ((1 << (ctype.bits - 1)) - 1)))
+    return fraction
+
+
 def _emg(t: float, phase: float) -> float:
     """A muscle contracting every ~2 s: a smooth burst plus a little tremor."""
     cycle = (t + phase) % 2.0

@@ -3,8 +3,10 @@
 A replay of a BLF capture spent most of its time in python-can's reader: for every object it
 unpacks three structs, converts the time through ``Decimal`` and builds a ``can.Message``.
 ``FastBLFReader`` is that reader with its loop over a container's objects (``_parse_data``)
-replaced; the file header, the containers, their decompression and the objects split
-between two containers stay python-can's own code. In the new loop:
+replaced; the file header and the objects split between two containers stay python-can's
+own code. The loop over the file's containers (``_containers``) is python-can's, but inflates
+each to at most ``MAX_CONTAINER`` bytes (python-can's inflates whatever a container holds: a
+damaged or hostile file could take gigabytes). In the new loop over a container's objects:
 
 - the most common object, a classical CAN frame (CAN_MESSAGE, CAN_MESSAGE2) with a
   version-1 header, is unpacked by one struct (python-can's three layouts in a row);
@@ -55,10 +57,14 @@ from can.io.blf import (
     CAN_MSG_EXT,
     CAN_MSG_STRUCT,
     DIR,
+    LOG_CONTAINER,
+    LOG_CONTAINER_STRUCT,
+    NO_COMPRESSION,
     OBJ_HEADER_BASE_STRUCT,
     OBJ_HEADER_V1_STRUCT,
     OBJ_HEADER_V2_STRUCT,
     REMOTE_FLAG,
+    ZLIB_DEFLATE,
     BLFParseError,
     BLFReader,
 )
@@ -70,6 +76,9 @@ from can.util import dlc2len
 _V1_CAN_MSG = struct.Struct("<" + "".join(
     s.format.lstrip("<") for s in (OBJ_HEADER_BASE_STRUCT, OBJ_HEADER_V1_STRUCT, CAN_MSG_STRUCT)))
 _ID_MASK = 0x1FFFFFFF
+#: A container inflates to no more than this (python-can and Vector write 128 KiB ones):
+#: a damaged or hostile one that says more is refused, not inflated into memory.
+MAX_CONTAINER = 1 << 24
 #: python-can's reader has the two methods this one builds on.
 COMPATIBLE = all(callable(getattr(BLFReader, name, None))
                  for name in ("_parse_data", "_parse_container"))
@@ -116,10 +125,41 @@ class FastBLFReader(BLFReader):
         resumed per frame). A damaged file raises ``BLFParseError`` naming how far into
         the file the reader had got, after the frames before the damage."""
         try:
-            yield from super().__iter__()  # type: ignore[misc]  # lists: _parse_data's
+            yield from self._containers()
         except (BLFParseError, struct.error, zlib.error) as err:
             where = "" if self.file.closed else f" (before byte {self.file.tell()})"
             raise BLFParseError(f"{err or type(err).__name__}{where}") from err
+
+    def _containers(self) -> Iterator[list[Any]]:
+        """python-can's ``BLFReader.__iter__`` (the objects of the file, containers
+        inflated), with each container inflated to at most ``MAX_CONTAINER`` bytes."""
+        read = self.file.read
+        while True:
+            data = read(OBJ_HEADER_BASE_STRUCT.size)
+            if not data:
+                break
+            signature, _, _, obj_size, obj_type = OBJ_HEADER_BASE_STRUCT.unpack(data)
+            if signature != b"LOBJ":
+                raise BLFParseError()
+            obj_data = read(obj_size - OBJ_HEADER_BASE_STRUCT.size)
+            read(obj_size % 4)  # padding
+            if obj_type != LOG_CONTAINER:
+                continue
+            method, _ = LOG_CONTAINER_STRUCT.unpack_from(obj_data)
+            container_data = obj_data[LOG_CONTAINER_STRUCT.size:]
+            if method == NO_COMPRESSION:
+                data = container_data
+            elif method == ZLIB_DEFLATE:
+                inflater = zlib.decompressobj()
+                data = inflater.decompress(container_data, MAX_CONTAINER)
+                if inflater.unconsumed_tail:
+                    raise BLFParseError(f"a container inflating to more than "
+                                        f"{MAX_CONTAINER:,} bytes (damaged?)")
+            else:
+                blf.LOG.warning("Unknown compression method (%d)", method)
+                continue
+            yield from self._parse_container(data)  # type: ignore[misc]  # lists
+        self.stop()
 
     def _parse_data(self, data: bytes) -> Iterator[list[Any]]:  # type: ignore[override]
         """The frames of ``data`` (one container, after the tail of the one before) as

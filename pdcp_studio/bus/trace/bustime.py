@@ -378,7 +378,20 @@ class BusTimeMeter:
 
     def _count(self) -> None:
         if self._ids:
-            self._bits += _batch_counter().bits(self._ids, self._payloads)
+            ids, payloads = self._ids, self._payloads
+            if max(ids) > 0x7FF or max(map(len, payloads)) > MAX_DATA:
+                # A capture from another tool may hold frames no base frame can be (a 29-bit
+                # ID marked standard, more than 8 data bytes): counted at their worst case
+                # as extended frames (20 more header bits), never indexed into the tables.
+                odd = [n for n, (i, p) in enumerate(zip(ids, payloads, strict=True))
+                       if i > 0x7FF or len(p) > MAX_DATA]
+                skip = set(odd)
+                self._bits += sum(worst_case_bits(min(len(payloads[n]), MAX_DATA)) + 20
+                                  for n in odd)
+                ids = [i for n, i in enumerate(ids) if n not in skip]
+                payloads = [p for n, p in enumerate(payloads) if n not in skip]
+            if ids:
+                self._bits += _batch_counter().bits(ids, payloads)
             self._ids, self._payloads = [], []
 
     @property

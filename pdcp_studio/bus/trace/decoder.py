@@ -27,7 +27,8 @@ from pdcp_studio.bus.trace.frames import (
     LinkMap,
     new_frame,
 )
-from pdcp_studio.bus.trace.knowledge import BusKnowledge
+from pdcp_studio.bus.trace.inference import TrafficLearner
+from pdcp_studio.bus.trace.knowledge import INFERRED, BusKnowledge
 from pdcp_studio.bus.trace.nodemap import load_node_map, node_map_json
 from pdcp_studio.bus.trace.stats import EXTENDED_KEY, MonitorStats
 from pdcp_studio.errors import FrameError
@@ -99,6 +100,9 @@ class FrameDecoder:
         #: Device node IDs heard beaconing or answering (at most 254).
         self.heard: set[int] = set()
         self._beaconed: set[int] = set()
+        #: Infers devices and output channels from traffic whose set-up was not seen
+        #: (``inference.py``); frames the decoder cannot place feed it (None: off).
+        self.learner: TrafficLearner | None = None
 
     def _changed(self) -> None:
         """What was learned changed: cached link texts are stale."""
@@ -163,7 +167,7 @@ class FrameDecoder:
         node = arbitration_id & 0xFF
         if (arbitration_id < 0x600 and not arbitration_id & 0x100 and not self.foreign
                 and self._t0 is not None and not msg.is_extended_id
-                and not msg.is_remote_frame and not msg.is_error_frame
+                and not msg.is_remote_frame and not msg.is_error_frame and not msg.is_fd
                 and (node in self.links or node in self.outputs)):
             data = bytes(msg.data)
             timestamp = msg.timestamp or 0.0
@@ -183,11 +187,12 @@ class FrameDecoder:
         return self.decode(arbitration_id, bytes(msg.data), msg.timestamp or 0.0,
                            is_extended_id=msg.is_extended_id,
                            is_remote_frame=msg.is_remote_frame,
-                           is_error_frame=msg.is_error_frame)
+                           is_error_frame=msg.is_error_frame, is_fd=msg.is_fd, dlc=msg.dlc)
 
     def decode(self, arbitration_id: int, data: bytes, timestamp: float = 0.0, *,
                is_extended_id: bool = False, is_remote_frame: bool = False,
-               is_error_frame: bool = False) -> DecodedFrame:
+               is_error_frame: bool = False, is_fd: bool = False,
+               dlc: int | None = None) -> DecodedFrame:
         """One frame → one line; never raises on what a bus can deliver."""
         if type(data) is not bytes:
             data = bytes(data)
@@ -195,9 +200,11 @@ class FrameDecoder:
             self._t0 = timestamp
         stats = self.stats
         stats.frames += 1
-        if is_extended_id or is_error_frame or is_remote_frame or not 0 <= arbitration_id <= 0x7FF:
+        if (is_extended_id or is_error_frame or is_remote_frame or is_fd
+                or not 0 <= arbitration_id <= 0x7FF):
             return self._odd_frame(arbitration_id, data, timestamp, is_extended_id,
-                                   is_remote_frame, is_error_frame)
+                                   is_remote_frame, is_error_frame, is_fd,
+                                   len(data) if dlc is None else dlc)
         if len(data) <= 8:
             if self.meter_on:
                 stats.meter.add_base(arbitration_id, data, timestamp)
@@ -211,6 +218,9 @@ class FrameDecoder:
         node = arbitration_id & 0xFF
         if self.foreign:
             return self._raw(arbitration_id, data, timestamp)
+        learner = self.learner
+        if learner is not None and learner.observe(arbitration_id, data):
+            self.adopt()
         if (arbitration_id < 0x600 and not arbitration_id & 0x100 and len(data) <= 8
                 and (node in self.links or node in self.outputs)):
             return self._channel_data(arbitration_id, node, data, timestamp)
@@ -325,12 +335,16 @@ class FrameDecoder:
             return mode is _ARBITRATOR and code != _BEACON
         return node in self.devices or node in self.heard
 
-    def _raw(self, arbitration_id: int, data: bytes, timestamp: float) -> DecodedFrame:
-        """A frame of a bus that is not PDCP's: shown as it is, counted, not an error."""
+    def _raw(self, arbitration_id: int, data: bytes, timestamp: float,
+             text: str | None = None, who: str = "") -> DecodedFrame:
+        """A frame of a bus that is not PDCP's: shown as it is (plain CAN: identifier,
+        kind, data), counted, not an error. ``who``: the sender column of an extended or
+        error frame (a standard identifier's is the default)."""
         self.stats.by_function[NOT_PDCP] += 1
+        fields = text or f"[{arbitration_id:03X}] {data.hex(' ').upper() or '(empty)'}"
         return DecodedFrame(timestamp, timestamp - (self._t0 or 0.0), arbitration_id, data,
-                            "", None, None, NOT_PDCP,
-                            f"[{arbitration_id:03X}] {data.hex(' ').upper() or '(empty)'}")
+                            "", None, None, NOT_PDCP, fields,
+                            head=f"P?  {who} {NOT_PDCP}  {fields}" if who else "")
 
     def _unattributed(self, base: dict[str, Any]) -> DecodedFrame:
         """A passive monitor's frame from a node it has not learned: likely channel data."""
@@ -340,25 +354,36 @@ class FrameDecoder:
                             function=UNATTRIBUTED, fields=raw)
 
     def _odd_frame(self, arbitration_id: int, data: bytes, timestamp: float, extended: bool,
-                   remote: bool, error: bool) -> DecodedFrame:
-        """Error, remote, extended or out-of-range frames: counted, never PDCP."""
-        if not (extended or error) and 0 <= arbitration_id <= 0x7FF and len(data) <= 8:
+                   remote: bool, error: bool, fd: bool, dlc: int) -> DecodedFrame:
+        """Error, remote, extended, CAN FD or out-of-range frames: counted, never PDCP,
+        each shown as what it is."""
+        if not (extended or error or fd) and 0 <= arbitration_id <= 0x7FF and len(data) <= 8:
             self.stats.meter.add(arbitration_id, data, timestamp)
         if not error:
             self.stats.note_id(arbitration_id + (EXTENDED_KEY if extended else 0),
                                timestamp, data)
+        text = plain_can_text(arbitration_id, data, extended=extended, remote=remote,
+                              error=error, fd=fd, dlc=dlc)
+        # The sender column: an error frame has no identifier, an extended one 8 digits.
+        who = ("error" if error else f"0x{arbitration_id:08X}" if extended
+               or not 0 <= arbitration_id <= 0x7FF else "")
         if self.foreign:
-            return self._raw(arbitration_id, data, timestamp)
+            return self._raw(arbitration_id, data, timestamp, text, who)
         reason = ("error frame" if error else
                   "extended 29-bit identifier (PDCP uses 11-bit base frames)" if extended
                   else "remote frame (PDCP sends none)" if remote
+                  else "CAN FD frame (PDCP uses classical CAN)" if fd
                   else f"arbitration ID 0x{arbitration_id:X} is not an 11-bit base identifier")
         base = {"timestamp": timestamp, "time": timestamp - (self._t0 or 0.0),
                 "arbitration_id": arbitration_id, "data": data}
         if not (extended or error) and 0 <= arbitration_id <= 0x7FF \
                 and arbitration_id & 0xFF <= 254:
             base.update(priority=arbitration_id >> 9, node_id=arbitration_id & 0xFF)
-        return self._undecodable(base, reason)
+        frame = self._undecodable(base, reason, "" if error else text)
+        if who:
+            frame = frame._replace(head=f"P?  {who} {frame.function}"
+                                   + (f"  {frame.fields}" if frame.fields else ""))
+        return frame
 
     def _channel_data(self, arbitration_id: int, node: int, data: bytes,
                       timestamp: float) -> DecodedFrame:
@@ -382,7 +407,44 @@ class FrameDecoder:
             CHANNEL_DATA, arbitration_id >> 9, node, "Channel data", cached[3] + hex_data,
             None, None, cached[2], None, cached[4] + hex_data))
 
-    # -- the node map, saved beside a capture ---------------------------------------------------
+    # -- the node map, saved beside a capture or inferred -------------------------------------
+
+    def learn_from_traffic(self, head: Any = ()) -> TrafficLearner:
+        """Infer devices and output channels from traffic (``inference.py``): from ``head``
+        (frames read ahead, e.g. a capture's first ones) now, and from every frame the
+        decoder cannot place afterwards. Returns the learner (its evidence)."""
+        if self.learner is None:
+            self.learner = TrafficLearner()
+        self.learner.observe_all(head)
+        self.learner.settle()
+        self.adopt()
+        return self.learner
+
+    def adopt(self) -> None:
+        """Take what the learner infers now: its channels as outputs known only by node ID
+        (a channel set up, bound or named by the caller wins), the devices that announced
+        themselves (beacon, bind request) as heard."""
+        learner = self.learner
+        if learner is None:
+            return
+        channels = learner.channels
+        outputs = self.outputs
+        changed = False
+        for node in [n for n, owner in outputs.items() if owner == INFERRED
+                     and n not in channels]:
+            del outputs[node]
+            changed = True
+        for node in channels:
+            if node not in outputs and node not in self.links and node not in self.devices:
+                outputs[node] = INFERRED
+                changed = True
+        for node in learner.devices - self.heard:
+            if node not in outputs:
+                self.heard.add(node)
+                changed = True
+        if changed:
+            self._changed()
+
 
     def node_map(self) -> dict[str, Any]:
         """What the decoder knows of the bus (given links and what it learned), as JSON."""
@@ -395,12 +457,14 @@ class FrameDecoder:
 
     # -- describing -------------------------------------------------------------------------
 
-    def _undecodable(self, base: dict[str, Any], reason: str) -> DecodedFrame:
+    def _undecodable(self, base: dict[str, Any], reason: str,
+                     raw: str | None = None) -> DecodedFrame:
         self.stats.undecodable += 1
         self.stats.by_function[UNDECODABLE] += 1
         if "node_id" in base:
             base["direction"] = TO_BA if base["arbitration_id"] >> 8 & 1 == 0 else FROM_BA
-        raw = f"[{base['arbitration_id']:03X}] {base['data'].hex(' ').upper() or '(empty)'}"
+        if raw is None:
+            raw = f"[{base['arbitration_id']:03X}] {base['data'].hex(' ').upper() or '(empty)'}"
         return DecodedFrame(**{"direction": "", "priority": None, "node_id": None, **base},
                             function=f"{UNDECODABLE}: {reason}", fields=raw, error=reason)
 
@@ -450,7 +514,11 @@ class FrameDecoder:
         if node in self.links:
             out, ins = self.links[node]
             return out, tuple(ins)
-        dev, index = self.outputs[node]
+        owner = self.outputs[node]
+        if owner == INFERRED:  # its device and index not seen (inferred from traffic)
+            fed = tuple(self.known.ref(d, i) for d, i in sorted(self.inputs.get(node, ())))
+            return f"channel node {node}", fed
+        dev, index = owner
         inputs = sorted(self.inputs.get(node, ()))
         ref = self.known.ref
         return ref(dev, index), tuple(ref(d, i) for d, i in inputs)
@@ -471,3 +539,16 @@ class FrameDecoder:
         elif isinstance(msg, M.GetParameterResponse | M.SetParameterResponse):
             if msg.code is ResponseCode.SUCCESS and msg.value:
                 self.known.learn(node, msg.channel, msg.param, msg.value, direction)
+
+
+def plain_can_text(arbitration_id: int, data: bytes, *, extended: bool = False,
+                   remote: bool = False, error: bool = False, fd: bool = False,
+                   dlc: int | None = None) -> str:
+    """A frame as plain CAN shows it: identifier (8 digits when extended), kind, data."""
+    ident = f"{arbitration_id:08X}" if extended else f"{arbitration_id:03X}"
+    hex_data = data.hex(" ").upper() or "(empty)"
+    if error:
+        return f"error frame  {hex_data}" if data else "error frame"
+    if remote:
+        return f"[{ident}] remote frame, DLC {len(data) if dlc is None else dlc}"
+    return f"[{ident}] {'FD ' if fd else ''}{hex_data}"

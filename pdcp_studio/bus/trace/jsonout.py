@@ -13,14 +13,46 @@ from typing import Any
 from pdcp_studio.bus.trace.frames import CACHE_SIZE, DecodedFrame, ref_json
 
 json_str = json.encoder.encode_basestring_ascii
+#: python-can's frame-kind fields of a classical base data frame, up to its DLC's value.
+BASE_KIND = (', "is_extended_id": false, "is_remote_frame": false, "is_error_frame": false, '
+             '"is_fd": false, "dlc": ')
+
+
+def channel_json(channel: Any) -> str:
+    """A frame's python-can ``channel`` as JSON (a number, a name or null)."""
+    if channel is None or isinstance(channel, bool):
+        return "null" if channel is None else str(channel).lower()
+    if isinstance(channel, int):
+        return str(channel)
+    return json_str(str(channel))
+
+
+def base_kind(dlc: int, channel: Any) -> str:
+    """The end of a classical base data frame's record: the text's closing quote, its kind
+    fields, the record's closing brace (what ``kind_json`` adds, for such a frame)."""
+    return f'"{BASE_KIND}{int(dlc)}, "channel": {channel_json(channel)}}}'
+
+
+def kind_json(msg: Any) -> str:
+    """python-can's frame-kind fields of ``msg``, as the end of a JSON record ("" when
+    there is no message)."""
+    if msg is None:
+        return ""
+    return (f', "is_extended_id": {"true" if msg.is_extended_id else "false"}, '
+            f'"is_remote_frame": {"true" if msg.is_remote_frame else "false"}, '
+            f'"is_error_frame": {"true" if msg.is_error_frame else "false"}, '
+            f'"is_fd": {"true" if msg.is_fd else "false"}, "dlc": {int(msg.dlc)}, '
+            f'"channel": {channel_json(msg.channel)}')
 
 
 def link_json(link: Any) -> str:
     return json.dumps({"output": ref_json(link[0]), "inputs": [ref_json(r) for r in link[1]]})
 
 
-def frame_json(frame: DecodedFrame, links: dict[int, tuple[Any, str]] | None = None) -> str:
-    """``json.dumps(frame.as_json())`` without building the dict (a monitor's hot path).
+def frame_json(frame: DecodedFrame, links: dict[int, tuple[Any, str]] | None = None,
+               msg: Any = None) -> str:
+    """``json.dumps(frame.as_json())`` without building the dict (a monitor's hot path);
+    with ``msg`` (the python-can frame) its kind fields follow (``kind_json``).
 
     ``links`` (a dict the caller keeps) remembers the JSON of link objects already seen:
     the decoder hands out the same link object for every frame of an output.
@@ -45,7 +77,7 @@ def frame_json(frame: DecodedFrame, links: dict[int, tuple[Any, str]] | None = N
             f'"function": {json_str(frame.function)}, "fields": {json_str(frame.fields)}, '
             f'"response": {"null" if frame.response is None else json_str(frame.response)}, '
             f'"error": {"null" if frame.error is None else json_str(frame.error)}, '
-            f'"link": {link_text}, "text": {json_str(frame.line)}}}')
+            f'"link": {link_text}, "text": {json_str(frame.line)}{kind_json(msg)}}}')
 
 
 def utf8_buffer(out: Any) -> Any:
@@ -68,11 +100,12 @@ def utf8_buffer(out: Any) -> Any:
 
 
 class JsonFrameWriter:
-    """Writes one JSON list of frames as they come: memory stays flat for any length.
+    """Writes one JSON document ``{"frames": [...], "summary": {...}}`` as frames come:
+    memory stays flat for any length.
 
     Nothing is written before the first frame (so a command that fails first prints
-    nothing); ``close()`` ends the list — also after a failure, so stdout stays one JSON
-    document.
+    nothing); ``close(summary)`` ends the list and adds the summary — also after a failure,
+    so stdout stays one JSON document.
     """
 
     def __init__(self, stream: Any) -> None:
@@ -83,17 +116,17 @@ class JsonFrameWriter:
         #: layer copies it twice more than ``str.encode`` does.
         self._buffer = utf8_buffer(stream)
 
-    def write(self, frame: DecodedFrame) -> None:
-        self.write_records([frame_json(frame, self._links)])
+    def write(self, frame: DecodedFrame, msg: Any = None) -> None:
+        self.write_records([frame_json(frame, self._links, msg)])
 
-    def write_to(self, records: list[str], frame: DecodedFrame) -> None:
+    def write_to(self, records: list[str], frame: DecodedFrame, msg: Any = None) -> None:
         """Append ``frame``'s record to ``records`` (to be written by ``write_records``)."""
-        records.append(frame_json(frame, self._links))
+        records.append(frame_json(frame, self._links, msg))
 
     def write_records(self, records: list[str]) -> None:
         """Write records made by ``write_to`` or ``frame_json``, in order."""
         if records:
-            head = "[\n" if self.count == 0 else ",\n"
+            head = '{"frames": [\n' if self.count == 0 else ",\n"
             buffer = self._buffer
             if buffer is not None:
                 self.stream.flush()  # what was written as text first
@@ -104,6 +137,8 @@ class JsonFrameWriter:
                 self.stream.write(",\n".join(records))
             self.count += len(records)
 
-    def close(self) -> None:
-        self.stream.write("\n]\n" if self.count else "[]\n")
+    def close(self, summary: Any = None) -> None:
+        end = json.dumps(summary if summary is not None else {})
+        self.stream.write(f'\n], "summary": {end}}}\n' if self.count
+                          else f'{{"frames": [], "summary": {end}}}\n')
 

@@ -14,6 +14,9 @@ from collections.abc import Callable
 from pdcp_studio.model import parameters as P
 from pdcp_studio.model.refs import ChannelRef, DeviceKey, Direction
 
+#: The owner of an output channel inferred from traffic (``inference.py``): its device and
+#: index are not known, only that the node ID sends channel data.
+INFERRED = (0, 0)
 _NO_SOURCE = (0, 0xFF)  # a Source's Node Ids byte that means "not connected"
 #: Parameters only an input channel has.
 _INPUT_PARAMS = (P.IN_SOURCE_SN_INDEX, P.IN_SOURCE_NODE_IDS, P.IN_SOURCE_TYPE_PROFILE,

@@ -2,8 +2,9 @@
 and reading, writing and replaying captures.
 
 Each lives in a module of its own in this room (``decoder``, ``frames``, ``stats``,
-``jsonout``, ``capture``, ``recorder``, ``nodemap``, ``replay``; ``blf`` reads BLF, ``pump``
-is the CLI's hot loop); this module names them for callers that want the monitor whole.
+``jsonout``, ``reader`` (every capture, by content), ``capture``, ``recorder``, ``nodemap``,
+``inference`` (the node map from traffic), ``replay``; ``blf`` reads BLF, ``pump`` is the
+CLI's hot loop); this module names them for callers that want the monitor whole.
 Importing it stays cheap: python-can loads only when a capture is read or written.
 """
 
@@ -29,6 +30,7 @@ from pdcp_studio.bus.trace.frames import (
     DecodedFrame,
     LinkMap,
 )
+from pdcp_studio.bus.trace.inference import TrafficLearner
 from pdcp_studio.bus.trace.jsonout import JsonFrameWriter, frame_json, utf8_buffer
 from pdcp_studio.bus.trace.nodemap import (
     NODE_MAP_FORMAT,
@@ -36,8 +38,9 @@ from pdcp_studio.bus.trace.nodemap import (
     read_node_map,
     write_node_map,
 )
+from pdcp_studio.bus.trace.reader import CaptureReader
 from pdcp_studio.bus.trace.recorder import MAX_LOG_CHANNEL, Recorder
-from pdcp_studio.bus.trace.replay import replay
+from pdcp_studio.bus.trace.replay import CaptureReplay, node_map_words, replay
 from pdcp_studio.bus.trace.stats import (
     EXTENDED_KEY,
     MAX_TRACKED_IDS,
@@ -49,7 +52,8 @@ __all__ = [
     "CACHE_SIZE", "CAPTURE_SUFFIXES", "CHANNEL_DATA", "EXTENDED_KEY", "FROM_BA",
     "MAX_LOG_CHANNEL", "MAX_TRACKED_IDS", "NODE_MAP_FORMAT", "NODE_MAP_SUFFIX", "NOT_PDCP",
     "NOT_PDCP_MIN_FRAMES", "PARTIAL_SUFFIX", "TO_BA", "UNATTRIBUTED", "UNDECODABLE",
-    "CaptureError", "CaptureWriteError", "DecodedFrame", "FrameDecoder", "JsonFrameWriter",
-    "LinkMap", "MonitorStats", "Recorder", "frame_json", "open_capture", "read_capture",
+    "CaptureError", "CaptureReader", "CaptureReplay", "CaptureWriteError", "DecodedFrame",
+    "FrameDecoder", "JsonFrameWriter", "LinkMap", "MonitorStats", "Recorder",
+    "TrafficLearner", "frame_json", "node_map_words", "open_capture", "read_capture",
     "read_node_map", "replay", "utf8_buffer", "write_node_map",
 ]

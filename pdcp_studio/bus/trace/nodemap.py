@@ -48,7 +48,9 @@ def load_node_map(known: BusKnowledge, links: LinkMap, doc: Any,
             known.devices[_node(d["node_id"])] = DeviceKey(int(d["vid"]), int(d["pid"]),
                                                           int(d["serial"]))
         for o in doc.get("outputs", []):
-            known.outputs[_node(o["node_id"])] = (_node(o["device_node"]), int(o["index"]))
+            owner = (0, 0) if int(o["device_node"]) == 0 else (
+                _node(o["device_node"]), int(o["index"]))  # 0: inferred, owner unknown
+            known.outputs[_node(o["node_id"])] = owner
         for i in doc.get("inputs", []):
             known.inputs.setdefault(_node(i["node_id"]), set()).add(
                 (_node(i["device_node"]), int(i["index"])))

@@ -19,11 +19,13 @@ from collections.abc import Callable, Iterable
 from typing import Any
 
 from pdcp_studio.bus.trace.decoder import FrameDecoder
-from pdcp_studio.bus.trace.frames import CACHE_SIZE, CHANNEL_DATA, DecodedFrame
+from pdcp_studio.bus.trace.frames import CACHE_SIZE, CHANNEL_DATA, NOT_PDCP, DecodedFrame
 from pdcp_studio.bus.trace.jsonout import (
     JsonFrameWriter,
+    base_kind,
     frame_json,
     json_str,
+    kind_json,
     link_json,
     utf8_buffer,
 )
@@ -103,11 +105,12 @@ class TracePump:
         if self.flush_each_chunk:
             self.out.flush()
 
-    def close(self) -> None:
-        """Write the rest; a JSON list is ended (also after a failure: one document)."""
+    def close(self, summary: Any = None) -> None:
+        """Write the rest; a JSON document is ended with ``summary`` (also after a
+        failure: one document)."""
         self.flush()
         if self.json is not None:
-            self.json.close()
+            self.json.close(summary)
 
     # -- the loop ---------------------------------------------------------------------------
 
@@ -143,12 +146,20 @@ class TracePump:
             repeats.clear()
             self._version = decoder.version
         json_cache = self._json_cache
+        # (DLC, channel) → the end of a classical data frame's JSON record (its kind fields)
+        kinds: dict[tuple[int, Any], str] = {}
+
+        # The frames of a known identifier counted here: channel data of a PDCP capture, or
+        # every classical data frame of a foreign one (shown as plain CAN).
+        foreign = decoder.foreign
+        fast_function = NOT_PDCP if foreign else _CHANNEL_DATA
 
         def settle() -> None:
             nonlocal ids, payloads, fast, untracked
             stats.frames += fast
-            stats.by_function[_CHANNEL_DATA] += fast
-            stats.in_context += fast
+            stats.by_function[fast_function] += fast
+            if not foreign:
+                stats.in_context += fast
             stats.other_ids += untracked
             if meter_on and ids:
                 meter = stats.meter
@@ -177,7 +188,7 @@ class TracePump:
                     continue
                 head = heads.get(arbitration_id)
                 if head is not None and not (msg.is_extended_id or msg.is_remote_frame
-                                             or msg.is_error_frame):
+                                             or msg.is_error_frame or msg.is_fd):
                     data = msg.data
                     if len(data) <= 8:
                         if recorder is not None:
@@ -213,16 +224,21 @@ class TracePump:
                                 short = fixed.rstrip("0")
                                 if short[-1] == "." or not 1e-4 <= t < 1e9:
                                     short = json_times(t)[1]
+                                kind_key = (msg.dlc, msg.channel)
+                                kind = kinds.get(kind_key)
+                                if kind is None:
+                                    kind = kinds[kind_key] = base_kind(*kind_key)
                                 append(f'{{"timestamp": {timestamp!r}, "time": {short}{j[0]}'
                                        f'{data.hex()}{j[1]}{upper}{j[2]}{fixed:>11}{j[3]}'
-                                       f'{upper}"}}')
+                                       f'{upper}{kind}')
                             else:
                                 append(f"{t:11.6f}  {head[2]}{upper}")
                             if len(parts) >= CHUNK:
                                 self._chunk_full()
                         continue
                 key = frame = None
-                if not (msg.is_extended_id or msg.is_remote_frame or msg.is_error_frame):
+                if not (msg.is_extended_id or msg.is_remote_frame or msg.is_error_frame
+                        or msg.is_fd):
                     data = msg.data
                     key = (arbitration_id, bytes(data))
                     rep = repeats.get(key)
@@ -264,8 +280,12 @@ class TracePump:
                                 short = fixed.rstrip("0")
                                 if short[-1] == "." or not 1e-4 <= t < 1e9:
                                     short = json_times(t)[1]
+                                kind_key = (msg.dlc, msg.channel)
+                                kind = kinds.get(kind_key)
+                                if kind is None:
+                                    kind = kinds[kind_key] = base_kind(*kind_key)
                                 append(f'{{"timestamp": {timestamp!r}, "time": {short}{j[1]}'
-                                       f'{fixed:>11}{j[2]}"}}')
+                                       f'{fixed:>11}{j[2]}{kind}')
                             elif as_bytes:
                                 append(b"%11.6f  %b" % (t, rep[6]))
                             else:
@@ -285,9 +305,11 @@ class TracePump:
                 shown = show is None or show(frame)
                 if shown:
                     cached_head = frame.head
-                    if not cached_head:
+                    # A line composed for one frame only (a foreign capture's extended or
+                    # error frame) is not worth caching the JSON record of.
+                    if not cached_head or (as_json and foreign):
                         if as_json:
-                            self.json.write_to(parts, frame)  # type: ignore[union-attr]
+                            self.json.write_to(parts, frame, msg)  # type: ignore[union-attr]
                         elif as_bytes:
                             append(frame.line.encode())
                         else:
@@ -300,7 +322,7 @@ class TracePump:
                             j = json_cache[id(cached_head)] = self._json_parts(frame)
                         fixed, short = json_times(frame.time)
                         append(f'{{"timestamp": {frame.timestamp!r}, "time": '
-                               f'{short}{j[1]}{fixed:>11}{j[2]}"}}')
+                               f'{short}{j[1]}{fixed:>11}{j[2]}"{kind_json(msg)}}}')
                     elif as_bytes:
                         append(b"%11.6f  %b" % (frame.time, cached_head.encode()))
                     else:
@@ -314,6 +336,8 @@ class TracePump:
                     t0 = decoder.t0 or 0.0
                 elif frame.direction == CHANNEL_DATA and frame.message is None:
                     heads[arbitration_id] = self._head(frame, shown)
+                elif foreign and key is not None and len(key[1]) <= 8:
+                    heads[arbitration_id] = self._plain_head(frame, shown)
                 elif key is not None and frame.head and frame.message is not None:
                     again = decoder.repeatable(*key)
                     if again is frame.message:
@@ -337,6 +361,23 @@ class TracePump:
         end = record.rindex('"text": "') + len('"text": "')
         assert record[end:end + len(time_text)] == time_text
         return frame.head, record[start:end], record[end + len(time_text):-2]
+
+    def _plain_head(self, frame: DecodedFrame, shown: bool) -> tuple[Any, ...]:
+        """What every frame of ``frame``'s identifier shares in a foreign capture (plain
+        CAN: ``_head``'s parts for a line ``P?  0x123 not PDCP  [123] <data>``)."""
+        arbitration_id = frame.arbitration_id
+        head = f"P?  0x{arbitration_id:03X} {NOT_PDCP}  [{arbitration_id:03X}] "
+        if not frame.text_head.startswith(head):  # pragma: no cover - the decoder's _raw
+            raise RuntimeError(f"unexpected plain line {frame.text_head!r}")
+        entry = self.decoder.stats.by_id.get(arbitration_id)
+        parts = None
+        if self.json is not None:
+            parts = (f', "arbitration_id": {arbitration_id}, "data": "',
+                     f'", "direction": "", "priority": null, "node_id": null, "function": '
+                     f'{json_str(NOT_PDCP)}, "fields": "[{arbitration_id:03X}] ',
+                     '", "response": null, "error": null, "link": null, "text": "',
+                     json_str("  " + head)[1:-1])
+        return entry, shown, head, parts, head.encode()
 
     def _head(self, frame: DecodedFrame, shown: bool) -> tuple[Any, ...]:
         """What every channel data frame of ``frame``'s identifier shares."""

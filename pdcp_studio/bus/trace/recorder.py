@@ -17,6 +17,20 @@ from pdcp_studio.bus.trace.nodemap import write_node_map
 
 #: Largest channel number the log formats carry (BLF stores a u16; 255 is plenty for CAN).
 MAX_LOG_CHANNEL = 255
+#: Frame kinds python-can 4.6's writers cannot keep, by target format: the TRC writer drops
+#: error, remote and CAN FD frames (a warning in its log, nothing else); the CSV and SQLite
+#: writers drop the FD flag (the frame would read back as a classical one, wrongly).
+REFUSED_KINDS = {".trc": ("error frames", "remote frames", "CAN FD frames"),
+                 ".csv": ("CAN FD frames",), ".db": ("CAN FD frames",)}
+
+
+def frame_kind(msg: Any) -> str:
+    """The kind of ``msg`` as ``REFUSED_KINDS`` names it ("" for a classical data frame)."""
+    if msg.is_error_frame:
+        return "error frames"
+    if msg.is_fd:
+        return "CAN FD frames"
+    return "remote frames" if msg.is_remote_frame else ""
 
 
 def _loggable(msg: Any, fallback: str | int | None) -> Any:
@@ -90,6 +104,11 @@ class Recorder:
         self.rotate_bytes, self.node_map = rotate_bytes, node_map
         self.parts: list[Path] = []  # finished rotated parts
         self._closed = False
+        suffixes = [x.lower() for x in self.path.suffixes if x.lower() != ".gz"]
+        #: Kinds this format cannot hold, and the frames of each not written.
+        self.format = suffixes[-1] if suffixes else ""
+        self.refused: tuple[str, ...] = REFUSED_KINDS.get(self.format, ())
+        self.skipped: dict[str, int] = {}
         if self.path.is_dir():  # a failed write (exit 1), as for every file a command writes
             raise CaptureWriteError(self.path, "is a folder, not a capture file")
         try:
@@ -106,6 +125,11 @@ class Recorder:
                                "and .trc can)")
 
     def write_message(self, msg: Any) -> None:
+        if self.refused and (msg.is_error_frame or msg.is_remote_frame or msg.is_fd):
+            kind = frame_kind(msg)
+            if kind in self.refused:
+                self.skipped[kind] = self.skipped.get(kind, 0) + 1
+                return
         try:
             self._writer.on_message_received(_loggable(msg, self.channel))
             self.frames += 1
@@ -125,6 +149,16 @@ class Recorder:
             timestamp=time.time() if timestamp is None else timestamp,
             arbitration_id=arbitration_id, data=bytes(data), is_extended_id=False,
             channel=self.channel))
+
+    def not_written(self) -> str | None:
+        """What was not written and why, in words (None: every frame was)."""
+        if not self.skipped:
+            return None
+        total = sum(self.skipped.values())
+        kinds = ", ".join(f"{n:,} {kind}" for kind, n in self.skipped.items())
+        fmt = self.format.lstrip(".").upper()
+        return (f"{total:,} of {total + self.frames:,} frames not written: python-can's "
+                f"{fmt} writer cannot keep {kinds}")
 
     def _fail(self, err: OSError) -> None:
         with contextlib.suppress(Exception):

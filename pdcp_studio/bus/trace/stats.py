@@ -68,6 +68,33 @@ class MonitorStats:
                          "last_data": data.hex()})
         return rows
 
+    def span_s(self) -> float:
+        """The capture's real span: its earliest frame to its latest, of every kind the
+        per-ID statistics follow (the bus-time meter sees base frames only)."""
+        meter = self.meter
+        firsts = [e[1] for e in self.by_id.values()]
+        lasts = [e[2] for e in self.by_id.values()]
+        if meter.first_timestamp is not None and meter.last_timestamp is not None:
+            firsts.append(meter.first_timestamp)
+            lasts.append(meter.last_timestamp)
+        return max(0.0, max(lasts) - min(firsts)) if firsts else 0.0
+
+    def load(self, elapsed_s: float | None = None) -> float | None:
+        """The bus load over ``elapsed_s`` (default: the real span); None when there is no
+        time to compare with or the timestamps are denser than the bit rate allows (then
+        they are not a real bus's: no load is made up)."""
+        span = self.span_s() if elapsed_s is None else elapsed_s
+        if span <= 0:
+            return None
+        load = self.meter.bus_time_s / span
+        return load if load <= 1.0 else None
+
+    def verdict_word(self) -> str:
+        """``pdcp``, ``not-pdcp`` or ``empty`` (contracts §2: the summary's verdict)."""
+        if self.frames == 0:
+            return "empty"
+        return "not-pdcp" if self.verdict() == NOT_PDCP else "pdcp"
+
     def verdict(self) -> str | None:
         """``not PDCP`` when plenty of frames came and none of them fitted PDCP in context."""
         nothing_decoded = 0 < self.frames == self.undecodable  # a short foreign capture
@@ -80,13 +107,17 @@ class MonitorStats:
         return {"frames": self.frames, "by_function": dict(self.by_function.most_common()),
                 "undecodable": self.undecodable, "failures": self.failures,
                 "bulk_errors": self.bulk_errors, "bus_time_us": round(self.meter.bus_time_us, 1),
-                "bus_load": self.meter.load(elapsed_s), "verdict": self.verdict(),
+                "span_s": self.span_s() if elapsed_s is None else elapsed_s,
+                "bus_load": self.load(elapsed_s), "verdict": self.verdict_word(),
                 "ids": self.id_stats(), "other_ids": self.other_ids}
 
     def summary(self, elapsed_s: float | None = None, top_ids: int = 12) -> str:
-        load = self.meter.load(elapsed_s)
-        span = self.meter.span_s if elapsed_s is None else elapsed_s
-        if self.verdict() == NOT_PDCP:
+        load = self.load(elapsed_s)
+        span = self.span_s() if elapsed_s is None else elapsed_s
+        dense = load is None and span > 0 and self.meter.bus_time_s > 0
+        if self.frames == 0:
+            head = "0 frames: empty (no frame to read)"
+        elif self.verdict() == NOT_PDCP:
             head = (f"{self.frames} frames, {NOT_PDCP}: no frame fits PDCP's protocol "
                     "(a capture of another bus?), so none is counted as an error")
         else:
@@ -94,7 +125,9 @@ class MonitorStats:
                     f"undecodable, {self.failures} failure responses, {self.bulk_errors} "
                     "bulk faults)")
         lines = [head, f"bus time {self.meter.bus_time_us / 1000:.3f} ms over {span:.3f} s"
-                 + ("" if load is None else f" (bus load {100 * load:.2f} %)")]
+                 + (f" (bus load {100 * load:.2f} %)" if load is not None else
+                    " (no bus load: the timestamps are denser than the bit rate allows)"
+                    if dense else "")]
         lines += [f"  {n:7d}  {name}" for name, n in self.by_function.most_common()]
         busiest = sorted(self.id_stats(), key=lambda r: -r["count"])[:top_ids]
         if busiest:

@@ -37,13 +37,13 @@ from PySide6.QtWidgets import (
 from shiboken6 import isValid
 
 from pdcp_studio.app.i18n import translate
+from pdcp_studio.app.trace.formats import is_capture_name
 from pdcp_studio.app.widgets.accessible_names import name_controls, plain_label
 from pdcp_studio.app.window.recent_files import RecentFiles, RecentMenu
 from pdcp_studio.app.window.status import StatusLine
 
-#: What a dropped file is, by suffix.
+#: What a dropped file is, by suffix (captures: ``trace.formats``, the reader's list).
 DOCUMENT_SUFFIXES = (".json", ".pdcfg")
-CAPTURE_SUFFIXES = (".asc", ".blf", ".csv", ".log", ".trc", ".mf4", ".db")
 
 #: A new window's controls are named this long after it is live (painted, in the user's
 #: hands: see name_when_live).
@@ -63,7 +63,7 @@ def dropped_files(event: QDragEnterEvent | QDragMoveEvent | QDropEvent) -> list[
     for url in data.urls():
         if url.isLocalFile():
             path = Path(url.toLocalFile())
-            if path.suffix.lower() in DOCUMENT_SUFFIXES + CAPTURE_SUFFIXES:
+            if path.suffix.lower() in DOCUMENT_SUFFIXES or is_capture_name(path):
                 out.append(path)
     return out
 
@@ -218,6 +218,7 @@ class Desktop(QObject):
         self._is_ready = is_ready
         self._ready = ready
         self._naming_when_live = False
+        self._told_by: Any = None  # the trace whose outcome the status line says
         self.recent_files = RecentFiles()
         self.recent_menu = RecentMenu(self.recent_files,
                                       lambda p: self.open_dropped(Path(p)), window)
@@ -240,17 +241,25 @@ class Desktop(QObject):
     def open_dropped(self, path: Path) -> bool:
         """Open a dropped file: a system or configuration as the document, a capture in
         the monitor."""
-        if path.suffix.lower() in CAPTURE_SUFFIXES:
-            dock = self._monitor_dock()
-            dock.show()
-            dock.raise_()
-            dock.load_capture(path)
-            self.status.say(translate("Desktop", "Opening capture {name}…")
-                            .format(name=path.name))
+        if is_capture_name(path):
+            self.open_capture(path)
             return True
         if not self._maybe_save():
             return False
         return bool(self._open_path(path))
+
+    def open_capture(self, path: Path) -> None:
+        """Show a capture in the trace; the status line follows it (opened, or why not)."""
+        dock = self._monitor_dock()
+        if dock is not self._told_by:
+            self._told_by = dock
+            dock.loaded.connect(lambda p: self.status.say(translate(
+                "Desktop", "Opened capture {name}").format(name=Path(p).name)))
+            dock.error.connect(self.status.say)
+        dock.show()
+        dock.raise_()
+        self.status.say(translate("Desktop", "Opening capture {name}…").format(name=path.name))
+        dock.load_capture(path)
 
     def _open_all(self, paths: list[Path]) -> None:
         for path in paths:

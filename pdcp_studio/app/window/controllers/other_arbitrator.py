@@ -11,7 +11,7 @@ line, Connect, the monitor dock), never the window itself.
 from __future__ import annotations
 
 from collections.abc import Callable
-from typing import TYPE_CHECKING
+from typing import TYPE_CHECKING, Any
 
 from PySide6.QtCore import Qt
 from PySide6.QtWidgets import QStatusBar, QWidget
@@ -28,6 +28,7 @@ if TYPE_CHECKING:
     from pdcp_studio.app.dialogs.connect_dialog import ConnectDialog
     from pdcp_studio.app.live.passive_monitor import PassiveMonitor
     from pdcp_studio.app.trace.dock import MonitorDock
+    from pdcp_studio.model.system import System
 
 
 class OtherArbitrator:
@@ -36,12 +37,14 @@ class OtherArbitrator:
     def __init__(self, parent: QWidget, status_bar: QStatusBar,
                  show_message: Callable[[str, int], None],
                  connect_bus: Callable[[str], None],
-                 monitor_dock: Callable[[], MonitorDock]) -> None:
+                 monitor_dock: Callable[[], MonitorDock],
+                 show_heard: Callable[[System, dict[Any, Any]], None] | None = None) -> None:
         self._parent = parent
         self._status_bar = status_bar
         self._show_message = show_message
         self._connect_bus = connect_bus
         self._monitor_dock = monitor_dock
+        self._show_heard = show_heard  # the parts and links listening proves, on the graph
         self.dialog: ArbitratorFoundDialog | None = None
         self.host_link_dialog: ConnectDialog | None = None
         self.passive_monitor: PassiveMonitor | None = None
@@ -96,6 +99,8 @@ class OtherArbitrator:
         dock.raise_()
         monitor = PassiveMonitor(url, self._parent)
         monitor.frames.connect(dock.add_frames)
+        if self._show_heard is not None:
+            monitor.heard.connect(self._show_heard)
         indicator = ListeningIndicator(url)
         indicator.stop_button.clicked.connect(lambda: self.stop_watching())
         self._status_bar.addPermanentWidget(indicator)

@@ -36,6 +36,7 @@ from pdcp_studio.bus.arbitrator.change.interlock import HoldRefused, Interlock, 
 from pdcp_studio.bus.arbitrator.state import Emit, SystemState
 from pdcp_studio.bus.transaction import (
     Change,
+    ParameterWrite,
     Policy,
     Status,
     TransactionResult,
@@ -52,6 +53,7 @@ from pdcp_studio.model.system import Link, System
 if TYPE_CHECKING:
     from pdcp_studio.bus.arbitrator.links import LinkWriter
     from pdcp_studio.bus.arbitrator.memory import MemoryStore
+    from pdcp_studio.storage.archive.chain import Anchor
 
 log = logging.getLogger("pdcp_studio.bus.arbitrator.core")
 
@@ -109,6 +111,20 @@ class Transactions:
             log.warning("%s: policy unreadable (%s): autoconfigure on", self._name, err)
             return Policy()
         return Policy(autoconfigure=stored.get("autoconfigure", True))
+
+    # -- the fitting history's anchor (reference §5 Decision, issue 28) -----------------
+    def read_anchor(self) -> Anchor | None:
+        """The anchor kept in memory beside the stored configuration (None: none kept)."""
+        return self._memory.read_anchor()
+
+    def write_anchor(self, anchor: Anchor) -> Anchor | None:
+        """Store ``anchor`` beside the configuration and policy (the memory's two-slot
+        write: a cut leaves the old anchor or the new); returns it as read back."""
+        self._memory.write_anchor(anchor)
+        stored = self._memory.read_anchor()
+        log.info("%s: fitting history anchor: %s", self._name,
+                 stored.text() if stored else "none")
+        return stored
 
     # -- transactions ------------------------------------------------------------------
     def transact(self, change: Change, progress: ProgressFn | None = None,
@@ -196,6 +212,10 @@ class Transactions:
         try:
             for p in change.parameters:  # read what is there first, to restore it
                 old_params.append((p, bytes(self._get(p.device, p.param, p.channel))))
+            # The ends' Data Transfer Enabled too: taking a link out again on a rollback
+            # turns an output off when it feeds no present input, though it was sending
+            # before (it fed a part that is missing now).
+            old_params[:0] = self._end_flags(change)
             for n, action in enumerate(change.links):
                 _check_cancel(cancel, n, total)
                 if progress is not None:
@@ -279,6 +299,12 @@ class Transactions:
             problems.append("the policy does not read back as written")
         return problems
 
+    def verify_inputs(self, refs: list[ChannelRef]) -> list[str]:
+        """Read each input of ``refs`` back from its device (the profile layer's own plans
+        verify so before they release the devices they held)."""
+        system = self._state.snapshot()
+        return [problem for ref in refs for problem in self._verify_input(system, ref)]
+
     def _verify_input(self, system: System, ref: ChannelRef) -> list[str]:
         """Read an input's Data Transfer Enabled and Source's Node Ids from the device."""
         if not system.is_present(ref):
@@ -300,6 +326,14 @@ class Transactions:
             out.append(f"input {ref} listens to node IDs {bytes(ids[:2]).hex()}, "
                        f"not {source} ({want.hex()})")
         return out
+
+    def _end_flags(self, change: Change) -> list[tuple[Any, bytes]]:
+        """(write, value) pairs holding the present link ends' Data Transfer Enabled now."""
+        system = self._state.snapshot()
+        ends = sorted({ref for a in change.links for ref in (a.link.output, a.link.input)
+                       if system.is_present(ref)})
+        return [(ParameterWrite(ref.device, P.CH_DATA_ENABLED, ref.index, b""),
+                 bytes(self._get(ref.device, P.CH_DATA_ENABLED, ref.index))) for ref in ends]
 
     def _restore(self, links_before: list[Link], cfg_before: bytes | None,
                  old_params: list[tuple[Any, bytes]], policy_before: Policy,

@@ -10,10 +10,13 @@ profile thread (``bus/arbitrator/profile/thread.py``).
 Start-up implements a stored configuration and the duty cycle makes and removes links on a
 prosthesis that may be worn and moving: both are changes reference §5's motion interlock
 covers. So the devices whose outputs feed a terminal channel before or after the plan are held
-(Suspend Device, bounded and renewed) while the plan is written, and released after; one that
-refuses to hold still stops the plan before anything is written (said as an error; the
-channels it would have replaced are planned for again at the next join or leave). A plan
-that changes no link writes nothing and holds nothing.
+(Suspend Device, bounded and renewed) while the plan is written and its inputs are read back
+(Source's Node Ids, Data Transfer Enabled), and released after that verify; one that refuses
+to hold still stops the plan before anything is written (said as an error; the channels it
+would have replaced are planned for again at the next join or leave). A plan that changes no
+link writes nothing and holds nothing. What it changed on its own is announced once it is
+released: ``PlanApplied(plan, own=True, result=…)`` — each action with its reason, whom it
+held, whether it verified (a mismatch is said as an error too).
 """
 
 from __future__ import annotations
@@ -67,6 +70,9 @@ class ProfilePorts:
     emit: Emit
     closed: Callable[[], bool]
     name: str
+    #: Read inputs back from their devices: what does not read as the system says (empty:
+    #: verified). None: plans are not read back (a test's driver).
+    verify_inputs: Callable[[list[ChannelRef]], list[str]] | None = None
 
 
 class ProfileDriver:
@@ -169,8 +175,9 @@ class ProfileDriver:
     # -- plans ----------------------------------------------------------------------------
     def apply_plan(self, plan: Plan, progress: Callable[[int, int, str], Any] | None = None,
                    cancel: threading.Event | None = None, *,
-                   interlock: str = "not used") -> TransactionResult:
-        """See :meth:`Arbitrator.apply_plan` (``interlock``: what held the prosthesis)."""
+                   interlock: str = "not used", announce: bool = True) -> TransactionResult:
+        """See :meth:`Arbitrator.apply_plan` (``interlock``: what held the prosthesis;
+        ``announce=False``: the caller emits PlanApplied itself, once it has released)."""
         from pdcp_studio.engine.plan import Op
 
         ports = self._ports
@@ -220,7 +227,6 @@ class ProfileDriver:
                 with ports.state.lock:
                     self.plan_running -= 1
                     after = ports.state.system.links
-        ports.emit(ev.PlanApplied(plan))
         result = TransactionResult(Status.APPLIED, f"apply {plan.mode}", links_before=before,
                                    links_after=after, verified=False, interlock=interlock)
         if failures or cancelled:
@@ -228,6 +234,8 @@ class ProfileDriver:
             result.reason = "; ".join(([cancelled] if cancelled else [])
                                       + ([f"{len(failures)} action(s) failed: "
                                           + "; ".join(failures[:5])] if failures else []))
+        if announce:
+            ports.emit(ev.PlanApplied(plan, result=result))
         return result
 
     def run_startup(self) -> Plan:
@@ -299,7 +307,10 @@ class ProfileDriver:
         with self.running():  # busy from the first hold on: the bus is not settled
             try:
                 with holding(ports.interlock, keys, notes) as held:
-                    self.apply_plan(plan, interlock=describe_interlock(held))
+                    result = self.apply_plan(plan, interlock=describe_interlock(held),
+                                             announce=False)
+                    result.held = list(held)
+                    self._verify(plan, result)  # read back while still held
             except HoldRefused as err:
                 ports.error(f"plan {plan.mode} not written: {err}; the prosthesis was left "
                             "as it was", "plan")
@@ -307,7 +318,26 @@ class ProfileDriver:
             finally:
                 for note in notes:  # a release cut off by closing the session is no news
                     (log.debug if ports.closed() else log.warning)("%s: %s", ports.name, note)
+        result.notes += notes
+        ports.emit(ev.PlanApplied(plan, own=True, result=result))
         return True
+
+    def _verify(self, plan: Plan, result: TransactionResult) -> None:
+        """Read the inputs the plan touched back from their devices (the motion interlock
+        still holding); a mismatch is said as an error and noted on the result."""
+        verify = self._ports.verify_inputs
+        if verify is None or self._ports.closed():
+            return
+        inputs = sorted({a.link.input for a in plan.actions})
+        try:
+            problems = verify(inputs)
+        except PdcpError as err:
+            problems = [f"reading the inputs back failed: {err}"]
+        result.verified = not problems
+        if problems:
+            result.notes += problems
+            self._ports.error(f"plan {plan.mode}: read back, the prosthesis does not hold "
+                              f"what was written: {'; '.join(problems[:5])}", "plan")
 
     def _policy_for_plans(self) -> bool:
         """The stored autoconfigure policy; the thesis's default (on) when the memory cannot

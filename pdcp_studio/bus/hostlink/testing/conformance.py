@@ -6,8 +6,11 @@ not PDCP Studio's client. Nothing it does changes the prosthesis: writes put bac
 read (the same Beacon Interval, the same stored configuration), refused writes are refused by
 design, and the one transaction is empty.
 
-Each case returns nothing (pass) or raises :class:`CaseFailed` saying what was expected and
-what came. ``run_suite(port)`` runs them all in order, one greeting each where needed.
+Each case returns nothing (pass), raises :class:`CaseFailed` saying what was expected and
+what came, or :class:`CaseSkipped` when it tests a capability the arbitrator's HELLO does not
+declare (docs/host-link.md §7: the lean profile may leave the monitor, transactions, the
+policy and bulk parameters out). ``run_suite(port)`` runs them all in order, one greeting each
+where needed.
 """
 
 from __future__ import annotations
@@ -23,14 +26,17 @@ from pdcp_studio.bus.hostlink.port import Port, read_available
 from pdcp_studio.protocol import hostlink_messages as hm
 from pdcp_studio.protocol.crc import crc16_ccitt_false
 from pdcp_studio.protocol.hostlink import Frame, FrameReader, Kind, cobs_encode
+from pdcp_studio.protocol.hostlink_link import MAX_ATTEMPTS
 from pdcp_studio.protocol.hostlink_messages import Req, Status
+from pdcp_studio.protocol.hostlink_v1 import PING as V1_PING
+from pdcp_studio.protocol.hostlink_v1 import V1Sniffer, encode_v1
 
 # Device parameters the cases use (reference §1; model/parameters.py), by their numbers.
 DEVICE_DESCRIPTOR = 7
 DEVICE_NODE_ID = 8
 DEVICE_BEACON_INTERVAL = 10
 #: Seconds to wait for a frame the arbitrator must send.
-WAIT_S = 1.0
+WAIT_S = 2.0
 #: Seconds within which the arbitrator must have given up an unacknowledged reply
 #: (8 sends, 0.25 s apart, and slack).
 GIVE_UP_S = 4.0
@@ -40,10 +46,20 @@ class CaseFailed(Exception):
     """A conformance case failed; the message says what was expected and what came."""
 
 
+class CaseSkipped(Exception):
+    """The case tests a capability the arbitrator does not declare in HELLO."""
+
+
+#: The capability each optional case needs (the HELLO reply's bits, docs/host-link.md §4).
+CAPABILITY_NAMES = {hm.CAP_MONITOR: "monitor", hm.CAP_TRANSACTIONS: "transactions",
+                    hm.CAP_POLICY: "policy", hm.CAP_PARAM_BULK: "bulk parameters"}
+
+
 @dataclass
 class SuiteResult:
     passed: list[str] = field(default_factory=list)
     failed: list[str] = field(default_factory=list)
+    skipped: list[str] = field(default_factory=list)
     why: dict[str, str] = field(default_factory=dict)
 
     @property
@@ -51,7 +67,8 @@ class SuiteResult:
         return not self.failed
 
     def to_json(self) -> dict[str, Any]:
-        return {"passed": list(self.passed), "failed": list(self.failed), "why": dict(self.why)}
+        return {"passed": list(self.passed), "failed": list(self.failed),
+                "skipped": list(self.skipped), "why": dict(self.why)}
 
 
 class RawLink:
@@ -91,7 +108,7 @@ class RawLink:
                     self.pending.append(item)
 
     def reset(self) -> None:
-        self.write(Frame(Kind.RESET, 0).encode())
+        self.write(b"\x00" + Frame(Kind.RESET, 0).encode())
         self.seq = 0
         time.sleep(0.05)
         self.frames(0.05)  # drop what was on its way before the reset
@@ -130,12 +147,16 @@ class RawLink:
         _, status, out = self.reply(code, timeout)
         return status, out
 
-    def hello(self) -> None:
+    def hello(self) -> int:
+        """RESET and HELLO; the capabilities the arbitrator declares."""
         self.reset()
         status, body = self.request(Req.HELLO, bytes([hm.VERSION, 0xFF, 0xFF]))
         if status is not Status.OK:
             raise CaseFailed(f"HELLO version {hm.VERSION} answered {status.name}: "
                              f"{hm.text(body)}")
+        if len(body) < hm.HELLO.size:
+            raise CaseFailed(f"HELLO reply of {len(body)} bytes, needs {hm.HELLO.size}")
+        return int(hm.HELLO.unpack_from(body)[1])
 
 
 def expect(status: Status, body: bytes, wanted: Status, what: str) -> bytes:
@@ -153,6 +174,15 @@ class Suite:
     def __init__(self, port: Port) -> None:
         self.link = RawLink(port)
         self.device: hr.DeviceRow | None = None
+        self.capabilities: int | None = None
+
+    def _needs(self, capability: int) -> None:
+        """CaseSkipped unless the HELLO declares ``capability``."""
+        if self.capabilities is None:
+            self.capabilities = self.link.hello()
+        if not self.capabilities & capability:
+            raise CaseSkipped(f"the HELLO does not declare {CAPABILITY_NAMES[capability]} "
+                              f"(capabilities 0x{self.capabilities:04X})")
 
     # -- the handshake ---------------------------------------------------------------------
     def case_hello(self) -> None:
@@ -161,7 +191,7 @@ class Suite:
         expect(status, body, Status.OK, "HELLO")
         if len(body) < hm.HELLO.size:
             raise CaseFailed(f"HELLO reply of {len(body)} bytes, needs {hm.HELLO.size}")
-        version, _, largest = hm.HELLO.unpack_from(body)
+        version, self.capabilities, largest = hm.HELLO.unpack_from(body)
         if version != hm.VERSION or largest > 255:
             raise CaseFailed(f"HELLO reply: version {version}, largest payload {largest}")
 
@@ -261,9 +291,10 @@ class Suite:
         self.link.reply(Req.STATUS, ack=False)
         frames = self.link.frames(GIVE_UP_S)
         sends = 1 + len([f for f in frames if f.kind is Kind.DATA])
-        if sends > 16:
+        if sends != MAX_ATTEMPTS:
             raise CaseFailed(f"an unacknowledged reply was sent {sends} times in "
-                             f"{GIVE_UP_S:g} s (bounded: at most 16)")
+                             f"{GIVE_UP_S:g} s (docs/host-link.md §3: exactly "
+                             f"{MAX_ATTEMPTS} sends, then given up)")
         status, body = self.link.request(Req.STATUS)
         expect(status, body, Status.NOT_GREETED, "a request after the arbitrator gave up")
 
@@ -318,6 +349,7 @@ class Suite:
             raise CaseFailed(f"LIST_LINKS: {len(body) - 4} bytes are not whole links")
 
     def case_get_param_bulk(self) -> None:
+        self._needs(hm.CAP_PARAM_BULK)
         row = self._need_device()
         self.link.hello()
         address = hm.PARAM.pack(*row.key, 0, DEVICE_DESCRIPTOR)
@@ -382,17 +414,20 @@ class Suite:
             raise CaseFailed("CONFIG_WRITE_COMMIT: the stored length and CRC differ")
 
     def case_get_policy(self) -> None:
+        self._needs(hm.CAP_POLICY)
         self.link.hello()
         body = expect(*self.link.request(Req.GET_POLICY), Status.OK, "GET_POLICY")
         if len(body) != 1:
             raise CaseFailed(f"GET_POLICY reply of {len(body)} bytes, not 1")
 
     def case_monitor(self) -> None:
+        self._needs(hm.CAP_MONITOR)
         self.link.hello()
         expect(*self.link.request(Req.MONITOR, b"\x03\x05"), Status.OK, "MONITOR on")
         expect(*self.link.request(Req.MONITOR, b"\x00\x0a"), Status.OK, "MONITOR off")
 
     def case_transact_empty(self) -> None:
+        self._needs(hm.CAP_TRANSACTIONS)
         self.link.hello()
         change = b"\x0bconformance" + b"\x00\x00" + b"\x00" + b"\x00" + b"\xff"
         expect(*self.link.request(Req.TRANSACT_BEGIN, hm.CONFIG_INFO.pack(
@@ -411,12 +446,17 @@ class Suite:
     # -- error replies --------------------
     def case_unknown_request(self) -> None:
         self.link.hello()
-        expect(*self.link.request(0x3E), Status.UNKNOWN_REQUEST, "request 0x3E")
+        for code in (0x3E, 0x40, 0x7F, 0xC1):  # a free request code, an event's, a reply's
+            expect(*self.link.request(code), Status.UNKNOWN_REQUEST, f"request 0x{code:02X}")
 
     def case_bad_length(self) -> None:
         self.link.hello()
         expect(*self.link.request(Req.GET_DEVICE, b"\x01\x02\x03"), Status.BAD_LENGTH,
                "GET_DEVICE with 3 bytes")
+        for code in (Req.STATUS, Req.LIST_DEVICES, Req.CONFIG_INFO):  # one byte too many
+            body = b"\x00\x00\x00" if code is Req.LIST_DEVICES else b"\x00"
+            expect(*self.link.request(code, body), Status.BAD_LENGTH,
+                   f"{code.name} with {len(body)} bytes")
 
     def case_unknown_device(self) -> None:
         self.link.hello()
@@ -475,6 +515,7 @@ class Suite:
                Status.TOO_LARGE, "CONFIG_WRITE_BEGIN of 65,000 bytes")
 
     def case_transact_bad_crc(self) -> None:
+        self._needs(hm.CAP_TRANSACTIONS)
         self.link.hello()
         expect(*self.link.request(Req.TRANSACT_BEGIN, hm.CONFIG_INFO.pack(3, 0x0BAD)),
                Status.OK, "TRANSACT_BEGIN")
@@ -482,6 +523,101 @@ class Suite:
                "TRANSACT_CHUNK")
         expect(*self.link.request(Req.TRANSACT_RUN), Status.CHECKSUM,
                "TRANSACT_RUN with a wrong CRC")
+
+    # -- what a link must survive --------------------
+    def case_reset_drops_frame_in_flight(self) -> None:
+        """RESET while a reply is unacknowledged: the reply is dropped (not sent again) and
+        the PC stays greeted (docs/host-link.md §3.3)."""
+        self.link.hello()
+        self.link.send(bytes([Req.STATUS]))
+        self.link.reply(Req.STATUS, ack=False)
+        self.link.write(b"\x00" + Frame(Kind.RESET, 0).encode())
+        self.link.seq = 0
+        again = [f for f in self.link.frames(0.6) if f.kind is Kind.DATA]
+        if again:
+            raise CaseFailed(f"after RESET the dropped reply came again ({len(again)} DATA "
+                             "frame(s))")
+        expect(*self.link.request(Req.STATUS), Status.OK, "STATUS after RESET (still greeted)")
+
+    def case_sequence_wrap(self) -> None:
+        """300 requests: both directions' numbers wrap past 255."""
+        self.link.hello()
+        for i in range(300):
+            status, _ = self.link.request(Req.STATUS)
+            if status is not Status.OK:
+                raise CaseFailed(f"request {i} (seq {(i + 1) & 0xFF}): {status.name}")
+
+    def case_paging(self) -> None:
+        """LIST_DEVICES and LIST_LINKS paged one record at a time give the same records as
+        from 0; a start at or past the end gives an empty page with the total."""
+        self.link.hello()
+        for code, size in ((Req.LIST_DEVICES, hm.DEVICE_ROW.size), (Req.LIST_LINKS,
+                                                                     2 * hm.REF.size)):
+            body = expect(*self.link.request(code, b"\x00\x00"), Status.OK, code.name)
+            total, _ = struct.unpack_from("<HH", body)
+            whole = body[4:]
+            paged = bytearray()
+            for start in range(total):
+                page = expect(*self.link.request(code, struct.pack("<H", start)), Status.OK,
+                              f"{code.name} from {start}")
+                got_total, got_start = struct.unpack_from("<HH", page)
+                if got_total != total or got_start != start or not page[4:]:
+                    raise CaseFailed(f"{code.name} from {start}: total {got_total}, start "
+                                     f"{got_start}, {len(page) - 4} bytes")
+                paged += page[4:4 + size]
+            if len(whole) == total * size and bytes(paged) != whole:
+                raise CaseFailed(f"{code.name}: the records paged one by one differ")
+            end = expect(*self.link.request(code, struct.pack("<H", total + 3)), Status.OK,
+                         f"{code.name} past the end")
+            if struct.unpack_from("<H", end)[0] != total or end[4:]:
+                raise CaseFailed(f"{code.name} past the end: expected total {total} and no "
+                                 "records")
+
+    def case_events(self) -> None:
+        """Events are DATA frames in the same numbering as replies: one left unacknowledged
+        is sent again, the same seq; a reply still comes among them. Needs the monitor (the
+        one event source a tester can start without changing the prosthesis)."""
+        self._needs(hm.CAP_MONITOR)
+        self.link.hello()
+        expect(*self.link.request(Req.MONITOR, b"\x03\x05"), Status.OK, "MONITOR on")
+        first = self.link.next_frame((Kind.DATA,), 6.0)
+        if first is None or not 0x41 <= first.payload[0] < 0x80:
+            raise CaseFailed(f"MONITOR on: expected an event within 6 s, got {first}")
+        again = self.link.next_frame((Kind.DATA,), 1.0)
+        if again is None or again.seq != first.seq or again.payload != first.payload:
+            raise CaseFailed("an unacknowledged event: expected it again with the same seq")
+        self.link.write(Frame(Kind.ACK, first.seq).encode())
+        expect(*self.link.request(Req.MONITOR, b"\x00\x0a", 3.0), Status.OK,
+               "MONITOR off among events")
+        self.link.frames(0.3)
+
+    def case_version_1_ping(self) -> None:
+        """A version-1 PING gets a version-1 failure reply that says why (§4)."""
+        self.link.reset()
+        self.link.write(encode_v1(V1_PING) + b"\x00")
+        sniffer = V1Sniffer()
+        deadline = time.monotonic() + WAIT_S
+        while time.monotonic() < deadline:
+            for msg_id, payload in sniffer.feed(read_available(self.link.port)):
+                if msg_id == V1_PING + 2 and bytes(payload):
+                    return
+                raise CaseFailed(f"a version-1 PING: expected a failure reply (0x"
+                                 f"{V1_PING + 2:02X}) with a reason, got 0x{msg_id:02X}")
+        raise CaseFailed("a version-1 PING: no version-1 reply within 1 s")
+
+    def case_nak_for_given_up_frame(self) -> None:
+        """Recovery after a cut: once a reply was given up, a NAK naming it is answered
+        with RESET (the PC must renumber, §3.4); after RESET and HELLO requests work."""
+        self.link.hello()
+        self.link.send(bytes([Req.STATUS]))
+        first, _, _ = self.link.reply(Req.STATUS, ack=False)
+        self.link.frames(GIVE_UP_S)  # the line is "cut": every resend goes unanswered
+        self.link.write(Frame(Kind.NAK, first.seq).encode())
+        answer = self.link.next_frame((Kind.RESET,), WAIT_S)
+        if answer is None:
+            raise CaseFailed(f"a NAK({first.seq}) for a given-up reply: expected RESET")
+        self.link.hello()
+        expect(*self.link.request(Req.STATUS), Status.OK, "STATUS after the resync")
 
 
 def case_names() -> list[str]:
@@ -497,6 +633,12 @@ def run_suite(port: Port, report: Callable[[str, str | None], None] | None = Non
         try:
             getattr(suite, f"case_{name}")()
             why = None
+        except CaseSkipped as err:
+            result.skipped.append(name)
+            result.why[name] = str(err)
+            if report is not None:
+                report(name, "skipped: " + str(err))
+            continue
         except CaseFailed as err:
             why = str(err)
         except (hm.MessageError, OSError, ValueError) as err:
