@@ -3,18 +3,23 @@
  * Frames: COBS( kind | seq | len | payload | CRC-16 BE ) 0x00.  Stop-and-wait per direction:
  * one DATA frame in flight (resent on NAK or after ACK_TIMEOUT_MS, given up after
  * MAX_ATTEMPTS sends, and with it the PC: it must greet again), ACK/NAK written at once.
- * Requests arrive in a one-message mailbox; those answered from the tables and the memory (no
- * CAN traffic) are answered inside pump(), the others by hl_service() from the main loop.  Events wait in
- * a queue of EVENT_QUEUE messages of at most EVENT_MAX bytes each (texts are cut to fit, on
- * a byte boundary); one that does not fit is counted and EVENTS_LOST is sent when there is
- * room again.
+ * A NAK naming a frame this end will not send again (one given up while the line was cut) is
+ * answered with RESET, so the PC renumbers instead of waiting for ever (§3.4); a RESET from the
+ * PC drops the frame in flight and the queue (dropped events count as lost) and keeps the
+ * session (§3.3).  Requests arrive in a one-message mailbox; those answered from the tables
+ * and the memory (no CAN traffic) are answered inside pump(), the others by hl_service() from
+ * the main loop.  Events wait in a queue of EVENT_QUEUE messages of at most EVENT_MAX bytes
+ * each (texts are cut to fit at a UTF-8 character boundary; a TERMINALS_UNCONNECTED whose
+ * references do not fit is counted as lost, §5.7); one that does not fit is counted and
+ * EVENTS_LOST is sent when there is room again.
  *
  * Requests served: HELLO, STATUS, LIST_DEVICES, GET_DEVICE, GET_CHANNELS, LIST_LINKS,
  * GET_PARAM, SET_PARAM, ADD_LINK, REMOVE_LINK, SUSPEND, RELEASE, RESET_DEVICE, CONFIG_INFO,
  * CONFIG_READ, CONFIG_WRITE_BEGIN/_CHUNK/_COMMIT, TRANSACT_BEGIN/_CHUNK/_RUN, RESULT_READ,
  * GET_POLICY, MONITOR (when built with the monitor, src/monitor.c; else UNSUPPORTED and
- * capability bit 0 not declared).  Version-1
- * frames are not recognised (docs/host-link.md §4 allows leaving that out).
+ * capability bit 0 not declared).  Any other code, 0x40-0xFF included, is answered
+ * UNKNOWN_REQUEST.  A version-1 request without a body (PING) is answered in version 1 with a
+ * failure reply saying why (§4: a 6-byte window on the raw bytes).
  */
 #include <string.h>
 #include "arb.h"
@@ -35,8 +40,9 @@
 #  define EVENT_QUEUE 16
 #  define EVENT_MAX 64
 #endif
-/* transactions, policy, parameters longer than a frame; and the monitor when built */
-#define CAPABILITIES (0x000E | (MONITOR ? 1 : 0))
+/* transactions, policy; parameters longer than a frame when the value buffer holds more
+ * than one (bit 3, §4); and the monitor when built */
+#define CAPABILITIES (0x0006 | (VALUE_MAX > CHUNK ? 8 : 0) | (MONITOR ? 1 : 0))
 
 enum { ST_OK = 0, ST_UNKNOWN_REQUEST, ST_BAD_LENGTH, ST_NOT_GREETED, ST_VERSION,
        ST_UNKNOWN_DEVICE, ST_DEVICE_ABSENT, ST_DEVICE_REFUSED, ST_DEVICE_TIMEOUT, ST_MANAGED,
@@ -52,6 +58,7 @@ static uint8_t tx_seq, rx_expected;
 static uint8_t inflight[MAX_ENC + 1];
 static uint16_t inflight_len;
 static uint8_t inflight_seq, attempts;
+static uint8_t inflight_payload;      /* the message code of the frame in flight */
 static uint32_t deadline;
 
 static uint8_t mailbox[MAX_PAYLOAD];
@@ -138,6 +145,7 @@ static void transmit(void)
 static void send_data(const uint8_t *msg, uint16_t len)
 {
     inflight_seq = tx_seq++;
+    inflight_payload = msg[0];
     inflight_len = frame(1, inflight_seq, msg, len, inflight);
     attempts = 0;
     transmit();
@@ -153,6 +161,12 @@ static void forget_host(void)
     reply_len = 0;
     cfgw.active = chg.active = 0;
     set_active = 0;
+}
+
+/* An event a RESET drops is counted as lost (the monitor's are not: they are samples). */
+static int is_counted_event(uint8_t code)
+{
+    return code >= 0x41 && code < 0x80 && code != 0x47 && code != 0x48;
 }
 
 static void pump_out(void)
@@ -207,10 +221,22 @@ static void on_frame(uint8_t *raw, uint16_t n)
     } else if (kind == 2) {
         if (inflight_len && seq == inflight_seq) inflight_len = 0;
     } else if (kind == 3) {
-        if (!inflight_len) return;
+        if (!inflight_len) {
+            /* the PC waits for a frame given up (the line was cut): "renumber, please" */
+            if (seq != tx_seq) control(4, 0);
+            return;
+        }
         if (seq == inflight_seq) { if (attempts < MAX_ATTEMPTS) transmit(); }
         else if (seq == (uint8_t)(inflight_seq + 1)) inflight_len = 0;
+        else control(4, 0);
     } else if (kind == 4) {
+        /* §3.3: drop the frame in flight and the queue, count the events among them as lost,
+         * keep the session (greeted, transfers open) */
+        uint8_t dropped = 0;
+        if (inflight_len && is_counted_event(inflight_payload)) dropped++;
+        for (uint8_t i = 0; i < ev_count; i++)
+            if (is_counted_event(events[(ev_head + i) % EVENT_QUEUE][0])) dropped++;
+        if (dropped && greeted) { events_lost = (uint16_t)(events_lost + dropped); lost_pending = 1; }
         tx_seq = rx_expected = 0;
         inflight_len = 0;
         reply_len = 0;
@@ -219,10 +245,35 @@ static void on_frame(uint8_t *raw, uint16_t n)
     pump_out();
 }
 
+/* Version 1 (§4): A5 | id | length u16 LE | payload | CRC u16 LE over id, length, payload.
+ * A request without a body (PING, 0x10) is seen in the last 6 bytes and answered with the
+ * failure reply (id + 2) in version 1, whether greeted or not, as PDCP Studio's arbitrator does. */
+static uint8_t v1win[6];
+
+static void v1_sniff(uint8_t b)
+{
+    static const char text[] = "this arbitrator speaks host-link version 2, not version 1: "
+                               "update PDCP Studio";
+    uint8_t out[4 + sizeof text - 1 + 2];
+    memmove(v1win, v1win + 1, 5);
+    v1win[5] = b;
+    uint8_t id = v1win[1];
+    if (v1win[0] != 0xA5 || v1win[2] || v1win[3] || id < 0x10 || id > 0x37 || (id - 0x10) % 3)
+        return;
+    if (crc16(v1win + 1, 3) != (uint16_t)(v1win[4] | v1win[5] << 8)) return;
+    out[0] = 0xA5; out[1] = (uint8_t)(id + 2);
+    put16(out + 2, (uint16_t)(sizeof text - 1));
+    memcpy(out + 4, text, sizeof text - 1);
+    uint16_t c = crc16(out + 1, 3 + sizeof text - 1);
+    put16(out + sizeof out - 2, c);
+    port_host_write(out, sizeof out);
+}
+
 void hl_rx(const uint8_t *data, int len)
 {
     for (int i = 0; i < len; i++) {
         uint8_t b = data[i];
+        v1_sniff(b);
         if (b) {
             if (rx_len >= MAX_ENC) rx_over = 1;
             else if (!rx_over) rx[rx_len++] = b;
@@ -240,12 +291,30 @@ void hl_rx(const uint8_t *data, int len)
 }
 
 /* -- events ------------------------------------------------------------------------------ */
+/* Where an event's text starts (the events with a reason, §5.7); 0: no text. */
+static int text_at(const uint8_t *msg, int len)
+{
+    switch (msg[0]) {
+    case 0x45: return 1;
+    case 0x46: case 0x4A: return 2;
+    case 0x4B: return len > 1 ? 2 + 7 * msg[1] : 0;
+    default: return 0;
+    }
+}
+
 void hl_event(const uint8_t *msg, int len)
 {
     if (msg[0] != 0x46) g_changes++;
     if (!greeted) return;
+    if (len > EVENT_MAX) {
+        /* §5.7: the text is cut to fill the record, at a UTF-8 character boundary; an event
+         * whose fixed part does not fit (TERMINALS_UNCONNECTED with many references) is lost */
+        int at = text_at(msg, len);
+        if (!at || at > EVENT_MAX) { events_lost++; lost_pending = 1; return; }
+        len = EVENT_MAX;
+        while (len > at && (msg[len] & 0xC0) == 0x80) len--;
+    }
     if (ev_count >= EVENT_QUEUE) { events_lost++; lost_pending = 1; return; }
-    if (len > EVENT_MAX) len = EVENT_MAX;
     uint8_t slot = (uint8_t)((ev_head + ev_count) % EVENT_QUEUE);
     memcpy(events[slot], msg, (size_t)len);
     event_len[slot] = (uint8_t)len;
@@ -274,9 +343,9 @@ void hl_event_link(uint8_t code, const link_t *l)
 
 void hl_event_error(uint8_t kind, const char *text)
 {
-    uint8_t m[EVENT_MAX];
+    uint8_t m[EVENT_MAX + 1];
     int n = (int)strlen(text);
-    if (n > EVENT_MAX - 2) n = EVENT_MAX - 2;
+    if (n > EVENT_MAX - 1) n = EVENT_MAX - 1;   /* hl_event cuts it at a character boundary */
     m[0] = 0x46; m[1] = kind;
     memcpy(m + 2, text, (size_t)n);
     hl_event(m, n + 2);
@@ -738,13 +807,19 @@ static int is_table_request(uint8_t code)
 static void answer(const uint8_t *msg, uint16_t n)
 {
     uint8_t code = msg[0];
-    if ((code & 0x80) || (code >= 0x40 && code < 0x80)) return;   /* not a request */
     body = reply + 2;
     blen = 0;
     why[0] = 0;
     int st;
-    if (code != 0x01 && !greeted) st = refuse(ST_NOT_GREETED, "send HELLO first");
-    else st = handle(code, msg + 1, (uint16_t)(n - 1));
+    if (code >= 0x40) {            /* an event's or a reply's code: answered, never silence */
+        fmt_text(why, sizeof why, "0x%x is not a request code (requests are 0x01-0x3F)", code);
+        memmove(why + 2, why + 4, strlen(why + 4) + 1);         /* "0x0041" → "0x41" */
+        st = ST_UNKNOWN_REQUEST;
+    } else if (code > 0x01 && code <= 0x18 && !greeted) {   /* the codes served here */
+        st = refuse(ST_NOT_GREETED, "send HELLO first");
+    } else {
+        st = handle(code, msg + 1, (uint16_t)(n - 1));
+    }
     reply[0] = (uint8_t)(code | 0x80);
     reply[1] = (uint8_t)st;
     if (st) {
