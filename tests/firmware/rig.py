@@ -95,14 +95,14 @@ class DeviceProcess:
     """A prosthesis's simulated devices in a process of their own (``sim devices``): their
     beacons do not wait for this process's GIL while it runs a CLI command or the tester."""
 
-    def __init__(self, name: str, bus_url: str) -> None:
+    def __init__(self, name: str, bus_url: str, seconds: int = 300) -> None:
         from pdcp_studio.bus.sim.rigs import load_prosthesis
 
         self.keys = [k for k, d in load_prosthesis(name).devices.items() if d.present]
         env = dict(os.environ,
                    PYTHONPATH=str(ROOT) + os.pathsep + os.environ.get("PYTHONPATH", ""))
         self.proc = subprocess.Popen([sys.executable, "-m", "pdcp_studio", "sim", "devices", name,
-                                      "--bus", bus_url, "--seconds", "300"],
+                                      "--bus", bus_url, "--seconds", str(seconds)],
                                      stderr=subprocess.PIPE, text=True, env=env)
         assert self.proc.stderr is not None
         line = self.proc.stderr.readline()

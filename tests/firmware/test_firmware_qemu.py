@@ -1,4 +1,7 @@
-"""The reference arbitrator firmware (firmware/) on QEMU's lm3s6965evb, end to end.
+"""The reference arbitrator firmware (firmware/) on QEMU's lm3s6965evb, end to end: the tests
+that need a firmware of their own (a memory written first, a script of unplugs and plugs,
+another arbitrator first on the bus). Those that share one start are in
+``test_firmware_shared.py``.
 
 Simulated devices run in this process on a udp_multicast bus; ``firmware/run-qemu.sh``
 starts the firmware with its CAN side bridged to that bus (``pdcp-studio can-bridge``) and its
@@ -16,8 +19,6 @@ import pytest
 
 from pdcp_studio.cli.main import main
 from tests.firmware.rig import (
-    Awake,
-    DeviceProcess,
     Devices,
     Firmware,
     Run,
@@ -36,19 +37,6 @@ def bus_url(multicast_url):
     return multicast_url("239.74.163.24", 44000)
 
 
-@pytest.fixture
-def thesis2(bus_url, tmp_path):
-    devices = DeviceProcess("thesis-test2", bus_url)
-    firmware = Firmware(bus_url, tmp_path / "memory.bin")
-    firmware.devices = devices  # type: ignore[attr-defined]
-    firmware.bus_url = bus_url  # type: ignore[attr-defined]
-    try:
-        yield firmware
-    finally:
-        firmware.stop()
-        devices.close()
-
-
 def _engine_links(name: str, script: str | None, capsys) -> list[dict]:
     """The final links of ``sim replay`` (PDCP Studio's own arbitrator and engine)."""
     capsys.readouterr()
@@ -61,71 +49,6 @@ def _json_links(links) -> list[dict]:
     def ref(r):
         return {"vid": r.vid, "pid": r.pid, "serial": r.serial, "index": r.index}
     return [{"output": ref(lk.output), "input": ref(lk.input)} for lk in sorted(links)]
-
-
-def test_scan_reads_the_firmware_and_its_autoconfigured_links(thesis2, capsys):
-    with open_session(thesis2.serial_url) as session:
-        settle(session, devices=thesis2.devices)
-    capsys.readouterr()
-    with Awake(thesis2.serial_url):
-        assert main(["scan", "--bus", thesis2.serial_url, "--json", "--settle", "10"]) == 0
-    doc = json.loads(capsys.readouterr().out)
-    assert doc["format"] == "pdcp-system/1"
-    assert sorted(d["serial"] for d in doc["devices"]) == [4, 5, 6]
-    assert all(d["present"] and d.get("node_id") for d in doc["devices"])
-    # node IDs are unique across devices and output channels
-    ids = [d["node_id"] for d in doc["devices"]] + [
-        c["node_id"] for d in doc["devices"] for c in d["channels"] if c.get("node_id")]
-    assert len(ids) == len(set(ids))
-    # appendix D's links, as the reference's autoconfigure gives them
-    assert [(lk["output"]["serial"], lk["output"]["index"], lk["input"]["serial"],
-             lk["input"]["index"]) for lk in doc["links"]] == [(4, 1, 5, 2), (5, 3, 6, 1),
-                                                               (5, 5, 6, 2)]
-
-
-def test_the_firmware_passes_the_host_link_conformance_suite(thesis2, capsys):
-    with open_session(thesis2.serial_url) as session:  # no joins pushed during the cases
-        settle(session, devices=thesis2.devices)
-    capsys.readouterr()
-    with Awake(thesis2.serial_url):
-        status = main(["hostlink-test", "--bus", thesis2.serial_url, "--json"])
-    doc = json.loads(capsys.readouterr().out)
-    assert doc["failed"] == [], doc.get("why")
-    assert len(doc["passed"]) >= 35
-    assert status == 0
-
-
-def test_monitor_shows_protocol_frames_and_counts_channel_data(thesis2, capsys):
-    with open_session(thesis2.serial_url) as session:
-        settle(session, devices=thesis2.devices)
-    capsys.readouterr()
-    with Awake(thesis2.serial_url):
-        assert main(["monitor", "--bus", thesis2.serial_url, "--seconds", "4"]) == 0
-    out, err = capsys.readouterr()
-    assert "channel data counted by the arbitrator over" in out, out[-2000:]
-    assert "channel data frame(s) counted by the arbitrator" in err, err
-
-
-def test_config_write_and_read_back_through_the_firmware(thesis2, tmp_path):
-    import os
-
-    from pdcp_studio.bus.arbitrator.memory import MemoryStore
-    from pdcp_studio.storage import config_codec
-
-    good = tmp_path / "fig410.pdcfg"
-    src = os.path.join(os.path.dirname(__file__), "..", "..", "resources", "configs",
-                       "fig410.pdcfg")
-    config_codec.save_path(config_codec.load_path(src), good)
-    with open_session(thesis2.serial_url) as session:
-        settle(session, devices=thesis2.devices)
-    with Awake(thesis2.serial_url):
-        assert main(["config", "write", str(good), "--bus", thesis2.serial_url, "--yes"]) == 0
-    out = tmp_path / "back.pdcfg"
-    with Awake(thesis2.serial_url):
-        assert main(["config", "read", "--bus", thesis2.serial_url, "-o", str(out)]) == 0
-    assert out.read_bytes() == good.read_bytes()
-    # the firmware's memory image is PDCP Studio's: its own arbitrator reads it
-    assert MemoryStore(tmp_path / "memory.bin").read_bytes() == good.read_bytes()
 
 
 def test_a_memory_written_by_pdcp_studio_starts_the_firmware(bus_url, tmp_path, capsys):
@@ -210,23 +133,6 @@ def test_the_transradial_rig_survives_a_hot_swap(bus_url, tmp_path, capsys):
     assert all(d.present for d in system.devices.values() if d.key in {
         lk.output.device for lk in after} | {lk.input.device for lk in after})
     assert _json_links(after) == _engine_links("transradial", "unplug-replug", capsys)
-
-
-def test_pdcp_studios_arbitrator_yields_to_the_firmware(thesis2):
-    """One arbitrator per bus (reference §5): the firmware's beacons keep a second one off."""
-    import subprocess
-    import sys
-
-    with open_session(thesis2.serial_url) as session:
-        settle(session, devices=thesis2.devices)
-        links = sorted(session.system().links)
-        other = subprocess.run([sys.executable, "-m", "pdcp_studio", "arbitrator", "--bus",
-                                thesis2.bus_url, "--seconds", "20"],
-                               capture_output=True, text=True, timeout=60)
-        assert other.returncode == 1, other.stdout + other.stderr
-        assert "arbitrator" in other.stderr
-        assert not session.status()["other_arbitrator"]
-        assert sorted(session.system().links) == links
 
 
 def test_the_firmware_writes_nothing_on_a_bus_another_arbitrator_holds(bus_url, tmp_path):
