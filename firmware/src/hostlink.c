@@ -252,21 +252,20 @@ static uint8_t v1win[6];
 
 static void v1_sniff(uint8_t b)
 {
-    static const char text[] = "this arbitrator speaks host-link version 2, not version 1: "
-                               "update PDCP Studio";
-    uint8_t out[4 + sizeof text - 1 + 2];
+    uint8_t out[4 + 80 + 2];
     memmove(v1win, v1win + 1, 5);
     v1win[5] = b;
     uint8_t id = v1win[1];
     if (v1win[0] != 0xA5 || v1win[2] || v1win[3] || id < 0x10 || id > 0x37 || (id - 0x10) % 3)
         return;
     if (crc16(v1win + 1, 3) != (uint16_t)(v1win[4] | v1win[5] << 8)) return;
+    /* a format without '%': on the AVR it stays in flash */
+    int k = fmt_text((char *)out + 4, 81, "this arbitrator speaks host-link version 2, not "
+                     "version 1: update PDCP Studio");
     out[0] = 0xA5; out[1] = (uint8_t)(id + 2);
-    put16(out + 2, (uint16_t)(sizeof text - 1));
-    memcpy(out + 4, text, sizeof text - 1);
-    uint16_t c = crc16(out + 1, 3 + sizeof text - 1);
-    put16(out + sizeof out - 2, c);
-    port_host_write(out, sizeof out);
+    put16(out + 2, (uint16_t)k);
+    put16(out + 4 + k, crc16(out + 1, (size_t)(3 + k)));
+    port_host_write(out, 4 + k + 2);
 }
 
 void hl_rx(const uint8_t *data, int len)
