@@ -42,6 +42,7 @@ COMMAND_MODULES = (
     "arbitrator",
     "monitor",
     "hostlink_test",
+    "can_bridge",
     "doctor",
 )
 

@@ -7,14 +7,13 @@ sent, an event pushed — and the next request after the line is back succeeds w
 from __future__ import annotations
 
 import os
-import threading
 import time
 from pathlib import Path
 
 import pytest
 
 from pdcp_studio.bus.hostlink.client import HostLinkSession
-from pdcp_studio.bus.hostlink.testing.relay import TO_ARB, TO_HOST, PtyRelay
+from pdcp_studio.bus.hostlink.testing.relay import TO_ARB, TO_HOST, Cutter, PtyRelay
 from pdcp_studio.errors import PdcpError
 from pdcp_studio.model.refs import ChannelRef
 from pdcp_studio.model.system import Link
@@ -36,43 +35,6 @@ CUT_S = 5.0
 #: ignores the NAK) on an idle machine, once 4.3 s at a load average of 18 (a greeting whose
 #: first HELLO went unanswered): the bound is the reply timeout, 6 s.
 RECOVERY_BOUND_S = 6.0
-
-
-class Cutter:
-    """A relay ``spoil`` that, once armed, passes ``after`` more bytes one way and then drops
-    every byte both ways for ``seconds``."""
-
-    def __init__(self) -> None:
-        self.lock = threading.Lock()
-        self.armed: tuple[str, int, float] | None = None
-        self.until = 0.0
-
-    def arm(self, direction: str, after: int, seconds: float) -> None:
-        with self.lock:
-            self.armed = (direction, after, seconds)
-
-    def cut_now(self, seconds: float) -> None:
-        with self.lock:
-            self.until = time.monotonic() + seconds
-
-    @property
-    def cutting(self) -> bool:
-        return time.monotonic() < self.until or self.armed is not None
-
-    def __call__(self, direction: str, data: bytes) -> bytes:
-        with self.lock:
-            now = time.monotonic()
-            if now < self.until:
-                return b""
-            if self.armed is not None and self.armed[0] == direction:
-                _, after, seconds = self.armed
-                if len(data) <= after:
-                    self.armed = (direction, after - len(data), seconds)
-                    return data
-                self.armed = None
-                self.until = now + seconds
-                return data[:after]
-            return data
 
 
 @pytest.fixture(scope="module")

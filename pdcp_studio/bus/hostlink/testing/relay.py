@@ -4,7 +4,9 @@
 second one (``client_path``) for the PC's side; one thread per direction copies bytes across
 at ``bytes_per_s`` (12,800 for 128000 baud 8N1) and through ``spoil(direction, data)``, which
 may flip bits, drop bytes or add garbage. ``cut()`` makes the line go silent (a peer that
-vanished) and ``mend()`` restores it. It counts the bytes carried each way, so benchmarks
+vanished) and ``mend()`` restores it; :class:`Cutter` cuts it at a chosen point of an exchange
+(after so many more bytes one way) for a while, as the recovery tests need (docs/host-link.md
+§3.4). It counts the bytes carried each way, so benchmarks
 and tests can measure what a job costs on the line. For tests and benchmarks only.
 """
 
@@ -108,6 +110,43 @@ class PtyRelay:
                     time.sleep(0.001)
                 except OSError:
                     break
+
+
+class Cutter:
+    """A ``spoil`` that, once armed, passes ``after`` more bytes one way and then drops every
+    byte both ways for ``seconds`` (or, with ``cut_now``, drops them from now on)."""
+
+    def __init__(self) -> None:
+        self.lock = threading.Lock()
+        self.armed: tuple[str, int, float] | None = None
+        self.until = 0.0
+
+    def arm(self, direction: str, after: int, seconds: float) -> None:
+        with self.lock:
+            self.armed = (direction, after, seconds)
+
+    def cut_now(self, seconds: float) -> None:
+        with self.lock:
+            self.until = time.monotonic() + seconds
+
+    @property
+    def cutting(self) -> bool:
+        return time.monotonic() < self.until or self.armed is not None
+
+    def __call__(self, direction: str, data: bytes) -> bytes:
+        with self.lock:
+            now = time.monotonic()
+            if now < self.until:
+                return b""
+            if self.armed is not None and self.armed[0] == direction:
+                _, after, seconds = self.armed
+                if len(data) <= after:
+                    self.armed = (direction, after - len(data), seconds)
+                    return data
+                self.armed = None
+                self.until = now + seconds
+                return data[:after]
+            return data
 
 
 class NoisyLine:

@@ -1,0 +1,166 @@
+"""The reference arbitrator firmware (firmware/) on QEMU's lm3s6965evb, end to end: the tests
+that need a firmware of their own (a memory written first, a script of unplugs and plugs,
+another arbitrator first on the bus). Those that share one start are in
+``test_firmware_shared.py``.
+
+Simulated devices run in this process on a udp_multicast bus; ``firmware/run-qemu.sh``
+starts the firmware with its CAN side bridged to that bus (``pdcp-studio can-bridge``) and its
+host link on a pseudo-terminal; PDCP Studio's own commands talk to it with ``serial:`` URLs.
+Skipped with the reason when the toolchain is missing (CI installs gcc-arm-none-eabi,
+libnewlib-arm-none-eabi and qemu-system-arm).
+"""
+
+from __future__ import annotations
+
+import json
+import time
+
+import pytest
+
+from pdcp_studio.cli.main import main
+from tests.firmware.rig import (
+    Devices,
+    Firmware,
+    Run,
+    missing_tools,
+    open_session,
+    settle,
+    wait_for,
+)
+
+pytestmark = [pytest.mark.slow,
+              pytest.mark.skipif(missing_tools() is not None, reason=missing_tools() or "")]
+
+
+@pytest.fixture
+def bus_url(multicast_url):
+    return multicast_url("239.74.163.24", 44000)
+
+
+def _engine_links(name: str, script: str | None, capsys) -> list[dict]:
+    """The final links of ``sim replay`` (PDCP Studio's own arbitrator and engine)."""
+    capsys.readouterr()
+    args = ["sim", "replay", name, "--json"] + (["--script", script] if script else [])
+    assert main(args) == 0
+    return json.loads(capsys.readouterr().out)["links"]
+
+
+def _json_links(links) -> list[dict]:
+    def ref(r):
+        return {"vid": r.vid, "pid": r.pid, "serial": r.serial, "index": r.index}
+    return [{"output": ref(lk.output), "input": ref(lk.input)} for lk in sorted(links)]
+
+
+def test_a_memory_written_by_pdcp_studio_starts_the_firmware(bus_url, tmp_path, capsys):
+    from pdcp_studio.bus.arbitrator.memory import MemoryStore
+    from pdcp_studio.engine import configuration_from_system
+    from pdcp_studio.model.configuration import ConfigCollection
+    from pdcp_studio.storage import config_codec
+    from tests.engine.engine_builders import L
+
+    # thesis test 3's rig with a stored configuration that is not what autoconfigure gives
+    devices = Devices("thesis-test3", bus_url)
+    system = devices.system.copy()
+    system.clear_links()
+    system.add_link(L(4, 1, 5, 2))
+    store = MemoryStore(tmp_path / "memory.bin")
+    store.write(ConfigCollection([configuration_from_system(system)]))
+    store.write_policy({"autoconfigure": False})
+    firmware = Firmware(bus_url, tmp_path / "memory.bin")
+    try:
+        with open_session(firmware.serial_url) as session:
+            settle(session, devices=devices)
+            assert session.read_policy().autoconfigure is False
+            assert session.read_configuration_bytes() == store.read_bytes()
+            links = sorted(session.system().links)
+    finally:
+        firmware.stop()
+        devices.close()
+    assert links == [L(4, 1, 5, 2)]
+    assert config_codec.loads(store.read_bytes()).configurations
+
+
+@pytest.mark.parametrize("name", ["thesis-test1", "thesis-test2", "thesis-test3",
+                                  "thesis-test4", "thesis-test5"])
+def test_thesis_tests_end_with_the_engines_links(name, bus_url, tmp_path, capsys):
+    from pdcp_studio.bus.sim.rigs import prosthesis
+
+    script = prosthesis(name).script()
+    run = Run(name, bus_url, tmp_path / "memory.bin")
+    try:
+        for step in script.steps:
+            run.step(step)
+        links = run.links()
+    finally:
+        run.close()
+    assert _json_links(links) == _engine_links(name, None, capsys)
+    if script.expected_links is not None:
+        assert links == sorted(script.expected_links)
+
+
+@pytest.mark.parametrize("name", ["thesis-test1", "thesis-test4"])
+def test_hot_swap_is_repaired_by_the_duty_cycle(name, bus_url, tmp_path, capsys):
+    from pdcp_studio.bus.sim.rigs import prosthesis
+
+    script = prosthesis(name).script("hot-swap")
+    run = Run(name, bus_url, tmp_path / "memory.bin")
+    try:
+        for step in script.steps:
+            run.step(step)
+        links = run.links()
+    finally:
+        run.close()
+    assert links == sorted(script.expected_links)
+    assert _json_links(links) == _engine_links(name, "hot-swap", capsys)
+
+
+def test_the_transradial_rig_survives_a_hot_swap(bus_url, tmp_path, capsys):
+    from pdcp_studio.bus.sim.rigs import prosthesis
+
+    script = prosthesis("transradial").script("unplug-replug")
+    run = Run("transradial", bus_url, tmp_path / "memory.bin")
+    try:
+        run.step(script.steps[0])  # settle
+        before = run.links()
+        assert before, "start-up linked nothing"
+        for step in script.steps[1:]:
+            run.step(step)
+        after = run.links()
+        system = run.session.system()
+    finally:
+        run.close()
+    assert after == before
+    assert all(d.present for d in system.devices.values() if d.key in {
+        lk.output.device for lk in after} | {lk.input.device for lk in after})
+    assert _json_links(after) == _engine_links("transradial", "unplug-replug", capsys)
+
+
+def test_the_firmware_writes_nothing_on_a_bus_another_arbitrator_holds(bus_url, tmp_path):
+    import subprocess
+    import sys
+
+    devices = Devices("thesis-test2", bus_url)
+    other = subprocess.Popen([sys.executable, "-m", "pdcp_studio", "arbitrator", "--bus", bus_url,
+                              "--seconds", "60"], stdout=subprocess.PIPE, text=True)
+    firmware = None
+    try:
+        assert other.stdout is not None
+        assert "arbitrator on" in other.stdout.readline()
+        time.sleep(3)  # it has bound and linked the devices
+        firmware = Firmware(bus_url, tmp_path / "memory.bin")
+        with open_session(firmware.serial_url) as session:
+            wait_for(lambda: session.status()["other_arbitrator"], 10,
+                     "the firmware to hear the other arbitrator")
+            time.sleep(2)
+            status = session.status()
+            assert status["devices"] == 0 and status["links"] == 0
+            assert not session.system().devices
+        assert other.poll() is None  # the other one was not disturbed
+    finally:
+        if firmware is not None:
+            firmware.stop()
+        other.terminate()
+        other.wait(15)
+        if other.stdout is not None:
+            other.stdout.close()
+        devices.close()
