@@ -307,18 +307,29 @@ def test_hot_swap_duty_cycle_replaces_a_missing_input_test1():
 
 
 def test_update_data_channel_requests_are_answered():
-    with Rig("appendix-d") as rig:
-        tap = Tap(rig)
+    with Rig("appendix-d", plug=[]) as rig:
+        tap = Tap(rig)  # listening before any device is plugged: it hears every request
+        asked = {(d.key, c.index) for d in rig.system.devices.values() for c in d.inputs()}
+
+        def answered() -> bool:
+            """Every input asked and answered OK (the tap hears the answers a moment after
+            the arbitrator settles: on a loaded machine, later)."""
+            by_node = {rig.arb.node_id_of(k): k for k in rig.arb.devices_present()}
+            return {(by_node.get(a.node_id), a.channel)
+                    for a in tap.messages(UpdateDataChannelResponse) if a.code == 1} >= asked
+
         try:
-            rig.settle()
-            time.sleep(0.05)
+            keys = [d.key for d in rig.system.devices.values() if d.present]
+            for k in keys:
+                rig.host.plug(k)
+            rig.settle(devices=len(keys))
+            rig.wait(answered, 10)
             requests = {(u.node_id, u.channel) for u in tap.messages(UpdateDataChannel)}
             answers = tap.messages(UpdateDataChannelResponse)
         finally:
             tap.close()
         assert requests <= {(a.node_id, a.channel) for a in answers}  # every one answered
         ok = {(a.node_id, a.channel) for a in answers if a.code == 1}
-        asked = {(d.key, c.index) for d in rig.system.devices.values() for c in d.inputs()}
         if not rig.of(ev.DeviceLeft):  # (a starved test machine may drop one and re-bind it)
             by_node = {rig.arb.node_id_of(k): k for k in rig.arb.devices_present()}
             assert {(by_node[n], c) for n, c in ok} == asked

@@ -49,7 +49,8 @@ def _section(title: str) -> str:
 
 
 def test_the_ram_budget_rows_add_up_to_the_totals():
-    rows = [line.split("|") for line in _section("## 7. What the arbitrator needs").splitlines()
+    budget = _section("## 7. What the arbitrator needs").split("**Measured", 1)[0]
+    rows = [line.split("|") for line in budget.splitlines()
             if line.startswith("| ") and not line.startswith("| buffer")]
     sums = [0, 0]
     totals = None
@@ -82,3 +83,27 @@ def test_the_profiles_are_named_as_capabilities():
     assert hm.CAP_LEAN == 0
     hello = _section("## 4. Greeting")
     assert "declares `0x000F`" in hello and "`0x0000`" in hello
+
+
+def _numbers(text: str) -> list[int]:
+    return [int(n.replace(",", "")) for n in re.findall(r"\d[\d,]*(?= B)", text)]
+
+
+def test_the_measured_figures_are_the_firmware_readmes():
+    """§7's measured row and totals are the reference firmware's map-file figures as
+    firmware/README.md gives them (tests/firmware rebuilds and compares those)."""
+    measured = _section("## 7. What the arbitrator needs").split("**Measured", 1)[1]
+    measured = measured.split("**Baud rate", 1)[0]
+    readme = (DOC.parents[1] / "firmware" / "README.md").read_text(encoding="utf-8")
+    host_row = next(x for x in readme.splitlines() if x.startswith("| `hostlink.c`"))
+    total_row = next(x for x in readme.splitlines() if x.startswith("| **total**"))
+    arm_flash, arm_ram, avr_flash, avr_ram = [int(c.strip(" *").replace(",", ""))
+                                              for c in host_row.split("|")[2:6]]
+    totals = [int(c.strip(" *").replace(",", "")) for c in total_row.split("|")[2:6]]
+    lines = measured.splitlines()
+    flash = next(x for x in lines if x.startswith("| host link (") and "flash" in x)
+    ram = next(x for x in lines if x.startswith("| host link: RAM"))
+    whole = next(x for x in lines if x.startswith("| the whole arbitrator"))
+    assert _numbers(flash) == [arm_flash, avr_flash]
+    assert _numbers(ram) == [arm_ram, avr_ram]
+    assert _numbers(whole) == [totals[0], totals[1], totals[2], totals[3]]

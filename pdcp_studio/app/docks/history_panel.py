@@ -374,16 +374,21 @@ class HistoryPanel(QWidget):
     def refresh(self) -> Worker:
         """Read the archive again (on a worker); ``loaded`` follows."""
         worker = Worker(read_history, "Read the fitting history")
-        # Only the latest read is shown: an earlier one that ends later (a loaded machine)
-        # read the archive before the entries that followed, and would show it as it was.
-        worker.finished.connect(lambda result: self._read(result) if worker is self._worker
-                                else None)
-        worker.failed.connect(lambda message: self._read_failed(message)
-                              if worker is self._worker else None)
+        # (bound methods: their connections end with the panel; _read shows only the latest)
+        worker.finished.connect(self._read)
+        worker.failed.connect(self._read_failed)
         self._worker = worker
         return worker.start()
 
+    def _overtaken(self) -> bool:
+        """The read reporting now is not the latest: an earlier one that ended later (a
+        loaded machine) read the archive before the entries that followed."""
+        sender = self.sender()
+        return sender is not None and sender is not self._worker
+
     def _read(self, result: HistoryRead) -> None:
+        if self._overtaken():
+            return
         self._entries, report, self.path = result
         self.verify_report = report
         if report.ok:
@@ -397,6 +402,8 @@ class HistoryPanel(QWidget):
         self.loaded.emit()
 
     def _read_failed(self, message: str) -> None:
+        if self._overtaken():
+            return
         self.chain.setText(self.tr("Cannot read the fitting history: {0}").format(message))
         self.chain.setStyleSheet("color: #b91c1c;")
 
