@@ -18,6 +18,9 @@ from pdcp_studio.cli.arbitrator import describe
 from pdcp_studio.cli.arbitrator_log import HOLD_S, ArbitratorLog
 from pdcp_studio.cli.main import main
 
+#: How much later than its admission a line may be stamped on a loaded machine.
+JITTER_S = 0.1
+
 
 def _log(now):
     out, err = io.StringIO(), io.StringIO()
@@ -117,4 +120,9 @@ def test_hostile_traffic_writes_each_line_once_and_at_most_5_lines_a_second(monk
     times = [t for t, text in lines
              if not text.startswith(("arbitrator on", "arbitrator stopped", "arbitrating"))]
     assert len(times) >= 5
-    assert max(sum(1 for t in times if start <= t < start + 1.0) for start in times) <= 5, texts
+    # The budget counts by the time a line is admitted; these stamps are the time it reached
+    # the stream, later by however long a loaded machine kept the writer waiting (tens of
+    # milliseconds): two lines admitted 1.0 s apart can be stamped 0.95 s apart.
+    window = 1.0 - JITTER_S
+    assert max(sum(1 for t in times if start <= t < start + window) for start in times) <= 5, \
+        texts
