@@ -366,8 +366,11 @@ def test_the_arbitrator_reopens_its_dropped_port_with_one_calm_message(rig, tmp_
             port_name.unlink()
             port_name.symlink_to(cpath)
             bridge = _Bridge(cm, bm)
-            os.close(cslave)
+            # (the new adapter's node stays open here until the arbitrator has it: a pty
+            # whose last opener closes hangs up, which a slow arbitrator would hear as a
+            # second outage)
             assert wait_for(lambda: not server.line.down, 5.0)
+            os.close(cslave)
             # greets again by itself; the first request may still meet the port being set up
             # on a loaded machine (8 sends of 0.1 s): a later one within the bound must not
             assert wait_for(lambda: _devices(session) == 4, 10.0)

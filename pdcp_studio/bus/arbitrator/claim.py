@@ -174,6 +174,11 @@ class BusClaim:
     def yielded(self) -> bool:
         return self.phase is Phase.YIELDED
 
+    @property
+    def listening(self) -> bool:
+        """Still deciding whether another arbitrator holds the bus."""
+        return self.phase is Phase.LISTENING
+
     def heard(self, arbitration_id: int, data: bytes, now: float,
               bus_time: float | None = None) -> Decision | Stray | None:
         """A frame from the bus (never our own: ask :meth:`is_own_echo` first), handled at

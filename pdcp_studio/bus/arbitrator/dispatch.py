@@ -375,7 +375,9 @@ class Dispatcher:
             if what == "stale":
                 return  # data already on the wire when we reset
             self.bad_frames += 1
-            if what == "show":
+            # While listening, the traffic may be another arbitrator's session, heard before
+            # its beacons decide: counted, not shown (a taken bus ends in one line).
+            if what == "show" and not self._claim.listening:
                 self._error(f"undecodable frame #{self.bad_frames} 0x{aid:03X} "
                             f"[{data.hex(' ').upper()}] from node {node_id}, which is not "
                             f"bound here: {err} (further ones are counted, not shown)",
