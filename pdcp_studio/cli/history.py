@@ -82,6 +82,9 @@ def add_subparser(subparsers: argparse._SubParsersAction[argparse.ArgumentParser
                         help="PDCP Studio's own arbitrator memory (sim: and can: buses)")
     add_archive_argument(verify)
     verify.set_defaults(func=run_verify)
+    from pdcp_studio.cli import history_reanchor
+
+    history_reanchor.add_parser(actions)
     export = actions.add_parser("export", help="the archive as JSON lines, hashes included")
     export.add_argument("-o", "--output", metavar="FILE", type=options.file_name,
                         help="the file to write (default: standard output)")

@@ -278,7 +278,10 @@ def _unverified(session: BusSession, archive: History, devices: list[DeviceKey])
             f"prosthesis: {problem}. Nothing was written to the prosthesis. See what differs "
             f"with `pdcp-studio history verify --bus {session.url}`; keep the evidence "
             "(`pdcp-studio history export -o FILE`) and put back the archive that recorded "
-            "this prosthesis's changes (its backup, or a clinic's archive with --archive)")
+            "this prosthesis's changes (its backup, or a clinic's archive with --archive); "
+            "if it is lost for good, `pdcp-studio history re-anchor --bus "
+            f"{session.url} --reason TEXT --yes` records that and ties the prosthesis to "
+            "this archive")
 
 
 def _announce(session: BusSession, archive: History, token: str) -> Anchor | None:

@@ -1,0 +1,99 @@
+"""``history re-anchor``: a prosthesis whose fitting history is lost for good is tied to the
+archive in use again — previewed, confirmed with a reason, recorded, then anchored; a damaged
+chain is never re-anchored onto (issue 28, docs/decisions.md)."""
+
+from __future__ import annotations
+
+import sqlite3
+
+import pytest
+
+from pdcp_studio.bus.arbitrator.memory import MemoryStore
+from pdcp_studio.cli.main import main
+from pdcp_studio.storage.archive.chain import Anchor
+from pdcp_studio.storage.history import History
+
+BUS = "sim:transradial"
+
+
+@pytest.fixture
+def lost(tmp_path, monkeypatch):
+    """A prosthesis fitted twice and recorded in an archive that is then lost (removed): a
+    new, empty archive takes its place."""
+    archive = tmp_path / "history.sqlite"
+    memory = tmp_path / "m.img"
+    monkeypatch.setenv("PDCP_STUDIO_HISTORY", str(archive))
+    monkeypatch.delenv("PDCP_STUDIO_ARCHIVE", raising=False)
+    for _ in range(2):
+        assert main(["apply", "clear", "--bus", BUS, "--memory", str(memory), "--yes"]) == 0
+    archive.unlink()
+    for extra in archive.parent.glob("history.sqlite-*"):
+        extra.unlink()
+    return archive, memory
+
+
+def _run(capsys, *argv: str) -> tuple[int, str]:
+    capsys.readouterr()
+    code = main(list(argv))
+    out, err = capsys.readouterr()
+    return code, out + err
+
+
+def test_a_lost_history_is_re_anchored_on_the_record_and_changes_go_on(lost, capsys):
+    archive, memory = lost
+    change = ("apply", "clear", "--bus", BUS, "--memory", str(memory), "--yes")
+    code, text = _run(capsys, *change)
+    assert code == 1 and "does not verify" in text  # refused before
+    remembered = MemoryStore(memory).read_anchor()
+    assert remembered is not None and remembered.entry == 2
+
+    # the preview: what the prosthesis remembers, what the archive lacks; nothing written
+    code, text = _run(capsys, "history", "re-anchor", "--bus", BUS, "--memory", str(memory))
+    assert code == 0 and "remembers entry 2" in text and "Nothing written" in text
+    assert MemoryStore(memory).read_anchor() == remembered
+    # --yes wants a reason
+    code, text = _run(capsys, "history", "re-anchor", "--bus", BUS, "--memory", str(memory),
+                      "--yes")
+    assert code == 2 and "--reason" in text
+    assert MemoryStore(memory).read_anchor() == remembered
+
+    code, text = _run(capsys, "history", "re-anchor", "--bus", BUS, "--memory", str(memory),
+                      "--yes", "--reason", "workstation disk failed, no backup")
+    assert code == 0 and "Re-anchored: entry 1" in text
+    with History(archive) as h:
+        [entry] = h.entries()
+    assert entry["action"] == "history re-anchored"
+    assert entry["re_anchor"]["previous"]["entry"] == 2
+    assert entry["re_anchor"]["reason"] == "workstation disk failed, no backup"
+    assert entry["operator"] and entry["devices"]
+    assert MemoryStore(memory).read_anchor() == Anchor(1, entry["hash"])
+
+    code, text = _run(capsys, "history", "verify", "--bus", BUS, "--memory", str(memory))
+    assert code == 0
+    code, text = _run(capsys, *change)  # changes go on, recorded after the re-anchor
+    assert code == 0
+    with History(archive) as h:
+        assert [e["action"] for e in h.entries()][0] == "history re-anchored"
+        assert len(h.entries()) == 2
+    # and a second re-anchor finds nothing to do
+    code, text = _run(capsys, "history", "re-anchor", "--bus", BUS, "--memory", str(memory))
+    assert code == 0 and "nothing to re-anchor" in text
+
+
+def test_a_damaged_chain_is_never_re_anchored_onto(tmp_path, monkeypatch, capsys):
+    archive = tmp_path / "history.sqlite"
+    memory = tmp_path / "m.img"
+    monkeypatch.setenv("PDCP_STUDIO_HISTORY", str(archive))
+    monkeypatch.delenv("PDCP_STUDIO_ARCHIVE", raising=False)
+    for _ in range(2):
+        assert main(["apply", "clear", "--bus", BUS, "--memory", str(memory), "--yes"]) == 0
+    db = sqlite3.connect(str(archive), isolation_level=None)
+    db.execute("UPDATE entries SET body = replace(body, 'apply', 'APPLY') WHERE id = 1")
+    db.close()
+    before = MemoryStore(memory).read_anchor()
+    code, text = _run(capsys, "history", "re-anchor", "--bus", BUS, "--memory", str(memory),
+                      "--yes", "--reason", "try")
+    assert code == 1 and "entry 1 is not intact" in text and "Traceback" not in text
+    assert MemoryStore(memory).read_anchor() == before
+    with History(archive) as h:
+        assert len(h.entries()) == 2  # nothing appended
