@@ -282,8 +282,11 @@ def test_an_arbitrator_killed_during_a_configuration_write_keeps_old_or_new(tmp_
 
             try:
                 with PtyRelay(path, spoil=spoil) as relay:
+                    # (a living arbitrator must never fail the write: 8 sends 0.1 s apart
+                    # outlast a fresh process starved by a loaded machine)
                     session = HostLinkSession(relay.client_path, url="kill", monitor=False,
-                                              reply_timeout=0.5, transact_timeout=1.5, **FAST)
+                                              reply_timeout=0.5, transact_timeout=1.5,
+                                              ack_timeout=0.1, max_attempts=8)
                     try:
                         t0 = time.monotonic()
                         if timer is not None:
