@@ -64,8 +64,11 @@ class _Lost:
         self.resynced = resynced
 
 
-#: HELLO is said again at most this many times when the arbitrator resets the link under it.
-GREET_RESETS = 3
+#: HELLO is said again at most this many times when the link is reset under it, each time a
+#: little later (``GREET_RESET_PAUSE_S`` × the count): frames of the session before, still on
+#: their way from a loaded arbitrator, are let through first instead of resetting it again.
+GREET_RESETS = 6
+GREET_RESET_PAUSE_S = 0.1
 
 
 class LinkResynced(TransportError):
@@ -159,6 +162,7 @@ class HostLinkConnection:
                 resets += 1
                 if resets > GREET_RESETS:
                     raise
+                self._stop.wait(GREET_RESET_PAUSE_S * resets)
             except TransportError:
                 # A version-2 arbitrator refusing the version-1 PING is there, only slow
                 # (a loaded PC or arbitrator): greet it once more rather than give up.
