@@ -32,6 +32,16 @@ def fitting_environment(tmp_path, monkeypatch):
     return tmp_path
 
 
+@pytest.fixture(autouse=True)
+def no_shown_system_left():
+    """A wizard left open at a test's end must not name the next test's parts by its
+    window's system (``app/wizards/words.shown_system``, a module's hook)."""
+    yield
+    from pdcp_studio.app.wizards import words
+
+    words.shown_system = None
+
+
 @pytest.fixture
 def make_window(qtbot):
     """``make_window(path=None, size=None)``: a quiet, shown MainWindow (``path`` opened);

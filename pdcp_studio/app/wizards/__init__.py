@@ -47,8 +47,16 @@ def open_wizard(window: Any, task: str) -> TaskWizard:
     from pdcp_studio.app.wizards import words
 
     doc = getattr(window, "doc", None)
-    words.shown_system = (lambda: doc.system) if doc is not None else None
+    hook = (lambda: doc.system) if doc is not None else None
+    words.shown_system = hook
     wizard = make_wizard(window, task)
     window.task_wizard = wizard
+
+    def forget(*_args: object) -> None:
+        """The wizard is done: its window's system no longer names parts (nor is kept)."""
+        if words.shown_system is hook:
+            words.shown_system = None
+
+    wizard.finished.connect(forget)
     wizard.show()
     return wizard
