@@ -32,9 +32,9 @@ StepOp = Literal["plug", "unplug", "replace", "reset", "save", "settle", "await_
 #: The thesis rigs' devices (reference §4): VID 2, PID 2, serials 4, 5 and 6.
 D1, D2, D3 = DeviceKey(2, 2, 4), DeviceKey(2, 2, 5), DeviceKey(2, 2, 6)
 #: Seconds a ``settle`` step waits for the arbitrator at most.
-SETTLE_TIMEOUT_S = 10.0
+SETTLE_TIMEOUT_S = 20.0
 #: Seconds an ``await_left`` / ``await_joined`` step waits at most.
-PRESENCE_TIMEOUT_S = 5.0
+PRESENCE_TIMEOUT_S = 15.0
 LARGE = "large"
 
 
