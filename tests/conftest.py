@@ -36,7 +36,8 @@ _MAKES_PTYS = re.compile(
 def pytest_collection_modifyitems(config: pytest.Config, items: list[pytest.Item]) -> None:
     """Run in worker processes (the README's ``pytest -n 4 --dist loadgroup``), each test file
     stays in one worker (its module fixtures made once), and the files that make
-    pseudo-terminals share one worker, one at a time."""
+    pseudo-terminals share one worker, one at a time — with the firmware's tests, which
+    build into one folder (two makes at once there wrote a broken ELF)."""
     groups: dict[Path, str] = {}
     for item in items:
         path = Path(str(item.fspath))
@@ -45,7 +46,8 @@ def pytest_collection_modifyitems(config: pytest.Config, items: list[pytest.Item
                 source = path.read_text(encoding="utf-8")
             except OSError:
                 source = ""
-            groups[path] = "pseudo-terminals" if _MAKES_PTYS.search(source) else str(path)
+            shared = _MAKES_PTYS.search(source) or path.parent.name == "firmware"
+            groups[path] = "pseudo-terminals" if shared else str(path)
         item.add_marker(pytest.mark.xdist_group(groups[path]))
 
 
