@@ -5,7 +5,6 @@ from __future__ import annotations
 
 import atexit
 import os
-import re
 import shutil
 import tempfile
 from pathlib import Path
@@ -23,32 +22,6 @@ atexit.register(shutil.rmtree, _HOME, True)
 
 ROOT = Path(__file__).resolve().parent.parent
 RESOURCES = ROOT / "resources"
-
-
-#: A test file that makes pseudo-terminals (host links, relays, QEMU's serial ports, SLCAN):
-#: Linux hands a freed /dev/pts/N to the next one asked for, so a file that reopens a lost
-#: port by its name would reach another test's terminal if those ran at the same time.
-_MAKES_PTYS = re.compile(
-    r"openpty|PtyRelay|HostLinkServer|host-serial|hostlink_rig|truth_rig|run-qemu|slcan_rig|"
-    r"from tests\.firmware|from \.rig|serial:/dev|[\"']serial:|serial_url")
-
-
-def pytest_collection_modifyitems(config: pytest.Config, items: list[pytest.Item]) -> None:
-    """Run in worker processes (the README's ``pytest -n 4 --dist loadgroup``), each test file
-    stays in one worker (its module fixtures made once), and the files that make
-    pseudo-terminals share one worker, one at a time — with the firmware's tests, which
-    build into one folder (two makes at once there wrote a broken ELF)."""
-    groups: dict[Path, str] = {}
-    for item in items:
-        path = Path(str(item.fspath))
-        if path not in groups:
-            try:
-                source = path.read_text(encoding="utf-8")
-            except OSError:
-                source = ""
-            shared = _MAKES_PTYS.search(source) or path.parent.name == "firmware"
-            groups[path] = "pseudo-terminals" if shared else str(path)
-        item.add_marker(pytest.mark.xdist_group(groups[path]))
 
 
 @pytest.fixture(autouse=True)

@@ -36,11 +36,11 @@ def test_quick_start_names_every_system_package_and_the_two_commands():
     assert any(b.strip() == "python3 -m venv .venv && .venv/bin/pip install -e . && "
                ".venv/bin/pdcp-studio" for b in blocks)
     test_command = ('python3 -m venv .venv && .venv/bin/pip install -e ".[test]" && '
-                    ".venv/bin/python -m pytest -n 4 --dist loadgroup")
+                    ".venv/bin/python -m pytest -n 2 --dist loadfile")
     assert any(b.strip() == test_command for b in blocks)
     # .ci/run runs the README's test command (with its own quiet flags)
     ci = (ROOT / ".ci" / "run").read_text(encoding="utf-8")
-    assert ".venv/bin/python -m pytest -n 4 --dist loadgroup" in ci
+    assert ".venv/bin/python -m pytest -n 2 --dist loadfile" in ci
 
 
 def _fresh_copy(dest: Path) -> None:
