@@ -124,6 +124,10 @@ class DeviceProcess:
             self.proc.stderr.close()
 
 
+#: How long the tests' sessions wait for the firmware's reply on QEMU.
+REPLY_TIMEOUT_S = 20.0
+
+
 def open_session(serial_url: str, attempts: int = 3) -> Any:
     """A host-link session; greeted again when the first HELLO goes unacknowledged: QEMU's
     pty backend notices a newly opened pseudo-terminal only at its next 1 s poll, and on a
@@ -134,7 +138,10 @@ def open_session(serial_url: str, attempts: int = 3) -> Any:
 
     for attempt in range(attempts):
         try:
-            return open_hostlink_session(check_bus_url(serial_url), monitor=False)
+            # (QEMU, its bridge and the test's devices share the machine with the rest of the
+            # suite: a reply may wait longer than the PC's default 6 s for the emulator)
+            return open_hostlink_session(check_bus_url(serial_url), monitor=False,
+                                         reply_timeout=REPLY_TIMEOUT_S)
         except TransportError:
             if attempt == attempts - 1:
                 raise
