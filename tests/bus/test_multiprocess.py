@@ -72,7 +72,7 @@ def test_arbitrator_process_binds_and_links_devices_of_this_process(tmp_path, mu
     try:
         assert lines.until(lambda ls: any(s.startswith("plan startup") for s in ls), 20), \
             "\n".join(lines.all)
-        assert lines.until(lambda ls: sum(s.startswith("  add ") for s in ls) == 3, 5)
+        assert lines.until(lambda ls: sum(s.startswith("  add ") for s in ls) == 3, 15)
         text = "\n".join(lines.all)
         for serial in (4, 5, 6):
             assert f"joined 2/2/{serial}" in text
@@ -94,17 +94,17 @@ def test_arbitrator_process_binds_and_links_devices_of_this_process(tmp_path, mu
         assert 2 in host.device(sn6).received  # data flows SN5.O5 → SN6.I2
         # A device leaving is noticed by its beacons.
         host.unplug(sn4)
-        assert lines.until(lambda ls: "left 2/2/4" in ls, 5), "\n".join(lines.all)
+        assert lines.until(lambda ls: "left 2/2/4" in ls, 15), "\n".join(lines.all)
         assert host.device(sn5).state is State.BOUND
     finally:
         proc.send_signal(signal.SIGINT)
         try:
-            proc.wait(10)
+            proc.wait(30)
         finally:
             if proc.poll() is None:
                 proc.kill()
             host.close()
-    assert lines.until(lambda ls: "arbitrator stopped" in ls, 5)
+    assert lines.until(lambda ls: "arbitrator stopped" in ls, 20)
     lines.stderr_reader.join(5)  # the child has exited: its stderr is at its end
     assert proc.returncode == 0, "".join(lines.errors)
     proc.stdout.close()
