@@ -17,15 +17,21 @@ BUS = "sim:transradial"
 
 
 @pytest.fixture
-def lost(tmp_path, monkeypatch):
-    """A prosthesis fitted twice and recorded in an archive that is then lost (removed): a
-    new, empty archive takes its place."""
+def fitted(tmp_path, monkeypatch):
+    """A prosthesis fitted twice, both changes recorded and anchored."""
     archive = tmp_path / "history.sqlite"
     memory = tmp_path / "m.img"
     monkeypatch.setenv("PDCP_STUDIO_HISTORY", str(archive))
     monkeypatch.delenv("PDCP_STUDIO_ARCHIVE", raising=False)
     for _ in range(2):
         assert main(["apply", "clear", "--bus", BUS, "--memory", str(memory), "--yes"]) == 0
+    return archive, memory
+
+
+@pytest.fixture
+def lost(fitted):
+    """The fitted prosthesis's archive lost (removed): a new, empty archive takes its place."""
+    archive, memory = fitted
     archive.unlink()
     for extra in archive.parent.glob("history.sqlite-*"):
         extra.unlink()
@@ -80,13 +86,8 @@ def test_a_lost_history_is_re_anchored_on_the_record_and_changes_go_on(lost, cap
     assert code == 0 and "nothing to re-anchor" in text
 
 
-def test_a_damaged_chain_is_never_re_anchored_onto(tmp_path, monkeypatch, capsys):
-    archive = tmp_path / "history.sqlite"
-    memory = tmp_path / "m.img"
-    monkeypatch.setenv("PDCP_STUDIO_HISTORY", str(archive))
-    monkeypatch.delenv("PDCP_STUDIO_ARCHIVE", raising=False)
-    for _ in range(2):
-        assert main(["apply", "clear", "--bus", BUS, "--memory", str(memory), "--yes"]) == 0
+def test_a_damaged_chain_is_never_re_anchored_onto(fitted, capsys):
+    archive, memory = fitted
     db = sqlite3.connect(str(archive), isolation_level=None)
     db.execute("UPDATE entries SET body = replace(body, 'apply', 'APPLY') WHERE id = 1")
     db.close()

@@ -14,16 +14,15 @@ import os
 import subprocess
 import sys
 import time
-from collections.abc import Callable, Iterator
+from collections.abc import Iterator
 from typing import Any
 
 import pytest
 
 from pdcp_studio.bus.hostlink.conn import REPLY_TIMEOUT_S
 from pdcp_studio.bus.hostlink.testing.conformance import case_names
-from pdcp_studio.bus.hostlink.testing.relay import TO_ARB, TO_HOST, Cutter, PtyRelay
+from pdcp_studio.bus.hostlink.testing.relay import TO_HOST, Cutter, PtyRelay, cut_during_request
 from pdcp_studio.cli.main import main
-from pdcp_studio.errors import PdcpError
 from pdcp_studio.protocol import hostlink_messages as hm
 from tests.conftest import _claim_udp_port, _multicast_problem
 from tests.firmware.rig import (
@@ -148,13 +147,6 @@ class Watched:
         return out
 
 
-def _try(call: Callable[[], object]) -> None:
-    try:
-        call()
-    except PdcpError:
-        pass  # the request during the cut may fail; the next one must not
-
-
 @pytest.mark.parametrize("point", ["request", "reply", "reply-half", "event"])
 def test_the_next_request_after_a_cut_line_succeeds_within_the_bound(fw, point):
     """docs/host-link.md §3.4 against the firmware: a relay between PDCP Studio's session and
@@ -169,17 +161,10 @@ def test_the_next_request_after_a_cut_line_succeeds_within_the_bound(fw, point):
         session = open_session("serial:" + relay.client_path)
         try:
             session.status()
-            if point == "request":  # the request never arrives
-                cutter.arm(TO_ARB, 0, CUT_S)
-                _try(session.status)
-            elif point == "reply":  # the request arrives, its ACK and reply do not
-                cutter.arm(TO_HOST, 0, CUT_S)
-                _try(session.status)
-            elif point == "reply-half":  # a long reply broken off in the middle
-                cutter.arm(TO_HOST, 40, CUT_S)
-                _try(lambda: session.conn.request(hm.Req.GET_DEVICE,
-                                                  hm.KEY.pack(key.vid, key.pid, key.serial)))
-            else:  # events pushed into a dead line: given up, the PC forgotten
+            long_request = lambda: session.conn.request(  # noqa: E731
+                hm.Req.GET_DEVICE, hm.KEY.pack(key.vid, key.pid, key.serial))
+            if not cut_during_request(point, cutter, session, long_request, CUT_S):
+                # events pushed into a dead line: given up, the PC forgotten
                 # CHANNEL_COUNTS every 100 ms whatever the bus does; the line dies with the
                 # next one the firmware sends, so the PC never has the frame it gives up
                 session.conn.request(hm.Req.MONITOR, b"\x03\x01")

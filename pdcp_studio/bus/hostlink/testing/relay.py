@@ -18,6 +18,7 @@ import select
 import threading
 import time
 from collections.abc import Callable
+from typing import Any
 
 Spoil = Callable[[str, bytes], bytes]
 #: Directions: host → arbitrator and arbitrator → host.
@@ -196,3 +197,24 @@ class NoisyLine:
             if pos > n:
                 return count
             count += 1
+
+
+def cut_during_request(point: str, cutter: Cutter, session: Any,
+                       long_request: Callable[[], object], seconds: float) -> bool:
+    """Cut the line at ``point`` of an exchange: "request" (the request never arrives),
+    "reply" (it arrives, its ACK and reply do not) or "reply-half" (``long_request``'s reply
+    broken off after 40 bytes); the request during the cut may fail. False for any other
+    point (the caller cuts it its own way)."""
+    from pdcp_studio.errors import PdcpError
+
+    cuts = {"request": (TO_ARB, 0, session.status), "reply": (TO_HOST, 0, session.status),
+            "reply-half": (TO_HOST, 40, long_request)}
+    if point not in cuts:
+        return False
+    direction, after, call = cuts[point]
+    cutter.arm(direction, after, seconds)
+    try:
+        call()
+    except PdcpError:
+        pass  # the request during the cut may fail; the next one must not
+    return True
