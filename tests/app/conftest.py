@@ -35,10 +35,12 @@ def fitting_environment(tmp_path, monkeypatch):
 @pytest.fixture(autouse=True)
 def no_shown_system_left():
     """A wizard left open at a test's end must not name the next test's parts by its
-    window's system (``app/wizards/words.shown_system``, a module's hook)."""
-    yield
+    window's system (``app/wizards/words.shown_system``, a module's hook); nor may one
+    whose window set it late, after its test's end (before and after every test)."""
     from pdcp_studio.app.wizards import words
 
+    words.shown_system = None
+    yield
     words.shown_system = None
 
 

@@ -27,7 +27,6 @@ from PySide6.QtCore import Qt, QTimer, Signal
 from PySide6.QtGui import QCloseEvent, QImage, QShowEvent
 from PySide6.QtWidgets import QDockWidget, QLabel, QMainWindow, QMessageBox, QWidget
 
-from pdcp_studio.app.docks.inspector import Inspector
 from pdcp_studio.app.docks.pending_panel import PendingPanel
 from pdcp_studio.app.docks.plan_panel import OPERATIONS, PlanPanel
 from pdcp_studio.app.docks.tree_panel import DeviceTree
@@ -68,6 +67,7 @@ if TYPE_CHECKING:
     from pdcp_studio.app.dialogs.arbitrator_found import ArbitratorFoundDialog, ListeningIndicator
     from pdcp_studio.app.dialogs.connect_dialog import ConnectDialog
     from pdcp_studio.app.docks.history_panel import HistoryPanel
+    from pdcp_studio.app.docks.inspector import Inspector
     from pdcp_studio.app.live.passive_monitor import PassiveMonitor
 
 __all__ = ["DEFAULT_BUS", "FILE_FILTERS", "OFFLINE_SYSTEM", "MainWindow",
@@ -146,12 +146,15 @@ class MainWindow(QMainWindow):
         self.setCorner(Qt.Corner.BottomRightCorner, Qt.DockWidgetArea.RightDockWidgetArea)
         bottom = Qt.DockWidgetArea.BottomDockWidgetArea
         self.tree = DeviceTree(self.doc)
-        self.inspector = Inspector(self.doc)
         self.plan_panel = PlanPanel(self.doc)
         self.tree_dock = add_dock(self, self.tr("Devices"), "DevicesDock", self.tree,
                                     Qt.DockWidgetArea.LeftDockWidgetArea)
-        self.inspector_dock = add_dock(self, self.tr("Inspector"), "InspectorDock", self.inspector,
-                                         Qt.DockWidgetArea.RightDockWidgetArea)
+        # On a live bus a hidden tab behind the Simulator (its panel made when first shown
+        # or asked for); offline it is shown with the window and made then.
+        self.inspector_dock = add_dock(self, self.tr("Inspector"), "InspectorDock", None,
+                                       Qt.DockWidgetArea.RightDockWidgetArea)
+        self._inspector = DeferredPanel(self.inspector_dock, lambda: _new_inspector(self),
+                                        self._inspector_placed)
         self.plan_dock = add_dock(self, self.tr("Plan"), "PlanDock", self.plan_panel, bottom)
         self._docks_sized = False
         self.pending_panel = PendingPanel(self.doc)
@@ -165,6 +168,17 @@ class MainWindow(QMainWindow):
                                       lambda panel: self.desktop.name_when_live(panel))
         self.tabifyDockWidget(self.plan_dock, self.history_dock)
         self.plan_dock.raise_()
+
+    @property
+    def inspector(self) -> Inspector:
+        """The Inspector panel (made now if its dock was never shown)."""
+        return self._inspector.panel()
+
+    def _inspector_placed(self, panel: Inspector) -> None:
+        panel.statusMessage.connect(self.show_message)
+        panel.show_object(self.doc.selection)
+        if getattr(self, "desktop", None) is not None:  # (a dock shown while the window is made)
+            self.desktop.name_when_live(panel)
 
     @property
     def history_panel(self) -> HistoryPanel:
@@ -209,7 +223,7 @@ class MainWindow(QMainWindow):
             offer_arbitrator=self._offer_arbitrator,
             history_changed=lambda: self.history_panel.refresh())
         self.editing = EditCommands(self.doc, self, self.scene, self.view, self.plan_dock,
-                                    self.plan_panel, self.tree, self.inspector)
+                                    self.plan_panel, self.tree, lambda: self._inspector.made)
         self.export = GraphExport(self.scene, self.doc, status, self,
                                   lambda path: self.write_fitting_report(path))
 
@@ -263,7 +277,7 @@ class MainWindow(QMainWindow):
         doc.pathChanged.connect(lambda _p: self._update_title())
         doc.sessionChanged.connect(lambda _s: self._update_mode())
         doc.selectionChanged.connect(self._reveal)
-        for source in (self.scene, self.inspector, self.plan_panel, live):
+        for source in (self.scene, self.plan_panel, live):
             source.statusMessage.connect(self.show_message)
         live.progress.connect(self.mode_line.on_progress)
         live.busyChanged.connect(self.mode_line.on_busy)
@@ -580,6 +594,13 @@ class MainWindow(QMainWindow):
         self.other_arbitrator.stop_watching()  # a listen-only monitor, if one runs
         self.crash_recovery.clean()  # closed on purpose: nothing to recover next time
         event.accept()
+
+
+def _new_inspector(window: MainWindow) -> Inspector:
+    """The Inspector panel of ``window`` (its module imported only now)."""
+    from pdcp_studio.app.docks.inspector import Inspector
+
+    return Inspector(window.doc)
 
 
 def _new_history_panel(window: MainWindow) -> HistoryPanel:

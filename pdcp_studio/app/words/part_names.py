@@ -53,11 +53,15 @@ def twin_format() -> str:
 def names(system: System | None, among: Iterable[Device] = (),
           profiles: ProfileTree | None = None) -> Names:
     """The one naming of ``system`` (and ``among``) in the user's language; remembered
-    while its parts' and channels' names stay the same."""
+    while its parts' and channels' names stay the same.
+
+    Remembered for these very objects: a naming answers from the system it was made for,
+    so another system that reads the same (a copy) must not get it — the first may be
+    changed in place later. (The cache keeps the objects alive, so their ids are theirs.)"""
     devices = list(system.devices.values()) if system is not None else []
     keys = {d.key for d in devices}
     others = [d for d in among if d.key not in keys]
-    fingerprint = (twin_format(), id(profiles), *(
+    fingerprint = (twin_format(), id(system), id(profiles), *(id(d) for d in others), *(
         (d.key, d.name, d.descriptor,
          tuple((c.index, c.descriptor, c.profile) for c in d.channels.values()))
         for d in devices + others))

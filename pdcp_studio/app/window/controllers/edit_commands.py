@@ -4,27 +4,30 @@ profile trees."""
 
 from __future__ import annotations
 
-from typing import Any
+from collections.abc import Callable
+from typing import TYPE_CHECKING, Any
 
 from PySide6.QtCore import Qt, QTimer
 from PySide6.QtWidgets import QDockWidget, QMainWindow
 
-from pdcp_studio.app.docks.inspector import Inspector
 from pdcp_studio.app.docks.plan_panel import PlanPanel
 from pdcp_studio.app.docks.tree_panel import DeviceTree
 from pdcp_studio.app.documents.document import Document
 from pdcp_studio.app.graph.scene import BusScene
 from pdcp_studio.app.graph.view import GraphView
 
+if TYPE_CHECKING:
+    from pdcp_studio.app.docks.inspector import Inspector
+
 
 class EditCommands:
     """Commands on ``doc`` and the views of ``host`` (the graph, the plan dock, the
-    device tree and the inspector); ``device_finder`` and ``profile_tree_dialog`` are the
-    last ones opened."""
+    device tree and the inspector if it is made yet: ``inspector()``); ``device_finder``
+    and ``profile_tree_dialog`` are the last ones opened."""
 
     def __init__(self, doc: Document, host: QMainWindow, scene: BusScene, view: GraphView,
                  plan_dock: QDockWidget, plan_panel: PlanPanel, tree: DeviceTree,
-                 inspector: Inspector) -> None:
+                 inspector: Callable[[], Inspector | None]) -> None:
         self.doc = doc
         self.host = host
         self.scene = scene
@@ -88,7 +91,9 @@ class EditCommands:
         self.doc.set_trees(trees)
         self.scene.update()
         self.tree.rebuild()
-        self.inspector.show_object(self.doc.selection)
+        inspector = self.inspector()
+        if inspector is not None:  # (one made later shows the selection with the new trees)
+            inspector.show_object(self.doc.selection)
 
     def go_to_device(self, key: Any) -> None:
         """Select a device and centre its card in the graph."""
