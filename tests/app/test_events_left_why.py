@@ -4,11 +4,19 @@
 
 from __future__ import annotations
 
+import os
+import re
+
+import pytest
+
 from pdcp_studio.app.docks.events_panel import describe_event
 from pdcp_studio.bus import events as ev
 from pdcp_studio.bus.hostlink import records as hr
+from pdcp_studio.model.refs import DeviceKey
 from pdcp_studio.paths import systems_dir
 from pdcp_studio.storage import system_file
+
+WAIT_MS = 30000  # a loaded machine: the host link is slow, never wrong
 
 
 def _system():
@@ -47,3 +55,37 @@ def test_a_part_that_left_without_a_reason_is_still_said_plainly(qapp):
     [row] = describe_event(ev.DeviceLeft(key), system)  # an arbitrator from before reasons
     assert row.what.endswith("left the bus")
     assert row.why == "It is no longer heard on the bus; the arbitrator gave no details"
+
+
+@pytest.mark.gui
+@pytest.mark.skipif(not hasattr(os, "openpty"), reason="needs POSIX pseudo-terminals")
+def test_bus_events_says_why_a_part_left_over_the_host_link(make_window, qtbot, tmp_path):
+    """The window on a serial host link: a part unplugged behind the arbitrator is listed
+    with the arbitrator's measured reason, as on a simulated bus."""
+    from tests.road_rigs import served
+
+    hand = DeviceKey(2641, 769, 301)
+    with served("transradial", tmp_path / "memory.bin") as (_arbitrator, host, url):
+        window = make_window()
+        with qtbot.waitSignal(window.ready, timeout=WAIT_MS):
+            window.connect_bus(url)
+        dock = window._leaf_docks["events"]
+        dock.show()
+        dock.raise_()
+        panel = dock.widget()
+        host.unplug(hand)
+
+        def left_rows():
+            return [r for r in panel.rows() if r[0].endswith("left the bus")]
+
+        qtbot.waitUntil(lambda: bool(left_rows()), timeout=WAIT_MS)
+        what, why, _similar = left_rows()[0]
+        assert what.startswith("Multi-grip hand"), what
+        found = re.fullmatch(r"No beacon for \d+\.\d s: (\d+) beacon intervals of \d+ ms", why)
+        assert found and int(found[1]) >= 3, why
+        shot = os.environ.get("PDCP_SHOT")
+        if shot:  # for a person to look at
+            dock.raise_()
+            qtbot.wait(300)
+            window.grab().save(shot)
+        window.live.disconnect_bus()
