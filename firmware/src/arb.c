@@ -423,6 +423,9 @@ static void leave(int dev)
 {
     device_t *d = &g_dev[dev];
     int was = d->present;
+    /* why, measured before the links below take the bus's time (§5.7) */
+    uint32_t silent = port_millis() - d->last_seen;
+    uint16_t interval = d->set_up && d->beacon_ms ? d->beacon_ms : UNREAD_BEACON_MS;
     d->present = 0;
     d->set_up = 0;
     d->needs_setup = 0;
@@ -440,8 +443,9 @@ static void leave(int dev)
             req_set(node, 7, lk.in.index, ids, 2) == REQ_OK)
             g_ch[in].enabled = 0;
     }
-    hl_event_device(0x42, dev);
     char t[48];
+    fmt_text(t, sizeof t, "no beacon for %u ms", (unsigned)(silent > 0xFFFFu ? 0xFFFFu : silent));
+    hl_event_left(dev, silent, interval, t);
     fmt_text(t, sizeof t, "device %k left", &d->key);
     port_log(t);
 }

@@ -274,6 +274,7 @@ void hl_service(void);          /* main loop: answer a request that arrived */
 void hl_event(const uint8_t *msg, int len);
 int hl_greeted(void);
 void hl_event_device(uint8_t code, int dev);
+void hl_event_left(int dev, uint32_t silent_ms, uint16_t interval_ms, const char *why);
 void hl_event_link(uint8_t code, const link_t *l);
 void hl_event_error(uint8_t kind, const char *text);
 

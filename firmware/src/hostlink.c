@@ -294,6 +294,7 @@ void hl_rx(const uint8_t *data, int len)
 static int text_at(const uint8_t *msg, int len)
 {
     switch (msg[0]) {
+    case 0x42: return 11;   /* DEVICE_LEFT: key, silent ms, beacon interval ms, reason */
     case 0x45: return 1;
     case 0x46: case 0x4A: return 2;
     case 0x4B: return len > 1 ? 2 + 7 * msg[1] : 0;
@@ -328,6 +329,22 @@ void hl_event_device(uint8_t code, int dev)
     put16(m + 1, d->key.vid); put16(m + 3, d->key.pid); put16(m + 5, d->key.serial);
     m[7] = d->node_id;
     hl_event(m, code == 0x41 ? 8 : 7);
+}
+
+/* DEVICE_LEFT with why (§5.7): the key, how long it was silent and its beacon interval (ms,
+ * u16, saturating), the reason; an old PC reads the key and ignores the rest. */
+void hl_event_left(int dev, uint32_t silent_ms, uint16_t interval_ms, const char *why)
+{
+    uint8_t m[EVENT_MAX + 1];
+    const device_t *d = &g_dev[dev];
+    int n = (int)strlen(why);
+    if (n > EVENT_MAX - 11) n = EVENT_MAX - 11;
+    m[0] = 0x42;
+    put16(m + 1, d->key.vid); put16(m + 3, d->key.pid); put16(m + 5, d->key.serial);
+    put16(m + 7, (uint16_t)(silent_ms > 0xFFFFu ? 0xFFFFu : silent_ms));
+    put16(m + 9, interval_ms);
+    memcpy(m + 11, why, (size_t)n);
+    hl_event(m, n + 11);
 }
 
 void hl_event_link(uint8_t code, const link_t *l)

@@ -112,6 +112,9 @@ CAP_LEAN = 0x0000
 # -- structs (little-endian; fields in order) ---------------------------------------------------
 # device key: vid, pid, serial
 KEY = struct.Struct("<HHH")
+# DEVICE_LEFT event, after the key (optional): how long the device was not heard and its
+#   beacon interval, in ms (0 = unknown; u16, saturating); the reason (UTF-8) follows
+LEFT_TAIL = struct.Struct("<HH")
 # channel reference: vid, pid, serial, index
 REF = struct.Struct("<HHHB")
 # HELLO request/reply head: version, capabilities, largest payload

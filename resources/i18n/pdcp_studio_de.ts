@@ -5078,6 +5078,10 @@ Die Prothese ist wie zuvor.</translation>
             <translation>Kein Beacon seit {seconds} s: {intervals} Beacon-Intervalle zu {ms} ms</translation>
         </message>
         <message>
+            <source>It is no longer heard on the bus; the arbitrator gave no details</source>
+            <translation>Es ist am Bus nicht mehr zu hören; der Arbitrator nannte keine Einzelheiten</translation>
+        </message>
+        <message>
             <source>{device} joined the bus</source>
             <translation>{device} ist dem Bus beigetreten</translation>
         </message>

@@ -28,6 +28,16 @@ def wait_for(predicate, timeout: float = 5.0) -> bool:
 def arbitrator_rig(system_path, memory, *, profile_layer: bool = False, **options):
     """(arbitrator, server): the devices of ``system_path`` bound and set up (``options``:
     more of the arbitrator's, e.g. ``take_back``)."""
+    with arbitrator_rig_with_devices(system_path, memory, profile_layer=profile_layer,
+                                     **options) as (arbitrator, server, _):
+        yield arbitrator, server
+
+
+@contextmanager
+def arbitrator_rig_with_devices(system_path, memory, *, profile_layer: bool = False,
+                                **options):
+    """(arbitrator, server, device host): as :func:`arbitrator_rig`, with the simulated
+    devices' host (to unplug one)."""
     system = system_file.load_path(system_path)
     channel = unique_virtual_channel("hostlink")
     arb_bus = can.Bus(interface="virtual", channel=channel)
@@ -40,7 +50,7 @@ def arbitrator_rig(system_path, memory, *, profile_layer: bool = False, **option
         assert wait_for(lambda: len(arbitrator.system().devices) == len(system.devices), 10.0)
         assert arbitrator.wait_settled(10.0)
         server = HostLinkServer(arbitrator, "pty")
-        yield arbitrator, server
+        yield arbitrator, server, host
     finally:
         if server is not None:
             server.close()

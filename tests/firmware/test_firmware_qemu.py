@@ -164,3 +164,26 @@ def test_the_firmware_writes_nothing_on_a_bus_another_arbitrator_holds(bus_url, 
         if other.stdout is not None:
             other.stdout.close()
         devices.close()
+
+
+def test_a_part_that_leaves_the_firmware_says_why_on_the_host_link(bus_url, tmp_path):
+    """DEVICE_LEFT carries the firmware's silence, beacon interval and reason (host-link
+    §5.7), so Bus events says why over the serial line too (issue 28 item 6)."""
+    from pdcp_studio.bus import events as ev
+    from pdcp_studio.bus.sim.rigs import prosthesis
+
+    script = prosthesis("transradial").script("unplug-replug")
+    key = next(s.key for s in script.steps if s.op == "unplug")
+    run = Run("transradial", bus_url, tmp_path / "memory.bin")
+    left: list[ev.DeviceLeft] = []
+    try:
+        run.step(script.steps[0])  # settle
+        run.session.subscribe(lambda e: left.append(e) if isinstance(e, ev.DeviceLeft) else None)
+        run.devices.host.unplug(key)
+        wait_for(lambda: any(e.key == key for e in left), 30, f"DEVICE_LEFT for {key}")
+    finally:
+        run.close()
+    got = next(e for e in left if e.key == key)
+    assert got.why == f"no beacon for {round(got.silent_s * 1000)} ms", got.why
+    assert got.interval_s > 0
+    assert got.silent_s >= 1.5  # PRESENCE_MIN_MS on QEMU; 3.5 intervals when longer

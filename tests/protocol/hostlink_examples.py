@@ -171,7 +171,9 @@ def messages() -> list[tuple[str, bytes]]:
         ("event code as request", _real(bytes([0x41]))),
         ("STATUS too long", _real(bytes([Req.STATUS, 0]))),
         ("DEVICE_JOINED event", bytes([Event.DEVICE_JOINED]) + key + b"\x01"),
-        ("DEVICE_LEFT event", bytes([Event.DEVICE_LEFT]) + key),
+        ("DEVICE_LEFT event", bytes([Event.DEVICE_LEFT])
+         + hr.pack_left(EMG, 1.5, 0.5, "no beacon for 1.5 s")),
+        ("DEVICE_LEFT event, key alone", bytes([Event.DEVICE_LEFT]) + key),
         ("LINK_MADE event", bytes([Event.LINK_MADE]) + hr.pack_link_event(LINK, 5)),
         ("LINK_REMOVED event", bytes([Event.LINK_REMOVED]) + hr.pack_link_event(LINK, None)),
         ("OTHER_ARBITRATOR event", bytes([Event.OTHER_ARBITRATOR]) + b"another arbitrator"),

@@ -98,10 +98,14 @@ def describe_event(event: object, system: System | None,
 
 
 def _left_why(event: ev.DeviceLeft) -> str:
-    """Why a part left, as the arbitrator measured it on the bus (empty when the transport
-    does not say): "No beacon for 1.9 s: 3 beacon intervals"."""
+    """Why a part left, as the arbitrator measured it on the bus: "No beacon for 1.9 s: 3
+    beacon intervals" — from its figures (a CAN or simulated bus, and the host link since
+    DEVICE_LEFT carries them), else its own words, else plainly that it did not say (an
+    arbitrator from before reasons)."""
     if event.silent_s <= 0 or event.interval_s <= 0:
-        return ""
+        if event.why:
+            return event.why
+        return _t("It is no longer heard on the bus; the arbitrator gave no details")
     intervals = int(event.silent_s / event.interval_s)
     return _t("No beacon for {seconds} s: {intervals} beacon intervals of {ms} ms").format(
         seconds=f"{event.silent_s:.1f}", intervals=intervals,

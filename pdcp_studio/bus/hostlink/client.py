@@ -156,12 +156,13 @@ class HostLinkSession(BusSession):
                     cache.stale.add(key)
                     cache.links_stale = True
                 self._emit(ev.DeviceJoined(key))
-            elif code == Event.DEVICE_LEFT:
-                key = hr.unpack_key(body)
+            elif code == Event.DEVICE_LEFT:  # the key, then (optional) why it left (§5.7)
+                left = hr.unpack_left(body)
                 with cache.lock:
-                    cache.stale.add(key)
+                    cache.stale.add(left.key)
                     cache.links_stale = True
-                self._emit(ev.DeviceLeft(key))
+                self._emit(ev.DeviceLeft(left.key, why=left.why, silent_s=left.silent_s,
+                                         interval_s=left.interval_s))
             elif code in (Event.LINK_MADE, Event.LINK_REMOVED):
                 link, _ = hr.unpack_link_event(body)
                 with cache.lock:

@@ -493,8 +493,11 @@ class Handlers:
         if isinstance(event, ev.DeviceJoined):
             return (bytes([hm.Event.DEVICE_JOINED]) + hr.pack_key(event.key)
                     + bytes([self.arb.node_id_of(event.key) or 0]))
-        if isinstance(event, ev.DeviceLeft):
-            return bytes([hm.Event.DEVICE_LEFT]) + hr.pack_key(event.key)
+        if isinstance(event, ev.DeviceLeft):  # why it left, when the arbitrator knows (§5.7)
+            if not event.why and event.silent_s <= 0 and event.interval_s <= 0:
+                return bytes([hm.Event.DEVICE_LEFT]) + hr.pack_key(event.key)
+            return bytes([hm.Event.DEVICE_LEFT]) + hr.pack_left(
+                event.key, event.silent_s, event.interval_s, event.why, 200)
         if isinstance(event, ev.LinkMade | ev.LinkRemoved):
             code = hm.Event.LINK_MADE if isinstance(event, ev.LinkMade) else hm.Event.LINK_REMOVED
             return bytes([code]) + hr.pack_link_event(

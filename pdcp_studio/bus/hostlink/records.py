@@ -17,6 +17,7 @@ from pdcp_studio.protocol.hostlink_messages import (
     DEVICE_ROW,
     INPUT_TAIL,
     KEY,
+    LEFT_TAIL,
     LINK_EVENT,
     MAX_BODY,
     REF,
@@ -38,6 +39,39 @@ def pack_key(key: DeviceKey) -> bytes:
 def unpack_key(body: bytes, offset: int = 0) -> DeviceKey:
     need(body, offset + KEY.size, "device key")
     return DeviceKey(*KEY.unpack_from(body, offset))
+
+
+@dataclass(frozen=True)
+class Left:
+    """A DEVICE_LEFT event's body: the device and why it left (0 and "" when not said)."""
+
+    key: DeviceKey
+    silent_s: float = 0.0
+    interval_s: float = 0.0
+    why: str = ""
+
+
+def _ms16(seconds: float) -> int:
+    return min(max(round(seconds * 1000), 0), 0xFFFF)
+
+
+def pack_left(key: DeviceKey, silent_s: float, interval_s: float, why: str,
+              limit: int = 200) -> bytes:
+    """DEVICE_LEFT's body: key, silent ms, beacon interval ms (saturating u16), reason cut
+    to ``limit`` bytes (docs/host-link.md §5.7)."""
+    return (KEY.pack(*key) + LEFT_TAIL.pack(_ms16(silent_s), _ms16(interval_s))
+            + short_text(why, limit))
+
+
+def unpack_left(body: bytes) -> Left:
+    """The key alone (an arbitrator from before reasons), or key, times and reason. A tail
+    too short for the two times is ignored; the reason is read leniently, any length."""
+    key = unpack_key(body)
+    tail = body[KEY.size:]
+    if len(tail) < LEFT_TAIL.size:
+        return Left(key)
+    silent, interval = LEFT_TAIL.unpack_from(tail)
+    return Left(key, silent / 1000.0, interval / 1000.0, text(tail[LEFT_TAIL.size:]))
 
 
 def pack_link(link: Link) -> bytes:
