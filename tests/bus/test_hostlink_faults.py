@@ -176,12 +176,18 @@ def test_a_dropped_port_is_reopened_with_one_calm_message(rig, tmp_path):
                       else None)
     try:
         assert session.scan().devices
-        relay.close()  # the adapter is unplugged
-        time.sleep(1.0)  # several reopen attempts fail meanwhile
-        with pytest.raises(TransportError):
-            session.status()
-        relay = PtyRelay(server.slave_path)  # plugged in again (a new pty behind the name)
+        # The adapter is unplugged: its device node goes with it (else the freed
+        # /dev/pts/N, which Linux hands to the next pty made, could be another test's).
         link_path.unlink()
+        relay.close()
+        # Another adapter is plugged in meanwhile (another test's, on a busy CI), likely
+        # on the freed /dev/pts number: the lost port's name must not reach it.
+        assert wait_for(lambda: session.conn.line.down, 5.0)
+        with PtyRelay(server.slave_path):
+            time.sleep(1.0)  # several reopen attempts fail meanwhile
+            with pytest.raises(TransportError):
+                session.status()
+        relay = PtyRelay(server.slave_path)  # plugged in again (a new pty behind the name)
         link_path.symlink_to(relay.client_path)
         assert wait_for(lambda: not session.conn.line.down, 5.0)
         assert session.status()["devices"] == 4
@@ -363,10 +369,12 @@ def test_the_arbitrator_reopens_its_dropped_port_with_one_calm_message(rig, tmp_
         assert session.status()["devices"] == 4
         with caplog.at_level("WARNING", logger="pdcp_studio.bus.hostlink.server"):
             bridge.close()
-            os.close(am)  # the arbitrator's adapter is pulled out
+            # The arbitrator's adapter is pulled out, its device node with it (the freed
+            # /dev/pts/N may be the next pty another test makes).
+            port_name.unlink()
+            os.close(am)
             time.sleep(1.0)  # it tries to reopen, and fails, several times
             cm, cslave, cpath = _raw_pty()  # plugged in again, as a new device node
-            port_name.unlink()
             port_name.symlink_to(cpath)
             bridge = _Bridge(cm, bm)
             # (the new adapter's node stays open here until the arbitrator has it: a pty
