@@ -36,7 +36,14 @@ if [ -z "$python" ]; then
     [ -n "$python" ] || python=python3
 fi
 
-make -s -C "$here" arm >&2 || { echo "run-qemu.sh: the firmware did not build" >&2; exit 1; }
+# One build at a time in build/ (two at once, e.g. two emulators started together on a fresh
+# checkout, wrote a broken ELF): flock(1), from util-linux, where it is installed.
+mkdir -p "$here/build"
+if command -v flock >/dev/null 2>&1; then
+    flock "$here/build/.lock" make -s -C "$here" arm >&2
+else
+    make -s -C "$here" arm >&2
+fi || { echo "run-qemu.sh: the firmware did not build" >&2; exit 1; }
 
 work=$(mktemp -d "${TMPDIR:-/tmp}/pdcp-fw.XXXXXX")
 if [ -z "$memory" ]; then memory="$work/memory.bin"; fi

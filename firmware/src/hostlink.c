@@ -151,6 +151,10 @@ static void send_data(const uint8_t *msg, uint16_t len)
     transmit();
 }
 
+/* A frame was given up (the PC stopped acknowledging): the PC greets again.  A reply waiting
+ * behind that frame stays: it answers a request the PC sent while greeted and waits for
+ * (dropping it left the PC waiting out its whole reply timeout), as PDCP Studio's link keeps
+ * what is queued behind a frame it gives up. */
 static void forget_host(void)
 {
 #if MONITOR
@@ -158,7 +162,6 @@ static void forget_host(void)
 #endif
     greeted = 0;
     ev_count = 0; lost_pending = 0;
-    reply_len = 0;
     cfgw.active = chg.active = 0;
     set_active = 0;
 }

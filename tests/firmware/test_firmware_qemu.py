@@ -187,3 +187,67 @@ def test_a_part_that_leaves_the_firmware_says_why_on_the_host_link(bus_url, tmp_
     assert got.why == f"no beacon for {round(got.silent_s * 1000)} ms", got.why
     assert got.interval_s > 0
     assert got.silent_s >= 1.5  # PRESENCE_MIN_MS on QEMU; 3.5 intervals when longer
+
+
+def test_a_reply_waiting_behind_a_given_up_frame_still_reaches_the_pc(bus_url, tmp_path):
+    """A PC that stops acknowledging (stalled on a loaded machine) makes the firmware give up
+    the frame in flight and forget the PC, who must greet again — but a reply already waiting
+    behind that frame still answers the request it belongs to. (The firmware dropped it: a
+    CI run under two CPU burners waited out its whole 20 s reply timeout for a STATUS.)"""
+    import serial
+
+    from pdcp_studio.bus.sim.rigs import prosthesis
+    from pdcp_studio.protocol.hostlink import Frame, FrameReader, Kind
+
+    key = next(s.key for s in prosthesis("transradial").script("unplug-replug").steps
+               if s.op == "unplug")
+    devices = Devices("transradial", bus_url)
+    firmware = Firmware(bus_url, tmp_path / "memory.bin")
+    port = None
+    try:
+        session = open_session(firmware.serial_url)
+        try:
+            settle(session, devices=devices)
+            # opened before the session closes: QEMU keeps serving the pseudo-terminal
+            port = serial.Serial(firmware.serial_url.split(":", 1)[1], 115200, timeout=0.05)
+        finally:
+            session.close()
+        reader = FrameReader()
+
+        def frames(seconds: float, ack: bool, first: bool = False) -> list[Frame]:
+            got: list[Frame] = []
+            end = time.monotonic() + seconds
+            while time.monotonic() < end:
+                for item in reader.feed(port.read(512)):
+                    if isinstance(item, Frame) and item.kind is Kind.DATA:
+                        got.append(item)
+                        if ack:
+                            port.write(Frame(Kind.ACK, item.seq).encode())
+                if got and first:
+                    return got
+            return got
+
+        greeted = False
+        deadline = time.monotonic() + 20
+        while not greeted and time.monotonic() < deadline:  # RESET, HELLO v2 (seq 0)
+            port.write(Frame(Kind.RESET, 0).encode()
+                       + Frame(Kind.DATA, 0, b"\x01\x02\xff\xff").encode())
+            greeted = any(f.payload[:2] == b"\x81\x00" for f in frames(0.5, ack=True))
+        assert greeted, "the firmware did not answer HELLO"
+        frames(0.5, ack=True)  # anything else it had to say, acknowledged
+        devices.host.unplug(key)
+        # DEVICE_LEFT (or what comes first) is in flight, and never acknowledged
+        in_flight = frames(30.0, ack=False, first=True)
+        assert in_flight, "no event after the unplug"
+        port.write(Frame(Kind.DATA, 1, b"\x02").encode())  # STATUS, answered behind it
+        # 8 sends 250 ms apart, then the frame is given up; the reply must follow
+        seen = frames(8.0, ack=False)
+        later = [f for f in seen if f.seq != in_flight[0].seq]
+        assert any(f.payload[:2] == b"\x82\x00" for f in later), \
+            [f.payload[:2].hex() for f in seen]
+    finally:
+        if port is not None:
+            port.close()
+        firmware.stop()
+        devices.close()
+    assert "a frame was given up" in firmware.log.read_text()

@@ -27,7 +27,12 @@ def _readme_row(start: str) -> list[int]:
 
 
 def test_the_readmes_sizes_are_the_map_files():
-    out = subprocess.run(["make", "-s", "-C", str(ROOT / "firmware"), "sizes"],
+    # one build at a time in build/, as firmware/run-qemu.sh does (another worker's emulator
+    # may be building it now)
+    build = ROOT / "firmware" / "build"
+    build.mkdir(exist_ok=True)
+    lock = ["flock", str(build / ".lock")] if shutil.which("flock") else []
+    out = subprocess.run([*lock, "make", "-s", "-C", str(ROOT / "firmware"), "sizes"],
                          capture_output=True, text=True, timeout=600)
     assert out.returncode == 0, out.stderr
     measured: dict[tuple[str, str], tuple[int, int]] = {}

@@ -117,3 +117,19 @@ def test_sequence_numbers_wrap():
         line.host.send(n.to_bytes(2, "little"), line.now)
         line.step(rounds=3)
     assert line.got["arb"] == [n.to_bytes(2, "little") for n in range(300)]
+
+
+def test_a_message_queued_behind_a_given_up_frame_is_still_sent():
+    """host-link §3 Decision: the arbitrator gives up an event the PC never acknowledged, but
+    the reply waiting behind it still goes out (the PC waits for it)."""
+    line = Line(ack_timeout=0.05, max_attempts=4)
+    acks = {"on": False}
+    # the PC's acknowledgements are lost until it wakes up again
+    line.spoil = lambda sender, data: data if sender == "arb" or acks["on"] else b""
+    line.arb.send(b"\x42event", line.now)
+    line.arb.send(b"\x82\x00status", line.now)  # the reply, queued behind the event
+    line.step(dt=0.02, rounds=12)  # 4 sends 0.05 s apart: the event is given up
+    assert line.arb.take_failed() == [b"\x42event"]
+    acks["on"] = True
+    line.step(dt=0.02, rounds=20)
+    assert b"\x82\x00status" in line.got["host"]
