@@ -100,3 +100,19 @@ class FrameRecorder:
     def close(self) -> None:
         self._notifier.stop()
         self.bus.shutdown()
+
+
+def fitted_twice(tmp_path: Path, monkeypatch: Any, bus: str = "sim:transradial"
+                 ) -> tuple[Path, Path]:
+    """(archive, memory file) of a simulated prosthesis after two changes through the change
+    road (``apply clear``), each recorded in a fresh SQLite archive and anchored; the second
+    on the prosthesis re-opened, which starts up and autoconfigures it again."""
+    from pdcp_studio.cli.main import main
+
+    archive = tmp_path / "history.sqlite"
+    memory = tmp_path / "m.img"
+    monkeypatch.setenv("PDCP_STUDIO_HISTORY", str(archive))
+    monkeypatch.delenv("PDCP_STUDIO_ARCHIVE", raising=False)
+    for _ in range(2):
+        assert main(["apply", "clear", "--bus", bus, "--memory", str(memory), "--yes"]) == 0
+    return archive, memory

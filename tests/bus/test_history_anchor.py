@@ -18,6 +18,7 @@ from pdcp_studio.model.configuration import ConfigCollection
 from pdcp_studio.storage.archive.anchor import anchor_problem
 from pdcp_studio.storage.archive.chain import Anchor, canonical, entry_hash
 from pdcp_studio.storage.history import History, interrupted
+from tests.road_rigs import fitted_twice
 
 BUS = "sim:transradial"
 HAND = {"vid": 2641, "pid": 769, "serial": 301}
@@ -85,13 +86,7 @@ def test_a_power_cut_in_the_anchor_write_leaves_the_old_anchor(tmp_path):
 @pytest.fixture
 def fitted(tmp_path, monkeypatch):
     """A simulated prosthesis with its memory file and archive, after two recorded changes."""
-    archive = tmp_path / "history.sqlite"
-    memory = tmp_path / "m.img"
-    monkeypatch.setenv("PDCP_STUDIO_HISTORY", str(archive))
-    monkeypatch.delenv("PDCP_STUDIO_ARCHIVE", raising=False)
-    assert main(["apply", "clear", "--bus", BUS, "--memory", str(memory), "--yes"]) == 0
-    # re-opened, the simulated prosthesis starts up and autoconfigure links it again
-    assert main(["apply", "clear", "--bus", BUS, "--memory", str(memory), "--yes"]) == 0
+    archive, memory = fitted_twice(tmp_path, monkeypatch, BUS)
     with History(archive) as h:
         assert [e["id"] for e in h.entries()] == [1, 2]
     return archive, memory

@@ -12,6 +12,7 @@ from pdcp_studio.bus.arbitrator.memory import MemoryStore
 from pdcp_studio.cli.main import main
 from pdcp_studio.storage.archive.chain import Anchor
 from pdcp_studio.storage.history import History
+from tests.road_rigs import fitted_twice
 
 BUS = "sim:transradial"
 
@@ -19,13 +20,7 @@ BUS = "sim:transradial"
 @pytest.fixture
 def fitted(tmp_path, monkeypatch):
     """A prosthesis fitted twice, both changes recorded and anchored."""
-    archive = tmp_path / "history.sqlite"
-    memory = tmp_path / "m.img"
-    monkeypatch.setenv("PDCP_STUDIO_HISTORY", str(archive))
-    monkeypatch.delenv("PDCP_STUDIO_ARCHIVE", raising=False)
-    for _ in range(2):
-        assert main(["apply", "clear", "--bus", BUS, "--memory", str(memory), "--yes"]) == 0
-    return archive, memory
+    return fitted_twice(tmp_path, monkeypatch, BUS)
 
 
 @pytest.fixture

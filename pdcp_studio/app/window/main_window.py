@@ -177,8 +177,7 @@ class MainWindow(QMainWindow):
     def _inspector_placed(self, panel: Inspector) -> None:
         panel.statusMessage.connect(self.show_message)
         panel.show_object(self.doc.selection)
-        if getattr(self, "desktop", None) is not None:  # (a dock shown while the window is made)
-            self.desktop.name_when_live(panel)
+        self.desktop.name_when_live(panel)  # (shown at the earliest with the window: made)
 
     @property
     def history_panel(self) -> HistoryPanel:
