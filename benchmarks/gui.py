@@ -27,7 +27,9 @@
    whatever the length: the frames and texts are kept in temporary files).
 
 Run: ``python benchmarks/gui.py [--only startup|scan|trace|capture] [--frames 1000000,5000000]
-[--source]`` (``--source``: start-up from source compiled on every run, not as installed)
+[--source] [--offline]`` (``--source``: start-up from source compiled on every run, not as
+installed; ``--offline``: the app's start page and its window on a system file, no bus, timed
+in the same rounds — the live window's cost without the simulated prosthesis)
 (offscreen; prints the figures).
 """
 
@@ -79,9 +81,11 @@ Phases = dict[str, tuple[float, float, float]]
 PHASES = ("imported", "built", "shown", "opened", "ready")
 
 
-def _probe(command: list[str], cwd: Path, phases: list[Phases] | None = None) -> Run:
+def _probe(command: list[str], cwd: Path, phases: list[Phases] | None = None, *,
+           live: bool = True) -> Run:
     """Spawn ``command`` (the app or the bare window) and time it to its probe line (the
-    ends of its phases appended to ``phases``)."""
+    ends of its phases appended to ``phases``); ``live``: the line must say the window is
+    bound to a bus."""
     env = dict(os.environ, PDCP_STUDIO_STARTUP_PROBE="1", QT_QPA_PLATFORM="offscreen")
     t0 = time.perf_counter()
     proc = subprocess.Popen(command, stdout=subprocess.PIPE, stderr=subprocess.DEVNULL,
@@ -92,7 +96,7 @@ def _probe(command: list[str], cwd: Path, phases: list[Phases] | None = None) ->
     _pid, status, usage = os.wait4(proc.pid, 0)  # wait() would not give its CPU time
     proc.returncode = os.waitstatus_to_exitcode(status)
     proc.stdout.close()
-    if not line.startswith("startup_s=") or "live=True" not in line:
+    if not line.startswith("startup_s=") or (live and "live=True" not in line):
         raise SystemExit(f"start-up probe of {command[1:]} failed: {line!r}")
     fields = dict(f.split("=", 1) for f in line.split() if "=" in f)
     if phases is not None:
@@ -103,16 +107,32 @@ def _probe(command: list[str], cwd: Path, phases: list[Phases] | None = None) ->
             float(fields.get("gui_cpu_s", "nan")))
 
 
+#: The same app without a bus, started in the same rounds (``--offline``): its start page,
+#: and the window on the simulated prosthesis's own system file — what the live window costs
+#: without the simulated prosthesis beside it in the process.
+OFFLINE_STARTS = {
+    "start page": ["gui"],
+    "a system file, offline": ["gui", str(ROOT / "resources" / "systems" / "transradial.json")],
+}
+
+
 def startup(root: Path = ROOT, app_phases: list[Phases] | None = None,
-            bare_phases: list[Phases] | None = None) -> tuple[list[Run], list[Run]]:
+            bare_phases: list[Phases] | None = None,
+            offline: dict[str, list[Run]] | None = None) -> tuple[list[Run], list[Run]]:
     """``STARTUP_RUNS`` interleaved pairs: the app live on ``sim:transradial`` (from
-    ``root``), then the bare window — one after the other, so each pair shares the load."""
+    ``root``), then the bare window — one after the other, so each pair shares the load
+    (and, with ``offline``, each of :data:`OFFLINE_STARTS` in the same round)."""
     app = [sys.executable, "-m", "pdcp_studio", "gui", "--bus", "sim:transradial"]
     bare = [sys.executable, str(BARE_WINDOW)]
     apps, bares = [], []
     for _ in range(STARTUP_RUNS):
         apps.append(_probe(app, root, app_phases))
         bares.append(_probe(bare, root, bare_phases))
+        if offline is None:
+            continue
+        for name, args in OFFLINE_STARTS.items():
+            offline.setdefault(name, []).append(
+                _probe([sys.executable, "-m", "pdcp_studio", *args], root, live=False))
     return apps, bares
 
 
@@ -159,7 +179,8 @@ def print_startup() -> None:
             compileall.compile_dir(copy / "pdcp_studio", quiet=1)
         app_phases: list[Phases] = []
         bare_phases: list[Phases] = []
-        runs, bare = startup(copy, app_phases, bare_phases)
+        offline: dict[str, list[Run]] | None = {} if "--offline" in sys.argv else None
+        runs, bare = startup(copy, app_phases, bare_phases, offline)
     finally:
         if env_before is None:
             os.environ.pop("PYTHONDONTWRITEBYTECODE", None)
@@ -185,6 +206,11 @@ def print_startup() -> None:
           "since the phase before): "
           f"app {_phases_text(app_phases)}; bare window {_phases_text(bare_phases)}",
           flush=True)
+    if offline:
+        print("the same app without a bus, in the same rounds: " + "; ".join(
+            f"{name} median {_median(done, 0):.3f} s, {_median(done, 0) / _median(bare, 0):.2f}× "
+            f"the bare window (process CPU {_median(done, 1):.3f} s)"
+            for name, done in offline.items()), flush=True)
 
 
 def big_system(n: int = 254) -> System:
