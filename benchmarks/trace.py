@@ -6,7 +6,7 @@ channel data of every output, and some garbage (module-specific codes, extended 
 random bytes) — at about 8,000 frames/s of capture time, in ASC and BLF. Prints for each format:
 
 - python-can's reader alone (``can.LogReader`` over the file, nothing else): the anchor;
-- for BLF also the monitor's own reader alone (``bus/trace/blf.py``: python-can's BLFReader
+- for BLF also the monitor's own reader alone (``bus/trace/files/blf.py``: python-can's BLFReader
   with a faster loop over a container's objects, the same frames without a ``can.Message``
   each), which ``monitor --replay`` uses;
 - ``pdcp-studio monitor --replay FILE`` (frames to /dev/null, its summary shown);
@@ -451,7 +451,7 @@ def replay_kind(kind: str, count: int, args: argparse.Namespace, cache: Path) ->
               f"CPU), {n / wall:,.0f} frames/s, peak RSS {rss:.0f} MB")
         if fmt == "blf":
             wall, rss, _, cpu = best_of(args.repeat, [python, "-c", OWN_BLF_READER, str(path)])
-            print(f"[{tag}] the monitor's BLF reader alone (bus/trace/blf.py): {wall:.2f} s "
+            print(f"[{tag}] the monitor's BLF reader alone (bus/trace/files/blf.py): {wall:.2f} s "
                   f"({cpu:.2f} s CPU), {n / wall:,.0f} frames/s, {cpu / anchor_cpu:.2f}× "
                   f"python-can's CPU time, peak RSS {rss:.0f} MB")
         monitor = [python, "-m", "pdcp_studio", "monitor", "--replay", str(path)]

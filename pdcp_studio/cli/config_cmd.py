@@ -5,7 +5,7 @@ document on stdout); ``encode JSON -o FILE`` writes one from that JSON, atomical
 ``diff A B [--json]`` or ``diff A --bus URL`` compares two stored configurations (the
 one diff of :mod:`pdcp_studio.model.config_diff`): exit 0 when equal, 3 when they differ.
 ``-`` reads standard input. The bus actions (``config read`` / ``config write``) live in
-``pdcp_studio.cli.config_bus``, which registers them through
+``pdcp_studio.cli.live.config_bus``, which registers them through
 ``add_bus_commands(config_subparsers)``; it is imported while the parser is built, so it
 too must keep heavy imports (python-can) inside its ``run``.
 
@@ -59,7 +59,7 @@ def add_subparser(subparsers: argparse._SubParsersAction[argparse.ArgumentParser
     diff.add_argument("--json", action="store_true", help="print the difference as JSON")
     diff.set_defaults(func=run_diff)
 
-    from pdcp_studio.cli import config_bus
+    from pdcp_studio.cli.live import config_bus
 
     config_bus.add_bus_commands(actions)
 
@@ -115,7 +115,7 @@ def run_diff(args: argparse.Namespace) -> int:
     if args.b is not None:
         b, b_name = _load_collection(args.b), args.b
     else:
-        from pdcp_studio.cli.scan import open_bus_session
+        from pdcp_studio.cli.live.scan import open_bus_session
 
         session = open_bus_session(args.bus, memory=args.memory)
         try:

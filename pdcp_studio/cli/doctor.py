@@ -35,7 +35,7 @@ def add_subparser(subparsers: argparse._SubParsersAction[argparse.ArgumentParser
         description="Versions, modules, CAN interfaces and their drivers, serial ports, "
                     "capture formats, resources, fitting history and display.")
     p.add_argument("--json", action="store_true", help="print one JSON document")
-    from pdcp_studio.cli.change_road import add_archive_argument
+    from pdcp_studio.cli.live.change_road import add_archive_argument
 
     add_archive_argument(p)
     p.set_defaults(func=run)

@@ -35,7 +35,7 @@ def add_subparser(subparsers: argparse._SubParsersAction[argparse.ArgumentParser
                    help="window size, e.g. 1400x860 (for screenshots)")
     p.add_argument("--lang", metavar="LANG", default=argparse.SUPPRESS,
                    help="the app's language, e.g. de or en (default: the system's)")
-    from pdcp_studio.cli.change_road import add_archive_argument
+    from pdcp_studio.cli.live.change_road import add_archive_argument
 
     add_archive_argument(p)
     p.set_defaults(func=run)
@@ -56,8 +56,8 @@ def _size(text: str | None) -> tuple[int, int] | None:
 def is_capture(path: str) -> bool:
     """``path`` holds a capture, told by its content as ``monitor --replay`` tells it (an
     empty file by its name); a system file, a configuration or anything else is not."""
-    from pdcp_studio.bus.trace.capture import CAPTURE_SUFFIXES
-    from pdcp_studio.bus.trace.reader import SNIFF_BYTES, sniff
+    from pdcp_studio.bus.trace.files.capture import CAPTURE_SUFFIXES
+    from pdcp_studio.bus.trace.files.reader import SNIFF_BYTES, sniff
 
     if path.lower().endswith((".json", ".pdcfg")) or not os.path.isfile(path):
         return False  # (a pipe is never opened here: the document's opening refuses it)

@@ -38,7 +38,7 @@ def add_subparser(subparsers: argparse._SubParsersAction[argparse.ArgumentParser
     p = subparsers.add_parser("history", help="the fitting history of changes to prostheses",
                               description=__doc__.split("\n\n")[0])
     actions = p.add_subparsers(dest="history_command", metavar="ACTION", required=True)
-    from pdcp_studio.cli.change_road import add_archive_argument, add_road_arguments
+    from pdcp_studio.cli.live.change_road import add_archive_argument, add_road_arguments
 
     lst = actions.add_parser("list", help="every recorded change, oldest first")
     lst.add_argument("--json", action="store_true", help="print the contract's JSON document")
@@ -82,7 +82,7 @@ def add_subparser(subparsers: argparse._SubParsersAction[argparse.ArgumentParser
                         help="PDCP Studio's own arbitrator memory (sim: and can: buses)")
     add_archive_argument(verify)
     verify.set_defaults(func=run_verify)
-    from pdcp_studio.cli import history_reanchor
+    from pdcp_studio.cli.live import history_reanchor
 
     history_reanchor.add_parser(actions)
     export = actions.add_parser("export", help="the archive as JSON lines, hashes included")
@@ -273,8 +273,8 @@ def run_show(args: argparse.Namespace) -> int:
 def run_restore(args: argparse.Namespace) -> int:
     from pdcp_studio.bus.session.urls import check_bus_url
     from pdcp_studio.bus.transaction import NotRestorable, restore_change
-    from pdcp_studio.cli.change_road import carry_out
-    from pdcp_studio.cli.scan import open_bus_session
+    from pdcp_studio.cli.live.change_road import carry_out
+    from pdcp_studio.cli.live.scan import open_bus_session
 
     check_bus_url(args.bus)  # a bad --bus is the same line from every command, checked first
     entry = _entry(args, args.id)
@@ -373,7 +373,7 @@ def run_verify(args: argparse.Namespace) -> int:
 def _prosthesis_anchor(args: argparse.Namespace) -> tuple[Any, set[tuple[int, int, int]]]:
     """The anchor the prosthesis on ``--bus`` keeps, and its parts (VID, PID, serial)."""
     from pdcp_studio.bus.session.urls import check_bus_url
-    from pdcp_studio.cli.scan import open_bus_session
+    from pdcp_studio.cli.live.scan import open_bus_session
 
     check_bus_url(args.bus)
     session = open_bus_session(args.bus, memory=args.memory)

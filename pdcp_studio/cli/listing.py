@@ -34,7 +34,7 @@ def add_subparser(subparsers: argparse._SubParsersAction[argparse.ArgumentParser
 def _load(args: argparse.Namespace) -> System:
     """The system file, or the live bus scanned (node IDs included), over any transport."""
     if getattr(args, "bus", None):
-        from pdcp_studio.cli.scan import open_bus_session
+        from pdcp_studio.cli.live.scan import open_bus_session
 
         session = open_bus_session(args.bus, memory=getattr(args, "memory", None))
         try:

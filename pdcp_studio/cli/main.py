@@ -25,24 +25,25 @@ from pdcp_studio.bus.session.urls import BusUrlError
 from pdcp_studio.errors import ConfigFormatError, PdcpError, SystemFileError
 from pdcp_studio.model.safe_text import shown
 
-# Order = order in --help.
+# Order = order in --help. Under ``pdcp_studio.cli``: files and systems offline here, the
+# commands on a live prosthesis or bus in ``live/``.
 COMMAND_MODULES = (
     "gui",
     "config_cmd",
     "listing",
     "plan",
-    "apply",
-    "policy",
+    "live.apply",
+    "live.policy",
     "history",
     "archive",
-    "param",
+    "live.param",
     "check",
-    "scan",
+    "live.scan",
     "sim",
-    "arbitrator",
+    "live.arbitrator",
     "monitor",
-    "hostlink_test",
-    "can_bridge",
+    "live.hostlink_test",
+    "live.can_bridge",
     "doctor",
 )
 

@@ -265,7 +265,7 @@ def _session_frames(url: str, stop: Callable[[], bool],
 def _replay_frames(path: str, decoder: Any) -> Any:
     """A capture opened for decoding (``CaptureReplay``: its frames, its reader, where its
     node map came from); CaptureError if it is unreadable."""
-    from pdcp_studio.bus.trace.replay import CaptureReplay
+    from pdcp_studio.bus.trace.files.replay import CaptureReplay
 
     return CaptureReplay(path, decoder)
 
@@ -277,10 +277,10 @@ def _load_system_links(links: dict[int, Any], path: str) -> None:
 
 
 def run(args: argparse.Namespace) -> int:
-    from pdcp_studio.bus.trace.capture import PARTIAL_SUFFIX, CaptureError, CaptureWriteError
     from pdcp_studio.bus.trace.decoder import FrameDecoder
+    from pdcp_studio.bus.trace.files.capture import PARTIAL_SUFFIX, CaptureError, CaptureWriteError
+    from pdcp_studio.bus.trace.files.recorder import Recorder
     from pdcp_studio.bus.trace.pump import TracePump
-    from pdcp_studio.bus.trace.recorder import Recorder
 
     show = make_filter(args.filter) if args.filter else None
     if args.seconds is not None and args.seconds <= 0:
@@ -417,7 +417,7 @@ def _closing_lines(decoder: Any, reader: Any, map_source: str | None) -> list[st
     stats = decoder.stats
     verdict = stats.verdict_word()
     lines = [f"verdict: {verdict}"]
-    from pdcp_studio.bus.trace.replay import node_map_words
+    from pdcp_studio.bus.trace.files.replay import node_map_words
 
     words = node_map_words(decoder, map_source)
     if words:
@@ -431,7 +431,7 @@ def _closing_lines(decoder: Any, reader: Any, map_source: str | None) -> list[st
 def _summary_json(decoder: Any, elapsed: float | None, reader: Any, map_source: str | None,
                   not_written: str | None) -> dict[str, Any]:
     """The ``summary`` of ``--json`` (contracts §2)."""
-    from pdcp_studio.bus.trace.replay import node_map_words
+    from pdcp_studio.bus.trace.files.replay import node_map_words
 
     summary: dict[str, Any] = decoder.stats.as_json(elapsed)
     summary["node_map"] = node_map_words(decoder, map_source)

@@ -59,13 +59,13 @@ def run_list(args: argparse.Namespace) -> int:
 def run_replay(args: argparse.Namespace) -> int:
     from pdcp_studio.bus.session.capabilities import SimulatorControls
     from pdcp_studio.bus.sim.rigs import ScriptError, UnknownProsthesisError, prosthesis
-    from pdcp_studio.cli.main import BadInput
-    from pdcp_studio.cli.scan import (
+    from pdcp_studio.cli.live.scan import (
         format_system,
         open_bus_session,
         sorted_system,
         stderr_progress,
     )
+    from pdcp_studio.cli.main import BadInput
     from pdcp_studio.errors import TransportError
     from pdcp_studio.storage import system_file
 

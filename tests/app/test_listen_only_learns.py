@@ -8,7 +8,7 @@ import pytest
 
 from pdcp_studio.app.live.heard_bus import heard_system
 from pdcp_studio.bus.trace.decoder import FrameDecoder
-from pdcp_studio.bus.trace.reader import CaptureReader
+from pdcp_studio.bus.trace.files.reader import CaptureReader
 
 from .test_arbitrator_found import _connect_and_get_offer, taken_bus  # noqa: F401
 

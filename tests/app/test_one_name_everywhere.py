@@ -11,8 +11,8 @@ import re
 import pytest
 from PySide6.QtWidgets import QLabel
 
+from pdcp_studio.cli.live.scan import format_system
 from pdcp_studio.cli.naming import names_for
-from pdcp_studio.cli.scan import format_system
 from pdcp_studio.model.names import Names, short_forms
 from pdcp_studio.model.refs import ChannelRef, DeviceKey
 

@@ -282,8 +282,8 @@ def test_the_banner_and_plain_columns_speak_german(qtbot, qapp):
 
 
 def test_saving_an_opened_capture_keeps_each_frames_kind_and_its_own_node_map(qtbot, tmp_path):
-    from pdcp_studio.bus.trace.capture import read_capture
-    from pdcp_studio.bus.trace.nodemap import read_node_map
+    from pdcp_studio.bus.trace.files.capture import read_capture
+    from pdcp_studio.bus.trace.files.nodemap import read_node_map
 
     dock = _dock(qtbot)
     dock.feed.learn_output(1, (ChannelRef(1, 10, 4, 1), ()))  # the live session's map

@@ -10,8 +10,8 @@ import threading
 import numpy as np
 import pytest
 
-from pdcp_studio.app.trace.capture import load_capture, save_store
 from pdcp_studio.app.trace.disk import CACHED_TEXTS, RECENT_TEXTS, FileFrameStore, FileTexts
+from pdcp_studio.app.trace.files.capture import load_capture, save_store
 from pdcp_studio.app.trace.store import IdStats, TraceFilter
 from pdcp_studio.bus.trace.monitor import read_capture
 from pdcp_studio.protocol import messages as M

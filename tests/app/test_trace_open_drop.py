@@ -11,7 +11,7 @@ import pytest
 from PySide6.QtCore import QMimeData, QPointF, Qt, QUrl
 from PySide6.QtGui import QDropEvent
 
-from pdcp_studio.app.trace.formats import SUFFIXES, is_capture_name, mf4_readable, open_filter
+from pdcp_studio.app.trace.files.formats import SUFFIXES, is_capture_name, mf4_readable, open_filter
 from pdcp_studio.app.window.controllers.desktop import dropped_files
 
 pytestmark = pytest.mark.gui

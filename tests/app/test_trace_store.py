@@ -9,7 +9,7 @@ import can
 import numpy as np
 import pytest
 
-from pdcp_studio.app.trace.capture import load_capture, save_store
+from pdcp_studio.app.trace.files.capture import load_capture, save_store
 from pdcp_studio.app.trace.store import (
     CHANNEL_DATA,
     ChunkBuilder,

@@ -1,4 +1,4 @@
-"""The fast BLF reader (bus/trace/blf.py) reads every capture as python-can's BLFReader does:
+"""The fast BLF reader (bus/trace/files/blf.py) reads every capture as python-can's BLFReader does:
 the same frames, in the same order, with the same times to the last bit — on files python-can
 writes, on hand-built object streams (other tools' object kinds and headers, padding, objects
 split between containers, skipped kinds), on random ones (hypothesis), and on damaged files."""
@@ -16,7 +16,7 @@ from can.io import blf
 from hypothesis import HealthCheck, given, settings
 from hypothesis import strategies as st
 
-from pdcp_studio.bus.trace.blf import FastBLFReader, PlainFrame
+from pdcp_studio.bus.trace.files.blf import FastBLFReader, PlainFrame
 from pdcp_studio.bus.trace.monitor import CaptureError, read_capture
 
 START = 1_700_000_000.0
@@ -348,7 +348,7 @@ def test_read_capture_plain_frames(tmp_path: Path) -> None:
 
 def test_another_python_can_falls_back_to_its_reader(tmp_path: Path, monkeypatch) -> None:
     """Where python-can's reader lacks the methods the fast one builds on, its own reads."""
-    from pdcp_studio.bus.trace import blf as blf_read
+    from pdcp_studio.bus.trace.files import blf as blf_read
 
     path = write(tmp_path / "f.blf", sample_messages())
     assert blf_read.COMPATIBLE

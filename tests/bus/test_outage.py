@@ -176,7 +176,7 @@ def test_a_pulled_slcan_adapter_is_said_once_reopened_and_its_links_re_read(tmp_
 
 
 def test_the_headless_arbitrator_prints_the_outage_lines():
-    from pdcp_studio.cli.arbitrator import describe
+    from pdcp_studio.cli.live.arbitrator import describe
 
     line = "can:slcan:/dev/x: the adapter is disconnected (EIO); reconnecting"
     assert describe(ev.BusState("disconnected", line)) == \

@@ -17,7 +17,7 @@ import pytest
 from hypothesis import given, settings
 from hypothesis import strategies as st
 
-from pdcp_studio.bus.trace.asc import QuickASCReader
+from pdcp_studio.bus.trace.files.asc import QuickASCReader
 
 CAPTURES = Path(__file__).resolve().parents[1] / "data" / "captures"
 ASC_FILES = sorted(p for p in CAPTURES.rglob("*") if p.name.endswith((".asc", ".asc.gz")))

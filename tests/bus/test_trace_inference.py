@@ -1,5 +1,5 @@
 """The node map learned from traffic whose set-up was never seen (bus/trace/inference.py),
-and where a replay's node map came from (bus/trace/replay.py)."""
+and where a replay's node map came from (bus/trace/files/replay.py)."""
 
 from __future__ import annotations
 
@@ -9,9 +9,9 @@ import shutil
 from pathlib import Path
 
 from pdcp_studio.bus.trace.decoder import FrameDecoder
+from pdcp_studio.bus.trace.files.replay import CaptureReplay
 from pdcp_studio.bus.trace.inference import TrafficLearner
 from pdcp_studio.bus.trace.knowledge import INFERRED
-from pdcp_studio.bus.trace.replay import CaptureReplay
 
 DATA = Path(__file__).resolve().parents[2] / "tests" / "data" / "captures"
 SIM = DATA / "sim-transradial-midsession.asc"

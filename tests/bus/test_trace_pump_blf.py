@@ -1,4 +1,4 @@
-"""A BLF capture replayed through the fast reader (bus/trace/blf.py) and the pump writes what
+"""A BLF capture replayed through the fast reader (bus/trace/files/blf.py) and the pump writes what
 python-can's reader and one-by-one decoding write: the same lines, JSON records, statistics
 and summary, byte for byte — with CAN FD, error, remote and extended frames on several
 channels; and ``--log`` converts it to the same capture."""
@@ -11,8 +11,8 @@ from pathlib import Path
 import can
 import pytest
 
-from pdcp_studio.bus.trace import capture as bus_monitor
-from pdcp_studio.bus.trace.blf import FastBLFReader, PlainFrame
+from pdcp_studio.bus.trace.files import capture as bus_monitor
+from pdcp_studio.bus.trace.files.blf import FastBLFReader, PlainFrame
 from pdcp_studio.cli.main import main
 from pdcp_studio.cli.monitor import make_filter
 from tests.bus.test_monitor import session_frames

@@ -1,4 +1,4 @@
-"""One reader for every capture (bus/trace/reader.py): the format by content, damage read up
+"""One reader for every capture (bus/trace/files/reader.py): the format by content, damage read up
 to the cut and said with its line or offset, bounded memory, FIFOs, gzip, MF4 named."""
 
 from __future__ import annotations
@@ -14,8 +14,8 @@ from pathlib import Path
 import can
 import pytest
 
-from pdcp_studio.bus.trace.capture import CaptureError
-from pdcp_studio.bus.trace.reader import MAX_LINE, CaptureReader, sniff
+from pdcp_studio.bus.trace.files.capture import CaptureError
+from pdcp_studio.bus.trace.files.reader import MAX_LINE, CaptureReader, sniff
 
 ROOT = Path(__file__).resolve().parents[2]
 DATA = ROOT / "tests" / "data" / "captures"
@@ -157,8 +157,8 @@ def test_a_line_longer_than_any_valid_one_is_an_error(tmp_path):
 
 
 HUGE = ("import sys, resource\n"
-        "from pdcp_studio.bus.trace.reader import CaptureReader\n"
-        "from pdcp_studio.bus.trace.capture import CaptureError\n"
+        "from pdcp_studio.bus.trace.files.reader import CaptureReader\n"
+        "from pdcp_studio.bus.trace.files.capture import CaptureError\n"
         "try:\n"
         "    with CaptureReader(sys.argv[1]) as r:\n"
         "        n = sum(1 for _ in r)\n"
@@ -258,7 +258,7 @@ def test_a_blf_container_that_inflates_beyond_reason_is_refused(tmp_path):
     import struct
     import zlib
 
-    from pdcp_studio.bus.trace.blf import MAX_CONTAINER
+    from pdcp_studio.bus.trace.files.blf import MAX_CONTAINER
 
     small = tmp_path / "small.blf"
     with can.BLFWriter(str(small)) as writer:

@@ -14,8 +14,8 @@ import can
 import pytest
 
 from pdcp_studio.bus import events as ev
-from pdcp_studio.cli.arbitrator import describe
-from pdcp_studio.cli.arbitrator_log import HOLD_S, ArbitratorLog
+from pdcp_studio.cli.live.arbitrator import describe
+from pdcp_studio.cli.live.arbitrator_log import HOLD_S, ArbitratorLog
 from pdcp_studio.cli.main import main
 
 #: How much later than its admission a line may be stamped on a loaded machine.

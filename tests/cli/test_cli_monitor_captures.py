@@ -18,7 +18,7 @@ from pathlib import Path
 import can
 import pytest
 
-from pdcp_studio.bus.trace import recorder as bus_monitor
+from pdcp_studio.bus.trace.files import recorder as bus_monitor
 from pdcp_studio.bus.trace.monitor import FrameDecoder, frame_json, read_capture
 from pdcp_studio.cli.main import main
 from pdcp_studio.protocol import messages as M

@@ -93,8 +93,8 @@ def test_devices_run_for_an_arbitrator_elsewhere_on_the_bus():
 
 
 def test_cli_module_does_not_import_qt_or_python_can():
-    code = ("import sys; import pdcp_studio.cli.sim, pdcp_studio.cli.scan, "
-            "pdcp_studio.cli.config_bus; "
+    code = ("import sys; import pdcp_studio.cli.sim, pdcp_studio.cli.live.scan, "
+            "pdcp_studio.cli.live.config_bus; "
             "print('PySide6' in sys.modules, 'can' in sys.modules)")
     out = subprocess.run([sys.executable, "-c", code], capture_output=True, text=True,
                          check=True).stdout

@@ -53,16 +53,16 @@ from PySide6.QtWidgets import (
 
 from pdcp_studio.app.i18n import translate
 from pdcp_studio.app.trace.bar import ANY, TraceBar
-from pdcp_studio.app.trace.capture import CaptureVerdict, stored_rows
 from pdcp_studio.app.trace.disk import FileFrameStore
 from pdcp_studio.app.trace.feed import LiveFeed
+from pdcp_studio.app.trace.files.capture import CaptureVerdict, stored_rows
+from pdcp_studio.app.trace.files.loading import CaptureLoading
+from pdcp_studio.app.trace.files.record import LiveRecorder
+from pdcp_studio.app.trace.files.recording import LiveRecording
+from pdcp_studio.app.trace.files.saving import FrameSaving
 from pdcp_studio.app.trace.filtering import BackgroundFilter
-from pdcp_studio.app.trace.loading import CaptureLoading
 from pdcp_studio.app.trace.markers import Marker, Markers
 from pdcp_studio.app.trace.model import StatsModel, TraceModel, decoded_fields
-from pdcp_studio.app.trace.record import LiveRecorder
-from pdcp_studio.app.trace.recording import LiveRecording
-from pdcp_studio.app.trace.saving import FrameSaving
 from pdcp_studio.app.trace.search import FrameFinder
 from pdcp_studio.app.trace.store import (
     CHANNEL_DATA,
@@ -569,7 +569,7 @@ class MonitorDock(QDockWidget):
             self.save(path)
 
     def _ask_open(self) -> None:
-        from pdcp_studio.app.trace.formats import open_filter
+        from pdcp_studio.app.trace.files.formats import open_filter
 
         path, _ = QFileDialog.getOpenFileName(self, self.tr("Open capture"), "", open_filter())
         if path:
@@ -595,8 +595,8 @@ class MonitorDock(QDockWidget):
         being recorded and come back with ``show_live()``. ``loaded(path)``, or ``error``
         with the reason also shown where the rows would be (a pipe is refused at once:
         None is returned)."""
-        from pdcp_studio.app.trace.capture import refuse_stream
-        from pdcp_studio.bus.trace.capture import CaptureError
+        from pdcp_studio.app.trace.files.capture import refuse_stream
+        from pdcp_studio.bus.trace.files.capture import CaptureError
 
         self.cancel_load()
         _spare_the_collector()

@@ -7,7 +7,7 @@ from __future__ import annotations
 from pathlib import Path
 
 from pdcp_studio.app.i18n import translate
-from pdcp_studio.app.trace.capture import CaptureVerdict, NodeMapNote
+from pdcp_studio.app.trace.files.capture import CaptureVerdict, NodeMapNote
 from pdcp_studio.app.words.plural import count
 
 _C = "MonitorDock"

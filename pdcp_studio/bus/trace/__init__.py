@@ -1,1 +1,2 @@
-"""The trace: frame decoder, statistics, capture formats, bus time, replay."""
+"""The trace: frame decoder, statistics, bus time, bulk transfers, what a listener learns;
+capture files (formats, node map, replay) in ``files/``."""

@@ -14,6 +14,7 @@ from __future__ import annotations
 from typing import Any
 
 from pdcp_studio.bus.trace.bulk import BulkTransfers
+from pdcp_studio.bus.trace.files.nodemap import load_node_map, node_map_json
 from pdcp_studio.bus.trace.frames import (
     CACHE_SIZE,
     CHANNEL_DATA,
@@ -29,7 +30,6 @@ from pdcp_studio.bus.trace.frames import (
 )
 from pdcp_studio.bus.trace.inference import TrafficLearner
 from pdcp_studio.bus.trace.knowledge import INFERRED, BusKnowledge
-from pdcp_studio.bus.trace.nodemap import load_node_map, node_map_json
 from pdcp_studio.bus.trace.stats import EXTENDED_KEY, MonitorStats
 from pdcp_studio.errors import FrameError
 from pdcp_studio.model import parameters as P

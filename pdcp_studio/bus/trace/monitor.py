@@ -10,7 +10,8 @@ Importing it stays cheap: python-can loads only when a capture is read or writte
 
 from __future__ import annotations
 
-from pdcp_studio.bus.trace.capture import (
+from pdcp_studio.bus.trace.decoder import FrameDecoder
+from pdcp_studio.bus.trace.files.capture import (
     CAPTURE_SUFFIXES,
     PARTIAL_SUFFIX,
     CaptureError,
@@ -18,7 +19,15 @@ from pdcp_studio.bus.trace.capture import (
     open_capture,
     read_capture,
 )
-from pdcp_studio.bus.trace.decoder import FrameDecoder
+from pdcp_studio.bus.trace.files.nodemap import (
+    NODE_MAP_FORMAT,
+    NODE_MAP_SUFFIX,
+    read_node_map,
+    write_node_map,
+)
+from pdcp_studio.bus.trace.files.reader import CaptureReader
+from pdcp_studio.bus.trace.files.recorder import MAX_LOG_CHANNEL, Recorder
+from pdcp_studio.bus.trace.files.replay import CaptureReplay, node_map_words, replay
 from pdcp_studio.bus.trace.frames import (
     CACHE_SIZE,
     CHANNEL_DATA,
@@ -32,15 +41,6 @@ from pdcp_studio.bus.trace.frames import (
 )
 from pdcp_studio.bus.trace.inference import TrafficLearner
 from pdcp_studio.bus.trace.jsonout import JsonFrameWriter, frame_json, utf8_buffer
-from pdcp_studio.bus.trace.nodemap import (
-    NODE_MAP_FORMAT,
-    NODE_MAP_SUFFIX,
-    read_node_map,
-    write_node_map,
-)
-from pdcp_studio.bus.trace.reader import CaptureReader
-from pdcp_studio.bus.trace.recorder import MAX_LOG_CHANNEL, Recorder
-from pdcp_studio.bus.trace.replay import CaptureReplay, node_map_words, replay
 from pdcp_studio.bus.trace.stats import (
     EXTENDED_KEY,
     MAX_TRACKED_IDS,

@@ -37,7 +37,7 @@ from PySide6.QtWidgets import (
 from shiboken6 import isValid
 
 from pdcp_studio.app.i18n import translate
-from pdcp_studio.app.trace.formats import is_capture_name
+from pdcp_studio.app.trace.files.formats import is_capture_name
 from pdcp_studio.app.widgets.accessible_names import name_controls, plain_label
 from pdcp_studio.app.window.recent_files import RecentFiles, RecentMenu
 from pdcp_studio.app.window.status import StatusLine

@@ -27,7 +27,7 @@ class LiveRecorder:
 
     def __init__(self, path: str | Path, links: dict[int, Any] | None = None) -> None:
         from pdcp_studio.bus.trace.decoder import FrameDecoder
-        from pdcp_studio.bus.trace.recorder import Recorder
+        from pdcp_studio.bus.trace.files.recorder import Recorder
 
         self.path = Path(path)
         self.written = 0

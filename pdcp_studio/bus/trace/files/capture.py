@@ -37,7 +37,7 @@ def read_capture(path: str | Path, *, plain_frames: bool = False) -> Iterator[An
     ``plain_frames``: a BLF capture's classical 11-bit data frames may come as
     ``blf.PlainFrame`` (the same attributes, ``to_message()`` for the message itself).
     """
-    from pdcp_studio.bus.trace.reader import CaptureReader
+    from pdcp_studio.bus.trace.files.reader import CaptureReader
 
     with CaptureReader(path, plain_frames=plain_frames) as reader:
         yield from reader
@@ -48,7 +48,7 @@ def read_capture(path: str | Path, *, plain_frames: bool = False) -> Iterator[An
 def open_capture(path: str | Path, *,
                  plain_frames: bool = False) -> tuple[Iterator[Any], Callable[[], None]]:
     """A capture's frames and how to close it early (``CaptureReader`` for its damage)."""
-    from pdcp_studio.bus.trace.reader import CaptureReader
+    from pdcp_studio.bus.trace.files.reader import CaptureReader
 
     reader = CaptureReader(path, plain_frames=plain_frames)
     return iter(reader), reader.close

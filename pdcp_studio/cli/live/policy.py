@@ -29,7 +29,7 @@ def add_subparser(subparsers: argparse._SubParsersAction[argparse.ArgumentParser
                    help="may start-up and the duty cycle autoconfigure on their own?")
     p.add_argument("--memory", metavar="FILE",
                    help="PDCP Studio's own arbitrator memory (sim: and can: buses)")
-    from pdcp_studio.cli.change_road import add_road_arguments
+    from pdcp_studio.cli.live.change_road import add_road_arguments
 
     add_road_arguments(p)
     p.set_defaults(func=run)
@@ -37,8 +37,8 @@ def add_subparser(subparsers: argparse._SubParsersAction[argparse.ArgumentParser
 
 def run(args: argparse.Namespace) -> int:
     from pdcp_studio.bus.transaction import Change, Policy
-    from pdcp_studio.cli.change_road import carry_out
-    from pdcp_studio.cli.scan import open_bus_session
+    from pdcp_studio.cli.live.change_road import carry_out
+    from pdcp_studio.cli.live.scan import open_bus_session
     from pdcp_studio.engine.policy_change import policy_switch
 
     session = open_bus_session(args.bus, memory=args.memory)

@@ -96,7 +96,7 @@ def run(args: argparse.Namespace) -> int:
         raise BadInput(f"--bus {args.bus}: the arbitrator runs on a can: bus "
                        "(can:INTERFACE:CHANNEL[@BITRATE])")
     if args.memory is not None:
-        from pdcp_studio.cli.scan import check_memory_path
+        from pdcp_studio.cli.live.scan import check_memory_path
 
         check_memory_path(args.memory)
     server_cls = None
@@ -110,7 +110,7 @@ def run(args: argparse.Namespace) -> int:
         server_cls = HostLinkServer
 
     from pdcp_studio.bus.arbitrator.core import Arbitrator
-    from pdcp_studio.cli.arbitrator_log import ArbitratorLog
+    from pdcp_studio.cli.live.arbitrator_log import ArbitratorLog
 
     # One line per event (names escaped), each said once, errors at most 5 lines a second.
     log = ArbitratorLog(describe)

@@ -12,8 +12,8 @@ import os
 from pathlib import Path
 from typing import Any
 
-from pdcp_studio.bus.trace.capture import PARTIAL_SUFFIX, CaptureError, CaptureWriteError
-from pdcp_studio.bus.trace.nodemap import write_node_map
+from pdcp_studio.bus.trace.files.capture import PARTIAL_SUFFIX, CaptureError, CaptureWriteError
+from pdcp_studio.bus.trace.files.nodemap import write_node_map
 
 #: Largest channel number the log formats carry (BLF stores a u16; 255 is plenty for CAN).
 MAX_LOG_CHANNEL = 255

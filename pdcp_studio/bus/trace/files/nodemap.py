@@ -7,7 +7,7 @@ import json
 from pathlib import Path
 from typing import Any
 
-from pdcp_studio.bus.trace.capture import CaptureError
+from pdcp_studio.bus.trace.files.capture import CaptureError
 from pdcp_studio.bus.trace.frames import LinkMap, ref_json
 from pdcp_studio.bus.trace.knowledge import BusKnowledge
 from pdcp_studio.model.refs import ChannelRef, DeviceKey, Direction

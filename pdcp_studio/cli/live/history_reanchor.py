@@ -24,7 +24,7 @@ ACTION = "history re-anchored"
 
 
 def add_parser(actions: argparse._SubParsersAction[argparse.ArgumentParser]) -> None:
-    from pdcp_studio.cli.change_road import add_archive_argument
+    from pdcp_studio.cli.live.change_road import add_archive_argument
 
     p = actions.add_parser(
         "re-anchor", help="tie a prosthesis whose fitting history is lost to this archive, "
@@ -50,7 +50,7 @@ def add_parser(actions: argparse._SubParsersAction[argparse.ArgumentParser]) -> 
 
 def run(args: argparse.Namespace) -> int:
     from pdcp_studio.bus.session.urls import check_bus_url
-    from pdcp_studio.cli.scan import open_bus_session
+    from pdcp_studio.cli.live.scan import open_bus_session
     from pdcp_studio.storage.archive import HistoryError, open_archive
 
     check_bus_url(args.bus)

@@ -32,7 +32,7 @@ from collections.abc import Callable, Iterator
 from pathlib import Path
 from typing import IO, Any, Protocol
 
-from pdcp_studio.bus.trace.capture import PARTIAL_SUFFIX, CaptureError
+from pdcp_studio.bus.trace.files.capture import PARTIAL_SUFFIX, CaptureError
 
 #: Bytes read to tell the format.
 SNIFF_BYTES = 1 << 16
@@ -366,7 +366,7 @@ class CaptureReader:
                            CHUNK_BYTES if self._cancel is None else CANCELLABLE_CHUNK_BYTES)
             file: Any = lines  # a text file as python-can reads one
             if fmt == "asc":
-                from pdcp_studio.bus.trace.asc import QuickASCReader
+                from pdcp_studio.bus.trace.files.asc import QuickASCReader
 
                 return QuickASCReader(file, relative_timestamp=False), lines
             if fmt == "trc":
@@ -435,7 +435,7 @@ class CaptureReader:
         import struct
         import zlib
 
-        from pdcp_studio.bus.trace.blf import COMPATIBLE, FastBLFReader
+        from pdcp_studio.bus.trace.files.blf import COMPATIBLE, FastBLFReader
 
         try:
             import can

@@ -89,9 +89,9 @@ class CaptureReplay:
 
     def __init__(self, path: str | Path, decoder: FrameDecoder | None = None, *,
                  plain_frames: bool = True, cancel: Any = None) -> None:
-        from pdcp_studio.bus.trace.capture import CaptureError
-        from pdcp_studio.bus.trace.nodemap import NODE_MAP_SUFFIX, read_node_map
-        from pdcp_studio.bus.trace.reader import CaptureReader
+        from pdcp_studio.bus.trace.files.capture import CaptureError
+        from pdcp_studio.bus.trace.files.nodemap import NODE_MAP_SUFFIX, read_node_map
+        from pdcp_studio.bus.trace.files.reader import CaptureReader
 
         self.decoder = decoder if decoder is not None else FrameDecoder()
         self.decoder.context_checked = True  # a capture may hold another bus's frames
@@ -136,7 +136,7 @@ class CaptureReplay:
 def replay(path: str | Path, decoder: FrameDecoder | None = None) -> Iterator[DecodedFrame]:
     """Decode a capture frame by frame (pass a decoder to read its statistics afterwards);
     a capture cut short gives its frames up to the cut, then CaptureError says where."""
-    from pdcp_studio.bus.trace.capture import CaptureError
+    from pdcp_studio.bus.trace.files.capture import CaptureError
 
     with CaptureReplay(path, decoder) as opened:
         yield from opened.decoded()

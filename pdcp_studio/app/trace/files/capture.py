@@ -1,7 +1,7 @@
 """Reading a capture into a ``FrameStore`` and writing a store back out, off the GUI thread.
 
 ``load_capture(store, stats, path, progress, cancel)`` decodes any capture the one reader
-reads (``bus.trace.replay``: the format by content, the capture's own node map — saved
+reads (``bus.trace.files.replay``: the format by content, the capture's own node map — saved
 beside it or learned from its traffic — and its verdict) into the store's column chunks: a
 small first chunk so the first rows show at once, then chunks of ``CHUNK_ROWS``; it returns
 a ``CaptureVerdict``. It reports ``progress(frames, permille, "")`` — the
@@ -140,7 +140,7 @@ def refuse_stream(path: str | Path) -> None:
     Stop button can interrupt (the CLI reads one as a stream: ``monitor --replay``)."""
     import stat
 
-    from pdcp_studio.bus.trace.capture import CaptureError
+    from pdcp_studio.bus.trace.files.capture import CaptureError
 
     try:
         mode = os.stat(path).st_mode
@@ -154,15 +154,15 @@ def refuse_stream(path: str | Path) -> None:
 def load_capture(store: FrameStore, stats: IdStats, path: str | Path, progress: Progress,
                  cancel: threading.Event, state: LoadState | None = None) -> CaptureVerdict:
     """Decode the capture at ``path`` into ``store`` (and ``stats``) with its own node map
-    (the one saved beside it, else what its traffic teaches: ``bus.trace.replay``), never a
+    (the one saved beside it, else what its traffic teaches: ``bus.trace.files.replay``), never a
     live session's; returns what it is. A foreign capture's frames are stored as plain CAN
     (``F_PLAIN``), and every frame keeps its kind (error, remote, extended, FD). Raises
     ``CaptureError`` naming the file (and line or offset) when it cannot be read at all; a
     capture damaged later gives its frames up to the cut (``damage``)."""
-    from pdcp_studio.bus.trace.blf import PlainFrame
+    from pdcp_studio.bus.trace.files.blf import PlainFrame
+    from pdcp_studio.bus.trace.files.reader import ReadCancelled
+    from pdcp_studio.bus.trace.files.replay import CaptureReplay
     from pdcp_studio.bus.trace.frames import CHANNEL_DATA
-    from pdcp_studio.bus.trace.reader import ReadCancelled
-    from pdcp_studio.bus.trace.replay import CaptureReplay
 
     state = state if state is not None else LoadState()
     refuse_stream(path)
@@ -264,7 +264,7 @@ def save_store(path: str | Path, store: FrameStore, links: dict[int, Any] | None
     import can
 
     from pdcp_studio.bus.trace.decoder import FrameDecoder
-    from pdcp_studio.bus.trace.recorder import Recorder  # python-can loads only here
+    from pdcp_studio.bus.trace.files.recorder import Recorder  # python-can loads only here
 
     saved_map = ((lambda: node_map) if node_map is not None
                  else None if links is None else FrameDecoder(dict(links)).node_map)

@@ -12,7 +12,7 @@ from PySide6.QtCore import QObject
 from PySide6.QtWidgets import QToolButton
 
 from pdcp_studio.app.i18n import translate
-from pdcp_studio.app.trace.capture import save_store
+from pdcp_studio.app.trace.files.capture import save_store
 from pdcp_studio.app.trace.store import FrameStore
 from pdcp_studio.app.workers import Worker
 

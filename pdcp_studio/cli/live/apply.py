@@ -18,7 +18,7 @@ import argparse
 import json
 
 from pdcp_studio.cli import options
-from pdcp_studio.cli.change_road import add_road_arguments
+from pdcp_studio.cli.live.change_road import add_road_arguments
 from pdcp_studio.cli.main import BadInput
 from pdcp_studio.cli.plan import CONFIG_MODES, add_mode_arguments, load_config, load_tree, make_plan
 from pdcp_studio.model.safe_text import shown
@@ -78,8 +78,8 @@ def run_file(args: argparse.Namespace) -> int:
 
 def run_bus(args: argparse.Namespace) -> int:
     from pdcp_studio.bus.transaction import Change
-    from pdcp_studio.cli.change_road import carry_out
-    from pdcp_studio.cli.scan import open_bus_session
+    from pdcp_studio.cli.live.change_road import carry_out
+    from pdcp_studio.cli.live.scan import open_bus_session
     from pdcp_studio.errors import EngineError
 
     config = load_config(args.config) if args.mode in CONFIG_MODES and args.config else None

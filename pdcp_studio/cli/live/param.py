@@ -27,7 +27,7 @@ _PART = re.compile(r"^\s*(\w+)/(\w+)/(\w+)(?:#(\w+))?\s*$")
 
 
 def add_subparser(subparsers: argparse._SubParsersAction[argparse.ArgumentParser]) -> None:
-    from pdcp_studio.cli.change_road import add_road_arguments
+    from pdcp_studio.cli.live.change_road import add_road_arguments
 
     p = subparsers.add_parser("param", help="read or set one part's parameters on a live "
                                             "prosthesis", description=__doc__.split("\n\n")[0])
@@ -93,7 +93,7 @@ def _part_json(key: DeviceKey) -> dict[str, int]:
 
 
 def run_get(args: argparse.Namespace) -> int:
-    from pdcp_studio.cli.scan import open_bus_session
+    from pdcp_studio.cli.live.scan import open_bus_session
     from pdcp_studio.model import param_names
     from pdcp_studio.model.names import Names
 
@@ -131,8 +131,8 @@ def assignments_of(items: list[str]) -> dict[str, str]:
 
 def run_set(args: argparse.Namespace) -> int:
     from pdcp_studio.bus.transaction import Change, ParameterWrite
-    from pdcp_studio.cli.change_road import carry_out
-    from pdcp_studio.cli.scan import open_bus_session
+    from pdcp_studio.cli.live.change_road import carry_out
+    from pdcp_studio.cli.live.scan import open_bus_session
     from pdcp_studio.errors import ParameterError
     from pdcp_studio.model import param_names
 

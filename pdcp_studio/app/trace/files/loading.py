@@ -13,7 +13,7 @@ from PySide6.QtCore import QObject
 
 from pdcp_studio.app.i18n import translate
 from pdcp_studio.app.trace.bar import TraceBar
-from pdcp_studio.app.trace.capture import CaptureVerdict, LoadState, load_capture
+from pdcp_studio.app.trace.files.capture import CaptureVerdict, LoadState, load_capture
 from pdcp_studio.app.trace.store import FrameStore, IdStats
 from pdcp_studio.app.workers import Worker
 

@@ -10,7 +10,7 @@ from typing import Any
 from PySide6.QtWidgets import QFileDialog, QToolButton, QWidget
 
 from pdcp_studio.app.i18n import translate
-from pdcp_studio.app.trace.record import LiveRecorder
+from pdcp_studio.app.trace.files.record import LiveRecorder
 
 
 class LiveRecording:

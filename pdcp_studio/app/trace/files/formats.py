@@ -1,5 +1,5 @@
 """Which files are captures, for a drop, the recent files and Open…: one list, the
-reader's (``bus.trace.capture.CAPTURE_SUFFIXES``, gzipped too), and MF4, which python-can
+reader's (``bus.trace.files.capture.CAPTURE_SUFFIXES``, gzipped too), and MF4, which python-can
 reads only with its ``mf4`` extra (asammdf): offered all the same, the trace then names
 what is missing rather than the file being refused without a word. The reader tells the
 format by content; the name only decides where a dropped file goes."""
@@ -10,7 +10,7 @@ import importlib.util
 from pathlib import Path
 
 from pdcp_studio.app.i18n import translate
-from pdcp_studio.bus.trace.capture import CAPTURE_SUFFIXES
+from pdcp_studio.bus.trace.files.capture import CAPTURE_SUFFIXES
 
 MF4_SUFFIX = ".mf4"
 #: Every name a capture may have (without ``.gz``).

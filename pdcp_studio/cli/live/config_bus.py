@@ -25,7 +25,7 @@ from pdcp_studio.model.safe_text import shown
 def add_bus_commands(actions: argparse._SubParsersAction[argparse.ArgumentParser]) -> None:
     """Register ``read``, ``write`` and ``save`` under ``config`` (called by
     cli/config_cmd.py)."""
-    from pdcp_studio.cli.change_road import add_archive_argument, add_road_arguments
+    from pdcp_studio.cli.live.change_road import add_archive_argument, add_road_arguments
 
     read = actions.add_parser("read", help="save an arbitrator's stored configuration")
     read.add_argument("--bus", required=True, metavar="URL", help="the bus (contracts §3)")
@@ -80,7 +80,7 @@ def describe_change(current: ConfigCollection, new: ConfigCollection) -> list[st
 
 
 def run_read(args: argparse.Namespace) -> int:
-    from pdcp_studio.cli.scan import open_bus_session
+    from pdcp_studio.cli.live.scan import open_bus_session
     from pdcp_studio.storage import config_codec
 
     session = open_bus_session(args.bus, memory=args.memory)
@@ -103,9 +103,9 @@ def _print_change(current: ConfigCollection, new: ConfigCollection) -> None:
 def run_write(args: argparse.Namespace) -> int:
     """Show the difference; with ``--yes``, write it as a transaction (reference §5)."""
     from pdcp_studio.bus.transaction import Change
-    from pdcp_studio.cli.change_road import carry_out
+    from pdcp_studio.cli.live.change_road import carry_out
+    from pdcp_studio.cli.live.scan import open_bus_session
     from pdcp_studio.cli.main import BadInput
-    from pdcp_studio.cli.scan import open_bus_session
     from pdcp_studio.errors import ConfigFormatError
     from pdcp_studio.storage import config_codec
 
@@ -136,8 +136,8 @@ def run_write(args: argparse.Namespace) -> int:
 def run_save(args: argparse.Namespace) -> int:
     """``config save --bus URL [--yes]``: the live links become the stored configuration."""
     from pdcp_studio.bus.transaction import Change
-    from pdcp_studio.cli.change_road import carry_out
-    from pdcp_studio.cli.scan import open_bus_session
+    from pdcp_studio.cli.live.change_road import carry_out
+    from pdcp_studio.cli.live.scan import open_bus_session
 
     session = open_bus_session(args.bus, memory=args.memory)
     try:
