@@ -276,6 +276,39 @@ def test_the_duty_cycle_follows_changes_after_start_up():
     assert not profile.startup_done and not profile.duty_needed and profile.started == 3.0
 
 
+def test_a_duty_cycle_under_way_is_not_settled_before_its_plan_is_written():
+    """From the moment the duty cycle takes what it owes until it is done, the bus is not
+    settled: a script waiting for "settled" once closed the session between the two (the
+    duty cycle was still planning, under two CPU burners) and its plan was never written."""
+    from pdcp_studio.bus.arbitrator.profile.driver import ProfilePorts
+    from pdcp_studio.bus.arbitrator.state import SystemState
+
+    state = SystemState()
+    seen: list[bool] = []
+
+    def no_policy() -> object:
+        raise OSError("no memory in this test")
+
+    profile = ProfileDriver(ProfilePorts(  # type: ignore[arg-type]
+        state=state, add_link=lambda link: None, remove_link=lambda link: None,
+        interlock=None, read_memory=list, read_policy=no_policy,
+        error=lambda *a: None, emit=lambda event: None, closed=lambda: False, name="test"),
+        0.0, quiet_s=0.5, duty_quiet_s=0.05, max_wait_s=10.0, listen_until=0.0)
+    profile.startup_done, profile.duty_needed = True, True
+    assert not profile.settled(True)  # a duty cycle is owed
+
+    taken = state.snapshot
+
+    def snapshot_while_planning() -> object:
+        seen.append(profile.settled(True))  # what a waiting script sees while it plans
+        return taken()
+
+    state.snapshot = snapshot_while_planning  # type: ignore[method-assign]
+    profile.run_duty_cycle()
+    assert seen == [False]
+    assert profile.settled(True) and profile.plan_running == 0  # and settled once done
+
+
 # -- one device reader for set-up and scan -------------------------------------------------------
 class TableDevice:
     """A device's parameter table answering Get Parameter (refusing what it lacks)."""

@@ -279,20 +279,26 @@ class ProfileDriver:
         ports = self._ports
         with ports.state.wire_lock:
             with ports.state.lock:
+                # The cycle owed is under way from here, not only once its plan is written:
+                # between the two the bus looked settled, and a script that waited for that
+                # closed the session under the plan ("did not suspend", two CPU burners).
                 self.duty_needed = False
+                self.plan_running += 1
                 before = set(self.last_present)
-            snapshot = ports.state.snapshot()
-            autoconfigure = self._policy_for_plans()
-            plan = plan_duty_cycle(snapshot, before, autoconfigure=autoconfigure)
             written = True
             try:
+                snapshot = ports.state.snapshot()
+                autoconfigure = self._policy_for_plans()
+                plan = plan_duty_cycle(snapshot, before, autoconfigure=autoconfigure)
                 if plan.actions:
                     written = self._apply_held(plan, snapshot)
                 if written:
                     self._report_policy(plan, autoconfigure)
             finally:
-                if written:  # else the channels that left are still owed a replacement:
-                    with ports.state.lock:  # the next join or leave plans for them too
+                with ports.state.lock:
+                    self.plan_running -= 1
+                    if written:  # else the channels that left are still owed a replacement:
+                        # the next join or leave plans for them too
                         self.last_present = present_refs(ports.state.system)
         return plan
 
