@@ -6,7 +6,9 @@ sent again and the retransmit buffer is one frame. The receiver:
 
 - DATA with the expected seq → delivered, ACK(seq), expected + 1;
 - DATA with expected − 1 (our ACK was lost) → ACK again, *not* delivered: a request is never
-  executed twice;
+  executed twice; but one whose message differs from the last delivered is no repeat: the
+  peer numbers anew from a RESET it read late, and the two ends reset (the host sends RESET,
+  the arbitrator asks for one) rather than lose it without a word;
 - DATA with any other seq → NAK(expected), not delivered;
 - a frame that fails COBS, length or CRC → NAK(expected), so the sender need not wait.
 
@@ -88,6 +90,8 @@ class LinkEndpoint:
         self._failed: list[bytes] = []
         self._out_of_order_run = 0
         self._resynced = False
+        #: The last message delivered since the last reset: a true repeat carries it again.
+        self._last_delivered: bytes | None = None
         #: What the last reset dropped (the owner may count lost events from it).
         self.reset_dropped: list[bytes] = []
 
@@ -106,6 +110,7 @@ class LinkEndpoint:
         ``discard_partial`` also forgets a frame half read (when the owner resets between
         reads, never while a read's frames are handled: the next frame may be half read)."""
         self._tx_seq = self._rx_expected = 0
+        self._last_delivered = None
         dropped = ([self._inflight.payload] if self._inflight else []) + list(self._outbox)
         self.stats.reset_dropped += len(dropped)
         self.reset_dropped = dropped[-self.outbox_limit:]
@@ -189,7 +194,18 @@ class LinkEndpoint:
                 self._rx_expected = (self._rx_expected + 1) & 0xFF
                 self._control.append(Frame(Kind.ACK, frame.seq).encode())
                 delivered.append(frame.payload)
+                self._last_delivered = frame.payload
             elif frame.seq == (self._rx_expected - 1) & 0xFF:
+                if self._last_delivered is not None and frame.payload != self._last_delivered:
+                    # Not a repeat (a repeat is the same frame): the peer numbers anew from a
+                    # RESET it read late, after it had answered with the number we last took.
+                    # Taken as a repeat this message would be lost without a word.
+                    self.stats.out_of_order += 1
+                    if self.host:
+                        self.reset(now)
+                    else:
+                        self._ask_reset()
+                    return
                 self.stats.duplicates += 1
                 self._control.append(Frame(Kind.ACK, frame.seq).encode())
             else:

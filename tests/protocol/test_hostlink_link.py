@@ -133,3 +133,36 @@ def test_a_message_queued_behind_a_given_up_frame_is_still_sent():
     acks["on"] = True
     line.step(dt=0.02, rounds=20)
     assert b"\x82\x00status" in line.got["host"]
+
+
+def test_a_frame_numbered_like_the_last_but_carrying_another_message_resets_the_link():
+    """host-link §3.2 Decision, from a trace on QEMU under load: the firmware answered an
+    older HELLO as seq 0, read the PC's last RESET only then, and sent the next reply as seq 0
+    again. Taken for a repeat it was acknowledged and dropped (the PC waited out its 20 s);
+    now the PC resets the link, and a true repeat is still only acknowledged again."""
+    from pdcp_studio.protocol.hostlink import Frame, Kind
+
+    host = LinkEndpoint(host=True)
+    assert host.receive(Frame(Kind.DATA, 0, b"\x81\x00hello").encode(), 0.0) == \
+        [b"\x81\x00hello"]
+    host.take_output()
+    host.take_resynced()
+    # the same frame again (our ACK was lost): acknowledged, not delivered, no reset
+    assert host.receive(Frame(Kind.DATA, 0, b"\x81\x00hello").encode(), 0.1) == []
+    assert host.take_output() == Frame(Kind.ACK, 0).encode()
+    assert not host.take_resynced()
+    # seq 0 again with another message: the peer numbers anew; not acknowledged as a repeat
+    assert host.receive(Frame(Kind.DATA, 0, b"\x82\x00status").encode(), 0.2) == []
+    assert host.take_resynced()
+    out = host.take_output()
+    assert Frame(Kind.RESET, 0).encode() in out and Frame(Kind.ACK, 0).encode() not in out
+    # after the reset both ends count from 0: the reply sent again is delivered
+    assert host.receive(Frame(Kind.DATA, 0, b"\x82\x00status").encode(), 0.3) == \
+        [b"\x82\x00status"]
+
+    arbitrator = LinkEndpoint(host=False)
+    arbitrator.receive(Frame(Kind.DATA, 0, b"\x02").encode(), 0.0)
+    arbitrator.take_output()
+    assert arbitrator.receive(Frame(Kind.DATA, 0, b"\x05list").encode(), 0.1) == []
+    out = arbitrator.take_output()  # it asks the PC to renumber, and runs nothing twice
+    assert out == Frame(Kind.RESET, 0).encode()
