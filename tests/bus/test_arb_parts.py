@@ -276,15 +276,9 @@ def test_the_duty_cycle_follows_changes_after_start_up():
     assert not profile.startup_done and not profile.duty_needed and profile.started == 3.0
 
 
-def test_a_duty_cycle_under_way_is_not_settled_before_its_plan_is_written():
-    """From the moment the duty cycle takes what it owes until it is done, the bus is not
-    settled: a script waiting for "settled" once closed the session between the two (the
-    duty cycle was still planning, under two CPU burners) and its plan was never written."""
+def _driver_on(state: object) -> ProfileDriver:
+    """A profile driver on ``state`` whose other ports do nothing (policy: unreadable)."""
     from pdcp_studio.bus.arbitrator.profile.driver import ProfilePorts
-    from pdcp_studio.bus.arbitrator.state import SystemState
-
-    state = SystemState()
-    seen: list[bool] = []
 
     def no_policy() -> object:
         raise OSError("no memory in this test")
@@ -295,6 +289,18 @@ def test_a_duty_cycle_under_way_is_not_settled_before_its_plan_is_written():
         error=lambda *a: None, emit=lambda event: None, closed=lambda: False, name="test"),
         0.0, quiet_s=0.5, duty_quiet_s=0.05, max_wait_s=10.0, listen_until=0.0)
     profile.startup_done, profile.duty_needed = True, True
+    return profile
+
+
+def test_a_duty_cycle_under_way_is_not_settled_before_its_plan_is_written():
+    """From the moment the duty cycle takes what it owes until it is done, the bus is not
+    settled: a script waiting for "settled" once closed the session between the two (the
+    duty cycle was still planning, under two CPU burners) and its plan was never written."""
+    from pdcp_studio.bus.arbitrator.state import SystemState
+
+    state = SystemState()
+    seen: list[bool] = []
+    profile = _driver_on(state)
     assert not profile.settled(True)  # a duty cycle is owed
 
     taken = state.snapshot
@@ -307,6 +313,25 @@ def test_a_duty_cycle_under_way_is_not_settled_before_its_plan_is_written():
     profile.run_duty_cycle()
     assert seen == [False]
     assert profile.settled(True) and profile.plan_running == 0  # and settled once done
+
+
+def test_a_duty_cycle_whose_plan_fails_leaves_what_it_owes_owed(monkeypatch):
+    """A plan that could not be made writes nothing and forgets nothing: the channels that
+    left are planned for at the next join or leave; the bus is not left looking busy."""
+    import pdcp_studio.engine as engine
+    from pdcp_studio.bus.arbitrator.state import SystemState
+
+    profile = _driver_on(SystemState())
+    owed = {ChannelRef(2, 2, 5, 1)}
+    profile.last_present = set(owed)
+
+    def fails(*args: object, **kwargs: object) -> None:
+        raise RuntimeError("the plan could not be made")
+
+    monkeypatch.setattr(engine, "plan_duty_cycle", fails)
+    with pytest.raises(RuntimeError):
+        profile.run_duty_cycle()
+    assert profile.last_present == owed and profile.plan_running == 0
 
 
 # -- one device reader for set-up and scan -------------------------------------------------------

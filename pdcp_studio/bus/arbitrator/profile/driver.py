@@ -285,11 +285,12 @@ class ProfileDriver:
                 self.duty_needed = False
                 self.plan_running += 1
                 before = set(self.last_present)
-            written = True
+            written = False  # a plan that could not be made leaves what it owes owed
             try:
                 snapshot = ports.state.snapshot()
                 autoconfigure = self._policy_for_plans()
                 plan = plan_duty_cycle(snapshot, before, autoconfigure=autoconfigure)
+                written = True
                 if plan.actions:
                     written = self._apply_held(plan, snapshot)
                 if written:
