@@ -54,6 +54,10 @@ static uint8_t rx[MAX_ENC];
 static uint16_t rx_len;
 static uint8_t rx_over;
 static uint8_t tx_seq, rx_expected;
+/* The CRC of the last DATA frame delivered since a RESET (last_ok: there is one): a repeat is
+ * the same frame, so one numbered like it with another CRC is the PC numbering anew (§3.2). */
+static uint16_t last_crc;
+static uint8_t last_ok;
 
 static uint8_t inflight[MAX_ENC + 1];
 static uint16_t inflight_len;
@@ -210,6 +214,8 @@ static void on_frame(uint8_t *raw, uint16_t n)
         if (seq == rx_expected) {
             control(2, seq);
             rx_expected++;
+            last_crc = c;
+            last_ok = 1;
             /* A request waiting while the PC sent another: the PC gave the first up (its reply
              * timed out), so the new one takes its place — unless the first is running. */
             if (raw[2] && (!mailbox_len || !handling)) {
@@ -217,7 +223,8 @@ static void on_frame(uint8_t *raw, uint16_t n)
                 mailbox_len = raw[2];
             }
         } else if (seq == (uint8_t)(rx_expected - 1)) {
-            control(2, seq);
+            if (last_ok && c != last_crc) control(4, 0);  /* not a repeat: "renumber, please" */
+            else control(2, seq);
         } else {
             control(3, rx_expected);
         }
@@ -241,6 +248,7 @@ static void on_frame(uint8_t *raw, uint16_t n)
             if (is_counted_event(events[(ev_head + i) % EVENT_QUEUE][0])) dropped++;
         if (dropped && greeted) { events_lost = (uint16_t)(events_lost + dropped); lost_pending = 1; }
         tx_seq = rx_expected = 0;
+        last_ok = 0;
         inflight_len = 0;
         reply_len = 0;
         ev_count = 0;
@@ -881,4 +889,5 @@ void hl_init(void)
 {
     rx_len = 0;
     tx_seq = rx_expected = 0;
+    last_ok = 0;
 }

@@ -251,3 +251,53 @@ def test_a_reply_waiting_behind_a_given_up_frame_still_reaches_the_pc(bus_url, t
         firmware.stop()
         devices.close()
     assert "a frame was given up" in firmware.log.read_text()
+
+
+def test_a_request_numbered_like_the_last_but_another_asks_the_pc_to_renumber(bus_url,
+                                                                              tmp_path):
+    """host-link §3.2 Decision: a repeat is the same frame. The firmware acknowledges a true
+    repeat again and runs nothing twice; a request numbered like the last one but with
+    another CRC (the PC numbers anew from a RESET the firmware read late) is not taken for a
+    repeat and dropped: the firmware asks the PC to renumber (a RESET frame)."""
+    import serial
+
+    from pdcp_studio.protocol.hostlink import Frame, FrameReader, Kind
+
+    firmware = Firmware(bus_url, tmp_path / "memory.bin")
+    port = None
+    try:
+        port = serial.Serial(firmware.serial_url.split(":", 1)[1], 115200, timeout=0.05)
+        reader = FrameReader()
+
+        def frames(seconds: float) -> list[Frame]:
+            got: list[Frame] = []
+            end = time.monotonic() + seconds
+            while time.monotonic() < end:
+                for item in reader.feed(port.read(512)):
+                    if isinstance(item, Frame):
+                        got.append(item)
+                        if item.kind is Kind.DATA:
+                            port.write(Frame(Kind.ACK, item.seq).encode())
+            return got
+
+        hello = Frame(Kind.DATA, 0, b"\x01\x02\xff\xff").encode()
+        greeted = False
+        deadline = time.monotonic() + 20
+        while not greeted and time.monotonic() < deadline:
+            port.write(Frame(Kind.RESET, 0).encode() + hello)
+            greeted = any(f.kind is Kind.DATA and f.payload[:2] == b"\x81\x00"
+                          for f in frames(0.5))
+        assert greeted, "the firmware did not answer HELLO"
+        frames(0.5)  # anything else it had to say, acknowledged
+        port.write(hello)  # a true repeat: acknowledged again, not answered again
+        seen = frames(1.0)
+        assert [(f.kind, f.seq) for f in seen] == [(Kind.ACK, 0)], seen
+        port.write(Frame(Kind.DATA, 0, b"\x02").encode())  # STATUS numbered like HELLO
+        seen = frames(1.5)
+        assert (Kind.RESET, 0) in [(f.kind, f.seq) for f in seen], seen
+        assert not any(f.kind is Kind.ACK for f in seen), seen
+        assert not any(f.kind is Kind.DATA and f.payload[:1] == b"\x82" for f in seen), seen
+    finally:
+        if port is not None:
+            port.close()
+        firmware.stop()
