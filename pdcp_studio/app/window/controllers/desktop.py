@@ -10,6 +10,7 @@ docks). The Help menu's and the shortcuts' actions are in :mod:`.actions`.
 
 from __future__ import annotations
 
+import contextlib
 from collections.abc import Callable
 from pathlib import Path
 from typing import Any
@@ -69,10 +70,8 @@ def dropped_files(event: QDragEnterEvent | QDragMoveEvent | QDropEvent) -> list[
 
 
 def _name_later(widget: QWidget) -> None:
-    try:
-        name_controls(widget)
-    except RuntimeError:
-        pass  # closed and deleted before the event loop came back
+    with contextlib.suppress(RuntimeError):  # closed and deleted before the event loop
+        name_controls(widget)                # came back
 
 
 class _DesktopFilter(QObject):

@@ -277,13 +277,12 @@ class ProfileDriver:
         from pdcp_studio.engine import plan_duty_cycle
 
         ports = self._ports
-        with ports.state.wire_lock:
+        # Under way from taking what it owes until done, not only while its plan is written:
+        # in between the bus looked settled, and a script that waited for that closed the
+        # session under the plan ("did not suspend", two CPU burners).
+        with ports.state.wire_lock, self.running():
             with ports.state.lock:
-                # The cycle owed is under way from here, not only once its plan is written:
-                # between the two the bus looked settled, and a script that waited for that
-                # closed the session under the plan ("did not suspend", two CPU burners).
                 self.duty_needed = False
-                self.plan_running += 1
                 before = set(self.last_present)
             written = False  # a plan that could not be made leaves what it owes owed
             try:
@@ -296,10 +295,8 @@ class ProfileDriver:
                 if written:
                     self._report_policy(plan, autoconfigure)
             finally:
-                with ports.state.lock:
-                    self.plan_running -= 1
-                    if written:  # else the channels that left are still owed a replacement:
-                        # the next join or leave plans for them too
+                if written:  # else the channels that left are still owed a replacement:
+                    with ports.state.lock:  # the next join or leave plans for them too
                         self.last_present = present_refs(ports.state.system)
         return plan
 
