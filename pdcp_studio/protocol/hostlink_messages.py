@@ -69,6 +69,7 @@ class Event(IntEnum):
     EVENTS_LOST = 0x49
     TRANSACTION_DONE = 0x4A
     TERMINALS_UNCONNECTED = 0x4B
+    DEVICE_REPLACED = 0x4C
 
 
 class Status(IntEnum):

@@ -331,3 +331,43 @@ def test_the_autoconfigure_policy_over_the_host_link(live, qtbot, rig):
         "policy autoconfigure off")
     qtbot.waitUntil(lambda: live.policy_label.text() == "Autoconfigure: off", timeout=WAIT_MS)
     assert not live.act_autoconfigure.isChecked()
+
+
+def test_a_replaced_hand_is_no_longer_missing_over_the_host_link(live, rig, qtbot):
+    """As on ``sim:`` (test_app_replaced_part.py): once the replacement is written and
+    verified the arbitrator forgets the old hand, and so does the window — it is not left
+    missing, and Bus events says what replaced it, not that it "left" again (DEVICE_REPLACED,
+    docs/host-link.md §5.7)."""
+    from pdcp_studio.app.wizards import logic
+    from pdcp_studio.bus.sim.rigs import SPARE_HAND
+    from pdcp_studio.bus.transaction import Change
+    from pdcp_studio.engine import configuration_from_system
+    from pdcp_studio.model.configuration import ConfigCollection
+
+    def missing() -> list[DeviceKey]:
+        return [k for k, d in live.doc.system.devices.items() if not d.present]
+
+    panel = live._leaf_docks["events"].widget()
+    assert rig.arbitrator.transact(Change("config save", configuration=ConfigCollection(
+        [configuration_from_system(rig.arbitrator.system())]))).written
+    qtbot.waitUntil(lambda: bool(live.doc.config.configurations), timeout=WAIT_MS)
+    rig.host.unplug(HAND)
+    qtbot.waitUntil(lambda: missing() == [HAND], timeout=WAIT_MS)
+    rig.host.plug(SPARE_HAND)
+    qtbot.waitUntil(lambda: sum(lk.input.device == SPARE_HAND
+                                for lk in live.doc.system.links) == 3, timeout=WAIT_MS)
+    assert missing() == [HAND]  # linked by the duty cycle, not yet a fitting
+    system = rig.arbitrator.system()
+    change = logic.replacement_change(system, logic.replacement_plan(
+        system, live.live.bridge.session.read_configuration(), [SPARE_HAND]))
+    with qtbot.waitSignal(live.flow.finished, timeout=WAIT_MS) as got:
+        live.flow.run(change, "Replace a part")
+    assert got.args[0].written, got.args[0].summary()
+    assert HAND not in rig.arbitrator.system().devices  # the arbitrator forgot it
+    qtbot.waitUntil(lambda: HAND not in live.doc.system.devices, timeout=WAIT_MS)
+    assert missing() == []
+    qtbot.waitUntil(lambda: any("is replaced by" in w for w, _y, _s in panel.rows()),
+                    timeout=WAIT_MS)
+    said = [w for w, _y, _s in panel.rows() if "serial 301" in w]
+    assert said[-1].endswith("is replaced by Multi-grip hand with wrist rotator (serial 302)")
+    assert not any(w.endswith("left the bus") for w in said)  # (it left when unplugged)

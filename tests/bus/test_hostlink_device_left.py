@@ -135,5 +135,28 @@ def test_the_server_saturates_long_silences_and_sends_the_key_alone_when_it_know
     long = server.handlers.event_message(ev.DeviceLeft(EMG1, why="w", silent_s=100.0,
                                                        interval_s=0.5))
     assert long is not None and long[7:9] == b"\xff\xff"
-    bare = server.handlers.event_message(ev.DeviceReplaced(EMG1, DeviceKey(VID, 257, 102)))
+    bare = server.handlers.event_message(ev.DeviceLeft(EMG1))
     assert bare == bytes([Event.DEVICE_LEFT]) + hr.pack_key(EMG1)
+
+
+# -- a replaced part (DEVICE_REPLACED, §5.7) --------------------
+EMG2 = DeviceKey(VID, 257, 102)
+
+
+def test_the_server_says_a_replacement_as_such_not_as_a_part_that_left(rig):
+    _, server, _ = rig
+    message = server.handlers.event_message(ev.DeviceReplaced(EMG1, EMG2))
+    assert message == bytes([Event.DEVICE_REPLACED]) + hr.pack_key(EMG1) + hr.pack_key(EMG2)
+
+
+def test_the_pc_reads_a_replacement_into_the_same_event_as_on_the_bus(session):
+    seen: list[object] = []
+    unsubscribe = session.subscribe(seen.append)
+    try:
+        session._on_event(bytes([Event.DEVICE_REPLACED]) + hr.pack_key(EMG1)
+                          + hr.pack_key(EMG2))
+        session._on_event(bytes([Event.DEVICE_REPLACED]) + hr.pack_key(EMG1))  # malformed
+    finally:
+        unsubscribe()
+    assert [(type(e).__name__, e.key, getattr(e, "new", None)) for e in seen] == [
+        ("DeviceReplaced", EMG1, EMG2)]  # the short one is logged, never raised

@@ -184,6 +184,8 @@ def messages() -> list[tuple[str, bytes]]:
         ("TRANSACTION_DONE event", bytes([Event.TRANSACTION_DONE, 0]) + b"apply"),
         ("TERMINALS_UNCONNECTED event", bytes([Event.TERMINALS_UNCONNECTED, 1])
          + hm.REF.pack(*HAND, 1) + b"autoconfigure is off"),
+        ("DEVICE_REPLACED event", bytes([Event.DEVICE_REPLACED]) + hr.pack_key(HAND)
+         + hr.pack_key(DeviceKey(HAND[0], HAND[1], HAND[2] + 1))),
     ]
 
 

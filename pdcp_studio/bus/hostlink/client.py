@@ -163,6 +163,12 @@ class HostLinkSession(BusSession):
                     cache.links_stale = True
                 self._emit(ev.DeviceLeft(left.key, why=left.why, silent_s=left.silent_s,
                                          interval_s=left.interval_s))
+            elif code == Event.DEVICE_REPLACED:  # the old key, the new one (§5.7)
+                old, new = hr.unpack_key(body), hr.unpack_key(body, hm.KEY.size)
+                with cache.lock:
+                    cache.stale.update((old, new))
+                    cache.links_stale = True
+                self._emit(ev.DeviceReplaced(old, new))
             elif code in (Event.LINK_MADE, Event.LINK_REMOVED):
                 link, _ = hr.unpack_link_event(body)
                 with cache.lock:
