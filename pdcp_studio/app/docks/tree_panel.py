@@ -20,9 +20,9 @@ from pdcp_studio.app.words.part_names import (
     names,
     numbers,
     part_name,
-    part_names,
 )
 from pdcp_studio.model import profile as prof
+from pdcp_studio.model.names import Names
 from pdcp_studio.model.refs import ChannelRef, DeviceKey
 from pdcp_studio.model.system import Link
 
@@ -67,9 +67,10 @@ class DeviceTree(QTreeWidget):
             self.clear()
             self._rows.clear()
             self._signatures.clear()
-            self._names = dict(part_names(self.doc.system))
+            naming = names(self.doc.system)  # once: each lookup reads the whole system
+            self._names = naming.parts()
             for key in self.ordered_keys():
-                self.addTopLevelItem(self._device_row(key))
+                self.addTopLevelItem(self._device_row(key, naming))
             self.expandAll()
             self._select_row(self.doc.selection)
         finally:
@@ -83,14 +84,16 @@ class DeviceTree(QTreeWidget):
                                               pos.get(k, (0.0, 0.0))[1],
                                               devices[k].label.lower(), k))
 
-    def _device_row(self, key: DeviceKey) -> QTreeWidgetItem:
+    def _device_row(self, key: DeviceKey, naming: Names) -> QTreeWidgetItem:
+        """The device's row and its channels' rows, named by ``naming`` (the system's)."""
         device = self.doc.system.devices[key]
         role = device_role(device)
-        item = QTreeWidgetItem([part_name(self.doc.system, key),
+        name = naming.part(key)
+        item = QTreeWidgetItem([name,
                                 self.tr("missing") if not device.present
                                 else translate("Style", str(style.ROLE_LABELS[role]))])
         item.setData(0, ROLE, key)
-        self._signatures[key] = self._shown(key)
+        self._signatures[key] = self._shown(key, name)
         item.setToolTip(0, numbers(key))
         from pdcp_studio.app.widgets.kind_icons import icon_for
 
@@ -101,14 +104,13 @@ class DeviceTree(QTreeWidget):
             item.setForeground(0, QBrush(style.MISSING_TEXT))
         self._rows[key] = item
         channels = sorted(device.channels.values(), key=lambda c: (c.is_output, c.index))
-        naming = names(self.doc.system)
         for ch in channels:
             ref = device.ref(ch.index)
             arrow = "→" if ch.is_output else "←"
             # The channel's one name (descriptor, else profile name), as the graph's row.
-            name = naming.channel_only(ref, self.doc.profile_name(ch.profile))
-            child = QTreeWidgetItem([f"{arrow} #{ch.index} {name}",
-                                     self.doc.profile_name(ch.profile)])
+            profile = self.doc.profile_name(ch.profile)
+            name = naming.channel_only(ref, profile)
+            child = QTreeWidgetItem([f"{arrow} #{ch.index} {name}", profile])
             child.setToolTip(1, f"{self.doc.tree.name_of(ch.profile)} {prof.fmt(ch.profile)}")
             child.setData(0, ROLE, ref)
             if not device.present:
@@ -120,12 +122,13 @@ class DeviceTree(QTreeWidget):
             self._rows[ref] = child
         return item
 
-    def _shown(self, key: DeviceKey) -> RowSignature:
+    def _shown(self, key: DeviceKey, name: str | None = None) -> RowSignature:
         """What a device's rows show (a live snapshot reports every device as changed;
-        rows are made again only when this differs)."""
+        rows are made again only when this differs); ``name``: its part name, when known."""
         d = self.doc.system.devices[key]
-        return (part_name(self.doc.system, key), d.name, d.descriptor, d.present,
-                device_role(d),
+        if name is None:
+            name = part_name(self.doc.system, key)
+        return (name, d.name, d.descriptor, d.present, device_role(d),
                 tuple((c.index, c.is_output, c.descriptor, self.doc.profile_name(c.profile))
                       for c in sorted(d.channels.values(), key=lambda c: c.index)))
 
@@ -136,18 +139,19 @@ class DeviceTree(QTreeWidget):
             return
         if self._signatures.get(key) == self._shown(key):
             return
-        names = part_names(self.doc.system)
-        if any(names.get(k) != n for k, n in self._names.items() if k != key):
+        naming = names(self.doc.system)
+        now = naming.parts()
+        if any(now.get(k) != n for k, n in self._names.items() if k != key):
             self.rebuild()  # a renamed part changed another's name (two now read alike)
             return
-        self._names = dict(names)
+        self._names = now
         self._syncing = True
         try:
             index = self.indexOfTopLevelItem(old)
             for ref in [r for r in self._rows if isinstance(r, ChannelRef) and r.device == key]:
                 del self._rows[ref]
             self.takeTopLevelItem(index)
-            row = self._device_row(key)
+            row = self._device_row(key, naming)
             self.insertTopLevelItem(index, row)
             row.setExpanded(True)
             self._select_row(self.doc.selection)

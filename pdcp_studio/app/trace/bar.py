@@ -76,15 +76,15 @@ class NodeChoice:
 
     def learn(self, system: Any) -> None:
         """Name the nodes of ``system``'s devices and output channels."""
-        from pdcp_studio.app.words.part_names import channel_name, part_names
+        from pdcp_studio.app.words.part_names import names
 
-        parts = part_names(system)  # the one names (``model/names.py``)
+        naming = names(system)  # the one names (``model/names.py``), looked up once
         for device in system.devices.values():
             if device.node_id is not None:
-                self.names[device.node_id] = parts[device.key]
+                self.names[device.node_id] = naming.part(device.key)
         for ref, ch in system.channels():
             if ch.is_output and ch.node_id is not None:
-                self.names[ch.node_id] = channel_name(system, ref)
+                self.names[ch.node_id] = naming.channel(ref)
         self.fill()
 
     def heard(self, nodes: set[int]) -> None:
