@@ -242,6 +242,7 @@ void arb_reset_all(void);
 #endif
 int mem_current(uint32_t *len, uint16_t *crc, uint16_t *flags);   /* slot or -1 */
 int mem_read(uint32_t offset, uint8_t *buf, uint32_t len);        /* current payload */
+int mem_decode_slot(int slot, uint32_t len, char *why, int room);  /* → g_stored; 0 ok */
 int mem_begin(void);                              /* the spare slot: returns it */
 int mem_write_chunk(uint32_t offset, const uint8_t *buf, uint32_t len);
 int mem_commit(uint32_t len, uint16_t flags);     /* header last; 0 ok */

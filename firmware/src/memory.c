@@ -78,6 +78,13 @@ int mem_read(uint32_t offset, uint8_t *buf, uint32_t len)
     return port_nvm_read(cur_slot, HEADER + offset, buf, len);
 }
 
+/* A slot's payload decoded into g_stored (the configuration a transaction replaced: the
+ * slot it was current in until the commit); 0 ok. */
+int mem_decode_slot(int slot, uint32_t len, char *why, int room)
+{
+    return slot < 0 || len > MEM_CAPACITY ? -1 : config_decode(slot, HEADER, len, why, room);
+}
+
 int mem_begin(void)
 {
     spare = mem_current(0, 0, 0) == 0 ? 1 : 0;

@@ -200,6 +200,123 @@ static void restore(int cfg_written, int cfg_had, uint32_t cfg_len, uint16_t cfg
     if (policy_written) mem_write_policy(policy_before);
 }
 
+/* -- replaced parts (engine/replaced.py) ---------------------------------------------------
+ * After a verified change an absent part whose every role a present part now holds is no
+ * longer missing but replaced: forgotten (out of the tables, its dead links with it), noted in
+ * the result ("replaced A by B", the fitting history's) and said as DEVICE_REPLACED (host-link
+ * §5.7).  Its roles are the links on the bus before and after the change and those of the
+ * configuration stored before it (read from its slot into g_stored). */
+static uint8_t rep_old[MAX_DEVICES], rep_new[MAX_DEVICES];
+static int nrep;
+
+static int dev_of_ref(const ch_ref_t *r)
+{
+    dev_key_t k = { r->vid, r->pid, r->serial };
+    return dev_find(&k);
+}
+
+/* Marks in `by` the present devices that hold `old`'s end of `role` now; -1 when it is not its
+ * role or its other end is not on the bus either (nothing to judge), else how many hold it. */
+static int holders(const link_t *role, int old, uint8_t *by)
+{
+    int in_dev = dev_of_ref(&role->in), out_dev = dev_of_ref(&role->out), n = 0;
+    memset(by, 0, MAX_DEVICES);
+    if (in_dev == old && out_dev != old) {
+        if (!ref_present(&role->out, DIR_OUT)) return -1;
+        int mine = ch_find(&role->in);
+        uint16_t profile = mine >= 0 ? g_ch[mine].profile : 0;
+        for (int pass = profile ? 0 : 1; pass < 2 && !n; pass++)   /* alike first, else any fed */
+            for (uint16_t i = 0; i < g_nlinks; i++) {
+                const link_t *l = &g_links[i];
+                int d = dev_of_ref(&l->in), c = ch_find(&l->in);
+                if (ref_cmp(&l->out, &role->out) || d < 0 || d == old || !ref_present(&l->in, DIR_IN))
+                    continue;
+                if (!pass && g_ch[c].profile != profile) continue;
+                n += !by[d]; by[d] = 1;
+            }
+        return n;
+    }
+    if (out_dev == old && in_dev != old) {
+        if (!ref_present(&role->in, DIR_IN)) return -1;
+        for (uint16_t i = 0; i < g_nlinks; i++) {
+            const link_t *l = &g_links[i];
+            int d = dev_of_ref(&l->out);
+            if (ref_cmp(&l->in, &role->in) || d < 0 || d == old || !ref_present(&l->out, DIR_OUT))
+                continue;
+            n += !by[d]; by[d] = 1;
+        }
+        return n;
+    }
+    return -1;
+}
+
+static int names_dev(const link_t *l, int d)
+{
+    return dev_of_ref(&l->out) == d || dev_of_ref(&l->in) == d;
+}
+
+/* Which absent parts are replaced, and by whom (rep_old / rep_new), as PDCP Studio's arbitrator
+ * judges it: only by a change that made links touching the two or stored a configuration,
+ * and never a part that configuration names. */
+static void find_replaced(int has_cfg, uint32_t cfg_at, uint32_t cfg_len)
+{
+    static uint8_t takers[MAX_DEVICES], by[MAX_DEVICES];
+    uint16_t nroles = (uint16_t)(nbefore + g_nlinks + g_nstored);
+    nrep = 0;
+    for (int d = 0; d < MAX_DEVICES; d++) {
+        if (!g_dev[d].used || !g_dev[d].in_system || g_dev[d].present) continue;
+        int judged = 0, taken = 0;
+        memset(takers, 0, sizeof takers);
+        for (uint16_t i = 0; i < nroles; i++) {
+            link_t stored;
+            const link_t *role = i < nbefore ? &before[i] : i < nbefore + g_nlinks ?
+                &g_links[i - nbefore] : &stored;
+            if (role == &stored) {
+                const stored_link_t *sl = &g_stored[i - nbefore - g_nlinks];
+                stored.out = sl->out; stored.in = sl->in;
+                if (link_find(&stored) >= 0) continue;
+                int dup = 0;
+                for (uint16_t j = 0; j < i - nbefore - g_nlinks && !dup; j++)
+                    dup = !ref_cmp(&g_stored[j].out, &sl->out) && !ref_cmp(&g_stored[j].in, &sl->in);
+                if (dup) continue;
+            }
+            if (i >= nbefore && in_set(before, nbefore, role) >= 0) continue;
+            int n = holders(role, d, by);
+            if (n < 0) continue;
+            judged++;
+            if (n) taken++;
+            for (int k = 0; k < MAX_DEVICES; k++) takers[k] = (uint8_t)(takers[k] + by[k]);
+        }
+        if (!judged || taken != judged) continue;
+        int best = -1;
+        for (int k = 0; k < MAX_DEVICES; k++)
+            if (takers[k] && (best < 0 || takers[k] > takers[best] ||
+                              (takers[k] == takers[best] && key_cmp(&g_dev[k].key, &g_dev[best].key) < 0)))
+                best = k;
+        int made = has_cfg;
+        for (uint16_t a = 0; a < nacts && !made; a++)
+            made = names_dev(&acts[a].link, d) || names_dev(&acts[a].link, best);
+        if (made) { rep_old[nrep] = (uint8_t)d; rep_new[nrep] = (uint8_t)best; nrep++; }
+    }
+    /* never a part the configuration just stored names: that keeps it in the fitting */
+    if (has_cfg && !config_decode(2, cfg_at, cfg_len, note, sizeof note))
+        for (int r = nrep - 1; r >= 0; r--) {
+            int kept = 0;
+            for (uint16_t i = 0; i < g_nstored && !kept; i++) {
+                dev_key_t o = { g_stored[i].out.vid, g_stored[i].out.pid, g_stored[i].out.serial };
+                dev_key_t n = { g_stored[i].in.vid, g_stored[i].in.pid, g_stored[i].in.serial };
+                kept = key_eq(&o, &g_dev[rep_old[r]].key) || key_eq(&n, &g_dev[rep_old[r]].key);
+            }
+            if (kept) { nrep--; for (int k = r; k < nrep; k++) { rep_old[k] = rep_old[k + 1]; rep_new[k] = rep_new[k + 1]; } }
+        }
+    for (int r = 0; r < nrep; r++) {   /* forget them, with their dead links */
+        for (int i = (int)g_nlinks - 1; i >= 0; i--)
+            if (names_dev(&g_links[i], rep_old[r])) link_del(i);
+        g_dev[rep_old[r]].in_system = 0;
+        port_log("a replaced part is forgotten");
+    }
+}
+
 int txn_run(uint32_t len, uint32_t *result_len, uint16_t *result_crc, char *why, int room)
 {
     uint8_t b[16];
@@ -251,13 +368,14 @@ int txn_run(uint32_t len, uint32_t *result_len, uint16_t *result_crc, char *why,
     uint16_t crc_before = 0, crc_after;
     int had_crc = stored_crc(&crc_before);
     uint32_t old_len; uint16_t old_flags;
-    int had_cfg = mem_current(&old_len, 0, &old_flags) >= 0;
+    int old_slot = mem_current(&old_len, 0, &old_flags), had_cfg = old_slot >= 0;
     int pol_before = mem_policy_autoconfigure();
     uint8_t status = 3, step = 0xFF, verified = 0;
     const char *interlock = "not needed";
     char interlock_text[40];
     reason[0] = 0;
     nheld = 0;
+    nrep = 0;
     int cfg_written = 0, policy_written = 0;
 
     if (!g_may_write) {
@@ -347,6 +465,14 @@ int txn_run(uint32_t len, uint32_t *result_len, uint16_t *result_crc, char *why,
                 fmt_text(reason + n, (int)sizeof reason - n, "; what was there is restored");
             }
             arb_release(held, nheld);
+            if (status == 0) {
+                /* the configuration stored before: in its slot still, unless a policy write
+                 * after a configuration write took that slot too */
+                if (!had_cfg || !old_len || (cfg_written && policy_written) ||
+                    mem_decode_slot(old_slot, old_len, note, sizeof note))
+                    g_nstored = 0;
+                find_replaced(has_cfg, cfg_at, cfg_len);
+            }
         }
     }
     /* the result */
@@ -377,10 +503,21 @@ int txn_run(uint32_t len, uint32_t *result_len, uint16_t *result_crc, char *why,
         }
         out_keys(present, np);
     }
-    out8(0);
+    out8((uint8_t)nrep);   /* notes: "replaced A by B" (the fitting history's) */
+    for (int r = 0; r < nrep; r++) {
+        fmt_text(note, sizeof note, "replaced %k by %k", &g_dev[rep_old[r]].key, &g_dev[rep_new[r]].key);
+        out_str16(note);
+    }
     if (rbad) { fmt_text(why, room, "the result could not be written to memory"); return 0x13; }
     *result_len = rlen;
     *result_crc = rcrc;
+    for (int r = 0; r < nrep; r++) {   /* DEVICE_REPLACED: old key, new key (§5.7) */
+        uint8_t ev[13];
+        const dev_key_t *k[2] = { &g_dev[rep_old[r]].key, &g_dev[rep_new[r]].key };
+        ev[0] = 0x4C;
+        for (int e = 0; e < 2; e++) { put16(ev + 1 + 6 * e, k[e]->vid); put16(ev + 3 + 6 * e, k[e]->pid); put16(ev + 5 + 6 * e, k[e]->serial); }
+        hl_event(ev, 13);
+    }
     {
         uint8_t ev[1 + 1 + 62];
         int k = (int)strlen(action);

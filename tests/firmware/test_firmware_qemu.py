@@ -301,3 +301,47 @@ def test_a_request_numbered_like_the_last_but_another_asks_the_pc_to_renumber(bu
         if port is not None:
             port.close()
         firmware.stop()
+
+
+def test_a_replaced_part_is_forgotten_noted_and_said_on_the_host_link(bus_url, tmp_path):
+    """As PDCP Studio's arbitrator does (issue 26 item 6; host-link §5.7 DEVICE_REPLACED): the
+    hand is swapped for the spare, the Replace a part wizard's change is written and verified,
+    and the firmware forgets the old hand — no longer missing, its dead links gone —, notes
+    "replaced … by …" in the result (the fitting history's) and says DEVICE_REPLACED."""
+    from pdcp_studio.app.wizards import logic
+    from pdcp_studio.bus import events as ev
+    from pdcp_studio.bus.sim.rigs import HAND, SPARE_HAND
+    from pdcp_studio.engine import configuration_from_system
+    from pdcp_studio.model.configuration import ConfigCollection
+    from pdcp_studio.storage import config_codec
+    from tests.firmware.rig import present
+
+    run = Run("transradial", bus_url, tmp_path / "memory.bin")
+    seen: list[object] = []
+    try:
+        session = run.session
+        settle(session, devices=run.devices)
+        session.write_configuration_bytes(config_codec.dumps(
+            ConfigCollection([configuration_from_system(session.system())])))
+        session.subscribe(seen.append)
+        run.devices.host.unplug(HAND)
+        wait_for(lambda: not present(session, HAND), 30, "the hand to leave")
+        run.devices.host.plug(SPARE_HAND)
+        wait_for(lambda: sum(lk.input.device == SPARE_HAND for lk in session.system().links)
+                 == 3, 60, "the duty cycle to link the spare hand")
+        system = session.system()
+        assert not system.devices[HAND].present  # missing: the stored configuration names it
+        change = logic.replacement_change(system, logic.replacement_plan(
+            system, session.read_configuration(), [SPARE_HAND]))
+        result = session.transact(change)
+        assert result.written and result.verified, result.summary()
+        assert "replaced 2641/769/301 by 2641/769/302" in result.notes
+        wait_for(lambda: any(isinstance(e, ev.DeviceReplaced) for e in seen), 30,
+                 "DEVICE_REPLACED")
+        after = session.system()
+    finally:
+        run.close()
+    replaced = [e for e in seen if isinstance(e, ev.DeviceReplaced)]
+    assert [(e.key, e.new) for e in replaced] == [(HAND, SPARE_HAND)]
+    assert HAND not in after.devices and after.devices[SPARE_HAND].present
+    assert not any(HAND in (lk.output.device, lk.input.device) for lk in after.links)
