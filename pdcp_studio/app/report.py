@@ -305,6 +305,16 @@ def report_html(system: System, tree: ProfileTree, *, title: str | None = None,
                 checksum: int | None = None, stored_note: str = "",
                 fitting: FittingInfo | None = None) -> str:
     """The report's HTML (for tests and previews); ``graph_size`` adds the graph image."""
+    from pdcp_studio.app.words.part_names import one_naming
+
+    with one_naming(system):  # every part and link is named: one lookup for all
+        return _report_html(system, tree, title=title, date=date, graph_size=graph_size,
+                            checksum=checksum, stored_note=stored_note, fitting=fitting)
+
+
+def _report_html(system: System, tree: ProfileTree, *, title: str | None,
+                 date: _dt.date | None, graph_size: QSizeF | None, checksum: int | None,
+                 stored_note: str, fitting: FittingInfo | None) -> str:
     date = date or _dt.date.today()
     title = title or _t(DEFAULT_TITLE)
     blank = "_" * 30

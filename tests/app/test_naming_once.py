@@ -67,3 +67,62 @@ def test_the_traces_node_list_names_a_large_system_with_one_lookup(qapp, lookups
     assert lookups[0] == 1
     ref = next(r for r, c in system.channels() if c.is_output)
     assert choice.names[system.channel(ref).node_id] == part_names.channel_name(system, ref)
+
+
+class _CountedCache(dict):
+    """``part_names``'s cache, counting the lookups that read the whole system."""
+
+    looked = 0
+
+    def get(self, key, default=None):
+        type(self).looked += 1
+        return super().get(key, default)
+
+
+@pytest.fixture
+def whole_system_reads(monkeypatch):
+    _CountedCache.looked = 0
+    monkeypatch.setattr(part_names, "_CACHE", _CountedCache())
+    return _CountedCache
+
+
+def test_one_naming_answers_a_batch_from_one_lookup_and_sees_changes_after_it(
+        whole_system_reads):
+    system = load_path(FULL)
+    first = next(iter(system.devices))
+    with part_names.one_naming(system) as naming:
+        assert whole_system_reads.looked == 1
+        assert part_names.names(system) is naming
+        for ref, _ch in system.channels():
+            part_names.channel_name(system, ref)
+        assert whole_system_reads.looked == 1  # every name from the one naming
+        with part_names.one_naming(system):  # nested: the same, given back after
+            pass
+        assert part_names.names(system) is naming
+        other = load_path(FULL)  # another system is looked up as ever
+        part_names.part_name(other, first)
+        assert whole_system_reads.looked == 2
+    system.devices[first].name = "Renamed part"
+    assert part_names.part_name(system, first) == "Renamed part"  # not held any more
+
+
+def test_a_plan_preview_of_254_devices_names_its_rows_and_ghosts_in_a_few_lookups(
+        make_window, tmp_path, whole_system_reads):
+    """A 254-device autoconfigure preview looked the naming up 7,268 times (12 s of a frozen
+    window on the 2-core machine; 0.9 s with one lookup per table and per graph)."""
+    from pdcp_studio.storage.system_file import save_path
+    from tests.app.test_graph import big_system
+
+    system = big_system(254)
+    for link in list(system.links):
+        system.remove_link(link)
+    path = tmp_path / "big.json"
+    save_path(system, path)
+    window = make_window(path)
+    whole_system_reads.looked = 0
+    plan = window.preview_plan("autoconfigure")
+    assert len(plan.actions) >= 60
+    assert whole_system_reads.looked <= 10
+    ghosts = window.scene.ghosts.preview
+    assert len(ghosts) == len(plan.actions)
+    assert "Control 0, Power Grip → Hand 0, Power Grip" in "".join(g.toolTip() for g in ghosts)

@@ -244,6 +244,12 @@ class PlanPanel(QWidget):
             "the similarity score")) + "</p>")
 
     def _fill(self, plan: Plan | None) -> None:
+        from pdcp_studio.app.words.part_names import one_naming
+
+        with one_naming(self.doc.system):  # every row names parts: one lookup for all
+            self._fill_rows(plan)
+
+    def _fill_rows(self, plan: Plan | None) -> None:
         view = self.actions_view
         view.setRowCount(0)
         self._detail_hint()

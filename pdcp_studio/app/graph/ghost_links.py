@@ -30,6 +30,7 @@ class GhostLinks:
 
     def show_unwritten(self) -> None:
         """Ghost links: on the prosthesis, removed in the project (not yet written)."""
+        from pdcp_studio.app.words.part_names import one_naming
         from pdcp_studio.app.words.plan_words import link_words
 
         self._drop(self.unwritten)
@@ -37,28 +38,31 @@ class GhostLinks:
         bus = doc.bus_system
         if bus is None:
             return
-        for link in sorted(set(bus.links) - set(doc.system.links)):
-            item = self._ghost(link, "unwritten")
-            if item is not None:
-                item.setToolTip(translate(
-                    "BusScene", "Pending removal (still on the prosthesis): {link}"
-                ).format(link=link_words(doc.system, link.output, link.input)))
-                self.unwritten.append(item)
+        with one_naming(doc.system):  # a tooltip per link: one lookup for all
+            for link in sorted(set(bus.links) - set(doc.system.links)):
+                item = self._ghost(link, "unwritten")
+                if item is not None:
+                    item.setToolTip(translate(
+                        "BusScene", "Pending removal (still on the prosthesis): {link}"
+                    ).format(link=link_words(doc.system, link.output, link.input)))
+                    self.unwritten.append(item)
 
     def show_preview(self, plan: Any) -> None:
         """A plan's steps as dashed links (None: no preview)."""
         from pdcp_studio.app.words import plan_words
+        from pdcp_studio.app.words.part_names import one_naming
 
         self._drop(self.preview)
         if plan is None:
             return
         doc = self._scene.doc
-        for action in getattr(plan, "actions", ()):
-            item = self._ghost(action.link, "add" if action.op == "add" else "remove")
-            if item is not None:
-                item.setToolTip(plan_words.step_words(doc.system, plan, action,
-                                                      doc.profile_name))
-                self.preview.append(item)
+        with one_naming(doc.system):  # a tooltip per step: one lookup for all
+            for action in getattr(plan, "actions", ()):
+                item = self._ghost(action.link, "add" if action.op == "add" else "remove")
+                if item is not None:
+                    item.setToolTip(plan_words.step_words(doc.system, plan, action,
+                                                          doc.profile_name))
+                    self.preview.append(item)
 
     def _ghost(self, link: Link, kind: str) -> LinkItem | None:
         """A ghost between two shown ports, added to the scene (None: an end not shown)."""

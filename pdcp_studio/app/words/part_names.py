@@ -11,7 +11,9 @@ is added, in plain words, only where two parts would otherwise read the same. Th
 from __future__ import annotations
 
 import re
-from collections.abc import Iterable
+import threading
+from collections.abc import Iterable, Iterator
+from contextlib import contextmanager
 from typing import TYPE_CHECKING
 
 from pdcp_studio.app.i18n import QT_TRANSLATE_NOOP, translate
@@ -38,6 +40,8 @@ _TEMPLATES = (
     QT_TRANSLATE_NOOP("Names", "VID {vid} · PID {pid} · serial {serial}"),
 )
 _CACHE: dict[tuple[object, ...], Names] = {}
+#: The naming held for a batch (:func:`one_naming`), by thread and system.
+_HELD: dict[tuple[int, int], Names] = {}
 
 
 def tr(text: str) -> str:
@@ -57,7 +61,12 @@ def names(system: System | None, among: Iterable[Device] = (),
 
     Remembered for these very objects: a naming answers from the system it was made for,
     so another system that reads the same (a copy) must not get it — the first may be
-    changed in place later. (The cache keeps the objects alive, so their ids are theirs.)"""
+    changed in place later. (The cache keeps the objects alive, so their ids are theirs.)
+    Inside :func:`one_naming` for ``system``, the naming held there."""
+    if _HELD and profiles is None and not among:
+        held = _HELD.get((threading.get_ident(), id(system)))
+        if held is not None:
+            return held
     devices = list(system.devices.values()) if system is not None else []
     keys = {d.key for d in devices}
     others = [d for d in among if d.key not in keys]
@@ -71,6 +80,27 @@ def names(system: System | None, among: Iterable[Device] = (),
             _CACHE.clear()
         found = _CACHE[fingerprint] = Names(system, profiles=profiles, among=others, tr=tr)
     return found
+
+
+@contextmanager
+def one_naming(system: System | None) -> Iterator[Names]:
+    """For a batch that names many parts of ``system`` while nothing changes it (a plan's
+    rows and ghost links, a configuration's steps): inside, on this thread, every
+    :func:`names` of ``system`` (and so :func:`part_name`, :func:`channel_name`) answers from
+    one naming, looked up once. Each lookup otherwise reads the whole system to see that no
+    name changed — 1.7 ms on 254 devices, so a 254-device autoconfigure preview's 7,268
+    lookups froze the window for 12 s."""
+    naming = names(system)
+    key = (threading.get_ident(), id(system))
+    outer = _HELD.get(key)
+    _HELD[key] = naming
+    try:
+        yield naming
+    finally:
+        if outer is None:
+            del _HELD[key]
+        else:
+            _HELD[key] = outer
 
 
 def names_among(devices: Iterable[Device]) -> dict[DeviceKey, str]:
