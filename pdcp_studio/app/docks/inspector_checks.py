@@ -21,13 +21,14 @@ def checked_findings(system: System, autoconfigure: bool) -> tuple[list[Any], Te
     if not system.devices:
         return [], []  # (the window's first, empty system: nothing to import the checks for)
     from pdcp_studio.app.words.finding_text import finding_detail, plain_finding
-    from pdcp_studio.app.words.part_names import part_names
+    from pdcp_studio.app.words.part_names import one_naming
     from pdcp_studio.engine import check_system
 
     findings = check_system(system, autoconfigure=autoconfigure)
     if not findings:
         return [], []
-    names = part_names(system)
-    texts = [(plain_finding(f, system, autoconfigure, names), finding_detail(f))
-             for f in findings]
+    with one_naming(system) as naming:  # and the system's naming once, not per finding
+        names = naming.parts()
+        texts = [(plain_finding(f, system, autoconfigure, names), finding_detail(f))
+                 for f in findings]
     return findings, texts
