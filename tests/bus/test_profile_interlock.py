@@ -8,6 +8,7 @@ to hold still stops the plan before anything is written.
 
 from __future__ import annotations
 
+import threading
 import time
 from collections.abc import Iterator
 from contextlib import contextmanager
@@ -158,8 +159,32 @@ def _own_plans(events):
 def test_start_up_after_a_power_on_is_held_renewed_read_back_then_released_and_said(
         monkeypatch):
     from pdcp_studio.bus.arbitrator.core import Arbitrator
+    from pdcp_studio.bus.arbitrator.links import LinkWriter
 
     monkeypatch.setattr(Arbitrator, "interlock_renew_s", 0.005)  # renewals show in a short plan
+    # After the reset, the plan's first link write waits (at most 5 s) until a held device
+    # was suspended a second time: a slow bus, so the renewer's 5 ms turn comes inside the
+    # hold however busy the machine (with two CPU burners the plan was once written before
+    # the renewer thread ran at all). The renewal is still the renewer's own: without it the
+    # write goes ahead after 5 s and the check below fails.
+    suspended: dict[object, int] = {}
+    renewed, pacing = threading.Event(), threading.Event()
+    real_suspend, real_add = Arbitrator.suspend, LinkWriter.add
+
+    def counted_suspend(self, key, ms=0):
+        real_suspend(self, key, ms)
+        suspended[key] = suspended.get(key, 0) + 1
+        if suspended[key] >= 2:
+            renewed.set()
+
+    def paced_add(self, link):
+        if pacing.is_set():
+            pacing.clear()
+            renewed.wait(5.0)
+        real_add(self, link)
+
+    monkeypatch.setattr(Arbitrator, "suspend", counted_suspend)
+    monkeypatch.setattr(LinkWriter, "add", paced_add)
     with recorded("sim:thesis-test2") as (session, recorder):
         arb = session.arbitrator
         assert arb.wait_settled(20)
@@ -167,6 +192,9 @@ def test_start_up_after_a_power_on_is_held_renewed_read_back_then_released_and_s
         arb.subscribe(events.append)
         recorder.caught_up()
         start = len(recorder.messages())
+        suspended.clear()
+        renewed.clear()
+        pacing.set()
         arb.reset()  # every device resets and binds again: start-up as after a power-on
         assert arb.wait_for(lambda: bool(_own_plans(events)), 30.0)
         assert arb.wait_settled(20)
