@@ -62,14 +62,14 @@ class FitPanel(QWidget):
         fv.addWidget(self.btn_fit_file)
 
     def show_fit(self, system: System | None, name: str) -> None:
+        """Fit the current configuration to ``system`` (named ``name``; None: no
+        prosthesis to fit to)."""
         from pdcp_studio.app.words.part_names import one_naming
 
         with one_naming(system):  # a row per stored link and step: one lookup for all
             self._show_fit(system, name)
 
     def _show_fit(self, system: System | None, name: str) -> None:
-        """Fit the current configuration to ``system`` (named ``name``; None: no
-        prosthesis to fit to)."""
         from pdcp_studio.engine.config_fit import fit_configuration
 
         doc, words = self._doc, self._words

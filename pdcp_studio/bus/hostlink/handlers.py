@@ -494,8 +494,8 @@ class Handlers:
             return (bytes([hm.Event.DEVICE_JOINED]) + hr.pack_key(event.key)
                     + bytes([self.arb.node_id_of(event.key) or 0]))
         if isinstance(event, ev.DeviceReplaced):  # forgotten: no longer missing (§5.7)
-            return bytes([hm.Event.DEVICE_REPLACED]) + hr.pack_key(event.key) \
-                + hr.pack_key(event.new)
+            return (bytes([hm.Event.DEVICE_REPLACED]) + hr.pack_key(event.key)
+                    + hr.pack_key(event.new))
         if isinstance(event, ev.DeviceLeft):  # why it left, when the arbitrator knows (§5.7)
             if not event.why and event.silent_s <= 0 and event.interval_s <= 0:
                 return bytes([hm.Event.DEVICE_LEFT]) + hr.pack_key(event.key)
