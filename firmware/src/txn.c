@@ -215,6 +215,21 @@ static int dev_of_ref(const ch_ref_t *r)
     return dev_find(&k);
 }
 
+/* Per link of g_links, looked up once per judgement (each lookup scans the tables): its
+ * input's and output's channel slots (-1: not in the tables) and which ends are on the bus. */
+static int16_t lk_in[MAX_LINKS], lk_out[MAX_LINKS];
+static uint8_t lk_live[MAX_LINKS];   /* bit 0: the input is on the bus, bit 1: the output */
+
+static void look_up_links(void)
+{
+    for (uint16_t i = 0; i < g_nlinks; i++) {
+        const link_t *l = &g_links[i];
+        lk_in[i] = (int16_t)ch_find(&l->in);
+        lk_out[i] = (int16_t)ch_find(&l->out);
+        lk_live[i] = (uint8_t)(ref_present(&l->in, DIR_IN) | (ref_present(&l->out, DIR_OUT) << 1));
+    }
+}
+
 /* Marks in `by` the present devices that hold `old`'s end of `role` now; -1 when it is not its
  * role or its other end is not on the bus either (nothing to judge), else how many hold it. */
 static int holders(const link_t *role, int old, uint8_t *by)
@@ -223,26 +238,24 @@ static int holders(const link_t *role, int old, uint8_t *by)
     memset(by, 0, MAX_DEVICES);
     if (in_dev == old && out_dev != old) {
         if (!ref_present(&role->out, DIR_OUT)) return -1;
-        int mine = ch_find(&role->in);
+        int other = ch_find(&role->out), mine = ch_find(&role->in);
         uint16_t profile = mine >= 0 ? g_ch[mine].profile : 0;
         for (int pass = profile ? 0 : 1; pass < 2 && !n; pass++)   /* alike first, else any fed */
             for (uint16_t i = 0; i < g_nlinks; i++) {
-                const link_t *l = &g_links[i];
-                int d = dev_of_ref(&l->in), c = ch_find(&l->in);
-                if (ref_cmp(&l->out, &role->out) || d < 0 || d == old || !ref_present(&l->in, DIR_IN))
-                    continue;
-                if (!pass && g_ch[c].profile != profile) continue;
+                if (lk_out[i] != other || !(lk_live[i] & 1)) continue;
+                int d = g_ch[lk_in[i]].dev;
+                if (d == old || (!pass && g_ch[lk_in[i]].profile != profile)) continue;
                 n += !by[d]; by[d] = 1;
             }
         return n;
     }
     if (out_dev == old && in_dev != old) {
         if (!ref_present(&role->in, DIR_IN)) return -1;
+        int other = ch_find(&role->in);
         for (uint16_t i = 0; i < g_nlinks; i++) {
-            const link_t *l = &g_links[i];
-            int d = dev_of_ref(&l->out);
-            if (ref_cmp(&l->in, &role->in) || d < 0 || d == old || !ref_present(&l->out, DIR_OUT))
-                continue;
+            if (lk_in[i] != other || !(lk_live[i] & 2)) continue;
+            int d = g_ch[lk_out[i]].dev;
+            if (d == old) continue;
             n += !by[d]; by[d] = 1;
         }
         return n;
@@ -263,6 +276,7 @@ static void find_replaced(int has_cfg, uint32_t cfg_at, uint32_t cfg_len)
     static uint8_t takers[MAX_DEVICES], by[MAX_DEVICES];
     uint16_t nroles = (uint16_t)(nbefore + g_nlinks + g_nstored);
     nrep = 0;
+    look_up_links();
     for (int d = 0; d < MAX_DEVICES; d++) {
         if (!g_dev[d].used || !g_dev[d].in_system || g_dev[d].present) continue;
         int judged = 0, taken = 0;
